@@ -1,0 +1,760 @@
+//! The averaged (analytic) theory of the paper, in two variants.
+//!
+//! Equations (paper numbers; corrections from the project's `formulas.md`):
+//! - harmonic balance (Eq. 4–5): μ1 = μ0ω0^{1−λ}/sin(πλ/2), β1 = c0 − ω0^λcos(πλ/2)/μ0,
+//!   ω1² = ω0^{3−λ}/sin(πλ/2), β2 = ω0^{1−λ}/sin(πλ/2);
+//! - averaged drift (Eq. 18) for a damping polynomial of any degree:
+//!   f(A) = μ1 A Σ_k c̃_k w_k A^{2k} − κA, with c̃_0 = β1, c̃_k = c_k (k ≥ 1),
+//!   w_k = ⟨cos^{2k}φ sin²φ⟩ = C(2k,k)/(4^k(2k+2)) (1/2, 1/8, 1/16, 5/128, 7/256, 21/1024, …),
+//!   and the impact loss rate κ = (1−r)ω1/π ([`Variant::Paper`]) or −ω1 ln(r)/π
+//!   ([`Variant::Consistent`]: each impact multiplies the amplitude by r, two per period);
+//! - energy change per period (Eq. 20): πA²f(A) (paper, as printed) or 2πω1 A f(A) (consistent);
+//! - FPK for the amplitude (Eq. 25–26): drift m1 = f + σ1/(2A), diffusion σ1, with
+//!   σ1 = β2D/(ω1²(1+τ²)) (paper) or (β2²D/ω1²) Σ_{k≥1} b_k²/(1+4k²τ²ω1²),
+//!   b_k = 8k(−1)^{k+1}/(π(4k²−1)) (consistent: the noise enters through sgn(Z));
+//! - pseudo-potential (Eq. 23): U_eff = −∫₀^A f − (σ1/2) ln A, so dU_eff/dA = −m1;
+//! - stationary PDFs (Eq. 27–31): P(A) ∝ (A/σ1) exp(S), S = (2/σ1)∫₀^A f (Eq. 27's typo, the
+//!   missing (1+τ²) on the impact term, fixed); P(H) = P(A)/(ω1²A) at H = ω1²A²/2;
+//!   P(U, U̇) = 2 P(A)/(2πω1A) on U ≥ 0 with A² = U² + U̇²/ω1².
+//!
+//! Method: f/A = g(x) and A·m1 = h(x) = x g(x) + σ1/2 are polynomials in x = A², so limit cycles
+//! and PDF extrema are the positive real roots of g and h, isolated completely by
+//! [`crate::polynomial`] (derivative cascade, Sturm count); stability is the sign of g′ or h′.
+//! PDFs are normalised in log space by adaptive Gauss–Kronrod quadrature split at the modes and
+//! antimodes, so exponents of thousands neither overflow nor underflow.
+//!
+//! Reference: the paper (Eq. 4–37); Zhuravlev's transformation; stochastic averaging
+//! (Khasminskii). Tests: `tests/averaging.rs` (independent reference values, normalisation,
+//! Eq. 29 relation, joint PDF mass, proptest invariants) and the unit tests below.
+
+use crate::error::{Error, Result};
+use crate::model::Params;
+use crate::polynomial::Polynomial;
+use std::f64::consts::PI;
+
+/// Which form of the averaged formulas to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Variant {
+    /// The paper's formulas as printed (Eq. 27's typo fixed).
+    #[default]
+    Paper,
+    /// The corrected, self-consistent formulas: exact impact loss ω1A ln(r)/π, the coloured
+    /// noise averaged through sgn(Z), ΔE = 2πω1Af.
+    Consistent,
+}
+
+impl Variant {
+    /// `paper` or `consistent`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Variant::Paper => "paper",
+            Variant::Consistent => "consistent",
+        }
+    }
+}
+
+/// Harmonic-balance equivalents of the fractional term (Eq. 4–5).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Equivalents {
+    /// μ1 = μ0 ω0^{1−λ} / sin(πλ/2).
+    pub mu1: f64,
+    /// β1 = c0 − ω0^λ cos(πλ/2) / μ0 (c0 = 1 for the paper's polynomial).
+    pub beta1: f64,
+    /// ω1 = sqrt(ω0^{3−λ} / sin(πλ/2)).
+    pub omega1: f64,
+    /// β2 = ω0^{1−λ} / sin(πλ/2).
+    pub beta2: f64,
+}
+
+impl Equivalents {
+    /// Eq. 5's coefficients; `params` must be valid.
+    pub fn new(params: &Params) -> Self {
+        let (l, w0) = (params.lambda, params.omega0);
+        let s = (PI * l / 2.0).sin();
+        let c = if l == 1.0 { 0.0 } else { (PI * l / 2.0).cos() };
+        Equivalents {
+            mu1: params.mu0 * w0.powf(1.0 - l) / s,
+            beta1: params.damping.coefficient(0) - w0.powf(l) * c / params.mu0,
+            omega1: (w0.powf(3.0 - l) / s).sqrt(),
+            beta2: w0.powf(1.0 - l) / s,
+        }
+    }
+}
+
+/// w_k = ⟨cos^{2k}φ sin²φ⟩ over a period = C(2k, k) / (4^k (2k + 2)).
+pub fn phase_average_weight(k: usize) -> f64 {
+    // C(2k,k)/4^k = Π_{j=1..k} (2j−1)/(2j)
+    let mut w = 1.0;
+    for j in 1..=k {
+        w *= (2 * j - 1) as f64 / (2 * j) as f64;
+    }
+    w / (2 * k + 2) as f64
+}
+
+/// Σ_{k≥1} b_k² / (1 + c k²), b_k = 8k(−1)^{k+1}/(π(4k²−1)); equals 1 at c = 0.
+///
+/// Direct sum to K = 4096 plus the integral of the large-k form 4/(π²k²(1+ck²)) from K + 1/2,
+/// accurate to about 1e-10.
+pub fn sgn_harmonic_sum(c: f64) -> f64 {
+    if c == 0.0 {
+        return 1.0;
+    }
+    const K: usize = 4096;
+    let mut s = 0.0;
+    for k in (1..=K).rev() {
+        let kf = k as f64;
+        let den = 4.0 * kf * kf - 1.0;
+        s += 64.0 * kf * kf / (PI * PI * den * den) / (1.0 + c * kf * kf);
+    }
+    let a = K as f64 + 0.5;
+    let sc = c.sqrt();
+    let tail = 4.0 / (PI * PI) * (1.0 / a - sc * (PI / 2.0 - (sc * a).atan()));
+    s + tail
+}
+
+/// A limit cycle (or an extremum of the stationary amplitude PDF when D > 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cycle {
+    /// Amplitude A0 > 0.
+    pub amplitude: f64,
+    /// Stable: df/dA < 0 (D = 0) or dm1/dA < 0 (D > 0, a mode of P(A)).
+    pub stable: bool,
+    /// Two branches merge here (df/dA = 0 within rounding): a saddle-node point.
+    pub fold: bool,
+}
+
+/// Number of coexisting stable cycles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rhythmicity {
+    /// No stable cycle (the rest state attracts, or everything escapes).
+    None,
+    /// One stable cycle.
+    Mono,
+    /// Two.
+    Bi,
+    /// Three.
+    Tri,
+    /// More than three (possible for damping polynomials of higher degree).
+    Multi(usize),
+}
+
+impl Rhythmicity {
+    /// From a count of stable cycles.
+    pub fn from_count(n: usize) -> Self {
+        match n {
+            0 => Rhythmicity::None,
+            1 => Rhythmicity::Mono,
+            2 => Rhythmicity::Bi,
+            3 => Rhythmicity::Tri,
+            n => Rhythmicity::Multi(n),
+        }
+    }
+
+    /// The count of stable cycles.
+    pub fn count(self) -> usize {
+        match self {
+            Rhythmicity::None => 0,
+            Rhythmicity::Mono => 1,
+            Rhythmicity::Bi => 2,
+            Rhythmicity::Tri => 3,
+            Rhythmicity::Multi(n) => n,
+        }
+    }
+
+    /// `none`, `monorhythmic`, `birhythmic`, `trirhythmic`, `4-rhythmic`, …
+    pub fn name(self) -> String {
+        match self {
+            Rhythmicity::None => "none".into(),
+            Rhythmicity::Mono => "monorhythmic".into(),
+            Rhythmicity::Bi => "birhythmic".into(),
+            Rhythmicity::Tri => "trirhythmic".into(),
+            Rhythmicity::Multi(n) => format!("{n}-rhythmic"),
+        }
+    }
+}
+
+/// An extremum of U_eff.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extremum {
+    /// Amplitude (A = 0 is the rest state when D = 0).
+    pub amplitude: f64,
+    /// U_eff there.
+    pub potential: f64,
+    /// A well (minimum) or a crest (maximum).
+    pub minimum: bool,
+}
+
+/// Which way a barrier is crossed from its well.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// Towards smaller amplitude.
+    Left,
+    /// Towards larger amplitude.
+    Right,
+}
+
+/// An energy barrier ΔU = U_eff(crest) − U_eff(well) between neighbouring extrema.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Barrier {
+    /// The well's amplitude.
+    pub well: f64,
+    /// The crest's amplitude.
+    pub crest: f64,
+    /// Direction of escape.
+    pub side: Side,
+    /// ΔU > 0.
+    pub height: f64,
+}
+
+/// The averaged problem: parameters, variant and everything derived from them.
+#[derive(Debug, Clone)]
+pub struct Theory {
+    params: Params,
+    variant: Variant,
+    eq: Equivalents,
+    /// Impact loss rate κ: the drift's impact term is −κA.
+    loss_rate: f64,
+    /// σ1 (0 when D = 0).
+    sigma1: f64,
+    /// g(x) = f(A)/A at x = A².
+    g: Polynomial,
+    /// ∫₀^x g: ∫₀^A f dA = G(A²)/2.
+    g_integral: Polynomial,
+    /// h(x) = A·m1 = x g(x) + σ1/2.
+    h: Polynomial,
+}
+
+impl Theory {
+    /// Validate `params` and build the averaged problem.
+    pub fn new(params: &Params, variant: Variant) -> Result<Self> {
+        params.validate()?;
+        let eq = Equivalents::new(params);
+        let r = params.restitution;
+        let loss_rate = match variant {
+            Variant::Paper => (1.0 - r) * eq.omega1 / PI,
+            Variant::Consistent => {
+                if r == 0.0 {
+                    return Err(Error::invalid(
+                        "r",
+                        r,
+                        "(0, 1] for the consistent variant (r = 0 gives an infinite loss ω1 ln(r)/π)",
+                    ));
+                }
+                -r.ln() * eq.omega1 / PI
+            }
+        };
+        let (d, tau) = (params.noise_intensity, params.correlation_time);
+        let w1 = eq.omega1;
+        let sigma1 = match variant {
+            Variant::Paper => eq.beta2 * d / (w1 * w1 * (1.0 + tau * tau)),
+            Variant::Consistent => {
+                eq.beta2 * eq.beta2 * d / (w1 * w1) * sgn_harmonic_sum(4.0 * tau * tau * w1 * w1)
+            }
+        };
+        let mut gc: Vec<f64> = params
+            .damping
+            .coefficients
+            .iter()
+            .enumerate()
+            .map(|(k, &c)| eq.mu1 * if k == 0 { eq.beta1 } else { c } * phase_average_weight(k))
+            .collect();
+        gc[0] -= loss_rate;
+        let g = Polynomial::new(gc);
+        let g_integral = g.integral();
+        let mut hc = vec![sigma1 / 2.0];
+        hc.extend(g.coefficients.iter().copied());
+        let h = Polynomial::new(hc);
+        Ok(Theory {
+            params: params.clone(),
+            variant,
+            eq,
+            loss_rate,
+            sigma1,
+            g,
+            g_integral,
+            h,
+        })
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// The variant.
+    pub fn variant(&self) -> Variant {
+        self.variant
+    }
+
+    /// μ1, β1, ω1, β2.
+    pub fn equivalents(&self) -> Equivalents {
+        self.eq
+    }
+
+    /// κ, the impact loss rate of the drift (−κA).
+    pub fn loss_rate(&self) -> f64 {
+        self.loss_rate
+    }
+
+    /// σ1, the amplitude diffusion (Eq. 26).
+    pub fn diffusion(&self) -> f64 {
+        self.sigma1
+    }
+
+    /// f(A)/A as a polynomial in x = A².
+    pub fn drift_polynomial(&self) -> &Polynomial {
+        &self.g
+    }
+
+    /// A·m1(A) as a polynomial in x = A².
+    pub fn fpk_polynomial(&self) -> &Polynomial {
+        &self.h
+    }
+
+    /// f(A) (Eq. 18).
+    pub fn drift(&self, a: f64) -> f64 {
+        a * self.g.eval(a * a)
+    }
+
+    /// df/dA = g(x) + 2x g′(x).
+    pub fn drift_slope(&self, a: f64) -> f64 {
+        let x = a * a;
+        self.g.eval(x) + 2.0 * x * self.g.derivative().eval(x)
+    }
+
+    /// f′(0) = μ1β1/2 − κ: the rest state U = 0 is stable when negative.
+    pub fn rest_state_slope(&self) -> f64 {
+        self.g.coefficients[0]
+    }
+
+    /// Energy change over one period (Eq. 19–20): πA²f (paper) or 2πω1Af (consistent).
+    pub fn energy_change(&self, a: f64) -> f64 {
+        match self.variant {
+            Variant::Paper => PI * a * a * self.drift(a),
+            Variant::Consistent => 2.0 * PI * self.eq.omega1 * a * self.drift(a),
+        }
+    }
+
+    /// FPK drift m1(A) = f(A) + σ1/(2A) (Eq. 26).
+    pub fn fpk_drift(&self, a: f64) -> f64 {
+        self.h.eval(a * a) / a
+    }
+
+    /// The amplitude equation (Eq. 24) = −2 m1/(μ1 A).
+    pub fn amplitude_equation(&self, a: f64) -> f64 {
+        -2.0 * self.fpk_drift(a) / (self.eq.mu1 * a)
+    }
+
+    /// U_eff(A) = −∫₀^A f − (σ1/2) ln A (Eq. 23).
+    pub fn potential(&self, a: f64) -> f64 {
+        let poly = -0.5 * self.g_integral.eval(a * a);
+        if self.sigma1 > 0.0 {
+            poly - 0.5 * self.sigma1 * a.ln()
+        } else {
+            poly
+        }
+    }
+
+    /// Every positive root of f (D = 0) with its stability, ascending: the limit cycles of the
+    /// noise-free averaged system.
+    pub fn limit_cycles(&self) -> Vec<Cycle> {
+        positive_roots(&self.g)
+    }
+
+    /// Every positive root of m1 (the extrema of P(A)) when D > 0, else the limit cycles.
+    pub fn cycles(&self) -> Vec<Cycle> {
+        if self.sigma1 > 0.0 {
+            positive_roots(&self.h)
+        } else {
+            self.limit_cycles()
+        }
+    }
+
+    /// Number of stable entries of [`Theory::cycles`].
+    pub fn rhythmicity(&self) -> Rhythmicity {
+        Rhythmicity::from_count(self.cycles().iter().filter(|c| c.stable).count())
+    }
+
+    /// Number of stable limit cycles from the Sturm count alone (no root isolation): the
+    /// roots of g alternate in slope and g is negative at +∞ when the leading coefficient is.
+    pub fn stable_count_fast(&self) -> usize {
+        stable_count(if self.sigma1 > 0.0 { &self.h } else { &self.g })
+    }
+
+    /// Extrema of U_eff, ascending in A (with the rest state A = 0 when D = 0).
+    pub fn extrema(&self) -> Vec<Extremum> {
+        let mut out = Vec::new();
+        if self.sigma1 == 0.0 {
+            out.push(Extremum {
+                amplitude: 0.0,
+                potential: 0.0,
+                minimum: self.rest_state_slope() < 0.0,
+            });
+        }
+        for c in self.cycles() {
+            if c.fold {
+                continue;
+            }
+            out.push(Extremum {
+                amplitude: c.amplitude,
+                potential: self.potential(c.amplitude),
+                minimum: c.stable,
+            });
+        }
+        out
+    }
+
+    /// Energy barriers: for each well from the left, the climb to its left crest, then to its
+    /// right crest (the paper's ΔU1…ΔU4 in a trirhythmic potential).
+    pub fn barriers(&self) -> Vec<Barrier> {
+        let ex = self.extrema();
+        let mut out = Vec::new();
+        for (i, e) in ex.iter().enumerate() {
+            if !e.minimum {
+                continue;
+            }
+            if i > 0 && !ex[i - 1].minimum {
+                let c = ex[i - 1];
+                out.push(Barrier {
+                    well: e.amplitude,
+                    crest: c.amplitude,
+                    side: Side::Left,
+                    height: c.potential - e.potential,
+                });
+            }
+            if i + 1 < ex.len() && !ex[i + 1].minimum {
+                let c = ex[i + 1];
+                out.push(Barrier {
+                    well: e.amplitude,
+                    crest: c.amplitude,
+                    side: Side::Right,
+                    height: c.potential - e.potential,
+                });
+            }
+        }
+        out
+    }
+
+    /// The stationary amplitude PDF (Eq. 27–28), normalised.
+    pub fn amplitude_pdf(&self) -> Result<AmplitudePdf> {
+        AmplitudePdf::new(self)
+    }
+}
+
+fn positive_roots(p: &Polynomial) -> Vec<Cycle> {
+    p.real_roots(0.0, f64::INFINITY)
+        .into_iter()
+        .map(|r| Cycle {
+            amplitude: r.x.sqrt(),
+            stable: !r.double && r.slope < 0.0,
+            fold: r.double,
+        })
+        .collect()
+}
+
+/// Stable roots (p going from + to −) of p on x > 0, from a Sturm count and the signs at 0 and ∞.
+pub fn stable_count(p: &Polynomial) -> usize {
+    let n = p.sturm_count(0.0, f64::INFINITY);
+    let at_zero = p.coefficients[0];
+    // Roots alternate in slope; the first one is a + → − crossing when p(0) > 0.
+    if at_zero > 0.0 {
+        n.div_ceil(2)
+    } else {
+        n / 2
+    }
+}
+
+/// The stationary amplitude PDF P(A) = N0 (A/σ1) e^{S(A)}, held in log form.
+#[derive(Debug, Clone)]
+pub struct AmplitudePdf {
+    sigma1: f64,
+    omega1: f64,
+    g_integral: Polynomial,
+    /// ln of the normalisation: ln P(A) = ln A + S(A) − log_norm.
+    log_norm: f64,
+    /// Amplitudes of the maxima of P(A) (ascending).
+    pub modes: Vec<f64>,
+    /// Amplitudes of the interior minima of P(A) (ascending).
+    pub antimodes: Vec<f64>,
+    /// ⟨A⟩ = ∫A P(A) dA.
+    pub mean_amplitude: f64,
+    /// Amplitude beyond which P(A) < e^{−46} P_max (the quadrature's upper limit).
+    pub support_end: f64,
+}
+
+impl AmplitudePdf {
+    fn new(th: &Theory) -> Result<Self> {
+        let s1 = th.sigma1;
+        if s1 <= 0.0 {
+            return Err(Error::Undefined {
+                what: "stationary amplitude PDF",
+                why: format!(
+                    "needs noise: D = {} gives σ1 = 0",
+                    th.params.noise_intensity
+                ),
+            });
+        }
+        if th.g.leading() >= 0.0 {
+            return Err(Error::Undefined {
+                what: "stationary amplitude PDF",
+                why: "the damping polynomial's leading term must make f(A) → −∞ (P(A) not normalisable)".into(),
+            });
+        }
+        let extrema = positive_roots(&th.h);
+        let modes: Vec<f64> = extrema
+            .iter()
+            .filter(|c| c.stable)
+            .map(|c| c.amplitude)
+            .collect();
+        let antimodes: Vec<f64> = extrema
+            .iter()
+            .filter(|c| !c.stable && !c.fold)
+            .map(|c| c.amplitude)
+            .collect();
+        let gi = th.g_integral.clone();
+        // φ(A) = ln A + S(A), S = G(A²)/σ1.
+        let phi = |a: f64| a.ln() + gi.eval(a * a) / s1;
+        let phi_max = modes
+            .iter()
+            .map(|&a| phi(a))
+            .fold(f64::NEG_INFINITY, f64::max);
+        if !phi_max.is_finite() {
+            return Err(Error::BlowUp {
+                what: "amplitude PDF",
+                at: "its modes".into(),
+                value: phi_max,
+            });
+        }
+        // Upper limit: beyond the last extremum φ decreases; find φ = φmax − 46.
+        let last = extrema.last().map(|c| c.amplitude).unwrap_or(1.0);
+        let mut hi = last.max(1e-300) * 1.5 + 1e-3;
+        while phi(hi) > phi_max - 46.0 {
+            hi *= 1.5;
+            if !hi.is_finite() {
+                return Err(Error::BlowUp {
+                    what: "amplitude PDF support",
+                    at: "A → ∞".into(),
+                    value: hi,
+                });
+            }
+        }
+        let mut cuts: Vec<f64> = vec![0.0];
+        cuts.extend(extrema.iter().map(|c| c.amplitude).filter(|&a| a < hi));
+        cuts.push(hi);
+        let scaled = |a: f64| {
+            if a <= 0.0 {
+                0.0
+            } else {
+                (phi(a) - phi_max).exp()
+            }
+        };
+        let mass = integrate_pieces(&scaled, &cuts);
+        let first = integrate_pieces(&|a: f64| a * scaled(a), &cuts);
+        let log_norm = phi_max + mass.ln();
+        Ok(AmplitudePdf {
+            sigma1: s1,
+            omega1: th.eq.omega1,
+            g_integral: gi,
+            log_norm,
+            modes,
+            antimodes,
+            mean_amplitude: first / mass,
+            support_end: hi,
+        })
+    }
+
+    /// ln P(A) (−∞ for A ≤ 0).
+    pub fn log_density(&self, a: f64) -> f64 {
+        if a <= 0.0 {
+            return f64::NEG_INFINITY;
+        }
+        a.ln() + self.g_integral.eval(a * a) / self.sigma1 - self.log_norm
+    }
+
+    /// P(A).
+    pub fn density(&self, a: f64) -> f64 {
+        self.log_density(a).exp()
+    }
+
+    /// ln P(H) at energy H = ω1²A²/2 (Eq. 29): P(H) = P(A)/(ω1²A).
+    pub fn log_energy_density(&self, h: f64) -> f64 {
+        if h <= 0.0 {
+            return f64::NEG_INFINITY;
+        }
+        let a = (2.0 * h).sqrt() / self.omega1;
+        // ln P(A) − ln(ω1² A) = S(A) − log_norm − 2 ln ω1.
+        self.g_integral.eval(a * a) / self.sigma1 - self.log_norm - 2.0 * self.omega1.ln()
+    }
+
+    /// P(H).
+    pub fn energy_density(&self, h: f64) -> f64 {
+        self.log_energy_density(h).exp()
+    }
+
+    /// ln P(U, U̇) on the physical half-plane U ≥ 0 (Eq. 30–31): 2 P(A)/(2πω1A),
+    /// A² = U² + U̇²/ω1²; −∞ for U < 0.
+    pub fn log_joint_density(&self, u: f64, v: f64) -> f64 {
+        if u < 0.0 {
+            return f64::NEG_INFINITY;
+        }
+        let x = u * u + v * v / (self.omega1 * self.omega1);
+        // ln[P(A)/A] = S(A) − log_norm, finite at A = 0.
+        self.g_integral.eval(x) / self.sigma1 - self.log_norm - (PI * self.omega1).ln()
+    }
+
+    /// P(U, U̇).
+    pub fn joint_density(&self, u: f64, v: f64) -> f64 {
+        self.log_joint_density(u, v).exp()
+    }
+
+    /// ∫ P(A) dA over [a, b], by the same quadrature as the normalisation.
+    pub fn probability(&self, a: f64, b: f64) -> f64 {
+        let a = a.max(0.0);
+        let b = b.min(self.support_end);
+        if !(a < b) {
+            return 0.0;
+        }
+        let mut cuts = vec![a];
+        cuts.extend(
+            self.modes
+                .iter()
+                .chain(&self.antimodes)
+                .copied()
+                .filter(|&m| m > a && m < b),
+        );
+        cuts.sort_by(|x, y| x.partial_cmp(y).unwrap());
+        cuts.push(b);
+        integrate_pieces(&|x: f64| self.density(x), &cuts)
+    }
+}
+
+fn integrate_pieces(f: &dyn Fn(f64) -> f64, cuts: &[f64]) -> f64 {
+    cuts.windows(2)
+        .map(|w| adaptive_gauss_kronrod(f, w[0], w[1], 1e-13))
+        .sum()
+}
+
+const XGK: [f64; 8] = [
+    0.991455371120812639206854697526329,
+    0.949107912342758524526189684047851,
+    0.864864423359769072789712788640926,
+    0.741531185599394439863864773280788,
+    0.586087235467691130294144845693013,
+    0.405845151377397166906606412076961,
+    0.207784955007898467600689403773245,
+    0.000000000000000000000000000000000,
+];
+const WGK: [f64; 8] = [
+    0.022935322010529224963732008058970,
+    0.063092092629978553290700663189204,
+    0.104790010322250183839876322541518,
+    0.140653259715525918745189590510238,
+    0.169004726639267902826583426598550,
+    0.190350578064785409913256402421014,
+    0.204432940075298892414161999234649,
+    0.209482141084727828012999174891714,
+];
+const WG: [f64; 4] = [
+    0.129484966168869693270611432679082,
+    0.279705391489276667901467771423780,
+    0.381830050505118944950369775488975,
+    0.417959183673469387755102040816327,
+];
+
+/// 15-point Kronrod rule with its embedded 7-point Gauss rule on [a, b]: (integral, error).
+fn gk15(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
+    let c = 0.5 * (a + b);
+    let h = 0.5 * (b - a);
+    let fc = f(c);
+    let mut k = fc * WGK[7];
+    let mut g = fc * WG[3];
+    for j in 0..7 {
+        let x = h * XGK[j];
+        let s = f(c - x) + f(c + x);
+        k += WGK[j] * s;
+        if j % 2 == 1 {
+            g += WG[j / 2] * s;
+        }
+    }
+    (k * h, ((k - g) * h).abs())
+}
+
+/// Globally adaptive Gauss–Kronrod: refine the worst interval until the total error is below
+/// `rel_tol` of the total (or intervals become too small to split).
+pub fn adaptive_gauss_kronrod(f: &dyn Fn(f64) -> f64, a: f64, b: f64, rel_tol: f64) -> f64 {
+    let mut parts = vec![(a, b, gk15(f, a, b))];
+    for _ in 0..2000 {
+        let total: f64 = parts.iter().map(|p| p.2 .0).sum();
+        let err: f64 = parts.iter().map(|p| p.2 .1).sum();
+        if err <= rel_tol * total.abs() || err < 1e-300 {
+            break;
+        }
+        let (i, _) = parts
+            .iter()
+            .enumerate()
+            .max_by(|x, y| x.1 .2 .1.partial_cmp(&y.1 .2 .1).unwrap())
+            .unwrap();
+        let (lo, hi, _) = parts.swap_remove(i);
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            parts.push((lo, hi, (gk15(f, lo, hi).0, 0.0)));
+            continue;
+        }
+        parts.push((lo, mid, gk15(f, lo, mid)));
+        parts.push((mid, hi, gk15(f, mid, hi)));
+    }
+    parts.iter().map(|p| p.2 .0).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn weights_match_the_paper() {
+        let paper = [512.0, 128.0, 64.0, 40.0, 28.0, 21.0];
+        for (k, &w) in paper.iter().enumerate() {
+            assert!(
+                (phase_average_weight(k) - w / 1024.0).abs() < 1e-16,
+                "k = {k}"
+            );
+        }
+    }
+
+    #[test]
+    fn weights_are_the_phase_averages() {
+        // Independent check by trapezoidal quadrature over a period (exact for trig polynomials).
+        for k in 0..9 {
+            let n = 64;
+            let avg: f64 = (0..n)
+                .map(|i| {
+                    let p = 2.0 * PI * i as f64 / n as f64;
+                    p.cos().powi(2 * k as i32) * p.sin().powi(2)
+                })
+                .sum::<f64>()
+                / n as f64;
+            assert!((avg - phase_average_weight(k)).abs() < 1e-15, "k = {k}");
+        }
+    }
+
+    #[test]
+    fn harmonic_sum_limits() {
+        assert_eq!(sgn_harmonic_sum(0.0), 1.0);
+        // c → 0⁺ is continuous
+        assert!((sgn_harmonic_sum(1e-12) - 1.0).abs() < 1e-5);
+        // large c: only k = 1 matters, ≈ b1²/(c)
+        let c = 1e6;
+        let b1 = 64.0 / (9.0 * PI * PI);
+        assert!((sgn_harmonic_sum(c) * c / b1 - 1.0).abs() < 0.2);
+    }
+
+    #[test]
+    fn gauss_kronrod_integrates_a_narrow_gaussian() {
+        let s = 1e-4;
+        let f = |x: f64| (-(x - 0.3) * (x - 0.3) / (2.0 * s * s)).exp();
+        let v = adaptive_gauss_kronrod(&f, 0.0, 0.3, 1e-13)
+            + adaptive_gauss_kronrod(&f, 0.3, 1.0, 1e-13);
+        let exact = s * (2.0 * PI).sqrt();
+        assert!((v / exact - 1.0).abs() < 1e-11, "{v} vs {exact}");
+    }
+}
