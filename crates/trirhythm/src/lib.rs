@@ -19,6 +19,7 @@ pub mod averaging;
 pub mod error;
 pub mod model;
 pub mod polynomial;
+pub mod quadrature;
 
 pub use error::{Error, Result};
 pub use model::{Damping, Params, Preset};
