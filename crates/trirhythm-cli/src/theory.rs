@@ -166,7 +166,7 @@ pub struct CurveArgs {
     #[command(flatten)]
     pub theory: TheoryArgs,
     /// Amplitude grid START:STOP:COUNT (START ≥ 0).
-    #[arg(long, default_value = "0:15:301")]
+    #[arg(long, default_value = "0:15:301", allow_hyphen_values = true)]
     pub grid: String,
 }
 
@@ -304,10 +304,10 @@ pub struct PdfArgs {
     #[arg(long, value_enum, default_value_t = PdfKind::Amplitude)]
     pub kind: PdfKind,
     /// Grid START:STOP:COUNT of A, H, or U (joint); default: the density's support.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub grid: Option<String>,
     /// Velocity grid START:STOP:COUNT for the joint density; default: symmetric, 101 points.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub vgrid: Option<String>,
 }
 

@@ -72,7 +72,8 @@ impl Equivalents {
     pub fn new(params: &Params) -> Self {
         let (l, w0) = (params.lambda, params.omega0);
         let s = (PI * l / 2.0).sin();
-        let c = if l == 1.0 { 0.0 } else { (PI * l / 2.0).cos() };
+        // cos(πλ/2) = sin(π(1−λ)/2): 1 − λ is exact near λ = 1, so no cancellation.
+        let c = (PI * (1.0 - l) / 2.0).sin();
         Equivalents {
             mu1: params.mu0 * w0.powf(1.0 - l) / s,
             beta1: params.damping.coefficient(0) - w0.powf(l) * c / params.mu0,
@@ -539,9 +540,39 @@ impl AmplitudePdf {
                 });
             }
         }
-        let mut cuts: Vec<f64> = vec![0.0];
-        cuts.extend(extrema.iter().map(|c| c.amplitude).filter(|&a| a < hi));
-        cuts.push(hi);
+        // Cuts at the extrema and, around each mode, at m ± w·2^k with w = |φ″(m)|^{−1/2} the
+        // peak's width, so that no Gauss–Kronrod panel is much wider than the peak it holds.
+        let gd = th.g.derivative();
+        let mut cuts: Vec<f64> = vec![0.0, hi];
+        for (i, c) in extrema.iter().enumerate() {
+            if c.amplitude >= hi {
+                continue;
+            }
+            cuts.push(c.amplitude);
+            if !c.stable {
+                continue;
+            }
+            let (m, x) = (c.amplitude, c.amplitude * c.amplitude);
+            let curvature = -1.0 / x + (2.0 * th.g.eval(x) + 4.0 * x * gd.eval(x)) / s1;
+            let w = if curvature < 0.0 {
+                (-curvature).sqrt().recip()
+            } else {
+                1e-3 * m
+            };
+            let left = if i > 0 { extrema[i - 1].amplitude } else { 0.0 };
+            let right = extrema.get(i + 1).map_or(hi, |n| n.amplitude.min(hi));
+            let mut step = w;
+            while m - step > left || m + step < right {
+                for cut in [m - step, m + step] {
+                    if cut > left && cut < right {
+                        cuts.push(cut);
+                    }
+                }
+                step *= 2.0;
+            }
+        }
+        cuts.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        cuts.dedup();
         let scaled = |a: f64| {
             if a <= 0.0 {
                 0.0
