@@ -65,7 +65,7 @@ pub struct ParamArgs {
     #[arg(long)]
     pub preset: Option<String>,
     /// Override a parameter: KEY=VALUE with KEY in mu0 omega0 lambda r alpha0 beta0 gamma0
-    /// delta0 D tau, or c<k> for the coefficient of U^(2k) (repeatable).
+    /// delta0 D tau, or `c<k>` for the coefficient of U^(2k) (repeatable).
     #[arg(long = "param", value_name = "KEY=VALUE")]
     pub params: Vec<String>,
     /// Formula variant of the averaged theory.

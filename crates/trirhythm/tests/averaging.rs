@@ -3,6 +3,9 @@
 //! Reference values come from `tests/reference/averaging_reference.py` (mpmath, 30 digits,
 //! written from the paper's printed formulas in A, not from this library's x = A² form).
 
+// Reference values are pasted verbatim from the script, digits beyond f64 included.
+#![allow(clippy::excessive_precision)]
+
 use proptest::prelude::*;
 use trirhythm::averaging::{stable_count, Equivalents, Theory, Variant};
 use trirhythm::model::{preset, Damping, Params};
