@@ -9,8 +9,9 @@
 //! constructor of the crate that consumes parameters), presets for every figure of the paper
 //! with the choices the paper leaves open documented in [`Preset::notes`].
 //!
-//! Tests: `tests/model.rs` (every invalid value is rejected with its name, proptest over random
-//! values) and the unit tests below (keys round-trip, presets validate).
+//! Tests: `tests/averaging.rs::invalid_parameters_are_rejected_with_their_name` (proptest: every
+//! invalid value is rejected, the message names the parameter and its range) and the unit tests
+//! below (keys round-trip, presets validate).
 
 use crate::error::{Error, Result};
 
