@@ -42,7 +42,10 @@ pub fn paper_barriers(th: &Theory) -> ([Option<f64>; 4], usize) {
 }
 
 /// Barriers on every grid point of the plane, in parallel; `progress(rows_done, rows)`.
-pub fn barrier_surfaces(plane: &Plane, progress: &(dyn Fn(usize, usize) + Sync)) -> BarrierSurfaces {
+pub fn barrier_surfaces(
+    plane: &Plane,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> BarrierSurfaces {
     let (nx, ny) = (plane.x.count, plane.y.count);
     let done = AtomicUsize::new(0);
     let rows: Vec<Vec<([Option<f64>; 4], u8)>> = (0..ny)

@@ -92,7 +92,13 @@ impl Line {
         t
     }
 
-    fn newton(&self, mut v: [f64; 2], n: [f64; 2], c: f64, max_iter: usize) -> Option<([f64; 2], usize)> {
+    fn newton(
+        &self,
+        mut v: [f64; 2],
+        n: [f64; 2],
+        c: f64,
+        max_iter: usize,
+    ) -> Option<([f64; 2], usize)> {
         for it in 0..max_iter {
             let (f, g, _) = self.eval(v);
             let r = n[0] * v[0] + n[1] * v[1] - c;
@@ -126,11 +132,18 @@ impl Line {
     }
 
     /// Follow the branch from v0 along t0; folds are recorded and passed.
-    fn trace(&self, v0: [f64; 2], t0: [f64; 2], ds_max: f64, folds: &mut Vec<[f64; 2]>) -> (Vec<[f64; 2]>, CurveEnd) {
+    fn trace(
+        &self,
+        v0: [f64; 2],
+        t0: [f64; 2],
+        ds_max: f64,
+        folds: &mut Vec<[f64; 2]>,
+    ) -> (Vec<[f64; 2]>, CurveEnd) {
         let mut pts = vec![v0];
         let (mut v, mut t, mut ds) = (v0, t0, ds_max);
         let mut travelled = 0.0;
-        let dist = |a: [f64; 2], b: [f64; 2]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+        let dist =
+            |a: [f64; 2], b: [f64; 2]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
         loop {
             if pts.len() > 200_000 {
                 return (pts, CurveEnd::StepLimit);
@@ -247,14 +260,19 @@ pub fn branches(
             }
         }
     }
-    line.xs = seeds.iter().map(|s| s[0]).fold(0.0f64, f64::max).max(1e-300);
+    line.xs = seeds
+        .iter()
+        .map(|s| s[0])
+        .fold(0.0f64, f64::max)
+        .max(1e-300);
     let ds = max_step;
     let mut all: Vec<[f64; 2]> = Vec::new();
     let mut folds: Vec<[f64; 2]> = Vec::new();
     let mut out = Vec::new();
     for s in seeds {
         let v0 = [s[0] / line.xs, s[1]];
-        let near = |p: &[f64; 2]| ((p[0] - v0[0]).powi(2) + (p[1] - v0[1]).powi(2)).sqrt() < 2.0 * ds;
+        let near =
+            |p: &[f64; 2]| ((p[0] - v0[0]).powi(2) + (p[1] - v0[1]).powi(2)).sqrt() < 2.0 * ds;
         if all.iter().any(near) {
             continue;
         }

@@ -213,7 +213,13 @@ impl<'a> System<'a> {
     }
 
     /// Newton on {E1 = 0, E2 = 0, n·v = c}: the point and the iteration count.
-    fn newton(&self, mut v: [f64; 3], n: [f64; 3], c: f64, max_iter: usize) -> Option<([f64; 3], usize)> {
+    fn newton(
+        &self,
+        mut v: [f64; 3],
+        n: [f64; 3],
+        c: f64,
+        max_iter: usize,
+    ) -> Option<([f64; 3], usize)> {
         for it in 0..max_iter {
             let (f, j) = self.jacobian(v);
             let g = dot(n, v) - c;
@@ -261,6 +267,7 @@ fn axpy(a: [f64; 3], s: f64, t: [f64; 3]) -> [f64; 3] {
 }
 
 /// Gaussian elimination with partial pivoting on a 3 × 3 system.
+#[allow(clippy::needless_range_loop)] // index form mirrors the textbook algorithm
 fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
     for k in 0..3 {
         let p = (k..3).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))?;
@@ -446,7 +453,11 @@ impl System<'_> {
     }
 
     /// Trace both ways from a located point.
-    fn trace_both(&self, v0: [f64; 3], opt: &TraceOptions) -> (Vec<[f64; 3]>, CurveEnd, CurveEnd, Vec<[f64; 3]>) {
+    fn trace_both(
+        &self,
+        v0: [f64; 3],
+        opt: &TraceOptions,
+    ) -> (Vec<[f64; 3]>, CurveEnd, CurveEnd, Vec<[f64; 3]>) {
         let t0 = self.tangent(v0, None);
         let fwd = self.trace(v0, t0, opt);
         let mut cusps: Vec<[f64; 3]> = fwd.cusp.into_iter().collect();
@@ -465,7 +476,11 @@ impl System<'_> {
     fn locate_on_segment(&self, a: [f64; 2], b: [f64; 2], s: f64, x: f64) -> Option<[f64; 3]> {
         let n = [0.0, -(b[1] - a[1]), b[0] - a[0]];
         let c = n[1] * a[0] + n[2] * a[1];
-        let guess = [x / self.xs, a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])];
+        let guess = [
+            x / self.xs,
+            a[0] + s * (b[0] - a[0]),
+            a[1] + s * (b[1] - a[1]),
+        ];
         let (v, _) = self.newton(guess, n, c, 30)?;
         // Stay near the segment.
         let d = [b[0] - a[0], b[1] - a[1]];

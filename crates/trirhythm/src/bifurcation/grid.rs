@@ -216,20 +216,17 @@ pub fn classify(plane: &Plane, what: What, progress: &(dyn Fn(usize, usize) + Sy
     let mut counts = vec![0u8; nx * ny];
     let done = AtomicUsize::new(0);
     let xs = plane.x.values();
-    counts
-        .par_chunks_mut(nx)
-        .enumerate()
-        .for_each(|(iy, row)| {
-            let vy = plane.y.value(iy);
-            let mut p = plane.point;
-            p.set(plane.ky, vy);
-            for (cell, &vx) in row.iter_mut().zip(&xs) {
-                p.set(plane.kx, vx);
-                *cell = plane.kernel.stable_count(&p, what).min(255) as u8;
-            }
-            let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-            progress(d, ny);
-        });
+    counts.par_chunks_mut(nx).enumerate().for_each(|(iy, row)| {
+        let vy = plane.y.value(iy);
+        let mut p = plane.point;
+        p.set(plane.ky, vy);
+        for (cell, &vx) in row.iter_mut().zip(&xs) {
+            p.set(plane.kx, vx);
+            *cell = plane.kernel.stable_count(&p, what).min(255) as u8;
+        }
+        let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+        progress(d, ny);
+    });
     Map {
         plane: plane.clone(),
         what,

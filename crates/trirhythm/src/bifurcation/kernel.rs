@@ -496,7 +496,10 @@ mod tests {
         xg.extend(g.coefficients.iter());
         let dxg = Polynomial::new(xg).derivative();
         for (a, b) in e37.slice().iter().zip(&dxg.coefficients) {
-            assert!((a - 512.0 * b).abs() < 1e-12 * a.abs().max(1e-3), "{a} vs {b}");
+            assert!(
+                (a - 512.0 * b).abs() < 1e-12 * a.abs().max(1e-3),
+                "{a} vs {b}"
+            );
         }
     }
 

@@ -37,8 +37,8 @@ mod kernel;
 pub use barrier::{barrier_surfaces, paper_barriers, BarrierSurfaces};
 pub use branch::{branches, Branch, BranchDiagram, BranchPoint};
 pub use fold::{
-    cusp_monitor, fold_residuals, trace_folds, trace_printed_eq37, CurveEnd, FoldCurve,
-    FoldPoint, FoldSystem, Folds, TraceOptions,
+    cusp_monitor, fold_residuals, trace_folds, trace_printed_eq37, CurveEnd, FoldCurve, FoldPoint,
+    FoldSystem, Folds, TraceOptions,
 };
 pub use grid::{classify, Axis, Map, Plane};
 pub use kernel::{sgn_harmonic_sum_closed, Kernel, Key, Point, What, MAXC};
