@@ -3,9 +3,10 @@
 //!
 //! [`crate::averaging::Theory::new`] clones the parameters and allocates its polynomials; a map
 //! of 10⁶ points cannot afford that. Here a parameter point is a `Copy` struct, the
-//! coefficients are built on the stack with the same arithmetic as `Theory` (so the results are
-//! bit-identical for the paper variant), and the Sturm count replicates
-//! [`crate::polynomial::Polynomial::sturm_count`] on fixed-size arrays.
+//! coefficients are built on the stack with the same arithmetic as `Theory` (bit-identical
+//! coefficients for the paper variant), and the Sturm count follows
+//! [`crate::polynomial::Polynomial::sturm_count`] on fixed-size arrays (power-of-two scaling,
+//! rolled sequence: only rounding differs, so counts agree except within ~1e-10 of a fold).
 
 use crate::averaging::{phase_average_weight, Variant};
 use crate::error::{Error, Result};
@@ -313,7 +314,7 @@ impl Kernel {
     }
 
     /// Stable roots of g (limit cycles) or h (modes of P(A)) on x > 0, by the certified Sturm
-    /// count: equal to `Theory::stable_count_fast` on the same polynomial.
+    /// count: the same count as `Theory::stable_count_fast` on the same polynomial.
     #[inline]
     pub fn stable_count(&self, p: &Point, what: What) -> usize {
         stable_count(&self.coefficients(p, what))
@@ -336,7 +337,11 @@ pub(crate) fn stable_count(p: &Coeffs) -> usize {
     }
 }
 
-/// Distinct real roots in (0, ∞], replicating `Polynomial::sturm_count(0, ∞)` on the stack.
+/// Distinct real roots in (0, ∞]: the algorithm of `Polynomial::sturm_count(0, ∞)` (rescale
+/// to roots of order one, normalised Sturm sequence with coefficients below 1e-13 dropped) on
+/// the stack, with two differences that only change rounding: the scale is Fujiwara's bound
+/// rounded up to a power of two (so the rescaling is exact and needs no `powf`), and the
+/// sequence is rolled (only the signs of each member at 0 and +∞ are kept).
 pub(crate) fn sturm_count_positive(p: &Coeffs) -> usize {
     let mut p = *p;
     p.trim();
@@ -344,76 +349,107 @@ pub(crate) fn sturm_count_positive(p: &Coeffs) -> usize {
     if n == 0 {
         return 0;
     }
-    // Fujiwara's bound, as Polynomial::root_bound.
+    // log2 of Fujiwara's bound 2·max_i (|a_{n−i}|/|a_n|)^{1/i} (the last term halved), rounded
+    // up to an integer: exponent arithmetic only.
     let an = p.c[n].abs();
-    let mut m: f64 = 0.0;
+    let mut e_max = i32::MIN;
     for i in 1..=n {
-        let a = p.c[n - i].abs() / an;
-        let t = if i == n {
-            (a / 2.0).powf(1.0 / i as f64)
-        } else {
-            a.powf(1.0 / i as f64)
-        };
-        m = m.max(t);
+        let mut a = p.c[n - i].abs() / an;
+        if i == n {
+            a /= 2.0;
+        }
+        if a == 0.0 || !a.is_finite() {
+            continue;
+        }
+        let e = exponent_ceil(a);
+        e_max = e_max.max(e.div_euclid(i as i32) + i32::from(e.rem_euclid(i as i32) != 0));
     }
-    let s = (2.0 * m).max(f64::MIN_POSITIVE);
-    // rescaled(s)
-    let mut k = 1.0;
-    for v in p.c[..p.len].iter_mut() {
-        *v *= k;
-        k *= s;
+    if e_max != i32::MIN {
+        let s = pow2(e_max + 1);
+        let mut k = 1.0;
+        for v in p.c[..p.len].iter_mut() {
+            *v *= k;
+            k *= s;
+        }
+        p.trim();
     }
-    p.trim();
-    // Sturm sequence with normalisation.
-    let mut seq = [Coeffs::zero(); CAP + 1];
-    seq[0] = normalised(p);
+    let mut at0 = Variations::default();
+    let mut at_inf = Variations::default();
+    let mut a = normalised(p);
     let mut d = Coeffs::zero();
-    if seq[0].len > 1 {
-        d.len = seq[0].len - 1;
-        for i in 1..seq[0].len {
-            d.c[i - 1] = seq[0].c[i] * i as f64;
+    if a.len > 1 {
+        d.len = a.len - 1;
+        for i in 1..a.len {
+            d.c[i - 1] = a.c[i] * i as f64;
         }
         d.trim();
     }
-    seq[1] = normalised(d);
-    let mut len = 2;
-    loop {
-        if seq[len - 1].len == 1 || len > CAP {
-            break;
-        }
-        let r = neg_remainder(&seq[len - 2], &seq[len - 1]);
+    let mut b = normalised(d);
+    at0.push(a.c[0]);
+    at_inf.push(a.c[a.len - 1]);
+    at0.push(b.c[0]);
+    at_inf.push(b.c[b.len - 1]);
+    let mut guard = 0;
+    while b.len > 1 && guard <= CAP {
+        let r = neg_remainder(&a, &b);
         if r.slice().iter().all(|&c| c == 0.0) {
             break;
         }
-        seq[len] = r;
-        len += 1;
+        at0.push(r.c[0]);
+        at_inf.push(r.c[r.len - 1]);
+        a = b;
+        b = r;
+        guard += 1;
     }
-    // Sign variations at 0 (constant terms) and at +∞ (leading terms).
-    let at = |f: &dyn Fn(&Coeffs) -> f64| -> usize {
-        let mut count = 0;
-        let mut prev = 0.0f64;
-        for q in &seq[..len] {
-            let v = f(q);
-            if v != 0.0 {
-                if prev != 0.0 && (v > 0.0) != (prev > 0.0) {
-                    count += 1;
-                }
-                prev = v;
+    at0.count.saturating_sub(at_inf.count)
+}
+
+/// Sign variations of a sequence of values, zeros skipped.
+#[derive(Default)]
+struct Variations {
+    prev: f64,
+    count: usize,
+}
+
+impl Variations {
+    #[inline]
+    fn push(&mut self, v: f64) {
+        if v != 0.0 {
+            if self.prev != 0.0 && (v > 0.0) != (self.prev > 0.0) {
+                self.count += 1;
             }
+            self.prev = v;
         }
-        count
-    };
-    let va = at(&|q: &Coeffs| q.c[0]);
-    let vb = at(&|q: &Coeffs| q.c[q.len - 1]);
-    va.saturating_sub(vb)
+    }
+}
+
+/// Smallest e with a ≤ 2^e (a > 0, finite).
+#[inline]
+fn exponent_ceil(a: f64) -> i32 {
+    let bits = a.to_bits();
+    let exp = ((bits >> 52) & 0x7ff) as i32;
+    if exp == 0 {
+        // subnormal: tiny, any small exponent will do
+        return -1074;
+    }
+    let mant = bits & ((1u64 << 52) - 1);
+    (exp - 1023) + i32::from(mant != 0)
+}
+
+/// 2^e for e in the normal range (clamped).
+#[inline]
+fn pow2(e: i32) -> f64 {
+    let e = e.clamp(-1022, 1023);
+    f64::from_bits(((e + 1023) as u64) << 52)
 }
 
 #[inline]
 fn normalised(mut p: Coeffs) -> Coeffs {
     let m = p.slice().iter().fold(0.0f64, |m, v| m.max(v.abs()));
     if m > 0.0 {
+        let inv = 1.0 / m;
         for v in p.c[..p.len].iter_mut() {
-            *v /= m;
+            *v *= inv;
             if v.abs() < 1e-13 {
                 *v = 0.0;
             }
