@@ -20,6 +20,7 @@ pub mod bifurcation;
 pub mod error;
 pub mod model;
 pub mod polynomial;
+pub mod quadrature;
 
 pub use error::{Error, Result};
 pub use model::{Damping, Params, Preset};

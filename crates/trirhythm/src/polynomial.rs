@@ -187,7 +187,7 @@ impl Polynomial {
         let bound = self.root_bound();
         let lo = lo.max(-bound * 1.0001 - f64::MIN_POSITIVE);
         let hi = hi.min(bound * 1.0001 + f64::MIN_POSITIVE);
-        if self.degree() == 0 || !(lo < hi) {
+        if self.degree() == 0 || lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
             return Vec::new();
         }
         let d = self.derivative();
