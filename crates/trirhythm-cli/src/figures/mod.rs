@@ -4,9 +4,11 @@
 //! `figNN.png` + `figNN.svg` into the output directory. `--quick` trades resolution for speed
 //! (used by CI); the default is paper quality.
 
+mod fig02_rhythmicity_planes;
 mod fig04_drift;
 mod fig07_pseudo_potential;
 mod fig08_barriers;
+mod mapfig;
 
 use anyhow::Result;
 use std::path::PathBuf;
@@ -35,6 +37,11 @@ type FigureFn = fn(&FigureContext) -> Result<Vec<PathBuf>>;
 /// The figures this build can make, by number.
 pub fn registry() -> Vec<(u32, &'static str, FigureFn)> {
     vec![
+        (
+            2,
+            "rhythmicity maps in (α0, β0) and (γ0, δ0) with saddle-node lines",
+            fig02_rhythmicity_planes::run,
+        ),
         (
             4,
             "f(A0) with its zones and limit cycles (Eq. 18)",

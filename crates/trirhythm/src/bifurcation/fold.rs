@@ -69,6 +69,21 @@ pub enum CurveEnd {
     Unbounded,
 }
 
+impl CurveEnd {
+    /// `border`, `cusp`, `zero_amplitude`, `closed`, `failed`, `step_limit`, `unbounded`.
+    pub fn name(self) -> &'static str {
+        match self {
+            CurveEnd::Border => "border",
+            CurveEnd::Cusp => "cusp",
+            CurveEnd::ZeroAmplitude => "zero_amplitude",
+            CurveEnd::Closed => "closed",
+            CurveEnd::Failed => "failed",
+            CurveEnd::StepLimit => "step_limit",
+            CurveEnd::Unbounded => "unbounded",
+        }
+    }
+}
+
 /// A point of a fold curve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FoldPoint {
