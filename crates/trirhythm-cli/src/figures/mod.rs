@@ -5,7 +5,10 @@
 //! (used by CI); the default is paper quality.
 
 mod fig02_rhythmicity_planes;
+mod fig03_restitution_planes;
 mod fig04_drift;
+mod fig05_branches;
+mod fig06_fractional_planes;
 mod fig07_pseudo_potential;
 mod fig08_barriers;
 mod mapfig;
@@ -43,9 +46,24 @@ pub fn registry() -> Vec<(u32, &'static str, FigureFn)> {
             fig02_rhythmicity_planes::run,
         ),
         (
+            3,
+            "rhythmicity in (γ0, δ0) for four restitution coefficients",
+            fig03_restitution_planes::run,
+        ),
+        (
             4,
             "f(A0) with its zones and limit cycles (Eq. 18)",
             fig04_drift::run,
+        ),
+        (
+            5,
+            "limit-cycle amplitude vs r by continuation, five μ0",
+            fig05_branches::run,
+        ),
+        (
+            6,
+            "mono/bi/tri regions in (γ0, δ0) for four fractional orders",
+            fig06_fractional_planes::run,
         ),
         (
             7,
