@@ -11,6 +11,9 @@ mod fig05_branches;
 mod fig06_fractional_planes;
 mod fig07_pseudo_potential;
 mod fig08_barriers;
+mod fig09_barrier_surfaces;
+mod fig10_pbif_lambda_tau;
+mod fig12_pbif_maps;
 mod mapfig;
 
 use anyhow::Result;
@@ -71,6 +74,21 @@ pub fn registry() -> Vec<(u32, &'static str, FigureFn)> {
             fig07_pseudo_potential::run,
         ),
         (8, "energy barriers ΔU_i of U_eff", fig08_barriers::run),
+        (
+            9,
+            "energy barriers ΔU_i over (τ, λ) for two r",
+            fig09_barrier_surfaces::run,
+        ),
+        (
+            10,
+            "P-bifurcation map in (λ, τ) for four D",
+            fig10_pbif_lambda_tau::run,
+        ),
+        (
+            12,
+            "P-bifurcation maps in (μ0, r) and (λ, r)",
+            fig12_pbif_maps::run,
+        ),
     ]
 }
 

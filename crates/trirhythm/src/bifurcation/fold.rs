@@ -587,13 +587,19 @@ pub fn trace_printed_eq37(map: &Map) -> Result<Folds> {
             why: "they belong to the paper variant's mode maps".into(),
         });
     }
-    let (nx, ny) = (plane.x.count, plane.y.count);
     let k = &plane.kernel;
-    // Per grid point: positive roots of the printed Eq. 37 and the sign of h there.
+    // On a subgrid of at most ~200 × 200 points (root isolation per point is costly): the
+    // positive roots of the printed Eq. 37 and the sign of h there. Continuation then follows
+    // each curve at the full map's resolution.
+    let stride = |n: usize| (n - 1).div_ceil(200).max(1);
+    let (sx, sy) = (stride(plane.x.count), stride(plane.y.count));
+    let ix_list: Vec<usize> = (0..plane.x.count).step_by(sx).collect();
+    let iy_list: Vec<usize> = (0..plane.y.count).step_by(sy).collect();
+    let (nx, ny) = (ix_list.len(), iy_list.len());
     let table: Vec<Vec<(f64, bool)>> = (0..nx * ny)
         .into_par_iter()
         .map(|i| {
-            let (ix, iy) = (i % nx, i / nx);
+            let (ix, iy) = (ix_list[i % nx], iy_list[i / nx]);
             let p = plane.point(plane.x.value(ix), plane.y.value(iy));
             let e = k.printed_eq37(&p);
             let h = k.coefficients(&p, What::Modes);
@@ -605,20 +611,24 @@ pub fn trace_printed_eq37(map: &Map) -> Result<Folds> {
         })
         .collect();
     let mut pairs = Vec::new();
-    for iy in 0..ny {
-        for ix in 0..nx {
-            let a = &table[iy * nx + ix];
-            for (jx, jy) in [(ix + 1, iy), (ix, iy + 1)] {
-                if jx >= nx || jy >= ny {
+    for jy in 0..ny {
+        for jx in 0..nx {
+            let a = &table[jy * nx + jx];
+            for (kx, ky) in [(jx + 1, jy), (jx, jy + 1)] {
+                if kx >= nx || ky >= ny {
                     continue;
                 }
-                let b = &table[jy * nx + jx];
+                let b = &table[ky * nx + kx];
                 if a.len() != b.len() {
                     continue;
                 }
                 for (ra, rb) in a.iter().zip(b) {
                     if ra.1 != rb.1 {
-                        pairs.push(((ix, iy), (jx, jy), 0.5 * (ra.0 + rb.0)));
+                        pairs.push((
+                            (ix_list[jx], iy_list[jy]),
+                            (ix_list[kx], iy_list[ky]),
+                            0.5 * (ra.0 + rb.0),
+                        ));
                     }
                 }
             }
