@@ -39,5 +39,6 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
         notes,
         panels,
         (2, 2),
+        plotters::prelude::SeriesLabelPosition::UpperRight,
     )
 }

@@ -156,6 +156,7 @@ pub fn write_map_figure(
     mut notes: Vec<String>,
     panels: Vec<MapPanel>,
     layout: (usize, usize),
+    legend_at: SeriesLabelPosition,
 ) -> Result<Vec<PathBuf>> {
     for p in &panels {
         notes.extend(panel_notes(p));
@@ -203,6 +204,7 @@ pub fn write_map_figure(
             subtitle,
             panels,
             layout,
+            legend_at,
         },
         &stem,
     )?);
@@ -214,6 +216,7 @@ struct MapFigure {
     subtitle: String,
     panels: Vec<MapPanel>,
     layout: (usize, usize),
+    legend_at: SeriesLabelPosition,
 }
 
 impl Picture for MapFigure {
@@ -241,7 +244,7 @@ impl Picture for MapFigure {
         .map_err(pe)?;
         let areas = rest.split_evenly(self.layout);
         for (i, (area, p)) in areas.iter().zip(&self.panels).enumerate() {
-            draw_panel(area, p, i == 0)?;
+            draw_panel(area, p, (i == 0).then(|| self.legend_at.clone()))?;
         }
         Ok(())
     }
@@ -251,7 +254,7 @@ impl Picture for MapFigure {
 pub fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     p: &MapPanel,
-    with_legend: bool,
+    legend_at: Option<SeriesLabelPosition>,
 ) -> Result<()>
 where
     DB::ErrorType: 'static,
@@ -358,8 +361,8 @@ where
         .label("cusp")
         .legend(|(x, y)| Circle::new((x + 7, y), 5, FOLD.stroke_width(2)));
     }
-    if with_legend {
-        legend(&mut c, SeriesLabelPosition::UpperRight)?;
+    if let Some(pos) = legend_at {
+        legend(&mut c, pos)?;
     }
     Ok(())
 }
