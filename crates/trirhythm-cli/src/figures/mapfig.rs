@@ -148,6 +148,7 @@ pub fn panel_notes(p: &MapPanel) -> Vec<String> {
 }
 
 /// Write `figNN.csv` (panel,x,y,count), `figNN_folds.csv` and the picture.
+#[allow(clippy::too_many_arguments)]
 pub fn write_map_figure(
     ctx: &FigureContext,
     n: u32,
