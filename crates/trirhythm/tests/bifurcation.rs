@@ -596,3 +596,35 @@ fn bad_planes_are_rejected_naming_the_parameter() {
         "{e}"
     );
 }
+
+mod random_planes {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+        /// On random (γ0, δ0) and (λ, τ) planes around the paper's parameters: the counts are
+        /// at most three (g has degree 5 in x), every count change lies on a traced curve, and
+        /// the curves solve their equations.
+        #[test]
+        fn random_planes_are_consistent(mu0 in 0.003f64..0.3, lambda in 0.97f64..=1.0, r in 0.9f64..=1.0,
+                                        d in 0.05f64..1.0, g0 in 3e-5f64..8e-5, d0 in 1e-7f64..3e-7,
+                                        consistent in any::<bool>(), modes in any::<bool>()) {
+            let v = if consistent { Variant::Consistent } else { Variant::Paper };
+            let mut base = Params { mu0, lambda, restitution: r, noise_intensity: d, correlation_time: 0.5, ..Params::default() };
+            base.set("gamma0", g0).unwrap();
+            base.set("delta0", d0).unwrap();
+            let m = if modes {
+                map_n(base, ("lambda", 0.95, 1.0), ("tau", 0.0, 3.0), What::Modes, v, 41)
+            } else {
+                map_n(base, ("gamma0", 0.5 * g0, 1.5 * g0), ("delta0", 0.5 * d0, 1.5 * d0), What::Rhythmicity, v, 41)
+            };
+            prop_assert!(m.counts.iter().all(|&c| c <= 3));
+            if !m.transitions().is_empty() {
+                let (cells, res) = consistency(&m);
+                prop_assert!(cells <= 1.0, "{cells} cells");
+                prop_assert!(res < 1e-10, "residual {res}");
+            }
+        }
+    }
+}

@@ -1,7 +1,7 @@
 //! One-parameter branch diagrams: every branch of g(x; p) = 0 (limit cycles) or h(x; p) = 0
 //! (extrema of P(A)) followed by pseudo-arclength continuation in (x = A², p), through folds.
 
-use super::fold::CurveEnd;
+use super::fold::{one_sided, CurveEnd};
 use super::kernel::{Coeffs, Kernel, Key, Point, What};
 use crate::averaging::Variant;
 use crate::error::Result;
@@ -71,13 +71,10 @@ impl Line {
     fn eval(&self, v: [f64; 2]) -> (f64, [f64; 2], f64) {
         let x = v[0] * self.xs;
         let [p, d1, _, s] = self.poly(v[1]).eval_derivs(x);
-        let ep = self.poly(v[1] + self.h).eval(x);
-        let em = self.poly(v[1] - self.h).eval(x);
-        (
-            p / s,
-            [d1 * self.xs / s, (ep - em) / (2.0 * self.h * s)],
-            d1,
-        )
+        let (lo, hi) = one_sided(v[1], self.h);
+        let ep = self.poly(hi).eval(x);
+        let em = self.poly(lo).eval(x);
+        (p / s, [d1 * self.xs / s, (ep - em) / ((hi - lo) * s)], d1)
     }
 
     fn tangent(&self, v: [f64; 2], prev: Option<[f64; 2]>) -> [f64; 2] {

@@ -191,11 +191,17 @@ impl<'a> System<'a> {
         for i in 0..2 {
             j[i][0] = dx[i] * self.xs / scale[i];
         }
-        for (col, dv) in [(1usize, [self.h, 0.0]), (2, [0.0, self.h])] {
-            let (fp, _) = self.raw(x, v[1] + dv[0], v[2] + dv[1]);
-            let (fm, _) = self.raw(x, v[1] - dv[0], v[2] - dv[1]);
+        // Central differences inside the plane, one-sided at its borders: parameters are never
+        // evaluated outside (where they may be invalid, and where σ1 has a kink at τ = 0).
+        for col in [1usize, 2] {
+            let (lo, hi) = one_sided(v[col], self.h);
+            let at = |u: f64| {
+                let (a, b) = if col == 1 { (u, v[2]) } else { (v[1], u) };
+                self.raw(x, a, b).0
+            };
+            let (fp, fm) = (at(hi), at(lo));
             for i in 0..2 {
-                j[i][col] = (fp[i] - fm[i]) / (2.0 * self.h * scale[i]);
+                j[i][col] = (fp[i] - fm[i]) / ((hi - lo) * scale[i]);
             }
         }
         ([f[0] / scale[0], f[1] / scale[1]], j)
@@ -254,6 +260,17 @@ impl<'a> System<'a> {
             }
         }
         None
+    }
+}
+
+/// Finite-difference abscissae around u with step h, kept inside [0, 1].
+pub(crate) fn one_sided(u: f64, h: f64) -> (f64, f64) {
+    if u - h < 0.0 {
+        (u, u + h)
+    } else if u + h > 1.0 {
+        (u - h, u)
+    } else {
+        (u - h, u + h)
     }
 }
 
@@ -365,9 +382,18 @@ impl System<'_> {
             let Some((vn, it)) = step else {
                 ds *= 0.5;
                 if ds < ds_min {
+                    // Stuck on the plane's edge (a seed there, stepping outward) is an end at
+                    // the border, not a failure.
+                    let on_edge = [v[1], v[2]]
+                        .iter()
+                        .any(|&c| c.abs() < 1e-9 || (c - 1.0).abs() < 1e-9);
                     return Traced {
                         points: pts,
-                        end: CurveEnd::Failed,
+                        end: if on_edge {
+                            CurveEnd::Border
+                        } else {
+                            CurveEnd::Failed
+                        },
                         cusp: None,
                     };
                 }
@@ -526,19 +552,31 @@ fn bisect_transition(plane: &Plane, what: What, a: [f64; 2], b: [f64; 2]) -> (f6
     } else {
         ph
     };
-    let roots: Vec<f64> = Polynomial::new(side.slice().to_vec())
+    let poly = Polynomial::new(side.slice().to_vec());
+    // Candidates: the critical points of the polynomial (a double root is one), those where it is
+    // smallest relative to its scale first; then midpoints of neighbouring roots.
+    let mut crit: Vec<(f64, f64)> = poly
+        .derivative()
+        .real_roots(0.0, f64::INFINITY)
+        .into_iter()
+        .map(|r| {
+            let [v, _, _, s] = side.eval_derivs(r.x);
+            ((v / s).abs(), r.x)
+        })
+        .collect();
+    crit.sort_by(|p, q| p.0.total_cmp(&q.0));
+    let mut xs: Vec<f64> = crit.into_iter().map(|c| c.1).collect();
+    let roots: Vec<f64> = poly
         .real_roots(0.0, f64::INFINITY)
         .into_iter()
         .map(|r| r.x)
         .collect();
-    // Candidates: midpoints of neighbouring roots, closest (relative) pair first.
     let mut pairs: Vec<(f64, f64)> = roots
         .windows(2)
         .map(|p| ((p[1] - p[0]) / p[1], 0.5 * (p[0] + p[1])))
         .collect();
     pairs.sort_by(|p, q| p.0.total_cmp(&q.0));
-    let mut xs: Vec<f64> = pairs.into_iter().map(|p| p.1).collect();
-    xs.extend(roots.first().copied());
+    xs.extend(pairs.into_iter().map(|p| p.1));
     if xs.is_empty() {
         xs.push(1.0);
     }
