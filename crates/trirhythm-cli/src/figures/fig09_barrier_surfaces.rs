@@ -153,23 +153,40 @@ impl Picture for Fig9 {
                     "λ",
                 )?;
                 let span = if hi > lo { hi - lo } else { 1.0 };
-                let cells = (0..ny).flat_map(|iy| {
-                    (0..nx).filter_map(move |ix| {
-                        let h = s.heights[iy * nx + ix][k]?;
-                        let (x, y) = (pl.x.value(ix), pl.y.value(iy));
-                        let col = viridis((h - lo) / span);
-                        Some(Rectangle::new(
+                // Colours quantised to 64 levels; equal neighbours along a row merged into one
+                // rectangle (keeps the SVG small).
+                let level = |h: f64| ((h - lo) / span * 63.0).round() as u8;
+                let mut cells = Vec::new();
+                for iy in 0..ny {
+                    let y = pl.y.value(iy);
+                    let mut ix = 0;
+                    while ix < nx {
+                        let Some(h) = s.heights[iy * nx + ix][k] else {
+                            ix += 1;
+                            continue;
+                        };
+                        let lv = level(h);
+                        let mut jx = ix;
+                        while jx + 1 < nx && s.heights[iy * nx + jx + 1][k].map(level) == Some(lv) {
+                            jx += 1;
+                        }
+                        let (x0, x1) = (pl.x.value(ix), pl.x.value(jx));
+                        cells.push(Rectangle::new(
                             [
                                 (
-                                    (x - hx / 2.0).max(pl.x.start),
+                                    (x0 - hx / 2.0).max(pl.x.start),
                                     (y - hy / 2.0).max(pl.y.start),
                                 ),
-                                ((x + hx / 2.0).min(pl.x.stop), (y + hy / 2.0).min(pl.y.stop)),
+                                (
+                                    (x1 + hx / 2.0).min(pl.x.stop),
+                                    (y + hy / 2.0).min(pl.y.stop),
+                                ),
                             ],
-                            col.filled(),
-                        ))
-                    })
-                });
+                            viridis(lv as f64 / 63.0).filled(),
+                        ));
+                        ix = jx + 1;
+                    }
+                }
                 c.draw_series(cells).map_err(pe)?;
             }
         }

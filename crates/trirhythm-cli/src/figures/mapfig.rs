@@ -165,8 +165,14 @@ pub fn write_map_figure(
     std::fs::create_dir_all(&ctx.out_dir)?;
     let header = csv_header(n, title, ctx, &notes);
     let stem = ctx.stem(n);
-    let cols = ["panel", "x_key", "x", "y_key", "y", "count"];
-    let mut csv = Csv::new(&header, &cols);
+    let mut header = header;
+    for p in &panels {
+        header.push(format!(
+            "panel {}: x = {}, y = {}",
+            p.label, p.map.plane.x.key, p.map.plane.y.key
+        ));
+    }
+    let mut csv = Csv::new(&header, &["panel", "x", "y", "count"]);
     for p in &panels {
         let pl = &p.map.plane;
         for iy in 0..pl.y.count {
@@ -174,9 +180,7 @@ pub fn write_map_figure(
             for ix in 0..pl.x.count {
                 csv.row([
                     p.label.clone(),
-                    pl.x.key.clone(),
                     num(pl.x.value(ix)),
-                    pl.y.key.clone(),
                     y.clone(),
                     p.map.count(ix, iy).to_string(),
                 ]);
