@@ -12,7 +12,7 @@ use trirhythm::model::preset;
 pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     let p1 = preset("fig2i")?;
     let p2 = preset("fig2ii")?;
-    let panels = vec![
+    let mut panels = vec![
         compute_panel(
             ctx,
             "i",
@@ -34,6 +34,8 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
             false,
         )?,
     ];
+    panels[0].mark = Some((0.144, 0.005, "paper's (α0, β0)".into()));
+    panels[1].mark = Some((5.862e-5, 2.13e-7, "paper's (γ0, δ0)".into()));
     let mut notes: Vec<String> = p1.notes.iter().map(|s| format!("panel i: {s}")).collect();
     notes.extend(p2.notes.iter().map(|s| format!("panel ii: {s}")));
     notes.push("count = number of stable limit cycles (positive roots of f with df/dA < 0), certified by a Sturm count".into());

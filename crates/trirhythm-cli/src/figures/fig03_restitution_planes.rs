@@ -15,7 +15,7 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     let pre = preset("fig3")?;
     let mut panels = Vec::new();
     for (label, r) in ["a", "b", "c", "d"].into_iter().zip(R_VALUES) {
-        panels.push(compute_panel(
+        let mut panel = compute_panel(
             ctx,
             label,
             format!("r = {r}"),
@@ -24,7 +24,9 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
             AxisSpec::new("delta0", 1e-8, 6e-7, "δ0", 1e-7),
             What::Rhythmicity,
             false,
-        )?);
+        )?;
+        panel.mark = Some((5.862e-5, 2.13e-7, "paper's (γ0, δ0)".into()));
+        panels.push(panel);
     }
     let mut notes: Vec<String> = pre.notes.iter().map(|s| s.to_string()).collect();
     notes.push(format!("r values chosen: {R_VALUES:?}"));

@@ -67,6 +67,8 @@ pub struct MapPanel {
     pub printed: Option<Folds>,
     pub xs: AxisSpec,
     pub ys: AxisSpec,
+    /// A parameter point to mark (x, y, label), e.g. the paper's standard values.
+    pub mark: Option<(f64, f64, String)>,
 }
 
 /// Grid points per axis: quick or paper quality.
@@ -112,6 +114,7 @@ pub fn compute_panel(
         printed,
         xs,
         ys,
+        mark: None,
     })
 }
 
@@ -365,6 +368,17 @@ where
         .map_err(pe)?
         .label("cusp")
         .legend(|(x, y)| Circle::new((x + 7, y), 5, FOLD.stroke_width(2)));
+    }
+    if let Some((mx, my, text)) = &p.mark {
+        let (mx, my) = (mx / sx, my / sy);
+        c.draw_series(std::iter::once(
+            EmptyElement::at((mx, my))
+                + Cross::new((0, 0), 7, WHITE.stroke_width(4))
+                + Cross::new((0, 0), 7, RGBColor(255, 0, 255).stroke_width(2)),
+        ))
+        .map_err(pe)?
+        .label(text.clone())
+        .legend(|(x, y)| Cross::new((x + 7, y), 5, RGBColor(255, 0, 255).stroke_width(2)));
     }
     if let Some(pos) = legend_at {
         legend(&mut c, pos)?;
