@@ -7,6 +7,7 @@
 
 mod common;
 mod figures;
+mod maps;
 mod plot;
 mod theory;
 
@@ -40,6 +41,11 @@ enum Command {
     Barriers(theory::TheoryArgs),
     /// Stationary PDFs: amplitude (Eq. 27), energy (Eq. 29), joint (Eq. 30–31).
     Pdf(theory::PdfArgs),
+    /// Two-parameter map: stable-cycle or P(A)-mode count on a grid (CSV x,y,count), with the
+    /// fold curves traced exactly (--folds).
+    Map(maps::MapArgs),
+    /// One-parameter branch diagram: every cycle branch traced through its folds.
+    Branches(maps::BranchArgs),
     /// Reproduce a figure of the paper: data (CSV) and picture (PNG + SVG).
     Figure(FigureArgs),
     /// List the parameter presets (one per figure panel) with their notes.
@@ -131,6 +137,8 @@ fn run(cli: Cli) -> Result<()> {
         Command::Potential(a) => theory::potential(a),
         Command::Barriers(a) => theory::barriers(a),
         Command::Pdf(a) => theory::pdf(a),
+        Command::Map(a) => maps::map(a),
+        Command::Branches(a) => maps::branches(a),
         Command::Figure(a) => figure(a),
         Command::Presets => presets(),
     }

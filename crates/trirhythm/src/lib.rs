@@ -16,6 +16,7 @@
 //! The library computes; it does no file I/O and prints nothing. The `trirhythm` binary writes.
 
 pub mod averaging;
+pub mod bifurcation;
 pub mod error;
 pub mod model;
 pub mod polynomial;
