@@ -30,7 +30,7 @@
 use crate::error::{Error, Result};
 use crate::model::Params;
 use crate::polynomial::Polynomial;
-use crate::quadrature::adaptive_gauss_kronrod;
+use crate::quadrature::integrate_with_breakpoints;
 use std::f64::consts::PI;
 
 /// Which form of the averaged formulas to use.
@@ -661,9 +661,7 @@ impl AmplitudePdf {
 }
 
 fn integrate_pieces(f: &dyn Fn(f64) -> f64, cuts: &[f64]) -> f64 {
-    cuts.windows(2)
-        .map(|w| adaptive_gauss_kronrod(f, w[0], w[1], 1e-13))
-        .sum()
+    integrate_with_breakpoints(f, cuts, 1e-13)
 }
 
 #[cfg(test)]

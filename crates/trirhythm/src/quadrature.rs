@@ -56,31 +56,85 @@ fn gk15(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
     (k * h, ((k - g) * h).abs())
 }
 
-/// Globally adaptive Gauss–Kronrod: refine the worst interval until the total error is below
-/// `rel_tol` of the total (or intervals become too small to split).
-pub fn adaptive_gauss_kronrod(f: &dyn Fn(f64) -> f64, a: f64, b: f64, rel_tol: f64) -> f64 {
-    let mut parts = vec![(a, b, gk15(f, a, b))];
-    for _ in 0..2000 {
-        let total: f64 = parts.iter().map(|p| p.2 .0).sum();
-        let err: f64 = parts.iter().map(|p| p.2 .1).sum();
-        if err <= rel_tol * total.abs() || err < 1e-300 {
+/// A panel of the adaptive scheme, ordered by its error estimate.
+struct Panel {
+    error: f64,
+    a: f64,
+    b: f64,
+    value: f64,
+}
+
+impl PartialEq for Panel {
+    fn eq(&self, other: &Self) -> bool {
+        self.error == other.error
+    }
+}
+impl Eq for Panel {}
+impl PartialOrd for Panel {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Panel {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.error.total_cmp(&other.error)
+    }
+}
+
+/// ∫ f over [points[0], points[last]] with breakpoints: one GK15 panel per piece, then the
+/// panel with the largest error, wherever it is, is halved until the summed error is below
+/// `rel_tol` of the total (pieces holding negligible mass are thus never refined for nothing).
+pub fn integrate_with_breakpoints(f: &dyn Fn(f64) -> f64, points: &[f64], rel_tol: f64) -> f64 {
+    let mut heap = std::collections::BinaryHeap::new();
+    let (mut total, mut error) = (0.0, 0.0);
+    for w in points.windows(2) {
+        if w[1] > w[0] {
+            let (value, e) = gk15(f, w[0], w[1]);
+            total += value;
+            error += e;
+            heap.push(Panel {
+                error: e,
+                a: w[0],
+                b: w[1],
+                value,
+            });
+        }
+    }
+    for _ in 0..20_000 {
+        if error <= rel_tol * total.abs() {
             break;
         }
-        let (i, _) = parts
-            .iter()
-            .enumerate()
-            .max_by(|x, y| x.1 .2 .1.partial_cmp(&y.1 .2 .1).unwrap())
-            .unwrap();
-        let (lo, hi, _) = parts.swap_remove(i);
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            parts.push((lo, hi, (gk15(f, lo, hi).0, 0.0)));
+        let Some(p) = heap.pop() else { break };
+        let mid = 0.5 * (p.a + p.b);
+        if p.error == 0.0 || mid <= p.a || mid >= p.b {
+            // Nothing left to gain (or the panel cannot be split in f64): keep it as it is.
+            error -= p.error;
+            heap.push(Panel { error: 0.0, ..p });
             continue;
         }
-        parts.push((lo, mid, gk15(f, lo, mid)));
-        parts.push((mid, hi, gk15(f, mid, hi)));
+        let (v1, e1) = gk15(f, p.a, mid);
+        let (v2, e2) = gk15(f, mid, p.b);
+        total += v1 + v2 - p.value;
+        error += e1 + e2 - p.error;
+        heap.push(Panel {
+            error: e1,
+            a: p.a,
+            b: mid,
+            value: v1,
+        });
+        heap.push(Panel {
+            error: e2,
+            a: mid,
+            b: p.b,
+            value: v2,
+        });
     }
-    parts.iter().map(|p| p.2 .0).sum()
+    heap.iter().map(|p| p.value).sum()
+}
+
+/// Globally adaptive Gauss–Kronrod on [a, b] to relative tolerance `rel_tol`.
+pub fn adaptive_gauss_kronrod(f: &dyn Fn(f64) -> f64, a: f64, b: f64, rel_tol: f64) -> f64 {
+    integrate_with_breakpoints(f, &[a, b], rel_tol)
 }
 
 #[cfg(test)]
