@@ -20,8 +20,10 @@
 //! Method: f/A = g(x) and A·m1 = h(x) = x g(x) + σ1/2 are polynomials in x = A², so limit cycles
 //! and PDF extrema are the positive real roots of g and h, isolated completely by
 //! [`crate::polynomial`] (derivative cascade, Sturm count); stability is the sign of g′ or h′.
-//! PDFs are normalised in log space by adaptive Gauss–Kronrod quadrature split at the modes and
-//! antimodes, so exponents of thousands neither overflow nor underflow.
+//! PDFs are held in log space relative to their highest mode, the difference of the large terms
+//! S(A) − S(A_p) formed in double-double, and normalised by globally adaptive Gauss–Kronrod
+//! quadrature with breakpoints at the extrema and geometrically around each mode, so exponents
+//! of thousands (D down to 1e-4) neither overflow, underflow, nor lose precision.
 //!
 //! Reference: the paper (Eq. 4–37); Zhuravlev's transformation; stochastic averaging
 //! (Khasminskii). Tests: `tests/averaging.rs` (independent reference values, normalisation,
@@ -472,8 +474,11 @@ pub struct AmplitudePdf {
     sigma1: f64,
     omega1: f64,
     g_integral: Polynomial,
-    /// ln of the normalisation: ln P(A) = ln A + S(A) − log_norm.
-    log_norm: f64,
+    /// The highest mode A_p, and G(A_p²) = ∫₀^{A_p²} g as a double-double (hi, lo).
+    peak: f64,
+    peak_g: (f64, f64),
+    /// ln ∫ P̃ dA for P̃(A) = (A/A_p) e^{S(A) − S(A_p)}: ln P(A) = ln P̃(A) − log_mass.
+    log_mass: f64,
     /// Amplitudes of the maxima of P(A) (ascending).
     pub modes: Vec<f64>,
     /// Amplitudes of the interior minima of P(A) (ascending).
@@ -514,23 +519,24 @@ impl AmplitudePdf {
             .map(|c| c.amplitude)
             .collect();
         let gi = th.g_integral.clone();
-        // φ(A) = ln A + S(A), S = G(A²)/σ1.
+        // φ(A) = ln A + S(A), S = G(A²)/σ1, is huge when σ1 is small: only differences from
+        // the highest mode are ever formed, in double-double, so they keep full precision.
         let phi = |a: f64| a.ln() + gi.eval(a * a) / s1;
-        let phi_max = modes
+        let peak = modes
             .iter()
-            .map(|&a| phi(a))
-            .fold(f64::NEG_INFINITY, f64::max);
-        if !phi_max.is_finite() {
-            return Err(Error::BlowUp {
+            .copied()
+            .max_by(|a, b| phi(*a).total_cmp(&phi(*b)))
+            .ok_or(Error::BlowUp {
                 what: "amplitude PDF",
-                at: "its modes".into(),
-                value: phi_max,
-            });
-        }
+                at: "its modes (none found)".into(),
+                value: f64::NAN,
+            })?;
+        let peak_g = gi.eval_double_double(peak * peak);
+        let rel = |a: f64| relative_log(&gi, s1, peak, peak_g, a);
         // Upper limit: beyond the last extremum φ decreases; find φ = φmax − 46.
         let last = extrema.last().map(|c| c.amplitude).unwrap_or(1.0);
         let mut hi = last.max(1e-300) * 1.5 + 1e-3;
-        while phi(hi) > phi_max - 46.0 {
+        while rel(hi) > -46.0 {
             hi *= 1.5;
             if !hi.is_finite() {
                 return Err(Error::BlowUp {
@@ -544,6 +550,9 @@ impl AmplitudePdf {
         // peak's width, so that no Gauss–Kronrod panel is much wider than the peak it holds.
         let gd = th.g.derivative();
         let mut cuts: Vec<f64> = vec![0.0, hi];
+        // A peak of width w at amplitude m cannot be resolved better than ε·m/w relative: the
+        // quadrature nodes themselves are rounded to ulp(m). The tolerance respects that floor.
+        let mut resolution: f64 = 0.0;
         for (i, c) in extrema.iter().enumerate() {
             if c.amplitude >= hi {
                 continue;
@@ -559,6 +568,7 @@ impl AmplitudePdf {
             } else {
                 1e-3 * m
             };
+            resolution = resolution.max(m / w);
             let left = if i > 0 { extrema[i - 1].amplitude } else { 0.0 };
             let right = extrema.get(i + 1).map_or(hi, |n| n.amplitude.min(hi));
             let mut step = w;
@@ -573,21 +583,24 @@ impl AmplitudePdf {
         }
         cuts.sort_by(|a, b| a.partial_cmp(b).unwrap());
         cuts.dedup();
-        let scaled = |a: f64| {
-            if a <= 0.0 {
-                0.0
-            } else {
-                (phi(a) - phi_max).exp()
-            }
-        };
-        let mass = integrate_pieces(&scaled, &cuts);
-        let first = integrate_pieces(&|a: f64| a * scaled(a), &cuts);
-        let log_norm = phi_max + mass.ln();
+        let scaled = |a: f64| rel(a).exp();
+        let tolerance = (4.0 * f64::EPSILON * resolution).max(1e-13);
+        let mass = integrate_with_breakpoints(&scaled, &cuts, tolerance);
+        let first = integrate_with_breakpoints(&|a: f64| a * scaled(a), &cuts, tolerance);
+        if !(mass.is_finite() && mass > 0.0) {
+            return Err(Error::BlowUp {
+                what: "amplitude PDF normalisation",
+                at: format!("modes {modes:?}"),
+                value: mass,
+            });
+        }
         Ok(AmplitudePdf {
             sigma1: s1,
             omega1: th.eq.omega1,
             g_integral: gi,
-            log_norm,
+            peak,
+            peak_g,
+            log_mass: mass.ln(),
             modes,
             antimodes,
             mean_amplitude: first / mass,
@@ -600,7 +613,7 @@ impl AmplitudePdf {
         if a <= 0.0 {
             return f64::NEG_INFINITY;
         }
-        a.ln() + self.g_integral.eval(a * a) / self.sigma1 - self.log_norm
+        relative_log(&self.g_integral, self.sigma1, self.peak, self.peak_g, a) - self.log_mass
     }
 
     /// P(A).
@@ -614,8 +627,8 @@ impl AmplitudePdf {
             return f64::NEG_INFINITY;
         }
         let a = (2.0 * h).sqrt() / self.omega1;
-        // ln P(A) − ln(ω1² A) = S(A) − log_norm − 2 ln ω1.
-        self.g_integral.eval(a * a) / self.sigma1 - self.log_norm - 2.0 * self.omega1.ln()
+        // ln P(A) − ln(ω1² A).
+        self.log_density(a) - (self.omega1 * self.omega1 * a).ln()
     }
 
     /// P(H).
@@ -630,8 +643,12 @@ impl AmplitudePdf {
             return f64::NEG_INFINITY;
         }
         let x = u * u + v * v / (self.omega1 * self.omega1);
-        // ln[P(A)/A] = S(A) − log_norm, finite at A = 0.
-        self.g_integral.eval(x) / self.sigma1 - self.log_norm - (PI * self.omega1).ln()
+        // ln[P(A)/A] = S(A) − S(A_p) − ln A_p − log_mass, finite at A = 0.
+        let dg = self.g_integral.eval_double_double(x);
+        ((dg.0 - self.peak_g.0) + (dg.1 - self.peak_g.1)) / self.sigma1
+            - self.peak.ln()
+            - self.log_mass
+            - (PI * self.omega1).ln()
     }
 
     /// P(U, U̇).
@@ -656,12 +673,17 @@ impl AmplitudePdf {
         );
         cuts.sort_by(|x, y| x.partial_cmp(y).unwrap());
         cuts.push(b);
-        integrate_pieces(&|x: f64| self.density(x), &cuts)
+        integrate_with_breakpoints(&|x: f64| self.density(x), &cuts, 1e-12)
     }
 }
 
-fn integrate_pieces(f: &dyn Fn(f64) -> f64, cuts: &[f64]) -> f64 {
-    integrate_with_breakpoints(f, cuts, 1e-13)
+/// ln[(A/A_p) e^{S(A) − S(A_p)}] with S(A) − S(A_p) = [G(A²) − G(A_p²)]/σ1 in double-double.
+fn relative_log(gi: &Polynomial, s1: f64, peak: f64, peak_g: (f64, f64), a: f64) -> f64 {
+    if a <= 0.0 {
+        return f64::NEG_INFINITY;
+    }
+    let g = gi.eval_double_double(a * a);
+    (a / peak).ln() + ((g.0 - peak_g.0) + (g.1 - peak_g.1)) / s1
 }
 
 #[cfg(test)]

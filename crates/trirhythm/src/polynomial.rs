@@ -86,6 +86,23 @@ impl Polynomial {
 
     /// p(x) by compensated Horner, with a bound on the absolute error of the returned value.
     pub fn eval_compensated(&self, x: f64) -> (f64, f64) {
+        let (s, c, abs_sum) = self.horner_parts(x);
+        let value = s + c;
+        let gamma = (2 * self.degree() + 2) as f64 * EPS;
+        let bound = EPS * value.abs() + gamma * gamma * abs_sum * 4.0 + f64::MIN_POSITIVE;
+        (value, bound)
+    }
+
+    /// p(x) as an unevaluated sum `hi + lo` (compensated Horner before its final rounding): the
+    /// difference of two such values is accurate even when p(x) is large and the difference small.
+    pub fn eval_double_double(&self, x: f64) -> (f64, f64) {
+        let (s, c, _) = self.horner_parts(x);
+        let hi = s + c;
+        (hi, c - (hi - s))
+    }
+
+    /// Compensated Horner: the Horner value s, its correction c, and Σ|a_i||x|^i.
+    fn horner_parts(&self, x: f64) -> (f64, f64, f64) {
         let n = self.degree();
         let mut s = self.leading();
         let mut c = 0.0;
@@ -97,10 +114,7 @@ impl Polynomial {
             c = c * x + (pi + sigma);
             abs_sum = abs_sum * x.abs() + a.abs();
         }
-        let value = s + c;
-        let gamma = (2 * n + 2) as f64 * EPS;
-        let bound = EPS * value.abs() + gamma * gamma * abs_sum * 4.0 + f64::MIN_POSITIVE;
-        (value, bound)
+        (s, c, abs_sum)
     }
 
     /// The derivative p′.
