@@ -16,8 +16,10 @@
 //!   At λ = 1 the weights are exactly the trapezoidal ones.
 //! - **Sum of exponentials** ([`SoeKernel`]): k(t) = sin(πβ)/π ∫ e^{βx} exp(−eˣ t) dx with
 //!   β = 1 − λ; the trapezoidal rule in x (step Δx) turns this into Σ c_j e^{−s_j t}. Rates with
-//!   s_j T ≪ 1 are lumped into one constant term, summed in closed form as a geometric series
-//!   (for λ near 1 the kernel is nearly flat and would otherwise need thousands of slow modes).
+//!   s_j T ≪ 1 are lumped into a constant and a linear term, C₀ − C₁t (e^{−st} ≈ 1 − st), both
+//!   summed in closed form as geometric series (for λ near 1 the kernel is nearly flat and would
+//!   otherwise need thousands of slow modes); the linear term's state is the first moment
+//!   ∫(t_m − s) g(s) ds, advanced exactly like a mode of rate 0.
 //!   The largest Δx that meets the requested relative tolerance is chosen, and the result is
 //!   **checked against the exact kernel on a log grid over [δ, T]**; construction fails with
 //!   [`Error::NoConvergence`] when the tolerance is not met.
@@ -234,6 +236,8 @@ pub struct SoeKernel {
     pub weights: Vec<f64>,
     /// The lumped contribution C₀ of all rates with s·T ≪ 1 (1 at λ = 1).
     pub constant: f64,
+    /// The lumped rates' linear term C₁: the kernel is C₀ − C₁t + Σ c_j e^{−s_j t}.
+    pub slope: f64,
     /// Lower end δ of the interval on which the approximation is certified.
     pub from: f64,
     /// Upper end T.
@@ -271,6 +275,7 @@ impl SoeKernel {
                 rates: vec![],
                 weights: vec![],
                 constant: 1.0,
+                slope: 0.0,
                 from,
                 to,
                 tolerance,
@@ -278,16 +283,39 @@ impl SoeKernel {
             });
         }
         let pref = (PI * beta).sin() / PI;
-        // lowest kept rate: the lumped tail's linear term ~ β (s₀T)^{1+β} stays ≪ tolerance
-        let q = (0.05 * tolerance / beta.max(tolerance))
-            .powf(1.0 / (1.0 + beta))
-            .min(1.0);
-        let x0 = (q / to).ln();
         // highest rate: e^{−s δ} negligible
         let x_max = ((-tolerance.ln() + 12.0) / from).ln();
+        let exact_at_end = to.powf(-beta) / gamma(lambda);
         let mut best: Option<SoeKernel> = None;
         let mut dx = 1.2;
         while dx > 0.15 {
+            // lowest kept rate s₀ = q/T: the largest q whose lumped nodes (j < 0) are
+            // represented by 1 − st to a tenth of the tolerance at t = T
+            let mut q: f64 = 1.0;
+            loop {
+                let x0 = (q / to).ln();
+                let mut err = 0.0;
+                for m in 1..200 {
+                    let x = x0 - m as f64 * dx;
+                    let st = x.exp() * to;
+                    let c = pref * dx * (beta * x).exp();
+                    // e^{−z} − 1 + z, accurate for small z
+                    let r = if st < 1e-3 {
+                        st * st * (0.5 - st / 6.0 + st * st / 24.0)
+                    } else {
+                        (-st).exp_m1() + st
+                    };
+                    err += c * r;
+                    if c * r < 1e-3 * err {
+                        break;
+                    }
+                }
+                if err / exact_at_end <= 0.1 * tolerance || q < 1e-30 {
+                    break;
+                }
+                q *= 0.5;
+            }
+            let x0 = (q / to).ln();
             let n = ((x_max - x0) / dx).ceil() as usize + 1;
             let mut rates = Vec::with_capacity(n);
             let mut weights = Vec::with_capacity(n);
@@ -298,11 +326,13 @@ impl SoeKernel {
             }
             // Σ_{j<0} c_j = pref Δx e^{βx₀} Σ_{m≥1} e^{−βmΔx}
             let constant = pref * dx * (beta * x0).exp() / (beta * dx).exp_m1();
+            let slope = pref * dx * ((1.0 + beta) * x0).exp() / ((1.0 + beta) * dx).exp_m1();
             let mut k = SoeKernel {
                 lambda,
                 rates,
                 weights,
                 constant,
+                slope,
                 from,
                 to,
                 tolerance,
@@ -325,7 +355,7 @@ impl SoeKernel {
 
     /// The approximation at t.
     pub fn eval(&self, t: f64) -> f64 {
-        self.constant
+        self.constant - self.slope * t
             + self
                 .rates
                 .iter()
@@ -459,8 +489,9 @@ pub(crate) struct Convolution {
     coef_end: Vec<f64>,
     /// c_j e^{−s_j w h}: the modes' weights at the evaluation time.
     out: Vec<f64>,
-    /// ∫ g over the same history (the lumped constant's state).
+    /// ∫ g and ∫ (t_m − s) g over the same history (the lumped terms' state).
     integral: f64,
+    moment: f64,
     /// Cached history value for the next step.
     cached: f64,
 }
@@ -497,6 +528,7 @@ impl Convolution {
             coef_end: vec![],
             out: vec![],
             integral: 0.0,
+            moment: 0.0,
             cached: 0.0,
         };
         if let Memory::SumOfExponentials { tolerance } = memory {
@@ -511,7 +543,14 @@ impl Convolution {
                 c.coef_end.push(dt * (phi - psi));
                 c.out.push(w * (-s * window as f64 * dt).exp());
             }
-            c.y = vec![0.0; k.len()];
+            // pad to a multiple of 4 with inert modes, for four independent accumulators
+            while c.decay.len() % 4 != 0 {
+                c.decay.push(0.0);
+                c.coef_start.push(0.0);
+                c.coef_end.push(0.0);
+                c.out.push(0.0);
+            }
+            c.y = vec![0.0; c.decay.len()];
             for p in 0..window {
                 let (wa, wb) = interval_weights(lambda, p as f64, p as f64 + 1.0);
                 if p == 0 {
@@ -598,10 +637,11 @@ impl Convolution {
         let mut total = self.scale * sum;
         if let Some(kernel) = &self.soe {
             let back = (self.window as f64 - shift) * self.dt;
-            for j in 0..self.y.len() {
+            for j in 0..kernel.len() {
                 total += kernel.weights[j] * (-kernel.rates[j] * back).exp() * self.y[j];
             }
-            total += kernel.constant * self.integral;
+            total += kernel.constant * self.integral
+                - kernel.slope * (self.moment + back * self.integral);
         }
         let (wa, wb) = interval_weights(self.lambda, 0.0, theta);
         (total + self.scale * wb * left, self.scale * wa)
@@ -665,14 +705,25 @@ impl Convolution {
                 right,
                 split: None,
             }) => {
-                for j in 0..self.y.len() {
-                    let y = self.decay[j] * self.y[j]
-                        + self.coef_start[j] * left
-                        + self.coef_end[j] * right;
-                    self.y[j] = y;
-                    modes += self.out[j] * y;
+                let mut acc = [0.0; 4];
+                for ((((y, d), a), b), o) in self
+                    .y
+                    .chunks_exact_mut(4)
+                    .zip(self.decay.chunks_exact(4))
+                    .zip(self.coef_start.chunks_exact(4))
+                    .zip(self.coef_end.chunks_exact(4))
+                    .zip(self.out.chunks_exact(4))
+                {
+                    for i in 0..4 {
+                        let v = d[i] * y[i] + a[i] * left + b[i] * right;
+                        y[i] = v;
+                        acc[i] += o[i] * v;
+                    }
                 }
-                self.integral += 0.5 * self.dt * (left + right);
+                modes = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+                let h = self.dt;
+                self.moment += h * self.integral + h * h * (left / 3.0 + right / 6.0);
+                self.integral += 0.5 * h * (left + right);
             }
             Some(Piece {
                 left,
@@ -681,7 +732,7 @@ impl Convolution {
             }) => {
                 let l1 = s.theta * self.dt;
                 let l2 = self.dt - l1;
-                for j in 0..self.y.len() {
+                for j in 0..kernel.len() {
                     let rate = kernel.rates[j];
                     let mut y = self.y[j];
                     let (phi, psi) = phi_psi(rate * l1);
@@ -696,10 +747,13 @@ impl Convolution {
                     modes += self.out[j] * y;
                 }
                 if s.keep_before {
+                    self.moment += l1 * self.integral + l1 * l1 * (left / 3.0 + s.before / 6.0);
                     self.integral += 0.5 * l1 * (left + s.before);
                 } else {
+                    self.moment = 0.0;
                     self.integral = 0.0;
                 }
+                self.moment += l2 * self.integral + l2 * l2 * (s.after / 3.0 + right / 6.0);
                 self.integral += 0.5 * l2 * (s.after + right);
             }
             None => {
@@ -708,7 +762,9 @@ impl Convolution {
                 }
             }
         }
-        modes += kernel.constant * self.integral;
+        let back = self.window as f64 * self.dt;
+        modes +=
+            kernel.constant * self.integral - kernel.slope * (self.moment + back * self.integral);
         let len = self.local.len();
         let mut local = 0.0;
         for (k, piece) in self.local.iter().enumerate() {
@@ -729,6 +785,7 @@ impl Convolution {
         self.local.clear();
         self.y.iter_mut().for_each(|y| *y = 0.0);
         self.integral = 0.0;
+        self.moment = 0.0;
         self.cached = 0.0;
     }
 
@@ -746,8 +803,8 @@ impl Convolution {
 
 /// Solve the scalar Caputo problem D^α y = f(t, y), y(0) = y₀, α ∈ (0, 1], on the grid
 /// t_n = n·dt, n = 0..=steps, with the same predictor–corrector and memory as the oscillator
-/// (see [`crate::solver`]): the predictor replaces f_{n+1} by f(t_{n+1}, y_n) in the corrector's
-/// sum; only corrected values are stored (at α = 1: the trapezoidal rule in integral form,
+/// (see [`crate::solver`]): the predictor replaces f_{n+1} by f_n in the corrector's sum
+/// (constant extrapolation of the composite f(t, y(t)), which stays smooth when y does not); only corrected values are stored (at α = 1: the trapezoidal rule in integral form,
 /// corrected once from an Euler predictor). Returns y at every node.
 pub fn solve_scalar(
     alpha: f64,
@@ -761,13 +818,12 @@ pub fn solve_scalar(
     let mut conv = Convolution::new(alpha, dt, t_end, memory, DEFAULT_WINDOW)?;
     let mut ys = Vec::with_capacity(steps + 1);
     ys.push(y0);
-    let mut y = y0;
     let mut fy = f(0.0, y0);
     let (wl, wr) = conv.current_weights();
     for n in 0..steps {
         let t1 = (n + 1) as f64 * dt;
         let base = y0 + conv.history() + wl * fy;
-        let yp = base + wr * f(t1, y);
+        let yp = base + wr * fy;
         let y1 = base + wr * f(t1, yp);
         if !y1.is_finite() {
             return Err(Error::BlowUp {
@@ -782,9 +838,8 @@ pub fn solve_scalar(
             right: f1,
             split: None,
         });
-        y = y1;
         fy = f1;
-        ys.push(y);
+        ys.push(y1);
     }
     Ok(ys)
 }
@@ -810,7 +865,7 @@ mod tests {
     fn mittag_leffler_special_cases() {
         for &x in &[0.0, 0.3, 1.0, 2.5, 5.0] {
             let e1 = mittag_leffler(1.0, 1.0, -x).unwrap();
-            assert!((e1 - (-x as f64).exp()).abs() < 1e-13, "E1({x})");
+            assert!((e1 - (-x).exp()).abs() < 1e-13, "E1({x})");
             let e2 = mittag_leffler(2.0, 1.0, -x * x).unwrap();
             assert!((e2 - x.cos()).abs() < 1e-13, "E2({x})");
             if x > 0.0 {
@@ -852,7 +907,7 @@ mod tests {
     fn phi_psi_branches_agree() {
         for &z in &[0.49999, 0.5] {
             let (p, s) = phi_psi(z);
-            let e = (-z as f64).exp();
+            let e = (-z).exp();
             assert!((p - (1.0 - e) / z).abs() < 1e-14);
             assert!((s - (1.0 - e * (1.0 + z)) / (z * z)).abs() < 1e-13);
         }

@@ -6,8 +6,12 @@
 //!
 //! # Method
 //! - Coloured (τ > 0): the exact OU update η_{n+1} = ρ η_n + √(D/τ) √(1 − ρ²) ξ_n,
-//!   ρ = e^{−Δt/τ}, from a stationary start η_0 ~ N(0, D/τ); inside a step η is linear between
-//!   the node values (the interval carries the pair (η_n, η_{n+1})).
+//!   ρ = e^{−Δt/τ}, from a stationary start η_0 ~ N(0, D/τ), sampled **jointly** with the exact
+//!   step integral I_n = ∫ η over the step (Gaussian given η_n: mean τ(1−ρ)η_n, variance
+//!   2D[Δt − 2τ(1−ρ) + τ(1−ρ²)/2], covariance with η_{n+1} D(1−ρ)²). Inside a step η is
+//!   represented by its step mean I_n/Δt, so every step integral has the exact law whatever
+//!   Δt/τ (linear interpolation between node values over-forces by Δt/(4τ) when τ ≪ Δt and
+//!   cannot reach the white-noise limit).
 //! - White (τ = 0): η is constant on each step, η = √(2D/Δt) ξ_n, so that ∫ η over a step has
 //!   exactly the variance 2DΔt of the white-noise increment. (Linear interpolation between node
 //!   samples of variance 2D/Δt would give variance (2/3)·2DΔt for the step integral: wrong.)
@@ -79,8 +83,8 @@ pub fn path_rng(seed: u64, path: u64) -> ChaCha8Rng {
 }
 
 /// Successive steps of η on a grid of step Δt: each call of [`NoiseStream::next_step`] gives
-/// the values (η at the step's start, η at its end) of the linear (coloured) or constant
-/// (white) forcing on the next step.
+/// the forcing on the next step as the values at its start and end of the function used inside
+/// it (both equal to the step mean: η is piecewise constant with exact step integrals).
 #[derive(Debug, Clone)]
 pub struct NoiseStream {
     rng: ChaCha8Rng,
@@ -88,6 +92,11 @@ pub struct NoiseStream {
     rho: f64,
     sigma: f64,
     state: f64,
+    /// I | η_n = mean_coef·η_n + cross·ξ₁ + rest·ξ₂
+    mean_coef: f64,
+    cross: f64,
+    rest: f64,
+    dt: f64,
 }
 
 impl NoiseStream {
@@ -97,6 +106,7 @@ impl NoiseStream {
             return Err(Error::invalid("dt", dt, "(0, ∞), finite"));
         }
         let mut rng = path_rng(seed, path);
+        let (mut mean_coef, mut cross, mut rest) = (0.0, 0.0, 0.0);
         let (rho, sigma, state) = match kind {
             Noise::None => (0.0, 0.0, 0.0),
             Noise::White { intensity } => {
@@ -118,7 +128,16 @@ impl NoiseStream {
                 let rho = (-dt / correlation_time).exp();
                 let sd = (intensity / correlation_time).sqrt();
                 // √(1 − ρ²) = √(−expm1(−2Δt/τ)), accurate for Δt ≪ τ
-                let sigma = sd * (-(-2.0 * dt / correlation_time).exp_m1()).sqrt();
+                let tau = correlation_time;
+                let one_minus_rho = -(-dt / tau).exp_m1();
+                let one_minus_rho2 = -(-2.0 * dt / tau).exp_m1();
+                let sigma = sd * one_minus_rho2.sqrt();
+                let var_i =
+                    2.0 * intensity * (dt - 2.0 * tau * one_minus_rho + 0.5 * tau * one_minus_rho2);
+                let cov = intensity * one_minus_rho * one_minus_rho;
+                mean_coef = tau * one_minus_rho;
+                cross = if sigma > 0.0 { cov / sigma } else { 0.0 };
+                rest = (var_i - cross * cross).max(0.0).sqrt();
                 let xi: f64 = rng.sample(StandardNormal);
                 (rho, sigma, sd * xi)
             }
@@ -129,10 +148,14 @@ impl NoiseStream {
             rho,
             sigma,
             state,
+            mean_coef,
+            cross,
+            rest,
+            dt,
         })
     }
 
-    /// The current node value (coloured) or 0.
+    /// The current node value η_n (coloured), the last step's level (white), or 0.
     pub fn current(&self) -> f64 {
         self.state
     }
@@ -149,10 +172,12 @@ impl NoiseStream {
                 (w, w)
             }
             Noise::Colored { .. } => {
-                let xi: f64 = self.rng.sample(StandardNormal);
+                let x1: f64 = self.rng.sample(StandardNormal);
+                let x2: f64 = self.rng.sample(StandardNormal);
                 let start = self.state;
-                self.state = self.rho * start + self.sigma * xi;
-                (start, self.state)
+                self.state = self.rho * start + self.sigma * x1;
+                let mean = (self.mean_coef * start + self.cross * x1 + self.rest * x2) / self.dt;
+                (mean, mean)
             }
         }
     }
@@ -181,7 +206,8 @@ mod tests {
             let x0 = st.current();
             let mut x = x0;
             for _ in 0..lag {
-                x = st.next_step().1;
+                st.next_step();
+                x = st.current();
             }
             s0 += x0;
             s00 += x0 * x0;
@@ -204,6 +230,34 @@ mod tests {
             (corr - rho).abs() < 4.0 * sd_c,
             "corr {corr} vs {rho} ± {sd_c}"
         );
+    }
+
+    #[test]
+    fn ou_step_integrals_have_the_exact_variance() {
+        // stationary: Var ∫₀^h η = 2D[h − τ(1 − e^{−h/τ})], for τ ≫ h, τ ~ h and τ ≪ h
+        let d = 0.4;
+        let h = 0.01;
+        for &tau in &[1.0, 0.01, 0.0005] {
+            let kind = Noise::Colored {
+                intensity: d,
+                correlation_time: tau,
+            };
+            let mut st = NoiseStream::new(kind, h, RNG_SEED, 7).unwrap();
+            let n = 100_000;
+            let mut s2 = 0.0;
+            for _ in 0..n {
+                let (m, _) = st.next_step();
+                s2 += (m * h).powi(2);
+            }
+            let var = s2 / n as f64;
+            let expect = 2.0 * d * (h - tau * (-(-h / tau).exp_m1()));
+            // consecutive step integrals are correlated: allow for it with a wide band
+            let sd = expect * (2.0 / n as f64).sqrt() * (1.0 + 2.0 * tau / h).sqrt();
+            assert!(
+                (var - expect).abs() < 5.0 * sd,
+                "τ = {tau}: {var} vs {expect} ± {sd}"
+            );
+        }
     }
 
     #[test]

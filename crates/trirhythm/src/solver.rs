@@ -39,8 +39,9 @@
 //!   at rest under `Restart`). While stuck, every step is computed freely from U = 0, V = 0; if
 //!   it ends at U ≤ 0 the state is clamped again (a sticking step, not an impact), else the
 //!   oscillator leaves the wall. So U ≥ 0 always and a step never loops.
-//! - noise: [`crate::noise`] (exact OU, linear inside a step; white: constant per step with
-//!   variance 2D/Δt).
+//! - noise: [`crate::noise`]: η is constant on each step at its exact step mean (OU: sampled
+//!   jointly with the exact node update; white: variance 2D/Δt), so the forcing's step
+//!   integrals have the exact law for any Δt/τ, including the white-noise limit.
 //! - blow-up: a non-finite state or |U|, |V| above [`Options::blow_up`] returns
 //!   [`Error::BlowUp`] with the time.
 //!
@@ -176,8 +177,8 @@ pub struct Trajectory {
     pub u: Vec<f64>,
     /// V = U̇ at the recorded times.
     pub v: Vec<f64>,
-    /// η at the recorded times (the value at the end of the step that led there; empty when
-    /// there is no noise).
+    /// η at the recorded times (OU: the node value; white: the level of the step that led
+    /// there; empty when there is no noise).
     pub eta: Vec<f64>,
     /// Number of impacts.
     pub impacts: usize,
@@ -361,9 +362,6 @@ pub fn simulate_path(
     if options.record_every == 0 {
         return Err(Error::invalid("every", 0.0, "1 or more"));
     }
-    if options.record_every == 0 {
-        return Err(Error::invalid("every", 0.0, "1 or more"));
-    }
     let rhs = Rhs::new(oscillator, options.system);
     let wall = rhs.reflect && options.barrier == Barrier::On;
     let crossing = options.system == System::Zhuravlev;
@@ -406,8 +404,6 @@ pub fn simulate_path(
     let (mut amp_sum, mut amp_n) = (0.0, 0usize);
     let tick = (steps / 1000).max(1);
     let (wl, wr) = conv.current_weights();
-    let mut gl_prev: Option<f64> = None;
-    let _ = &mut gl_prev;
 
     for n in 0..steps {
         let t1 = (n + 1) as f64 * h;
@@ -569,7 +565,7 @@ pub fn simulate_path(
             out.u.push(u);
             out.v.push(v);
             if has_noise {
-                out.eta.push(er);
+                out.eta.push(noise.current());
             }
         }
         if let Some(p) = progress {
@@ -650,7 +646,7 @@ mod tests {
         for n in 0..40 {
             let g = -w2 * u;
             let up = u + h * v;
-            let vp = s + h * g;
+            // (g does not depend on V here, so V^P = S_n + h g_n is not needed)
             let v1 = s + 0.5 * h * (g - w2 * up);
             let u1 = u + 0.5 * h * (v + v1);
             s += 0.5 * h * (g - w2 * u1);
