@@ -29,6 +29,7 @@ pub mod known_answers;
 pub mod model;
 pub mod noise;
 pub mod polynomial;
+pub mod quadrature;
 pub mod solver;
 
 pub use error::{Error, Result};

@@ -9,8 +9,9 @@
 //! constructor of the crate that consumes parameters), presets for every figure of the paper
 //! with the choices the paper leaves open documented in [`Preset::notes`].
 //!
-//! Tests: `tests/model.rs` (every invalid value is rejected with its name, proptest over random
-//! values) and the unit tests below (keys round-trip, presets validate).
+//! Tests: `tests/averaging.rs::invalid_parameters_are_rejected_with_their_name` (proptest: every
+//! invalid value is rejected, the message names the parameter and its range) and the unit tests
+//! below (keys round-trip, presets validate).
 
 use crate::error::{Error, Result};
 
@@ -372,10 +373,10 @@ pub fn presets() -> Vec<Preset> {
         Preset {
             name: "fig8",
             description: "Fig. 8: energy barriers of U_eff",
-            params: set(0.01, 1.0, 0.999, 0.999, C, 0.24, 0.5),
+            params: set(0.01, 1.0, 0.999, 0.999, C, 0.24, 5.0),
             notes: &[
                 OMEGA_CHOSEN,
-                "τ is not printed; τ = 0.5 chosen (as in Figs 11-14)",
+                "τ is not printed; τ = 5 chosen: at D = 0.24 the inner well A01 (and with it ΔU1, ΔU2) exists only for τ ≳ 3 (paper variant) or τ ≳ 2 (consistent)",
             ],
         },
         Preset {

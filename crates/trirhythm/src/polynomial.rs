@@ -187,7 +187,7 @@ impl Polynomial {
         let bound = self.root_bound();
         let lo = lo.max(-bound * 1.0001 - f64::MIN_POSITIVE);
         let hi = hi.min(bound * 1.0001 + f64::MIN_POSITIVE);
-        if self.degree() == 0 || !(lo < hi) {
+        if self.degree() == 0 || lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
             return Vec::new();
         }
         let d = self.derivative();
@@ -256,9 +256,27 @@ fn roots_in(p: &Polynomial, lo: f64, hi: f64) -> Vec<(f64, bool)> {
 }
 
 /// The single root of a monotone p in (a, b), p(a) having sign `sa`, to full precision.
+///
+/// Illinois (modified regula falsi) steps inside the bracket, with a bisection step whenever
+/// the bracket fails to halve in two steps; stops when the bracket cannot shrink in f64.
 fn bisect_monotone(p: &Polynomial, mut a: f64, mut b: f64, sa: i8) -> f64 {
-    loop {
-        let m = 0.5 * (a + b);
+    let positive_at_a = sa > 0;
+    let (mut fa, _) = p.eval_compensated(a);
+    let (mut fb, _) = p.eval_compensated(b);
+    let mut side = 0i8;
+    let mut width = b - a;
+    for i in 0..200 {
+        let secant = if fa.is_finite() && fb.is_finite() && fa != fb {
+            (a * fb - b * fa) / (fb - fa)
+        } else {
+            f64::NAN
+        };
+        let m = if i % 2 == 1 && b - a > 0.5 * width || !(secant > a && secant < b) {
+            width = b - a;
+            0.5 * (a + b)
+        } else {
+            secant
+        };
         if m <= a || m >= b {
             break;
         }
@@ -266,10 +284,23 @@ fn bisect_monotone(p: &Polynomial, mut a: f64, mut b: f64, sa: i8) -> f64 {
         if v == 0.0 {
             return m;
         }
-        if (v > 0.0) == (sa > 0) {
+        if (v > 0.0) == positive_at_a {
             a = m;
+            fa = v;
+            if side == -1 {
+                fb *= 0.5;
+            }
+            side = -1;
         } else {
             b = m;
+            fb = v;
+            if side == 1 {
+                fa *= 0.5;
+            }
+            side = 1;
+        }
+        if b - a <= f64::EPSILON * a.abs().max(b.abs()) {
+            break;
         }
     }
     let (va, _) = p.eval_compensated(a);

@@ -1,0 +1,317 @@
+//! Argument handling shared by every command: parameters, formats, grids, atomic output.
+
+use anyhow::{Context, Result};
+use clap::{Args, ValueEnum};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use trirhythm::averaging::Variant;
+use trirhythm::model::{preset, Params};
+
+/// Bad input from the user: exit status 2.
+#[derive(Debug)]
+pub struct BadInput(pub String);
+
+impl std::fmt::Display for BadInput {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for BadInput {}
+
+/// Return a [`BadInput`] error.
+pub fn bad<T>(msg: impl Into<String>) -> Result<T> {
+    Err(BadInput(msg.into()).into())
+}
+
+/// Whether an error chain is the user's fault (bad parameter, unknown name, undefined quantity).
+pub fn is_bad_input(err: &anyhow::Error) -> bool {
+    err.chain().any(|e| {
+        e.downcast_ref::<BadInput>().is_some()
+            || matches!(
+                e.downcast_ref::<trirhythm::Error>(),
+                Some(
+                    trirhythm::Error::InvalidParameter { .. }
+                        | trirhythm::Error::Unknown { .. }
+                        | trirhythm::Error::Undefined { .. }
+                )
+            )
+    })
+}
+
+/// `paper` or `consistent` (see the `averaging` module).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum VariantArg {
+    /// The paper's formulas as printed (Eq. 27's typo fixed).
+    #[default]
+    Paper,
+    /// The corrected formulas (exact impact loss, coloured noise through sgn Z).
+    Consistent,
+}
+
+impl From<VariantArg> for Variant {
+    fn from(v: VariantArg) -> Self {
+        match v {
+            VariantArg::Paper => Variant::Paper,
+            VariantArg::Consistent => Variant::Consistent,
+        }
+    }
+}
+
+/// Parameter selection: a preset, then `--param KEY=VALUE` overrides.
+#[derive(Debug, Clone, Args)]
+pub struct ParamArgs {
+    /// A figure's parameter set (e.g. fig4c); without it, Fig. 4(c)'s set with r = 1, D = 0, τ = 0.
+    #[arg(long)]
+    pub preset: Option<String>,
+    /// Override a parameter: KEY=VALUE with KEY in mu0 omega0 lambda r alpha0 beta0 gamma0
+    /// delta0 D tau, or `c<k>` for the coefficient of U^(2k) (repeatable).
+    #[arg(long = "param", value_name = "KEY=VALUE")]
+    pub params: Vec<String>,
+    /// Formula variant of the averaged theory.
+    #[arg(long, value_enum, default_value_t = VariantArg::Paper)]
+    pub variant: VariantArg,
+}
+
+impl ParamArgs {
+    /// The validated parameters.
+    pub fn resolve(&self) -> Result<Params> {
+        let mut p = match &self.preset {
+            Some(name) => preset(name)?.params,
+            None => Params::default(),
+        };
+        for kv in &self.params {
+            let Some((k, v)) = kv.split_once('=') else {
+                return bad(format!("--param expects KEY=VALUE, got `{kv}`"));
+            };
+            let value: f64 = match v.trim().parse() {
+                Ok(x) => x,
+                Err(_) => {
+                    return bad(format!(
+                        "invalid value for parameter {}: `{v}` is not a number",
+                        k.trim()
+                    ))
+                }
+            };
+            p.set(k.trim(), value)?;
+        }
+        p.validate()?;
+        Ok(p)
+    }
+
+    /// The variant as the library's type.
+    pub fn variant(&self) -> Variant {
+        self.variant.into()
+    }
+}
+
+/// Output format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum Format {
+    /// Aligned text for reading.
+    #[default]
+    Table,
+    /// JSON object.
+    Json,
+    /// Comma-separated values with a `#` header.
+    Csv,
+}
+
+/// Output selection.
+#[derive(Debug, Clone, Args)]
+pub struct OutputArgs {
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+    /// Write to this file (atomically) instead of standard output.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+impl OutputArgs {
+    /// Emit `text` to the chosen destination.
+    pub fn emit(&self, text: &str) -> Result<()> {
+        match &self.out {
+            Some(path) => write_atomic(path, text.as_bytes()),
+            None => {
+                let mut out = std::io::stdout().lock();
+                out.write_all(text.as_bytes())?;
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Write a file through a temporary sibling and a rename, so no partial file is ever left.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let tmp = temporary_sibling(path);
+    std::fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("renaming to {}", path.display()))
+}
+
+/// `dir/.name.partial-PID.ext`: a hidden sibling keeping the extension (image encoders pick the
+/// format from it).
+pub fn temporary_sibling(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let ext = path
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.partial-{}{ext}", std::process::id()))
+}
+
+/// A grid `START:STOP:COUNT` of `COUNT` equally spaced points.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grid {
+    /// First point.
+    pub start: f64,
+    /// Last point.
+    pub stop: f64,
+    /// Number of points (≥ 2).
+    pub count: usize,
+}
+
+impl Grid {
+    /// Parse `START:STOP:COUNT`; `what` names the flag in errors.
+    pub fn parse(s: &str, what: &str) -> Result<Grid> {
+        let parts: Vec<&str> = s.split(':').collect();
+        if parts.len() != 3 {
+            return bad(format!("{what} expects START:STOP:COUNT, got `{s}`"));
+        }
+        let num = |t: &str| -> Result<f64> {
+            match t.trim().parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => bad(format!("{what}: `{t}` is not a finite number (in `{s}`)")),
+            }
+        };
+        let (start, stop) = (num(parts[0])?, num(parts[1])?);
+        let count: usize = match parts[2].trim().parse() {
+            Ok(c) if (2..=10_000_000).contains(&c) => c,
+            _ => {
+                return bad(format!(
+                    "{what}: COUNT = `{}` must be an integer in [2, 10000000]",
+                    parts[2]
+                ))
+            }
+        };
+        if start >= stop {
+            return bad(format!(
+                "{what}: START = {start} must be below STOP = {stop}"
+            ));
+        }
+        Ok(Grid { start, stop, count })
+    }
+
+    /// The points.
+    pub fn points(&self) -> Vec<f64> {
+        let h = (self.stop - self.start) / (self.count - 1) as f64;
+        (0..self.count).map(|i| self.start + h * i as f64).collect()
+    }
+}
+
+/// A CSV document: `#` comment lines, a header row, rows of numbers.
+pub struct Csv {
+    text: String,
+}
+
+impl Csv {
+    /// Start with comment lines (each prefixed by `# `) and the column names.
+    pub fn new(comments: &[String], columns: &[&str]) -> Csv {
+        let mut text = String::new();
+        for c in comments {
+            for line in c.lines() {
+                text.push_str("# ");
+                text.push_str(line);
+                text.push('\n');
+            }
+        }
+        text.push_str(&columns.join(","));
+        text.push('\n');
+        Csv { text }
+    }
+
+    /// Append a row of cells (already formatted).
+    pub fn row<I: IntoIterator<Item = String>>(&mut self, cells: I) {
+        let cells: Vec<String> = cells.into_iter().collect();
+        self.text.push_str(&cells.join(","));
+        self.text.push('\n');
+    }
+
+    /// The document.
+    pub fn finish(self) -> String {
+        self.text
+    }
+}
+
+/// Format a number for CSV/table output: shortest round-trip representation.
+pub fn num(v: f64) -> String {
+    if v.is_nan() {
+        "nan".into()
+    } else if v == f64::NEG_INFINITY {
+        "-inf".into()
+    } else if v == f64::INFINITY {
+        "inf".into()
+    } else {
+        format!("{v}")
+    }
+}
+
+/// A JSON number, with non-finite values as `null`.
+pub fn jnum(v: f64) -> serde_json::Value {
+    serde_json::Number::from_f64(v)
+        .map(serde_json::Value::Number)
+        .unwrap_or(serde_json::Value::Null)
+}
+
+/// The parameters as a JSON object in key order.
+pub fn params_json(p: &Params) -> serde_json::Value {
+    let mut m = serde_json::Map::new();
+    for (k, v) in p.key_values() {
+        m.insert(k, jnum(v));
+    }
+    serde_json::Value::Object(m)
+}
+
+/// An aligned text table.
+pub fn table(columns: &[&str], rows: &[Vec<String>]) -> String {
+    let mut widths: Vec<usize> = columns.iter().map(|c| c.chars().count()).collect();
+    for r in rows {
+        for (i, cell) in r.iter().enumerate() {
+            widths[i] = widths[i].max(cell.chars().count());
+        }
+    }
+    let fmt_row = |cells: &mut dyn Iterator<Item = &str>| -> String {
+        let mut line = cells
+            .enumerate()
+            .map(|(i, c)| format!("{:>w$}", c, w = widths[i]))
+            .collect::<Vec<_>>()
+            .join("  ");
+        line.push('\n');
+        line
+    };
+    let mut out = fmt_row(&mut columns.iter().copied());
+    for r in rows {
+        out.push_str(&fmt_row(&mut r.iter().map(|s| s.as_str())));
+    }
+    out
+}
+
+/// A progress bar on a terminal, hidden otherwise (used by the long-running commands).
+#[allow(dead_code)]
+pub fn progress(len: u64, message: &str) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} ({eta})")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(message.to_string());
+    bar
+}

@@ -1,0 +1,211 @@
+//! Fig. 4: the averaged drift f(A0) (Eq. 18) for four parameter sets, its zones and roots.
+//!
+//! f > 0 means the amplitude grows (energy uptake); f < 0 that it decays. The paper labels
+//! f > 0 "dissipation"; the figure labels by the physics and says so in its notes.
+
+use super::{csv_header, panel_line, FigureContext};
+use crate::common::{num, write_atomic, Csv};
+use crate::plot::{chart, legend, padded_range, pe, save, Picture, FONT};
+use anyhow::Result;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use std::path::PathBuf;
+use trirhythm::averaging::{Cycle, Theory};
+use trirhythm::model::preset;
+
+/// What the paper's text says each panel shows (number of roots of f).
+const TEXT_ROOTS: [(&str, &str); 4] = [("a", "five"), ("b", "five"), ("c", "three"), ("d", "none")];
+
+struct Panel {
+    label: &'static str,
+    r: f64,
+    curve: Vec<(f64, f64)>,
+    reference: Option<Vec<(f64, f64)>>,
+    cycles: Vec<Cycle>,
+    cp: [f64; 4],
+    /// Right end of the plot: beyond the outermost root of the r = 1 curve.
+    x_end: f64,
+}
+
+struct Fig4 {
+    panels: Vec<Panel>,
+}
+
+pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
+    let n = if ctx.quick { 281 } else { 1401 };
+    let a_max = 14.0;
+    let grid: Vec<f64> = (0..n).map(|i| a_max * i as f64 / (n - 1) as f64).collect();
+    let mut panels = Vec::new();
+    let mut notes = vec![
+        "f > 0: the amplitude grows (energy uptake); the paper calls this zone 'dissipation'"
+            .to_string(),
+        "stable cycle ⇔ df/dA0 < 0".to_string(),
+    ];
+    let mut params_lines = Vec::new();
+    for (label, said) in TEXT_ROOTS {
+        let p = preset(&format!("fig4{label}"))?.params;
+        let th = Theory::new(&p, ctx.variant)?;
+        let curve: Vec<(f64, f64)> = grid.iter().map(|&a| (a, th.drift(a))).collect();
+        let t1 = Theory::new(&p.with("r", 1.0)?, ctx.variant)?;
+        let outermost = t1
+            .limit_cycles()
+            .last()
+            .map(|c| c.amplitude)
+            .unwrap_or(a_max);
+        let x_end = (outermost * 1.06).min(a_max);
+        let reference =
+            (p.restitution < 1.0).then(|| grid.iter().map(|&a| (a, t1.drift(a))).collect());
+        let cycles = th.limit_cycles();
+        let stable = cycles.iter().filter(|c| c.stable).count();
+        notes.push(format!(
+            "panel {label} (r = {}): Eq. 18 gives {} positive roots ({} stable) at A0 = [{}]; the paper's text says {said}",
+            p.restitution,
+            cycles.len(),
+            stable,
+            cycles.iter().map(|c| format!("{:.4}{}", c.amplitude, if c.stable { " s" } else { " u" })).collect::<Vec<_>>().join(", ")
+        ));
+        params_lines.push(panel_line(label, &p));
+        panels.push(Panel {
+            label,
+            r: p.restitution,
+            curve,
+            reference,
+            cycles,
+            cp: p.damping.control_parameters(),
+            x_end,
+        });
+    }
+    std::fs::create_dir_all(&ctx.out_dir)?;
+    let mut header = csv_header(4, "f(A0) (Eq. 18) with its zones and roots", ctx, &notes);
+    header.extend(params_lines);
+    let mut csv = Csv::new(&header, &["panel", "r", "A", "f"]);
+    for p in &panels {
+        for &(a, f) in &p.curve {
+            csv.row([p.label.to_string(), num(p.r), num(a), num(f)]);
+        }
+    }
+    let stem = ctx.stem(4);
+    let csv_path = stem.with_extension("csv");
+    write_atomic(&csv_path, csv.finish().as_bytes())?;
+    let mut files = vec![csv_path];
+    files.extend(save(&Fig4 { panels }, &stem)?);
+    Ok(files)
+}
+
+impl Picture for Fig4 {
+    fn size(&self) -> (u32, u32) {
+        (1400, 1000)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        let areas = root.split_evenly((2, 2));
+        for (area, p) in areas.iter().zip(&self.panels) {
+            let x = 0.0..p.x_end;
+            // The range shows the roots' neighbourhood; the steep fall beyond is cut at four
+            // times the largest |f| met before the outermost root.
+            let shown_vals = p
+                .curve
+                .iter()
+                .chain(p.reference.iter().flatten())
+                .filter(|c| c.0 <= p.x_end);
+            let inner = shown_vals
+                .clone()
+                .filter(|c| c.0 <= p.x_end / 1.06)
+                .fold(0.0f64, |m, c| m.max(c.1.abs()));
+            let y = padded_range(shown_vals.map(|c| c.1.max(-4.0 * inner)));
+            let [a0, b0, g0, d0] = p.cp;
+            let caption = format!(
+                "({}) r = {}, (α0,β0,γ0,δ0) = ({a0}, {b0}, {g0:e}, {d0:e})",
+                p.label, p.r
+            );
+            let shown = |pts: &[(f64, f64)]| -> Vec<(f64, f64)> {
+                pts.iter()
+                    .copied()
+                    .filter(|c| c.0 <= p.x_end && c.1 >= y.start)
+                    .collect()
+            };
+            let mut c = chart(area, &caption, x, y.clone(), "A0", "f(A0)")?;
+            let up = RGBColor(250, 200, 200);
+            let down = RGBColor(200, 215, 250);
+            c.draw_series(AreaSeries::new(
+                shown(&p.curve).into_iter().map(|(a, f)| (a, f.max(0.0))),
+                0.0,
+                up.mix(0.8),
+            ))
+            .map_err(pe)?
+            .label("f > 0: amplitude grows (energy uptake)")
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 15, y + 5)], up.filled()));
+            c.draw_series(AreaSeries::new(
+                shown(&p.curve).into_iter().map(|(a, f)| (a, f.min(0.0))),
+                0.0,
+                down.mix(0.8),
+            ))
+            .map_err(pe)?
+            .label("f < 0: amplitude decays (dissipation)")
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 15, y + 5)], down.filled()));
+            {
+                let clipped: Vec<(f64, f64)> = shown(p.reference.as_deref().unwrap_or(&[]))
+                    .into_iter()
+                    .filter(|&(_, f)| f >= y.start && f <= y.end)
+                    .collect();
+                c.draw_series(DashedLineSeries::new(
+                    clipped,
+                    6,
+                    4,
+                    RGBColor(120, 120, 120).stroke_width(1),
+                ))
+                .map_err(pe)?
+                .label("same control parameters, r = 1")
+                .legend(|(x, y)| PathElement::new([(x, y), (x + 15, y)], RGBColor(120, 120, 120)));
+            }
+            c.draw_series(LineSeries::new(shown(&p.curve), BLACK.stroke_width(2)))
+                .map_err(pe)?
+                .label(format!("f(A0), r = {}", p.r))
+                .legend(|(x, y)| PathElement::new([(x, y), (x + 15, y)], BLACK.stroke_width(2)));
+            c.draw_series(LineSeries::new(
+                [(0.0, 0.0), (p.x_end, 0.0)],
+                BLACK.stroke_width(1),
+            ))
+            .map_err(pe)?;
+            let marks = |stable: bool| {
+                p.cycles
+                    .iter()
+                    .filter(move |cy| cy.stable == stable)
+                    .map(move |cy| {
+                        let fill = if stable {
+                            BLACK.filled()
+                        } else {
+                            WHITE.filled()
+                        };
+                        EmptyElement::at((cy.amplitude, 0.0))
+                            + Circle::new((0, 0), 6, fill)
+                            + Circle::new((0, 0), 6, BLACK.stroke_width(2))
+                    })
+            };
+            c.draw_series(marks(true))
+                .map_err(pe)?
+                .label("stable cycle (df/dA0 < 0)")
+                .legend(|(x, y)| Circle::new((x + 7, y), 5, BLACK.filled()));
+            c.draw_series(marks(false))
+                .map_err(pe)?
+                .label("unstable cycle")
+                .legend(|(x, y)| Circle::new((x + 7, y), 5, BLACK.stroke_width(2)));
+            let label_font = (FONT, 14)
+                .into_font()
+                .color(&BLACK)
+                .pos(Pos::new(HPos::Center, VPos::Bottom));
+            c.draw_series(p.cycles.iter().enumerate().map(|(i, cy)| {
+                EmptyElement::at((cy.amplitude, 0.0))
+                    + Text::new(format!("A0{}", i + 1), (0, -9), label_font.clone())
+            }))
+            .map_err(pe)?;
+            if p.label == "a" {
+                legend(&mut c, SeriesLabelPosition::LowerLeft)?;
+            }
+        }
+        Ok(())
+    }
+}

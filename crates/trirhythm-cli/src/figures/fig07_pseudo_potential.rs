@@ -1,0 +1,190 @@
+//! Fig. 7: the pseudo-potential U_eff(A0) (Eq. 23) for several r (a) and several λ (b).
+
+use super::{csv_header, panel_line, FigureContext};
+use crate::common::{num, write_atomic, Csv};
+use crate::plot::{chart, legend, padded_range, pe, save, Picture, PALETTE};
+use anyhow::Result;
+use plotters::coord::types::RangedCoordf64;
+use plotters::prelude::*;
+use std::path::PathBuf;
+use trirhythm::averaging::{Extremum, Theory};
+use trirhythm::model::preset;
+
+/// One U_eff curve with its extrema.
+pub(super) struct Curve {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+    pub extrema: Vec<Extremum>,
+}
+
+impl Curve {
+    /// U_eff of `th` on `grid` (A = 0 skipped when the potential has a log term).
+    pub fn new(label: String, th: &Theory, grid: &[f64]) -> Curve {
+        let points = grid
+            .iter()
+            .filter(|&&a| a > 0.0 || th.diffusion() == 0.0)
+            .map(|&a| (a, th.potential(a)))
+            .collect();
+        Curve {
+            label,
+            points,
+            extrema: th.extrema(),
+        }
+    }
+}
+
+/// A y-range framing the extrema of `curves` that lie below `x_end` (the walls of U_eff at
+/// A → 0 and A → ∞ would otherwise flatten everything), and the curves' points inside it.
+pub(super) fn frame(curves: &[Curve], x_end: f64) -> (std::ops::Range<f64>, Vec<Curve>) {
+    let levels = curves
+        .iter()
+        .flat_map(|c| c.extrema.iter())
+        .filter(|e| e.amplitude <= x_end)
+        .map(|e| e.potential);
+    let (lo, hi) = levels.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(v), b.max(v))
+    });
+    let span = (hi - lo).max(1e-9);
+    let y = padded_range([lo - 0.3 * span, hi + 0.6 * span]);
+    let clipped = curves
+        .iter()
+        .map(|c| Curve {
+            label: c.label.clone(),
+            points: c
+                .points
+                .iter()
+                .copied()
+                .filter(|p| p.0 <= x_end && y.contains(&p.1))
+                .collect(),
+            extrema: c.extrema.clone(),
+        })
+        .collect();
+    (y, clipped)
+}
+
+/// Draw curves with their wells (filled) and crests (open) marked.
+pub(super) fn draw_curves<'a, DB: DrawingBackend + 'a>(
+    c: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    curves: &[Curve],
+    with_legend: bool,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let y = c.y_range();
+    let x = c.x_range();
+    for (i, cv) in curves.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
+        let s = c
+            .draw_series(LineSeries::new(
+                cv.points.iter().copied(),
+                color.stroke_width(2),
+            ))
+            .map_err(pe)?;
+        if with_legend {
+            s.label(cv.label.clone()).legend(move |(x, y)| {
+                PathElement::new([(x, y), (x + 15, y)], color.stroke_width(2))
+            });
+        }
+        let inside = |e: &&Extremum| x.contains(&e.amplitude) && y.contains(&e.potential);
+        c.draw_series(cv.extrema.iter().filter(inside).map(|e| {
+            let fill = if e.minimum {
+                color.filled()
+            } else {
+                WHITE.filled()
+            };
+            EmptyElement::at((e.amplitude, e.potential))
+                + Circle::new((0, 0), 5, fill)
+                + Circle::new((0, 0), 5, color.stroke_width(2))
+        }))
+        .map_err(pe)?;
+    }
+    Ok(())
+}
+
+struct Fig7 {
+    panels: Vec<(String, Vec<Curve>)>,
+}
+
+pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
+    let n = if ctx.quick { 281 } else { 1401 };
+    let grid: Vec<f64> = (0..n).map(|i| 14.0 * i as f64 / (n - 1) as f64).collect();
+    let rs = [1.0, 0.999, 0.998, 0.996];
+    let lambdas = [1.0, 0.999, 0.998, 0.997];
+    let pa = preset("fig7a")?.params;
+    let pb = preset("fig7b")?.params;
+    let mut a_curves = Vec::new();
+    for r in rs {
+        let th = Theory::new(&pa.with("r", r)?, ctx.variant)?;
+        a_curves.push(Curve::new(format!("r = {r}"), &th, &grid));
+    }
+    let mut b_curves = Vec::new();
+    for l in lambdas {
+        let th = Theory::new(&pb.with("lambda", l)?, ctx.variant)?;
+        b_curves.push(Curve::new(format!("λ = {l}"), &th, &grid));
+    }
+    let notes = vec![
+        format!(
+            "panel a: λ = {}, r ∈ {rs:?} (r values not printed in the paper; chosen)",
+            pa.lambda
+        ),
+        format!(
+            "panel b: r = {}, λ ∈ {lambdas:?} (λ values not printed in the paper; chosen)",
+            pb.restitution
+        ),
+        "ω0 is not printed; ω0 = 1 chosen. D = 0, so U_eff = −∫f dA (no log term)".into(),
+        "wells: filled markers; crests: open markers".into(),
+    ];
+    let mut header = csv_header(7, "pseudo-potential U_eff(A0) (Eq. 23)", ctx, &notes);
+    header.push(panel_line("a (base)", &pa));
+    header.push(panel_line("b (base)", &pb));
+    let mut csv = Csv::new(&header, &["panel", "r", "lambda", "A", "U_eff"]);
+    for (panel, curves, vals, key) in [
+        ("a", &a_curves, &rs, "r"),
+        ("b", &b_curves, &lambdas, "lambda"),
+    ] {
+        for (cv, &v) in curves.iter().zip(vals.iter()) {
+            let (r, l) = if key == "r" {
+                (v, pa.lambda)
+            } else {
+                (pb.restitution, v)
+            };
+            for &(a, u) in &cv.points {
+                csv.row([panel.to_string(), num(r), num(l), num(a), num(u)]);
+            }
+        }
+    }
+    std::fs::create_dir_all(&ctx.out_dir)?;
+    let stem = ctx.stem(7);
+    let csv_path = stem.with_extension("csv");
+    write_atomic(&csv_path, csv.finish().as_bytes())?;
+    let fig = Fig7 {
+        panels: vec![
+            (format!("(a) λ = {}, several r", pa.lambda), a_curves),
+            (format!("(b) r = {}, several λ", pb.restitution), b_curves),
+        ],
+    };
+    let mut files = vec![csv_path];
+    files.extend(save(&fig, &stem)?);
+    Ok(files)
+}
+
+impl Picture for Fig7 {
+    fn size(&self) -> (u32, u32) {
+        (1400, 620)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        let areas = root.split_evenly((1, 2));
+        for (area, (caption, curves)) in areas.iter().zip(&self.panels) {
+            let (y, clipped) = frame(curves, 14.0);
+            let mut c = chart(area, caption, 0.0..14.0, y, "A0", "U_eff(A0)")?;
+            draw_curves(&mut c, &clipped, true)?;
+            legend(&mut c, SeriesLabelPosition::LowerLeft)?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,65 @@
+//! `trirhythm figure N`: one source file, one command and one set of files per paper figure.
+//!
+//! Each figure writes `figNN.csv` (its data, parameters and notes in `#` header lines) and
+//! `figNN.png` + `figNN.svg` into the output directory. `--quick` trades resolution for speed
+//! (used by CI); the default is paper quality.
+
+mod fig04_drift;
+mod fig07_pseudo_potential;
+mod fig08_barriers;
+
+use anyhow::Result;
+use std::path::PathBuf;
+use trirhythm::averaging::Variant;
+use trirhythm::model::Params;
+
+/// What every figure gets.
+pub struct FigureContext {
+    /// Output directory (created if missing).
+    pub out_dir: PathBuf,
+    /// Coarser grids, shorter runs.
+    pub quick: bool,
+    /// Formula variant of the averaged theory.
+    pub variant: Variant,
+}
+
+impl FigureContext {
+    /// `out_dir/figNN` (without extension).
+    pub fn stem(&self, n: u32) -> PathBuf {
+        self.out_dir.join(format!("fig{n:02}"))
+    }
+}
+
+type FigureFn = fn(&FigureContext) -> Result<Vec<PathBuf>>;
+
+/// The figures this build can make, by number.
+pub fn registry() -> Vec<(u32, &'static str, FigureFn)> {
+    vec![
+        (
+            4,
+            "f(A0) with its zones and limit cycles (Eq. 18)",
+            fig04_drift::run,
+        ),
+        (
+            7,
+            "pseudo-potential U_eff for several r and λ (Eq. 23)",
+            fig07_pseudo_potential::run,
+        ),
+        (8, "energy barriers ΔU_i of U_eff", fig08_barriers::run),
+    ]
+}
+
+/// Header comment lines for a figure's CSV: title, variant, notes.
+pub fn csv_header(n: u32, title: &str, ctx: &FigureContext, notes: &[String]) -> Vec<String> {
+    let mut h = vec![
+        format!("trirhythm figure {n}: {title}"),
+        format!("variant: {}", ctx.variant.name()),
+    ];
+    h.extend(notes.iter().map(|s| format!("note: {s}")));
+    h
+}
+
+/// A panel's parameters for a header line.
+pub fn panel_line(label: &str, p: &Params) -> String {
+    format!("panel {label}: {}", p.describe())
+}
