@@ -8,6 +8,7 @@
 mod common;
 mod figures;
 mod plot;
+mod simulate;
 mod theory;
 
 use anyhow::Result;
@@ -40,6 +41,8 @@ enum Command {
     Barriers(theory::TheoryArgs),
     /// Stationary PDFs: amplitude (Eq. 27), energy (Eq. 29), joint (Eq. 30–31).
     Pdf(theory::PdfArgs),
+    /// Simulate one path of Eq. 1 (or Eq. 5 / Eq. 9) with the fractional predictor–corrector.
+    Simulate(simulate::SimulateArgs),
     /// Reproduce a figure of the paper: data (CSV) and picture (PNG + SVG).
     Figure(FigureArgs),
     /// List the parameter presets (one per figure panel) with their notes.
@@ -131,6 +134,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Potential(a) => theory::potential(a),
         Command::Barriers(a) => theory::barriers(a),
         Command::Pdf(a) => theory::pdf(a),
+        Command::Simulate(a) => simulate::simulate(a),
         Command::Figure(a) => figure(a),
         Command::Presets => presets(),
     }
