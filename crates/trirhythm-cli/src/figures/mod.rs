@@ -4,6 +4,7 @@
 //! `figNN.png` + `figNN.svg` into the output directory. `--quick` trades resolution for speed
 //! (used by CI); the default is paper quality.
 
+mod fig01_phase_recurrence;
 mod fig04_drift;
 mod fig07_pseudo_potential;
 mod fig08_barriers;
@@ -35,6 +36,11 @@ type FigureFn = fn(&FigureContext) -> Result<Vec<PathBuf>>;
 /// The figures this build can make, by number.
 pub fn registry() -> Vec<(u32, &'static str, FigureFn)> {
     vec![
+        (
+            1,
+            "phase portraits and recurrence plots, Eq. (1) vs Eq. (5)",
+            fig01_phase_recurrence::run,
+        ),
         (
             4,
             "f(A0) with its zones and limit cycles (Eq. 18)",
