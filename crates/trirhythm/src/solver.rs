@@ -45,6 +45,20 @@
 //! - blow-up: a non-finite state or |U|, |V| above [`Options::blow_up`] returns
 //!   [`Error::BlowUp`] with the time.
 //!
+//! # Example
+//! ```
+//! use trirhythm::model::preset;
+//! use trirhythm::solver::{simulate, Options, Oscillator, PredictorCorrector};
+//!
+//! let osc = Oscillator::new(&preset("fig1")?.params)?;            // the problem (Eq. 1)
+//! let method = PredictorCorrector { dt: 0.01, ..Default::default() }; // SOE memory, 1e-10
+//! let options = Options { t_end: 50.0, u0: 6.78, v0: 0.0, ..Default::default() };
+//! let path = simulate(&osc, &method, &options, 42)?;               // seed 42, path 0
+//! assert_eq!(path.steps, 5000);
+//! assert!(path.u.iter().all(|&u| u >= 0.0) && path.impacts > 0);
+//! # Ok::<(), trirhythm::Error>(())
+//! ```
+//!
 //! # Reference
 //! Diethelm, Ford & Freed (2002) (PECE product-trapezoidal method); the memory compression of
 //! [`crate::fractional`]; Zhuravlev's transformation for Eq. (9).
@@ -53,7 +67,9 @@
 //! `tests/convergence.rs`: observed orders on D^{1+λ}U = −ω²U (Mittag-Leffler solution), on the
 //! linear impact oscillator at λ = 1 (exact piecewise solution), Continuous = Restart at λ = 1,
 //! the impact invariant |V₊| = r|V₋| (proptest), U ≥ 0 under chattering, white-noise energy
-//! growth 2Dt; `tests/soe.rs`: SOE vs Direct on Eq. (1); determinism across thread counts.
+//! growth 2Dt; `tests/soe.rs`: SOE vs Direct on Eq. (1); `tests/stochastic.rs`: noise and
+//! determinism across thread counts; `tests/impacts.rs`: impact law, U ≥ 0, chattering ends in
+//! sticking; `tests/systems.rs`: Eq. (5) at λ = 1 is Eq. (1), U = |Z| between Eq. (5) and Eq. (9).
 
 use crate::averaging::Equivalents;
 use crate::error::{Error, Result};
