@@ -64,12 +64,12 @@
 //! [`crate::fractional`]; Zhuravlev's transformation for Eq. (9).
 //!
 //! # Tests
-//! `tests/convergence.rs`: observed orders on D^{1+λ}U = −ω²U (Mittag-Leffler solution), on the
-//! linear impact oscillator at λ = 1 (exact piecewise solution), Continuous = Restart at λ = 1,
-//! the impact invariant |V₊| = r|V₋| (proptest), U ≥ 0 under chattering, white-noise energy
-//! growth 2Dt; `tests/soe.rs`: SOE vs Direct on Eq. (1); `tests/stochastic.rs`: noise and
-//! determinism across thread counts; `tests/impacts.rs`: impact law, U ≥ 0, chattering ends in
-//! sticking; `tests/systems.rs`: Eq. (5) at λ = 1 is Eq. (1), U = |Z| between Eq. (5) and Eq. (9).
+//! `tests/convergence.rs`: observed orders on D^{1+λ}U = −ω²U (Mittag-Leffler solution) and on
+//! the linear impact oscillator at λ = 1 (exact piecewise solution), Continuous = Restart at
+//! λ = 1; `tests/soe.rs`: SOE vs Direct on Eq. (1); `tests/stochastic.rs`: white-noise energy
+//! growth 2Dt, OU → white limit, determinism across thread counts; `tests/impacts.rs`: the
+//! impact invariant |V₊| = r|V₋| (proptest), U ≥ 0, chattering ends in sticking;
+//! `tests/systems.rs`: Eq. (5) at λ = 1 is Eq. (1), U = |Z| between Eq. (5) and Eq. (9).
 
 use crate::averaging::Equivalents;
 use crate::error::{Error, Result};
