@@ -396,8 +396,9 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
 
     #[test]
-    fn pdfs_normalise_for_random_parameters(p in arb_params()) {
-        let th = Theory::new(&p, Variant::Paper).unwrap();
+    fn pdfs_normalise_for_random_parameters(p in arb_params(), consistent in any::<bool>()) {
+        let v = if consistent { Variant::Consistent } else { Variant::Paper };
+        let th = Theory::new(&p, v).unwrap();
         let pdf = th.amplitude_pdf().unwrap();
         // 4·10⁵ Simpson panels resolve peaks down to ~1e-3 wide on supports up to ~40.
         let mass = simpson(|a| pdf.density(a), 0.0, pdf.support_end, 400_000);
