@@ -462,7 +462,9 @@ pub fn simulate_path(
                 let eta_star = el + theta * (er - el);
                 let (hs, ws) = conv.at_fraction(theta, gl);
                 let forcing = rhs.gain * eta_star;
-                let vm = ((base + hs + ws * forcing) / (1.0 - ws * a0)).min(0.0);
+                // the scheme's own V(t*−); at grazing it may come out ≥ 0: then V₋ = 0
+                let v_at = (base + hs + ws * forcing) / (1.0 - ws * a0);
+                let vm = v_at.min(0.0);
                 let vplus = -rhs.restitution * vm;
                 out.impacts += 1;
                 if options.record_impacts {
@@ -474,7 +476,7 @@ pub fn simulate_path(
                 }
                 let split = Split {
                     theta,
-                    before: a0 * vm + forcing,
+                    before: a0 * v_at + forcing,
                     after: a0 * vplus + forcing,
                     keep_before: !restart,
                 };
@@ -482,7 +484,8 @@ pub fn simulate_path(
                     conv.restart();
                     base = vplus;
                 } else {
-                    base += vplus - vm;
+                    // V(t*+) = V₊ exactly
+                    base += vplus - v_at;
                 }
                 let (known_s, wr_s) = conv.current_split(gl, &split);
                 let known = base + conv.history() + known_s;
