@@ -353,6 +353,33 @@ pub fn simulate_path(
     path: u64,
     progress: Option<&(dyn Fn(f64) + Sync)>,
 ) -> Result<Trajectory> {
+    run_path(oscillator, method, options, seed, path, progress, None)
+}
+
+/// The empty memory of a run (with its verified SOE kernel), built once per ensemble.
+fn fresh_memory(
+    oscillator: &Oscillator,
+    method: &PredictorCorrector,
+    options: &Options,
+) -> Result<Convolution> {
+    let h = method.dt;
+    let steps = (options.t_end / h).round();
+    let rhs_lambda = match options.system {
+        System::Fractional => oscillator.params.lambda,
+        System::Equivalent | System::Zhuravlev => 1.0,
+    };
+    Convolution::new(rhs_lambda, h, steps * h, method.memory, method.window)
+}
+
+fn run_path(
+    oscillator: &Oscillator,
+    method: &PredictorCorrector,
+    options: &Options,
+    seed: u64,
+    path: u64,
+    progress: Option<&(dyn Fn(f64) + Sync)>,
+    memory: Option<&Convolution>,
+) -> Result<Trajectory> {
     let h = method.dt;
     if !(h > 0.0 && h.is_finite()) {
         return Err(Error::invalid("dt", h, "(0, ∞), finite"));
@@ -389,7 +416,10 @@ pub fn simulate_path(
         ));
     }
     let t_end = steps as f64 * h;
-    let mut conv = Convolution::new(rhs.lambda, h, t_end, method.memory, method.window)?;
+    let mut conv = match memory {
+        Some(m) => m.clone(),
+        None => Convolution::new(rhs.lambda, h, t_end, method.memory, method.window)?,
+    };
     let mut noise = NoiseStream::new(oscillator.noise, h, seed, path)?;
     let has_noise = !oscillator.noise.is_none();
     let omega1 = oscillator.equivalents.omega1;
@@ -616,10 +646,20 @@ pub fn simulate_ensemble(
     seed: u64,
     paths: usize,
 ) -> Result<Vec<Trajectory>> {
-    (0..paths as u64)
+    if paths == 0 {
+        return Ok(vec![]);
+    }
+    // validate through path 0, then share its freshly built memory (SOE kernel) with the rest
+    let first = simulate_path(oscillator, method, options, seed, 0, None)?;
+    let memory = fresh_memory(oscillator, method, options)?;
+    let rest: Result<Vec<Trajectory>> = (1..paths as u64)
         .into_par_iter()
-        .map(|i| simulate_path(oscillator, method, options, seed, i, None))
-        .collect()
+        .map(|i| run_path(oscillator, method, options, seed, i, None, Some(&memory)))
+        .collect();
+    let mut all = Vec::with_capacity(paths);
+    all.push(first);
+    all.extend(rest?);
+    Ok(all)
 }
 
 #[cfg(test)]
