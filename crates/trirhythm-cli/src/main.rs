@@ -7,6 +7,7 @@
 
 mod common;
 mod figures;
+mod maps;
 mod plot;
 mod simulate;
 mod theory;
@@ -43,6 +44,11 @@ enum Command {
     Pdf(theory::PdfArgs),
     /// Simulate one path of Eq. 1 (or Eq. 5 / Eq. 9) with the fractional predictor–corrector.
     Simulate(simulate::SimulateArgs),
+    /// Two-parameter map: stable-cycle or P(A)-mode count on a grid (CSV x,y,count), with the
+    /// fold curves traced exactly (--folds).
+    Map(maps::MapArgs),
+    /// One-parameter branch diagram: every cycle branch traced through its folds.
+    Branches(maps::BranchArgs),
     /// Reproduce a figure of the paper: data (CSV) and picture (PNG + SVG).
     Figure(FigureArgs),
     /// List the parameter presets (one per figure panel) with their notes.
@@ -135,6 +141,8 @@ fn run(cli: Cli) -> Result<()> {
         Command::Barriers(a) => theory::barriers(a),
         Command::Pdf(a) => theory::pdf(a),
         Command::Simulate(a) => simulate::simulate(a),
+        Command::Map(a) => maps::map(a),
+        Command::Branches(a) => maps::branches(a),
         Command::Figure(a) => figure(a),
         Command::Presets => presets(),
     }

@@ -23,6 +23,7 @@
 
 pub mod analysis;
 pub mod averaging;
+pub mod bifurcation;
 pub mod error;
 pub mod fractional;
 pub mod known_answers;

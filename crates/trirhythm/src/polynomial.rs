@@ -168,8 +168,8 @@ impl Polynomial {
     /// The number of distinct real roots in (a, b] by a Sturm sequence (b may be +∞).
     ///
     /// The sequence is built on the polynomial rescaled to roots of order one, with each
-    /// remainder normalised and coefficients below 1e-13 of its largest dropped, so that the
-    /// count is exact except within about 1e-10 (relative) of a double root.
+    /// remainder normalised and its cancelled leading coefficients (below 1e-13 of the largest)
+    /// dropped, so that the count is exact except within about 1e-10 (relative) of a double root.
     pub fn sturm_count(&self, a: f64, b: f64) -> usize {
         if self.degree() == 0 {
             return 0;
@@ -312,15 +312,22 @@ fn bisect_monotone(p: &Polynomial, mut a: f64, mut b: f64, sa: i8) -> f64 {
     }
 }
 
+/// Scaled to unit maximum, with leading coefficients below 1e-13 removed: in a remainder those
+/// are the cancellation residue of the division (the exact remainder has lower degree). Small
+/// lower-order coefficients are kept: they carry the small roots when the roots spread over
+/// decades, and a uniform threshold would miscount them.
 fn normalised(mut c: Vec<f64>) -> Polynomial {
     let m = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     if m > 0.0 {
         for v in &mut c {
             *v /= m;
-            if v.abs() < 1e-13 {
-                *v = 0.0;
-            }
         }
+    }
+    while c.len() > 1 && c.last().is_some_and(|v| v.abs() < 1e-13) {
+        c.pop();
+    }
+    if c.len() == 1 && c[0].abs() < 1e-13 {
+        c[0] = 0.0;
     }
     Polynomial::new(c)
 }

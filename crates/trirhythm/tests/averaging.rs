@@ -346,6 +346,31 @@ fn barriers_follow_the_papers_order() {
     }
 }
 
+/// Roots spread over decades: a uniform coefficient threshold in the Sturm sequence once
+/// miscounted this point (1 stable cycle and 0 modes instead of 2 and 2).
+#[test]
+fn sturm_count_survives_roots_spread_over_decades() {
+    let p = Params {
+        mu0: 0.38234,
+        omega0: 0.5,
+        lambda: 0.9,
+        restitution: 0.8,
+        damping: Damping::paper(0.144, 0.005, 1.105e-4, 1e-8),
+        noise_intensity: 0.01,
+        correlation_time: 0.0,
+    };
+    let th = Theory::new(&p, Variant::Paper).unwrap();
+    let limit = th.limit_cycles();
+    assert_eq!(limit.iter().filter(|c| c.stable).count(), 2, "{limit:?}");
+    assert_eq!(stable_count(th.drift_polynomial()), 2);
+    assert_eq!(
+        th.drift_polynomial().sturm_count(0.0, f64::INFINITY),
+        limit.len()
+    );
+    assert_eq!(th.amplitude_pdf().unwrap().modes.len(), 2);
+    assert_eq!(th.stable_count_fast(), 2);
+}
+
 fn arb_params() -> impl Strategy<Value = Params> {
     (
         0.9f64..=1.0,

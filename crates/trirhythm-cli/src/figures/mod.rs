@@ -5,9 +5,17 @@
 //! (used by CI); the default is paper quality.
 
 mod fig01_phase_recurrence;
+mod fig02_rhythmicity_planes;
+mod fig03_restitution_planes;
 mod fig04_drift;
+mod fig05_branches;
+mod fig06_fractional_planes;
 mod fig07_pseudo_potential;
 mod fig08_barriers;
+mod fig09_barrier_surfaces;
+mod fig10_pbif_lambda_tau;
+mod fig12_pbif_maps;
+mod mapfig;
 
 use anyhow::Result;
 use std::path::PathBuf;
@@ -42,9 +50,29 @@ pub fn registry() -> Vec<(u32, &'static str, FigureFn)> {
             fig01_phase_recurrence::run,
         ),
         (
+            2,
+            "rhythmicity maps in (α0, β0) and (γ0, δ0) with saddle-node lines",
+            fig02_rhythmicity_planes::run,
+        ),
+        (
+            3,
+            "rhythmicity in (γ0, δ0) for four restitution coefficients",
+            fig03_restitution_planes::run,
+        ),
+        (
             4,
             "f(A0) with its zones and limit cycles (Eq. 18)",
             fig04_drift::run,
+        ),
+        (
+            5,
+            "limit-cycle amplitude vs r by continuation, five μ0",
+            fig05_branches::run,
+        ),
+        (
+            6,
+            "mono/bi/tri regions in (γ0, δ0) for four fractional orders",
+            fig06_fractional_planes::run,
         ),
         (
             7,
@@ -52,6 +80,21 @@ pub fn registry() -> Vec<(u32, &'static str, FigureFn)> {
             fig07_pseudo_potential::run,
         ),
         (8, "energy barriers ΔU_i of U_eff", fig08_barriers::run),
+        (
+            9,
+            "energy barriers ΔU_i over (τ, λ) for two r",
+            fig09_barrier_surfaces::run,
+        ),
+        (
+            10,
+            "P-bifurcation map in (λ, τ) for four D",
+            fig10_pbif_lambda_tau::run,
+        ),
+        (
+            12,
+            "P-bifurcation maps in (μ0, r) and (λ, r)",
+            fig12_pbif_maps::run,
+        ),
     ]
 }
 

@@ -1,0 +1,195 @@
+//! Fig. 9: energy barriers ΔU1…ΔU4 of U_eff (Eq. 23) over the (τ, λ) plane for r = 0.998 and
+//! r = 0.990, as heat maps; blank where U_eff does not have the three wells the labels refer to.
+
+use super::{csv_header, panel_line, FigureContext};
+use crate::common::{num, progress, write_atomic, Csv};
+use crate::plot::{chart, pe, save, Picture, FONT};
+use anyhow::Result;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::PathBuf;
+use trirhythm::bifurcation::{barrier_surfaces, Axis, BarrierSurfaces, Plane};
+use trirhythm::model::preset;
+
+const R_VALUES: [f64; 2] = [0.998, 0.990];
+const LAMBDA: (f64, f64) = (0.98, 1.0);
+const TAU: (f64, f64) = (0.0, 5.0);
+
+struct Fig9 {
+    surfaces: Vec<(f64, BarrierSurfaces)>,
+}
+
+pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
+    let pre = preset("fig9")?;
+    let n = if ctx.quick { 41 } else { 161 };
+    let mut surfaces = Vec::new();
+    let mut notes: Vec<String> = pre.notes.iter().map(|s| s.to_string()).collect();
+    notes.push(format!(
+        "τ ∈ [{}, {}] as printed; λ ∈ [{}, {}] chosen (not printed)",
+        TAU.0, TAU.1, LAMBDA.0, LAMBDA.1
+    ));
+    notes.push("ΔU1: well A01 to its right crest; ΔU2: A03 to the left; ΔU3: A03 to the right; ΔU4: A05 to the left (U_eff → +∞ at A → 0 and ∞ when D > 0)".into());
+    notes.push("blank (empty cells) where U_eff has fewer than three wells: the labels A01, A03, A05 do not apply there".into());
+    let mut lines = Vec::new();
+    for r in R_VALUES {
+        let p = pre.params.with("r", r)?;
+        let plane = Plane::new(
+            &p,
+            Axis::new("tau", TAU.0, TAU.1, n)?,
+            Axis::new("lambda", LAMBDA.0, LAMBDA.1, n)?,
+            ctx.variant,
+        )?;
+        let bar = progress(n as u64, &format!("r = {r}"));
+        let s = barrier_surfaces(&plane, &|d, _| bar.set_position(d as u64));
+        bar.finish_and_clear();
+        let three = s.wells.iter().filter(|&&w| w == 3).count();
+        notes.push(format!(
+            "r = {r}: three wells at {:.1}% of the grid points",
+            100.0 * three as f64 / s.wells.len() as f64
+        ));
+        lines.push(panel_line(&format!("r = {r}"), &p));
+        surfaces.push((r, s));
+    }
+    std::fs::create_dir_all(&ctx.out_dir)?;
+    let mut header = csv_header(9, "energy barriers ΔU_i over (τ, λ)", ctx, &notes);
+    header.extend(lines);
+    let mut csv = Csv::new(
+        &header,
+        &["r", "tau", "lambda", "wells", "dU1", "dU2", "dU3", "dU4"],
+    );
+    for (r, s) in &surfaces {
+        let pl = &s.plane;
+        for iy in 0..pl.y.count {
+            for ix in 0..pl.x.count {
+                let i = iy * pl.x.count + ix;
+                let mut row = vec![
+                    num(*r),
+                    num(pl.x.value(ix)),
+                    num(pl.y.value(iy)),
+                    s.wells[i].to_string(),
+                ];
+                row.extend(s.heights[i].iter().map(|h| h.map(num).unwrap_or_default()));
+                csv.row(row);
+            }
+        }
+    }
+    let stem = ctx.stem(9);
+    let csv_path = stem.with_extension("csv");
+    write_atomic(&csv_path, csv.finish().as_bytes())?;
+    let mut files = vec![csv_path];
+    files.extend(save(&Fig9 { surfaces }, &stem)?);
+    Ok(files)
+}
+
+/// Viridis by linear interpolation between five of its anchor colours, t ∈ [0, 1].
+fn viridis(t: f64) -> RGBColor {
+    const A: [(f64, f64, f64); 5] = [
+        (68.0, 1.0, 84.0),
+        (59.0, 82.0, 139.0),
+        (33.0, 145.0, 140.0),
+        (94.0, 201.0, 98.0),
+        (253.0, 231.0, 37.0),
+    ];
+    let t = t.clamp(0.0, 1.0) * 4.0;
+    let i = (t.floor() as usize).min(3);
+    let f = t - i as f64;
+    let mix = |a: f64, b: f64| (a + f * (b - a)).round() as u8;
+    RGBColor(
+        mix(A[i].0, A[i + 1].0),
+        mix(A[i].1, A[i + 1].1),
+        mix(A[i].2, A[i + 1].2),
+    )
+}
+
+impl Picture for Fig9 {
+    fn size(&self) -> (u32, u32) {
+        (1700, 900)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        let (top, rest) = root.split_vertically(56);
+        top.draw(&Text::new(
+            "Fig. 9: energy barriers ΔU_i(τ, λ); μ0 = 0.01, ω0 = 1, D = 0.25, cp = (0.144, 0.005, 5.862e-5, 2.13e-7)",
+            (12, 6),
+            (FONT, 18).into_font().color(&BLACK),
+        ))
+        .map_err(pe)?;
+        top.draw(&Text::new(
+            "colour: viridis from the panel's minimum (dark) to maximum (yellow), range in the caption; white: U_eff has fewer than three wells",
+            (12, 32),
+            (FONT, 14).into_font().color(&BLACK),
+        ))
+        .map_err(pe)?;
+        let areas = rest.split_evenly((2, 4));
+        for (row, (r, s)) in self.surfaces.iter().enumerate() {
+            let pl = &s.plane;
+            let (nx, ny) = (pl.x.count, pl.y.count);
+            let hx = (pl.x.stop - pl.x.start) / (nx - 1) as f64;
+            let hy = (pl.y.stop - pl.y.start) / (ny - 1) as f64;
+            for k in 0..4 {
+                let vals: Vec<f64> = s.heights.iter().filter_map(|h| h[k]).collect();
+                let lo = vals.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = vals.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                let label = ["a", "b", "c", "d"][k];
+                let caption = if vals.is_empty() {
+                    format!("({label}{}) ΔU{}, r = {r}: undefined", row + 1, k + 1)
+                } else {
+                    format!(
+                        "({label}{}) ΔU{}, r = {r}: [{lo:.3}, {hi:.3}]",
+                        row + 1,
+                        k + 1
+                    )
+                };
+                let area = &areas[row * 4 + k];
+                let mut c = chart(
+                    area,
+                    &caption,
+                    pl.x.start..pl.x.stop,
+                    pl.y.start..pl.y.stop,
+                    "τ",
+                    "λ",
+                )?;
+                let span = if hi > lo { hi - lo } else { 1.0 };
+                // Colours quantised to 64 levels; equal neighbours along a row merged into one
+                // rectangle (keeps the SVG small).
+                let level = |h: f64| ((h - lo) / span * 63.0).round() as u8;
+                let mut cells = Vec::new();
+                for iy in 0..ny {
+                    let y = pl.y.value(iy);
+                    let mut ix = 0;
+                    while ix < nx {
+                        let Some(h) = s.heights[iy * nx + ix][k] else {
+                            ix += 1;
+                            continue;
+                        };
+                        let lv = level(h);
+                        let mut jx = ix;
+                        while jx + 1 < nx && s.heights[iy * nx + jx + 1][k].map(level) == Some(lv) {
+                            jx += 1;
+                        }
+                        let (x0, x1) = (pl.x.value(ix), pl.x.value(jx));
+                        cells.push(Rectangle::new(
+                            [
+                                (
+                                    (x0 - hx / 2.0).max(pl.x.start),
+                                    (y - hy / 2.0).max(pl.y.start),
+                                ),
+                                (
+                                    (x1 + hx / 2.0).min(pl.x.stop),
+                                    (y + hy / 2.0).min(pl.y.stop),
+                                ),
+                            ],
+                            viridis(lv as f64 / 63.0).filled(),
+                        ));
+                        ix = jx + 1;
+                    }
+                }
+                c.draw_series(cells).map_err(pe)?;
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,57 @@
+//! Fig. 12: P-bifurcation maps in the (μ0, r) plane at λ = 0.995 (a, b) and the (λ, r) plane at
+//! μ0 = 0.01 (c, d), for ω0 = 0.9 (a, c) and ω0 = 1.0 (b, d; the caption prints 0.9 twice).
+
+use super::mapfig::{compute_panel, write_map_figure, AxisSpec};
+use super::FigureContext;
+use anyhow::Result;
+use std::path::PathBuf;
+use trirhythm::bifurcation::What;
+use trirhythm::model::preset;
+
+pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
+    let mut panels = Vec::new();
+    let mut notes = Vec::new();
+    for label in ["a", "b", "c", "d"] {
+        let pre = preset(&format!("fig12{label}"))?;
+        notes.extend(pre.notes.iter().map(|s| format!("panel {label}: {s}")));
+        let w0 = pre.params.omega0;
+        let (xs, caption) = if label == "a" || label == "b" {
+            (
+                AxisSpec::new("mu0", 0.001, 0.1, "μ0", 1.0),
+                format!("λ = 0.995, ω0 = {w0}"),
+            )
+        } else {
+            (
+                AxisSpec::new("lambda", 0.95, 1.0, "λ", 1.0),
+                format!("μ0 = 0.01, ω0 = {w0}"),
+            )
+        };
+        panels.push(compute_panel(
+            ctx,
+            label,
+            caption,
+            &pre.params,
+            xs,
+            AxisSpec::new("r", 0.8, 1.0, "r", 1.0),
+            What::Modes,
+            true,
+        )?);
+    }
+    notes.push(
+        "μ0 ∈ [0.001, 0.1], λ ∈ [0.95, 1], r ∈ [0.8, 1] chosen (the paper prints no ranges)".into(),
+    );
+    notes.push(
+        "red: m1 = ∂m1/∂A = 0 traced exactly; dashed orange: the printed Eq. 36-37 construction"
+            .into(),
+    );
+    write_map_figure(
+        ctx,
+        12,
+        "P-bifurcation maps in the (μ0, r) and (λ, r) planes",
+        "unimodal (blue), bimodal (green), trimodal (black) P(A); D = 0.1, τ = 0.5, cp = (0.144, 0.005, 5.862e-5, 2.13e-7); ω0 = 1.0 in b, d (caption prints 0.9 twice)".into(),
+        notes,
+        panels,
+        (2, 2),
+        plotters::prelude::SeriesLabelPosition::UpperRight,
+    )
+}

@@ -1,0 +1,387 @@
+//! Shared drawing of classification maps (Figs 2, 3, 6, 10, 12): regions coloured by count
+//! (mono blue, bi green, tri black, as in the paper), exact fold curves on top, a legend.
+
+use super::{csv_header, FigureContext};
+use crate::common::{num, write_atomic, Csv};
+use crate::maps::{folds_csv, run_map};
+use crate::plot::{chart, legend, pe, save, Picture, FONT};
+use anyhow::Result;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::PathBuf;
+use trirhythm::bifurcation::{trace_folds, trace_printed_eq37, Axis, Folds, Map, Plane, What};
+use trirhythm::model::Params;
+
+/// Colour of a count: 0 light grey, 1 blue, 2 green, 3 black, more purple.
+pub fn count_colour(c: u8) -> RGBColor {
+    match c {
+        0 => RGBColor(225, 225, 225),
+        1 => RGBColor(40, 90, 220),
+        2 => RGBColor(40, 170, 70),
+        3 => RGBColor(0, 0, 0),
+        _ => RGBColor(150, 60, 180),
+    }
+}
+
+/// Fold-curve colour (visible on blue, green and black).
+pub const FOLD: RGBColor = RGBColor(230, 40, 40);
+/// Printed-Eq. 37 curve colour.
+pub const PRINTED: RGBColor = RGBColor(255, 170, 0);
+
+/// One axis of a panel: key, range, points, label and display scale (values / scale).
+#[derive(Clone)]
+pub struct AxisSpec {
+    pub key: &'static str,
+    pub start: f64,
+    pub stop: f64,
+    pub label: &'static str,
+    pub scale: f64,
+}
+
+impl AxisSpec {
+    pub fn new(key: &'static str, start: f64, stop: f64, label: &'static str, scale: f64) -> Self {
+        AxisSpec {
+            key,
+            start,
+            stop,
+            label,
+            scale,
+        }
+    }
+
+    fn desc(&self) -> String {
+        if self.scale == 1.0 {
+            self.label.to_string()
+        } else {
+            format!("{} / {:e}", self.label, self.scale)
+        }
+    }
+}
+
+/// A computed panel.
+pub struct MapPanel {
+    pub label: String,
+    pub caption: String,
+    pub map: Map,
+    pub folds: Folds,
+    pub printed: Option<Folds>,
+    pub xs: AxisSpec,
+    pub ys: AxisSpec,
+    /// A parameter point to mark (x, y, label), e.g. the paper's standard values.
+    pub mark: Option<(f64, f64, String)>,
+}
+
+/// Grid points per axis: quick or paper quality.
+pub fn resolution(ctx: &FigureContext) -> usize {
+    if ctx.quick {
+        81
+    } else {
+        401
+    }
+}
+
+/// Classify a plane and trace its folds (and the printed Eq. 37 curves when asked).
+#[allow(clippy::too_many_arguments)]
+pub fn compute_panel(
+    ctx: &FigureContext,
+    label: &str,
+    caption: String,
+    base: &Params,
+    xs: AxisSpec,
+    ys: AxisSpec,
+    what: What,
+    printed: bool,
+) -> Result<MapPanel> {
+    let n = resolution(ctx);
+    let plane = Plane::new(
+        base,
+        Axis::new(xs.key, xs.start, xs.stop, n)?,
+        Axis::new(ys.key, ys.start, ys.stop, n)?,
+        ctx.variant,
+    )?;
+    let map = run_map(&plane, what, &format!("panel {label}"));
+    let folds = trace_folds(&map);
+    let printed = if printed && ctx.variant == trirhythm::averaging::Variant::Paper {
+        Some(trace_printed_eq37(&map)?)
+    } else {
+        None
+    };
+    Ok(MapPanel {
+        label: label.to_string(),
+        caption,
+        map,
+        folds,
+        printed,
+        xs,
+        ys,
+        mark: None,
+    })
+}
+
+/// Notes on a panel for the CSV header: counts, curves, cusps.
+pub fn panel_notes(p: &MapPanel) -> Vec<String> {
+    let h = p.map.histogram();
+    let total: usize = h.iter().sum();
+    let pct = |k: usize| 100.0 * h[k] as f64 / total as f64;
+    let mut v = vec![format!(
+        "panel {}: {} ({}); share of grid points with count 0/1/2/3: {:.1}% / {:.1}% / {:.1}% / {:.1}%; {} fold curves, {} cusps{}",
+        p.label,
+        p.caption,
+        p.map.plane.base.describe(),
+        pct(0),
+        pct(1),
+        pct(2),
+        pct(3),
+        p.folds.curves.len(),
+        p.folds.cusps.len(),
+        p.folds
+            .cusps
+            .iter()
+            .map(|c| format!(" (cusp at {}={:.6e}, {}={:.6e}, A={:.5})", p.xs.key, c.x, p.ys.key, c.y, c.amplitude))
+            .collect::<String>()
+    )];
+    if let Some(pr) = &p.printed {
+        v.push(format!(
+            "panel {}: printed Eq. 36-37 construction gives {} curves",
+            p.label,
+            pr.curves.len()
+        ));
+    }
+    v
+}
+
+/// Write `figNN.csv` (panel,x,y,count), `figNN_folds.csv` and the picture.
+#[allow(clippy::too_many_arguments)]
+pub fn write_map_figure(
+    ctx: &FigureContext,
+    n: u32,
+    title: &str,
+    subtitle: String,
+    mut notes: Vec<String>,
+    panels: Vec<MapPanel>,
+    layout: (usize, usize),
+    legend_at: SeriesLabelPosition,
+) -> Result<Vec<PathBuf>> {
+    for p in &panels {
+        notes.extend(panel_notes(p));
+    }
+    std::fs::create_dir_all(&ctx.out_dir)?;
+    let header = csv_header(n, title, ctx, &notes);
+    let stem = ctx.stem(n);
+    let mut header = header;
+    for p in &panels {
+        header.push(format!(
+            "panel {}: x = {}, y = {}",
+            p.label, p.map.plane.x.key, p.map.plane.y.key
+        ));
+    }
+    let mut csv = Csv::new(&header, &["panel", "x", "y", "count"]);
+    for p in &panels {
+        let pl = &p.map.plane;
+        for iy in 0..pl.y.count {
+            let y = num(pl.y.value(iy));
+            for ix in 0..pl.x.count {
+                csv.row([
+                    p.label.clone(),
+                    num(pl.x.value(ix)),
+                    y.clone(),
+                    p.map.count(ix, iy).to_string(),
+                ]);
+            }
+        }
+    }
+    let csv_path = stem.with_extension("csv");
+    write_atomic(&csv_path, csv.finish().as_bytes())?;
+    let mut fc = Csv::new(
+        &header,
+        &["panel", "curve", "system", "x", "y", "amplitude"],
+    );
+    for p in &panels {
+        let mut sets = vec![&p.folds];
+        if let Some(pr) = &p.printed {
+            sets.push(pr);
+        }
+        folds_csv(&mut fc, std::slice::from_ref(&p.label), &sets);
+    }
+    let folds_path = stem.with_file_name(format!("fig{n:02}_folds.csv"));
+    write_atomic(&folds_path, fc.finish().as_bytes())?;
+    let mut files = vec![csv_path, folds_path];
+    files.extend(save(
+        &MapFigure {
+            title: format!("Fig. {n}: {title}"),
+            subtitle,
+            panels,
+            layout,
+            legend_at,
+        },
+        &stem,
+    )?);
+    Ok(files)
+}
+
+struct MapFigure {
+    title: String,
+    subtitle: String,
+    panels: Vec<MapPanel>,
+    layout: (usize, usize),
+    legend_at: SeriesLabelPosition,
+}
+
+impl Picture for MapFigure {
+    fn size(&self) -> (u32, u32) {
+        let (r, c) = self.layout;
+        (560 * c as u32, 470 * r as u32 + 60)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        let (top, rest) = root.split_vertically(60);
+        top.draw(&Text::new(
+            self.title.clone(),
+            (12, 6),
+            (FONT, 20).into_font().color(&BLACK),
+        ))
+        .map_err(pe)?;
+        top.draw(&Text::new(
+            self.subtitle.clone(),
+            (12, 34),
+            (FONT, 14).into_font().color(&BLACK),
+        ))
+        .map_err(pe)?;
+        let areas = rest.split_evenly(self.layout);
+        for (i, (area, p)) in areas.iter().zip(&self.panels).enumerate() {
+            draw_panel(area, p, (i == 0).then(|| self.legend_at.clone()))?;
+        }
+        Ok(())
+    }
+}
+
+/// Draw one map panel: merged row runs of equal count, fold curves, cusps.
+pub fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    p: &MapPanel,
+    legend_at: Option<SeriesLabelPosition>,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let pl = &p.map.plane;
+    let (sx, sy) = (p.xs.scale, p.ys.scale);
+    let xr = (pl.x.start / sx)..(pl.x.stop / sx);
+    let yr = (pl.y.start / sy)..(pl.y.stop / sy);
+    let mut c = chart(
+        area,
+        &format!("({}) {}", p.label, p.caption),
+        xr.clone(),
+        yr.clone(),
+        &p.xs.desc(),
+        &p.ys.desc(),
+    )?;
+    let (nx, ny) = (pl.x.count, pl.y.count);
+    let hx = (pl.x.stop - pl.x.start) / (nx - 1) as f64 / sx;
+    let hy = (pl.y.stop - pl.y.start) / (ny - 1) as f64 / sy;
+    let clampx = |v: f64| v.clamp(xr.start, xr.end);
+    let clampy = |v: f64| v.clamp(yr.start, yr.end);
+    let mut rects = Vec::new();
+    for iy in 0..ny {
+        let y = pl.y.value(iy) / sy;
+        let mut ix = 0;
+        while ix < nx {
+            let cnt = p.map.count(ix, iy);
+            let mut jx = ix;
+            while jx + 1 < nx && p.map.count(jx + 1, iy) == cnt {
+                jx += 1;
+            }
+            let x0 = clampx(pl.x.value(ix) / sx - hx / 2.0);
+            let x1 = clampx(pl.x.value(jx) / sx + hx / 2.0);
+            rects.push(Rectangle::new(
+                [(x0, clampy(y - hy / 2.0)), (x1, clampy(y + hy / 2.0))],
+                count_colour(cnt).filled(),
+            ));
+            ix = jx + 1;
+        }
+    }
+    c.draw_series(rects).map_err(pe)?;
+    let h = p.map.histogram();
+    let names = [
+        "no stable cycle",
+        "mono (1)",
+        "bi (2)",
+        "tri (3)",
+        "4 or more",
+    ];
+    let names_modes = ["-", "unimodal", "bimodal", "trimodal", "4+ modes"];
+    for k in 0..5 {
+        if h[k] == 0 {
+            continue;
+        }
+        let name = if p.map.what == What::Modes {
+            names_modes[k]
+        } else {
+            names[k]
+        };
+        let col = count_colour(k as u8);
+        c.draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(pe)?
+            .label(name)
+            .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 14, y + 6)], col.filled()));
+    }
+    let mut first = true;
+    for curve in &p.folds.curves {
+        let pts: Vec<(f64, f64)> = curve.points.iter().map(|q| (q.x / sx, q.y / sy)).collect();
+        let s = c
+            .draw_series(LineSeries::new(pts, FOLD.stroke_width(2)))
+            .map_err(pe)?;
+        if first {
+            s.label(if p.map.what == What::Modes {
+                "P-bifurcation (m1 = m1' = 0)"
+            } else {
+                "saddle-node (f = f' = 0)"
+            })
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 14, y)], FOLD.stroke_width(2)));
+            first = false;
+        }
+    }
+    if let Some(pr) = &p.printed {
+        let mut first = true;
+        for curve in &pr.curves {
+            let pts: Vec<(f64, f64)> = curve.points.iter().map(|q| (q.x / sx, q.y / sy)).collect();
+            let s = c
+                .draw_series(DashedLineSeries::new(pts, 7, 5, PRINTED.stroke_width(2)))
+                .map_err(pe)?;
+            if first {
+                s.label("Eq. 36-37 as printed").legend(|(x, y)| {
+                    PathElement::new([(x, y), (x + 14, y)], PRINTED.stroke_width(2))
+                });
+                first = false;
+            }
+        }
+    }
+    if !p.folds.cusps.is_empty() {
+        c.draw_series(p.folds.cusps.iter().map(|q| {
+            EmptyElement::at((q.x / sx, q.y / sy))
+                + Circle::new((0, 0), 6, WHITE.filled())
+                + Circle::new((0, 0), 6, FOLD.stroke_width(2))
+        }))
+        .map_err(pe)?
+        .label("cusp")
+        .legend(|(x, y)| Circle::new((x + 7, y), 5, FOLD.stroke_width(2)));
+    }
+    if let Some((mx, my, text)) = &p.mark {
+        let (mx, my) = (mx / sx, my / sy);
+        c.draw_series(std::iter::once(
+            EmptyElement::at((mx, my))
+                + Cross::new((0, 0), 7, WHITE.stroke_width(4))
+                + Cross::new((0, 0), 7, RGBColor(255, 0, 255).stroke_width(2)),
+        ))
+        .map_err(pe)?
+        .label(text.clone())
+        .legend(|(x, y)| Cross::new((x + 7, y), 5, RGBColor(255, 0, 255).stroke_width(2)));
+    }
+    if let Some(pos) = legend_at {
+        legend(&mut c, pos)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,368 @@
+//! The bifurcation commands from the outside: `map` and `branches` outputs parse and agree with
+//! `cycles` point by point, fold curves come out as JSON or a second CSV, bad input exits 2
+//! naming the parameter, and the map figures write their files.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_trirhythm"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+fn ok(args: &[&str]) -> String {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+fn rows(text: &str) -> Vec<Vec<String>> {
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+fn scratch_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("trirhythm-maps-test-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Stable count reported by `cycles` at one parameter point.
+fn stable_count(preset: &str, extra: &[(&str, f64)]) -> u64 {
+    let mut args = vec![
+        "cycles".to_string(),
+        "--preset".into(),
+        preset.into(),
+        "--format".into(),
+        "json".into(),
+    ];
+    for (k, v) in extra {
+        args.push("--param".into());
+        args.push(format!("{k}={v}"));
+    }
+    let a: Vec<&str> = args.iter().map(String::as_str).collect();
+    let v: Value = serde_json::from_str(&ok(&a)).unwrap();
+    v["stable_count"].as_u64().unwrap()
+}
+
+#[test]
+fn map_csv_has_every_point_and_agrees_with_cycles() {
+    let text = ok(&[
+        "map",
+        "--preset",
+        "fig2ii",
+        "--x",
+        "gamma0=2e-5:1e-4:9",
+        "--y",
+        "delta0=2e-8:4e-7:7",
+        "--format",
+        "csv",
+    ]);
+    let r = rows(&text);
+    assert_eq!(r[0], ["x", "y", "count"]);
+    assert_eq!(r.len() - 1, 9 * 7);
+    let mut seen = std::collections::BTreeSet::new();
+    for row in r.iter().skip(1).step_by(5) {
+        let (x, y): (f64, f64) = (row[0].parse().unwrap(), row[1].parse().unwrap());
+        let c: u64 = row[2].parse().unwrap();
+        assert_eq!(
+            c,
+            stable_count("fig2ii", &[("gamma0", x), ("delta0", y)]),
+            "{row:?}"
+        );
+        seen.insert(c);
+    }
+    assert!(
+        seen.len() >= 2,
+        "the sample should cross a boundary: {seen:?}"
+    );
+}
+
+#[test]
+fn modes_map_agrees_with_cycles_with_noise() {
+    let text = ok(&[
+        "map",
+        "--preset",
+        "fig12a",
+        "--x",
+        "mu0=0.005:0.1:5",
+        "--y",
+        "r=0.8:1:4",
+        "--what",
+        "modes",
+        "--format",
+        "csv",
+    ]);
+    for row in rows(&text).iter().skip(1) {
+        let (x, y): (f64, f64) = (row[0].parse().unwrap(), row[1].parse().unwrap());
+        let c: u64 = row[2].parse().unwrap();
+        assert_eq!(
+            c,
+            stable_count("fig12a", &[("mu0", x), ("r", y)]),
+            "{row:?}"
+        );
+    }
+}
+
+#[test]
+fn fold_curves_in_json_end_at_the_analytic_cusp() {
+    let text = ok(&[
+        "map",
+        "--preset",
+        "fig2i",
+        "--x",
+        "alpha0=0.04:0.24:61",
+        "--y",
+        "beta0=0.0005:0.0105:61",
+        "--folds",
+        "--format",
+        "json",
+    ]);
+    let v: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["counts"].as_array().unwrap().len(), 61);
+    let cusps = v["folds"]["cusps"].as_array().unwrap();
+    assert_eq!(cusps.len(), 1);
+    let (x, y) = (
+        cusps[0]["x"].as_f64().unwrap(),
+        cusps[0]["y"].as_f64().unwrap(),
+    );
+    assert!(
+        (x - 1.0 / 6.0).abs() < 1e-7 && (y - 1.0 / 135.0).abs() < 1e-9,
+        "{x} {y}"
+    );
+    let curves = v["folds"]["curves"].as_array().unwrap();
+    assert_eq!(curves.len(), 2);
+    for c in curves {
+        let ends = [c["start"].as_str().unwrap(), c["end"].as_str().unwrap()];
+        assert!(
+            ends.contains(&"cusp") && ends.contains(&"border"),
+            "{ends:?}"
+        );
+        // A fold point is a double root: just off the curve on one side `cycles` reports two
+        // cycles close to the curve's amplitude.
+        let mid = &c["points"].as_array().unwrap()[c["points"].as_array().unwrap().len() / 2];
+        let (a0, b0, amp) = (
+            mid[0].as_f64().unwrap(),
+            mid[1].as_f64().unwrap(),
+            mid[2].as_f64().unwrap(),
+        );
+        let mut near = 0;
+        for shift in [1.0 + 1e-7, 1.0 - 1e-7] {
+            let out = ok(&[
+                "cycles",
+                "--preset",
+                "fig2i",
+                "--param",
+                &format!("alpha0={a0}"),
+                "--param",
+                &format!("beta0={}", b0 * shift),
+                "--format",
+                "json",
+            ]);
+            let cy: Value = serde_json::from_str(&out).unwrap();
+            let n = cy["cycles"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|c| (c["amplitude"].as_f64().unwrap() - amp).abs() < 2e-2 * amp)
+                .count();
+            near = near.max(n);
+        }
+        assert_eq!(near, 2, "no pair of cycles near the fold amplitude {amp}");
+    }
+}
+
+#[test]
+fn folds_go_to_a_second_csv_next_to_out() {
+    let d = scratch_dir("folds");
+    let out = d.join("m.csv");
+    ok(&[
+        "map",
+        "--preset",
+        "fig2ii",
+        "--x",
+        "gamma0=2e-5:1e-4:41",
+        "--y",
+        "delta0=2e-8:4e-7:41",
+        "--folds",
+        "--format",
+        "csv",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let folds = std::fs::read_to_string(d.join("m-folds.csv")).unwrap();
+    let r = rows(&folds);
+    assert_eq!(r[0], ["curve", "system", "x", "y", "amplitude"]);
+    assert!(r.len() > 50);
+    assert!(r.iter().skip(1).all(|row| row[1] == "drift"));
+    let map = rows(&std::fs::read_to_string(&out).unwrap());
+    assert_eq!(map.len() - 1, 41 * 41);
+    // CSV with folds on standard output has nowhere to put the curves.
+    let e = run(&[
+        "map",
+        "--x",
+        "gamma0=2e-5:1e-4:5",
+        "--y",
+        "delta0=2e-8:4e-7:5",
+        "--folds",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(e.status.code(), Some(2));
+}
+
+#[test]
+fn branches_cross_each_r_at_every_cycle() {
+    let text = ok(&[
+        "branches", "--preset", "fig5", "--param", "mu0=0.01", "--x", "r=0.8:1", "--format", "csv",
+    ]);
+    assert!(text.contains("# fold: r = "), "{text}");
+    let r = rows(&text);
+    assert_eq!(r[0], ["branch", "param", "amplitude", "stable"]);
+    let pts: Vec<(usize, f64, f64, bool)> = r
+        .iter()
+        .skip(1)
+        .map(|row| {
+            (
+                row[0].parse().unwrap(),
+                row[1].parse().unwrap(),
+                row[2].parse().unwrap(),
+                row[3] == "1",
+            )
+        })
+        .collect();
+    for rv in [0.83, 0.9, 0.95, 0.975, 0.99] {
+        let mut got = Vec::new();
+        for w in pts.windows(2) {
+            if w[0].0 == w[1].0 && (w[0].1 - rv) * (w[1].1 - rv) <= 0.0 && w[0].1 != w[1].1 {
+                let t = (rv - w[0].1) / (w[1].1 - w[0].1);
+                got.push((
+                    (w[0].2.powi(2) + t * (w[1].2.powi(2) - w[0].2.powi(2))).sqrt(),
+                    w[0].3,
+                ));
+            }
+        }
+        got.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let cy: Value = serde_json::from_str(&ok(&[
+            "cycles",
+            "--preset",
+            "fig5",
+            "--param",
+            "mu0=0.01",
+            "--param",
+            &format!("r={rv}"),
+            "--format",
+            "json",
+        ]))
+        .unwrap();
+        let want: Vec<(f64, bool)> = cy["cycles"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| {
+                (
+                    c["amplitude"].as_f64().unwrap(),
+                    c["stable"].as_bool().unwrap(),
+                )
+            })
+            .collect();
+        assert_eq!(got.len(), want.len(), "r = {rv}: {got:?} vs {want:?}");
+        for (g, w) in got.iter().zip(&want) {
+            assert!(
+                (g.0 - w.0).abs() < 5e-3 * w.0 && g.1 == w.1,
+                "r = {rv}: {g:?} vs {w:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn bad_input_exits_2_naming_the_parameter() {
+    let cases: [(&[&str], &str); 6] = [
+        (
+            &["map", "--x", "lambda=0.9:1.2:10", "--y", "r=0.9:1:10"],
+            "lambda",
+        ),
+        (
+            &["map", "--x", "bogus=0:1:10", "--y", "r=0.9:1:10"],
+            "bogus",
+        ),
+        (&["map", "--x", "gamma0", "--y", "r=0.9:1:10"], "--x"),
+        (&["map", "--x", "r=0.9:1:1", "--y", "mu0=0.1:1:10"], "COUNT"),
+        (
+            &[
+                "map",
+                "--x",
+                "r=0.9:1:5",
+                "--y",
+                "mu0=0.1:1:5",
+                "--what",
+                "modes",
+            ],
+            "D",
+        ),
+        (&["branches", "--x", "r=0.8:1.5"], "r"),
+    ];
+    for (args, name) in cases {
+        let out = run(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(name), "{args:?}: {err}");
+    }
+    // No partial file on failure.
+    let d = scratch_dir("bad");
+    let f = d.join("x.csv");
+    let out = run(&[
+        "map",
+        "--x",
+        "lambda=0.9:1.2:10",
+        "--y",
+        "r=0.9:1:10",
+        "--out",
+        f.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(std::fs::read_dir(&d).unwrap().count(), 0);
+}
+
+#[test]
+fn map_figures_write_data_and_pictures() {
+    let d = scratch_dir("figs");
+    for n in ["2", "5", "10"] {
+        let text = ok(&["figure", n, "--quick", "--out-dir", d.to_str().unwrap()]);
+        let stem = format!("fig{:02}", n.parse::<u32>().unwrap());
+        for ext in ["csv", "png", "svg"] {
+            let p = d.join(format!("{stem}.{ext}"));
+            assert!(text.contains(p.to_str().unwrap()), "{text}");
+            assert!(
+                std::fs::metadata(&p).unwrap().len() > 1000,
+                "{}",
+                p.display()
+            );
+        }
+        let csv = std::fs::read_to_string(d.join(format!("{stem}.csv"))).unwrap();
+        assert!(csv.starts_with(&format!("# trirhythm figure {n}:")));
+        assert!(csv.contains("# note:"));
+    }
+    // The P-bifurcation figure names the printed Eq. 37 curves and the chosen r.
+    let f10 = std::fs::read_to_string(d.join("fig10.csv")).unwrap();
+    assert!(f10.contains("printed Eq. 36-37"));
+    assert!(f10.contains("r = 0.998"));
+    let folds = rows(&std::fs::read_to_string(d.join("fig10_folds.csv")).unwrap());
+    assert!(folds
+        .iter()
+        .any(|r| r.get(2).map(String::as_str) == Some("fpk-printed")));
+    assert!(folds
+        .iter()
+        .any(|r| r.get(2).map(String::as_str) == Some("fpk")));
+}
