@@ -9,6 +9,7 @@ mod common;
 mod figures;
 mod maps;
 mod plot;
+mod simulate;
 mod theory;
 
 use anyhow::Result;
@@ -41,6 +42,8 @@ enum Command {
     Barriers(theory::TheoryArgs),
     /// Stationary PDFs: amplitude (Eq. 27), energy (Eq. 29), joint (Eq. 30–31).
     Pdf(theory::PdfArgs),
+    /// Simulate one path of Eq. 1 (or Eq. 5 / Eq. 9) with the fractional predictor–corrector.
+    Simulate(simulate::SimulateArgs),
     /// Two-parameter map: stable-cycle or P(A)-mode count on a grid (CSV x,y,count), with the
     /// fold curves traced exactly (--folds).
     Map(maps::MapArgs),
@@ -137,6 +140,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Potential(a) => theory::potential(a),
         Command::Barriers(a) => theory::barriers(a),
         Command::Pdf(a) => theory::pdf(a),
+        Command::Simulate(a) => simulate::simulate(a),
         Command::Map(a) => maps::map(a),
         Command::Branches(a) => maps::branches(a),
         Command::Figure(a) => figure(a),

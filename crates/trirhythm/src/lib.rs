@@ -11,16 +11,27 @@
 //! - [`model`]: parameters, validation, the paper's presets;
 //! - [`polynomial`]: real polynomials, certified real-root isolation (Sturm sequences);
 //! - [`averaging`]: the analytic theory (harmonic balance, Zhuravlev transformation, stochastic
-//!   averaging, stationary PDFs, barriers), depending on `model` and `polynomial` only.
+//!   averaging, stationary PDFs, barriers), depending on `model` and `polynomial` only;
+//! - [`noise`]: Ornstein–Uhlenbeck and white forcing on a grid, seeded per-path streams;
+//! - [`fractional`]: Γ, Mittag-Leffler, product-integration weights, the verified
+//!   sum-of-exponentials kernel and the convolution memory;
+//! - [`solver`]: the predictor–corrector driver (Eq. 1 with impacts, Eq. 5, Eq. 9);
+//! - [`analysis`]: recurrence plots and their quantification (Eq. 6–7);
+//! - [`known_answers`]: problems with exact solutions, shared by tests and benchmarks.
 //!
 //! The library computes; it does no file I/O and prints nothing. The `trirhythm` binary writes.
 
+pub mod analysis;
 pub mod averaging;
 pub mod bifurcation;
 pub mod error;
+pub mod fractional;
+pub mod known_answers;
 pub mod model;
+pub mod noise;
 pub mod polynomial;
 pub mod quadrature;
+pub mod solver;
 
 pub use error::{Error, Result};
 pub use model::{Damping, Params, Preset};

@@ -4,6 +4,7 @@
 //! `figNN.png` + `figNN.svg` into the output directory. `--quick` trades resolution for speed
 //! (used by CI); the default is paper quality.
 
+mod fig01_phase_recurrence;
 mod fig02_rhythmicity_planes;
 mod fig03_restitution_planes;
 mod fig04_drift;
@@ -43,6 +44,11 @@ type FigureFn = fn(&FigureContext) -> Result<Vec<PathBuf>>;
 /// The figures this build can make, by number.
 pub fn registry() -> Vec<(u32, &'static str, FigureFn)> {
     vec![
+        (
+            1,
+            "phase portraits and recurrence plots, Eq. (1) vs Eq. (5)",
+            fig01_phase_recurrence::run,
+        ),
         (
             2,
             "rhythmicity maps in (α0, β0) and (γ0, δ0) with saddle-node lines",

@@ -1,0 +1,77 @@
+//! Benchmarks of the fractional engine (criterion, short: 10 samples).
+//!
+//! - one path of Eq. (1) with the SOE memory at λ = 0.998 against the same engine at λ = 1
+//!   (no memory), 1e5 steps;
+//! - SOE against Direct memory at 1e4, 3e4 and 1e5 steps (Direct is O(N²));
+//! - the scalar known-answer problem (Diethelm's benchmark) with both memories.
+//!
+//! Long runs (1e6, 1e7 steps) are timed by `examples/engine_timing.rs`, not here.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use std::hint::black_box;
+use std::time::Duration;
+use trirhythm::fractional::{solve_scalar, Memory};
+use trirhythm::known_answers::diethelm_rhs;
+use trirhythm::model::preset;
+use trirhythm::solver::{simulate, Barrier, Options, Oscillator, PredictorCorrector};
+
+fn path(lambda: f64, steps: usize, memory: Memory) -> f64 {
+    let mut p = preset("fig1").unwrap().params;
+    p.lambda = lambda;
+    p.mu0 = 0.1;
+    let osc = Oscillator::new(&p).unwrap();
+    let m = PredictorCorrector {
+        dt: 0.01,
+        memory,
+        ..Default::default()
+    };
+    let o = Options {
+        t_end: steps as f64 * 0.01,
+        u0: 2.0,
+        v0: 0.0,
+        barrier: Barrier::On,
+        record_every: steps,
+        ..Default::default()
+    };
+    simulate(&osc, &m, &o, 0).unwrap().final_amplitude
+}
+
+fn soe_vs_lambda_one(c: &mut Criterion) {
+    let mut g = c.benchmark_group("path_1e5_steps");
+    g.sample_size(10).measurement_time(Duration::from_secs(3));
+    for lambda in [0.998, 1.0] {
+        g.bench_with_input(BenchmarkId::new("soe", lambda), &lambda, |b, &l| {
+            b.iter(|| path(black_box(l), 100_000, Memory::default()))
+        });
+    }
+    g.finish();
+}
+
+fn soe_vs_direct(c: &mut Criterion) {
+    let mut g = c.benchmark_group("soe_vs_direct");
+    g.sample_size(10).measurement_time(Duration::from_secs(3));
+    for steps in [10_000usize, 30_000, 100_000] {
+        g.bench_with_input(BenchmarkId::new("soe", steps), &steps, |b, &n| {
+            b.iter(|| path(0.998, n, Memory::SumOfExponentials { tolerance: 1e-12 }))
+        });
+        g.bench_with_input(BenchmarkId::new("direct", steps), &steps, |b, &n| {
+            b.iter(|| path(0.998, n, Memory::Direct))
+        });
+    }
+    g.finish();
+}
+
+fn scalar(c: &mut Criterion) {
+    let mut g = c.benchmark_group("diethelm_scalar_5000_steps");
+    g.sample_size(10);
+    let f = diethelm_rhs(0.5);
+    for (name, memory) in [("soe", Memory::default()), ("direct", Memory::Direct)] {
+        g.bench_function(name, |b| {
+            b.iter(|| solve_scalar(0.5, &f, 0.0, 1.0 / 5000.0, 5000, memory).unwrap())
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, soe_vs_lambda_one, soe_vs_direct, scalar);
+criterion_main!(benches);
