@@ -2,40 +2,10 @@
 //! `cycles` point by point, fold curves come out as JSON or a second CSV, bad input exits 2
 //! naming the parameter, and the map figures write their files.
 
+mod common;
+
+use common::{csv_rows as rows, ok_stdout as ok, run, scratch_dir};
 use serde_json::Value;
-use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_trirhythm"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-fn ok(args: &[&str]) -> String {
-    let out = run(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
-
-fn rows(text: &str) -> Vec<Vec<String>> {
-    text.lines()
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| l.split(',').map(str::to_string).collect())
-        .collect()
-}
-
-fn scratch_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("trirhythm-maps-test-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// Stable count reported by `cycles` at one parameter point.
 fn stable_count(preset: &str, extra: &[(&str, f64)]) -> u64 {

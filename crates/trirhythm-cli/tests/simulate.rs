@@ -2,25 +2,11 @@
 //! contract are there, the numbers are the library's, bad input exits 2 naming the parameter
 //! and leaves no file.
 
+mod common;
+
+use common::{ok_output as ok, run};
 use serde_json::Value;
-use std::process::{Command, Output};
-
-fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_trirhythm"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-fn ok(args: &[&str]) -> Output {
-    let out = run(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
-}
+use std::process::Output;
 
 fn csv(out: &Output) -> (Vec<String>, Vec<Vec<f64>>) {
     let text = String::from_utf8(out.stdout.clone()).unwrap();

@@ -1,49 +1,17 @@
 //! The theory commands from the outside: outputs parse, bad input exits 2 naming the parameter,
 //! no partial files.
 
+mod common;
+
+use common::{ok_json, ok_stdout, run, scratch_dir};
 use serde_json::Value;
-use std::path::PathBuf;
-use std::process::{Command, Output};
 
-fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_trirhythm"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-fn ok_json(args: &[&str]) -> Value {
-    let out = run(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("valid JSON")
+/// Rows of a successful run's CSV output, header first.
+fn csv_rows(args: &[&str]) -> Vec<Vec<String>> {
+    common::csv_rows(&ok_stdout(args))
 }
 
 /// Rows of a CSV output (comments skipped), header first.
-fn csv_rows(args: &[&str]) -> Vec<Vec<String>> {
-    let out = run(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout)
-        .unwrap()
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| l.split(',').map(str::to_string).collect())
-        .collect()
-}
-
-fn scratch_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("trirhythm-cli-test-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 #[test]
 fn cycles_json_lists_the_five_cycles_of_fig4c_at_r1() {

@@ -25,6 +25,7 @@
 
 use crate::error::Result;
 use crate::fractional::{gamma, mittag_leffler};
+use crate::model::{Damping, Params};
 use std::f64::consts::PI;
 
 /// y(t) = E_α(−t^α), the solution of D^α y = −y, y(0) = 1.
@@ -67,6 +68,22 @@ pub fn square_rhs(alpha: f64) -> impl Fn(f64, f64) -> f64 {
 /// Stationary variance D/τ of the OU forcing.
 pub fn ou_variance(intensity: f64, correlation_time: f64) -> f64 {
     intensity / correlation_time
+}
+
+/// Parameters of the linear oscillator D^{1+λ}U + ω²U = 0 (P ≡ 0, no noise) with restitution
+/// r: with λ = 1 and the wall on, the linear impact oscillator of [`impact_oscillator`].
+pub fn linear_oscillator(lambda: f64, omega: f64, r: f64) -> Params {
+    Params {
+        mu0: 1.0,
+        omega0: omega,
+        lambda,
+        restitution: r,
+        damping: Damping {
+            coefficients: vec![0.0],
+        },
+        noise_intensity: 0.0,
+        correlation_time: 0.0,
+    }
 }
 
 /// (U, U̇, impacts so far) of the linear impact oscillator at time t.

@@ -311,6 +311,48 @@ impl Rhs {
 
 /// θ ∈ (0, 1] where the cubic Hermite interpolant of (u0, v0) → (u1, v1) over a step h
 /// changes sign (u0 and u1 of opposite signs, or u1 = 0).
+/// The rest of a step after an impact at the fraction θ of `split`.
+struct AfterImpact<'a> {
+    split: &'a Split,
+    /// The scheme's V(t*−) the jump starts from.
+    v_at_impact: f64,
+    /// V(t*+).
+    v_plus: f64,
+    /// sgn Z after the impact (the Zhuravlev form flips it; the wall does not).
+    side: f64,
+}
+
+impl AfterImpact<'_> {
+    /// Reset the memory (restart) or shift V's Volterra base so that V(t*+) = V₊ exactly, then
+    /// take one predictor–corrector sub-step from (0, V₊) over (1 − θ)h; returns (U, V) at the
+    /// end of the step.
+    #[allow(clippy::too_many_arguments)]
+    fn finish(
+        &self,
+        conv: &mut Convolution,
+        base: &mut f64,
+        rhs: &Rhs,
+        restart: bool,
+        gl: f64,
+        er: f64,
+        h: f64,
+    ) -> (f64, f64) {
+        if restart {
+            conv.restart();
+            *base = self.v_plus;
+        } else {
+            *base += self.v_plus - self.v_at_impact;
+        }
+        let (known_s, wr_s) = conv.current_split(gl, self.split);
+        let known = *base + conv.history() + known_s;
+        let hh = (1.0 - self.split.theta) * h;
+        let vp = known + wr_s * rhs.g(0.0, self.v_plus, er, self.side);
+        let gp = rhs.g(hh * self.v_plus, vp, er, self.side);
+        let v1 = known + wr_s * gp;
+        (0.5 * hh * (self.v_plus + v1), v1)
+    }
+}
+
 fn hermite_root(u0: f64, v0: f64, u1: f64, v1: f64, h: f64) -> f64 {
     let f = |t: f64| {
         let t2 = t * t;
@@ -510,21 +552,13 @@ fn run_path(
                     after: a0 * vplus + forcing,
                     keep_before: !restart,
                 };
-                if restart {
-                    conv.restart();
-                    base = vplus;
-                } else {
-                    // V(t*+) = V₊ exactly
-                    base += vplus - v_at;
-                }
-                let (known_s, wr_s) = conv.current_split(gl, &split);
-                let known = base + conv.history() + known_s;
-                let hh = (1.0 - theta) * h;
-                let vp = known + wr_s * rhs.g(0.0, vplus, er, side);
-                let up = hh * vplus;
-                let gp = rhs.g(up, vp, er, side);
-                v1 = known + wr_s * gp;
-                u1 = 0.5 * hh * (vplus + v1);
+                let step = AfterImpact {
+                    split: &split,
+                    v_at_impact: v_at,
+                    v_plus: vplus,
+                    side,
+                };
+                (u1, v1) = step.finish(&mut conv, &mut base, &rhs, restart, gl, er, h);
                 piece.split = Some(split);
                 if u1 < 0.0 {
                     // the next impact would come within this step: stick
@@ -563,20 +597,13 @@ fn run_path(
                 after: a0 * vplus - forcing,
                 keep_before: !restart,
             };
-            if restart {
-                conv.restart();
-                base = vplus;
-            } else {
-                base += vplus - vm;
-            }
-            let (known_s, wr_s) = conv.current_split(gl, &split);
-            let known = base + conv.history() + known_s;
-            let hh = (1.0 - theta) * h;
-            let vp = known + wr_s * rhs.g(0.0, vplus, er, new_side);
-            let up = hh * vplus;
-            let gp = rhs.g(up, vp, er, new_side);
-            v1 = known + wr_s * gp;
-            u1 = 0.5 * hh * (vplus + v1);
+            let step = AfterImpact {
+                split: &split,
+                v_at_impact: vm,
+                v_plus: vplus,
+                side: new_side,
+            };
+            (u1, v1) = step.finish(&mut conv, &mut base, &rhs, restart, gl, er, h);
             piece.split = Some(split);
         }
 
@@ -665,26 +692,12 @@ pub fn simulate_ensemble(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::Damping;
-
-    fn linear(lambda: f64, omega: f64, r: f64) -> Params {
-        Params {
-            mu0: 1.0,
-            omega0: omega,
-            lambda,
-            restitution: r,
-            damping: Damping {
-                coefficients: vec![0.0],
-            },
-            noise_intensity: 0.0,
-            correlation_time: 0.0,
-        }
-    }
+    use crate::known_answers::linear_oscillator;
 
     #[test]
     fn lambda_one_is_the_trapezoidal_predictor_corrector() {
         // U'' = −ω²U without barrier: the trapezoidal PECE in integral form, by hand
-        let p = linear(1.0, 1.3, 1.0);
+        let p = linear_oscillator(1.0, 1.3, 1.0);
         let osc = Oscillator::new(&p).unwrap();
         let h = 0.05;
         let m = PredictorCorrector {
@@ -718,7 +731,7 @@ mod tests {
 
     #[test]
     fn blow_up_is_reported_with_its_time() {
-        let mut p = linear(0.9, 1.0, 1.0);
+        let mut p = linear_oscillator(0.9, 1.0, 1.0);
         p.damping.coefficients = vec![50.0]; // strong negative damping
         let osc = Oscillator::new(&p).unwrap();
         let o = Options {

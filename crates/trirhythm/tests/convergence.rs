@@ -8,7 +8,6 @@
 
 use trirhythm::fractional::{solve_scalar, Memory};
 use trirhythm::known_answers::*;
-use trirhythm::model::{Damping, Params};
 use trirhythm::solver::*;
 
 /// Order fitted over the three finest levels of a ladder of max-norm errors.
@@ -82,20 +81,6 @@ fn fractional_relaxation_matches_mittag_leffler() {
     assert!(last < 1e-4, "{last}");
 }
 
-fn linear(lambda: f64, omega: f64, r: f64) -> Params {
-    Params {
-        mu0: 1.0,
-        omega0: omega,
-        lambda,
-        restitution: r,
-        damping: Damping {
-            coefficients: vec![0.0],
-        },
-        noise_intensity: 0.0,
-        correlation_time: 0.0,
-    }
-}
-
 #[test]
 fn fractional_oscillation_orders() {
     // D^{1+λ}U = −ω²U, U(0) = 1, U̇(0) = 0: U = E_{1+λ}(−ω² t^{1+λ})
@@ -104,7 +89,7 @@ fn fractional_oscillation_orders() {
         (0.9, Memory::Direct),
         (0.998, Memory::SumOfExponentials { tolerance: 1e-12 }),
     ] {
-        let osc = trirhythm::solver::Oscillator::new(&linear(lambda, 1.0, 1.0)).unwrap();
+        let osc = trirhythm::solver::Oscillator::new(&linear_oscillator(lambda, 1.0, 1.0)).unwrap();
         let t_end = 3.0;
         let mut hs = vec![];
         let mut errs = vec![];
@@ -148,7 +133,7 @@ fn fractional_oscillation_orders() {
 fn linear_impact_oscillator_order_two() {
     // λ = 1, μ0·P = 0: U = A_k |sin|, amplitude × r per impact
     let (omega, r, v0) = (1.7, 0.8, 1.0);
-    let osc = Oscillator::new(&linear(1.0, omega, r)).unwrap();
+    let osc = Oscillator::new(&linear_oscillator(1.0, omega, r)).unwrap();
     let t_end = 7.0; // three impacts
     let mut hs = vec![];
     let mut errs = vec![];

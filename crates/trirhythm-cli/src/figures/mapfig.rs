@@ -385,3 +385,46 @@ where
     }
     Ok(())
 }
+
+/// A figure of four (γ0, δ0) rhythmicity panels, one per value of `key` (Figs 3 and 6): the
+/// preset's parameters with `key` set to each value, folds traced, the paper's point marked.
+pub fn gamma_delta_family(
+    ctx: &FigureContext,
+    number: u32,
+    preset_name: &str,
+    (key, symbol, values): (&str, &str, [f64; 4]),
+    title: &str,
+    subtitle: String,
+) -> Result<Vec<PathBuf>> {
+    let pre = trirhythm::model::preset(preset_name)?;
+    let mut panels = Vec::new();
+    for (label, value) in ["a", "b", "c", "d"].into_iter().zip(values) {
+        let mut panel = compute_panel(
+            ctx,
+            label,
+            format!("{symbol} = {value}"),
+            &pre.params.with(key, value)?,
+            AxisSpec::new("gamma0", 0.0, 1.2e-4, "γ0", 1e-5),
+            AxisSpec::new("delta0", 1e-8, 6e-7, "δ0", 1e-7),
+            What::Rhythmicity,
+            false,
+        )?;
+        panel.mark = Some((5.862e-5, 2.13e-7, "paper's (γ0, δ0)".into()));
+        panels.push(panel);
+    }
+    let mut notes: Vec<String> = pre.notes.iter().map(|s| s.to_string()).collect();
+    notes.push(format!("{symbol} values chosen: {values:?}"));
+    notes.push(
+        "count = number of stable limit cycles; red: folds f = ∂f/∂A = 0 traced exactly".into(),
+    );
+    write_map_figure(
+        ctx,
+        number,
+        title,
+        subtitle,
+        notes,
+        panels,
+        (2, 2),
+        SeriesLabelPosition::UpperRight,
+    )
+}
