@@ -35,3 +35,8 @@ pub mod solver;
 
 pub use error::{Error, Result};
 pub use model::{Damping, Params, Preset};
+
+/// The README's Rust examples, compiled and run as doctests so that they cannot rot.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;

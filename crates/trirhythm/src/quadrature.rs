@@ -81,7 +81,7 @@ impl Ord for Panel {
     }
 }
 
-/// ∫ f over [points[0], points[last]] with breakpoints: one GK15 panel per piece, then the
+/// ∫ f from the first to the last of `points`, with breakpoints at the others: one GK15 panel per piece, then the
 /// panel with the largest error, wherever it is, is halved until the summed error is below
 /// `rel_tol` of the total (pieces holding negligible mass are thus never refined for nothing).
 pub fn integrate_with_breakpoints(f: &dyn Fn(f64) -> f64, points: &[f64], rel_tol: f64) -> f64 {
