@@ -11,28 +11,11 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
 use std::time::Duration;
 use trirhythm::fractional::{solve_scalar, Memory};
-use trirhythm::known_answers::diethelm_rhs;
-use trirhythm::model::preset;
-use trirhythm::solver::{simulate, Barrier, Options, Oscillator, PredictorCorrector};
+use trirhythm::known_answers::{diethelm_rhs, engine_benchmark_case};
+use trirhythm::solver::simulate;
 
 fn path(lambda: f64, steps: usize, memory: Memory) -> f64 {
-    let mut p = preset("fig1").unwrap().params;
-    p.lambda = lambda;
-    p.mu0 = 0.1;
-    let osc = Oscillator::new(&p).unwrap();
-    let m = PredictorCorrector {
-        dt: 0.01,
-        memory,
-        ..Default::default()
-    };
-    let o = Options {
-        t_end: steps as f64 * 0.01,
-        u0: 2.0,
-        v0: 0.0,
-        barrier: Barrier::On,
-        record_every: steps,
-        ..Default::default()
-    };
+    let (osc, m, o) = engine_benchmark_case(lambda, steps, memory, steps).unwrap();
     simulate(&osc, &m, &o, 0).unwrap().final_amplitude
 }
 

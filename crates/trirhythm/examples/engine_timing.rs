@@ -6,27 +6,11 @@
 
 use std::time::Instant;
 use trirhythm::fractional::Memory;
-use trirhythm::model::preset;
-use trirhythm::solver::{simulate, Barrier, Options, Oscillator, PredictorCorrector, Trajectory};
+use trirhythm::known_answers::engine_benchmark_case;
+use trirhythm::solver::{simulate, Trajectory};
 
 fn run(lambda: f64, steps: usize, memory: Memory, every: usize) -> (Trajectory, f64) {
-    let mut p = preset("fig1").unwrap().params;
-    p.lambda = lambda;
-    p.mu0 = 0.1;
-    let osc = Oscillator::new(&p).unwrap();
-    let m = PredictorCorrector {
-        dt: 0.01,
-        memory,
-        ..Default::default()
-    };
-    let o = Options {
-        t_end: steps as f64 * 0.01,
-        u0: 2.0,
-        v0: 0.0,
-        barrier: Barrier::On,
-        record_every: every,
-        ..Default::default()
-    };
+    let (osc, m, o) = engine_benchmark_case(lambda, steps, memory, every).unwrap();
     let start = Instant::now();
     let tr = simulate(&osc, &m, &o, 0).unwrap();
     (tr, start.elapsed().as_secs_f64())

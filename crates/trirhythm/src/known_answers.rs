@@ -20,12 +20,14 @@
 //! Diethelm, Ford & Freed (2004); Garrappa, Mathematics 6 (2018) 16 (test problems).
 //!
 //! # Tests
-//! Used by `tests/convergence.rs`, `tests/soe.rs` and `benches/engine.rs`; the unit test below
+//! Used by `tests/convergence.rs`, `tests/soe.rs`, `benches/engine.rs` and
+//! `examples/engine_timing.rs`; the unit test below
 //! checks the exact solutions against their equations where that is elementary.
 
 use crate::error::Result;
-use crate::fractional::{gamma, mittag_leffler};
+use crate::fractional::{gamma, mittag_leffler, Memory};
 use crate::model::{Damping, Params};
+use crate::solver::{Barrier, Options, Oscillator, PredictorCorrector};
 use std::f64::consts::PI;
 
 /// y(t) = E_α(−t^α), the solution of D^α y = −y, y(0) = 1.
@@ -84,6 +86,35 @@ pub fn linear_oscillator(lambda: f64, omega: f64, r: f64) -> Params {
         noise_intensity: 0.0,
         correlation_time: 0.0,
     }
+}
+
+/// The engine's benchmark case, shared by `benches/engine.rs` and `examples/engine_timing.rs`:
+/// Eq. 1 with the fig1 set and μ0 = 0.1 at fractional order λ, barrier on, Δt = 0.01, N steps
+/// from (U, U̇) = (2, 0), recording every `every` steps.
+pub fn engine_benchmark_case(
+    lambda: f64,
+    steps: usize,
+    memory: Memory,
+    every: usize,
+) -> Result<(Oscillator, PredictorCorrector, Options)> {
+    let params = crate::model::preset("fig1")?
+        .params
+        .with("lambda", lambda)?
+        .with("mu0", 0.1)?;
+    let method = PredictorCorrector {
+        dt: 0.01,
+        memory,
+        ..Default::default()
+    };
+    let options = Options {
+        t_end: steps as f64 * 0.01,
+        u0: 2.0,
+        v0: 0.0,
+        barrier: Barrier::On,
+        record_every: every,
+        ..Default::default()
+    };
+    Ok((Oscillator::new(&params)?, method, options))
 }
 
 /// (U, U̇, impacts so far) of the linear impact oscillator at time t.

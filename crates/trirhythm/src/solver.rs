@@ -311,6 +311,20 @@ impl Rhs {
 
 /// θ ∈ (0, 1] where the cubic Hermite interpolant of (u0, v0) → (u1, v1) over a step h
 /// changes sign (u0 and u1 of opposite signs, or u1 = 0).
+/// Hold the oscillator at rest on the wall at the end of a step whose free value was V = `v1`:
+/// the wall's reaction goes into the constant of V's Volterra form (continuous memory), or the
+/// memory restarts at rest. Returns whether the step's g still enters the history.
+fn stick(conv: &mut Convolution, base: &mut f64, v1: f64, restart: bool) -> bool {
+    if restart {
+        conv.restart();
+        *base = 0.0;
+        false
+    } else {
+        *base -= v1;
+        true
+    }
+}
+
 /// The rest of a step after an impact at the fraction θ of `split`.
 struct AfterImpact<'a> {
     split: &'a Split,
@@ -516,15 +530,8 @@ fn run_path(
             if stuck {
                 if u1 <= 0.0 {
                     // still pressed against the wall
-                    if restart {
-                        conv.restart();
-                        base = 0.0;
-                        push = false;
-                    } else {
-                        base -= v1;
-                    }
-                    u1 = 0.0;
-                    v1 = 0.0;
+                    push = stick(&mut conv, &mut base, v1, restart);
+                    (u1, v1) = (0.0, 0.0);
                     out.sticking_steps += 1;
                 } else {
                     stuck = false;
@@ -562,15 +569,8 @@ fn run_path(
                 piece.split = Some(split);
                 if u1 < 0.0 {
                     // the next impact would come within this step: stick
-                    if restart {
-                        conv.restart();
-                        base = 0.0;
-                        push = false;
-                    } else {
-                        base -= v1;
-                    }
-                    u1 = 0.0;
-                    v1 = 0.0;
+                    push = stick(&mut conv, &mut base, v1, restart);
+                    (u1, v1) = (0.0, 0.0);
                     stuck = true;
                     out.sticking_steps += 1;
                 }
