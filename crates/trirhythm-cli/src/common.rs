@@ -299,8 +299,7 @@ pub fn table(columns: &[&str], rows: &[Vec<String>]) -> String {
     out
 }
 
-/// A progress bar on a terminal, hidden otherwise (used by the long-running commands).
-#[allow(dead_code)]
+/// A progress bar on a terminal, hidden otherwise.
 pub fn progress(len: u64, message: &str) -> indicatif::ProgressBar {
     use std::io::IsTerminal;
     if !std::io::stderr().is_terminal() {
