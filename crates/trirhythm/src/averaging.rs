@@ -72,15 +72,51 @@ pub struct Equivalents {
 impl Equivalents {
     /// Eq. 5's coefficients; `params` must be valid.
     pub fn new(params: &Params) -> Self {
-        let (l, w0) = (params.lambda, params.omega0);
+        Self::from_scalars(
+            params.mu0,
+            params.omega0,
+            params.lambda,
+            params.damping.coefficient(0),
+        )
+    }
+
+    /// Eq. 5's coefficients from μ0, ω0, λ and the constant term c0 of P(U), without allocating
+    /// (the bifurcation maps call this per grid point).
+    #[inline]
+    pub fn from_scalars(mu0: f64, omega0: f64, lambda: f64, c0: f64) -> Self {
+        let (l, w0) = (lambda, omega0);
         let s = (PI * l / 2.0).sin();
         // cos(πλ/2) = sin(π(1−λ)/2): 1 − λ is exact near λ = 1, so no cancellation.
         let c = (PI * (1.0 - l) / 2.0).sin();
         Equivalents {
-            mu1: params.mu0 * w0.powf(1.0 - l) / s,
-            beta1: params.damping.coefficient(0) - w0.powf(l) * c / params.mu0,
+            mu1: mu0 * w0.powf(1.0 - l) / s,
+            beta1: c0 - w0.powf(l) * c / mu0,
             omega1: (w0.powf(3.0 - l) / s).sqrt(),
             beta2: w0.powf(1.0 - l) / s,
+        }
+    }
+
+    /// The impact loss rate κ of the averaged drift (−κA): (1−r)ω1/π (paper) or −ω1 ln(r)/π
+    /// (consistent; +∞ at r = 0, which [`Theory::new`] rejects).
+    #[inline]
+    pub fn loss_rate(&self, variant: Variant, r: f64) -> f64 {
+        match variant {
+            Variant::Paper => (1.0 - r) * self.omega1 / PI,
+            Variant::Consistent => -r.ln() * self.omega1 / PI,
+        }
+    }
+
+    /// The amplitude diffusion σ1 (Eq. 26) for noise intensity D and correlation time τ:
+    /// β2D/(ω1²(1+τ²)) (paper) or (β2²D/ω1²) Σ_k b_k²/(1+4k²τ²ω1²) (consistent).
+    #[inline]
+    pub fn diffusion(&self, variant: Variant, d: f64, tau: f64) -> f64 {
+        let w1 = self.omega1;
+        match variant {
+            Variant::Paper => self.beta2 * d / (w1 * w1 * (1.0 + tau * tau)),
+            Variant::Consistent => {
+                self.beta2 * self.beta2 * d / (w1 * w1)
+                    * sgn_harmonic_sum(4.0 * tau * tau * w1 * w1)
+            }
         }
     }
 }
@@ -95,25 +131,27 @@ pub fn phase_average_weight(k: usize) -> f64 {
     w / (2 * k + 2) as f64
 }
 
-/// Σ_{k≥1} b_k² / (1 + c k²), b_k = 8k(−1)^{k+1}/(π(4k²−1)); equals 1 at c = 0.
+/// Σ_{k≥1} b_k²/(1 + c k²), b_k = 8k(−1)^{k+1}/(π(4k²−1)), in closed form; 1 at c = 0.
 ///
-/// Direct sum to K = 4096 plus the integral of the large-k form 4/(π²k²(1+ck²)) from K + 1/2,
-/// accurate to about 1e-10.
+/// With q = k², b_k²/(1+ck²) = (4/π²) q/((q−¼)²(1+cq)) = (4/π²)[A/(q−¼) + B/(q−¼)² + C/(1+cq)],
+/// A = 16/(4+c)², B = 1/(4+c), C = −16c/(4+c)², and Σ1/(k²−¼) = 2, Σ1/(k²−¼)² = π² − 8,
+/// Σ1/(1+ck²) = (πa coth(πa) − 1)/2 with a = 1/√c. The unit test checks it against the series.
 pub fn sgn_harmonic_sum(c: f64) -> f64 {
     if c == 0.0 {
         return 1.0;
     }
-    const K: usize = 4096;
-    let mut s = 0.0;
-    for k in (1..=K).rev() {
-        let kf = k as f64;
-        let den = 4.0 * kf * kf - 1.0;
-        s += 64.0 * kf * kf / (PI * PI * den * den) / (1.0 + c * kf * kf);
-    }
-    let a = K as f64 + 0.5;
-    let sc = c.sqrt();
-    let tail = 4.0 / (PI * PI) * (1.0 / a - sc * (PI / 2.0 - (sc * a).atan()));
-    s + tail
+    let den = 4.0 + c;
+    let a_ = 16.0 / (den * den);
+    let b_ = 1.0 / den;
+    let c_ = -16.0 * c / (den * den);
+    let pa = PI / c.sqrt();
+    // πa coth(πa) − 1, accurate for small πa too.
+    let t = if pa < 1e-4 {
+        pa * pa / 3.0
+    } else {
+        pa / pa.tanh() - 1.0
+    };
+    4.0 / (PI * PI) * (2.0 * a_ + b_ * (PI * PI - 8.0) + c_ * t / 2.0)
 }
 
 /// A limit cycle (or an extremum of the stationary amplitude PDF when D > 0).
@@ -222,6 +260,8 @@ pub struct Theory {
     sigma1: f64,
     /// g(x) = f(A)/A at x = A².
     g: Polynomial,
+    /// g′(x).
+    g_derivative: Polynomial,
     /// ∫₀^x g: ∫₀^A f dA = G(A²)/2.
     g_integral: Polynomial,
     /// h(x) = A·m1 = x g(x) + σ1/2.
@@ -234,27 +274,15 @@ impl Theory {
         params.validate()?;
         let eq = Equivalents::new(params);
         let r = params.restitution;
-        let loss_rate = match variant {
-            Variant::Paper => (1.0 - r) * eq.omega1 / PI,
-            Variant::Consistent => {
-                if r == 0.0 {
-                    return Err(Error::invalid(
-                        "r",
-                        r,
-                        "(0, 1] for the consistent variant (r = 0 gives an infinite loss ω1 ln(r)/π)",
-                    ));
-                }
-                -r.ln() * eq.omega1 / PI
-            }
-        };
-        let (d, tau) = (params.noise_intensity, params.correlation_time);
-        let w1 = eq.omega1;
-        let sigma1 = match variant {
-            Variant::Paper => eq.beta2 * d / (w1 * w1 * (1.0 + tau * tau)),
-            Variant::Consistent => {
-                eq.beta2 * eq.beta2 * d / (w1 * w1) * sgn_harmonic_sum(4.0 * tau * tau * w1 * w1)
-            }
-        };
+        if variant == Variant::Consistent && r == 0.0 {
+            return Err(Error::invalid(
+                "r",
+                r,
+                "(0, 1] for the consistent variant (r = 0 gives an infinite loss ω1 ln(r)/π)",
+            ));
+        }
+        let loss_rate = eq.loss_rate(variant, r);
+        let sigma1 = eq.diffusion(variant, params.noise_intensity, params.correlation_time);
         let mut gc: Vec<f64> = params
             .damping
             .coefficients
@@ -265,6 +293,7 @@ impl Theory {
         gc[0] -= loss_rate;
         let g = Polynomial::new(gc);
         let g_integral = g.integral();
+        let g_derivative = g.derivative();
         let mut hc = vec![sigma1 / 2.0];
         hc.extend(g.coefficients.iter().copied());
         let h = Polynomial::new(hc);
@@ -275,6 +304,7 @@ impl Theory {
             loss_rate,
             sigma1,
             g,
+            g_derivative,
             g_integral,
             h,
         })
@@ -323,7 +353,7 @@ impl Theory {
     /// df/dA = g(x) + 2x g′(x).
     pub fn drift_slope(&self, a: f64) -> f64 {
         let x = a * a;
-        self.g.eval(x) + 2.0 * x * self.g.derivative().eval(x)
+        self.g.eval(x) + 2.0 * x * self.g_derivative.eval(x)
     }
 
     /// f′(0) = μ1β1/2 − κ: the rest state U = 0 is stable when negative.
@@ -548,7 +578,7 @@ impl AmplitudePdf {
         }
         // Cuts at the extrema and, around each mode, at m ± w·2^k with w = |φ″(m)|^{−1/2} the
         // peak's width, so that no Gauss–Kronrod panel is much wider than the peak it holds.
-        let gd = th.g.derivative();
+        let gd = &th.g_derivative;
         let mut cuts: Vec<f64> = vec![0.0, hi];
         // A peak of width w at amplitude m cannot be resolved better than ε·m/w relative: the
         // quadrature nodes themselves are rounded to ulp(m). The tolerance respects that floor.
@@ -717,14 +747,32 @@ mod tests {
         }
     }
 
+    /// The series summed directly to K = 10⁶ with the integral of its large-k form as tail
+    /// (π/2 − atan(y) written as atan(1/y), which does not cancel for large y).
+    fn harmonic_series(c: f64) -> f64 {
+        const K: usize = 1_000_000;
+        let term =
+            |k: f64| 64.0 * k * k / (PI * PI * (4.0 * k * k - 1.0).powi(2)) / (1.0 + c * k * k);
+        let head: f64 = (1..=K).rev().map(|k| term(k as f64)).sum();
+        let (a, sc) = (K as f64 + 0.5, c.sqrt());
+        head + 4.0 / (PI * PI) * (1.0 / a - sc * (1.0 / (sc * a)).atan())
+    }
+
     #[test]
-    fn harmonic_sum_limits() {
+    fn closed_form_harmonic_sum_matches_the_series() {
         assert_eq!(sgn_harmonic_sum(0.0), 1.0);
-        // c → 0⁺ is continuous
+        for c in [
+            1e-9, 1e-4, 0.01, 0.3, 0.81, 1.0, 3.24, 10.0, 100.0, 1e4, 1e7,
+        ] {
+            let (closed, series) = (sgn_harmonic_sum(c), harmonic_series(c));
+            assert!(
+                (closed - series).abs() < 1e-11 * series.max(1e-3),
+                "c = {c}: {closed} vs {series}"
+            );
+        }
+        // c → 0⁺ is continuous; large c: only k = 1 matters, ≈ b1²/c.
         assert!((sgn_harmonic_sum(1e-12) - 1.0).abs() < 1e-5);
-        // large c: only k = 1 matters, ≈ b1²/(c)
-        let c = 1e6;
         let b1 = 64.0 / (9.0 * PI * PI);
-        assert!((sgn_harmonic_sum(c) * c / b1 - 1.0).abs() < 0.2);
+        assert!((sgn_harmonic_sum(1e6) * 1e6 / b1 - 1.0).abs() < 0.2);
     }
 }

@@ -61,19 +61,24 @@ const LANCZOS: [f64; 9] = [
     1.505_632_735_149_311_6e-7,
 ];
 
+/// Lanczos' form Γ(x) = √(2π) t^{x−½} e^{−t} a for x ≥ ½: returns (t, a).
+fn lanczos(x: f64) -> (f64, f64) {
+    let x = x - 1.0;
+    let mut a = LANCZOS[0];
+    for (i, &c) in LANCZOS.iter().enumerate().skip(1) {
+        a += c / (x + i as f64);
+    }
+    (x + LANCZOS_G + 0.5, a)
+}
+
 /// ln |Γ(x)| (Lanczos approximation, g = 7, relative accuracy about 1e-15; reflection for x < ½).
 pub fn ln_gamma(x: f64) -> f64 {
     if x < 0.5 {
         // Γ(x)Γ(1−x) = π / sin(πx)
         (PI / (PI * x).sin()).abs().ln() - ln_gamma(1.0 - x)
     } else {
-        let x = x - 1.0;
-        let mut a = LANCZOS[0];
-        let t = x + LANCZOS_G + 0.5;
-        for (i, &c) in LANCZOS.iter().enumerate().skip(1) {
-            a += c / (x + i as f64);
-        }
-        0.5 * (2.0 * PI).ln() + (x + 0.5) * t.ln() - t + a.ln()
+        let (t, a) = lanczos(x);
+        0.5 * (2.0 * PI).ln() + (x - 0.5) * t.ln() - t + a.ln()
     }
 }
 
@@ -82,13 +87,8 @@ pub fn gamma(x: f64) -> f64 {
     if x < 0.5 {
         PI / ((PI * x).sin() * gamma(1.0 - x))
     } else {
-        let x = x - 1.0;
-        let mut a = LANCZOS[0];
-        let t = x + LANCZOS_G + 0.5;
-        for (i, &c) in LANCZOS.iter().enumerate().skip(1) {
-            a += c / (x + i as f64);
-        }
-        (2.0 * PI).sqrt() * t.powf(x + 0.5) * (-t).exp() * a
+        let (t, a) = lanczos(x);
+        (2.0 * PI).sqrt() * t.powf(x - 0.5) * (-t).exp() * a
     }
 }
 

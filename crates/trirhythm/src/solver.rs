@@ -420,11 +420,8 @@ fn fresh_memory(
 ) -> Result<Convolution> {
     let h = method.dt;
     let steps = (options.t_end / h).round();
-    let rhs_lambda = match options.system {
-        System::Fractional => oscillator.params.lambda,
-        System::Equivalent | System::Zhuravlev => 1.0,
-    };
-    Convolution::new(rhs_lambda, h, steps * h, method.memory, method.window)
+    let lambda = Rhs::new(oscillator, options.system).lambda;
+    Convolution::new(lambda, h, steps * h, method.memory, method.window)
 }
 
 fn run_path(

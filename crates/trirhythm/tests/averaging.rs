@@ -131,7 +131,7 @@ fn consistent_variant_uses_log_loss_and_sgn_averaged_noise() {
     let th = Theory::new(&p, Variant::Consistent).unwrap();
     let e = th.equivalents();
     let factor = th.diffusion() * e.omega1 * e.omega1 / (e.beta2 * e.beta2 * 0.3);
-    assert!(close(factor, 0.43462922026515490492, 1e-9), "{factor}");
+    assert!(close(factor, 0.43462922026515490492, 1e-13), "{factor}");
     let paper = Theory::new(&p, Variant::Paper).unwrap();
     assert!(close(
         paper.diffusion() * e.omega1 * e.omega1 / (e.beta2 * 0.3),

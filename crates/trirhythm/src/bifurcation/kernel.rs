@@ -8,10 +8,9 @@
 //! [`crate::polynomial::Polynomial::sturm_count`] on fixed-size arrays (power-of-two scaling,
 //! rolled sequence: only rounding differs, so counts agree except within ~1e-10 of a fold).
 
-use crate::averaging::{phase_average_weight, Variant};
+use crate::averaging::{phase_average_weight, Equivalents, Variant};
 use crate::error::{Error, Result};
 use crate::model::Params;
-use std::f64::consts::PI;
 
 /// Most damping coefficients c_0 … c_{MAXC−1} the fast path supports (P(U) up to U^22).
 pub const MAXC: usize = 12;
@@ -149,31 +148,6 @@ impl Point {
     }
 }
 
-/// Σ_{k≥1} b_k²/(1 + c k²), b_k = 8k(−1)^{k+1}/(π(4k²−1)), in closed form.
-///
-/// With q = k², b_k²/(1+ck²) = (4/π²) q/((q−¼)²(1+cq)) = (4/π²)[A/(q−¼) + B/(q−¼)² + C/(1+cq)],
-/// A = 16/(4+c)², B = 1/(4+c), C = −16c/(4+c)², and Σ1/(k²−¼) = 2, Σ1/(k²−¼)² = π² − 8,
-/// Σ1/(1+ck²) = (πa coth(πa) − 1)/2 with a = 1/√c. Agrees with
-/// [`crate::averaging::sgn_harmonic_sum`] (a 4096-term sum plus tail) to 1e-10.
-pub fn sgn_harmonic_sum_closed(c: f64) -> f64 {
-    if c == 0.0 {
-        return 1.0;
-    }
-    let den = 4.0 + c;
-    let a_ = 16.0 / (den * den);
-    let b_ = 1.0 / den;
-    let c_ = -16.0 * c / (den * den);
-    let a = 1.0 / c.sqrt();
-    let pa = PI * a;
-    // πa coth(πa) − 1, accurate for small πa too.
-    let t = if pa < 1e-4 {
-        pa * pa / 3.0
-    } else {
-        pa / pa.tanh() - 1.0
-    };
-    4.0 / (PI * PI) * (2.0 * a_ + b_ * (PI * PI - 8.0) + c_ * t / 2.0)
-}
-
 /// A polynomial on the stack, ascending coefficients, `len` of them.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Coeffs {
@@ -222,21 +196,6 @@ impl Coeffs {
     }
 }
 
-/// μ1, β1, ω1, β2 (Eq. 5) with the arithmetic of `Equivalents::new`.
-#[inline]
-fn equivalents(p: &Point) -> [f64; 4] {
-    let (l, w0) = (p.lambda, p.omega0);
-    let s = (PI * l / 2.0).sin();
-    // cos(πλ/2) = sin(π(1−λ)/2), free of cancellation near λ = 1.
-    let c = (PI * (1.0 - l) / 2.0).sin();
-    [
-        p.mu0 * w0.powf(1.0 - l) / s,
-        p.c[0] - w0.powf(l) * c / p.mu0,
-        (w0.powf(3.0 - l) / s).sqrt(),
-        w0.powf(1.0 - l) / s,
-    ]
-}
-
 /// Builds g or h at a point; holds only constants (the phase-average weights).
 #[derive(Debug, Clone, Copy)]
 pub struct Kernel {
@@ -259,28 +218,18 @@ impl Kernel {
         self.variant
     }
 
-    /// g (Rhythmicity) or h (Modes) at `p`, with the same arithmetic as `Theory::new`
-    /// (the consistent σ1 uses the closed form of the harmonic sum).
+    /// g (Rhythmicity) or h (Modes) at `p`, from the same scalar functions as `Theory::new`
+    /// ([`Equivalents::from_scalars`], `loss_rate`, `diffusion`).
     #[inline]
     pub(crate) fn coefficients(&self, p: &Point, what: What) -> Coeffs {
-        let [mu1, beta1, omega1, beta2] = equivalents(p);
-        let loss = match self.variant {
-            Variant::Paper => (1.0 - p.r) * omega1 / PI,
-            Variant::Consistent => -p.r.ln() * omega1 / PI,
-        };
+        let eq = Equivalents::from_scalars(p.mu0, p.omega0, p.lambda, p.c[0]);
+        let (mu1, beta1) = (eq.mu1, eq.beta1);
+        let loss = eq.loss_rate(self.variant, p.r);
         let mut out = Coeffs::zero();
         let off = match what {
             What::Rhythmicity => 0,
             What::Modes => {
-                let w1 = omega1;
-                let sigma1 = match self.variant {
-                    Variant::Paper => beta2 * p.d / (w1 * w1 * (1.0 + p.tau * p.tau)),
-                    Variant::Consistent => {
-                        beta2 * beta2 * p.d / (w1 * w1)
-                            * sgn_harmonic_sum_closed(4.0 * p.tau * p.tau * w1 * w1)
-                    }
-                };
-                out.c[0] = sigma1 / 2.0;
+                out.c[0] = eq.diffusion(self.variant, p.d, p.tau) / 2.0;
                 1
             }
         };
@@ -298,8 +247,9 @@ impl Kernel {
     /// correct d(xg)/dx·512 with β1 moved from the constant to the x term, generalised to any
     /// degree by the same weights: coefficient of x^k (k ≥ 2) is 512 μ1 c_k (k+1) w_k.
     pub(crate) fn printed_eq37(&self, p: &Point) -> Coeffs {
-        let [mu1, beta1, omega1, _] = equivalents(p);
-        let kappa = (1.0 - p.r) * omega1 / PI;
+        let eq = Equivalents::from_scalars(p.mu0, p.omega0, p.lambda, p.c[0]);
+        let (mu1, beta1) = (eq.mu1, eq.beta1);
+        let kappa = eq.loss_rate(Variant::Paper, p.r);
         let mut out = Coeffs::zero();
         // Constant: 256(μ1 c0 − 2κ) (c0 = 1 in the paper); x term: −128 μ1 β1 (the paper's
         // −c1·... with c1 = −1 replaced by β1).
@@ -504,17 +454,9 @@ fn neg_remainder(a: &Coeffs, b: &Coeffs) -> Coeffs {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::averaging::{sgn_harmonic_sum, Theory};
+    use crate::averaging::Theory;
     use crate::polynomial::Polynomial;
     use proptest::prelude::*;
-
-    #[test]
-    fn closed_form_harmonic_sum_matches_the_series() {
-        for c in [1e-9, 1e-4, 0.01, 0.3, 1.0, 3.24, 10.0, 100.0, 1e4, 1e7] {
-            let (a, b) = (sgn_harmonic_sum_closed(c), sgn_harmonic_sum(c));
-            assert!((a - b).abs() < 1e-9 * b.max(1e-3), "c = {c}: {a} vs {b}");
-        }
-    }
 
     #[test]
     fn coefficients_equal_theorys_polynomials() {

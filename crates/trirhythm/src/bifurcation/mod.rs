@@ -41,4 +41,4 @@ pub use fold::{
     FoldSystem, Folds, TraceOptions,
 };
 pub use grid::{classify, Axis, Map, Plane};
-pub use kernel::{sgn_harmonic_sum_closed, Kernel, Key, Point, What, MAXC};
+pub use kernel::{Kernel, Key, Point, What, MAXC};
