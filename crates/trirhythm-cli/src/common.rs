@@ -4,8 +4,8 @@ use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use trirhythm::averaging::Variant;
 use trirhythm::model::{preset, Params};
+use trirhythm::theory::averaging::Variant;
 
 /// Bad input from the user: exit status 2.
 #[derive(Debug)]

@@ -8,7 +8,7 @@ use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
 use std::path::PathBuf;
-use trirhythm::bifurcation::{
+use trirhythm::theory::bifurcation::{
     branches as trace_branches, classify, trace_folds, trace_printed_eq37, Axis, BranchDiagram,
     FoldCurve, Folds, Map, Plane, What,
 };
@@ -86,7 +86,7 @@ pub fn parse_axis(s: &str, flag: &str, with_count: bool) -> Result<(String, Grid
     Ok((key, g))
 }
 
-fn end_name(e: trirhythm::bifurcation::CurveEnd) -> &'static str {
+fn end_name(e: trirhythm::theory::bifurcation::CurveEnd) -> &'static str {
     e.name()
 }
 
@@ -272,7 +272,7 @@ pub struct BranchArgs {
 /// Compute a branch diagram.
 pub fn branch_diagram(
     base: &trirhythm::Params,
-    variant: trirhythm::averaging::Variant,
+    variant: trirhythm::theory::averaging::Variant,
     what: What,
     key: &str,
     start: f64,

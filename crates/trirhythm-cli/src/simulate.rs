@@ -12,11 +12,11 @@ use serde_json::{json, Value};
 use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
-use trirhythm::fractional::{Memory, DEFAULT_WINDOW};
-use trirhythm::solver::{
+use trirhythm::engine::{
     simulate_path, Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System,
     Trajectory,
 };
+use trirhythm::engine::{Memory, DEFAULT_WINDOW};
 
 /// `soe` or `direct`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]

@@ -4,7 +4,7 @@ use crate::common::{bad, jnum, num, params_json, table, Csv, Format, Grid, Outpu
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
-use trirhythm::averaging::{Side, Theory};
+use trirhythm::theory::averaging::{Side, Theory};
 
 /// Arguments of every theory command.
 #[derive(Debug, Args)]

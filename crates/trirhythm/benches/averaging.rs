@@ -2,8 +2,8 @@
 //! Sturm-only stable count, building a normalised PDF, evaluating it on a grid.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use trirhythm::averaging::{Theory, Variant};
 use trirhythm::model::preset;
+use trirhythm::theory::averaging::{Theory, Variant};
 
 fn averaging(c: &mut Criterion) {
     let p = preset("fig4c").unwrap().params.with("r", 1.0).unwrap();

@@ -10,9 +10,9 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
 use std::time::Duration;
-use trirhythm::fractional::{solve_scalar, Memory};
+use trirhythm::engine::simulate;
+use trirhythm::engine::{solve_scalar, Memory};
 use trirhythm::known_answers::{diethelm_rhs, engine_benchmark_case};
-use trirhythm::solver::simulate;
 
 fn path(lambda: f64, steps: usize, memory: Memory) -> f64 {
     let (osc, m, o) = engine_benchmark_case(lambda, steps, memory, steps).unwrap();

@@ -3,9 +3,9 @@
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::time::Duration;
-use trirhythm::averaging::{Theory, Variant};
-use trirhythm::bifurcation::{classify, Axis, Plane, What};
 use trirhythm::model::preset;
+use trirhythm::theory::averaging::{Theory, Variant};
+use trirhythm::theory::bifurcation::{classify, Axis, Plane, What};
 
 const SIDE: usize = 100;
 

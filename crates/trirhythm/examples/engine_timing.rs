@@ -5,9 +5,9 @@
 //! SOE vs Direct at 1e4, 3e4, 1e5 steps (speed-up and max |ΔU|); the number of exponentials.
 
 use std::time::Instant;
-use trirhythm::fractional::Memory;
+use trirhythm::engine::Memory;
+use trirhythm::engine::{simulate, Trajectory};
 use trirhythm::known_answers::engine_benchmark_case;
-use trirhythm::solver::{simulate, Trajectory};
 
 fn run(lambda: f64, steps: usize, memory: Memory, every: usize) -> (Trajectory, f64) {
     let (osc, m, o) = engine_benchmark_case(lambda, steps, memory, every).unwrap();

@@ -36,15 +36,41 @@ pub enum Error {
         /// Why, in terms of the parameters.
         why: String,
     },
-    /// A numerical computation produced a non-finite value.
-    #[error("numerical blow-up in {what} at {at}: value {value}")]
-    BlowUp {
+    /// A computation of the theory produced a non-finite or runaway value.
+    #[error("numerical overflow in {what} at {at}: value {}", Readable(*.value))]
+    Overflow {
         /// Which computation.
         what: &'static str,
-        /// Where (time, amplitude, grid point) in words.
+        /// Where (amplitude, grid point) in words.
         at: String,
         /// The non-finite or runaway value.
         value: f64,
+    },
+    /// A simulated path left the representable range (|U| or |V| above the blow-up bound, or
+    /// not finite) on the step that ended at time `t`.
+    #[error(
+        "numerical blow-up of the simulation at t = {}: (U, U̇) = ({}, {}) after a step from ({}, {}) \
+         with stiffness Δt·μ|P(U)| = {} (Δt = {}); the step is stable for any stiffness in the \
+         damping, so the blow-up is the model's own growth or a much too large Δt for the \
+         oscillation: try a smaller dt",
+        Readable(*.t), Readable(*.u), Readable(*.v), Readable(*.from_u), Readable(*.from_v),
+        Readable(*.stiffness), Readable(*.dt)
+    )]
+    BlowUp {
+        /// Time at the end of the step.
+        t: f64,
+        /// U at the end of the step.
+        u: f64,
+        /// V = U̇ at the end of the step.
+        v: f64,
+        /// U at the start of the step.
+        from_u: f64,
+        /// V at the start of the step.
+        from_v: f64,
+        /// Δt·μ|P(U)| at the start of the step.
+        stiffness: f64,
+        /// The step Δt.
+        dt: f64,
     },
     /// An iterative method did not converge.
     #[error("{what} did not converge: {detail}")]
@@ -67,5 +93,48 @@ impl Error {
             value,
             allowed: allowed.into(),
         }
+    }
+}
+
+/// A number printed for people: six significant digits, in scientific notation outside
+/// [1e-4, 1e6), `inf`/`NaN` as such.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Readable(pub f64);
+
+impl std::fmt::Display for Readable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let x = self.0;
+        let a = x.abs();
+        if !x.is_finite() || x == 0.0 {
+            write!(f, "{x}")
+        } else if (1e-4..1e6).contains(&a) {
+            let digits = (5 - a.log10().floor() as i32).clamp(0, 10) as usize;
+            let s = format!("{x:.digits$}");
+            let s = if s.contains('.') {
+                s.trim_end_matches('0').trim_end_matches('.').to_string()
+            } else {
+                s
+            };
+            write!(f, "{s}")
+        } else {
+            write!(f, "{x:.5e}")
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn readable_numbers() {
+        let r = |x: f64| Readable(x).to_string();
+        assert_eq!(r(116389576378.43837), "1.16390e11");
+        assert_eq!(r(0.06), "0.06");
+        assert_eq!(r(12.9412345678), "12.9412");
+        assert_eq!(r(-350.25), "-350.25");
+        assert_eq!(r(1e-7), "1.00000e-7");
+        assert_eq!(r(f64::INFINITY), "inf");
+        assert_eq!(r(0.0), "0");
     }
 }

@@ -24,10 +24,11 @@
 //! `examples/engine_timing.rs`; the unit test below
 //! checks the exact solutions against their equations where that is elementary.
 
+use crate::engine::Memory;
+use crate::engine::{Barrier, Options, Oscillator, PredictorCorrector};
 use crate::error::Result;
-use crate::fractional::{gamma, mittag_leffler, Memory};
 use crate::model::{Damping, Params};
-use crate::solver::{Barrier, Options, Oscillator, PredictorCorrector};
+use crate::special::{gamma, mittag_leffler};
 use std::f64::consts::PI;
 
 /// y(t) = E_α(−t^α), the solution of D^α y = −y, y(0) = 1.

@@ -7,8 +7,9 @@
 #![allow(clippy::excessive_precision)]
 
 use proptest::prelude::*;
-use trirhythm::averaging::{stable_count, Equivalents, Theory, Variant};
+use trirhythm::model::Equivalents;
 use trirhythm::model::{preset, Damping, Params};
+use trirhythm::theory::averaging::{stable_count, Theory, Variant};
 
 fn fig4c_r1() -> Params {
     preset("fig4c").unwrap().params.with("r", 1.0).unwrap()
@@ -155,7 +156,7 @@ fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
 /// m ± 40w around each mode m, w = (−d² ln P/dA²)^{−1/2} from a centred difference of the
 /// pointwise log-density: fine enough for peaks of any width, and independent of the library's
 /// own quadrature (it uses only the mode positions, which other tests check).
-fn reference_mass(pdf: &trirhythm::averaging::AmplitudePdf) -> f64 {
+fn reference_mass(pdf: &trirhythm::theory::averaging::AmplitudePdf) -> f64 {
     let end = pdf.support_end;
     let mut cuts = vec![0.0, end];
     for &m in &pdf.modes {
@@ -351,7 +352,7 @@ fn a_higher_degree_polynomial_can_be_quadrirhythmic() {
     let coefficients: Vec<f64> = q
         .iter()
         .enumerate()
-        .map(|(k, &c)| c / (mu0 * trirhythm::averaging::phase_average_weight(k)) * 1e-9)
+        .map(|(k, &c)| c / (mu0 * trirhythm::theory::averaging::phase_average_weight(k)) * 1e-9)
         .collect();
     let p = Params {
         mu0,

@@ -2,9 +2,9 @@
 //! every count change of a map lies on a traced fold curve, curve points solve their equations,
 //! analytic folds and cusps are reproduced, branches agree with the roots of f.
 
-use trirhythm::averaging::{Theory, Variant};
-use trirhythm::bifurcation::*;
 use trirhythm::model::preset;
+use trirhythm::theory::averaging::{Theory, Variant};
+use trirhythm::theory::bifurcation::*;
 use trirhythm::{Error, Params};
 
 const N: usize = 121;

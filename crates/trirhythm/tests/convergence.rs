@@ -6,9 +6,9 @@
 //! defect O(h^{1+α}) enters through the weight O(h^α), so the global error is
 //! O(h^{min(2, 1+2α)}) (DFF's rectangle predictor gives min(2, 1+α)).
 
-use trirhythm::fractional::{solve_scalar, Memory};
+use trirhythm::engine::*;
+use trirhythm::engine::{solve_scalar, Memory};
 use trirhythm::known_answers::*;
-use trirhythm::solver::*;
 
 /// Order fitted over the three finest levels of a ladder of max-norm errors.
 fn finest_order(hs: &[f64], errs: &[f64]) -> f64 {
@@ -89,7 +89,7 @@ fn fractional_oscillation_orders() {
         (0.9, Memory::Direct),
         (0.998, Memory::SumOfExponentials { tolerance: 1e-12 }),
     ] {
-        let osc = trirhythm::solver::Oscillator::new(&linear_oscillator(lambda, 1.0, 1.0)).unwrap();
+        let osc = trirhythm::engine::Oscillator::new(&linear_oscillator(lambda, 1.0, 1.0)).unwrap();
         let t_end = 3.0;
         let mut hs = vec![];
         let mut errs = vec![];

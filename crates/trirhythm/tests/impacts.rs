@@ -2,9 +2,9 @@
 //! sticking without hanging, no energy gain from impacts.
 
 use proptest::prelude::*;
-use trirhythm::fractional::Memory;
+use trirhythm::engine::Memory;
+use trirhythm::engine::*;
 use trirhythm::model::{preset, Damping, Params};
-use trirhythm::solver::*;
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]

@@ -3,9 +3,9 @@
 //! tolerance × T × |g|, so the kernel tolerance is 1e-11 at 1e4 steps and 1e-12 at 1e5 steps.
 
 use std::time::Instant;
-use trirhythm::fractional::{Memory, SoeKernel};
+use trirhythm::engine::*;
+use trirhythm::engine::{kernel::SoeKernel, Memory};
 use trirhythm::model::preset;
-use trirhythm::solver::*;
 
 fn compare(lambda: f64, steps: usize, tolerance: f64) -> (f64, f64, usize) {
     let mut p = preset("fig1").unwrap().params;

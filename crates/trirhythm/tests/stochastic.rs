@@ -1,8 +1,8 @@
 //! Noise inside the driver: white-noise variance, determinism across thread counts.
 
-use trirhythm::fractional::Memory;
+use trirhythm::engine::Memory;
+use trirhythm::engine::*;
 use trirhythm::model::{preset, Damping, Params};
-use trirhythm::solver::*;
 
 const RNG_SEED: u64 = 20_240_003;
 

@@ -1,8 +1,8 @@
 //! The integer-order companions: Eq. (5) at λ = 1 is Eq. (1); Zhuravlev's Eq. (9) maps onto the
 //! impacting Eq. (5) through U = |Z| (exact for integer order), for r = 1 and r < 1, with noise.
 
+use trirhythm::engine::*;
 use trirhythm::model::preset;
-use trirhythm::solver::*;
 
 #[test]
 fn equivalent_at_lambda_one_is_the_system_itself() {

@@ -12,9 +12,9 @@ use anyhow::{bail, Result};
 use plotters::prelude::*;
 use std::path::PathBuf;
 use trirhythm::analysis::{RecurrenceMatrix, RecurrenceThreshold};
-use trirhythm::averaging::Theory;
+use trirhythm::engine::{simulate, Options, Oscillator, PredictorCorrector, System};
 use trirhythm::model::preset;
-use trirhythm::solver::{simulate, Options, Oscillator, PredictorCorrector, System};
+use trirhythm::theory::averaging::Theory;
 
 const EPSILON: f64 = 0.1;
 
@@ -101,7 +101,7 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
             t_end,
             u0: a02,
             v0: 0.0,
-            barrier: trirhythm::solver::Barrier::Off,
+            barrier: trirhythm::engine::Barrier::Off,
             record_every: usize::MAX,
             ..Default::default()
         },

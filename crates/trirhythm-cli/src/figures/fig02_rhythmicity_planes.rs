@@ -6,8 +6,8 @@ use super::mapfig::{compute_panel, write_map_figure, AxisSpec};
 use super::FigureContext;
 use anyhow::Result;
 use std::path::PathBuf;
-use trirhythm::bifurcation::What;
 use trirhythm::model::preset;
+use trirhythm::theory::bifurcation::What;
 
 pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     let p1 = preset("fig2i")?;

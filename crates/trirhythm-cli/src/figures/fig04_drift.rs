@@ -10,8 +10,8 @@ use anyhow::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::PathBuf;
-use trirhythm::averaging::{Cycle, Theory};
 use trirhythm::model::preset;
+use trirhythm::theory::averaging::{Cycle, Theory};
 
 /// What the paper's text says each panel shows (number of roots of f).
 const TEXT_ROOTS: [(&str, &str); 4] = [("a", "five"), ("b", "five"), ("c", "three"), ("d", "none")];

@@ -10,8 +10,8 @@ use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::PathBuf;
-use trirhythm::bifurcation::{BranchDiagram, What};
 use trirhythm::model::preset;
+use trirhythm::theory::bifurcation::{BranchDiagram, What};
 
 /// (label, μ0, r range shown).
 const PANELS: [(&str, f64, f64, f64); 5] = [
@@ -83,7 +83,7 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
 }
 
 /// Split a branch into runs of equal stability, sharing the boundary points.
-fn runs(points: &[trirhythm::bifurcation::BranchPoint]) -> Vec<(bool, Vec<(f64, f64)>)> {
+fn runs(points: &[trirhythm::theory::bifurcation::BranchPoint]) -> Vec<(bool, Vec<(f64, f64)>)> {
     let mut out: Vec<(bool, Vec<(f64, f64)>)> = Vec::new();
     for q in points {
         let xy = (q.param, q.amplitude);

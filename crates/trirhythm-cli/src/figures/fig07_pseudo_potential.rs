@@ -7,8 +7,8 @@ use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::path::PathBuf;
-use trirhythm::averaging::{Extremum, Theory};
 use trirhythm::model::preset;
+use trirhythm::theory::averaging::{Extremum, Theory};
 
 /// One U_eff curve with its extrema.
 pub(super) struct Curve {

@@ -7,8 +7,8 @@ use crate::plot::{chart, pe, save, Picture, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
 use std::path::PathBuf;
-use trirhythm::averaging::{Barrier, Side, Theory};
 use trirhythm::model::preset;
+use trirhythm::theory::averaging::{Barrier, Side, Theory};
 
 struct Fig8 {
     curve: Curve,

@@ -8,8 +8,8 @@ use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::PathBuf;
-use trirhythm::bifurcation::{barrier_surfaces, Axis, BarrierSurfaces, Plane};
 use trirhythm::model::preset;
+use trirhythm::theory::bifurcation::{barrier_surfaces, Axis, BarrierSurfaces, Plane};
 
 const R_VALUES: [f64; 2] = [0.998, 0.990];
 const LAMBDA: (f64, f64) = (0.98, 1.0);

@@ -7,8 +7,8 @@ use super::mapfig::{compute_panel, write_map_figure, AxisSpec};
 use super::FigureContext;
 use anyhow::Result;
 use std::path::PathBuf;
-use trirhythm::bifurcation::What;
 use trirhythm::model::preset;
+use trirhythm::theory::bifurcation::What;
 
 const D_VALUES: [f64; 4] = [0.05, 0.3, 0.7, 1.2];
 

@@ -9,8 +9,10 @@ use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::PathBuf;
-use trirhythm::bifurcation::{trace_folds, trace_printed_eq37, Axis, Folds, Map, Plane, What};
 use trirhythm::model::Params;
+use trirhythm::theory::bifurcation::{
+    trace_folds, trace_printed_eq37, Axis, Folds, Map, Plane, What,
+};
 
 /// Colour of a count: 0 light grey, 1 blue, 2 green, 3 black, more purple.
 pub fn count_colour(c: u8) -> RGBColor {
@@ -101,7 +103,7 @@ pub fn compute_panel(
     )?;
     let map = run_map(&plane, what, &format!("panel {label}"));
     let folds = trace_folds(&map);
-    let printed = if printed && ctx.variant == trirhythm::averaging::Variant::Paper {
+    let printed = if printed && ctx.variant == trirhythm::theory::averaging::Variant::Paper {
         Some(trace_printed_eq37(&map)?)
     } else {
         None

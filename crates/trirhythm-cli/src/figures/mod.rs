@@ -19,8 +19,8 @@ mod mapfig;
 
 use anyhow::Result;
 use std::path::PathBuf;
-use trirhythm::averaging::Variant;
 use trirhythm::model::Params;
+use trirhythm::theory::averaging::Variant;
 
 /// What every figure gets.
 pub struct FigureContext {

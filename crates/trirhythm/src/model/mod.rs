@@ -13,6 +13,10 @@
 //! invalid value is rejected, the message names the parameter and its range) and the unit tests
 //! below (keys round-trip, presets validate).
 
+mod equivalents;
+
+pub use equivalents::Equivalents;
+
 use crate::error::{Error, Result};
 
 /// The damping polynomial P(U) = Σ_k c_k U^{2k} of Eq. (1), of any even degree.

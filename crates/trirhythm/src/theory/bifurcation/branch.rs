@@ -3,10 +3,10 @@
 
 use super::fold::{one_sided, CurveEnd};
 use super::kernel::{Coeffs, Kernel, Key, Point, What};
-use crate::averaging::Variant;
 use crate::error::Result;
 use crate::model::Params;
-use crate::polynomial::Polynomial;
+use crate::theory::averaging::Variant;
+use crate::theory::polynomial::Polynomial;
 
 /// A point of a branch.
 #[derive(Debug, Clone, Copy, PartialEq)]

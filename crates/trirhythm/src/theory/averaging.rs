@@ -30,9 +30,9 @@
 //! Eq. 29 relation, joint PDF mass, proptest invariants) and the unit tests below.
 
 use crate::error::{Error, Result};
-use crate::model::Params;
-use crate::polynomial::Polynomial;
-use crate::quadrature::integrate_with_breakpoints;
+use crate::model::{Equivalents, Params};
+use crate::theory::polynomial::Polynomial;
+use crate::theory::quadrature::integrate_with_breakpoints;
 use std::f64::consts::PI;
 
 /// Which form of the averaged formulas to use.
@@ -56,46 +56,7 @@ impl Variant {
     }
 }
 
-/// Harmonic-balance equivalents of the fractional term (Eq. 4–5).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Equivalents {
-    /// μ1 = μ0 ω0^{1−λ} / sin(πλ/2).
-    pub mu1: f64,
-    /// β1 = c0 − ω0^λ cos(πλ/2) / μ0 (c0 = 1 for the paper's polynomial).
-    pub beta1: f64,
-    /// ω1 = sqrt(ω0^{3−λ} / sin(πλ/2)).
-    pub omega1: f64,
-    /// β2 = ω0^{1−λ} / sin(πλ/2).
-    pub beta2: f64,
-}
-
 impl Equivalents {
-    /// Eq. 5's coefficients; `params` must be valid.
-    pub fn new(params: &Params) -> Self {
-        Self::from_scalars(
-            params.mu0,
-            params.omega0,
-            params.lambda,
-            params.damping.coefficient(0),
-        )
-    }
-
-    /// Eq. 5's coefficients from μ0, ω0, λ and the constant term c0 of P(U), without allocating
-    /// (the bifurcation maps call this per grid point).
-    #[inline]
-    pub fn from_scalars(mu0: f64, omega0: f64, lambda: f64, c0: f64) -> Self {
-        let (l, w0) = (lambda, omega0);
-        let s = (PI * l / 2.0).sin();
-        // cos(πλ/2) = sin(π(1−λ)/2): 1 − λ is exact near λ = 1, so no cancellation.
-        let c = (PI * (1.0 - l) / 2.0).sin();
-        Equivalents {
-            mu1: mu0 * w0.powf(1.0 - l) / s,
-            beta1: c0 - w0.powf(l) * c / mu0,
-            omega1: (w0.powf(3.0 - l) / s).sqrt(),
-            beta2: w0.powf(1.0 - l) / s,
-        }
-    }
-
     /// The impact loss rate κ of the averaged drift (−κA): (1−r)ω1/π (paper) or −ω1 ln(r)/π
     /// (consistent; +∞ at r = 0, which [`Theory::new`] rejects).
     #[inline]
@@ -556,7 +517,7 @@ impl AmplitudePdf {
             .iter()
             .copied()
             .max_by(|a, b| phi(*a).total_cmp(&phi(*b)))
-            .ok_or(Error::BlowUp {
+            .ok_or(Error::Overflow {
                 what: "amplitude PDF",
                 at: "its modes (none found)".into(),
                 value: f64::NAN,
@@ -569,7 +530,7 @@ impl AmplitudePdf {
         while rel(hi) > -46.0 {
             hi *= 1.5;
             if !hi.is_finite() {
-                return Err(Error::BlowUp {
+                return Err(Error::Overflow {
                     what: "amplitude PDF support",
                     at: "A → ∞".into(),
                     value: hi,
@@ -618,7 +579,7 @@ impl AmplitudePdf {
         let mass = integrate_with_breakpoints(&scaled, &cuts, tolerance);
         let first = integrate_with_breakpoints(&|a: f64| a * scaled(a), &cuts, tolerance);
         if !(mass.is_finite() && mass > 0.0) {
-            return Err(Error::BlowUp {
+            return Err(Error::Overflow {
                 what: "amplitude PDF normalisation",
                 at: format!("modes {modes:?}"),
                 value: mass,

@@ -1,9 +1,9 @@
 //! Two-parameter classification maps: stable-cycle counts or P(A) mode counts on a grid.
 
 use super::kernel::{Kernel, Key, Point, What};
-use crate::averaging::Variant;
 use crate::error::{Error, Result};
 use crate::model::Params;
+use crate::theory::averaging::Variant;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 

@@ -16,9 +16,9 @@
 
 use super::grid::{Map, Plane};
 use super::kernel::{sturm_count_positive, Coeffs, What};
-use crate::averaging::Variant;
 use crate::error::{Error, Result};
-use crate::polynomial::Polynomial;
+use crate::theory::averaging::Variant;
+use crate::theory::polynomial::Polynomial;
 use rayon::prelude::*;
 
 /// Which pair of equations defines the curve.

@@ -1,16 +1,17 @@
 //! Allocation-free evaluation of the averaged polynomials g(x) = f/A and h(x) = A·m1 at one
 //! parameter point, and the certified stable-root count on them.
 //!
-//! [`crate::averaging::Theory::new`] clones the parameters and allocates its polynomials; a map
+//! [`crate::theory::averaging::Theory::new`] clones the parameters and allocates its polynomials; a map
 //! of 10⁶ points cannot afford that. Here a parameter point is a `Copy` struct, the
 //! coefficients are built on the stack with the same arithmetic as `Theory` (bit-identical
 //! coefficients for the paper variant), and the Sturm count follows
-//! [`crate::polynomial::Polynomial::sturm_count`] on fixed-size arrays (power-of-two scaling,
+//! [`crate::theory::polynomial::Polynomial::sturm_count`] on fixed-size arrays (power-of-two scaling,
 //! rolled sequence: only rounding differs, so counts agree except within ~1e-10 of a fold).
 
-use crate::averaging::{phase_average_weight, Equivalents, Variant};
 use crate::error::{Error, Result};
+use crate::model::Equivalents;
 use crate::model::Params;
+use crate::theory::averaging::{phase_average_weight, Variant};
 
 /// Most damping coefficients c_0 … c_{MAXC−1} the fast path supports (P(U) up to U^22).
 pub const MAXC: usize = 12;
@@ -280,7 +281,7 @@ impl Kernel {
     }
 }
 
-/// Stable roots (+ → − crossings) on x > 0, as [`crate::averaging::stable_count`].
+/// Stable roots (+ → − crossings) on x > 0, as [`crate::theory::averaging::stable_count`].
 #[inline]
 pub(crate) fn stable_count(p: &Coeffs) -> usize {
     let n = sturm_count_positive(p);
@@ -454,8 +455,8 @@ fn neg_remainder(a: &Coeffs, b: &Coeffs) -> Coeffs {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::averaging::Theory;
-    use crate::polynomial::Polynomial;
+    use crate::theory::averaging::Theory;
+    use crate::theory::polynomial::Polynomial;
     use proptest::prelude::*;
 
     #[test]

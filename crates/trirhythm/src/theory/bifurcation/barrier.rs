@@ -1,7 +1,7 @@
 //! Energy-barrier surfaces ΔU_i over a parameter plane (Fig. 9).
 
 use super::grid::Plane;
-use crate::averaging::{Side, Theory};
+use crate::theory::averaging::{Side, Theory};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 

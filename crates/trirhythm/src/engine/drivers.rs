@@ -1,0 +1,320 @@
+//! Drivers: loops over a [`Stepper`] with an [`Observer`] deciding what to keep.
+//!
+//! [`run`] steps a path and shows every node to the observer, which records what it wants
+//! (a trajectory every K steps, streaming statistics, …) and may stop the path early
+//! ([`Flow::Stop`]). [`simulate`] and [`simulate_ensemble`] are such loops with the
+//! [`TrajectoryRecorder`]. Ensembles build the verified SOE kernel once and run paths in
+//! parallel; path i depends only on (seed, i), so results are bit-identical whatever the number
+//! of threads.
+//!
+//! # Example
+//! ```
+//! use trirhythm::engine::{run, simulate, Flow, Options, Oscillator, PredictorCorrector, Stepper};
+//! use trirhythm::model::preset;
+//!
+//! let osc = Oscillator::new(&preset("fig1")?.params)?;            // the problem (Eq. 1)
+//! let method = PredictorCorrector { dt: 0.01, ..Default::default() }; // SOE memory, 1e-10
+//! let options = Options { t_end: 50.0, u0: 6.78, v0: 0.0, ..Default::default() };
+//! let path = simulate(&osc, &method, &options, 42)?;               // seed 42, path 0
+//! assert_eq!(path.steps, 5000);
+//! assert!(path.u.iter().all(|&u| u >= 0.0) && path.impacts > 0);
+//!
+//! // the same path, stopped at its first impact by an observer
+//! let mut stepper = options.stepper(&osc, &method, (42, 0))?;
+//! let mut first = None;
+//! run(&mut stepper, 5000, &mut |s: &Stepper| match s.events().impact {
+//!     Some(i) => { first = Some(i.time); Flow::Stop }
+//!     None => Flow::Continue,
+//! }, None)?;
+//! let t = first.expect("an impact before t = 50");
+//! assert_eq!(stepper.impacts(), 1);
+//! assert!(stepper.time() - 0.01 < t && t <= stepper.time()); // inside the last step
+//! # Ok::<(), trirhythm::Error>(())
+//! ```
+
+use super::problem::{Options, Oscillator, PredictorCorrector};
+use super::stepper::{fresh_history, Impact, Stepper};
+use crate::error::{Error, Result};
+use rayon::prelude::*;
+
+/// Whether a driver goes on after an observation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Flow {
+    /// Take the next step.
+    Continue,
+    /// End the path here.
+    Stop,
+}
+
+/// What a driver shows each node to: once at the start and after every step.
+pub trait Observer {
+    /// Look at the path after its latest step (or at its start).
+    fn observe(&mut self, path: &Stepper) -> Flow;
+}
+
+impl<F: FnMut(&Stepper) -> Flow> Observer for F {
+    fn observe(&mut self, path: &Stepper) -> Flow {
+        self(path)
+    }
+}
+
+/// Progress callback: the fraction of the requested steps done.
+pub type Progress<'a> = Option<&'a (dyn Fn(f64) + Sync)>;
+
+/// Step `path` up to `steps` times, showing the start and every step to `observer`; returns
+/// the number of steps taken (fewer when the observer stopped the path).
+pub fn run(
+    path: &mut Stepper,
+    steps: u64,
+    observer: &mut impl Observer,
+    progress: Progress,
+) -> Result<u64> {
+    if observer.observe(path) == Flow::Stop {
+        return Ok(0);
+    }
+    let tick = (steps / 1000).max(1);
+    for n in 1..=steps {
+        path.step()?;
+        if observer.observe(path) == Flow::Stop {
+            return Ok(n);
+        }
+        if let Some(p) = progress {
+            if n % tick == 0 {
+                p(n as f64 / steps as f64);
+            }
+        }
+    }
+    Ok(steps)
+}
+
+impl Options {
+    /// The number of steps of Δt in [0, T] (T rounded to a whole number of steps), checked.
+    pub fn steps(&self, dt: f64) -> Result<u64> {
+        if !(dt > 0.0 && dt.is_finite()) {
+            return Err(Error::invalid("dt", dt, "(0, ∞), finite"));
+        }
+        if !(self.t_end > 0.0 && self.t_end.is_finite()) {
+            return Err(Error::invalid("t_end", self.t_end, "(0, ∞), finite"));
+        }
+        let steps = (self.t_end / dt).round();
+        if !(1.0..=1e11).contains(&steps) {
+            return Err(Error::invalid(
+                "t_end",
+                self.t_end,
+                "between one step and 1e11 steps of dt",
+            ));
+        }
+        Ok(steps as u64)
+    }
+
+    /// A stepper for path `path` of `seed` from these options' start, equation and wall.
+    pub fn stepper(
+        &self,
+        oscillator: &Oscillator,
+        method: &PredictorCorrector,
+        (seed, path): (u64, u64),
+    ) -> Result<Stepper> {
+        let steps = self.steps(method.dt)?;
+        Stepper::new(
+            oscillator,
+            method,
+            self.system,
+            self.barrier,
+            (self.u0, self.v0),
+            (seed, path),
+            steps as f64 * method.dt,
+            self.blow_up,
+        )
+    }
+}
+
+/// Records a [`Trajectory`]: every `record_every`-th node, the impacts when asked for, and
+/// the mean amplitude over the last periods.
+#[derive(Debug, Clone)]
+pub struct TrajectoryRecorder {
+    every: u64,
+    record_impacts: bool,
+    has_noise: bool,
+    omega1: f64,
+    avg_from: f64,
+    amp_sum: f64,
+    amp_n: u64,
+    out: Trajectory,
+}
+
+impl TrajectoryRecorder {
+    /// A recorder for `options` on `oscillator` (capacity for `steps` steps).
+    pub fn new(oscillator: &Oscillator, options: &Options, steps: u64, dt: f64) -> Result<Self> {
+        if options.record_every == 0 {
+            return Err(Error::invalid("every", 0.0, "1 or more"));
+        }
+        let every = options.record_every as u64;
+        let cap = (steps / every + 2) as usize;
+        let has_noise = !oscillator.noise().is_none();
+        let omega1 = oscillator.equivalents().omega1;
+        let t_end = steps as f64 * dt;
+        Ok(TrajectoryRecorder {
+            every,
+            record_impacts: options.record_impacts,
+            has_noise,
+            omega1,
+            avg_from: t_end - options.amplitude_periods * 2.0 * std::f64::consts::PI / omega1,
+            amp_sum: 0.0,
+            amp_n: 0,
+            out: Trajectory {
+                t: Vec::with_capacity(cap),
+                u: Vec::with_capacity(cap),
+                v: Vec::with_capacity(cap),
+                eta: Vec::with_capacity(if has_noise { cap } else { 0 }),
+                dt,
+                ..Default::default()
+            },
+        })
+    }
+
+    /// The trajectory, with the path's counters.
+    pub fn finish(mut self, path: &Stepper) -> Trajectory {
+        let (u, v, w) = (path.u(), path.v(), self.omega1);
+        let out = &mut self.out;
+        out.steps = path.steps() as usize;
+        out.impacts = path.impacts() as usize;
+        out.sticking_steps = path.sticking_steps() as usize;
+        out.final_amplitude = if self.amp_n > 0 {
+            self.amp_sum / self.amp_n as f64
+        } else {
+            (u * u + v * v / (w * w)).sqrt()
+        };
+        out.exponentials = path.exponentials();
+        out.soe_error = path.soe_error();
+        out.memory_bytes = path.memory_bytes();
+        self.out
+    }
+}
+
+impl Observer for TrajectoryRecorder {
+    #[inline]
+    fn observe(&mut self, s: &Stepper) -> Flow {
+        let n = s.steps();
+        if n > 0 {
+            if let Some(i) = s.events().impact {
+                if self.record_impacts {
+                    self.out.impact_events.push(i);
+                }
+            }
+            let t = s.time();
+            if t >= self.avg_from {
+                let (u, v) = (s.u(), s.v());
+                self.amp_sum += (u * u + v * v / (self.omega1 * self.omega1)).sqrt();
+                self.amp_n += 1;
+            }
+        }
+        if n % self.every == 0 {
+            self.out.t.push(s.time());
+            self.out.u.push(s.u());
+            self.out.v.push(s.v());
+            if self.has_noise {
+                self.out.eta.push(s.eta());
+            }
+        }
+        Flow::Continue
+    }
+}
+
+/// Simulate one path (path 0 of `seed`).
+pub fn simulate(
+    oscillator: &Oscillator,
+    method: &PredictorCorrector,
+    options: &Options,
+    seed: u64,
+) -> Result<Trajectory> {
+    simulate_path(oscillator, method, options, seed, 0, None)
+}
+
+/// Simulate path `path` of `seed`, reporting progress (fraction done) to `progress`.
+pub fn simulate_path(
+    oscillator: &Oscillator,
+    method: &PredictorCorrector,
+    options: &Options,
+    seed: u64,
+    path: u64,
+    progress: Progress,
+) -> Result<Trajectory> {
+    let steps = options.steps(method.dt)?;
+    let mut recorder = TrajectoryRecorder::new(oscillator, options, steps, method.dt)?;
+    let mut stepper = options.stepper(oscillator, method, (seed, path))?;
+    run(&mut stepper, steps, &mut recorder, progress)?;
+    Ok(recorder.finish(&stepper))
+}
+
+/// Simulate paths 0..`paths` of `seed` in parallel. Path i depends only on (seed, i), so the
+/// result is bit-identical whatever the number of threads.
+pub fn simulate_ensemble(
+    oscillator: &Oscillator,
+    method: &PredictorCorrector,
+    options: &Options,
+    seed: u64,
+    paths: usize,
+) -> Result<Vec<Trajectory>> {
+    if paths == 0 {
+        return Ok(vec![]);
+    }
+    let steps = options.steps(method.dt)?;
+    // validate once, and build (and verify) the SOE kernel once for all paths
+    TrajectoryRecorder::new(oscillator, options, 0, method.dt)?;
+    let first = options.stepper(oscillator, method, (seed, 0))?;
+    let history = fresh_history(oscillator, method, options.system, steps as f64 * method.dt)?;
+    (0..paths as u64)
+        .into_par_iter()
+        .map(|i| {
+            let mut stepper = if i == 0 {
+                first.clone()
+            } else {
+                Stepper::with_history(
+                    oscillator,
+                    method,
+                    options.system,
+                    options.barrier,
+                    (options.u0, options.v0),
+                    (seed, i),
+                    history.clone(),
+                    options.blow_up,
+                )?
+            };
+            let mut recorder = TrajectoryRecorder::new(oscillator, options, steps, method.dt)?;
+            run(&mut stepper, steps, &mut recorder, None)?;
+            Ok(recorder.finish(&stepper))
+        })
+        .collect()
+}
+
+/// The result of one path.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Trajectory {
+    /// Recorded times.
+    pub t: Vec<f64>,
+    /// U at the recorded times (Z for [`super::System::Zhuravlev`]).
+    pub u: Vec<f64>,
+    /// V = U̇ at the recorded times.
+    pub v: Vec<f64>,
+    /// η at the recorded times (OU: the node value; white: the level of the step that led
+    /// there; empty when there is no noise).
+    pub eta: Vec<f64>,
+    /// Number of impacts.
+    pub impacts: usize,
+    /// The impacts, when asked for.
+    pub impact_events: Vec<Impact>,
+    /// Steps that ended clamped at the wall (sticking).
+    pub sticking_steps: usize,
+    /// Steps taken.
+    pub steps: usize,
+    /// Step Δt.
+    pub dt: f64,
+    /// Mean of A = sqrt(U² + V²/ω1²) over the last [`Options::amplitude_periods`] periods.
+    pub final_amplitude: f64,
+    /// Number of exponentials of the SOE memory (0 for Direct or λ = 1).
+    pub exponentials: usize,
+    /// The SOE kernel's verified maximal relative error (0 when unused).
+    pub soe_error: f64,
+    /// Bytes of memory state held at the end of the run.
+    pub memory_bytes: usize,
+}

@@ -1,0 +1,29 @@
+//! The simulation of Eq. (1) and its integer-order companions (Eq. 5, Eq. 9): memory kernels,
+//! noise, the stepper with its impacts, and the drivers.
+//!
+//! Layers, each depending only on those before it:
+//! - [`kernel`]: product-integration weights and the verified sum-of-exponentials kernel;
+//! - `memory`: the whole history of J^λ g of one path (exact window, SOE modes, lumped terms),
+//!   with [`Memory`] choosing how it is kept, and [`solve_scalar`] for scalar Caputo problems;
+//! - [`noise`]: Ornstein–Uhlenbeck and white forcing with seeded per-path streams;
+//! - [`Stepper`]: the linearly implicit predictor–corrector step with impacts (module docs of
+//!   `stepper` give the method and why);
+//! - drivers: [`run`] with an [`Observer`], [`simulate`], [`simulate_ensemble`].
+//!
+//! The engine depends on [`crate::model`] (parameters, Eq. 5 equivalents) and
+//! [`crate::special`] only, never on the averaged theory.
+
+mod drivers;
+pub mod kernel;
+mod memory;
+pub mod noise;
+mod problem;
+mod stepper;
+
+pub use drivers::{
+    run, simulate, simulate_ensemble, simulate_path, Flow, Observer, Progress, Trajectory,
+    TrajectoryRecorder,
+};
+pub use memory::{solve_scalar, Memory, DEFAULT_WINDOW};
+pub use problem::{Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System};
+pub use stepper::{Impact, StepEvents, Stepper};
