@@ -1,52 +1,116 @@
-//! Side-by-side timings of the engine for the README and the closing note:
+//! Side-by-side timings of the engine for the README and the closing notes:
 //! `cargo run --release -p trirhythm --example engine_timing [-- quick]`.
 //!
-//! Prints, in one run: SOE at λ = 0.998 vs λ = 1 at 1e6 and 1e7 steps (cost ratio, steps/s);
-//! SOE vs Direct at 1e4, 3e4, 1e5 steps (speed-up and max |ΔU|); the number of exponentials.
+//! Prints, in one run:
+//! - the noisy fractional path of the speed target (Fig. 13(a) set: λ = 0.998, OU noise D = 0.1,
+//!   τ = 0.5, wall on, Δt = 0.01, 10⁷ steps) against the same path at λ = 1 and without noise,
+//!   in steps per second on one core, with the per-step breakdown (memory, noise, the rest);
+//! - SOE vs Direct at 1e4, 3e4, 1e5 steps (speed-up and max |ΔU|).
 
+use std::hint::black_box;
 use std::time::Instant;
-use trirhythm::engine::Memory;
-use trirhythm::engine::{simulate, Trajectory};
+use trirhythm::engine::noise::NoiseStream;
+use trirhythm::engine::{probe_memory, simulate, Memory, Options, Oscillator, PredictorCorrector};
 use trirhythm::known_answers::engine_benchmark_case;
+use trirhythm::model::preset;
 
-fn run(lambda: f64, steps: usize, memory: Memory, every: usize) -> (Trajectory, f64) {
-    let (osc, m, o) = engine_benchmark_case(lambda, steps, memory, every).unwrap();
+fn speed_case(lambda: f64, d: f64, steps: usize) -> (f64, usize, f64) {
+    let p = preset("fig13a")
+        .unwrap()
+        .params
+        .with("lambda", lambda)
+        .unwrap()
+        .with("D", d)
+        .unwrap();
+    let osc = Oscillator::new(&p).unwrap();
+    let m = PredictorCorrector {
+        dt: 0.01,
+        ..Default::default()
+    };
+    let o = Options {
+        t_end: steps as f64 * 0.01,
+        u0: 7.0,
+        v0: 0.0,
+        record_every: steps,
+        ..Default::default()
+    };
     let start = Instant::now();
-    let tr = simulate(&osc, &m, &o, 0).unwrap();
-    (tr, start.elapsed().as_secs_f64())
+    let tr = simulate(&osc, &m, &o, 1).unwrap();
+    (
+        start.elapsed().as_secs_f64(),
+        tr.impacts,
+        tr.final_amplitude,
+    )
+}
+
+fn noise_only(steps: usize) -> f64 {
+    let p = preset("fig13a").unwrap().params;
+    let osc = Oscillator::new(&p).unwrap();
+    let mut s = NoiseStream::new(osc.noise(), 0.01, 1, 0).unwrap();
+    let start = Instant::now();
+    let mut acc = 0.0;
+    for _ in 0..steps {
+        acc += s.next_step().0;
+    }
+    black_box(acc);
+    start.elapsed().as_secs_f64()
+}
+
+fn memory_only(lambda: f64, steps: usize) -> f64 {
+    let start = Instant::now();
+    black_box(probe_memory(lambda, 0.01, steps).unwrap());
+    start.elapsed().as_secs_f64()
 }
 
 fn main() {
     let quick = std::env::args().any(|a| a == "quick");
-    println!("Eq. (1), fig1 parameters with mu0 = 0.1, barrier on, dt = 0.01, U(0) = 2");
-    println!("\nSOE (tolerance 1e-10) at lambda = 0.998 vs lambda = 1 (no memory):");
-    let sizes: &[usize] = if quick {
-        &[1_000_000]
-    } else {
-        &[1_000_000, 10_000_000]
-    };
-    for &n in sizes {
-        let (a, ta) = run(0.998, n, Memory::default(), n);
-        let (b, tb) = run(1.0, n, Memory::default(), n);
+    let n: usize = if quick { 1_000_000 } else { 10_000_000 };
+    println!("Eq. (1), fig13a set (mu0 = 0.005, r = 0.99), wall on, dt = 0.01, U(0) = 7, N = {n}, one core");
+    let mut rows = vec![];
+    for (lambda, d) in [(0.998, 0.1), (1.0, 0.1), (0.998, 0.0), (1.0, 0.0)] {
+        let (t, impacts, amp) = speed_case(lambda, d, n);
         println!(
-            "  N = {n:>9}: lambda=0.998 {ta:7.3} s ({:.2e} steps/s, {} exponentials, {} impacts) | lambda=1 {tb:7.3} s ({:.2e} steps/s) | ratio {:.2}x",
-            n as f64 / ta,
-            a.exponentials,
-            a.impacts,
-            n as f64 / tb,
-            ta / tb
+            "  lambda = {lambda:<5} D = {d:<3}: {t:7.3} s  {:>6.2e} steps/s  ({:5.1} ns/step, {impacts} impacts, final A {amp:.4})",
+            n as f64 / t,
+            t / n as f64 * 1e9
         );
-        let _ = b;
+        rows.push(t);
     }
-    println!("\nSOE (tolerance 1e-12) vs Direct at lambda = 0.998:");
+    println!(
+        "  cost of lambda = 0.998 relative to lambda = 1, both noisy: {:.2}x",
+        rows[0] / rows[1]
+    );
+    let tn = noise_only(n);
+    let tm = memory_only(0.998, n);
+    let tm1 = memory_only(1.0, n);
+    let per = |t: f64| t / n as f64 * 1e9;
+    println!("  per-step breakdown of the noisy lambda = 0.998 path (each part timed alone):");
+    println!("    memory (49 exponentials + 15-step window): {:5.1} ns  (lambda = 1, running integral: {:.1} ns)", per(tm), per(tm1));
+    println!("    noise (OU, two normal deviates)           : {:5.1} ns", per(tn));
+    println!(
+        "    the rest (g, corrector, impacts, driver)   : {:5.1} ns",
+        per(rows[0]) - per(tm) - per(tn)
+    );
+    println!("    total                                     : {:5.1} ns", per(rows[0]));
+
+    if std::env::args().any(|a| a == "speed") {
+        return;
+    }
+    println!("\nSOE (tolerance 1e-12) vs Direct at lambda = 0.998 (fig1 set, mu0 = 0.1, U(0) = 2):");
     let sizes: &[usize] = if quick {
         &[10_000, 30_000]
     } else {
         &[10_000, 30_000, 100_000]
     };
     for &n in sizes {
-        let (s, ts) = run(0.998, n, Memory::SumOfExponentials { tolerance: 1e-12 }, 1);
-        let (d, td) = run(0.998, n, Memory::Direct, 1);
+        let run = |memory| {
+            let (osc, m, o) = engine_benchmark_case(0.998, n, memory, 1).unwrap();
+            let start = Instant::now();
+            let tr = simulate(&osc, &m, &o, 0).unwrap();
+            (tr, start.elapsed().as_secs_f64())
+        };
+        let (s, ts) = run(Memory::SumOfExponentials { tolerance: 1e-12 });
+        let (d, td) = run(Memory::Direct);
         let du =
             s.u.iter()
                 .zip(&d.u)

@@ -97,11 +97,12 @@ impl Window {
             return Some((left, right));
         }
         let (pos, leaving) = if self.len < cap {
+            // not yet full: head is 0
             self.len += 1;
-            ((self.head + self.len - 1) % cap, None)
+            (self.len - 1, None)
         } else {
             let h = self.head;
-            self.head = (h + 1) % cap;
+            self.head = if h + 1 == cap { 0 } else { h + 1 };
             (h, Some((self.left[h], self.right[h])))
         };
         self.left[pos] = left;
@@ -145,7 +146,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// The exponential modes of an SOE kernel, advanced by one unsplit piece (l, r):
 /// Y ← e^{−sh}Y + a·l + b·r, returning Σ out·Y. Laid out in blocks of four; the arithmetic is
 /// plain multiplies and adds in a fixed order (no fused multiply–add), so the result is
-/// bit-identical on every x86-64, whether it runs the SSE2 or the AVX2 version.
+/// bit-identical on every machine, whether it runs the portable or the AVX version.
 #[derive(Debug, Clone, Default)]
 struct Modes {
     y: Vec<[f64; 4]>,
@@ -155,15 +156,17 @@ struct Modes {
     out: Vec<[f64; 4]>,
 }
 
-#[inline(always)]
+/// Y ← e^{−sh}Y + a·l + b·r and Σ out·Y, lane by lane as ((d·y + a·l) + b·r), the four lane
+/// sums combined as (s0 + s1) + (s2 + s3).
 fn advance_modes(m: &mut Modes, l: f64, r: f64) -> f64 {
     let mut acc = [0.0; 4];
-    for ((((y, d), a), b), o) in
-        m.y.iter_mut()
-            .zip(&m.decay)
-            .zip(&m.start)
-            .zip(&m.end)
-            .zip(&m.out)
+    for ((((y, d), a), b), o) in m
+        .y
+        .iter_mut()
+        .zip(&m.decay)
+        .zip(&m.start)
+        .zip(&m.end)
+        .zip(&m.out)
     {
         for i in 0..4 {
             let v = d[i] * y[i] + a[i] * l + b[i] * r;
@@ -174,10 +177,39 @@ fn advance_modes(m: &mut Modes, l: f64, r: f64) -> f64 {
     (acc[0] + acc[1]) + (acc[2] + acc[3])
 }
 
+/// [`advance_modes`] in AVX: the same operations in the same order, four lanes at once.
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn advance_modes_avx2(m: &mut Modes, l: f64, r: f64) -> f64 {
-    advance_modes(m, l, r)
+#[target_feature(enable = "avx")]
+unsafe fn advance_modes_avx(m: &mut Modes, l: f64, r: f64) -> f64 {
+    use std::arch::x86_64::*;
+    let lv = _mm256_set1_pd(l);
+    let rv = _mm256_set1_pd(r);
+    let mut acc = _mm256_setzero_pd();
+    let n = m.y.len();
+    let (y, d, a, b, o) = (
+        m.y.as_mut_ptr() as *mut f64,
+        m.decay.as_ptr() as *const f64,
+        m.start.as_ptr() as *const f64,
+        m.end.as_ptr() as *const f64,
+        m.out.as_ptr() as *const f64,
+    );
+    for k in 0..n {
+        let i = 4 * k;
+        // SAFETY: all five arrays hold n blocks of four f64.
+        let yv = _mm256_loadu_pd(y.add(i));
+        let v = _mm256_add_pd(
+            _mm256_add_pd(
+                _mm256_mul_pd(_mm256_loadu_pd(d.add(i)), yv),
+                _mm256_mul_pd(_mm256_loadu_pd(a.add(i)), lv),
+            ),
+            _mm256_mul_pd(_mm256_loadu_pd(b.add(i)), rv),
+        );
+        _mm256_storeu_pd(y.add(i), v);
+        acc = _mm256_add_pd(acc, _mm256_mul_pd(_mm256_loadu_pd(o.add(i)), v));
+    }
+    let mut s = [0.0; 4];
+    _mm256_storeu_pd(s.as_mut_ptr(), acc);
+    (s[0] + s[1]) + (s[2] + s[3])
 }
 
 impl Modes {
@@ -186,13 +218,13 @@ impl Modes {
     }
 
     #[inline]
-    fn advance(&mut self, l: f64, r: f64, avx2: bool) -> f64 {
+    fn advance(&mut self, l: f64, r: f64, avx: bool) -> f64 {
         #[cfg(target_arch = "x86_64")]
-        if avx2 {
-            // SAFETY: `avx2` is true only when the CPU reported AVX2 at construction.
-            return unsafe { advance_modes_avx2(self, l, r) };
+        if avx {
+            // SAFETY: `avx` is true only when the CPU reported AVX at construction.
+            return unsafe { advance_modes_avx(self, l, r) };
         }
-        let _ = avx2;
+        let _ = avx;
         advance_modes(self, l, r)
     }
 
@@ -244,8 +276,13 @@ pub(crate) struct History {
     soe: Option<SoeKernel>,
     /// SOE mode state Y_j = ∫ e^{−s_j (t_m − s)} g(s) ds up to the window's start t_m.
     modes: Modes,
-    avx2: bool,
-    /// ∫ g and ∫ (t_m − s) g over the same history (the lumped terms' state).
+    /// The CPU runs AVX (the modes are advanced four lanes at once, same bits).
+    avx: bool,
+    /// The SOE kernel's lumped constant C₀ and slope C₁ (copied out of `soe` for the hot path).
+    constant: f64,
+    slope: f64,
+    /// ∫ g and ∫ (t_m − s) g over the same history (the lumped terms' state; the moment is
+    /// kept only when C₁ ≠ 0).
     integral: f64,
     moment: f64,
     /// The history's value for the next step.
@@ -283,7 +320,9 @@ impl History {
             wr_rev: vec![],
             soe: None,
             modes: Modes::default(),
-            avx2: false,
+            avx: false,
+            constant: 0.0,
+            slope: 0.0,
             integral: 0.0,
             moment: 0.0,
             cached: 0.0,
@@ -327,12 +366,14 @@ impl History {
             };
             #[cfg(target_arch = "x86_64")]
             {
-                c.avx2 = std::arch::is_x86_feature_detected!("avx2");
+                c.avx = std::arch::is_x86_feature_detected!("avx");
             }
             c.local = Window::new(cap);
             c.grow_weights(cap);
             c.wl_rev = (1..=cap).rev().map(|p| c.wl[p]).collect();
             c.wr_rev = (1..=cap).rev().map(|p| c.wr[p]).collect();
+            c.constant = k.constant;
+            c.slope = k.slope;
             c.soe = Some(k);
         }
         Ok(c)
@@ -468,13 +509,11 @@ impl History {
             };
             modes = self.absorb(left, right, split);
         }
-        let kernel = self.soe.as_ref().expect("SOE memory");
-        if kernel.slope != 0.0 {
+        if self.slope != 0.0 {
             let back = (self.local.cap + 1) as f64 * self.dt;
-            modes += kernel.constant * self.integral
-                - kernel.slope * (self.moment + back * self.integral);
+            modes += self.constant * self.integral - self.slope * (self.moment + back * self.integral);
         } else {
-            modes += kernel.constant * self.integral;
+            modes += self.constant * self.integral;
         }
         let (l, r) = self.local.slices();
         let n = l.len();
@@ -518,9 +557,11 @@ impl History {
                 let modes = if self.modes.y.is_empty() {
                     0.0
                 } else {
-                    self.modes.advance(left, right, self.avx2)
+                    self.modes.advance(left, right, self.avx)
                 };
-                self.moment += h * self.integral + h * h * (left / 3.0 + right / 6.0);
+                if self.slope != 0.0 {
+                    self.moment += h * self.integral + h * h * (left / 3.0 + right / 6.0);
+                }
                 self.integral += 0.5 * h * (left + right);
                 modes
             }
@@ -645,6 +686,29 @@ pub fn solve_scalar(
         ys.push(y1);
     }
     Ok(ys)
+}
+
+/// Push `steps` pieces of a smooth g into a fresh memory of order λ and return its final value:
+/// the memory's own cost per step, for the engine's timing breakdown.
+#[doc(hidden)]
+pub fn probe_memory(lambda: f64, dt: f64, steps: usize) -> Result<f64> {
+    let mut h = History::new(lambda, dt, dt * steps as f64, Memory::default(), DEFAULT_WINDOW)?;
+    // g = sin t by rotation (cheap, so that the probe times the memory, not `sin`)
+    let (c, s) = (dt.cos(), dt.sin());
+    let (mut left, mut cos) = (0.0, 1.0);
+    let mut acc = 0.0;
+    for _ in 0..steps {
+        let right = left * c + cos * s;
+        cos = cos * c - left * s;
+        h.push(Piece {
+            left,
+            right,
+            split: None,
+        });
+        acc += h.value();
+        left = right;
+    }
+    Ok(acc)
 }
 
 #[cfg(test)]

@@ -24,6 +24,6 @@ pub use drivers::{
     run, simulate, simulate_ensemble, simulate_path, Flow, Observer, Progress, Trajectory,
     TrajectoryRecorder,
 };
-pub use memory::{solve_scalar, Memory, DEFAULT_WINDOW};
+pub use memory::{probe_memory, solve_scalar, Memory, DEFAULT_WINDOW};
 pub use problem::{Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System};
 pub use stepper::{Impact, StepEvents, Stepper};
