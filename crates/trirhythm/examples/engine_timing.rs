@@ -86,17 +86,25 @@ fn main() {
     let per = |t: f64| t / n as f64 * 1e9;
     println!("  per-step breakdown of the noisy lambda = 0.998 path (each part timed alone):");
     println!("    memory (49 exponentials + 15-step window): {:5.1} ns  (lambda = 1, running integral: {:.1} ns)", per(tm), per(tm1));
-    println!("    noise (OU, two normal deviates)           : {:5.1} ns", per(tn));
+    println!(
+        "    noise (OU, two normal deviates)           : {:5.1} ns",
+        per(tn)
+    );
     println!(
         "    the rest (g, corrector, impacts, driver)   : {:5.1} ns",
         per(rows[0]) - per(tm) - per(tn)
     );
-    println!("    total                                     : {:5.1} ns", per(rows[0]));
+    println!(
+        "    total                                     : {:5.1} ns",
+        per(rows[0])
+    );
 
     if std::env::args().any(|a| a == "speed") {
         return;
     }
-    println!("\nSOE (tolerance 1e-12) vs Direct at lambda = 0.998 (fig1 set, mu0 = 0.1, U(0) = 2):");
+    println!(
+        "\nSOE (tolerance 1e-12) vs Direct at lambda = 0.998 (fig1 set, mu0 = 0.1, U(0) = 2):"
+    );
     let sizes: &[usize] = if quick {
         &[10_000, 30_000]
     } else {

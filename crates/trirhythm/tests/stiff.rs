@@ -1,0 +1,180 @@
+//! Stiff damping: the paper's own parameters where μ0|P(U)| reaches hundreds (Fig. 13(b) at
+//! U ≈ 13, Fig. 5(e) at μ0 = 0.7). The explicit corrector of the previous engine blew up there at
+//! Δt = 0.01 (t = 0.06 and t = 0.04); the linearly implicit corrector must integrate them, land
+//! on the averaging's outer cycle, and converge in Δt.
+
+use trirhythm::engine::{run, Barrier, Flow, Oscillator, PredictorCorrector, Stepper, System};
+use trirhythm::model::preset;
+use trirhythm::theory::averaging::{Theory, Variant};
+use trirhythm::Error;
+
+/// Turning-point amplitudes (maxima of U) of the last `keep` cycles, and the largest stiffness
+/// Δt·μ|P(U)| met on the way.
+fn turning_points(preset_name: &str, mu0: Option<f64>, dt: f64, t_end: f64) -> (Vec<f64>, f64) {
+    let mut p = preset(preset_name).unwrap().params.with("D", 0.0).unwrap();
+    if let Some(m) = mu0 {
+        p = p.with("mu0", m).unwrap();
+    }
+    let osc = Oscillator::new(&p).unwrap();
+    let m = PredictorCorrector {
+        dt,
+        ..Default::default()
+    };
+    let mut s = Stepper::new(
+        &osc,
+        &m,
+        System::Fractional,
+        Barrier::On,
+        (13.0, 0.0),
+        (1, 0),
+        t_end,
+        1e8,
+    )
+    .unwrap();
+    let (mut prev, mut rising) = (13.0, false);
+    let mut maxima = vec![];
+    let mut stiffness: f64 = 0.0;
+    let c = p.damping.coefficients.clone();
+    let steps = (t_end / dt).round() as u64;
+    run(
+        &mut s,
+        steps,
+        &mut |s: &Stepper| {
+            let u = s.u();
+            let pu: f64 = c.iter().rev().fold(0.0, |a, &c| a * u * u + c);
+            stiffness = stiffness.max(dt * p.mu0 * pu.abs());
+            if u < prev && rising {
+                maxima.push(prev);
+            }
+            rising = u > prev;
+            prev = u;
+            Flow::Continue
+        },
+        None,
+    )
+    .unwrap();
+    (maxima, stiffness)
+}
+
+#[test]
+fn fig13b_from_u13_settles_on_the_outer_cycle_and_converges_in_dt() {
+    let outer = Theory::new(
+        &preset("fig13b").unwrap().params.with("D", 0.0).unwrap(),
+        Variant::Paper,
+    )
+    .unwrap()
+    .limit_cycles()
+    .last()
+    .unwrap()
+    .amplitude;
+    let runs: Vec<(f64, f64)> = [0.01, 0.005, 0.0025]
+        .iter()
+        .map(|&dt| {
+            let (m, stiff) = turning_points("fig13b", None, dt, 300.0);
+            let last = *m.last().unwrap();
+            // settled: the last cycles repeat
+            let spread = m[m.len() - 4..]
+                .iter()
+                .fold(0.0f64, |a, &x| a.max((x - last).abs()));
+            assert!(
+                spread < 1e-3 * last,
+                "Δt = {dt}: not settled, spread {spread}"
+            );
+            (last, stiff)
+        })
+        .collect();
+    let (a1, a2, a3) = (runs[0].0, runs[1].0, runs[2].0);
+    let (d12, d23) = ((a1 - a2).abs() / a2, (a2 - a3).abs() / a3);
+    let order = (d12 / d23).log2();
+    println!(
+        "fig13b turning amplitudes {a1:.6} / {a2:.6} / {a3:.6} (Δt = 0.01 / 0.005 / 0.0025), \
+         averaging's outer cycle {outer:.6}; relative changes {d12:.2e}, {d23:.2e}, observed order \
+         {order:.2}; largest stiffness Δt·μ0|P(U)| = {:.2}",
+        runs[0].1
+    );
+    // the stiff regime is really met at Δt = 0.01
+    assert!(runs[0].1 > 2.0, "stiffness {}", runs[0].1);
+    // on the outer cycle (the other stable cycles are at 2.6 and 8.4)
+    assert!((a1 - outer).abs() < 0.02 * outer, "{a1} vs {outer}");
+    // converged at second order
+    assert!((1.5..2.6).contains(&order), "order {order}");
+    assert!(d12 < 3e-3 && d23 < 1e-3, "{d12:e} {d23:e}");
+}
+
+#[test]
+fn fig5e_cycles_at_mu0_07_are_integrated_at_dt_001_and_converge() {
+    // Fig. 5(e): μ0 = 0.7, λ = 1, r = 1: the averaging's outer cycle. At Δt = 0.01 the step is
+    // stable (stiffness up to ≈ 90) but the relaxation's fast phase is under-resolved: the
+    // turning amplitude is ≈ 10 % high there and converges at second order below Δt = 0.005.
+    let p = preset("fig5").unwrap().params.with("mu0", 0.7).unwrap();
+    let outer = Theory::new(&p, Variant::Paper)
+        .unwrap()
+        .limit_cycles()
+        .last()
+        .unwrap()
+        .amplitude;
+    let amp = |dt: f64| {
+        let (m, stiff) = turning_points("fig5", Some(0.7), dt, 300.0);
+        (*m.last().unwrap(), stiff)
+    };
+    let (a1, stiff) = amp(0.01);
+    let (a2, _) = amp(0.005);
+    let (a3, _) = amp(0.0025);
+    let (a4, _) = amp(0.00125);
+    let order = ((a2 - a3) / (a3 - a4)).abs().log2();
+    println!(
+        "fig5 μ0 = 0.7: turning amplitudes {a1:.5} / {a2:.5} / {a3:.5} / {a4:.5} \
+         (Δt = 0.01 / 0.005 / 0.0025 / 0.00125); averaging {outer:.5}; stiffness up to \
+         {stiff:.1} at Δt = 0.01; observed order {order:.2}"
+    );
+    assert!(stiff > 50.0, "stiffness {stiff}");
+    // integrated without blow-up and on the outer branch (the others are below 9)
+    assert!(a1 > 11.0 && a1 < 15.0, "{a1}");
+    assert!((a4 - outer).abs() < 0.01 * outer, "{a4} vs {outer}");
+    assert!((1.5..2.6).contains(&order), "order {order}");
+}
+
+#[test]
+fn what_cannot_be_integrated_is_reported_with_time_state_and_stiffness() {
+    // strongly negative damping everywhere: the model itself runs away
+    let mut p = trirhythm::known_answers::linear_oscillator(1.0, 1.0, 1.0);
+    p.damping.coefficients = vec![50.0];
+    let osc = Oscillator::new(&p).unwrap();
+    let m = PredictorCorrector::default();
+    let mut s = Stepper::new(
+        &osc,
+        &m,
+        System::Fractional,
+        Barrier::Off,
+        (1.0, 0.0),
+        (0, 0),
+        100.0,
+        1e6,
+    )
+    .unwrap();
+    let err = run(&mut s, 10_000, &mut |_: &Stepper| Flow::Continue, None).unwrap_err();
+    let Error::BlowUp {
+        t,
+        u,
+        v,
+        stiffness,
+        dt,
+        ..
+    } = err
+    else {
+        panic!("expected a blow-up, got {err:?}")
+    };
+    assert!(t > 0.0 && t < 100.0 && dt == 0.01);
+    assert!(u.abs() > 1e6 || v.abs() > 1e6);
+    assert!((stiffness - 0.01 * 50.0).abs() < 1e-12, "{stiffness}");
+    let msg = err.to_string();
+    println!("{msg}");
+    // readable numbers: no run of more than 8 digits anywhere in the message
+    let longest = msg
+        .split(|c: char| !c.is_ascii_digit())
+        .map(str::len)
+        .max()
+        .unwrap();
+    assert!(longest <= 8, "{msg}");
+    assert!(msg.contains("stiffness"));
+}
