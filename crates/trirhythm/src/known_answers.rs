@@ -13,7 +13,7 @@
 //!   U = A_k sin(ω(t − kπ/ω)) on the k-th arc, A_k = (v₀/ω) r^k (amplitude × r per impact).
 //!
 //! # Method
-//! Closed forms (the Mittag-Leffler function from [`crate::fractional`]); [`observed_order`]
+//! Closed forms (the Mittag-Leffler function from [`crate::special`]); [`observed_order`]
 //! fits log(error) against log(step) by least squares.
 //!
 //! # Reference

@@ -1,6 +1,6 @@
 //! Fractional calculus kernels: Γ, the Mittag-Leffler function, product-integration weights,
 //! the sum-of-exponentials (SOE) approximation of the Riemann–Liouville kernel, and the
-//! convolution memory used by the predictor–corrector of [`crate::solver`].
+//! convolution memory used by the predictor–corrector of [`crate::engine::Stepper`].
 //!
 //! # Equation
 //! The Riemann–Liouville integral of order λ ∈ (0, 1],
@@ -23,12 +23,12 @@
 //!   The largest Δx that meets the requested relative tolerance is chosen, and the result is
 //!   **checked against the exact kernel on a log grid over [δ, T]**; construction fails with
 //!   [`Error::NoConvergence`] when the tolerance is not met.
-//! - **Memory** ([`Memory`]): `Direct` keeps every interval and applies the exact weights
+//! - **Memory** ([`super::Memory`]): `Direct` keeps every interval and applies the exact weights
 //!   (O(N) work per step, O(N²) per path); `SumOfExponentials` keeps a short local window of
 //!   exact weights and moves older intervals into the exponential modes, each advanced by the
 //!   exact recursion Y ← e^{−sℓ}Y + ℓψ(sℓ) g_start + ℓ(φ(sℓ) − ψ(sℓ)) g_end for a linear g
 //!   (O(modes) work and memory per step, independent of N).
-//! - **Mittag-Leffler** ([`mittag_leffler`]): the power series in log-space terms, with an error
+//! - **Mittag-Leffler** ([`crate::special::mittag_leffler`]): the power series in log-space terms, with an error
 //!   estimate from the largest term; refused where cancellation would cost more than 1e-10.
 //!
 //! # Reference

@@ -1,3 +1,20 @@
+//! The memory of one path: J^λ g over the whole history, kept exactly over a short window and
+//! by the verified sum of exponentials of [`super::kernel`] beyond it.
+//!
+//! # Method
+//! The last w − 1 pieces of g (piecewise linear, split in two at impacts) are held in a mirrored
+//! ring, so their weighted sum is two dot products; a piece leaving the window enters every
+//! exponential mode by the exact recursion Y ← e^{−sΔt}Y + Δtψ g_start + Δt(φ − ψ) g_end (four
+//! lanes at a time, no fused multiply–add, so the bits do not depend on the CPU), and the lumped
+//! slow rates by their integral and first moment. At λ = 1 there is no window: J¹g is the running
+//! trapezoidal integral. `Direct` keeps every piece (the O(N) reference). The history is linear
+//! in g: scaling it scales the whole memory (the tangent's renormalisation).
+//!
+//! # Tests
+//! Unit tests below (the scalar solver at order 1 is the trapezoidal PECE by hand; scaling the
+//! history equals the history of the scaled g, for both memories, with a split piece);
+//! `tests/soe.rs` (SOE against Direct on Eq. 1).
+
 use super::kernel::{interval_weights, phi_psi, SoeKernel};
 use crate::error::{Error, Result};
 use crate::special::gamma;
@@ -649,7 +666,7 @@ impl History {
 
 /// Solve the scalar Caputo problem D^α y = f(t, y), y(0) = y₀, α ∈ (0, 1], on the grid
 /// t_n = n·dt, n = 0..=steps, with the same predictor–corrector and memory as the oscillator
-/// (see [`crate::solver`]): the predictor replaces f_{n+1} by f_n in the corrector's sum
+/// (see [`crate::engine::Stepper`]): the predictor replaces f_{n+1} by f_n in the corrector's sum
 /// (constant extrapolation of the composite f(t, y(t)), which stays smooth when y does not); only corrected values are stored (at α = 1: the trapezoidal rule in integral form,
 /// corrected once from an Euler predictor). Returns y at every node.
 pub fn solve_scalar(
@@ -757,7 +774,7 @@ mod tests {
                     split: (n == 5).then_some(Split {
                         theta: 0.4,
                         before: k * 3.0,
-                        after: k * -1.0,
+                        after: -k,
                         keep_before: true,
                     }),
                 };

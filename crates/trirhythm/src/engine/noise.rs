@@ -16,7 +16,7 @@
 //!   exactly the variance 2DΔt of the white-noise increment. (Linear interpolation between node
 //!   samples of variance 2D/Δt would give variance (2/3)·2DΔt for the step integral: wrong.)
 //!   The interval carries the pair (η_n, η_n); g is then discontinuous at the nodes, which the
-//!   product integration of [`crate::fractional`] handles piece by piece.
+//!   product integration of [`crate::engine::kernel`] handles piece by piece.
 //! - Streams: path i of seed S draws from `ChaCha8Rng::seed_from_u64(S)` with stream i, so a
 //!   path does not depend on which thread computes it or on the other paths. Deviates are drawn
 //!   in blocks of 256 (ziggurat, `rand_distr::StandardNormal`): the same sequence as one at a

@@ -292,7 +292,7 @@ impl Stepper {
         if !v0.is_finite() {
             return Err(Error::invalid("v0", v0, "finite"));
         }
-        if !(blow_up > 0.0) {
+        if blow_up.is_nan() || blow_up <= 0.0 {
             return Err(Error::invalid("blow_up", blow_up, "(0, ∞]"));
         }
         let rhs = Rhs::new(oscillator, system);

@@ -19,7 +19,7 @@
 //!
 //! Method: f/A = g(x) and A·m1 = h(x) = x g(x) + σ1/2 are polynomials in x = A², so limit cycles
 //! and PDF extrema are the positive real roots of g and h, isolated completely by
-//! [`crate::polynomial`] (derivative cascade, Sturm count); stability is the sign of g′ or h′.
+//! [`crate::theory::polynomial`] (derivative cascade, Sturm count); stability is the sign of g′ or h′.
 //! PDFs are held in log space relative to their highest mode, the difference of the large terms
 //! S(A) − S(A_p) formed in double-double, and normalised by globally adaptive Gauss–Kronrod
 //! quadrature with breakpoints at the extrema and geometrically around each mode, so exponents

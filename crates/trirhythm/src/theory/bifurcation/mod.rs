@@ -14,7 +14,7 @@
 //!   (Fig. 9).
 //!
 //! Method: a `Copy` parameter point and the polynomials' coefficients on the stack (no
-//! allocation per point), the certified Sturm count of [`crate::polynomial`] replicated on
+//! allocation per point), the certified Sturm count of [`crate::theory::polynomial`] replicated on
 //! fixed-size arrays, rows classified in parallel with rayon (deterministic: cells are
 //! independent). Fold curves by pseudo-arclength continuation in (x, p1, p2) with a 3 × 3 Newton
 //! corrector, seeded from grid cells where the count changes; branches by the same continuation
