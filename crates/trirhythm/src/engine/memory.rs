@@ -8,7 +8,8 @@
 //! lanes at a time, no fused multiply–add, so the bits do not depend on the CPU), and the lumped
 //! slow rates by their integral and first moment. At λ = 1 there is no window: J¹g is the running
 //! trapezoidal integral. `Direct` keeps every piece (the O(N) reference). The history is linear
-//! in g: scaling it scales the whole memory (the tangent's renormalisation).
+//! in g, so a perturbed copy is renormalised toward its reference number by number, the whole
+//! memory included ([`History::contract_toward`], Benettin's method for the fractional state).
 //!
 //! # Tests
 //! Unit tests below (the scalar solver at order 1 is the trapezoidal PECE by hand; scaling the
@@ -261,8 +262,9 @@ impl Modes {
 
 /// The memory of J^λ g on a uniform grid, the whole history of one path: completed pieces of g
 /// (the exact local window), the exponential modes and the lumped constant/linear terms beyond
-/// it. It is linear in the history: [`History::scale`] multiplies all of it by one factor
-/// (renormalising a tangent history scales the entire memory, not just the state).
+/// it. It is linear in the history: [`History::contract_toward`] pulls all of it toward a
+/// reference history (renormalising a perturbed copy acts on the entire memory, not just the
+/// state).
 ///
 /// Protocol per step n → n+1: [`History::value`] gives the contribution of all completed
 /// pieces to J^λ g(t_{n+1}); [`History::current_weights`] the weights of the step's own
@@ -623,27 +625,83 @@ impl History {
         self.cached = 0.0;
     }
 
-    /// Multiply the whole history by `c` (J^λ is linear in g): the renormalisation of a tangent
-    /// history, which must scale the entire memory, not just (δU, δV).
-    #[cfg_attr(not(test), allow(dead_code))] // the tangent dynamics are not built on it yet
+    /// Multiply the whole history by `c` (J^λ is linear in g).
+    #[cfg(test)]
     pub fn scale(&mut self, c: f64) {
-        for v in self
-            .all_left
-            .iter_mut()
-            .chain(self.all_right.iter_mut())
-            .chain(self.local.left.iter_mut())
-            .chain(self.local.right.iter_mut())
-        {
-            *v *= c;
+        self.zip_state(None, &mut |_, v| *v *= c);
+    }
+
+    /// Apply `f(reference's number, own number)` to every number of the history's state, paired
+    /// with the same number of `reference` when one is given.
+    fn zip_state(&mut self, reference: Option<&History>, f: &mut dyn FnMut(Option<f64>, &mut f64)) {
+        fn pair(r: Option<&[f64]>, own: &mut [f64], f: &mut dyn FnMut(Option<f64>, &mut f64)) {
+            for (k, v) in own.iter_mut().enumerate() {
+                f(r.map(|r| r[k]), v);
+            }
         }
-        for (_, s) in self.splits.iter_mut() {
-            s.before *= c;
-            s.after *= c;
+        let flat = |m: &Modes| -> Vec<f64> { m.y.iter().flatten().copied().collect() };
+        let r_modes = reference.map(|r| flat(&r.modes));
+        pair(reference.map(|r| &r.all_left[..]), &mut self.all_left, f);
+        pair(reference.map(|r| &r.all_right[..]), &mut self.all_right, f);
+        pair(
+            reference.map(|r| &r.local.left[..]),
+            &mut self.local.left,
+            f,
+        );
+        pair(
+            reference.map(|r| &r.local.right[..]),
+            &mut self.local.right,
+            f,
+        );
+        for (k, (_, s)) in self.splits.iter_mut().enumerate() {
+            let rs = reference.map(|r| r.splits[k].1);
+            f(rs.map(|s| s.before), &mut s.before);
+            f(rs.map(|s| s.after), &mut s.after);
         }
-        self.modes.flat_mut().for_each(|y| *y *= c);
-        self.integral *= c;
-        self.moment *= c;
-        self.cached *= c;
+        for (k, y) in self.modes.flat_mut().enumerate() {
+            f(r_modes.as_ref().map(|r| r[k]), y);
+        }
+        f(reference.map(|r| r.integral), &mut self.integral);
+        f(reference.map(|r| r.moment), &mut self.moment);
+        f(reference.map(|r| r.cached), &mut self.cached);
+    }
+
+    /// Whether `other` holds its history in the same layout (same pieces held exactly, split at
+    /// the same steps and fractions), so that the two can be combined number by number.
+    fn same_layout(&self, other: &History) -> bool {
+        self.direct == other.direct
+            && self.pushed == other.pushed
+            && self.all_left.len() == other.all_left.len()
+            && self.local.cap == other.local.cap
+            && self.local.head == other.local.head
+            && self.local.len == other.local.len
+            && self.modes.y.len() == other.modes.y.len()
+            && self.splits.len() == other.splits.len()
+            && self
+                .splits
+                .iter()
+                .zip(&other.splits)
+                .all(|((a, s), (b, t))| {
+                    a == b && s.theta == t.theta && s.keep_before == t.keep_before
+                })
+    }
+
+    /// Pull this history toward `reference` by the factor `c`: every number x of its state
+    /// becomes x_ref + c·(x − x_ref). The map is affine in the history and J^λ is linear in g,
+    /// so this is exactly the history of the path g_ref + c·(g − g_ref): the renormalisation of
+    /// a perturbed copy in Benettin's method, applied to the entire memory (a fractional
+    /// system's state is its whole history, not just (U, V)). Returns false, changing nothing,
+    /// when the two layouts differ (different steps, an impact split at different fractions, a
+    /// restart in one of them).
+    pub fn contract_toward(&mut self, reference: &History, c: f64) -> bool {
+        if !self.same_layout(reference) {
+            return false;
+        }
+        self.zip_state(Some(reference), &mut |r, v| {
+            let r = r.expect("reference given");
+            *v = r + c * (*v - r);
+        });
+        true
     }
 
     /// Number of exponential modes (0 for Direct or λ = 1).

@@ -60,7 +60,9 @@
 //! `tests/stiff.rs` (Fig. 13(b) from U = 13 and Fig. 5(e) at μ0 = 0.7 at Δt = 0.01; amplitude
 //! converged in Δt), `tests/pinned.rs` (a λ = 0.998 trajectory against an independent
 //! integrator, exact counts of a noisy run), `tests/impacts.rs`, `tests/systems.rs`,
-//! `tests/stochastic.rs`, and the unit tests below (λ = 1 is the linearly implicit trapezoidal
+//! `tests/stochastic.rs`, `tests/tangent.rs` (the renormalisation of a perturbed copy acts on
+//! the whole memory: exact for a linear system, −μ/2 for the damped oscillator), and the unit
+//! tests below (λ = 1 is the linearly implicit trapezoidal
 //! rule, written out by hand; blow-up reports its stiffness).
 
 use super::memory::{History, Piece, Split};
@@ -392,6 +394,42 @@ impl Stepper {
     /// Bytes of memory state held.
     pub fn memory_bytes(&self) -> usize {
         self.history.state_bytes()
+    }
+
+    /// (U − U_ref, V − V_ref) of this path against `reference` at the same time.
+    pub fn separation(&self, reference: &Stepper) -> (f64, f64) {
+        (self.u - reference.u, self.v - reference.v)
+    }
+
+    /// Benettin's renormalisation of a perturbed copy: pull this path toward `reference` (a
+    /// path of the same problem at the same step, usually the one this copy was cloned from,
+    /// so with the same noise) by the factor `c`, **whole state included** — U, V, the
+    /// Volterra constant, g at the node and every number of the memory become
+    /// x_ref + c·(x − x_ref). For a fractional system the state is the entire history: scaling
+    /// (δU, δV) alone would leave the old perturbation in the memory.
+    ///
+    /// Returns false and changes nothing when the two paths cannot be combined number by
+    /// number now: not at the same step, on different sides (Eq. 9) or in different sticking
+    /// states, or an impact still inside the exact window of either (its split falls at a
+    /// different fraction in each path; with `Memory::Direct` this holds after the first
+    /// impact for good). A driver then tries again at a later step.
+    pub fn contract_toward(&mut self, reference: &Stepper, c: f64) -> bool {
+        if self.steps != reference.steps
+            || self.side != reference.side
+            || self.stuck != reference.stuck
+            || self.h != reference.h
+        {
+            return false;
+        }
+        if !self.history.contract_toward(&reference.history, c) {
+            return false;
+        }
+        let pull = |r: f64, x: f64| r + c * (x - r);
+        self.u = pull(reference.u, self.u);
+        self.v = pull(reference.v, self.v);
+        self.base = pull(reference.base, self.base);
+        self.drift = pull(reference.drift, self.drift);
+        true
     }
 
     /// Hold the oscillator at rest on the wall at the end of a step whose free value was V = v1:
