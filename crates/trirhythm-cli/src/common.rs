@@ -1,8 +1,7 @@
 //! Argument handling shared by every command: parameters, formats, grids, atomic output.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::{Args, ValueEnum};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use trirhythm::model::{preset, Params};
 use trirhythm::theory::averaging::Variant;
@@ -129,38 +128,27 @@ pub struct OutputArgs {
 }
 
 impl OutputArgs {
-    /// Emit `text` to the chosen destination.
+    /// Emit `text` to the chosen destination, refusing a document with non-finite JSON
+    /// numbers (tables and CSV check their own cells).
     pub fn emit(&self, text: &str) -> Result<()> {
-        match &self.out {
-            Some(path) => write_atomic(path, text.as_bytes()),
-            None => {
-                let mut out = std::io::stdout().lock();
-                out.write_all(text.as_bytes())?;
-                Ok(())
-            }
-        }
+        emit(self.out.as_deref(), text)
     }
 }
 
-/// Write a file through a temporary sibling and a rename, so no partial file is ever left.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let tmp = temporary_sibling(path);
-    std::fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("renaming to {}", path.display()))
-}
-
-/// `dir/.name.partial-PID.ext`: a hidden sibling keeping the extension (image encoders pick the
-/// format from it).
-pub fn temporary_sibling(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let ext = path
-        .extension()
-        .map(|e| format!(".{}", e.to_string_lossy()))
-        .unwrap_or_default();
-    path.with_file_name(format!(".{name}.partial-{}{ext}", std::process::id()))
+/// Write `text` to `out` (atomically) or to standard output, unless [`jnum`] met a non-finite
+/// number since the last call.
+pub fn emit(out: Option<&Path>, text: &str) -> Result<()> {
+    let bad_numbers = NONFINITE_JSON.with(|c| c.replace(0));
+    if bad_numbers > 0 {
+        anyhow::bail!(
+            "the computation produced {bad_numbers} non-finite value(s) (overflow or an undefined \
+             quantity); nothing written"
+        );
+    }
+    match out {
+        Some(path) => crate::output::write_atomic(path, text.as_bytes()),
+        None => crate::output::stdout_write(text.as_bytes()),
+    }
 }
 
 /// A grid `START:STOP:COUNT` of `COUNT` equally spaced points.
@@ -212,9 +200,63 @@ impl Grid {
     }
 }
 
+thread_local! {
+    /// Non-finite numbers met by [`jnum`] since the last [`emit`].
+    static NONFINITE_JSON: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+/// The first non-finite cell of a table or CSV document, and how many there are.
+#[derive(Default)]
+struct NonFinite {
+    first: Option<(String, usize, String, String)>,
+    count: usize,
+    /// Columns where ±∞ is a value (a limit: log p where p = 0, U_eff at A = 0).
+    infinity_ok: Vec<String>,
+}
+
+impl NonFinite {
+    /// Look at one row of cells (formatted by [`num`]).
+    fn scan(&mut self, columns: &[String], row: usize, cells: &[String]) {
+        for (i, c) in cells.iter().enumerate() {
+            let ok = (c == "-inf" || c == "inf")
+                && columns
+                    .get(i)
+                    .is_some_and(|name| self.infinity_ok.contains(name));
+            if !ok && matches!(c.as_str(), "nan" | "inf" | "-inf" | "NaN") {
+                self.count += 1;
+                if self.first.is_none() {
+                    let col = columns.get(i).cloned().unwrap_or_default();
+                    let lead = format!(
+                        "{} = {}",
+                        columns.first().cloned().unwrap_or_default(),
+                        cells.first().cloned().unwrap_or_default()
+                    );
+                    self.first = Some((col, row, lead, c.clone()));
+                }
+            }
+        }
+    }
+
+    /// An error naming where, if any.
+    fn check(&self) -> Result<()> {
+        match &self.first {
+            None => Ok(()),
+            Some((col, row, lead, v)) => anyhow::bail!(
+                "the computation produced a non-finite value: column {col} = {v} at row {row} \
+                 ({lead}), {} such value(s) in all (overflow or an undefined quantity); nothing \
+                 written",
+                self.count
+            ),
+        }
+    }
+}
+
 /// A CSV document: `#` comment lines, a header row, rows of numbers.
 pub struct Csv {
     text: String,
+    columns: Vec<String>,
+    rows: usize,
+    nonfinite: NonFinite,
 }
 
 impl Csv {
@@ -230,24 +272,40 @@ impl Csv {
         }
         text.push_str(&columns.join(","));
         text.push('\n');
-        Csv { text }
+        Csv {
+            text,
+            columns: columns.iter().map(|c| c.to_string()).collect(),
+            rows: 0,
+            nonfinite: NonFinite::default(),
+        }
+    }
+
+    /// Let `column` hold ±∞ where that is the value (a limit such as log 0): written as
+    /// `inf`/`-inf`, not refused; NaN still is.
+    pub fn allow_infinity(mut self, column: &str) -> Csv {
+        self.nonfinite.infinity_ok.push(column.to_string());
+        self
     }
 
     /// Append a row of cells (already formatted).
     pub fn row<I: IntoIterator<Item = String>>(&mut self, cells: I) {
         let cells: Vec<String> = cells.into_iter().collect();
+        self.rows += 1;
+        self.nonfinite.scan(&self.columns, self.rows, &cells);
         self.text.push_str(&cells.join(","));
         self.text.push('\n');
     }
 
-    /// The document.
-    pub fn finish(self) -> String {
-        self.text
+    /// The document, or an error naming the first non-finite cell.
+    pub fn finish(self) -> Result<String> {
+        self.nonfinite.check()?;
+        Ok(self.text)
     }
 }
 
 /// Format a number for CSV/table output: shortest round-trip representation.
 pub fn num(v: f64) -> String {
+    let v = v + 0.0; // −0 prints as 0
     if v.is_nan() {
         "nan".into()
     } else if v == f64::NEG_INFINITY {
@@ -259,11 +317,26 @@ pub fn num(v: f64) -> String {
     }
 }
 
-/// A JSON number, with non-finite values as `null`.
+/// A JSON number; a non-finite value becomes `null` and is counted, so that [`emit`] refuses
+/// the document.
 pub fn jnum(v: f64) -> serde_json::Value {
-    serde_json::Number::from_f64(v)
-        .map(serde_json::Value::Number)
-        .unwrap_or(serde_json::Value::Null)
+    match serde_json::Number::from_f64(v) {
+        Some(n) => serde_json::Value::Number(n),
+        None => {
+            NONFINITE_JSON.with(|c| c.set(c.get() + 1));
+            serde_json::Value::Null
+        }
+    }
+}
+
+/// A JSON number that may be ±∞ as a limit (log p where p = 0, U_eff at A = 0): `null` there
+/// (documented, not an error); NaN is still counted by [`jnum`].
+pub fn jlimit(v: f64) -> serde_json::Value {
+    if v.is_infinite() {
+        serde_json::Value::Null
+    } else {
+        jnum(v)
+    }
 }
 
 /// The parameters as a JSON object in key order.
@@ -275,8 +348,18 @@ pub fn params_json(p: &Params) -> serde_json::Value {
     serde_json::Value::Object(m)
 }
 
-/// An aligned text table.
-pub fn table(columns: &[&str], rows: &[Vec<String>]) -> String {
+/// An aligned text table, or an error naming its first non-finite cell (±∞ is allowed in the
+/// columns named in `infinite`, where it is the value).
+pub fn table(columns: &[&str], rows: &[Vec<String>], infinite: &[&str]) -> Result<String> {
+    let mut nonfinite = NonFinite {
+        infinity_ok: infinite.iter().map(|c| c.to_string()).collect(),
+        ..Default::default()
+    };
+    let names: Vec<String> = columns.iter().map(|c| c.to_string()).collect();
+    for (i, r) in rows.iter().enumerate() {
+        nonfinite.scan(&names, i + 1, r);
+    }
+    nonfinite.check()?;
     let mut widths: Vec<usize> = columns.iter().map(|c| c.chars().count()).collect();
     for r in rows {
         for (i, cell) in r.iter().enumerate() {
@@ -296,7 +379,7 @@ pub fn table(columns: &[&str], rows: &[Vec<String>]) -> String {
     for r in rows {
         out.push_str(&fmt_row(&mut r.iter().map(|s| s.as_str())));
     }
-    out
+    Ok(out)
 }
 
 /// A progress bar on a terminal, hidden otherwise.

@@ -1,20 +1,23 @@
 //! `trirhythm`: the command-line front end. The library computes; this binary parses
 //! arguments, writes files, draws pictures and progress bars.
 //!
-//! Exit status: 0 on success, 2 for bad input (a parameter out of range, an unknown name, a
-//! malformed flag), 1 for anything else (I/O). No partial output file is ever left: every file
-//! is written to a temporary sibling and renamed.
+//! Exit status: 0 on success (and when the reader of standard output closes the pipe), 2 for
+//! bad input (a parameter out of range, an unknown name, a malformed flag, an output path that
+//! cannot receive a file), 1 for anything else (I/O, a full device, a computation that
+//! overflowed), 130 when interrupted. No partial output file is ever left ([`output`]).
 
 mod common;
 mod figures;
 mod maps;
+mod output;
 mod plot;
 mod simulate;
 mod theory;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use std::path::PathBuf;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Debug, Parser)]
@@ -70,6 +73,19 @@ struct FigureArgs {
     variant: common::VariantArg,
 }
 
+/// The paper's figures that are not reproduced yet, with what they need.
+const PLANNED: [(u32, &str); 6] = [
+    (
+        11,
+        "limit-cycle amplitude vs λ and P(A) against Monte Carlo ensembles",
+    ),
+    (13, "P(A) against Monte Carlo ensembles for r and μ0"),
+    (14, "joint density P(U, U̇) against Monte Carlo ensembles"),
+    (15, "oscillation (Hopf) boundaries by simulation"),
+    (16, "oscillation (Hopf) boundaries by simulation"),
+    (17, "largest Lyapunov exponent against noise"),
+];
+
 fn figure(args: &FigureArgs) -> Result<()> {
     let registry = figures::registry();
     let available = registry
@@ -77,6 +93,12 @@ fn figure(args: &FigureArgs) -> Result<()> {
         .map(|r| r.0.to_string())
         .collect::<Vec<_>>()
         .join(", ");
+    if args.out_dir.exists() && !args.out_dir.is_dir() {
+        return common::bad(format!(
+            "--out-dir {}: exists and is not a directory",
+            args.out_dir.display()
+        ));
+    }
     let selected: Vec<_> = if args.figure == "all" {
         registry.iter().collect()
     } else {
@@ -84,16 +106,27 @@ fn figure(args: &FigureArgs) -> Result<()> {
             Ok(n) => n,
             Err(_) => {
                 return common::bad(format!(
-                    "figure: `{}` is not a figure number (available: {available}, or all)",
+                    "figure: `{}` is not a figure number (the paper has figures 1 to 19; \
+                     available: {available}, or all)",
                     args.figure
                 ))
             }
         };
         match registry.iter().find(|r| r.0 == n) {
             Some(r) => vec![r],
+            None if (1..=19).contains(&n) => {
+                let what = PLANNED
+                    .iter()
+                    .find(|p| p.0 == n)
+                    .map_or("Lyapunov exponents and the critical noise", |p| p.1);
+                return common::bad(format!(
+                    "figure {n} is not yet implemented ({what}); available: {available}, or all"
+                ));
+            }
             None => {
                 return common::bad(format!(
-                    "figure {n} is not available (available: {available}, or all)"
+                    "figure {n}: no such figure (the paper has figures 1 to 19; available: \
+                     {available}, or all)"
                 ))
             }
         }
@@ -110,29 +143,58 @@ fn figure(args: &FigureArgs) -> Result<()> {
             "figure {n} ({title}): {:.1} s",
             start.elapsed().as_secs_f64()
         );
+        let mut text = String::new();
         for f in files {
-            println!("{}", f.display());
+            text.push_str(&format!("{}\n", f.display()));
         }
+        output::stdout_write(text.as_bytes())?;
     }
     Ok(())
 }
 
 fn presets() -> Result<()> {
+    let mut text = String::new();
     for p in trirhythm::model::presets() {
-        println!(
-            "{:8} {}\n         {}",
+        text.push_str(&format!(
+            "{:8} {}\n         {}\n",
             p.name,
             p.description,
             p.params.describe()
-        );
+        ));
         for n in p.notes {
-            println!("         note: {n}");
+            text.push_str(&format!("         note: {n}\n"));
         }
     }
-    Ok(())
+    output::stdout_write(text.as_bytes())
+}
+
+impl Command {
+    /// The output file named on the command line, if any.
+    fn out(&self) -> Option<&Path> {
+        match self {
+            Command::Equivalents(a) | Command::Cycles(a) | Command::Barriers(a) => {
+                a.output.out.as_deref()
+            }
+            Command::Drift(a) | Command::Potential(a) => a.theory.output.out.as_deref(),
+            Command::Pdf(a) => a.theory.output.out.as_deref(),
+            Command::Simulate(a) => a.out.as_deref(),
+            Command::Map(a) => a.output.out.as_deref(),
+            Command::Branches(a) => a.output.out.as_deref(),
+            Command::Figure(_) | Command::Presets => None,
+        }
+    }
 }
 
 fn run(cli: Cli) -> Result<()> {
+    // an output that cannot be written is refused before any work starts
+    if let Some(out) = cli.command.out() {
+        output::check_destination(out, "--out")?;
+    }
+    if let Command::Map(a) = &cli.command {
+        if let Some(f) = &a.folds_out {
+            output::check_destination(f, "--folds-out")?;
+        }
+    }
     match &cli.command {
         Command::Equivalents(a) => theory::equivalents(a),
         Command::Cycles(a) => theory::cycles(a),
@@ -145,13 +207,19 @@ fn run(cli: Cli) -> Result<()> {
         Command::Branches(a) => maps::branches(a),
         Command::Figure(a) => figure(a),
         Command::Presets => presets(),
-    }
+    }?;
+    std::io::stdout()
+        .flush()
+        .context("writing to standard output")
 }
 
 fn main() -> ExitCode {
+    output::install_signal_cleanup();
     let cli = Cli::parse();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
+        // the reader went away (`trirhythm simulate | head`): end quietly
+        Err(e) if output::is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
             if common::is_bad_input(&e) {

@@ -4,9 +4,11 @@
 use crate::common::{
     bad, jnum, num, params_json, progress, Csv, Format, Grid, OutputArgs, ParamArgs,
 };
-use anyhow::Result;
+use crate::output::{Stream, Temporary};
+use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
+use std::io::Write;
 use std::path::PathBuf;
 use trirhythm::theory::bifurcation::{
     branches as trace_branches, classify, trace_folds, trace_printed_eq37, Axis, BranchDiagram,
@@ -38,10 +40,10 @@ pub struct MapArgs {
     #[command(flatten)]
     pub params: ParamArgs,
     /// Horizontal axis: KEY=START:STOP:COUNT (KEY as for --param).
-    #[arg(long, value_name = "KEY=START:STOP:COUNT")]
+    #[arg(long, value_name = "KEY=START:STOP:COUNT", allow_hyphen_values = true)]
     pub x: String,
     /// Vertical axis: KEY=START:STOP:COUNT.
-    #[arg(long, value_name = "KEY=START:STOP:COUNT")]
+    #[arg(long, value_name = "KEY=START:STOP:COUNT", allow_hyphen_values = true)]
     pub y: String,
     /// What to count at each point.
     #[arg(long, value_enum, default_value_t = WhatArg::Rhythmicity)]
@@ -157,6 +159,26 @@ pub fn map(args: &MapArgs) -> Result<()> {
             return bad("--what modes needs noise: set D > 0 (e.g. --param D=0.1)");
         }
     }
+    // where the fold curves go (CSV), settled before the work starts
+    let folds_path = match (args.output.format, args.folds || args.printed_eq37) {
+        (Format::Json, _) | (_, false) => None,
+        (_, true) => Some(match (&args.folds_out, &args.output.out) {
+            (Some(p), _) => p.clone(),
+            (None, Some(out)) => {
+                let stem = out
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_default();
+                out.with_file_name(format!("{stem}-folds.csv"))
+            }
+            (None, None) => return bad(
+                "--folds with CSV on standard output needs --folds-out FILE (or --out FILE, or --format json)",
+            ),
+        }),
+    };
+    if let Some(p) = &folds_path {
+        crate::output::check_destination(p, "--folds-out")?;
+    }
     let m = run_map(&plane, what, "map");
     let mut sets: Vec<Folds> = Vec::new();
     if args.folds || args.printed_eq37 {
@@ -219,34 +241,35 @@ pub fn map(args: &MapArgs) -> Result<()> {
             args.output.emit(&s)
         }
         Format::Csv | Format::Table => {
-            let mut csv = Csv::new(&header, &["x", "y", "count"]);
+            // the map streamed to its output; the fold curves into a temporary that is renamed
+            // only after the map is complete, so a failing main output leaves no folds file
+            let mut stream = Stream::open(args.output.out.as_deref())?;
+            let w = stream.writer();
+            w.write_all(Csv::new(&header, &["x", "y", "count"]).finish()?.as_bytes())?;
             for iy in 0..plane.y.count {
                 let y = num(plane.y.value(iy));
                 for ix in 0..plane.x.count {
-                    csv.row([
-                        num(plane.x.value(ix)),
-                        y.clone(),
-                        m.count(ix, iy).to_string(),
-                    ]);
+                    writeln!(w, "{},{y},{}", num(plane.x.value(ix)), m.count(ix, iy))?;
                 }
             }
-            if !sets.is_empty() {
-                let path = match (&args.folds_out, &args.output.out) {
-                    (Some(p), _) => p.clone(),
-                    (None, Some(out)) => {
-                        let stem = out.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-                        out.with_file_name(format!("{stem}-folds.csv"))
-                    }
-                    (None, None) => {
-                        return bad("--folds with CSV on standard output needs --folds-out FILE (or --out FILE, or --format json)")
-                    }
-                };
-                let mut fc = Csv::new(&header, &["curve", "system", "x", "y", "amplitude"]);
-                let refs: Vec<&Folds> = sets.iter().collect();
-                folds_csv(&mut fc, &[], &refs);
-                crate::common::write_atomic(&path, fc.finish().as_bytes())?;
+            let folds = match &folds_path {
+                Some(path) if !sets.is_empty() => {
+                    let mut fc = Csv::new(&header, &["curve", "system", "x", "y", "amplitude"]);
+                    let refs: Vec<&Folds> = sets.iter().collect();
+                    folds_csv(&mut fc, &[], &refs);
+                    let (tmp, mut fw) = Temporary::create(path)?;
+                    fw.write_all(fc.finish()?.as_bytes())
+                        .and_then(|()| fw.flush())
+                        .with_context(|| format!("writing {}", tmp.path().display()))?;
+                    Some(tmp)
+                }
+                _ => None,
+            };
+            stream.finish()?;
+            match folds {
+                Some(tmp) => tmp.commit(),
+                None => Ok(()),
             }
-            args.output.emit(&csv.finish())
         }
     }
 }
@@ -257,13 +280,13 @@ pub struct BranchArgs {
     #[command(flatten)]
     pub params: ParamArgs,
     /// The swept parameter: KEY=START:STOP.
-    #[arg(long, value_name = "KEY=START:STOP")]
+    #[arg(long, value_name = "KEY=START:STOP", allow_hyphen_values = true)]
     pub x: String,
     /// Cycles (roots of f) or extrema of P(A) (roots of m1).
     #[arg(long, value_enum, default_value_t = WhatArg::Rhythmicity)]
     pub what: WhatArg,
     /// Largest continuation step, as a fraction of the interval (and of the largest A²).
-    #[arg(long, default_value_t = 0.004)]
+    #[arg(long, default_value_t = 0.004, allow_hyphen_values = true)]
     pub step: f64,
     #[command(flatten)]
     pub output: OutputArgs,
@@ -337,7 +360,7 @@ pub fn branches(args: &BranchArgs) -> Result<()> {
                     ]);
                 }
             }
-            args.output.emit(&csv.finish())
+            args.output.emit(&csv.finish()?)
         }
     }
 }

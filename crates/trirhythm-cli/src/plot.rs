@@ -3,7 +3,7 @@
 //! A figure implements [`Picture`] once, generically over the plotters backend, and
 //! [`save`] renders it to both formats through temporary files and renames.
 
-use crate::common::{temporary_sibling, write_atomic};
+use crate::output::{write_atomic, Temporary};
 use anyhow::{anyhow, Context, Result};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -46,7 +46,8 @@ pub fn save(picture: &impl Picture, stem: &Path) -> Result<Vec<PathBuf>> {
     init_fonts();
     let size = picture.size();
     let png = stem.with_extension("png");
-    let tmp = temporary_sibling(&png);
+    let reserved = Temporary::reserve(&png)?;
+    let tmp = reserved.path().to_path_buf();
     {
         let root = BitMapBackend::new(&tmp, size).into_drawing_area();
         root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
@@ -56,7 +57,7 @@ pub fn save(picture: &impl Picture, stem: &Path) -> Result<Vec<PathBuf>> {
         root.present()
             .map_err(|e| anyhow!("writing {}: {e}", tmp.display()))?;
     }
-    std::fs::rename(&tmp, &png).with_context(|| format!("renaming to {}", png.display()))?;
+    reserved.commit()?;
     let svg = stem.with_extension("svg");
     let mut text = String::new();
     {

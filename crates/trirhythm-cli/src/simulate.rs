@@ -5,16 +5,17 @@
 //! header lines and the summary on standard error, or one JSON object with the summary and the
 //! columns. Flags, keys and column names are a contract: keep them.
 
-use crate::common::{bad, jnum, num, params_json, progress, Csv, ParamArgs};
-use anyhow::Result;
+use crate::common::{bad, emit, jnum, num, params_json, progress, ParamArgs};
+use crate::output::Stream;
+use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
 use trirhythm::engine::{
-    simulate_path, Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System,
-    Trajectory,
+    run, simulate_path, Barrier, Flow, ImpactMemory, Observer, Options, Oscillator,
+    PredictorCorrector, Stepper, System, Trajectory, TrajectoryRecorder,
 };
 use trirhythm::engine::{Memory, DEFAULT_WINDOW};
 
@@ -103,10 +104,10 @@ pub struct SimulateArgs {
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub v0: f64,
     /// Seed of the noise (path 0 of this seed).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     pub seed: u64,
     /// Write every K-th step.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     pub every: usize,
     /// Output format.
     #[arg(long, value_enum, default_value_t = SimFormat::Csv)]
@@ -200,80 +201,147 @@ fn summary_json(tr: &Trajectory, wall: f64) -> Value {
     })
 }
 
-/// Run `simulate`.
+/// Most rows `simulate` writes as CSV (streamed; ~5 GB).
+pub const MAX_CSV_ROWS: u64 = 100_000_000;
+/// Most samples `simulate` holds for a JSON document.
+pub const MAX_JSON_SAMPLES: u64 = 1_000_000;
+
+/// Streams the CSV rows of a path while a [`TrajectoryRecorder`] keeps its summary.
+struct CsvRows<'a> {
+    out: &'a mut dyn Write,
+    every: u64,
+    eta: bool,
+    summary: TrajectoryRecorder,
+    error: Option<std::io::Error>,
+}
+
+impl Observer for CsvRows<'_> {
+    fn observe(&mut self, s: &Stepper) -> Flow {
+        self.summary.observe(s);
+        if s.steps() % self.every == 0 {
+            let (t, u, v) = (num(s.time()), num(s.u()), num(s.v()));
+            let written = if self.eta {
+                writeln!(self.out, "{t},{u},{v},{}", num(s.eta()))
+            } else {
+                writeln!(self.out, "{t},{u},{v}")
+            };
+            if let Err(e) = written {
+                self.error = Some(e);
+                return Flow::Stop;
+            }
+        }
+        Flow::Continue
+    }
+}
+
+fn summary_line(tr: &Trajectory, wall: f64) -> String {
+    format!(
+        "steps {}  impacts {}  sticking steps {}  final amplitude {:.6}  wall time {:.3} s  ({:.3e} steps/s, {} exponentials)",
+        tr.steps,
+        tr.impacts,
+        tr.sticking_steps,
+        tr.final_amplitude,
+        wall,
+        tr.steps as f64 / wall.max(1e-12),
+        tr.exponentials
+    )
+}
+
+/// Run `simulate`. CSV is streamed row by row (memory independent of the number of steps);
+/// JSON is one document held in memory, so it is bounded by [`MAX_JSON_SAMPLES`].
 pub fn simulate(args: &SimulateArgs) -> Result<()> {
     let s = args.setup()?;
-    let steps = (args.t_end / args.dt).round().max(0.0) as u64;
+    let steps = s.options.steps(s.method.dt)?;
+    let rows = steps / args.every as u64 + 1;
+    match args.format {
+        SimFormat::Json if rows > MAX_JSON_SAMPLES => return bad(format!(
+            "--every {}: {rows} samples of {steps} steps; JSON holds at most {MAX_JSON_SAMPLES} \
+                 (raise --every to {} or more, or use --format csv, which streams)",
+            args.every,
+            steps / (MAX_JSON_SAMPLES - 1) + 1
+        )),
+        SimFormat::Csv if rows > MAX_CSV_ROWS => {
+            return bad(format!(
+                "--every {}: {rows} rows of {steps} steps; at most {MAX_CSV_ROWS} rows are written \
+                 (raise --every to {} or more)",
+                args.every,
+                steps / (MAX_CSV_ROWS - 1) + 1
+            ))
+        }
+        _ => {}
+    }
     let bar = progress(1000, "simulate");
     let report = |f: f64| bar.set_position((f * 1000.0) as u64);
-    let start = Instant::now();
-    let tr = simulate_path(
-        &s.oscillator,
-        &s.method,
-        &s.options,
-        args.seed,
-        0,
-        Some(&report),
-    )?;
-    let wall = start.elapsed().as_secs_f64();
-    bar.finish_and_clear();
     let p = s.oscillator.params();
-    let has_eta = !tr.eta.is_empty();
-    let text = match args.format {
-        SimFormat::Json => {
-            let mut m = serde_json::Map::new();
-            m.insert("params".into(), params_json(p));
-            m.insert("method".into(), json!(method_line(args)));
-            m.insert("summary".into(), summary_json(&tr, wall));
-            let col = |v: &[f64]| Value::Array(v.iter().map(|&x| jnum(x)).collect());
-            m.insert("t".into(), col(&tr.t));
-            m.insert("U".into(), col(&tr.u));
-            m.insert("V".into(), col(&tr.v));
-            if has_eta {
-                m.insert("eta".into(), col(&tr.eta));
-            }
-            let mut s = serde_json::to_string(&Value::Object(m))?;
-            s.push('\n');
-            s
+    let start = Instant::now();
+    if args.format == SimFormat::Json {
+        let tr = simulate_path(
+            &s.oscillator,
+            &s.method,
+            &s.options,
+            args.seed,
+            0,
+            Some(&report),
+        )?;
+        let wall = start.elapsed().as_secs_f64();
+        bar.finish_and_clear();
+        let mut m = serde_json::Map::new();
+        m.insert("params".into(), params_json(p));
+        m.insert("method".into(), json!(method_line(args)));
+        m.insert("summary".into(), summary_json(&tr, wall));
+        let col = |v: &[f64]| Value::Array(v.iter().map(|&x| jnum(x)).collect());
+        m.insert("t".into(), col(&tr.t));
+        m.insert("U".into(), col(&tr.u));
+        m.insert("V".into(), col(&tr.v));
+        if !tr.eta.is_empty() {
+            m.insert("eta".into(), col(&tr.eta));
         }
-        SimFormat::Csv => {
-            let header = vec![
-                format!("trirhythm simulate: {steps} steps"),
-                format!("params: {}", p.describe()),
-                method_line(args),
-            ];
-            let cols: &[&str] = if has_eta {
-                &["t", "U", "V", "eta"]
-            } else {
-                &["t", "U", "V"]
-            };
-            let mut c = Csv::new(&header, cols);
-            for i in 0..tr.t.len() {
-                if has_eta {
-                    c.row([num(tr.t[i]), num(tr.u[i]), num(tr.v[i]), num(tr.eta[i])]);
-                } else {
-                    c.row([num(tr.t[i]), num(tr.u[i]), num(tr.v[i])]);
-                }
-            }
-            eprintln!(
-                "steps {}  impacts {}  sticking steps {}  final amplitude {:.6}  wall time {:.3} s  ({:.3e} steps/s, {} exponentials)",
-                tr.steps,
-                tr.impacts,
-                tr.sticking_steps,
-                tr.final_amplitude,
-                wall,
-                tr.steps as f64 / wall.max(1e-12),
-                tr.exponentials
-            );
-            c.finish()
-        }
-    };
-    match &args.out {
-        Some(path) => crate::common::write_atomic(path, text.as_bytes()),
-        None => {
-            let mut out = std::io::stdout().lock();
-            out.write_all(text.as_bytes())?;
-            Ok(())
-        }
+        let mut text = serde_json::to_string(&Value::Object(m))?;
+        text.push('\n');
+        return emit(args.out.as_deref(), &text);
     }
+    let mut stepper = s
+        .options
+        .stepper(&s.oscillator, &s.method, (args.seed, 0))?;
+    let eta = !s.oscillator.noise().is_none();
+    let quiet = Options {
+        record_every: usize::MAX,
+        ..s.options.clone()
+    };
+    let summary = TrajectoryRecorder::new(&s.oscillator, &quiet, steps, s.method.dt)?;
+    let mut stream = Stream::open(args.out.as_deref())?;
+    let header = [
+        format!("trirhythm simulate: {steps} steps"),
+        format!("params: {}", p.describe()),
+        method_line(args),
+    ];
+    let w = stream.writer();
+    for h in &header {
+        writeln!(w, "# {h}")?;
+    }
+    writeln!(w, "{}", if eta { "t,U,V,eta" } else { "t,U,V" })?;
+    let mut rows = CsvRows {
+        out: w,
+        every: args.every as u64,
+        eta,
+        summary,
+        error: None,
+    };
+    let result = run(&mut stepper, steps, &mut rows, Some(&report));
+    bar.finish_and_clear();
+    if let Some(e) = rows.error {
+        return Err(e).context("writing the path");
+    }
+    if let Err(e) = result {
+        if let Stream::Stdout(w) = &mut stream {
+            // a streamed table ends with the reason it ends early
+            let _ = writeln!(w, "# error: {e}");
+            let _ = w.flush();
+        }
+        return Err(e.into());
+    }
+    let tr = rows.summary.finish(&stepper);
+    stream.finish()?;
+    eprintln!("{}", summary_line(&tr, start.elapsed().as_secs_f64()));
+    Ok(())
 }

@@ -1,10 +1,12 @@
 //! Commands of the averaged theory: equivalents, cycles, drift, potential, barriers, pdf.
 
-use crate::common::{bad, jnum, num, params_json, table, Csv, Format, Grid, OutputArgs, ParamArgs};
+use crate::common::{
+    bad, jlimit, jnum, num, params_json, table, Csv, Format, Grid, OutputArgs, ParamArgs,
+};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
-use trirhythm::theory::averaging::{Side, Theory};
+use trirhythm::theory::averaging::{AmplitudePdf, Side, Theory};
 
 /// Arguments of every theory command.
 #[derive(Debug, Args)]
@@ -70,12 +72,13 @@ pub fn equivalents(args: &TheoryArgs) -> Result<()> {
             for (k, v) in rows {
                 c.row([k.to_string(), num(v)]);
             }
-            c.finish()
+            c.finish()?
         }
         Format::Table => table(
             &["name", "value"],
             &rows.map(|(k, v)| vec![k.to_string(), num(v)]),
-        ),
+            &[],
+        )?,
     };
     args.output.emit(&text)
 }
@@ -126,7 +129,7 @@ pub fn cycles(args: &TheoryArgs) -> Result<()> {
                     cy.fold.to_string(),
                 ]);
             }
-            c.finish()
+            c.finish()?
         }
         Format::Table => {
             let rows: Vec<Vec<String>> = cycles
@@ -147,7 +150,7 @@ pub fn cycles(args: &TheoryArgs) -> Result<()> {
                     ]
                 })
                 .collect();
-            let mut t = table(&["cycle", "amplitude", "stability"], &rows);
+            let mut t = table(&["cycle", "amplitude", "stability"], &rows, &[])?;
             t.push_str(&format!(
                 "{}: {} stable ({})\n",
                 kind,
@@ -178,31 +181,50 @@ fn amplitude_grid(s: &str) -> Result<Vec<f64>> {
     Ok(g.points())
 }
 
-fn emit_columns(args: &TheoryArgs, th: &Theory, names: &[&str], cols: Vec<Vec<f64>>) -> Result<()> {
+/// Write named columns; ±∞ is allowed (as a limit) in the columns named in `infinite`.
+fn emit_columns(
+    args: &TheoryArgs,
+    th: &Theory,
+    names: &[&str],
+    cols: Vec<Vec<f64>>,
+    infinite: &[&str],
+) -> Result<()> {
     let n = cols[0].len();
     let text = match args.output.format {
         Format::Json => {
             let mut m = base_json(th);
             for (name, col) in names.iter().zip(&cols) {
+                let limit = infinite.contains(name);
                 m.insert(
                     name.to_string(),
-                    Value::Array(col.iter().map(|&v| jnum(v)).collect()),
+                    Value::Array(
+                        col.iter()
+                            .map(|&v| if limit { jlimit(v) } else { jnum(v) })
+                            .collect(),
+                    ),
                 );
             }
             pretty(Value::Object(m))
         }
         Format::Csv => {
             let mut c = Csv::new(&header(th), names);
+            for col in infinite {
+                c = c.allow_infinity(col);
+            }
             for i in 0..n {
                 c.row(cols.iter().map(|col| num(col[i])));
             }
-            c.finish()
+            c.finish()?
         }
         Format::Table => {
             let rows: Vec<Vec<String>> = (0..n)
-                .map(|i| cols.iter().map(|col| format!("{:.8e}", col[i])).collect())
+                .map(|i| {
+                    cols.iter()
+                        .map(|col| format!("{:.8e}", col[i] + 0.0))
+                        .collect()
+                })
                 .collect();
-            table(names, &rows)
+            table(names, &rows, infinite)?
         }
     };
     args.output.emit(&text)
@@ -220,6 +242,7 @@ pub fn drift(args: &CurveArgs) -> Result<()> {
         &th,
         &["A", "f", "df_dA", "delta_E"],
         vec![a, f, df, de],
+        &[],
     )
 }
 
@@ -229,7 +252,14 @@ pub fn potential(args: &CurveArgs) -> Result<()> {
     let a = amplitude_grid(&args.grid)?;
     let u = a.iter().map(|&x| th.potential(x)).collect();
     let m1 = a.iter().map(|&x| th.fpk_drift(x)).collect();
-    emit_columns(&args.theory, &th, &["A", "U_eff", "m1"], vec![a, u, m1])
+    // at A = 0 with D > 0: U_eff = +∞ and m1 = +∞ (the σ1 ln A and σ1/(2A) terms), the limits
+    emit_columns(
+        &args.theory,
+        &th,
+        &["A", "U_eff", "m1"],
+        vec![a, u, m1],
+        &["U_eff", "m1"],
+    )
 }
 
 /// `barriers`: the extrema of U_eff and the barriers ΔU_i between them.
@@ -262,7 +292,7 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
                     num(b.height),
                 ]);
             }
-            c.finish()
+            c.finish()?
         }
         Format::Table => {
             let rows: Vec<Vec<String>> = bs
@@ -278,7 +308,11 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
                     ]
                 })
                 .collect();
-            table(&["barrier", "well A", "crest A", "side", "height"], &rows)
+            table(
+                &["barrier", "well A", "crest A", "side", "height"],
+                &rows,
+                &[],
+            )?
         }
     };
     args.output.emit(&text)
@@ -303,12 +337,28 @@ pub struct PdfArgs {
     /// Which density.
     #[arg(long, value_enum, default_value_t = PdfKind::Amplitude)]
     pub kind: PdfKind,
-    /// Grid START:STOP:COUNT of A, H, or U (joint); default: the density's support.
+    /// Grid START:STOP:COUNT of A, H, or U (joint); default: 401 points over the density's
+    /// support plus 101 over ±6 widths around each mode (A and H).
     #[arg(long, allow_hyphen_values = true)]
     pub grid: Option<String>,
     /// Velocity grid START:STOP:COUNT for the joint density; default: symmetric, 101 points.
     #[arg(long, allow_hyphen_values = true)]
     pub vgrid: Option<String>,
+}
+
+/// The default amplitude grid of `pdf`: 401 points over [0, support end] and 101 more over
+/// ±6 widths around each mode, so that a peak narrower than the uniform spacing (small D, large
+/// τ) is still drawn.
+fn support_grid(pdf: &AmplitudePdf) -> Vec<f64> {
+    let end = pdf.support_end;
+    let mut a: Vec<f64> = (0..401).map(|i| end * i as f64 / 400.0).collect();
+    for (&m, &w) in pdf.modes.iter().zip(&pdf.mode_widths) {
+        a.extend((0..=100).map(|i| m + w * (i as f64 / 50.0 - 1.0) * 6.0));
+    }
+    a.retain(|&x| (0.0..=end).contains(&x));
+    a.sort_by(f64::total_cmp);
+    a.dedup();
+    a
 }
 
 /// `pdf`: the stationary densities, normalised in log space.
@@ -321,12 +371,17 @@ pub fn pdf(args: &PdfArgs) -> Result<()> {
     match args.kind {
         PdfKind::Amplitude | PdfKind::Energy => {
             let energy = args.kind == PdfKind::Energy;
-            let default = if energy {
-                format!("0:{}:401", 0.5 * w1 * w1 * a_end * a_end)
-            } else {
-                format!("0:{a_end}:401")
+            let xs = match args.grid.as_deref() {
+                Some(g) => amplitude_grid(g)?,
+                None => {
+                    let a = support_grid(&pdf);
+                    if energy {
+                        a.iter().map(|&a| 0.5 * w1 * w1 * a * a).collect()
+                    } else {
+                        a
+                    }
+                }
             };
-            let xs = amplitude_grid(args.grid.as_deref().unwrap_or(&default))?;
             let logp: Vec<f64> = xs
                 .iter()
                 .map(|&x| {
@@ -367,7 +422,7 @@ pub fn pdf(args: &PdfArgs) -> Result<()> {
                     );
                     m.insert(
                         "log_p".into(),
-                        Value::Array(logp.iter().map(|&v| jnum(v)).collect()),
+                        Value::Array(logp.iter().map(|&v| jlimit(v)).collect()),
                     );
                     pretty(Value::Object(m))
                 }
@@ -376,11 +431,11 @@ pub fn pdf(args: &PdfArgs) -> Result<()> {
                     h.push(format!("modes: {:?}", pdf.modes));
                     h.push(format!("antimodes: {:?}", pdf.antimodes));
                     h.push(format!("mean_amplitude: {}", pdf.mean_amplitude));
-                    let mut c = Csv::new(&h, &[xname, "p", "log_p"]);
+                    let mut c = Csv::new(&h, &[xname, "p", "log_p"]).allow_infinity("log_p");
                     for i in 0..n {
                         c.row([num(xs[i]), num(p[i]), num(logp[i])]);
                     }
-                    c.finish()
+                    c.finish()?
                 }
                 Format::Table => {
                     let rows: Vec<Vec<String>> = (0..n)
@@ -392,7 +447,7 @@ pub fn pdf(args: &PdfArgs) -> Result<()> {
                             ]
                         })
                         .collect();
-                    let mut t = table(&[xname, "p", "log_p"], &rows);
+                    let mut t = table(&[xname, "p", "log_p"], &rows, &["log_p"])?;
                     t.push_str(&format!(
                         "modes {:?}, antimodes {:?}, mean amplitude {}\n",
                         pdf.modes, pdf.antimodes, pdf.mean_amplitude
@@ -415,7 +470,20 @@ pub fn pdf(args: &PdfArgs) -> Result<()> {
                 "--vgrid",
             )?;
             let (us, vs) = (ug.points(), vg.points());
-            let mut c = Csv::new(&header(&th), &["U", "V", "p", "log_p"]);
+            let spacing = (ug.stop - ug.start) / (ug.count - 1) as f64;
+            if let Some((m, w)) = pdf
+                .modes
+                .iter()
+                .zip(&pdf.mode_widths)
+                .find(|(_, &w)| w < spacing)
+            {
+                eprintln!(
+                    "note: the peak at A = {m:.6} is {w:.3e} wide, narrower than the grid spacing \
+                     {spacing:.3e}: p may read 0 between grid points; refine --grid and --vgrid \
+                     around U² + V²/ω1² = A²"
+                );
+            }
+            let mut c = Csv::new(&header(&th), &["U", "V", "p", "log_p"]).allow_infinity("log_p");
             let mut cells = Vec::with_capacity(us.len() * vs.len());
             for &u in &us {
                 for &v in &vs {
@@ -457,7 +525,7 @@ pub fn pdf(args: &PdfArgs) -> Result<()> {
                     for (u, v, p, l) in cells {
                         c.row([num(u), num(v), num(p), num(l)]);
                     }
-                    c.finish()
+                    c.finish()?
                 }
             };
             out.emit(&text)

@@ -9,7 +9,7 @@
 #[non_exhaustive]
 pub enum Error {
     /// A parameter is outside its allowed range (or not finite).
-    #[error("invalid parameter {name} = {value}: allowed range is {allowed}")]
+    #[error("invalid parameter {name} = {}: allowed range is {allowed}", Exact(*.value))]
     InvalidParameter {
         /// The parameter's key as users type it (`lambda`, `r`, `D`, …).
         name: String,
@@ -92,6 +92,22 @@ impl Error {
             name: name.into(),
             value,
             allowed: allowed.into(),
+        }
+    }
+}
+
+/// A number as the user typed it (shortest round-trip digits), in scientific notation when
+/// it would otherwise be long: `1e308`, not 309 digits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Exact(pub f64);
+
+impl std::fmt::Display for Exact {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let a = self.0.abs();
+        if self.0.is_finite() && a != 0.0 && !(1e-4..1e15).contains(&a) {
+            write!(f, "{:e}", self.0)
+        } else {
+            write!(f, "{}", self.0)
         }
     }
 }

@@ -6,7 +6,8 @@
 //! theory (Eq. 18), as the paper's text says ("around the attractor's minimum amplitude").
 
 use super::{csv_header, panel_line, FigureContext};
-use crate::common::{num, write_atomic, Csv};
+use crate::common::{num, Csv};
+use crate::output::write_atomic;
 use crate::plot::{chart, padded_range, pe, save, Picture};
 use anyhow::{bail, Result};
 use plotters::prelude::*;
@@ -155,7 +156,7 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     }
     let stem = ctx.stem(1);
     let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish().as_bytes())?;
+    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
     let mut files = vec![csv_path];
     files.extend(save(
         &Fig1 {

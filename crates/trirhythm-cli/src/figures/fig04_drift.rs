@@ -4,7 +4,8 @@
 //! f > 0 "dissipation"; the figure labels by the physics and says so in its notes.
 
 use super::{csv_header, panel_line, FigureContext};
-use crate::common::{num, write_atomic, Csv};
+use crate::common::{num, Csv};
+use crate::output::write_atomic;
 use crate::plot::{chart, legend, padded_range, pe, save, Picture, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
@@ -86,7 +87,7 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     }
     let stem = ctx.stem(4);
     let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish().as_bytes())?;
+    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
     let mut files = vec![csv_path];
     files.extend(save(&Fig4 { panels }, &stem)?);
     Ok(files)

@@ -3,8 +3,9 @@
 //! dashed, folds and births at A0 = 0 marked).
 
 use super::{csv_header, panel_line, FigureContext};
-use crate::common::{num, write_atomic, Csv};
+use crate::common::{num, Csv};
 use crate::maps::branch_diagram;
+use crate::output::write_atomic;
 use crate::plot::{chart, legend, pe, save, Picture, FONT};
 use anyhow::Result;
 use plotters::coord::Shift;
@@ -76,7 +77,7 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     }
     let stem = ctx.stem(5);
     let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish().as_bytes())?;
+    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
     let mut files = vec![csv_path];
     files.extend(save(&Fig5 { panels }, &stem)?);
     Ok(files)

@@ -1,7 +1,8 @@
 //! Fig. 7: the pseudo-potential U_eff(A0) (Eq. 23) for several r (a) and several λ (b).
 
 use super::{csv_header, panel_line, FigureContext};
-use crate::common::{num, write_atomic, Csv};
+use crate::common::{num, Csv};
+use crate::output::write_atomic;
 use crate::plot::{chart, legend, padded_range, pe, save, Picture, PALETTE};
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
@@ -157,7 +158,7 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(&ctx.out_dir)?;
     let stem = ctx.stem(7);
     let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish().as_bytes())?;
+    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
     let fig = Fig7 {
         panels: vec![
             (format!("(a) λ = {}, several r", pa.lambda), a_curves),

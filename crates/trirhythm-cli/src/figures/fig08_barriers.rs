@@ -2,7 +2,8 @@
 
 use super::fig07_pseudo_potential::{draw_curves, frame, Curve};
 use super::{csv_header, panel_line, FigureContext};
-use crate::common::{num, write_atomic, Csv};
+use crate::common::{num, Csv};
+use crate::output::write_atomic;
 use crate::plot::{chart, pe, save, Picture, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
@@ -55,7 +56,7 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(&ctx.out_dir)?;
     let stem = ctx.stem(8);
     let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish().as_bytes())?;
+    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
     // Zoom on the inner wells: up to the first crest beyond the first well, with margin.
     let zoom_end = barriers
         .iter()

@@ -2,7 +2,8 @@
 //! r = 0.990, as heat maps; blank where U_eff does not have the three wells the labels refer to.
 
 use super::{csv_header, panel_line, FigureContext};
-use crate::common::{num, progress, write_atomic, Csv};
+use crate::common::{num, progress, Csv};
+use crate::output::write_atomic;
 use crate::plot::{chart, pe, save, Picture, FONT};
 use anyhow::Result;
 use plotters::coord::Shift;
@@ -75,7 +76,7 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     }
     let stem = ctx.stem(9);
     let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish().as_bytes())?;
+    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
     let mut files = vec![csv_path];
     files.extend(save(&Fig9 { surfaces }, &stem)?);
     Ok(files)

@@ -2,8 +2,9 @@
 //! (mono blue, bi green, tri black, as in the paper), exact fold curves on top, a legend.
 
 use super::{csv_header, FigureContext};
-use crate::common::{num, write_atomic, Csv};
+use crate::common::{num, Csv};
 use crate::maps::{folds_csv, run_map};
+use crate::output::write_atomic;
 use crate::plot::{chart, legend, pe, save, Picture, FONT};
 use anyhow::Result;
 use plotters::coord::Shift;
@@ -193,7 +194,7 @@ pub fn write_map_figure(
         }
     }
     let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish().as_bytes())?;
+    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
     let mut fc = Csv::new(
         &header,
         &["panel", "curve", "system", "x", "y", "amplitude"],
@@ -206,7 +207,7 @@ pub fn write_map_figure(
         folds_csv(&mut fc, std::slice::from_ref(&p.label), &sets);
     }
     let folds_path = stem.with_file_name(format!("fig{n:02}_folds.csv"));
-    write_atomic(&folds_path, fc.finish().as_bytes())?;
+    write_atomic(&folds_path, fc.finish()?.as_bytes())?;
     let mut files = vec![csv_path, folds_path];
     files.extend(save(
         &MapFigure {

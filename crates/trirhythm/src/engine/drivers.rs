@@ -88,7 +88,9 @@ pub fn run(
 }
 
 impl Options {
-    /// The number of steps of Δt in [0, T] (T rounded to a whole number of steps), checked.
+    /// The number of steps of Δt in [0, T], checked: T must be a whole number of steps (to
+    /// 1e-9 relative; the grid is uniform, so a T between two grid points is refused rather
+    /// than silently moved) and at most [`MAX_STEPS`] of them.
     pub fn steps(&self, dt: f64) -> Result<u64> {
         if !(dt > 0.0 && dt.is_finite()) {
             return Err(Error::invalid("dt", dt, "(0, ∞), finite"));
@@ -96,12 +98,25 @@ impl Options {
         if !(self.t_end > 0.0 && self.t_end.is_finite()) {
             return Err(Error::invalid("t_end", self.t_end, "(0, ∞), finite"));
         }
-        let steps = (self.t_end / dt).round();
-        if !(1.0..=1e11).contains(&steps) {
+        let ratio = self.t_end / dt;
+        let steps = ratio.round();
+        if !(1.0..=MAX_STEPS as f64).contains(&steps) {
             return Err(Error::invalid(
                 "t_end",
                 self.t_end,
-                "between one step and 1e11 steps of dt",
+                format!("between one step and {MAX_STEPS:e} steps of dt = {dt}"),
+            ));
+        }
+        if (ratio - steps).abs() > 1e-9 * steps {
+            let below = ratio.floor().max(1.0);
+            return Err(Error::invalid(
+                "t_end",
+                self.t_end,
+                format!(
+                    "a whole number of steps of dt = {dt} (t_end/dt = {ratio:.6}; nearest: {} or {})",
+                    below * dt,
+                    (below + 1.0) * dt
+                ),
             ));
         }
         Ok(steps as u64)
@@ -128,6 +143,11 @@ impl Options {
     }
 }
 
+/// Most steps of one path (at 10⁷ steps/s, three hours).
+pub const MAX_STEPS: u64 = 100_000_000_000;
+/// Most nodes a [`TrajectoryRecorder`] keeps in memory (four columns: 3.2 GB).
+pub const MAX_KEPT_SAMPLES: u64 = 100_000_000;
+
 /// Records a [`Trajectory`]: every `record_every`-th node, the impacts when asked for, and
 /// the mean amplitude over the last periods.
 #[derive(Debug, Clone)]
@@ -149,7 +169,18 @@ impl TrajectoryRecorder {
             return Err(Error::invalid("every", 0.0, "1 or more"));
         }
         let every = options.record_every as u64;
-        let cap = (steps / every + 2) as usize;
+        let kept = steps / every + 1;
+        if kept > MAX_KEPT_SAMPLES {
+            return Err(Error::invalid(
+                "every",
+                every as f64,
+                format!(
+                    "{} or more for {steps} steps (at most {MAX_KEPT_SAMPLES:e} samples are kept)",
+                    steps / (MAX_KEPT_SAMPLES - 1) + 1
+                ),
+            ));
+        }
+        let cap = (kept + 1) as usize;
         let has_noise = !oscillator.noise().is_none();
         let omega1 = oscillator.equivalents().omega1;
         let t_end = steps as f64 * dt;

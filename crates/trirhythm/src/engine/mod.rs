@@ -22,7 +22,7 @@ mod stepper;
 
 pub use drivers::{
     run, simulate, simulate_ensemble, simulate_path, Flow, Observer, Progress, Trajectory,
-    TrajectoryRecorder,
+    TrajectoryRecorder, MAX_KEPT_SAMPLES, MAX_STEPS,
 };
 pub use memory::{probe_memory, solve_scalar, Memory, DEFAULT_WINDOW};
 pub use problem::{Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System};

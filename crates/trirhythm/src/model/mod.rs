@@ -108,6 +108,16 @@ impl Default for Params {
     }
 }
 
+/// Upper end of μ0 and ω0 (the paper uses μ0 ≤ 0.7, ω0 ≤ 1): beyond it the equivalents and
+/// the averaged integrals overflow or the quadratures' work grows without bound.
+pub const MAX_SCALE: f64 = 1e3;
+/// Upper end of D and τ.
+pub const MAX_NOISE: f64 = 1e6;
+/// Largest |c_k| of the damping polynomial (the paper's are ≤ 1).
+pub const MAX_COEFFICIENT: f64 = 1e20;
+/// Most coefficients c0 … c20 (P of degree ≤ 40 in U; the paper's has six).
+pub const MAX_COEFFICIENTS: usize = 21;
+
 /// The keys users set parameters by, in display order.
 pub const KEYS: [&str; 10] = [
     "mu0", "omega0", "lambda", "r", "alpha0", "beta0", "gamma0", "delta0", "D", "tau",
@@ -123,8 +133,18 @@ impl Params {
                 Err(Error::invalid(name, v, allowed))
             }
         }
-        check("mu0", self.mu0, self.mu0 > 0.0, "(0, ∞), finite")?;
-        check("omega0", self.omega0, self.omega0 > 0.0, "(0, ∞), finite")?;
+        check(
+            "mu0",
+            self.mu0,
+            self.mu0 > 0.0 && self.mu0 <= MAX_SCALE,
+            "(0, 1e3]",
+        )?;
+        check(
+            "omega0",
+            self.omega0,
+            self.omega0 > 0.0 && self.omega0 <= MAX_SCALE,
+            "(0, 1e3]",
+        )?;
         check(
             "lambda",
             self.lambda,
@@ -140,14 +160,14 @@ impl Params {
         check(
             "D",
             self.noise_intensity,
-            self.noise_intensity >= 0.0,
-            "[0, ∞), finite",
+            (0.0..=MAX_NOISE).contains(&self.noise_intensity),
+            "[0, 1e6]",
         )?;
         check(
             "tau",
             self.correlation_time,
-            self.correlation_time >= 0.0,
-            "[0, ∞), finite",
+            (0.0..=MAX_NOISE).contains(&self.correlation_time),
+            "[0, 1e6]",
         )?;
         if self.damping.coefficients.is_empty() {
             return Err(Error::invalid(
@@ -156,8 +176,28 @@ impl Params {
                 "a damping polynomial with at least one coefficient",
             ));
         }
+        if self.damping.coefficients.len() > MAX_COEFFICIENTS {
+            let k = self.damping.coefficients.len() - 1;
+            return Err(Error::invalid(
+                format!("c{k}"),
+                self.damping.coefficients[k],
+                format!(
+                    "coefficients c0 … c{} only (P of degree ≤ {} in U)",
+                    MAX_COEFFICIENTS - 1,
+                    2 * (MAX_COEFFICIENTS - 1)
+                ),
+            ));
+        }
         for (k, &c) in self.damping.coefficients.iter().enumerate() {
-            check(&format!("c{k}"), c, true, "finite")?;
+            // the user's names and signs: α0 = c2, β0 = −c3, γ0 = c4, δ0 = −c5
+            let (name, value) = match k {
+                2 => ("alpha0".to_string(), c),
+                3 => ("beta0".to_string(), -c),
+                4 => ("gamma0".to_string(), c),
+                5 => ("delta0".to_string(), -c),
+                _ => (format!("c{k}"), c),
+            };
+            check(&name, value, c.abs() <= MAX_COEFFICIENT, "[-1e20, 1e20]")?;
         }
         Ok(())
     }
@@ -197,7 +237,18 @@ impl Params {
             "D" => self.noise_intensity = value,
             "tau" => self.correlation_time = value,
             _ => match coefficient_index(key) {
-                Some(k) => self.damping.set_coefficient(k, value),
+                Some(k) if k < MAX_COEFFICIENTS => self.damping.set_coefficient(k, value),
+                Some(_) => {
+                    return Err(Error::invalid(
+                        key,
+                        value,
+                        format!(
+                            "keys c0 … c{} only (P of degree ≤ {} in U)",
+                            MAX_COEFFICIENTS - 1,
+                            2 * (MAX_COEFFICIENTS - 1)
+                        ),
+                    ))
+                }
                 None => return Err(unknown_key(key)),
             },
         }
@@ -239,8 +290,14 @@ impl Params {
     }
 }
 
+/// k of a key `c<k>` (any number of digits; `c99999999999999999999` is a coefficient key out
+/// of range, not an unknown key).
 fn coefficient_index(key: &str) -> Option<usize> {
-    key.strip_prefix('c').and_then(|s| s.parse::<usize>().ok())
+    let digits = key.strip_prefix('c')?;
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    Some(digits.parse::<usize>().unwrap_or(usize::MAX))
 }
 
 fn unknown_key(key: &str) -> Error {

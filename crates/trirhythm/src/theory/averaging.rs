@@ -330,8 +330,16 @@ impl Theory {
         }
     }
 
-    /// FPK drift m1(A) = f(A) + σ1/(2A) (Eq. 26).
+    /// FPK drift m1(A) = f(A) + σ1/(2A) (Eq. 26); at A = 0 its limit: +∞ when σ1 > 0, else
+    /// f(0) = 0.
     pub fn fpk_drift(&self, a: f64) -> f64 {
+        if a == 0.0 {
+            return if self.h.eval(0.0) > 0.0 {
+                f64::INFINITY
+            } else {
+                0.0
+            };
+        }
         self.h.eval(a * a) / a
     }
 
@@ -478,6 +486,9 @@ pub struct AmplitudePdf {
     pub mean_amplitude: f64,
     /// Amplitude beyond which P(A) < e^{−46} P_max (the quadrature's upper limit).
     pub support_end: f64,
+    /// Width |φ″(m)|^{−1/2} of each mode's peak (φ = ln P), in the order of `modes`: the
+    /// Gaussian standard deviation of the peak (1e−3·m where the curvature vanishes).
+    pub mode_widths: Vec<f64>,
 }
 
 impl AmplitudePdf {
@@ -543,6 +554,16 @@ impl AmplitudePdf {
         let mut cuts: Vec<f64> = vec![0.0, hi];
         // A peak of width w at amplitude m cannot be resolved better than ε·m/w relative: the
         // quadrature nodes themselves are rounded to ulp(m). The tolerance respects that floor.
+        let width = |m: f64| {
+            let x = m * m;
+            let curvature = -1.0 / x + (2.0 * th.g.eval(x) + 4.0 * x * gd.eval(x)) / s1;
+            if curvature < 0.0 {
+                (-curvature).sqrt().recip()
+            } else {
+                1e-3 * m
+            }
+        };
+        let mode_widths: Vec<f64> = modes.iter().map(|&m| width(m)).collect();
         let mut resolution: f64 = 0.0;
         for (i, c) in extrema.iter().enumerate() {
             if c.amplitude >= hi {
@@ -552,13 +573,8 @@ impl AmplitudePdf {
             if !c.stable {
                 continue;
             }
-            let (m, x) = (c.amplitude, c.amplitude * c.amplitude);
-            let curvature = -1.0 / x + (2.0 * th.g.eval(x) + 4.0 * x * gd.eval(x)) / s1;
-            let w = if curvature < 0.0 {
-                (-curvature).sqrt().recip()
-            } else {
-                1e-3 * m
-            };
+            let m = c.amplitude;
+            let w = width(m);
             resolution = resolution.max(m / w);
             let left = if i > 0 { extrema[i - 1].amplitude } else { 0.0 };
             let right = extrema.get(i + 1).map_or(hi, |n| n.amplitude.min(hi));
@@ -596,6 +612,7 @@ impl AmplitudePdf {
             antimodes,
             mean_amplitude: first / mass,
             support_end: hi,
+            mode_widths,
         })
     }
 

@@ -98,6 +98,9 @@ pub struct Plane {
     pub(crate) kernel: Kernel,
 }
 
+/// Most points of one plane (counts held as one byte each: 100 MB).
+pub const MAX_PLANE_POINTS: usize = 100_000_000;
+
 impl Plane {
     /// Check the axes against each other and the parameters at the plane's corners.
     pub fn new(base: &Params, x: Axis, y: Axis, variant: Variant) -> Result<Plane> {
@@ -111,6 +114,14 @@ impl Plane {
             ));
         }
         base.validate()?;
+        let points = x.count as u128 * y.count as u128;
+        if points > MAX_PLANE_POINTS as u128 {
+            return Err(Error::invalid(
+                "points (x count × y count)",
+                points as f64,
+                format!("at most {MAX_PLANE_POINTS:e} points in all (x count × y count)"),
+            ));
+        }
         for vx in [x.start, x.stop] {
             for vy in [y.start, y.stop] {
                 let p = base.with(&x.key, vx)?.with(&y.key, vy)?;

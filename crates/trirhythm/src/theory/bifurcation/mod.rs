@@ -40,5 +40,5 @@ pub use fold::{
     cusp_monitor, fold_residuals, trace_folds, trace_printed_eq37, CurveEnd, FoldCurve, FoldPoint,
     FoldSystem, Folds, TraceOptions,
 };
-pub use grid::{classify, Axis, Map, Plane};
+pub use grid::{classify, Axis, Map, Plane, MAX_PLANE_POINTS};
 pub use kernel::{Kernel, Key, Point, What, MAXC};
