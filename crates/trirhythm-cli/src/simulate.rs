@@ -254,12 +254,14 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
     let steps = s.options.steps(s.method.dt)?;
     let rows = steps / args.every as u64 + 1;
     match args.format {
-        SimFormat::Json if rows > MAX_JSON_SAMPLES => return bad(format!(
+        SimFormat::Json if rows > MAX_JSON_SAMPLES => {
+            return bad(format!(
             "--every {}: {rows} samples of {steps} steps; JSON holds at most {MAX_JSON_SAMPLES} \
                  (raise --every to {} or more, or use --format csv, which streams)",
             args.every,
             steps / (MAX_JSON_SAMPLES - 1) + 1
-        )),
+        ))
+        }
         SimFormat::Csv if rows > MAX_CSV_ROWS => {
             return bad(format!(
                 "--every {}: {rows} rows of {steps} steps; at most {MAX_CSV_ROWS} rows are written \
