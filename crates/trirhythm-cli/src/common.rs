@@ -313,7 +313,22 @@ pub fn num(v: f64) -> String {
     } else if v == f64::INFINITY {
         "inf".into()
     } else {
-        format!("{v}")
+        // shortest round-trip digits; exponent notation where plain digits would run long
+        trirhythm::error::Exact(v).to_string()
+    }
+}
+
+/// A table cell with `digits` decimals, in exponent notation outside [1e-4, 1e9) so that no
+/// cell runs to hundreds of digits or rounds a small value to 0.
+pub fn fixed(v: f64, digits: usize) -> String {
+    let v = v + 0.0;
+    let a = v.abs();
+    if !v.is_finite() {
+        num(v)
+    } else if v == 0.0 || (1e-4..1e9).contains(&a) {
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.digits$e}")
     }
 }
 

@@ -310,8 +310,13 @@ pub fn branches(args: &BranchArgs) -> Result<()> {
     let base = args.params.resolve()?;
     let variant = args.params.variant();
     let (key, g) = parse_axis(&args.x, "--x", false)?;
-    if !(args.step > 0.0 && args.step <= 0.1) {
-        return bad(format!("--step = {} must be in (0, 0.1]", args.step));
+    // the continuation takes at least 1/step steps: bound the work before it starts
+    if !(args.step >= 1e-6 && args.step <= 0.1) {
+        return bad(format!(
+            "--step = {}: allowed range is [1e-6, 0.1] (the fraction of the interval per \
+             continuation step)",
+            num(args.step)
+        ));
     }
     let what: What = args.what.into();
     if what == What::Modes && base.noise_intensity <= 0.0 && key != "D" {

@@ -7,13 +7,14 @@
 //! - Creating, committing and the signal cleanup take one lock, so a signal never races a
 //!   temporary into existence after the cleanup: the cleanup holds the lock until the process
 //!   has exited.
-//! - A destination that is a directory, or whose directory does not exist, is bad input,
-//!   refused before any work starts ([`check_destination`]).
+//! - A destination that is a directory, an existing non-regular file (a device, a pipe), or
+//!   whose directory does not exist, is bad input, refused before any work starts
+//!   ([`check_destination`]).
 //! - Standard output: a closed pipe ends the command quietly (exit 0); any other write error
 //!   (a full device) is an error (exit 1). `main` flushes standard output itself so that the
 //!   error is seen.
 //!
-//! Tests: `tests/cli_hostile.rs` (output onto a directory, into a missing directory, onto
+//! Tests: `tests/hostile.rs` (output onto a directory, into a missing directory, onto
 //! /dev/full, SIGINT and SIGTERM during long runs leave no temporary).
 
 use crate::common::bad;
@@ -55,6 +56,17 @@ pub fn check_destination(path: &Path, flag: &str) -> Result<()> {
     }
     if path.file_name().is_none() {
         return bad(format!("{flag} {}: not a file name", path.display()));
+    }
+    // a device, pipe or socket would be replaced by the rename: refuse it (standard output is
+    // the way to write to a pipe)
+    if let Ok(meta) = std::fs::metadata(path) {
+        if !meta.is_file() {
+            return bad(format!(
+                "{flag} {}: exists and is not a regular file; give a file name, or leave {flag} \
+                 out to write to standard output",
+                path.display()
+            ));
+        }
     }
     let parent = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,

@@ -1,7 +1,7 @@
 //! Commands of the averaged theory: equivalents, cycles, drift, potential, barriers, pdf.
 
 use crate::common::{
-    bad, jlimit, jnum, num, params_json, table, Csv, Format, Grid, OutputArgs, ParamArgs,
+    bad, fixed, jlimit, jnum, num, params_json, table, Csv, Format, Grid, OutputArgs, ParamArgs,
 };
 use anyhow::Result;
 use clap::{Args, ValueEnum};
@@ -138,7 +138,7 @@ pub fn cycles(args: &TheoryArgs) -> Result<()> {
                 .map(|(i, c)| {
                     vec![
                         format!("A0{}", i + 1),
-                        format!("{:.10}", c.amplitude),
+                        fixed(c.amplitude, 10),
                         if c.fold {
                             "fold"
                         } else if c.stable {
@@ -301,8 +301,8 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
                 .map(|(i, b)| {
                     vec![
                         format!("ΔU{}", i + 1),
-                        format!("{:.6}", b.well),
-                        format!("{:.6}", b.crest),
+                        fixed(b.well, 6),
+                        fixed(b.crest, 6),
                         side(b.side).into(),
                         format!("{:.6e}", b.height),
                     ]
@@ -439,13 +439,7 @@ pub fn pdf(args: &PdfArgs) -> Result<()> {
                 }
                 Format::Table => {
                     let rows: Vec<Vec<String>> = (0..n)
-                        .map(|i| {
-                            vec![
-                                format!("{:.6}", xs[i]),
-                                format!("{:.6e}", p[i]),
-                                format!("{:.6}", logp[i]),
-                            ]
-                        })
+                        .map(|i| vec![fixed(xs[i], 6), format!("{:.6e}", p[i]), fixed(logp[i], 6)])
                         .collect();
                     let mut t = table(&[xname, "p", "log_p"], &rows, &["log_p"])?;
                     t.push_str(&format!(

@@ -138,6 +138,11 @@ pub struct SoeKernel {
     pub max_relative_error: f64,
 }
 
+/// The smallest λ the sum-of-exponentials kernel is built for: below it the kernel
+/// t^{λ−1}/Γ(λ) is a near-delta of weight ~λ whose quadrature no longer converges at 1e-10
+/// (λ = 1e-12 fails; the exact `Memory::Direct` weights have no such floor).
+pub const MIN_SOE_LAMBDA: f64 = 1e-6;
+
 /// Points per decade of the log grid on which an [`SoeKernel`] is verified.
 pub const SOE_CHECK_POINTS_PER_DECADE: usize = 60;
 
@@ -147,6 +152,13 @@ impl SoeKernel {
     pub fn new(lambda: f64, from: f64, to: f64, tolerance: f64) -> Result<Self> {
         if !(lambda > 0.0 && lambda <= 1.0) {
             return Err(Error::invalid("lambda", lambda, "(0, 1]"));
+        }
+        if lambda < MIN_SOE_LAMBDA {
+            return Err(Error::invalid(
+                "lambda",
+                lambda,
+                "[1e-6, 1] with the sum-of-exponentials memory (the direct memory takes any λ in (0, 1])",
+            ));
         }
         if !(from > 0.0 && from.is_finite()) {
             return Err(Error::invalid("soe window", from, "(0, ∞)"));
@@ -238,7 +250,8 @@ impl SoeKernel {
         best.ok_or_else(|| Error::NoConvergence {
             what: "sum-of-exponentials kernel",
             detail: format!(
-                "no quadrature step met relative tolerance {tolerance:e} for λ = {lambda} on [{from:e}, {to:e}]"
+                "no quadrature step met relative tolerance {tolerance:e} for λ = {} on [{from:e}, {to:e}]",
+                crate::error::Exact(lambda)
             ),
         })
     }

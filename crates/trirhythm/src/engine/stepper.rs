@@ -68,7 +68,7 @@
 use super::memory::{History, Piece, Split};
 use super::noise::NoiseStream;
 use super::problem::{Barrier, ImpactMemory, Oscillator, PredictorCorrector, System};
-use crate::error::{Error, Result};
+use crate::error::{Error, Exact, Result};
 
 /// A polynomial Σ a_k x^k: up to degree 7 evaluated by Estrin's scheme (three levels of
 /// independent multiply–adds instead of Horner's chain of seven: it is on the step's critical
@@ -288,14 +288,16 @@ impl Stepper {
         if !(h > 0.0 && h.is_finite()) {
             return Err(Error::invalid("dt", h, "(0, ∞), finite"));
         }
-        if !u0.is_finite() {
-            return Err(Error::invalid("u0", u0, "finite"));
-        }
-        if !v0.is_finite() {
-            return Err(Error::invalid("v0", v0, "finite"));
-        }
         if blow_up.is_nan() || blow_up <= 0.0 {
             return Err(Error::invalid("blow_up", blow_up, "(0, ∞]"));
+        }
+        // a start at or beyond the blow-up threshold would be reported as a blow-up at once
+        let limit = format!("|·| < {} (the blow-up threshold)", Exact(blow_up));
+        if u0.is_nan() || u0.abs() >= blow_up {
+            return Err(Error::invalid("u0", u0, limit.as_str()));
+        }
+        if v0.is_nan() || v0.abs() >= blow_up {
+            return Err(Error::invalid("v0", v0, limit.as_str()));
         }
         let rhs = Rhs::new(oscillator, system);
         let wall = rhs.reflect && barrier == Barrier::On;

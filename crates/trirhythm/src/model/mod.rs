@@ -111,6 +111,9 @@ impl Default for Params {
 /// Upper end of μ0 and ω0 (the paper uses μ0 ≤ 0.7, ω0 ≤ 1): beyond it the equivalents and
 /// the averaged integrals overflow or the quadratures' work grows without bound.
 pub const MAX_SCALE: f64 = 1e3;
+/// Lower end of ω0 (the paper's smallest is 0.3): σ1 ∝ 1/ω0² overflows for ω0 → 0, and a
+/// vanishing restoring force leaves the averaging's oscillation without a period.
+pub const MIN_FREQUENCY: f64 = 1e-6;
 /// Upper end of D and τ.
 pub const MAX_NOISE: f64 = 1e6;
 /// Largest |c_k| of the damping polynomial (the paper's are ≤ 1).
@@ -142,8 +145,8 @@ impl Params {
         check(
             "omega0",
             self.omega0,
-            self.omega0 > 0.0 && self.omega0 <= MAX_SCALE,
-            "(0, 1e3]",
+            (MIN_FREQUENCY..=MAX_SCALE).contains(&self.omega0),
+            "[1e-6, 1e3]",
         )?;
         check(
             "lambda",
@@ -189,14 +192,7 @@ impl Params {
             ));
         }
         for (k, &c) in self.damping.coefficients.iter().enumerate() {
-            // the user's names and signs: α0 = c2, β0 = −c3, γ0 = c4, δ0 = −c5
-            let (name, value) = match k {
-                2 => ("alpha0".to_string(), c),
-                3 => ("beta0".to_string(), -c),
-                4 => ("gamma0".to_string(), c),
-                5 => ("delta0".to_string(), -c),
-                _ => (format!("c{k}"), c),
-            };
+            let (name, value) = coefficient_name(k, c);
             check(&name, value, c.abs() <= MAX_COEFFICIENT, "[-1e20, 1e20]")?;
         }
         Ok(())
@@ -292,6 +288,18 @@ impl Params {
 
 /// k of a key `c<k>` (any number of digits; `c99999999999999999999` is a coefficient key out
 /// of range, not an unknown key).
+/// The user's name and value for coefficient c_k of U^{2k} holding `c`: α0 = c2, β0 = −c3,
+/// γ0 = c4, δ0 = −c5, `c<k>` otherwise.
+pub fn coefficient_name(k: usize, c: f64) -> (String, f64) {
+    match k {
+        2 => ("alpha0".to_string(), c),
+        3 => ("beta0".to_string(), -c),
+        4 => ("gamma0".to_string(), c),
+        5 => ("delta0".to_string(), -c),
+        _ => (format!("c{k}"), c),
+    }
+}
+
 fn coefficient_index(key: &str) -> Option<usize> {
     let digits = key.strip_prefix('c')?;
     if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {

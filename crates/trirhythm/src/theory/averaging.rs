@@ -29,7 +29,7 @@
 //! (Khasminskii). Tests: `tests/averaging.rs` (independent reference values, normalisation,
 //! Eq. 29 relation, joint PDF mass, proptest invariants) and the unit tests below.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Exact, Readable, Result};
 use crate::model::{Equivalents, Params};
 use crate::theory::polynomial::Polynomial;
 use crate::theory::quadrature::integrate_with_breakpoints;
@@ -467,6 +467,10 @@ pub fn stable_count(p: &Polynomial) -> usize {
     }
 }
 
+/// Narrowest peak, relative to its amplitude, that a PDF is computed for: a width of 1e-12·A
+/// is still ~5000 ulps; at D → 0 the density becomes a delta function that doubles cannot hold.
+pub const MIN_RELATIVE_WIDTH: f64 = 1e-12;
+
 /// The stationary amplitude PDF P(A) = N0 (A/σ1) e^{S(A)}, held in log form.
 #[derive(Debug, Clone)]
 pub struct AmplitudePdf {
@@ -504,9 +508,17 @@ impl AmplitudePdf {
             });
         }
         if th.g.leading() >= 0.0 {
+            let c = &th.params.damping.coefficients;
+            let k = c.iter().rposition(|&x| x != 0.0).unwrap_or(0);
+            let (name, value) = crate::model::coefficient_name(k, c[k]);
             return Err(Error::Undefined {
                 what: "stationary amplitude PDF",
-                why: "the damping polynomial's leading term must make f(A) → −∞ (P(A) not normalisable)".into(),
+                why: format!(
+                    "P(A) is not normalisable: f(A) must tend to −∞ for large A, which needs the \
+                     highest non-zero damping coefficient c_k (of U^2k) to be negative; here it \
+                     is c{k} ({name} = {})",
+                    crate::error::Exact(value)
+                ),
             });
         }
         let extrema = positive_roots(&th.h);
@@ -528,9 +540,13 @@ impl AmplitudePdf {
             .iter()
             .copied()
             .max_by(|a, b| phi(*a).total_cmp(&phi(*b)))
-            .ok_or(Error::Overflow {
+            .filter(|&m| phi(m).is_finite())
+            .ok_or_else(|| Error::Overflow {
                 what: "amplitude PDF",
-                at: "its modes (none found)".into(),
+                at: format!(
+                    "its modes: none where ln P(A) is finite (maxima at A = {modes:?}); the \
+                     damping polynomial's coefficients put them out of range"
+                ),
                 value: f64::NAN,
             })?;
         let peak_g = gi.eval_double_double(peak * peak);
@@ -564,6 +580,26 @@ impl AmplitudePdf {
             }
         };
         let mode_widths: Vec<f64> = modes.iter().map(|&m| width(m)).collect();
+        // A peak a few ulps wide is a delta function to double precision: its normalisation is
+        // rounding noise. Refuse instead of printing it.
+        if let Some((&m, &w)) = modes
+            .iter()
+            .zip(&mode_widths)
+            .find(|&(&m, &w)| w.is_nan() || w < MIN_RELATIVE_WIDTH * m)
+        {
+            return Err(Error::Undefined {
+                what: "stationary amplitude PDF",
+                why: format!(
+                    "its peak at A = {} has width {}, below the {MIN_RELATIVE_WIDTH:e}·A that \
+                     double precision resolves: the density is a delta function to this \
+                     precision (σ1 = {} from D = {}; a larger D widens it)",
+                    Readable(m),
+                    Readable(w),
+                    Readable(s1),
+                    Exact(th.params.noise_intensity)
+                ),
+            });
+        }
         let mut resolution: f64 = 0.0;
         for (i, c) in extrema.iter().enumerate() {
             if c.amplitude >= hi {
