@@ -3,10 +3,12 @@
 //! f > 0 means the amplitude grows (energy uptake); f < 0 that it decays. The paper labels
 //! f > 0 "dissipation"; the figure labels by the physics and says so in its notes.
 
-use super::{csv_header, panel_line, FigureContext};
+use super::{csv_header, heading, panel_line, FigureContext};
 use crate::common::{num, Csv};
 use crate::output::write_atomic;
-use crate::plot::{chart, legend, padded_range, pe, save, Picture, FONT};
+use crate::plot::{
+    chart, framed, legend, padded_range, pe, save, ChartSize, Heading, Picture, FONT,
+};
 use anyhow::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -29,6 +31,7 @@ struct Panel {
 }
 
 struct Fig4 {
+    heading: Heading,
     panels: Vec<Panel>,
 }
 
@@ -89,13 +92,28 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     let csv_path = stem.with_extension("csv");
     write_atomic(&csv_path, csv.finish()?.as_bytes())?;
     let mut files = vec![csv_path];
-    files.extend(save(&Fig4 { panels }, &stem)?);
+    let base = preset("fig4c")?.params;
+    let heading = heading(
+        4,
+        "the averaged drift f(A0) (Eq. 18): zones and limit cycles",
+        ctx,
+        &base,
+        &["r", "gamma0", "delta0"],
+        vec![
+            "red: f > 0, the amplitude grows (energy uptake; the paper calls this zone 'dissipation'); blue: f < 0, it decays; dashed: the same control parameters at r = 1".into(),
+        ],
+    );
+    files.extend(save(&Fig4 { heading, panels }, &stem)?);
     Ok(files)
 }
 
 impl Picture for Fig4 {
     fn size(&self) -> (u32, u32) {
         (1400, 1000)
+    }
+
+    fn heading(&self) -> Heading {
+        self.heading.clone()
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> Result<()>
@@ -164,7 +182,7 @@ impl Picture for Fig4 {
             }
             c.draw_series(LineSeries::new(shown(&p.curve), BLACK.stroke_width(2)))
                 .map_err(pe)?
-                .label(format!("f(A0), r = {}", p.r))
+                .label("f(A0) at the panel's r")
                 .legend(|(x, y)| PathElement::new([(x, y), (x + 15, y)], BLACK.stroke_width(2)));
             c.draw_series(LineSeries::new(
                 [(0.0, 0.0), (p.x_end, 0.0)],
@@ -203,8 +221,58 @@ impl Picture for Fig4 {
                     + Text::new(format!("A0{}", i + 1), (0, -9), label_font.clone())
             }))
             .map_err(pe)?;
-            if p.label == "a" {
+            // panel (d) has room below its curve; the legend holds for every panel
+            if p.label == "d" {
                 legend(&mut c, SeriesLabelPosition::LowerLeft)?;
+            }
+            // Where the small-amplitude part is flattened by the scale of the steep fall, an
+            // inset shows it at its own scale (roots there, or their absence, visible).
+            let span = y.end - y.start;
+            let zoom_end = p
+                .curve
+                .iter()
+                .find(|c| c.1.abs() > 0.1 * span)
+                .map_or(p.x_end, |c| c.0);
+            if zoom_end > 0.4 * p.x_end && zoom_end < p.x_end {
+                let (w, h) = area.dim_in_pixel();
+                let inset = area.clone().shrink(
+                    (90, (0.48 * h as f64) as u32),
+                    ((0.5 * w as f64) as u32, (0.4 * h as f64) as u32),
+                );
+                inset.fill(&WHITE).map_err(pe)?;
+                let pts: Vec<(f64, f64)> = p
+                    .curve
+                    .iter()
+                    .copied()
+                    .filter(|c| c.0 <= zoom_end)
+                    .collect();
+                let yz = padded_range(pts.iter().map(|c| c.1).chain([0.0]));
+                let mut z = framed(
+                    &inset,
+                    &format!("zoom: A0 ≤ {zoom_end:.1}"),
+                    (0.0..zoom_end, yz),
+                    ("", ""),
+                    ChartSize::Inset,
+                )?;
+                z.draw_series(LineSeries::new(
+                    [(0.0, 0.0), (zoom_end, 0.0)],
+                    BLACK.stroke_width(1),
+                ))
+                .map_err(pe)?;
+                z.draw_series(LineSeries::new(pts, BLACK.stroke_width(2)))
+                    .map_err(pe)?;
+                z.draw_series(
+                    p.cycles
+                        .iter()
+                        .filter(|cy| cy.amplitude <= zoom_end)
+                        .map(|cy| {
+                            let fill = if cy.stable { BLACK } else { WHITE };
+                            EmptyElement::at((cy.amplitude, 0.0))
+                                + Circle::new((0, 0), 5, fill.filled())
+                                + Circle::new((0, 0), 5, BLACK.stroke_width(2))
+                        }),
+                )
+                .map_err(pe)?;
             }
         }
         Ok(())

@@ -2,11 +2,11 @@
 //! branch traced by pseudo-arclength continuation through its folds (stable solid, unstable
 //! dashed, folds and births at A0 = 0 marked).
 
-use super::{csv_header, panel_line, FigureContext};
+use super::{csv_header, heading, panel_line, FigureContext};
 use crate::common::{num, Csv};
 use crate::maps::branch_diagram;
 use crate::output::write_atomic;
-use crate::plot::{chart, legend, pe, save, Picture, FONT};
+use crate::plot::{chart, legend, pe, save, Heading, Picture, FONT};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -24,6 +24,7 @@ const PANELS: [(&str, f64, f64, f64); 5] = [
 ];
 
 struct Fig5 {
+    heading: Heading,
     panels: Vec<(String, f64, BranchDiagram)>,
 }
 
@@ -79,7 +80,15 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     let csv_path = stem.with_extension("csv");
     write_atomic(&csv_path, csv.finish()?.as_bytes())?;
     let mut files = vec![csv_path];
-    files.extend(save(&Fig5 { panels }, &stem)?);
+    let heading = heading(
+        5,
+        "limit-cycle amplitude A0 against r, every branch traced through its folds",
+        ctx,
+        &pre.params,
+        &["mu0", "r"],
+        vec!["solid: stable (df/dA0 < 0), dashed: unstable; pseudo-arclength continuation of f(A0; r) = 0 (Eq. 18); the r ranges are chosen per panel (not printed in the paper)".into()],
+    );
+    files.extend(save(&Fig5 { heading, panels }, &stem)?);
     Ok(files)
 }
 
@@ -103,6 +112,10 @@ fn runs(points: &[trirhythm::theory::bifurcation::BranchPoint]) -> Vec<(bool, Ve
 impl Picture for Fig5 {
     fn size(&self) -> (u32, u32) {
         (1500, 960)
+    }
+
+    fn heading(&self) -> Heading {
+        self.heading.clone()
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>

@@ -1,9 +1,9 @@
 //! Fig. 7: the pseudo-potential U_eff(A0) (Eq. 23) for several r (a) and several λ (b).
 
-use super::{csv_header, panel_line, FigureContext};
+use super::{csv_header, heading, panel_line, FigureContext};
 use crate::common::{num, Csv};
 use crate::output::write_atomic;
-use crate::plot::{chart, legend, padded_range, pe, save, Picture, PALETTE};
+use crate::plot::{chart, legend, padded_range, pe, save, Heading, Picture, PALETTE};
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -104,6 +104,7 @@ where
 }
 
 struct Fig7 {
+    heading: Heading,
     panels: Vec<(String, Vec<Curve>)>,
 }
 
@@ -160,6 +161,16 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     let csv_path = stem.with_extension("csv");
     write_atomic(&csv_path, csv.finish()?.as_bytes())?;
     let fig = Fig7 {
+        heading: heading(
+            7,
+            "the pseudo-potential U_eff(A0) (Eq. 23): wells are stable cycles, crests unstable ones",
+            ctx,
+            &pa,
+            &["r", "lambda"],
+            vec![
+                format!("r values (a) and λ values (b) are not printed in the paper: chosen; ω0 = 1 chosen (not printed); D = 0, so U_eff = −∫f dA"),
+            ],
+        ),
         panels: vec![
             (format!("(a) λ = {}, several r", pa.lambda), a_curves),
             (format!("(b) r = {}, several λ", pb.restitution), b_curves),
@@ -173,6 +184,10 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
 impl Picture for Fig7 {
     fn size(&self) -> (u32, u32) {
         (1400, 620)
+    }
+
+    fn heading(&self) -> Heading {
+        self.heading.clone()
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> Result<()>

@@ -4,7 +4,7 @@ use super::fig07_pseudo_potential::{draw_curves, frame, Curve};
 use super::{csv_header, panel_line, FigureContext};
 use crate::common::{num, Csv};
 use crate::output::write_atomic;
-use crate::plot::{chart, pe, save, Picture, FONT};
+use crate::plot::{chart, pe, save, Heading, Picture, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
 use std::path::PathBuf;
@@ -12,6 +12,7 @@ use trirhythm::model::preset;
 use trirhythm::theory::averaging::{Barrier, Side, Theory};
 
 struct Fig8 {
+    heading: Heading,
     curve: Curve,
     barriers: Vec<Barrier>,
     zoom_end: f64,
@@ -68,6 +69,14 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     let mut files = vec![csv_path];
     files.extend(save(
         &Fig8 {
+            heading: super::heading(
+                8,
+                "energy barriers ΔU_i of the pseudo-potential U_eff(A0)",
+                ctx,
+                &p,
+                &[],
+                pre.notes.iter().map(|s| s.to_string()).collect(),
+            ),
             curve,
             barriers,
             zoom_end: zoom_end.min(14.0),
@@ -138,6 +147,10 @@ impl Fig8 {
 impl Picture for Fig8 {
     fn size(&self) -> (u32, u32) {
         (1400, 620)
+    }
+
+    fn heading(&self) -> Heading {
+        self.heading.clone()
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> Result<()>

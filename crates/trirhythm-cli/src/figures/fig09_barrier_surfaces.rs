@@ -4,7 +4,7 @@
 use super::{csv_header, panel_line, FigureContext};
 use crate::common::{num, progress, Csv};
 use crate::output::write_atomic;
-use crate::plot::{chart, pe, save, Picture, FONT};
+use crate::plot::{chart, pe, save, Heading, Picture, FONT};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -17,6 +17,7 @@ const LAMBDA: (f64, f64) = (0.98, 1.0);
 const TAU: (f64, f64) = (0.0, 5.0);
 
 struct Fig9 {
+    heading: Heading,
     surfaces: Vec<(f64, BarrierSurfaces)>,
 }
 
@@ -78,7 +79,20 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     let csv_path = stem.with_extension("csv");
     write_atomic(&csv_path, csv.finish()?.as_bytes())?;
     let mut files = vec![csv_path];
-    files.extend(save(&Fig9 { surfaces }, &stem)?);
+    let mut lines: Vec<String> = pre.notes.iter().map(|s| s.to_string()).collect();
+    lines.push(format!(
+        "τ ∈ [{}, {}] as printed; λ ∈ [{}, {}] chosen (not printed); one colour scale per barrier, shared by both r",
+        TAU.0, TAU.1, LAMBDA.0, LAMBDA.1
+    ));
+    let heading = super::heading(
+        9,
+        "energy barriers ΔU_i over (τ, λ) for r = 0.998 and r = 0.990",
+        ctx,
+        &pre.params,
+        &["r", "tau", "lambda"],
+        lines,
+    );
+    files.extend(save(&Fig9 { heading, surfaces }, &stem)?);
     Ok(files)
 }
 
@@ -105,6 +119,10 @@ fn viridis(t: f64) -> RGBColor {
 impl Picture for Fig9 {
     fn size(&self) -> (u32, u32) {
         (1700, 900)
+    }
+
+    fn heading(&self) -> Heading {
+        self.heading.clone()
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>

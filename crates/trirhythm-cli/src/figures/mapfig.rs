@@ -1,11 +1,11 @@
 //! Shared drawing of classification maps (Figs 2, 3, 6, 10, 12): regions coloured by count
 //! (mono blue, bi green, tri black, as in the paper), exact fold curves on top, a legend.
 
-use super::{csv_header, FigureContext};
+use super::{csv_header, variant_line, FigureContext};
 use crate::common::{num, Csv};
 use crate::maps::{folds_csv, run_map};
 use crate::output::write_atomic;
-use crate::plot::{chart, legend, pe, save, Picture, FONT};
+use crate::plot::{chart, legend, pe, save, Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -211,8 +211,10 @@ pub fn write_map_figure(
     let mut files = vec![csv_path, folds_path];
     files.extend(save(
         &MapFigure {
-            title: format!("Fig. {n}: {title}"),
-            subtitle,
+            heading: Heading {
+                title: format!("Fig. {n}: {title}"),
+                lines: vec![subtitle, variant_line(ctx.variant)],
+            },
             panels,
             layout,
             legend_at,
@@ -223,8 +225,7 @@ pub fn write_map_figure(
 }
 
 struct MapFigure {
-    title: String,
-    subtitle: String,
+    heading: Heading,
     panels: Vec<MapPanel>,
     layout: (usize, usize),
     legend_at: SeriesLabelPosition,
@@ -233,27 +234,18 @@ struct MapFigure {
 impl Picture for MapFigure {
     fn size(&self) -> (u32, u32) {
         let (r, c) = self.layout;
-        (560 * c as u32, 470 * r as u32 + 60)
+        (560 * c as u32, 470 * r as u32)
+    }
+
+    fn heading(&self) -> Heading {
+        self.heading.clone()
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
     where
         DB::ErrorType: 'static,
     {
-        let (top, rest) = root.split_vertically(60);
-        top.draw(&Text::new(
-            self.title.clone(),
-            (12, 6),
-            (FONT, 20).into_font().color(&BLACK),
-        ))
-        .map_err(pe)?;
-        top.draw(&Text::new(
-            self.subtitle.clone(),
-            (12, 34),
-            (FONT, 14).into_font().color(&BLACK),
-        ))
-        .map_err(pe)?;
-        let areas = rest.split_evenly(self.layout);
+        let areas = root.split_evenly(self.layout);
         for (i, (area, p)) in areas.iter().zip(&self.panels).enumerate() {
             draw_panel(area, p, (i == 0).then(|| self.legend_at.clone()))?;
         }

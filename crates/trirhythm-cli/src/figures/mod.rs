@@ -17,6 +17,7 @@ mod fig10_pbif_lambda_tau;
 mod fig12_pbif_maps;
 mod mapfig;
 
+use crate::plot::Heading;
 use anyhow::Result;
 use std::path::PathBuf;
 use trirhythm::model::Params;
@@ -111,4 +112,77 @@ pub fn csv_header(n: u32, title: &str, ctx: &FigureContext, notes: &[String]) ->
 /// A panel's parameters for a header line.
 pub fn panel_line(label: &str, p: &Params) -> String {
     format!("panel {label}: {}", p.describe())
+}
+
+/// The formula variant, as a heading line: a `--variant consistent` picture says so on itself.
+pub fn variant_line(v: Variant) -> String {
+    match v {
+        Variant::Paper => {
+            "averaged theory: the paper's formulas as printed, typos fixed (--variant paper)".into()
+        }
+        Variant::Consistent => {
+            "averaged theory: CONSISTENT variant — exact impact loss ω1A ln r/π, \
+                                coloured noise through sgn Z (--variant consistent)"
+                .into()
+        }
+    }
+}
+
+/// The user-facing symbol of a parameter key.
+fn symbol(key: &str) -> String {
+    match key {
+        "mu0" => "μ0".into(),
+        "omega0" => "ω0".into(),
+        "lambda" => "λ".into(),
+        "alpha0" => "α0".into(),
+        "beta0" => "β0".into(),
+        "gamma0" => "γ0".into(),
+        "delta0" => "δ0".into(),
+        "tau" => "τ".into(),
+        k => k.into(),
+    }
+}
+
+/// "μ0 = 0.01, ω0 = 1, …" for the keys of `p` not in `varying` (those the panels set).
+pub fn params_text(p: &Params, varying: &[&str]) -> String {
+    p.key_values()
+        .into_iter()
+        .filter(|(k, _)| !varying.contains(&k.as_str()))
+        .map(|(k, v)| format!("{} = {}", symbol(&k), trirhythm::error::Exact(v)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A figure's heading: "Fig. N: title", the shared parameters (what the panels vary named),
+/// the formula variant, then `extra` lines (choices where the paper is silent, methods).
+pub fn heading(
+    n: u32,
+    title: &str,
+    ctx: &FigureContext,
+    base: &Params,
+    varying: &[&str],
+    extra: Vec<String>,
+) -> Heading {
+    let mut lines = vec![format!(
+        "{}{}",
+        params_text(base, varying),
+        if varying.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; per panel: {}",
+                varying
+                    .iter()
+                    .map(|k| symbol(k))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        }
+    )];
+    lines.push(variant_line(ctx.variant));
+    lines.extend(extra);
+    Heading {
+        title: format!("Fig. {n}: {title}"),
+        lines,
+    }
 }

@@ -280,7 +280,7 @@ impl Params {
     pub fn describe(&self) -> String {
         self.key_values()
             .iter()
-            .map(|(k, v)| format!("{k}={v}"))
+            .map(|(k, v)| format!("{k}={}", crate::error::Exact(*v)))
             .collect::<Vec<_>>()
             .join(" ")
     }
