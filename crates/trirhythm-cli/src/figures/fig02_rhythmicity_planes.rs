@@ -40,6 +40,7 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     notes.extend(p2.notes.iter().map(|s| format!("panel ii: {s}")));
     notes.push("count = number of stable limit cycles (positive roots of f with df/dA < 0), certified by a Sturm count".into());
     notes.push("red lines: folds f = ∂f/∂A = 0 traced by pseudo-arclength continuation (the paper's L1-L3)".into());
+    notes.push("lines named by computation, as the paper's text defines them: at the middle of each line the double root is the outermost positive root of f (L1, outer cycle), the innermost (L3, inner cycle) or one between (L2); in panel ii the right edge of the trirhythmic wedge is the middle cycle's fold, where the text's description would call it L3".into());
     notes.push("panel ii: the paper describes regions with 1, 2 and 3 stable cycles; at λ = 1, r = 1 the (γ0 ≥ 0) plane has no monorhythmic region (it appears for λ < 1 or r < 1: Figs 3, 6)".into());
     notes.push("panel i: the bistable wedge ends in a cusp at α0 = 1/6, β0 = 1/135, A = √12 (triple root of f)".into());
     write_map_figure(
@@ -50,6 +51,6 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
         notes,
         panels,
         (1, 2),
-        plotters::prelude::SeriesLabelPosition::UpperRight,
+        plotters::prelude::SeriesLabelPosition::LowerRight,
     )
 }

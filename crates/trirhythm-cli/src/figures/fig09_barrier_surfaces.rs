@@ -4,7 +4,7 @@
 use super::{csv_header, panel_line, FigureContext};
 use crate::common::{num, progress, Csv};
 use crate::output::write_atomic;
-use crate::plot::{chart, pe, save, Heading, Picture, FONT};
+use crate::plot::{chart, pe, save, tick_formatter, Heading, Picture, FONT};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -116,9 +116,49 @@ fn viridis(t: f64) -> RGBColor {
     )
 }
 
+/// A horizontal colour bar for values in [lo, hi] with its ticks.
+fn colour_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    label: &str,
+    lo: f64,
+    hi: f64,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let fx = tick_formatter(&(lo..hi), 5);
+    let mut c = ChartBuilder::on(area)
+        .margin_left(70)
+        .margin_right(20)
+        .margin_top(8)
+        .x_label_area_size(40)
+        .build_cartesian_2d(lo..hi, 0.0..1.0)
+        .map_err(pe)?;
+    c.configure_mesh()
+        .disable_y_axis()
+        .disable_mesh()
+        .x_labels(5)
+        .x_label_formatter(&fx)
+        .x_desc(label)
+        .axis_desc_style((FONT, 16))
+        .label_style((FONT, 14))
+        .draw()
+        .map_err(pe)?;
+    let n = 64;
+    c.draw_series((0..n).map(|i| {
+        let (a, b) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
+        Rectangle::new(
+            [(lo + a * (hi - lo), 0.0), (lo + b * (hi - lo), 1.0)],
+            viridis((i as f64 + 0.5) / n as f64).filled(),
+        )
+    }))
+    .map_err(pe)?;
+    Ok(())
+}
+
 impl Picture for Fig9 {
     fn size(&self) -> (u32, u32) {
-        (1700, 900)
+        (1700, 960)
     }
 
     fn heading(&self) -> Heading {
@@ -129,19 +169,26 @@ impl Picture for Fig9 {
     where
         DB::ErrorType: 'static,
     {
-        let (top, rest) = root.split_vertically(56);
-        top.draw(&Text::new(
-            "Fig. 9: energy barriers ΔU_i(τ, λ); μ0 = 0.01, ω0 = 1, D = 0.25, cp = (0.144, 0.005, 5.862e-5, 2.13e-7)",
-            (12, 6),
-            (FONT, 18).into_font().color(&BLACK),
-        ))
-        .map_err(pe)?;
-        top.draw(&Text::new(
-            "colour: viridis from the panel's minimum (dark) to maximum (yellow), range in the caption; white: U_eff has fewer than three wells",
-            (12, 32),
-            (FONT, 14).into_font().color(&BLACK),
-        ))
-        .map_err(pe)?;
+        let h = root.dim_in_pixel().1;
+        let (rest, bars) = root.split_vertically(h - 90);
+        // one colour scale per barrier, shared by both r: the rows can be compared
+        let scales: Vec<(f64, f64)> = (0..4)
+            .map(|k| {
+                let vals = self
+                    .surfaces
+                    .iter()
+                    .flat_map(|(_, s)| s.heights.iter().filter_map(move |h| h[k]));
+                vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                    (a.min(v), b.max(v))
+                })
+            })
+            .collect();
+        for (k, bar) in bars.split_evenly((1, 4)).iter().enumerate() {
+            let (lo, hi) = scales[k];
+            if lo < hi {
+                colour_bar(bar, &format!("ΔU{} (both r)", k + 1), lo, hi)?;
+            }
+        }
         let areas = rest.split_evenly((2, 4));
         for (row, (r, s)) in self.surfaces.iter().enumerate() {
             let pl = &s.plane;
@@ -150,16 +197,22 @@ impl Picture for Fig9 {
             let hy = (pl.y.stop - pl.y.start) / (ny - 1) as f64;
             for k in 0..4 {
                 let vals: Vec<f64> = s.heights.iter().filter_map(|h| h[k]).collect();
-                let lo = vals.iter().copied().fold(f64::INFINITY, f64::min);
-                let hi = vals.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                let here = vals
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+                        (a.min(v), b.max(v))
+                    });
+                let (lo, hi) = scales[k];
                 let label = ["a", "b", "c", "d"][k];
                 let caption = if vals.is_empty() {
                     format!("({label}{}) ΔU{}, r = {r}: undefined", row + 1, k + 1)
                 } else {
                     format!(
-                        "({label}{}) ΔU{}, r = {r}: [{lo:.3}, {hi:.3}]",
+                        "({label}{}) ΔU{}, r = {r}: [{:.3}, {:.3}]",
                         row + 1,
-                        k + 1
+                        k + 1,
+                        here.0,
+                        here.1
                     )
                 };
                 let area = &areas[row * 4 + k];

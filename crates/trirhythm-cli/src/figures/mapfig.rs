@@ -5,10 +5,11 @@ use super::{csv_header, variant_line, FigureContext};
 use crate::common::{num, Csv};
 use crate::maps::{folds_csv, run_map};
 use crate::output::write_atomic;
-use crate::plot::{chart, legend, pe, save, Heading, Picture};
+use crate::plot::{chart, legend, pe, save, Heading, Picture, FONT};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::PathBuf;
 use trirhythm::model::Params;
 use trirhythm::theory::bifurcation::{
@@ -72,6 +73,52 @@ pub struct MapPanel {
     pub ys: AxisSpec,
     /// A parameter point to mark (x, y, label), e.g. the paper's standard values.
     pub mark: Option<(f64, f64, String)>,
+    /// Names of saddle-node lines drawn on the picture: (index of the curve, name).
+    pub fold_names: Vec<(usize, String)>,
+}
+
+/// The paper's names of the saddle-node lines (Sec. 3: "L1 … the saddle-node bifurcation of
+/// the outer limit cycle …, L3 … of the inner limit cycle"): at the middle of each curve, the
+/// double root is the outermost positive root of f (L1), the innermost (L3) or between (L2).
+/// The longest curve of each name is labelled.
+fn name_folds(base: &Params, plane: &Plane, folds: &Folds) -> Vec<(usize, String)> {
+    let mut best: Vec<(usize, String, usize)> = Vec::new();
+    for (i, curve) in folds.curves.iter().enumerate() {
+        let Some(q) = curve.points.get(curve.points.len() / 2) else {
+            continue;
+        };
+        let Ok(p) = base
+            .with(&plane.x.key, q.x)
+            .and_then(|p| p.with(&plane.y.key, q.y))
+        else {
+            continue;
+        };
+        let Ok(th) = trirhythm::theory::averaging::Theory::new(&p, plane.variant) else {
+            continue;
+        };
+        let roots = th.limit_cycles();
+        let tol = 1e-4 * q.amplitude.max(1e-9);
+        let below = roots
+            .iter()
+            .filter(|c| c.amplitude < q.amplitude - tol)
+            .count();
+        let above = roots
+            .iter()
+            .filter(|c| c.amplitude > q.amplitude + tol)
+            .count();
+        let name = match (below, above) {
+            (_, 0) => "L1 (outer cycle)",
+            (0, _) => "L3 (inner cycle)",
+            _ => "L2 (middle cycle)",
+        };
+        let len = curve.points.len();
+        match best.iter_mut().find(|b| b.1 == name) {
+            Some(b) if b.2 < len => *b = (i, name.to_string(), len),
+            Some(_) => {}
+            None => best.push((i, name.to_string(), len)),
+        }
+    }
+    best.into_iter().map(|(i, n, _)| (i, n)).collect()
 }
 
 /// Grid points per axis: quick or paper quality.
@@ -109,6 +156,11 @@ pub fn compute_panel(
     } else {
         None
     };
+    let fold_names = if what == What::Rhythmicity {
+        name_folds(base, &map.plane, &folds)
+    } else {
+        Vec::new()
+    };
     Ok(MapPanel {
         label: label.to_string(),
         caption,
@@ -118,6 +170,7 @@ pub fn compute_panel(
         xs,
         ys,
         mark: None,
+        fold_names,
     })
 }
 
@@ -246,8 +299,15 @@ impl Picture for MapFigure {
         DB::ErrorType: 'static,
     {
         let areas = root.split_evenly(self.layout);
+        // the legend (on the first panel) lists the counts met in any panel
+        let mut counts = [0usize; 5];
+        for p in &self.panels {
+            for (c, h) in counts.iter_mut().zip(p.map.histogram()) {
+                *c += h;
+            }
+        }
         for (i, (area, p)) in areas.iter().zip(&self.panels).enumerate() {
-            draw_panel(area, p, (i == 0).then(|| self.legend_at.clone()))?;
+            draw_panel(area, p, (i == 0).then(|| (self.legend_at.clone(), counts)))?;
         }
         Ok(())
     }
@@ -257,7 +317,7 @@ impl Picture for MapFigure {
 pub fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     p: &MapPanel,
-    legend_at: Option<SeriesLabelPosition>,
+    legend_at: Option<(SeriesLabelPosition, [usize; 5])>,
 ) -> Result<()>
 where
     DB::ErrorType: 'static,
@@ -299,7 +359,9 @@ where
         }
     }
     c.draw_series(rects).map_err(pe)?;
-    let h = p.map.histogram();
+    let h = legend_at
+        .as_ref()
+        .map_or_else(|| p.map.histogram(), |l| l.1);
     let names = [
         "no stable cycle",
         "mono (1)",
@@ -354,6 +416,22 @@ where
             }
         }
     }
+    for (i, name) in &p.fold_names {
+        let curve = &p.folds.curves[*i];
+        let q = &curve.points[curve.points.len() / 2];
+        let style = (FONT, 16)
+            .into_font()
+            .color(&FOLD)
+            .pos(Pos::new(HPos::Left, VPos::Center));
+        // on a white box: red on green, blue or black is hard to read
+        let w = (0.5 * 16.0 * name.chars().count() as f64) as i32 + 8;
+        c.draw_series(std::iter::once(
+            EmptyElement::at((q.x / sx, q.y / sy))
+                + Rectangle::new([(6, -11), (6 + w, 11)], WHITE.mix(0.85).filled())
+                + Text::new(name.clone(), (10, 0), style.clone()),
+        ))
+        .map_err(pe)?;
+    }
     if !p.folds.cusps.is_empty() {
         c.draw_series(p.folds.cusps.iter().map(|q| {
             EmptyElement::at((q.x / sx, q.y / sy))
@@ -375,7 +453,7 @@ where
         .label(text.clone())
         .legend(|(x, y)| Cross::new((x + 7, y), 5, RGBColor(255, 0, 255).stroke_width(2)));
     }
-    if let Some(pos) = legend_at {
+    if let Some((pos, _)) = legend_at {
         legend(&mut c, pos)?;
     }
     Ok(())
