@@ -6,7 +6,7 @@ use super::{csv_header, heading, panel_line, FigureContext};
 use crate::common::{num, Csv};
 use crate::maps::branch_diagram;
 use crate::output::write_atomic;
-use crate::plot::{chart, legend, pe, save, Heading, Picture, FONT};
+use crate::plot::{chart, legend, pe, save, Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -122,14 +122,7 @@ impl Picture for Fig5 {
     where
         DB::ErrorType: 'static,
     {
-        let (top, rest) = root.split_vertically(50);
-        top.draw(&Text::new(
-            "Fig. 5: limit-cycle amplitude A0 vs r; (α0,β0,γ0,δ0) = (0.144, 0.005, 5.862e-5, 2.13e-7), D = 0, ω0 = 1, λ = 1",
-            (12, 14),
-            (FONT, 18).into_font().color(&BLACK),
-        ))
-        .map_err(pe)?;
-        let areas = rest.split_evenly((2, 3));
+        let areas = root.split_evenly((2, 3));
         for (i, (area, (label, mu0, bd))) in areas.iter().zip(&self.panels).enumerate() {
             let amax = bd
                 .branches
