@@ -114,8 +114,8 @@ impl Options {
                 self.t_end,
                 format!(
                     "a whole number of steps of dt = {dt} (t_end/dt = {ratio:.6}; nearest: {} or {})",
-                    below * dt,
-                    (below + 1.0) * dt
+                    tidy(below * dt),
+                    tidy((below + 1.0) * dt)
                 ),
             ));
         }
@@ -141,6 +141,12 @@ impl Options {
             self.blow_up,
         )
     }
+}
+
+/// `x` rounded to 12 significant digits, shortest form: 0.9, not 0.8999999999999999.
+fn tidy(x: f64) -> crate::error::Exact {
+    let rounded: f64 = format!("{x:.11e}").parse().unwrap_or(x);
+    crate::error::Exact(rounded)
 }
 
 /// Most steps of one path (at 10⁷ steps/s, three hours).
