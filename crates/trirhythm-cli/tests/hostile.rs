@@ -236,6 +236,11 @@ fn end_time_is_kept_or_refused() {
             stderr.contains("dt") && stderr.contains("t_end"),
             "{stderr}"
         );
+        // the suggested end times are printed as people write them
+        assert!(
+            !stderr.contains("99999") && !stderr.contains("00000"),
+            "{stderr}"
+        );
     }
     let text = ok_stdout(&[
         "simulate", "--preset", "fig1", "--t-end", "1", "--dt", "0.25", "--format", "csv",
