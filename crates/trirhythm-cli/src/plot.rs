@@ -273,6 +273,8 @@ where
     let mut c = ChartBuilder::on(area)
         .caption(caption, (FONT, if inset { 16 } else { 20 }))
         .margin(if inset { 6 } else { 10 })
+        // room for half of the last x tick label, which is centred on the right edge
+        .margin_right(if inset { 16 } else { 26 })
         .x_label_area_size(if inset { 28 } else { 45 })
         .y_label_area_size(if inset { 56 } else { 70 })
         .build_cartesian_2d(x.clone(), y.clone())
