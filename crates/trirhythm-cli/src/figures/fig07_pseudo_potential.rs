@@ -105,6 +105,66 @@ where
     Ok(())
 }
 
+/// The depth of the inner well A01 (to the crest after it) and of the outer well (to the
+/// crest before it), and the well amplitudes, of one curve; `None` where a well is missing.
+fn wells(cv: &Curve) -> (Option<f64>, Option<f64>, Vec<f64>) {
+    let ex: Vec<&Extremum> = cv.extrema.iter().filter(|e| e.amplitude > 0.0).collect();
+    let minima: Vec<f64> = ex
+        .iter()
+        .filter(|e| e.minimum)
+        .map(|e| e.amplitude)
+        .collect();
+    let depth = |i: usize, crest: Option<&&Extremum>| {
+        crest
+            .filter(|c| !c.minimum)
+            .map(|c| c.potential - ex[i].potential)
+    };
+    let first = ex.iter().position(|e| e.minimum);
+    let last = ex.iter().rposition(|e| e.minimum);
+    let inner = first
+        .filter(|_| minima.len() >= 3)
+        .and_then(|i| depth(i, ex.get(i + 1)));
+    let outer = last.and_then(|i| depth(i, i.checked_sub(1).and_then(|j| ex.get(j))));
+    (inner, outer, minima)
+}
+
+/// The text's claims on Fig. 7 ("when r decreases, the potential well in A01 tends to
+/// disappear and … that one in A05 increases in depth"; "the amplitudes A01, A03 and A05
+/// change very slightly"; "quasi-same phenomena" with λ), checked on the computed curves.
+fn text_claims(panel: &str, symbol: &str, values: &[f64], curves: &[Curve]) -> Vec<String> {
+    let mut out = Vec::new();
+    let rows: Vec<_> = curves.iter().map(wells).collect();
+    for (v, (inner, outer, minima)) in values.iter().zip(&rows) {
+        out.push(format!(
+            "panel {panel}, {symbol} = {v}: wells at A = {}; depth of the A01 well {}, of the outer well {}",
+            minima.iter().map(|a| format!("{a:.4}")).collect::<Vec<_>>().join(", "),
+            inner.map_or("(no A01 well)".into(), |d| format!("{d:.3e}")),
+            outer.map_or("-".into(), |d| format!("{d:.4}"))
+        ));
+    }
+    // values are listed from the largest down
+    let inner: Vec<Option<f64>> = rows.iter().map(|r| r.0).collect();
+    let outer: Vec<Option<f64>> = rows.iter().map(|r| r.1).collect();
+    let shrinking = inner
+        .windows(2)
+        .all(|w| matches!((w[0], w[1]), (Some(a), Some(b)) if b < a) || w[1].is_none());
+    let deepening = outer
+        .windows(2)
+        .all(|w| matches!((w[0], w[1]), (Some(a), Some(b)) if b > a));
+    let spread = rows
+        .iter()
+        .filter(|r| r.2.len() == rows[0].2.len())
+        .flat_map(|r| r.2.iter().zip(&rows[0].2).map(|(a, b)| (a - b).abs() / b))
+        .fold(0.0f64, f64::max);
+    out.push(format!(
+        "panel {panel}, the text's claims as {symbol} decreases: the A01 well becomes shallower or disappears: {}; the outer well (A05) deepens: {}; the well amplitudes change by at most {:.1}% (the text: 'very slightly')",
+        if shrinking { "yes" } else { "no" },
+        if deepening { "yes" } else { "no" },
+        100.0 * spread
+    ));
+    out
+}
+
 struct Fig7 {
     heading: Heading,
     panels: Vec<(String, Vec<Curve>)>,
@@ -139,6 +199,9 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
         "ω0 is not printed; ω0 = 1 chosen. D = 0, so U_eff = −∫f dA (no log term)".into(),
         "wells: filled markers; crests: open markers".into(),
     ];
+    let mut notes = notes;
+    notes.extend(text_claims("a", "r", &rs, &a_curves));
+    notes.extend(text_claims("b", "λ", &lambdas, &b_curves));
     let mut header = csv_header(7, "pseudo-potential U_eff(A0) (Eq. 23)", ctx, &notes);
     header.push(panel_line("a (base)", &pa));
     header.push(panel_line("b (base)", &pb));
