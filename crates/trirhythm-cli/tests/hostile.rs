@@ -398,11 +398,25 @@ fn output_onto_odd_places_is_refused_and_leaves_nothing() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Wait for `child` and read its standard error.
+#[cfg(unix)]
+fn wait_with_stderr(mut child: std::process::Child) -> (std::process::ExitStatus, String) {
+    let status = child.wait().unwrap();
+    let mut stderr = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut stderr)
+        .unwrap();
+    (status, stderr)
+}
+
 /// Send `signal` to a long run writing into `dir` once its temporary exists: exit 130 and an
 /// empty directory.
 #[cfg(unix)]
 fn interrupt_leaves_nothing(signal: &str, args: &[&str], dir: &Path) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_trirhythm"))
+    let child = Command::new(env!("CARGO_BIN_EXE_trirhythm"))
         .args(args)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -419,14 +433,7 @@ fn interrupt_leaves_nothing(signal: &str, args: &[&str], dir: &Path) {
         .status()
         .unwrap();
     assert!(status.success());
-    let status = child.wait().unwrap();
-    let mut stderr = String::new();
-    child
-        .stderr
-        .take()
-        .unwrap()
-        .read_to_string(&mut stderr)
-        .unwrap();
+    let (status, stderr) = wait_with_stderr(child);
     assert_eq!(status.code(), Some(130), "{signal} {args:?}: {stderr}");
     let left: Vec<_> = std::fs::read_dir(dir)
         .unwrap()
@@ -484,14 +491,7 @@ fn closed_and_full_standard_output() {
         .read_exact(&mut head)
         .unwrap();
     drop(child.stdout.take());
-    let status = child.wait().unwrap();
-    let mut stderr = String::new();
-    child
-        .stderr
-        .take()
-        .unwrap()
-        .read_to_string(&mut stderr)
-        .unwrap();
+    let (status, stderr) = wait_with_stderr(child);
     assert_eq!(status.code(), Some(0), "broken pipe: {stderr}");
     assert!(stderr.is_empty(), "a closed pipe ends quietly: {stderr}");
 
