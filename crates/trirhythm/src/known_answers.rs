@@ -9,6 +9,10 @@
 //!   + (3t^{α/2}/2 − t⁴)³ − y^{3/2}, y(0) = 0, exact y = t⁸ − 3t^{4+α/2} + (9/4)t^α;
 //! - the y = t² problem: D^α y = 2t^{2−α}/Γ(3−α) + t² − y, y(0) = 0, exact y = t²;
 //! - Ornstein–Uhlenbeck: stationary variance D/τ, correlation e^{−|s|/τ};
+//! - the linear fractional oscillator D^{1+λ}U + μU̇ + ω²U = η under OU noise (P ≡ −1, no
+//!   wall): stationary Var U = (1/π)∫₀^∞ S(Ω)|H(Ω)|² dΩ and Var U̇ = (1/π)∫₀^∞ S Ω²|H|² dΩ,
+//!   S = 2D/(1 + τ²Ω²), H = 1/((iΩ)^{1+λ} + iμΩ + ω²); at λ = 1 Var U =
+//!   D(1 + μτ)/(μω²(1 + μτ + ω²τ²)) and Var U̇ = D/(μ(1 + μτ + ω²τ²));
 //! - the linear impact oscillator Ü + ω²U = 0 on U ≥ 0, U(0) = 0, U̇(0) = v₀ > 0, U̇₊ = −rU̇₋:
 //!   U = A_k sin(ω(t − kπ/ω)) on the k-th arc, A_k = (v₀/ω) r^k (amplitude × r per impact).
 //!
@@ -118,6 +122,69 @@ pub fn engine_benchmark_case(
     Ok((Oscillator::new(&params)?, method, options))
 }
 
+/// Stationary (Var U, Var U̇) of the linear fractional oscillator D^{1+λ}U + μU̇ + ω²U = η,
+/// ⟨η(t)η(s)⟩ = (D/τ)e^{−|t−s|/τ} (τ = 0: 2Dδ), from the spectral integrals (adaptive
+/// Gauss–Kronrod, breakpoints around the resonance Ω_r^{1+λ} = ω²/sin(πλ/2), the tail mapped
+/// by Ω = Ω_c/s). Var U̇ is +∞ for white noise with λ ≤ 1/2 (the integral diverges).
+pub fn linear_fractional_moments(lambda: f64, mu: f64, omega: f64, d: f64, tau: f64) -> (f64, f64) {
+    let (sn, cs) = (PI * (1.0 + lambda) / 2.0).sin_cos();
+    let h2 = |w: f64| {
+        let p = w.powf(1.0 + lambda);
+        let re = p * cs + omega * omega;
+        let im = p * sn + mu * w;
+        1.0 / (re * re + im * im)
+    };
+    let s = |w: f64| 2.0 * d / (1.0 + tau * tau * w * w);
+    let resonance = (omega * omega / (PI * lambda / 2.0).sin()).powf(1.0 / (1.0 + lambda));
+    let wc = 4.0 * resonance.max(mu) + 1.0;
+    let mut cuts = vec![0.0];
+    for f in [0.25, 0.5, 0.8, 0.9, 0.95, 1.0, 1.05, 1.1, 1.25, 2.0] {
+        cuts.push(f * resonance);
+    }
+    cuts.push(wc);
+    cuts.retain(|&x| x <= wc);
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    let integral = |f: &dyn Fn(f64) -> f64| {
+        let head = crate::theory::quadrature::integrate_with_breakpoints(f, &cuts, 1e-12);
+        let tail = crate::theory::quadrature::integrate_with_breakpoints(
+            &|x: f64| {
+                if x <= 0.0 {
+                    0.0
+                } else {
+                    f(wc / x) * wc / (x * x)
+                }
+            },
+            &[0.0, 1e-6, 1e-3, 0.1, 1.0],
+            1e-12,
+        );
+        (head + tail) / PI
+    };
+    let var_u = integral(&|w| s(w) * h2(w));
+    let var_v = if tau == 0.0 && lambda <= 0.5 {
+        f64::INFINITY
+    } else {
+        integral(&|w| s(w) * w * w * h2(w))
+    };
+    (var_u, var_v)
+}
+
+/// Parameters of the linear fractional oscillator of [`linear_fractional_moments`] (P ≡ −1,
+/// so −μ0P(U)U̇ = +μU̇), to be run with the barrier off.
+pub fn linear_fractional_oscillator(lambda: f64, mu: f64, omega: f64, d: f64, tau: f64) -> Params {
+    Params {
+        mu0: mu,
+        omega0: omega,
+        lambda,
+        restitution: 1.0,
+        damping: Damping {
+            coefficients: vec![-1.0],
+        },
+        noise_intensity: d,
+        correlation_time: tau,
+    }
+}
+
 /// (U, U̇, impacts so far) of the linear impact oscillator at time t.
 pub fn impact_oscillator(omega: f64, r: f64, v0: f64, t: f64) -> (f64, f64, usize) {
     let half = PI / omega;
@@ -142,6 +209,21 @@ pub fn observed_order(steps: &[f64], errors: &[f64]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn spectral_moments_reproduce_the_closed_forms_at_order_one() {
+        for &(mu, w, d, tau) in &[(0.2, 1.0, 0.1, 0.0), (0.05, 0.7, 0.3, 0.5), (1.5, 2.0, 1.0, 3.0)] {
+            let (vu, vv) = linear_fractional_moments(1.0, mu, w, d, tau);
+            let k = 1.0 + mu * tau + w * w * tau * tau;
+            let eu = d * (1.0 + mu * tau) / (mu * w * w * k);
+            let ev = d / (mu * k);
+            assert!((vu / eu - 1.0).abs() < 1e-9, "Var U {vu} vs {eu}");
+            assert!((vv / ev - 1.0).abs() < 1e-9, "Var V {vv} vs {ev}");
+        }
+        // white noise at λ ≤ 1/2: Var U̇ diverges; Var U stays finite and grows as λ falls
+        let (vu, vv) = linear_fractional_moments(0.4, 0.2, 1.0, 0.1, 0.0);
+        assert!(vv.is_infinite() && vu.is_finite() && vu > 0.0);
+    }
 
     #[test]
     fn exact_solutions_are_consistent() {

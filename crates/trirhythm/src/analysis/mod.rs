@@ -1,5 +1,10 @@
-//! Analyses of simulated paths: recurrence quantification (Eq. 6–7).
+//! Analyses of simulated paths: recurrence quantification (Eq. 6–7), ensembles with their
+//! stationary statistics and diagnosis, and the averaged theory tested against them.
 
+pub mod ensemble;
 pub mod recurrence;
+pub mod versus;
 
+pub use ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, Estimate, PathStats, Wells};
 pub use recurrence::{RecurrenceMatrix, RecurrenceThreshold};
+pub use versus::{compare, escape_time, TheoryComparison};
