@@ -7,6 +7,7 @@
 //! overflowed), 130 when interrupted. No partial output file is ever left ([`output`]).
 
 mod common;
+mod ensemble;
 mod figures;
 mod maps;
 mod output;
@@ -47,6 +48,9 @@ enum Command {
     Pdf(theory::PdfArgs),
     /// Simulate one path of Eq. 1 (or Eq. 5 / Eq. 9) with the fractional predictor–corrector.
     Simulate(simulate::SimulateArgs),
+    /// Ensemble of N paths: streamed stationary statistics with standard errors, the
+    /// stationarity diagnosis (R̂, ESS, drift), and the averaged theory against the simulation.
+    Ensemble(ensemble::EnsembleArgs),
     /// Two-parameter map: stable-cycle or P(A)-mode count on a grid (CSV x,y,count), with the
     /// fold curves traced exactly (--folds).
     Map(maps::MapArgs),
@@ -178,6 +182,7 @@ impl Command {
             Command::Drift(a) | Command::Potential(a) => a.theory.output.out.as_deref(),
             Command::Pdf(a) => a.theory.output.out.as_deref(),
             Command::Simulate(a) => a.out.as_deref(),
+            Command::Ensemble(a) => a.out.as_deref(),
             Command::Map(a) => a.output.out.as_deref(),
             Command::Branches(a) => a.output.out.as_deref(),
             Command::Figure(_) | Command::Presets => None,
@@ -203,6 +208,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Barriers(a) => theory::barriers(a),
         Command::Pdf(a) => theory::pdf(a),
         Command::Simulate(a) => simulate::simulate(a),
+        Command::Ensemble(a) => ensemble::ensemble(a),
         Command::Map(a) => maps::map(a),
         Command::Branches(a) => maps::branches(a),
         Command::Figure(a) => figure(a),

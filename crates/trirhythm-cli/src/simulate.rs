@@ -131,21 +131,7 @@ impl SimulateArgs {
         if self.every == 0 {
             return bad("invalid parameter every = 0: allowed range is 1 or more");
         }
-        let memory = match self.memory {
-            MemoryArg::Direct => Memory::Direct,
-            MemoryArg::Soe => Memory::SumOfExponentials {
-                tolerance: self.tolerance,
-            },
-        };
-        let method = PredictorCorrector {
-            dt: self.dt,
-            memory,
-            impact_memory: match self.impact_memory {
-                ImpactMemoryArg::Continuous => ImpactMemory::Continuous,
-                ImpactMemoryArg::Restart => ImpactMemory::Restart,
-            },
-            window: DEFAULT_WINDOW,
-        };
+        let method = method_from(self.dt, self.memory, self.tolerance, self.impact_memory);
         let options = Options {
             t_end: self.t_end,
             u0: self.u0,
@@ -167,6 +153,27 @@ impl SimulateArgs {
             method,
             options,
         })
+    }
+}
+
+/// The method of the command-line flags.
+pub fn method_from(
+    dt: f64,
+    memory: MemoryArg,
+    tolerance: f64,
+    impact_memory: ImpactMemoryArg,
+) -> PredictorCorrector {
+    PredictorCorrector {
+        dt,
+        memory: match memory {
+            MemoryArg::Direct => Memory::Direct,
+            MemoryArg::Soe => Memory::SumOfExponentials { tolerance },
+        },
+        impact_memory: match impact_memory {
+            ImpactMemoryArg::Continuous => ImpactMemory::Continuous,
+            ImpactMemoryArg::Restart => ImpactMemory::Restart,
+        },
+        window: DEFAULT_WINDOW,
     }
 }
 

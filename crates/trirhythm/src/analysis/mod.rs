@@ -7,4 +7,4 @@ pub mod versus;
 
 pub use ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, Estimate, PathStats, Wells};
 pub use recurrence::{RecurrenceMatrix, RecurrenceThreshold};
-pub use versus::{compare, escape_time, TheoryComparison};
+pub use versus::{compare, escape_time, theory_layout, TheoryComparison, TheoryLayout};

@@ -264,6 +264,66 @@ pub fn compare(
     })
 }
 
+/// What the theory suggests for an ensemble of `params`: the wells (modes and antimodes of
+/// P(A) in `variant`) and an amplitude range holding both variants' densities.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TheoryLayout {
+    /// The wells, when the theory has a stationary P(A) (D > 0).
+    pub wells: Option<Wells>,
+    /// Amplitudes to start paths from: the modes of P(A), or the stable limit cycles at D = 0.
+    pub starts: Vec<f64>,
+    /// A histogram range: 1.2 × the largest (mode + 6 widths) of both variants.
+    pub amplitude_max: f64,
+}
+
+/// The [`TheoryLayout`] of `params`, or None when the averaged theory has no cycle to offer.
+pub fn theory_layout(
+    params: &crate::model::Params,
+    variant: crate::theory::averaging::Variant,
+) -> Option<TheoryLayout> {
+    use crate::theory::averaging::Variant;
+    let mut top: f64 = 0.0;
+    let mut chosen = None;
+    for v in [Variant::Paper, Variant::Consistent] {
+        let Ok(th) = Theory::new(params, v) else {
+            continue;
+        };
+        let (modes, antimodes, widths) = match th.amplitude_pdf() {
+            Ok(pdf) => (pdf.modes.clone(), pdf.antimodes.clone(), pdf.mode_widths.clone()),
+            Err(_) => {
+                let c: Vec<f64> = th
+                    .limit_cycles()
+                    .iter()
+                    .filter(|c| c.stable)
+                    .map(|c| c.amplitude)
+                    .collect();
+                let w = c.iter().map(|a| 0.05 * a).collect();
+                (c, vec![], w)
+            }
+        };
+        for (m, w) in modes.iter().zip(&widths) {
+            top = top.max(m + 6.0 * w);
+        }
+        if v == variant {
+            chosen = Some((modes, antimodes));
+        }
+    }
+    let (modes, antimodes) = chosen?;
+    if modes.is_empty() || top <= 0.0 {
+        return None;
+    }
+    let wells = if antimodes.len() + 1 == modes.len() && params.noise_intensity > 0.0 {
+        Wells::new(modes.clone(), antimodes).ok()
+    } else {
+        None
+    };
+    Some(TheoryLayout {
+        wells,
+        starts: modes,
+        amplitude_max: 1.2 * top,
+    })
+}
+
 /// ∫P(A) over each well (between consecutive antimodes).
 pub fn well_probabilities(pdf: &AmplitudePdf, wells: &Wells) -> Vec<f64> {
     let mut bounds = vec![0.0];
