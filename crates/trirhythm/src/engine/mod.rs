@@ -26,5 +26,5 @@ pub use drivers::{
 };
 pub use memory::{probe_memory, solve_scalar, Memory, DEFAULT_WINDOW};
 pub use problem::{Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System};
-pub use stepper::{Impact, StepEvents, Stepper};
 pub(crate) use stepper::fresh_history;
+pub use stepper::{Impact, StepEvents, Stepper};

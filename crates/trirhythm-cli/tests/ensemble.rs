@@ -1,0 +1,180 @@
+//! `trirhythm ensemble`: the output contract, bad input, and a checkpointed run killed with
+//! SIGINT and resumed, which must equal the uninterrupted run.
+
+mod common;
+
+use common::{ok_json, ok_stdout, run, scratch_dir};
+use serde_json::Value;
+
+#[test]
+fn json_and_csv_keep_the_contract() {
+    let v = ok_json(&[
+        "ensemble",
+        "--preset",
+        "fig13a",
+        "--paths",
+        "3",
+        "--t-end",
+        "200",
+        "--burn-in",
+        "10",
+    ]);
+    for key in [
+        "params",
+        "method",
+        "summary",
+        "moments",
+        "stationarity",
+        "warnings",
+        "amplitude_pdf",
+        "joint_pdf",
+        "theory",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    assert_eq!(v["summary"]["paths"], 3);
+    assert_eq!(v["summary"]["steps_per_path"], 21000);
+    assert!(v["summary"]["wall_time_s"].as_f64().unwrap() >= 0.0);
+    for m in ["mean_U", "var_U", "mean_V", "var_V"] {
+        assert!(v["moments"][m]["value"].is_number(), "{m}");
+        assert!(v["moments"][m]["stderr"].is_number(), "{m}");
+    }
+    assert!(v["stationarity"]["stationary"].is_boolean());
+    assert!(v["stationarity"]["ess"].is_number());
+    let pdf = &v["amplitude_pdf"];
+    let n = pdf["density"].as_array().unwrap().len();
+    assert_eq!(pdf["edges"].as_array().unwrap().len(), n + 1);
+    assert_eq!(pdf["stderr"].as_array().unwrap().len(), n);
+    assert!(v["joint_pdf"]["density"].is_array());
+    for variant in ["paper", "consistent"] {
+        let t = &v["theory"][variant];
+        for key in [
+            "hellinger",
+            "hellinger_stderr",
+            "l1",
+            "ks",
+            "modes_theory",
+            "modes_mc",
+        ] {
+            assert!(t[key].is_number(), "theory.{variant}.{key}");
+        }
+    }
+    // 200 time units cannot mix fig13a's wells: the run says so
+    assert_eq!(v["stationarity"]["stationary"], false);
+    assert!(v["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|w| w.as_str().unwrap().starts_with("not stationary")));
+
+    let csv = ok_stdout(&[
+        "ensemble",
+        "--preset",
+        "fig13a",
+        "--paths",
+        "2",
+        "--t-end",
+        "100",
+        "--burn-in",
+        "0",
+        "--format",
+        "csv",
+        "--bins",
+        "40",
+    ]);
+    let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
+    assert_eq!(rows[0], "A_lo,A_hi,density,stderr");
+    assert_eq!(rows.len(), 41);
+    assert!(csv.contains("# stationarity: NOT STATIONARY"));
+}
+
+#[test]
+fn bad_input_names_the_flag() {
+    for (args, needle) in [
+        (vec!["--paths", "0"], "paths = 0"),
+        (vec!["--bins", "1"], "bins = 1"),
+        (vec!["--t-end", "10.005"], "t_end = 10.005"),
+        (vec!["--burn-in", "-1"], "burn_in = -1"),
+        (vec!["--u0", "-2"], "u0 = -2"),
+        (vec!["--amplitude-max", "0"], "amplitude_max = 0"),
+        (vec!["--dt", "0"], "dt = 0"),
+    ] {
+        let mut a = vec!["ensemble", "--preset", "fig13a"];
+        if args[0] != "--t-end" {
+            a.extend(["--t-end", "100"]);
+        }
+        a.extend(args.iter());
+        let out = run(&a);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{a:?}: {err}");
+        assert!(err.contains(needle), "{a:?}: {err}");
+    }
+}
+
+fn without_wall_time(mut v: Value) -> Value {
+    v["summary"]["wall_time_s"] = Value::Null;
+    v
+}
+
+#[cfg(unix)]
+#[test]
+fn a_killed_checkpointed_run_resumes_to_the_same_result() {
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+    let dir = scratch_dir("checkpoint");
+    let cp = dir.join("cp");
+    let base = [
+        "ensemble",
+        "--preset",
+        "fig13a",
+        "--paths",
+        "6",
+        "--t-end",
+        "20000",
+        "--burn-in",
+        "0",
+        "--seed",
+        "3",
+    ];
+    let whole = without_wall_time(ok_json(&base));
+    let mut with_cp: Vec<&str> = base.to_vec();
+    with_cp.extend(["--checkpoint", cp.to_str().unwrap()]);
+    let child = Command::new(env!("CARGO_BIN_EXE_trirhythm"))
+        .args(&with_cp)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let saved = || {
+        std::fs::read_dir(&cp).map_or(0, |d| {
+            d.filter(|e| {
+                let n = e.as_ref().unwrap().file_name();
+                let n = n.to_string_lossy();
+                n.starts_with("path-") && n.ends_with(".json")
+            })
+            .count()
+        })
+    };
+    let t = Instant::now();
+    while saved() == 0 && t.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    let done = saved();
+    assert_eq!(out.status.code(), Some(130), "interrupted run");
+    assert!((1..6).contains(&done), "{done} paths saved before the kill");
+    let resumed = without_wall_time(ok_json(&with_cp));
+    assert_eq!(whole, resumed, "resumed after {done} saved paths");
+    // a different run refuses the directory
+    let mut other = with_cp.clone();
+    other[8] = "4";
+    let out = run(&other);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("holds another run"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
