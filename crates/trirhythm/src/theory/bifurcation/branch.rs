@@ -1,6 +1,7 @@
 //! One-parameter branch diagrams: every branch of g(x; p) = 0 (limit cycles) or h(x; p) = 0
 //! (extrema of P(A)) followed by pseudo-arclength continuation in (x = A², p), through folds.
 
+use serde::{Deserialize, Serialize};
 use super::fold::{one_sided, CurveEnd};
 use super::kernel::{Coeffs, Kernel, Key, Point, What};
 use crate::error::Result;
@@ -9,7 +10,7 @@ use crate::theory::averaging::Variant;
 use crate::theory::polynomial::Polynomial;
 
 /// A point of a branch.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct BranchPoint {
     /// The swept parameter.
     pub param: f64,
@@ -20,7 +21,7 @@ pub struct BranchPoint {
 }
 
 /// One branch, in order along its arclength.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Branch {
     /// Points (folds included).
     pub points: Vec<BranchPoint>,
@@ -31,7 +32,7 @@ pub struct Branch {
 }
 
 /// All branches over a parameter interval.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct BranchDiagram {
     /// Swept parameter.
     pub key: String,

@@ -1,5 +1,6 @@
 //! Two-parameter classification maps: stable-cycle counts or P(A) mode counts on a grid.
 
+use serde::{Deserialize, Serialize};
 use super::kernel::{Kernel, Key, Point, What};
 use crate::error::{Error, Result};
 use crate::model::Params;
@@ -8,7 +9,7 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// One axis of a map: `count` equally spaced values of a parameter from `start` to `stop`.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Axis {
     /// Parameter key (see [`crate::model::KEYS`]).
     pub key: String,

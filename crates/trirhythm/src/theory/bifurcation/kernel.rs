@@ -8,6 +8,7 @@
 //! [`crate::theory::polynomial::Polynomial::sturm_count`] on fixed-size arrays (power-of-two scaling,
 //! rolled sequence: only rounding differs, so counts agree except within ~1e-10 of a fold).
 
+use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::model::Equivalents;
 use crate::model::Params;
@@ -19,7 +20,8 @@ pub const MAXC: usize = 12;
 pub(crate) const CAP: usize = MAXC + 1;
 
 /// Which polynomial a classification looks at.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum What {
     /// Stable limit cycles of the noise-free averaged system: stable roots of g = f/A.
     #[default]
