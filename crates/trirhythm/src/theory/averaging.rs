@@ -29,11 +29,11 @@
 //! (Khasminskii). Tests: `tests/averaging.rs` (independent reference values, normalisation,
 //! Eq. 29 relation, joint PDF mass, proptest invariants) and the unit tests below.
 
-use serde::{Deserialize, Serialize};
 use crate::error::{Error, Exact, Readable, Result};
 use crate::model::{Equivalents, Params};
 use crate::theory::polynomial::Polynomial;
 use crate::theory::quadrature::integrate_with_breakpoints;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// Which form of the averaged formulas to use.

@@ -1,13 +1,13 @@
 //! One-parameter branch diagrams: every branch of g(x; p) = 0 (limit cycles) or h(x; p) = 0
 //! (extrema of P(A)) followed by pseudo-arclength continuation in (x = A², p), through folds.
 
-use serde::{Deserialize, Serialize};
 use super::fold::{one_sided, CurveEnd};
 use super::kernel::{Coeffs, Kernel, Key, Point, What};
 use crate::error::Result;
 use crate::model::Params;
 use crate::theory::averaging::Variant;
 use crate::theory::polynomial::Polynomial;
+use serde::{Deserialize, Serialize};
 
 /// A point of a branch.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -14,13 +14,13 @@
 //! Eq. 35), and the printed construction of Eq. 36–37 (h = 0 with the misprinted Eq. 37 in place
 //! of h′ = 0) for comparison.
 
-use serde::{Deserialize, Serialize};
 use super::grid::{Map, Plane};
 use super::kernel::{sturm_count_positive, Coeffs, What};
 use crate::error::{Error, Result};
 use crate::theory::averaging::Variant;
 use crate::theory::polynomial::Polynomial;
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 
 /// Which pair of equations defines the curve.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

@@ -1,11 +1,11 @@
 //! Two-parameter classification maps: stable-cycle counts or P(A) mode counts on a grid.
 
-use serde::{Deserialize, Serialize};
 use super::kernel::{Kernel, Key, Point, What};
 use crate::error::{Error, Result};
 use crate::model::Params;
 use crate::theory::averaging::Variant;
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// One axis of a map: `count` equally spaced values of a parameter from `start` to `stop`.

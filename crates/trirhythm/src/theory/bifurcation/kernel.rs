@@ -8,11 +8,11 @@
 //! [`crate::theory::polynomial::Polynomial::sturm_count`] on fixed-size arrays (power-of-two scaling,
 //! rolled sequence: only rounding differs, so counts agree except within ~1e-10 of a fold).
 
-use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::model::Equivalents;
 use crate::model::Params;
 use crate::theory::averaging::{phase_average_weight, Variant};
+use serde::{Deserialize, Serialize};
 
 /// Most damping coefficients c_0 … c_{MAXC−1} the fast path supports (P(U) up to U^22).
 pub const MAXC: usize = 12;
