@@ -56,13 +56,20 @@ enum Command {
     Map(maps::MapArgs),
     /// One-parameter branch diagram: every cycle branch traced through its folds.
     Branches(maps::BranchArgs),
-    /// Reproduce a figure of the paper: data (CSV) and picture (PNG + SVG).
+    /// Reproduce a figure of the paper: data (CSV, and JSON with --data) and picture (PNG + SVG).
     Figure(FigureArgs),
     /// List the parameter presets (one per figure panel) with their notes.
     Presets,
 }
 
 #[derive(Debug, clap::Args)]
+#[command(
+    after_help = "Files, in --out-dir: figNN.csv (the data, parameters and notes in `#` \
+    lines), figNN.png and figNN.svg; the map figures also figNN_folds.csv.\n\
+    With --data also figNN.json: {\"figure\", \"trirhythm\" (version), \"variant\", \"quick\", \
+    \"data\"}, the value the CSV and pictures are drawn from. `figure N --from-data DIR` draws \
+    them again from DIR/figNN.json without computing (byte-identical files)."
+)]
 struct FigureArgs {
     /// Figure number, or `all`.
     figure: String,
@@ -75,6 +82,13 @@ struct FigureArgs {
     /// Formula variant of the averaged theory.
     #[arg(long, value_enum, default_value_t = common::VariantArg::Paper)]
     variant: common::VariantArg,
+    /// Also write the figure's data as figNN.json (what the CSV and pictures are drawn from).
+    #[arg(long)]
+    data: bool,
+    /// Draw from DIR/figNN.json (written by --data) instead of computing; the variant and
+    /// quality are those of the file.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["quick", "variant"])]
+    from_data: Option<PathBuf>,
 }
 
 /// The paper's figures that are not reproduced yet, with what they need.
@@ -94,7 +108,7 @@ fn figure(args: &FigureArgs) -> Result<()> {
     let registry = figures::registry();
     let available = registry
         .iter()
-        .map(|r| r.0.to_string())
+        .map(|r| r.number.to_string())
         .collect::<Vec<_>>()
         .join(", ");
     if args.out_dir.exists() && !args.out_dir.is_dir() {
@@ -116,7 +130,7 @@ fn figure(args: &FigureArgs) -> Result<()> {
                 ))
             }
         };
-        match registry.iter().find(|r| r.0 == n) {
+        match registry.iter().find(|r| r.number == n) {
             Some(r) => vec![r],
             None if (1..=19).contains(&n) => {
                 let what = PLANNED
@@ -140,11 +154,24 @@ fn figure(args: &FigureArgs) -> Result<()> {
         quick: args.quick,
         variant: args.variant.into(),
     };
-    for (n, title, run) in selected {
+    let request = match &args.from_data {
+        None => figures::Request::Compute {
+            ctx: &ctx,
+            data: args.data,
+        },
+        Some(dir) => figures::Request::FromData {
+            dir,
+            out_dir: &args.out_dir,
+            data: args.data,
+        },
+    };
+    for entry in selected {
         let start = std::time::Instant::now();
-        let files = run(&ctx)?;
+        let files = (entry.make)(&request)?;
         eprintln!(
-            "figure {n} ({title}): {:.1} s",
+            "figure {} ({}): {:.1} s",
+            entry.number,
+            entry.title,
             start.elapsed().as_secs_f64()
         );
         let mut text = String::new();

@@ -16,6 +16,8 @@ use anyhow::{anyhow, Context, Result};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use serde::{Deserialize, Serialize};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::Once;
@@ -41,7 +43,7 @@ fn init_fonts() {
 
 /// What a picture says about itself, drawn above it: a title, then lines giving the
 /// parameters, the formula variant and the choices the project made.
-#[derive(Clone)]
+#[derive(Clone, Serialize, Deserialize)]
 pub struct Heading {
     /// "Fig. N: what it shows".
     pub title: String,
@@ -312,6 +314,150 @@ where
         .label_font((FONT, 14))
         .draw()
         .map_err(|e| anyhow!("{e}"))
+}
+
+/// The mark of a legend entry.
+#[derive(Clone, Copy)]
+pub enum Symbol {
+    /// A filled square: a region's colour.
+    Swatch(RGBColor),
+    /// A solid line.
+    Line(RGBColor),
+    /// A dashed line.
+    Dashed(RGBColor),
+    /// An open circle.
+    Ring(RGBColor),
+    /// A cross.
+    Cross(RGBColor),
+}
+
+/// A legend drawn in its own strip outside the plotting areas (below the panels), one for a
+/// whole figure: entries side by side, wrapped into centred rows.
+pub struct LegendStrip {
+    /// Mark and text of each entry.
+    pub entries: Vec<(Symbol, String)>,
+}
+
+const LEGEND_SIZE: u32 = 16;
+const LEGEND_ROW: u32 = 28;
+const LEGEND_PAD: u32 = 10;
+/// Width of an entry's mark and the gap before its text.
+const LEGEND_MARK: u32 = 30;
+/// Space between entries.
+const LEGEND_GAP: u32 = 30;
+
+impl LegendStrip {
+    /// An entry's width in pixels: the mark and the text as laid out by the embedded font
+    /// (the same for every backend).
+    fn entry_width(text: &str) -> u32 {
+        init_fonts();
+        let text_width = (FONT, LEGEND_SIZE)
+            .into_font()
+            .box_size(text)
+            .map_or(LEGEND_SIZE * text.chars().count() as u32, |(w, _)| w);
+        LEGEND_MARK + text_width
+    }
+
+    /// The entries' indices per row, for a strip `width` pixels wide.
+    fn rows(&self, width: u32) -> Vec<Vec<usize>> {
+        let max = width.saturating_sub(2 * LEGEND_PAD);
+        let mut rows: Vec<Vec<usize>> = Vec::new();
+        let mut used = 0;
+        for (i, (_, text)) in self.entries.iter().enumerate() {
+            let w = Self::entry_width(text);
+            match rows.last_mut() {
+                Some(row) if used + LEGEND_GAP + w <= max => {
+                    row.push(i);
+                    used += LEGEND_GAP + w;
+                }
+                _ => {
+                    rows.push(vec![i]);
+                    used = w;
+                }
+            }
+        }
+        rows
+    }
+
+    /// Height of the strip for a figure `width` pixels wide (0 without entries).
+    pub fn height(&self, width: u32) -> u32 {
+        match self.rows(width).len() as u32 {
+            0 => 0,
+            n => 2 * LEGEND_PAD + n * LEGEND_ROW,
+        }
+    }
+
+    /// Draw the entries, framed, centred in `area`.
+    pub fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        let (width, _) = area.dim_in_pixel();
+        let rows = self.rows(width);
+        let row_width = |row: &Vec<usize>| -> u32 {
+            row.iter()
+                .map(|&i| Self::entry_width(&self.entries[i].1))
+                .sum::<u32>()
+                + LEGEND_GAP * (row.len() as u32).saturating_sub(1)
+        };
+        let Some(widest) = rows.iter().map(row_width).max() else {
+            return Ok(());
+        };
+        let left = (width.saturating_sub(widest) / 2) as i32;
+        let frame = [
+            (left - LEGEND_PAD as i32, 4),
+            (
+                left + (widest + LEGEND_PAD) as i32,
+                (LEGEND_PAD + rows.len() as u32 * LEGEND_ROW) as i32 + 4,
+            ),
+        ];
+        area.draw(&Rectangle::new(frame, RGBColor(150, 150, 150)))
+            .map_err(pe)?;
+        let font = (FONT, LEGEND_SIZE)
+            .into_font()
+            .color(&BLACK)
+            .pos(Pos::new(HPos::Left, VPos::Center));
+        for (k, row) in rows.iter().enumerate() {
+            let y = (LEGEND_PAD + k as u32 * LEGEND_ROW + LEGEND_ROW / 2) as i32;
+            let mut x = left + (widest - row_width(row)) as i32 / 2;
+            for &i in row {
+                let (symbol, text) = &self.entries[i];
+                let m = (x + 10, y);
+                match *symbol {
+                    Symbol::Swatch(c) => area.draw(&Rectangle::new(
+                        [(m.0 - 8, m.1 - 8), (m.0 + 8, m.1 + 8)],
+                        c.filled(),
+                    )),
+                    Symbol::Line(c) => area.draw(&PathElement::new(
+                        [(m.0 - 10, m.1), (m.0 + 10, m.1)],
+                        c.stroke_width(3),
+                    )),
+                    Symbol::Dashed(c) => {
+                        area.draw(&PathElement::new(
+                            [(m.0 - 10, m.1), (m.0 - 3, m.1)],
+                            c.stroke_width(3),
+                        ))
+                        .map_err(pe)?;
+                        area.draw(&PathElement::new(
+                            [(m.0 + 3, m.1), (m.0 + 10, m.1)],
+                            c.stroke_width(3),
+                        ))
+                    }
+                    Symbol::Ring(c) => area.draw(&Circle::new(m, 6, c.stroke_width(2))),
+                    Symbol::Cross(c) => area.draw(&Cross::new(m, 7, c.stroke_width(2))),
+                }
+                .map_err(pe)?;
+                area.draw(&Text::new(
+                    text.clone(),
+                    (x + LEGEND_MARK as i32, y),
+                    font.clone(),
+                ))
+                .map_err(pe)?;
+                x += (Self::entry_width(text) + LEGEND_GAP) as i32;
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Distinct line colours for several curves in one panel.

@@ -5,13 +5,14 @@
 //! Both start at the turning point U = A02, U̇ = 0 of the smallest stable cycle of the averaged
 //! theory (Eq. 18), as the paper's text says ("around the attractor's minimum amplitude").
 
-use super::{csv_header, panel_line, FigureContext};
+use super::{csv_header, panel_line, Figure, FigureContext};
 use crate::common::{num, Csv};
 use crate::output::write_atomic;
 use crate::plot::{chart, padded_range, pe, save, Heading, Picture};
 use anyhow::{bail, Result};
 use plotters::prelude::*;
-use std::path::PathBuf;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 use trirhythm::analysis::{RecurrenceMatrix, RecurrenceThreshold};
 use trirhythm::engine::{
     simulate, Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System,
@@ -21,27 +22,65 @@ use trirhythm::theory::averaging::Theory;
 
 const EPSILON: f64 = 0.1;
 
-struct Panel {
-    title: &'static str,
+/// One system's path: the phase portrait and the recurrence plot's samples.
+#[derive(Serialize, Deserialize)]
+pub struct Panel {
+    title: String,
     /// The phase portrait at every step of the window.
     phase: Vec<(f64, f64)>,
     /// The recurrence plot's samples.
     t: Vec<f64>,
     u: Vec<f64>,
     v: Vec<f64>,
-    recurrence: RecurrenceMatrix,
+    /// Recurrence rate and determinism of the recurrence matrix of (u, v) at ε.
     rr: f64,
     det: f64,
     amplitude: f64,
 }
 
-struct Fig1 {
+/// Fig. 1's data: the two paths, sampled for the recurrence plots (the recurrence matrices
+/// follow from the samples and ε; the renderer rebuilds them).
+#[derive(Serialize, Deserialize)]
+pub struct Fig01 {
     heading: Heading,
+    /// CSV comment lines.
+    header: Vec<String>,
     panels: Vec<Panel>,
+    /// Start of the window shown.
     start: f64,
+    /// Recurrence threshold ε.
+    epsilon: f64,
 }
 
-pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
+impl Figure for Fig01 {
+    const NUMBER: u32 = 1;
+    const TITLE: &'static str = "phase portraits and recurrence plots, Eq. (1) vs Eq. (5)";
+
+    fn compute(ctx: &FigureContext) -> Result<Fig01> {
+        compute(ctx)
+    }
+
+    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
+        let mut csv = Csv::new(&self.header, &["system", "t", "U", "V"]);
+        for (panel, name) in self.panels.iter().zip(["fractional", "equivalent"]) {
+            for i in 0..panel.t.len() {
+                csv.row([
+                    name.to_string(),
+                    num(panel.t[i]),
+                    num(panel.u[i]),
+                    num(panel.v[i]),
+                ]);
+            }
+        }
+        let csv_path = stem.with_extension("csv");
+        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
+        let mut files = vec![csv_path];
+        files.extend(save(self, stem)?);
+        Ok(files)
+    }
+}
+
+fn compute(ctx: &FigureContext) -> Result<Fig01> {
     let p = preset("fig1")?.params;
     let th = Theory::new(&p, ctx.variant)?;
     let Some(a02) = th
@@ -103,12 +142,11 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
         let recurrence = RecurrenceMatrix::new(&u, &v, RecurrenceThreshold(EPSILON))?;
         let (rr, det) = (recurrence.recurrence_rate(), recurrence.determinism(2));
         panels.push(Panel {
-            title,
+            title: title.to_string(),
             phase,
             t,
             u,
             v,
-            recurrence,
             rr,
             det,
             amplitude: tr.final_amplitude,
@@ -181,7 +219,6 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
             sampling_text(1)
         ),
     ];
-    std::fs::create_dir_all(&ctx.out_dir)?;
     let mut header = csv_header(
         1,
         "phase portraits and recurrence plots, Eq. (1) vs Eq. (5)",
@@ -193,24 +230,8 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
         "fractional without the barrier (same start, T = {t_end}): mean amplitude = {:.4}",
         free_amplitude
     ));
-    let mut csv = Csv::new(&header, &["system", "t", "U", "V"]);
-    for (panel, name) in panels.iter().zip(["fractional", "equivalent"]) {
-        for i in 0..panel.t.len() {
-            csv.row([
-                name.to_string(),
-                num(panel.t[i]),
-                num(panel.u[i]),
-                num(panel.v[i]),
-            ]);
-        }
-    }
-    let stem = ctx.stem(1);
-    let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-    let mut files = vec![csv_path];
-    files.extend(save(
-        &Fig1 {
-            heading: super::heading(
+    Ok(Fig01 {
+        heading: super::heading(
                 1,
                 "phase portraits and recurrence plots, fractional system (Eq. 1) vs its integer-order equivalent (Eq. 5)",
                 ctx,
@@ -218,19 +239,18 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
                 &[],
                 heading_lines,
             ),
-            panels,
-            start: t_end - window,
-        },
-        &stem,
-    )?);
-    Ok(files)
+        header,
+        panels,
+        start: t_end - window,
+        epsilon: EPSILON,
+    })
 }
 
 /// Most display cells per axis of a recurrence plot: a cell is drawn when any pair of
 /// samples in it recurs (the plot stays legible and the SVG small; RR and DET use every pair).
 const DISPLAY_CELLS: usize = 520;
 
-impl Picture for Fig1 {
+impl Picture for Fig01 {
     fn size(&self) -> (u32, u32) {
         (1300, 1300)
     }
@@ -262,7 +282,8 @@ impl Picture for Fig1 {
                     start = i;
                 }
             }
-            let n = p.recurrence.len();
+            let recurrence = RecurrenceMatrix::new(&p.u, &p.v, RecurrenceThreshold(self.epsilon))?;
+            let n = recurrence.len();
             let tmax = p.t.last().copied().unwrap_or(1.0) - self.start;
             let caption = format!(
                 "({}) recurrence plot: RR = {:.3}, DET = {:.3}",
@@ -288,7 +309,7 @@ impl Picture for Fig1 {
                 for bj in 0..=cells_n {
                     let on = bj < cells_n
                         && (bi * block..((bi + 1) * block).min(n)).any(|i| {
-                            (bj * block..((bj + 1) * block).min(n)).any(|j| p.recurrence.get(i, j))
+                            (bj * block..((bj + 1) * block).min(n)).any(|j| recurrence.get(i, j))
                         });
                     match (on, run_start) {
                         (true, None) => run_start = Some(bj),

@@ -2,14 +2,33 @@
 //! (i) the (α0, β0) plane with γ0 = δ0 = 0, (ii) the (γ0, δ0) plane at (α0, β0) = (0.144, 0.005),
 //! with the saddle-node lines (L1, L2, L3) traced exactly.
 
-use super::mapfig::{compute_panel, write_map_figure, AxisSpec};
-use super::FigureContext;
+use super::mapfig::{compute_panel, map_figure, AxisSpec, MapFigure};
+use super::{Figure, FigureContext};
 use anyhow::Result;
-use std::path::PathBuf;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 use trirhythm::model::preset;
 use trirhythm::theory::bifurcation::What;
 
-pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
+/// Fig. 2's data: two map panels.
+#[derive(Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct Fig02(MapFigure);
+
+impl Figure for Fig02 {
+    const NUMBER: u32 = 2;
+    const TITLE: &'static str = "rhythmicity maps in (α0, β0) and (γ0, δ0) with saddle-node lines";
+
+    fn compute(ctx: &FigureContext) -> Result<Fig02> {
+        compute(ctx).map(Fig02)
+    }
+
+    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
+        self.0.render(stem)
+    }
+}
+
+fn compute(ctx: &FigureContext) -> Result<MapFigure> {
     let p1 = preset("fig2i")?;
     let p2 = preset("fig2ii")?;
     let mut panels = vec![
@@ -43,14 +62,12 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     notes.push("lines named by computation, as the paper's text defines them: at the middle of each line the double root is the outermost positive root of f (L1, outer cycle), the innermost (L3, inner cycle) or one between (L2); in panel ii the right edge of the trirhythmic wedge is the middle cycle's fold, where the text's description would call it L3".into());
     notes.push("panel ii: the paper describes regions with 1, 2 and 3 stable cycles; at λ = 1, r = 1 the (γ0 ≥ 0) plane has no monorhythmic region (it appears for λ < 1 or r < 1: Figs 3, 6)".into());
     notes.push("panel i: the bistable wedge ends in a cusp at α0 = 1/6, β0 = 1/135, A = √12 (triple root of f)".into());
-    write_map_figure(
+    Ok(map_figure(
         ctx,
-        2,
-        "rhythmicity in the (α0, β0) and (γ0, δ0) planes",
+        (2, "rhythmicity in the (α0, β0) and (γ0, δ0) planes"),
         "D = 0, r = 1, μ0 = 0.01, ω0 = 1, λ = 1 (λ not printed in the paper: chosen)".into(),
         notes,
         panels,
         (1, 2),
-        plotters::prelude::SeriesLabelPosition::LowerRight,
-    )
+    ))
 }

@@ -3,7 +3,7 @@
 //! f > 0 means the amplitude grows (energy uptake); f < 0 that it decays. The paper labels
 //! f > 0 "dissipation"; the figure labels by the physics and says so in its notes.
 
-use super::{csv_header, heading, panel_line, FigureContext};
+use super::{csv_header, heading, panel_line, Figure, FigureContext};
 use crate::common::{num, Csv};
 use crate::output::write_atomic;
 use crate::plot::{
@@ -12,15 +12,17 @@ use crate::plot::{
 use anyhow::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use std::path::PathBuf;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 use trirhythm::model::preset;
 use trirhythm::theory::averaging::{Cycle, Theory};
 
 /// What the paper's text says each panel shows (number of roots of f).
 const TEXT_ROOTS: [(&str, &str); 4] = [("a", "five"), ("b", "five"), ("c", "three"), ("d", "none")];
 
-struct Panel {
-    label: &'static str,
+#[derive(Serialize, Deserialize)]
+pub struct Panel {
+    label: String,
     r: f64,
     curve: Vec<(f64, f64)>,
     reference: Option<Vec<(f64, f64)>>,
@@ -30,12 +32,39 @@ struct Panel {
     x_end: f64,
 }
 
-struct Fig4 {
+/// Fig. 4's data: f(A0) on a grid, its roots, per panel.
+#[derive(Serialize, Deserialize)]
+pub struct Fig04 {
     heading: Heading,
+    /// CSV comment lines.
+    header: Vec<String>,
     panels: Vec<Panel>,
 }
 
-pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
+impl Figure for Fig04 {
+    const NUMBER: u32 = 4;
+    const TITLE: &'static str = "f(A0) with its zones and limit cycles (Eq. 18)";
+
+    fn compute(ctx: &FigureContext) -> Result<Fig04> {
+        compute(ctx)
+    }
+
+    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
+        let mut csv = Csv::new(&self.header, &["panel", "r", "A", "f"]);
+        for p in &self.panels {
+            for &(a, f) in &p.curve {
+                csv.row([p.label.clone(), num(p.r), num(a), num(f)]);
+            }
+        }
+        let csv_path = stem.with_extension("csv");
+        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
+        let mut files = vec![csv_path];
+        files.extend(save(self, stem)?);
+        Ok(files)
+    }
+}
+
+fn compute(ctx: &FigureContext) -> Result<Fig04> {
     let n = if ctx.quick { 281 } else { 1401 };
     let a_max = 14.0;
     let grid: Vec<f64> = (0..n).map(|i| a_max * i as f64 / (n - 1) as f64).collect();
@@ -70,7 +99,7 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
         ));
         params_lines.push(panel_line(label, &p));
         panels.push(Panel {
-            label,
+            label: label.to_string(),
             r: p.restitution,
             curve,
             reference,
@@ -79,19 +108,8 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
             x_end,
         });
     }
-    std::fs::create_dir_all(&ctx.out_dir)?;
     let mut header = csv_header(4, "f(A0) (Eq. 18) with its zones and roots", ctx, &notes);
     header.extend(params_lines);
-    let mut csv = Csv::new(&header, &["panel", "r", "A", "f"]);
-    for p in &panels {
-        for &(a, f) in &p.curve {
-            csv.row([p.label.to_string(), num(p.r), num(a), num(f)]);
-        }
-    }
-    let stem = ctx.stem(4);
-    let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-    let mut files = vec![csv_path];
     let base = preset("fig4c")?.params;
     let heading = heading(
         4,
@@ -103,11 +121,14 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
             "red: f > 0, the amplitude grows (energy uptake; the paper calls this zone 'dissipation'); blue: f < 0, it decays; dashed: the same control parameters at r = 1".into(),
         ],
     );
-    files.extend(save(&Fig4 { heading, panels }, &stem)?);
-    Ok(files)
+    Ok(Fig04 {
+        heading,
+        header,
+        panels,
+    })
 }
 
-impl Picture for Fig4 {
+impl Picture for Fig04 {
     fn size(&self) -> (u32, u32) {
         (1400, 1000)
     }

@@ -2,7 +2,7 @@
 //! branch traced by pseudo-arclength continuation through its folds (stable solid, unstable
 //! dashed, folds and births at A0 = 0 marked).
 
-use super::{csv_header, heading, panel_line, FigureContext};
+use super::{csv_header, heading, panel_line, Figure, FigureContext};
 use crate::common::{num, Csv};
 use crate::maps::branch_diagram;
 use crate::output::write_atomic;
@@ -10,7 +10,8 @@ use crate::plot::{chart, legend, pe, save, Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::PathBuf;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 use trirhythm::model::preset;
 use trirhythm::theory::bifurcation::{BranchDiagram, What};
 
@@ -23,12 +24,51 @@ const PANELS: [(&str, f64, f64, f64); 5] = [
     ("e", 0.7, 0.05, 1.0),
 ];
 
-struct Fig5 {
+/// Fig. 5's data: per panel its label, μ0 and branch diagram.
+#[derive(Serialize, Deserialize)]
+pub struct Fig05 {
     heading: Heading,
+    /// CSV comment lines.
+    header: Vec<String>,
     panels: Vec<(String, f64, BranchDiagram)>,
 }
 
-pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
+impl Figure for Fig05 {
+    const NUMBER: u32 = 5;
+    const TITLE: &'static str = "limit-cycle amplitude vs r by continuation, five μ0";
+
+    fn compute(ctx: &FigureContext) -> Result<Fig05> {
+        compute(ctx)
+    }
+
+    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
+        let mut csv = Csv::new(
+            &self.header,
+            &["panel", "mu0", "branch", "r", "A0", "stable"],
+        );
+        for (label, mu0, bd) in &self.panels {
+            for (i, b) in bd.branches.iter().enumerate() {
+                for q in &b.points {
+                    csv.row([
+                        label.clone(),
+                        num(*mu0),
+                        i.to_string(),
+                        num(q.param),
+                        num(q.amplitude),
+                        u8::from(q.stable).to_string(),
+                    ]);
+                }
+            }
+        }
+        let csv_path = stem.with_extension("csv");
+        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
+        let mut files = vec![csv_path];
+        files.extend(save(self, stem)?);
+        Ok(files)
+    }
+}
+
+fn compute(ctx: &FigureContext) -> Result<Fig05> {
     let pre = preset("fig5")?;
     let step = if ctx.quick { 0.01 } else { 0.002 };
     let mut panels = Vec::new();
@@ -53,7 +93,6 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
         lines.push(panel_line(label, &p));
         panels.push((label.to_string(), mu0, bd));
     }
-    std::fs::create_dir_all(&ctx.out_dir)?;
     let mut header = csv_header(
         5,
         "limit-cycle amplitude A0 vs r (branches by continuation)",
@@ -61,25 +100,6 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
         &notes,
     );
     header.extend(lines);
-    let mut csv = Csv::new(&header, &["panel", "mu0", "branch", "r", "A0", "stable"]);
-    for (label, mu0, bd) in &panels {
-        for (i, b) in bd.branches.iter().enumerate() {
-            for q in &b.points {
-                csv.row([
-                    label.clone(),
-                    num(*mu0),
-                    i.to_string(),
-                    num(q.param),
-                    num(q.amplitude),
-                    u8::from(q.stable).to_string(),
-                ]);
-            }
-        }
-    }
-    let stem = ctx.stem(5);
-    let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-    let mut files = vec![csv_path];
     let heading = heading(
         5,
         "limit-cycle amplitude A0 against r, every branch traced through its folds",
@@ -88,8 +108,11 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
         &["mu0", "r"],
         vec!["solid: stable (df/dA0 < 0), dashed: unstable; pseudo-arclength continuation of f(A0; r) = 0 (Eq. 18); the r ranges are chosen per panel (not printed in the paper)".into()],
     );
-    files.extend(save(&Fig5 { heading, panels }, &stem)?);
-    Ok(files)
+    Ok(Fig05 {
+        heading,
+        header,
+        panels,
+    })
 }
 
 /// Split a branch into runs of equal stability, sharing the boundary points.
@@ -109,7 +132,7 @@ fn runs(points: &[trirhythm::theory::bifurcation::BranchPoint]) -> Vec<(bool, Ve
     out
 }
 
-impl Picture for Fig5 {
+impl Picture for Fig05 {
     fn size(&self) -> (u32, u32) {
         (1500, 960)
     }

@@ -1,6 +1,6 @@
 //! Fig. 7: the pseudo-potential U_eff(A0) (Eq. 23) for several r (a) and several λ (b).
 
-use super::{csv_header, heading, panel_line, FigureContext};
+use super::{csv_header, heading, panel_line, Figure, FigureContext};
 use crate::common::{num, Csv};
 use crate::output::write_atomic;
 use crate::plot::{
@@ -9,11 +9,13 @@ use crate::plot::{
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
-use std::path::PathBuf;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 use trirhythm::model::preset;
 use trirhythm::theory::averaging::{Extremum, Theory};
 
 /// One U_eff curve with its extrema.
+#[derive(Serialize, Deserialize)]
 pub(super) struct Curve {
     pub label: String,
     pub points: Vec<(f64, f64)>,
@@ -165,12 +167,52 @@ fn text_claims(panel: &str, symbol: &str, values: &[f64], curves: &[Curve]) -> V
     out
 }
 
-struct Fig7 {
-    heading: Heading,
-    panels: Vec<(String, Vec<Curve>)>,
+/// One panel: U_eff curves for several (r, λ).
+#[derive(Serialize, Deserialize)]
+pub struct Panel {
+    /// `a` or `b`.
+    id: String,
+    caption: String,
+    /// (r, λ) of each curve.
+    params: Vec<(f64, f64)>,
+    curves: Vec<Curve>,
 }
 
-pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
+/// Fig. 7's data: U_eff on a grid, with its extrema, per curve.
+#[derive(Serialize, Deserialize)]
+pub struct Fig07 {
+    heading: Heading,
+    /// CSV comment lines.
+    header: Vec<String>,
+    panels: Vec<Panel>,
+}
+
+impl Figure for Fig07 {
+    const NUMBER: u32 = 7;
+    const TITLE: &'static str = "pseudo-potential U_eff for several r and λ (Eq. 23)";
+
+    fn compute(ctx: &FigureContext) -> Result<Fig07> {
+        compute(ctx)
+    }
+
+    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
+        let mut csv = Csv::new(&self.header, &["panel", "r", "lambda", "A", "U_eff"]);
+        for panel in &self.panels {
+            for (cv, &(r, l)) in panel.curves.iter().zip(&panel.params) {
+                for &(a, u) in &cv.points {
+                    csv.row([panel.id.clone(), num(r), num(l), num(a), num(u)]);
+                }
+            }
+        }
+        let csv_path = stem.with_extension("csv");
+        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
+        let mut files = vec![csv_path];
+        files.extend(save(self, stem)?);
+        Ok(files)
+    }
+}
+
+fn compute(ctx: &FigureContext) -> Result<Fig07> {
     let n = if ctx.quick { 281 } else { 1401 };
     let grid: Vec<f64> = (0..n).map(|i| 14.0 * i as f64 / (n - 1) as f64).collect();
     let rs = [1.0, 0.999, 0.998, 0.996];
@@ -205,27 +247,7 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     let mut header = csv_header(7, "pseudo-potential U_eff(A0) (Eq. 23)", ctx, &notes);
     header.push(panel_line("a (base)", &pa));
     header.push(panel_line("b (base)", &pb));
-    let mut csv = Csv::new(&header, &["panel", "r", "lambda", "A", "U_eff"]);
-    for (panel, curves, vals, key) in [
-        ("a", &a_curves, &rs, "r"),
-        ("b", &b_curves, &lambdas, "lambda"),
-    ] {
-        for (cv, &v) in curves.iter().zip(vals.iter()) {
-            let (r, l) = if key == "r" {
-                (v, pa.lambda)
-            } else {
-                (pb.restitution, v)
-            };
-            for &(a, u) in &cv.points {
-                csv.row([panel.to_string(), num(r), num(l), num(a), num(u)]);
-            }
-        }
-    }
-    std::fs::create_dir_all(&ctx.out_dir)?;
-    let stem = ctx.stem(7);
-    let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-    let fig = Fig7 {
+    Ok(Fig07 {
         heading: heading(
             7,
             "the pseudo-potential U_eff(A0) (Eq. 23): wells are stable cycles, crests unstable ones",
@@ -236,17 +258,25 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
                 format!("r values (a) and λ values (b) are not printed in the paper: chosen; ω0 = 1 chosen (not printed); D = 0, so U_eff = −∫f dA"),
             ],
         ),
+        header,
         panels: vec![
-            (format!("(a) λ = {}, several r", pa.lambda), a_curves),
-            (format!("(b) r = {}, several λ", pb.restitution), b_curves),
+            Panel {
+                id: "a".into(),
+                caption: format!("(a) λ = {}, several r", pa.lambda),
+                params: rs.iter().map(|&r| (r, pa.lambda)).collect(),
+                curves: a_curves,
+            },
+            Panel {
+                id: "b".into(),
+                caption: format!("(b) r = {}, several λ", pb.restitution),
+                params: lambdas.iter().map(|&l| (pb.restitution, l)).collect(),
+                curves: b_curves,
+            },
         ],
-    };
-    let mut files = vec![csv_path];
-    files.extend(save(&fig, &stem)?);
-    Ok(files)
+    })
 }
 
-impl Picture for Fig7 {
+impl Picture for Fig07 {
     fn size(&self) -> (u32, u32) {
         (1400, 620)
     }
@@ -260,7 +290,13 @@ impl Picture for Fig7 {
         DB::ErrorType: 'static,
     {
         let areas = root.split_evenly((1, 2));
-        for (area, (caption, curves)) in areas.iter().zip(&self.panels) {
+        for (
+            area,
+            Panel {
+                caption, curves, ..
+            },
+        ) in areas.iter().zip(&self.panels)
+        {
             let (y, clipped) = frame(curves, 14.0);
             let mut c = chart(area, caption, 0.0..14.0, y, "A0", "U_eff(A0)")?;
             draw_curves(&mut c, &clipped, true)?;

@@ -1,24 +1,50 @@
 //! Fig. 8: the energy barriers ΔU_i between the wells and crests of U_eff (Eq. 23), D > 0.
 
 use super::fig07_pseudo_potential::{draw_curves, frame, Curve};
-use super::{csv_header, panel_line, FigureContext};
+use super::{csv_header, panel_line, Figure, FigureContext};
 use crate::common::{num, Csv};
 use crate::output::write_atomic;
 use crate::plot::{chart, pe, save, Heading, Picture, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
-use std::path::PathBuf;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 use trirhythm::model::preset;
 use trirhythm::theory::averaging::{Barrier, Side, Theory};
 
-struct Fig8 {
+/// Fig. 8's data: U_eff on a grid with its extrema, the barriers, the zoom's right end.
+#[derive(Serialize, Deserialize)]
+pub struct Fig08 {
     heading: Heading,
+    /// CSV comment lines.
+    header: Vec<String>,
     curve: Curve,
     barriers: Vec<Barrier>,
     zoom_end: f64,
 }
 
-pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
+impl Figure for Fig08 {
+    const NUMBER: u32 = 8;
+    const TITLE: &'static str = "energy barriers ΔU_i of U_eff";
+
+    fn compute(ctx: &FigureContext) -> Result<Fig08> {
+        compute(ctx)
+    }
+
+    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
+        let mut csv = Csv::new(&self.header, &["A", "U_eff"]);
+        for &(a, u) in &self.curve.points {
+            csv.row([num(a), num(u)]);
+        }
+        let csv_path = stem.with_extension("csv");
+        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
+        let mut files = vec![csv_path];
+        files.extend(save(self, stem)?);
+        Ok(files)
+    }
+}
+
+fn compute(ctx: &FigureContext) -> Result<Fig08> {
     let pre = preset("fig8")?;
     let p = pre.params;
     let th = Theory::new(&p, ctx.variant)?;
@@ -50,14 +76,6 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
     }
     let mut header = csv_header(8, "energy barriers of U_eff(A0)", ctx, &notes);
     header.push(panel_line("", &p));
-    let mut csv = Csv::new(&header, &["A", "U_eff"]);
-    for &(a, u) in &curve.points {
-        csv.row([num(a), num(u)]);
-    }
-    std::fs::create_dir_all(&ctx.out_dir)?;
-    let stem = ctx.stem(8);
-    let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
     // Zoom on the inner wells: up to the first crest beyond the first well, with margin.
     let zoom_end = barriers
         .iter()
@@ -66,27 +84,23 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
         .next()
         .unwrap_or(14.0)
         * 1.4;
-    let mut files = vec![csv_path];
-    files.extend(save(
-        &Fig8 {
-            heading: super::heading(
-                8,
-                "energy barriers ΔU_i of the pseudo-potential U_eff(A0)",
-                ctx,
-                &p,
-                &[],
-                pre.notes.iter().map(|s| s.to_string()).collect(),
-            ),
-            curve,
-            barriers,
-            zoom_end: zoom_end.min(14.0),
-        },
-        &stem,
-    )?);
-    Ok(files)
+    Ok(Fig08 {
+        heading: super::heading(
+            8,
+            "energy barriers ΔU_i of the pseudo-potential U_eff(A0)",
+            ctx,
+            &p,
+            &[],
+            pre.notes.iter().map(|s| s.to_string()).collect(),
+        ),
+        header,
+        curve,
+        barriers,
+        zoom_end: zoom_end.min(14.0),
+    })
 }
 
-impl Fig8 {
+impl Fig08 {
     fn draw_panel<DB: DrawingBackend>(
         &self,
         area: &DrawingArea<DB, plotters::coord::Shift>,
@@ -144,7 +158,7 @@ impl Fig8 {
     }
 }
 
-impl Picture for Fig8 {
+impl Picture for Fig08 {
     fn size(&self) -> (u32, u32) {
         (1400, 620)
     }

@@ -1,27 +1,84 @@
 //! Fig. 9: energy barriers ΔU1…ΔU4 of U_eff (Eq. 23) over the (τ, λ) plane for r = 0.998 and
 //! r = 0.990, as heat maps; blank where U_eff does not have the three wells the labels refer to.
 
-use super::{csv_header, panel_line, FigureContext};
+use super::{csv_header, panel_line, Figure, FigureContext};
 use crate::common::{num, progress, Csv};
 use crate::output::write_atomic;
 use crate::plot::{chart, pe, save, tick_formatter, Heading, Picture, FONT};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::PathBuf;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 use trirhythm::model::preset;
-use trirhythm::theory::bifurcation::{barrier_surfaces, Axis, BarrierSurfaces, Plane};
+use trirhythm::theory::bifurcation::{barrier_surfaces, Axis, Plane};
 
 const R_VALUES: [f64; 2] = [0.998, 0.990];
 const LAMBDA: (f64, f64) = (0.98, 1.0);
 const TAU: (f64, f64) = (0.0, 5.0);
 
-struct Fig9 {
-    heading: Heading,
-    surfaces: Vec<(f64, BarrierSurfaces)>,
+/// The barriers over the (τ, λ) grid for one r (see
+/// [`trirhythm::theory::bifurcation::BarrierSurfaces`]).
+#[derive(Serialize, Deserialize)]
+pub struct Surface {
+    /// Restitution coefficient.
+    r: f64,
+    /// Horizontal axis (τ).
+    x: Axis,
+    /// Vertical axis (λ).
+    y: Axis,
+    /// [ΔU1, ΔU2, ΔU3, ΔU4] per grid point, row-major; `None` without three wells.
+    heights: Vec<[Option<f64>; 4]>,
+    /// Number of wells of U_eff per grid point.
+    wells: Vec<u8>,
 }
 
-pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
+/// Fig. 9's data: the barrier surfaces for each r.
+#[derive(Serialize, Deserialize)]
+pub struct Fig09 {
+    heading: Heading,
+    /// CSV comment lines.
+    header: Vec<String>,
+    surfaces: Vec<Surface>,
+}
+
+impl Figure for Fig09 {
+    const NUMBER: u32 = 9;
+    const TITLE: &'static str = "energy barriers ΔU_i over (τ, λ) for two r";
+
+    fn compute(ctx: &FigureContext) -> Result<Fig09> {
+        compute(ctx)
+    }
+
+    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
+        let mut csv = Csv::new(
+            &self.header,
+            &["r", "tau", "lambda", "wells", "dU1", "dU2", "dU3", "dU4"],
+        );
+        for s in &self.surfaces {
+            for iy in 0..s.y.count {
+                for ix in 0..s.x.count {
+                    let i = iy * s.x.count + ix;
+                    let mut row = vec![
+                        num(s.r),
+                        num(s.x.value(ix)),
+                        num(s.y.value(iy)),
+                        s.wells[i].to_string(),
+                    ];
+                    row.extend(s.heights[i].iter().map(|h| h.map(num).unwrap_or_default()));
+                    csv.row(row);
+                }
+            }
+        }
+        let csv_path = stem.with_extension("csv");
+        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
+        let mut files = vec![csv_path];
+        files.extend(save(self, stem)?);
+        Ok(files)
+    }
+}
+
+fn compute(ctx: &FigureContext) -> Result<Fig09> {
     let pre = preset("fig9")?;
     let n = if ctx.quick { 41 } else { 161 };
     let mut surfaces = Vec::new();
@@ -50,35 +107,16 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
             100.0 * three as f64 / s.wells.len() as f64
         ));
         lines.push(panel_line(&format!("r = {r}"), &p));
-        surfaces.push((r, s));
+        surfaces.push(Surface {
+            r,
+            x: s.plane.x,
+            y: s.plane.y,
+            heights: s.heights,
+            wells: s.wells,
+        });
     }
-    std::fs::create_dir_all(&ctx.out_dir)?;
     let mut header = csv_header(9, "energy barriers ΔU_i over (τ, λ)", ctx, &notes);
     header.extend(lines);
-    let mut csv = Csv::new(
-        &header,
-        &["r", "tau", "lambda", "wells", "dU1", "dU2", "dU3", "dU4"],
-    );
-    for (r, s) in &surfaces {
-        let pl = &s.plane;
-        for iy in 0..pl.y.count {
-            for ix in 0..pl.x.count {
-                let i = iy * pl.x.count + ix;
-                let mut row = vec![
-                    num(*r),
-                    num(pl.x.value(ix)),
-                    num(pl.y.value(iy)),
-                    s.wells[i].to_string(),
-                ];
-                row.extend(s.heights[i].iter().map(|h| h.map(num).unwrap_or_default()));
-                csv.row(row);
-            }
-        }
-    }
-    let stem = ctx.stem(9);
-    let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-    let mut files = vec![csv_path];
     let mut lines: Vec<String> = pre.notes.iter().map(|s| s.to_string()).collect();
     lines.push(format!(
         "τ ∈ [{}, {}] as printed; λ ∈ [{}, {}] chosen (not printed); one colour scale per barrier, shared by both r",
@@ -92,8 +130,11 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
         &["r", "tau", "lambda"],
         lines,
     );
-    files.extend(save(&Fig9 { heading, surfaces }, &stem)?);
-    Ok(files)
+    Ok(Fig09 {
+        heading,
+        header,
+        surfaces,
+    })
 }
 
 /// Viridis by linear interpolation between five of its anchor colours, t ∈ [0, 1].
@@ -156,7 +197,7 @@ where
     Ok(())
 }
 
-impl Picture for Fig9 {
+impl Picture for Fig09 {
     fn size(&self) -> (u32, u32) {
         (1700, 960)
     }
@@ -177,7 +218,7 @@ impl Picture for Fig9 {
                 let vals = self
                     .surfaces
                     .iter()
-                    .flat_map(|(_, s)| s.heights.iter().filter_map(move |h| h[k]));
+                    .flat_map(|s| s.heights.iter().filter_map(move |h| h[k]));
                 vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
                     (a.min(v), b.max(v))
                 })
@@ -190,11 +231,10 @@ impl Picture for Fig9 {
             }
         }
         let areas = rest.split_evenly((2, 4));
-        for (row, (r, s)) in self.surfaces.iter().enumerate() {
-            let pl = &s.plane;
-            let (nx, ny) = (pl.x.count, pl.y.count);
-            let hx = (pl.x.stop - pl.x.start) / (nx - 1) as f64;
-            let hy = (pl.y.stop - pl.y.start) / (ny - 1) as f64;
+        for (row, s) in self.surfaces.iter().enumerate() {
+            let (nx, ny) = (s.x.count, s.y.count);
+            let hx = (s.x.stop - s.x.start) / (nx - 1) as f64;
+            let hy = (s.y.stop - s.y.start) / (ny - 1) as f64;
             for k in 0..4 {
                 let vals: Vec<f64> = s.heights.iter().filter_map(|h| h[k]).collect();
                 let here = vals
@@ -205,12 +245,13 @@ impl Picture for Fig9 {
                 let (lo, hi) = scales[k];
                 let label = ["a", "b", "c", "d"][k];
                 let caption = if vals.is_empty() {
-                    format!("({label}{}) ΔU{}, r = {r}: undefined", row + 1, k + 1)
+                    format!("({label}{}) ΔU{}, r = {}: undefined", row + 1, k + 1, s.r)
                 } else {
                     format!(
-                        "({label}{}) ΔU{}, r = {r}: [{:.3}, {:.3}]",
+                        "({label}{}) ΔU{}, r = {}: [{:.3}, {:.3}]",
                         row + 1,
                         k + 1,
+                        s.r,
                         here.0,
                         here.1
                     )
@@ -219,8 +260,8 @@ impl Picture for Fig9 {
                 let mut c = chart(
                     area,
                     &caption,
-                    pl.x.start..pl.x.stop,
-                    pl.y.start..pl.y.stop,
+                    s.x.start..s.x.stop,
+                    s.y.start..s.y.stop,
                     "τ",
                     "λ",
                 )?;
@@ -230,7 +271,7 @@ impl Picture for Fig9 {
                 let level = |h: f64| ((h - lo) / span * 63.0).round() as u8;
                 let mut cells = Vec::new();
                 for iy in 0..ny {
-                    let y = pl.y.value(iy);
+                    let y = s.y.value(iy);
                     let mut ix = 0;
                     while ix < nx {
                         let Some(h) = s.heights[iy * nx + ix][k] else {
@@ -242,17 +283,14 @@ impl Picture for Fig9 {
                         while jx + 1 < nx && s.heights[iy * nx + jx + 1][k].map(level) == Some(lv) {
                             jx += 1;
                         }
-                        let (x0, x1) = (pl.x.value(ix), pl.x.value(jx));
+                        let (x0, x1) = (s.x.value(ix), s.x.value(jx));
                         cells.push(Rectangle::new(
                             [
                                 (
-                                    (x0 - hx / 2.0).max(pl.x.start),
-                                    (y - hy / 2.0).max(pl.y.start),
+                                    (x0 - hx / 2.0).max(s.x.start),
+                                    (y - hy / 2.0).max(s.y.start),
                                 ),
-                                (
-                                    (x1 + hx / 2.0).min(pl.x.stop),
-                                    (y + hy / 2.0).min(pl.y.stop),
-                                ),
+                                ((x1 + hx / 2.0).min(s.x.stop), (y + hy / 2.0).min(s.y.stop)),
                             ],
                             viridis(lv as f64 / 63.0).filled(),
                         ));

@@ -1,14 +1,33 @@
 //! Fig. 12: P-bifurcation maps in the (μ0, r) plane at λ = 0.995 (a, b) and the (λ, r) plane at
 //! μ0 = 0.01 (c, d), for ω0 = 0.9 (a, c) and ω0 = 1.0 (b, d; the caption prints 0.9 twice).
 
-use super::mapfig::{compute_panel, write_map_figure, AxisSpec};
-use super::FigureContext;
+use super::mapfig::{compute_panel, map_figure, AxisSpec, MapFigure};
+use super::{Figure, FigureContext};
 use anyhow::Result;
-use std::path::PathBuf;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 use trirhythm::model::preset;
 use trirhythm::theory::bifurcation::What;
 
-pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
+/// Fig. 12's data: four map panels.
+#[derive(Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct Fig12(MapFigure);
+
+impl Figure for Fig12 {
+    const NUMBER: u32 = 12;
+    const TITLE: &'static str = "P-bifurcation maps in (μ0, r) and (λ, r)";
+
+    fn compute(ctx: &FigureContext) -> Result<Fig12> {
+        compute(ctx).map(Fig12)
+    }
+
+    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
+        self.0.render(stem)
+    }
+}
+
+fn compute(ctx: &FigureContext) -> Result<MapFigure> {
     let mut panels = Vec::new();
     let mut notes = Vec::new();
     for label in ["a", "b", "c", "d"] {
@@ -44,14 +63,12 @@ pub fn run(ctx: &FigureContext) -> Result<Vec<PathBuf>> {
         "red: m1 = ∂m1/∂A = 0 traced exactly; dashed orange: the printed Eq. 36-37 construction"
             .into(),
     );
-    write_map_figure(
+    Ok(map_figure(
         ctx,
-        12,
-        "P-bifurcation maps in the (μ0, r) and (λ, r) planes",
+        (12, "P-bifurcation maps in the (μ0, r) and (λ, r) planes"),
         "unimodal (blue), bimodal (green), trimodal (black) P(A); D = 0.1, τ = 0.5, cp = (0.144, 0.005, 5.862e-5, 2.13e-7); ω0 = 1.0 in b, d (caption prints 0.9 twice)".into(),
         notes,
         panels,
         (2, 2),
-        plotters::prelude::SeriesLabelPosition::UpperRight,
-    )
+    ))
 }

@@ -1,20 +1,20 @@
-//! Shared drawing of classification maps (Figs 2, 3, 6, 10, 12): regions coloured by count
-//! (mono blue, bi green, tri black, as in the paper), exact fold curves on top, a legend.
+//! Shared data and drawing of classification maps (Figs 2, 3, 6, 10, 12): regions coloured by
+//! count (mono blue, bi green, tri black, as in the paper), exact fold curves on top, one legend
+//! for the whole figure in a strip below the panels (outside the data).
 
 use super::{csv_header, variant_line, FigureContext};
 use crate::common::{num, Csv};
 use crate::maps::{folds_csv, run_map};
 use crate::output::write_atomic;
-use crate::plot::{chart, legend, pe, save, Heading, Picture, FONT};
+use crate::plot::{chart, pe, save, Heading, LegendStrip, Picture, Symbol, FONT};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use std::path::PathBuf;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 use trirhythm::model::Params;
-use trirhythm::theory::bifurcation::{
-    trace_folds, trace_printed_eq37, Axis, Folds, Map, Plane, What,
-};
+use trirhythm::theory::bifurcation::{trace_folds, trace_printed_eq37, Axis, Folds, Plane, What};
 
 /// Colour of a count: 0 light grey, 1 blue, 2 green, 3 black, more purple.
 pub fn count_colour(c: u8) -> RGBColor {
@@ -32,7 +32,7 @@ pub const FOLD: RGBColor = RGBColor(230, 40, 40);
 /// Printed-Eq. 37 curve colour.
 pub const PRINTED: RGBColor = RGBColor(255, 170, 0);
 
-/// One axis of a panel: key, range, points, label and display scale (values / scale).
+/// One axis of a panel as requested: key, range, label and display scale (values / scale).
 #[derive(Clone)]
 pub struct AxisSpec {
     pub key: &'static str,
@@ -52,29 +52,66 @@ impl AxisSpec {
             scale,
         }
     }
+}
 
+/// A computed panel's axis: the grid, and how it is drawn.
+#[derive(Clone, Serialize, Deserialize)]
+pub struct PanelAxis {
+    /// The grid's parameter key and values.
+    pub grid: Axis,
+    /// The parameter's symbol.
+    pub label: String,
+    /// Values are drawn divided by this.
+    pub scale: f64,
+}
+
+impl PanelAxis {
     fn desc(&self) -> String {
         if self.scale == 1.0 {
-            self.label.to_string()
+            self.label.clone()
         } else {
             format!("{} / {:e}", self.label, self.scale)
         }
     }
 }
 
-/// A computed panel.
+/// A computed panel: counts on the grid, the fold curves, what is named and marked.
+#[derive(Serialize, Deserialize)]
 pub struct MapPanel {
+    /// `a`, `b`, … or `i`, `ii`.
     pub label: String,
     pub caption: String,
-    pub map: Map,
+    /// The panel's parameters (those not swept), described.
+    pub params: String,
+    /// Stable cycles or modes of P(A).
+    pub what: What,
+    pub x: PanelAxis,
+    pub y: PanelAxis,
+    /// Count at each grid point, row-major (`counts[iy * nx + ix]`).
+    pub counts: Vec<u8>,
     pub folds: Folds,
+    /// The paper's printed Eq. 36–37 construction, where drawn.
     pub printed: Option<Folds>,
-    pub xs: AxisSpec,
-    pub ys: AxisSpec,
     /// A parameter point to mark (x, y, label), e.g. the paper's standard values.
     pub mark: Option<(f64, f64, String)>,
     /// Names of saddle-node lines drawn on the picture: (index of the curve, name).
     pub fold_names: Vec<(usize, String)>,
+}
+
+impl MapPanel {
+    /// Count at grid indices.
+    fn count(&self, ix: usize, iy: usize) -> u8 {
+        self.counts[iy * self.x.grid.count + ix]
+    }
+
+    /// How many grid points have each count 0, 1, 2, 3, ≥ 4.
+    fn histogram(&self) -> [usize; 5] {
+        let mut h = [0; 5];
+        for &c in &self.counts {
+            h[(c as usize).min(4)] += 1;
+        }
+        h
+    }
 }
 
 /// The paper's names of the saddle-node lines (Sec. 3: "L1 … the saddle-node bifurcation of
@@ -161,14 +198,21 @@ pub fn compute_panel(
     } else {
         Vec::new()
     };
+    let axis = |spec: AxisSpec, grid: &Axis| PanelAxis {
+        grid: grid.clone(),
+        label: spec.label.to_string(),
+        scale: spec.scale,
+    };
     Ok(MapPanel {
         label: label.to_string(),
         caption,
-        map,
+        params: map.plane.base.describe(),
+        what,
+        x: axis(xs, &map.plane.x),
+        y: axis(ys, &map.plane.y),
+        counts: map.counts,
         folds,
         printed,
-        xs,
-        ys,
         mark: None,
         fold_names,
     })
@@ -176,14 +220,14 @@ pub fn compute_panel(
 
 /// Notes on a panel for the CSV header: counts, curves, cusps.
 pub fn panel_notes(p: &MapPanel) -> Vec<String> {
-    let h = p.map.histogram();
+    let h = p.histogram();
     let total: usize = h.iter().sum();
     let pct = |k: usize| 100.0 * h[k] as f64 / total as f64;
     let mut v = vec![format!(
         "panel {}: {} ({}); share of grid points with count 0/1/2/3: {:.1}% / {:.1}% / {:.1}% / {:.1}%; {} fold curves, {} cusps{}",
         p.label,
         p.caption,
-        p.map.plane.base.describe(),
+        p.params,
         pct(0),
         pct(1),
         pct(2),
@@ -193,7 +237,7 @@ pub fn panel_notes(p: &MapPanel) -> Vec<String> {
         p.folds
             .cusps
             .iter()
-            .map(|c| format!(" (cusp at {}={:.6e}, {}={:.6e}, A={:.5})", p.xs.key, c.x, p.ys.key, c.y, c.amplitude))
+            .map(|c| format!(" (cusp at {}={:.6e}, {}={:.6e}, A={:.5})", p.x.grid.key, c.x, p.y.grid.key, c.y, c.amplitude))
             .collect::<String>()
     )];
     if let Some(pr) = &p.printed {
@@ -206,88 +250,149 @@ pub fn panel_notes(p: &MapPanel) -> Vec<String> {
     v
 }
 
-/// Write `figNN.csv` (panel,x,y,count), `figNN_folds.csv` and the picture.
-#[allow(clippy::too_many_arguments)]
-pub fn write_map_figure(
+/// A map figure's data: panels on a grid of `layout` (rows, columns).
+#[derive(Serialize, Deserialize)]
+pub struct MapFigure {
+    heading: Heading,
+    /// CSV comment lines (both CSV files).
+    header: Vec<String>,
+    panels: Vec<MapPanel>,
+    layout: (usize, usize),
+}
+
+/// Assemble a map figure from computed panels: the heading, and the CSV header with the
+/// notes and each panel's counts, curves and cusps.
+pub fn map_figure(
     ctx: &FigureContext,
-    n: u32,
-    title: &str,
+    (n, title): (u32, &str),
     subtitle: String,
     mut notes: Vec<String>,
     panels: Vec<MapPanel>,
     layout: (usize, usize),
-    legend_at: SeriesLabelPosition,
-) -> Result<Vec<PathBuf>> {
+) -> MapFigure {
     for p in &panels {
         notes.extend(panel_notes(p));
     }
-    std::fs::create_dir_all(&ctx.out_dir)?;
-    let header = csv_header(n, title, ctx, &notes);
-    let stem = ctx.stem(n);
-    let mut header = header;
+    let mut header = csv_header(n, title, ctx, &notes);
     for p in &panels {
         header.push(format!(
             "panel {}: x = {}, y = {}",
-            p.label, p.map.plane.x.key, p.map.plane.y.key
+            p.label, p.x.grid.key, p.y.grid.key
         ));
     }
-    let mut csv = Csv::new(&header, &["panel", "x", "y", "count"]);
-    for p in &panels {
-        let pl = &p.map.plane;
-        for iy in 0..pl.y.count {
-            let y = num(pl.y.value(iy));
-            for ix in 0..pl.x.count {
-                csv.row([
-                    p.label.clone(),
-                    num(pl.x.value(ix)),
-                    y.clone(),
-                    p.map.count(ix, iy).to_string(),
-                ]);
-            }
-        }
-    }
-    let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-    let mut fc = Csv::new(
-        &header,
-        &["panel", "curve", "system", "x", "y", "amplitude"],
-    );
-    for p in &panels {
-        let mut sets = vec![&p.folds];
-        if let Some(pr) = &p.printed {
-            sets.push(pr);
-        }
-        folds_csv(&mut fc, std::slice::from_ref(&p.label), &sets);
-    }
-    let folds_path = stem.with_file_name(format!("fig{n:02}_folds.csv"));
-    write_atomic(&folds_path, fc.finish()?.as_bytes())?;
-    let mut files = vec![csv_path, folds_path];
-    files.extend(save(
-        &MapFigure {
-            heading: Heading {
-                title: format!("Fig. {n}: {title}"),
-                lines: vec![subtitle, variant_line(ctx.variant)],
-            },
-            panels,
-            layout,
-            legend_at,
+    MapFigure {
+        heading: Heading {
+            title: format!("Fig. {n}: {title}"),
+            lines: vec![subtitle, variant_line(ctx.variant)],
         },
-        &stem,
-    )?);
-    Ok(files)
+        header,
+        panels,
+        layout,
+    }
 }
 
-struct MapFigure {
-    heading: Heading,
-    panels: Vec<MapPanel>,
-    layout: (usize, usize),
-    legend_at: SeriesLabelPosition,
+impl MapFigure {
+    /// Write `stem.csv` (panel,x,y,count), `stem_folds.csv` and the picture.
+    pub fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
+        let mut csv = Csv::new(&self.header, &["panel", "x", "y", "count"]);
+        for p in &self.panels {
+            for iy in 0..p.y.grid.count {
+                let y = num(p.y.grid.value(iy));
+                for ix in 0..p.x.grid.count {
+                    csv.row([
+                        p.label.clone(),
+                        num(p.x.grid.value(ix)),
+                        y.clone(),
+                        p.count(ix, iy).to_string(),
+                    ]);
+                }
+            }
+        }
+        let csv_path = stem.with_extension("csv");
+        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
+        let mut fc = Csv::new(
+            &self.header,
+            &["panel", "curve", "system", "x", "y", "amplitude"],
+        );
+        for p in &self.panels {
+            let mut sets = vec![&p.folds];
+            if let Some(pr) = &p.printed {
+                sets.push(pr);
+            }
+            folds_csv(&mut fc, std::slice::from_ref(&p.label), &sets);
+        }
+        let name = stem.file_name().unwrap_or_default().to_string_lossy();
+        let folds_path = stem.with_file_name(format!("{name}_folds.csv"));
+        write_atomic(&folds_path, fc.finish()?.as_bytes())?;
+        let mut files = vec![csv_path, folds_path];
+        files.extend(save(self, stem)?);
+        Ok(files)
+    }
+
+    /// One legend for every panel: the counts met in any panel, the curves and markers drawn.
+    fn legend(&self) -> LegendStrip {
+        let mut counts = [0usize; 5];
+        for p in &self.panels {
+            for (c, h) in counts.iter_mut().zip(p.histogram()) {
+                *c += h;
+            }
+        }
+        let modes = self.panels.iter().any(|p| p.what == What::Modes);
+        let names = if modes {
+            ["-", "unimodal", "bimodal", "trimodal", "4+ modes"]
+        } else {
+            [
+                "no stable cycle",
+                "mono (1)",
+                "bi (2)",
+                "tri (3)",
+                "4 or more",
+            ]
+        };
+        let mut entries: Vec<(Symbol, String)> = (0..5)
+            .filter(|&k| counts[k] > 0)
+            .map(|k| (Symbol::Swatch(count_colour(k as u8)), names[k].to_string()))
+            .collect();
+        if self.panels.iter().any(|p| !p.folds.curves.is_empty()) {
+            let name = if modes {
+                "P-bifurcation (m1 = m1' = 0)"
+            } else {
+                "saddle-node (f = f' = 0)"
+            };
+            entries.push((Symbol::Line(FOLD), name.into()));
+        }
+        if self
+            .panels
+            .iter()
+            .any(|p| p.printed.as_ref().is_some_and(|f| !f.curves.is_empty()))
+        {
+            entries.push((Symbol::Dashed(PRINTED), "Eq. 36-37 as printed".into()));
+        }
+        if self.panels.iter().any(|p| !p.folds.cusps.is_empty()) {
+            entries.push((Symbol::Ring(FOLD), "cusp".into()));
+        }
+        // one entry for the marked points, however many panels mark different parameters
+        let mut marks: Vec<&str> = Vec::new();
+        for (_, _, text) in self.panels.iter().filter_map(|p| p.mark.as_ref()) {
+            if !marks.contains(&text.as_str()) {
+                marks.push(text);
+            }
+        }
+        if !marks.is_empty() {
+            entries.push((Symbol::Cross(MARK), marks.join(" / ")));
+        }
+        LegendStrip { entries }
+    }
 }
+
+/// Panel size in pixels.
+const PANEL: (u32, u32) = (560, 470);
 
 impl Picture for MapFigure {
     fn size(&self) -> (u32, u32) {
         let (r, c) = self.layout;
-        (560 * c as u32, 470 * r as u32)
+        let w = PANEL.0 * c as u32;
+        (w, PANEL.1 * r as u32 + self.legend().height(w))
     }
 
     fn heading(&self) -> Heading {
@@ -298,59 +403,52 @@ impl Picture for MapFigure {
     where
         DB::ErrorType: 'static,
     {
-        let areas = root.split_evenly(self.layout);
-        // the legend (on the first panel) lists the counts met in any panel
-        let mut counts = [0usize; 5];
-        for p in &self.panels {
-            for (c, h) in counts.iter_mut().zip(p.map.histogram()) {
-                *c += h;
-            }
+        let (panels, strip) = root.split_vertically(PANEL.1 * self.layout.0 as u32);
+        for (area, p) in panels.split_evenly(self.layout).iter().zip(&self.panels) {
+            draw_panel(area, p)?;
         }
-        for (i, (area, p)) in areas.iter().zip(&self.panels).enumerate() {
-            draw_panel(area, p, (i == 0).then(|| (self.legend_at.clone(), counts)))?;
-        }
-        Ok(())
+        self.legend().draw(&strip)
     }
 }
 
-/// Draw one map panel: merged row runs of equal count, fold curves, cusps.
-pub fn draw_panel<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    p: &MapPanel,
-    legend_at: Option<(SeriesLabelPosition, [usize; 5])>,
-) -> Result<()>
+/// Colour of the marked parameter point.
+const MARK: RGBColor = RGBColor(255, 0, 255);
+
+/// Draw one map panel: merged row runs of equal count, fold curves (named where known),
+/// cusps, the marked point. The legend is the figure's, outside the panels.
+fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
-    let pl = &p.map.plane;
-    let (sx, sy) = (p.xs.scale, p.ys.scale);
-    let xr = (pl.x.start / sx)..(pl.x.stop / sx);
-    let yr = (pl.y.start / sy)..(pl.y.stop / sy);
+    let (gx, gy) = (&p.x.grid, &p.y.grid);
+    let (sx, sy) = (p.x.scale, p.y.scale);
+    let xr = (gx.start / sx)..(gx.stop / sx);
+    let yr = (gy.start / sy)..(gy.stop / sy);
     let mut c = chart(
         area,
         &format!("({}) {}", p.label, p.caption),
         xr.clone(),
         yr.clone(),
-        &p.xs.desc(),
-        &p.ys.desc(),
+        &p.x.desc(),
+        &p.y.desc(),
     )?;
-    let (nx, ny) = (pl.x.count, pl.y.count);
-    let hx = (pl.x.stop - pl.x.start) / (nx - 1) as f64 / sx;
-    let hy = (pl.y.stop - pl.y.start) / (ny - 1) as f64 / sy;
+    let (nx, ny) = (gx.count, gy.count);
+    let hx = (gx.stop - gx.start) / (nx - 1) as f64 / sx;
+    let hy = (gy.stop - gy.start) / (ny - 1) as f64 / sy;
     let clampx = |v: f64| v.clamp(xr.start, xr.end);
     let clampy = |v: f64| v.clamp(yr.start, yr.end);
     let mut rects = Vec::new();
     for iy in 0..ny {
-        let y = pl.y.value(iy) / sy;
+        let y = gy.value(iy) / sy;
         let mut ix = 0;
         while ix < nx {
-            let cnt = p.map.count(ix, iy);
+            let cnt = p.count(ix, iy);
             let mut jx = ix;
-            while jx + 1 < nx && p.map.count(jx + 1, iy) == cnt {
+            while jx + 1 < nx && p.count(jx + 1, iy) == cnt {
                 jx += 1;
             }
-            let x0 = clampx(pl.x.value(ix) / sx - hx / 2.0);
-            let x1 = clampx(pl.x.value(jx) / sx + hx / 2.0);
+            let x0 = clampx(gx.value(ix) / sx - hx / 2.0);
+            let x1 = clampx(gx.value(jx) / sx + hx / 2.0);
             rects.push(Rectangle::new(
                 [(x0, clampy(y - hy / 2.0)), (x1, clampy(y + hy / 2.0))],
                 count_colour(cnt).filled(),
@@ -359,62 +457,15 @@ where
         }
     }
     c.draw_series(rects).map_err(pe)?;
-    let h = legend_at
-        .as_ref()
-        .map_or_else(|| p.map.histogram(), |l| l.1);
-    let names = [
-        "no stable cycle",
-        "mono (1)",
-        "bi (2)",
-        "tri (3)",
-        "4 or more",
-    ];
-    let names_modes = ["-", "unimodal", "bimodal", "trimodal", "4+ modes"];
-    for k in 0..5 {
-        if h[k] == 0 {
-            continue;
-        }
-        let name = if p.map.what == What::Modes {
-            names_modes[k]
-        } else {
-            names[k]
-        };
-        let col = count_colour(k as u8);
-        c.draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-            .map_err(pe)?
-            .label(name)
-            .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 14, y + 6)], col.filled()));
-    }
-    let mut first = true;
     for curve in &p.folds.curves {
         let pts: Vec<(f64, f64)> = curve.points.iter().map(|q| (q.x / sx, q.y / sy)).collect();
-        let s = c
-            .draw_series(LineSeries::new(pts, FOLD.stroke_width(2)))
+        c.draw_series(LineSeries::new(pts, FOLD.stroke_width(2)))
             .map_err(pe)?;
-        if first {
-            s.label(if p.map.what == What::Modes {
-                "P-bifurcation (m1 = m1' = 0)"
-            } else {
-                "saddle-node (f = f' = 0)"
-            })
-            .legend(|(x, y)| PathElement::new([(x, y), (x + 14, y)], FOLD.stroke_width(2)));
-            first = false;
-        }
     }
-    if let Some(pr) = &p.printed {
-        let mut first = true;
-        for curve in &pr.curves {
-            let pts: Vec<(f64, f64)> = curve.points.iter().map(|q| (q.x / sx, q.y / sy)).collect();
-            let s = c
-                .draw_series(DashedLineSeries::new(pts, 7, 5, PRINTED.stroke_width(2)))
-                .map_err(pe)?;
-            if first {
-                s.label("Eq. 36-37 as printed").legend(|(x, y)| {
-                    PathElement::new([(x, y), (x + 14, y)], PRINTED.stroke_width(2))
-                });
-                first = false;
-            }
-        }
+    for curve in p.printed.iter().flat_map(|f| &f.curves) {
+        let pts: Vec<(f64, f64)> = curve.points.iter().map(|q| (q.x / sx, q.y / sy)).collect();
+        c.draw_series(DashedLineSeries::new(pts, 7, 5, PRINTED.stroke_width(2)))
+            .map_err(pe)?;
     }
     for (i, name) in &p.fold_names {
         let curve = &p.folds.curves[*i];
@@ -432,29 +483,19 @@ where
         ))
         .map_err(pe)?;
     }
-    if !p.folds.cusps.is_empty() {
-        c.draw_series(p.folds.cusps.iter().map(|q| {
-            EmptyElement::at((q.x / sx, q.y / sy))
-                + Circle::new((0, 0), 6, WHITE.filled())
-                + Circle::new((0, 0), 6, FOLD.stroke_width(2))
-        }))
-        .map_err(pe)?
-        .label("cusp")
-        .legend(|(x, y)| Circle::new((x + 7, y), 5, FOLD.stroke_width(2)));
-    }
-    if let Some((mx, my, text)) = &p.mark {
-        let (mx, my) = (mx / sx, my / sy);
+    c.draw_series(p.folds.cusps.iter().map(|q| {
+        EmptyElement::at((q.x / sx, q.y / sy))
+            + Circle::new((0, 0), 6, WHITE.filled())
+            + Circle::new((0, 0), 6, FOLD.stroke_width(2))
+    }))
+    .map_err(pe)?;
+    if let Some((mx, my, _)) = &p.mark {
         c.draw_series(std::iter::once(
-            EmptyElement::at((mx, my))
+            EmptyElement::at((mx / sx, my / sy))
                 + Cross::new((0, 0), 7, WHITE.stroke_width(4))
-                + Cross::new((0, 0), 7, RGBColor(255, 0, 255).stroke_width(2)),
+                + Cross::new((0, 0), 7, MARK.stroke_width(2)),
         ))
-        .map_err(pe)?
-        .label(text.clone())
-        .legend(|(x, y)| Cross::new((x + 7, y), 5, RGBColor(255, 0, 255).stroke_width(2)));
-    }
-    if let Some((pos, _)) = legend_at {
-        legend(&mut c, pos)?;
+        .map_err(pe)?;
     }
     Ok(())
 }
@@ -463,12 +504,11 @@ where
 /// preset's parameters with `key` set to each value, folds traced, the paper's point marked.
 pub fn gamma_delta_family(
     ctx: &FigureContext,
-    number: u32,
+    (number, title): (u32, &str),
     preset_name: &str,
     (key, symbol, values): (&str, &str, [f64; 4]),
-    title: &str,
     subtitle: String,
-) -> Result<Vec<PathBuf>> {
+) -> Result<MapFigure> {
     let pre = trirhythm::model::preset(preset_name)?;
     let mut panels = Vec::new();
     for (label, value) in ["a", "b", "c", "d"].into_iter().zip(values) {
@@ -490,14 +530,12 @@ pub fn gamma_delta_family(
     notes.push(
         "count = number of stable limit cycles; red: folds f = ∂f/∂A = 0 traced exactly".into(),
     );
-    write_map_figure(
+    Ok(map_figure(
         ctx,
-        number,
-        title,
+        (number, title),
         subtitle,
         notes,
         panels,
         (2, 2),
-        SeriesLabelPosition::UpperRight,
-    )
+    ))
 }

@@ -1,8 +1,27 @@
 //! `trirhythm figure N`: one source file, one command and one set of files per paper figure.
 //!
 //! Each figure writes `figNN.csv` (its data, parameters and notes in `#` header lines) and
-//! `figNN.png` + `figNN.svg` into the output directory. `--quick` trades resolution for speed
-//! (used by CI); the default is paper quality.
+//! `figNN.png` + `figNN.svg` into the output directory; with `--data` also `figNN.json`, the
+//! value everything else is rendered from. `--quick` trades resolution for speed (used by CI);
+//! the default is paper quality. `--from-data DIR` renders from `DIR/figNN.json` without
+//! computing anything.
+//!
+//! # Data first, pictures second
+//!
+//! A figure is a serialisable data type that implements [`Figure`]:
+//! [`Figure::compute`] does all the numerical work and returns the data (the headings and CSV
+//! header lines included, as text); [`Figure::render`] writes the CSV, PNG and SVG from that
+//! value alone, deterministically, so that rendering the data read back from `figNN.json`
+//! gives the same bytes. To add figure NN:
+//!
+//! 1. write `figNN_what.rs` with `pub struct FigNN { … }` deriving `Serialize, Deserialize`
+//!    (plain numbers, strings and the library's serialisable result types, no plotting types),
+//!    `impl Figure for FigNN` (number, title, `compute`, `render`), and `impl Picture for FigNN`
+//!    for the drawing ([`crate::plot::save`] writes it);
+//! 2. add `mod figNN_what;` below and `entry::<figNN_what::FigNN>()` to [`registry`].
+//!
+//! Figures that share a drawing (the maps, [`mapfig::MapFigure`]) wrap it in a newtype per
+//! figure.
 
 mod fig01_phase_recurrence;
 mod fig02_rhythmicity_planes;
@@ -17,9 +36,13 @@ mod fig10_pbif_lambda_tau;
 mod fig12_pbif_maps;
 mod mapfig;
 
+use crate::common::bad;
+use crate::output::write_atomic;
 use crate::plot::Heading;
-use anyhow::Result;
-use std::path::PathBuf;
+use anyhow::{Context, Result};
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 use trirhythm::model::Params;
 use trirhythm::theory::averaging::Variant;
 
@@ -33,70 +56,158 @@ pub struct FigureContext {
     pub variant: Variant,
 }
 
-impl FigureContext {
-    /// `out_dir/figNN` (without extension).
-    pub fn stem(&self, n: u32) -> PathBuf {
-        self.out_dir.join(format!("fig{n:02}"))
+/// `dir/figNN` (without extension).
+pub fn stem(dir: &Path, n: u32) -> PathBuf {
+    dir.join(format!("fig{n:02}"))
+}
+
+/// A paper figure: its data, computed once, and the files rendered from it.
+pub trait Figure: Serialize + DeserializeOwned {
+    /// The paper's figure number.
+    const NUMBER: u32;
+    /// What the figure shows, in one line (printed as each figure is made).
+    const TITLE: &'static str;
+    /// All the numerical work; writes no file.
+    fn compute(ctx: &FigureContext) -> Result<Self>;
+    /// Write `stem.csv` (and any other data files), `stem.png` and `stem.svg` from the data
+    /// alone; returns the paths written.
+    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>>;
+}
+
+/// `figNN.json`: the figure's data with what produced it.
+#[derive(Serialize, Deserialize)]
+struct DataFile<F> {
+    /// The figure number.
+    figure: u32,
+    /// The version of trirhythm that computed it.
+    trirhythm: String,
+    /// The formula variant of the averaged theory.
+    variant: Variant,
+    /// Quick (coarse) or paper quality.
+    quick: bool,
+    /// The value [`Figure::render`] draws.
+    data: F,
+}
+
+/// What `figure` does with each selected figure.
+pub enum Request<'a> {
+    /// Compute the data and render it; write `figNN.json` too when `data` is set.
+    Compute { ctx: &'a FigureContext, data: bool },
+    /// Read `figNN.json` from `dir` and render it into `out_dir` (and write the JSON there
+    /// again when `data` is set).
+    FromData {
+        dir: &'a Path,
+        out_dir: &'a Path,
+        data: bool,
+    },
+}
+
+/// One figure of the registry: its number, title and how to make it.
+pub struct Entry {
+    /// The paper's figure number.
+    pub number: u32,
+    /// What it shows.
+    pub title: &'static str,
+    /// Make the figure's files; returns the paths written.
+    pub make: fn(&Request) -> Result<Vec<PathBuf>>,
+}
+
+fn entry<F: Figure>() -> Entry {
+    Entry {
+        number: F::NUMBER,
+        title: F::TITLE,
+        make: make::<F>,
     }
 }
 
-type FigureFn = fn(&FigureContext) -> Result<Vec<PathBuf>>;
-
 /// The figures this build can make, by number.
-pub fn registry() -> Vec<(u32, &'static str, FigureFn)> {
+pub fn registry() -> Vec<Entry> {
     vec![
-        (
-            1,
-            "phase portraits and recurrence plots, Eq. (1) vs Eq. (5)",
-            fig01_phase_recurrence::run,
-        ),
-        (
-            2,
-            "rhythmicity maps in (α0, β0) and (γ0, δ0) with saddle-node lines",
-            fig02_rhythmicity_planes::run,
-        ),
-        (
-            3,
-            "rhythmicity in (γ0, δ0) for four restitution coefficients",
-            fig03_restitution_planes::run,
-        ),
-        (
-            4,
-            "f(A0) with its zones and limit cycles (Eq. 18)",
-            fig04_drift::run,
-        ),
-        (
-            5,
-            "limit-cycle amplitude vs r by continuation, five μ0",
-            fig05_branches::run,
-        ),
-        (
-            6,
-            "mono/bi/tri regions in (γ0, δ0) for four fractional orders",
-            fig06_fractional_planes::run,
-        ),
-        (
-            7,
-            "pseudo-potential U_eff for several r and λ (Eq. 23)",
-            fig07_pseudo_potential::run,
-        ),
-        (8, "energy barriers ΔU_i of U_eff", fig08_barriers::run),
-        (
-            9,
-            "energy barriers ΔU_i over (τ, λ) for two r",
-            fig09_barrier_surfaces::run,
-        ),
-        (
-            10,
-            "P-bifurcation map in (λ, τ) for four D",
-            fig10_pbif_lambda_tau::run,
-        ),
-        (
-            12,
-            "P-bifurcation maps in (μ0, r) and (λ, r)",
-            fig12_pbif_maps::run,
-        ),
+        entry::<fig01_phase_recurrence::Fig01>(),
+        entry::<fig02_rhythmicity_planes::Fig02>(),
+        entry::<fig03_restitution_planes::Fig03>(),
+        entry::<fig04_drift::Fig04>(),
+        entry::<fig05_branches::Fig05>(),
+        entry::<fig06_fractional_planes::Fig06>(),
+        entry::<fig07_pseudo_potential::Fig07>(),
+        entry::<fig08_barriers::Fig08>(),
+        entry::<fig09_barrier_surfaces::Fig09>(),
+        entry::<fig10_pbif_lambda_tau::Fig10>(),
+        entry::<fig12_pbif_maps::Fig12>(),
     ]
+}
+
+fn make<F: Figure>(request: &Request) -> Result<Vec<PathBuf>> {
+    let (file, out_dir, data) = match request {
+        Request::Compute { ctx, data } => {
+            let file = DataFile {
+                figure: F::NUMBER,
+                trirhythm: env!("CARGO_PKG_VERSION").to_string(),
+                variant: ctx.variant,
+                quick: ctx.quick,
+                data: F::compute(ctx)?,
+            };
+            (file, ctx.out_dir.as_path(), *data)
+        }
+        Request::FromData { dir, out_dir, data } => (read_data::<F>(dir)?, *out_dir, *data),
+    };
+    std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
+    let stem = stem(out_dir, F::NUMBER);
+    let mut files = Vec::new();
+    if data {
+        let path = stem.with_extension("json");
+        let json = serde_json::to_string(&file).context("serialising the figure's data")?;
+        write_atomic(&path, json.as_bytes())?;
+        files.push(path);
+    }
+    files.extend(file.data.render(&stem)?);
+    Ok(files)
+}
+
+/// Read `dir/figNN.json` for figure `F` (bad input when missing, malformed or of another
+/// figure).
+fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
+    let path = stem(dir, F::NUMBER).with_extension("json");
+    let text = match std::fs::read_to_string(&path) {
+        Ok(t) => t,
+        Err(e) => {
+            return bad(format!(
+                "--from-data {}: cannot read {} ({e}); write it with `figure {} --data`",
+                dir.display(),
+                path.display(),
+                F::NUMBER
+            ))
+        }
+    };
+    #[derive(Deserialize)]
+    struct Number {
+        figure: u32,
+    }
+    match serde_json::from_str::<Number>(&text) {
+        Ok(n) if n.figure == F::NUMBER => {}
+        Ok(n) => {
+            return bad(format!(
+                "--from-data: {} holds the data of figure {}, not {}",
+                path.display(),
+                n.figure,
+                F::NUMBER
+            ))
+        }
+        Err(e) => {
+            return bad(format!(
+                "--from-data: {} is not figure data ({e})",
+                path.display()
+            ))
+        }
+    }
+    match serde_json::from_str(&text) {
+        Ok(file) => Ok(file),
+        Err(e) => bad(format!(
+            "--from-data: {} is not the data of figure {} as this version writes it ({e})",
+            path.display(),
+            F::NUMBER
+        )),
+    }
 }
 
 /// Header comment lines for a figure's CSV: title, variant, notes.

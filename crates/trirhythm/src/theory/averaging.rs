@@ -33,10 +33,12 @@ use crate::error::{Error, Exact, Readable, Result};
 use crate::model::{Equivalents, Params};
 use crate::theory::polynomial::Polynomial;
 use crate::theory::quadrature::integrate_with_breakpoints;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// Which form of the averaged formulas to use.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Variant {
     /// The paper's formulas as printed (Eq. 27's typo fixed).
     #[default]
@@ -116,7 +118,7 @@ pub fn sgn_harmonic_sum(c: f64) -> f64 {
 }
 
 /// A limit cycle (or an extremum of the stationary amplitude PDF when D > 0).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Cycle {
     /// Amplitude A0 > 0.
     pub amplitude: f64,
@@ -177,7 +179,7 @@ impl Rhythmicity {
 }
 
 /// An extremum of U_eff.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Extremum {
     /// Amplitude (A = 0 is the rest state when D = 0).
     pub amplitude: f64,
@@ -188,7 +190,8 @@ pub struct Extremum {
 }
 
 /// Which way a barrier is crossed from its well.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Side {
     /// Towards smaller amplitude.
     Left,
@@ -197,7 +200,7 @@ pub enum Side {
 }
 
 /// An energy barrier ΔU = U_eff(crest) − U_eff(well) between neighbouring extrema.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Barrier {
     /// The well's amplitude.
     pub well: f64,

@@ -7,9 +7,10 @@ use crate::error::Result;
 use crate::model::Params;
 use crate::theory::averaging::Variant;
 use crate::theory::polynomial::Polynomial;
+use serde::{Deserialize, Serialize};
 
 /// A point of a branch.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct BranchPoint {
     /// The swept parameter.
     pub param: f64,
@@ -20,7 +21,7 @@ pub struct BranchPoint {
 }
 
 /// One branch, in order along its arclength.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Branch {
     /// Points (folds included).
     pub points: Vec<BranchPoint>,
@@ -31,7 +32,7 @@ pub struct Branch {
 }
 
 /// All branches over a parameter interval.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct BranchDiagram {
     /// Swept parameter.
     pub key: String,

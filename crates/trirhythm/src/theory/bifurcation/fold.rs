@@ -20,9 +20,11 @@ use crate::error::{Error, Result};
 use crate::theory::averaging::Variant;
 use crate::theory::polynomial::Polynomial;
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 
 /// Which pair of equations defines the curve.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum FoldSystem {
     /// g = g′ = 0: saddle-node of limit cycles (the paper's L1, L2, L3).
     Drift,
@@ -51,7 +53,8 @@ impl FoldSystem {
 }
 
 /// Why a traced curve ends.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum CurveEnd {
     /// At the plane's border.
     Border,
@@ -85,7 +88,7 @@ impl CurveEnd {
 }
 
 /// A point of a fold curve.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct FoldPoint {
     /// Value of the plane's x parameter.
     pub x: f64,
@@ -96,7 +99,7 @@ pub struct FoldPoint {
 }
 
 /// A traced curve.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct FoldCurve {
     /// Its equations.
     pub system: FoldSystem,
@@ -109,7 +112,7 @@ pub struct FoldCurve {
 }
 
 /// All curves traced on a map.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Folds {
     /// The curves.
     pub curves: Vec<FoldCurve>,

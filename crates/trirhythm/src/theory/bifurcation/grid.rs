@@ -5,10 +5,11 @@ use crate::error::{Error, Result};
 use crate::model::Params;
 use crate::theory::averaging::Variant;
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// One axis of a map: `count` equally spaced values of a parameter from `start` to `stop`.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Axis {
     /// Parameter key (see [`crate::model::KEYS`]).
     pub key: String,

@@ -12,6 +12,7 @@ use crate::error::{Error, Result};
 use crate::model::Equivalents;
 use crate::model::Params;
 use crate::theory::averaging::{phase_average_weight, Variant};
+use serde::{Deserialize, Serialize};
 
 /// Most damping coefficients c_0 … c_{MAXC−1} the fast path supports (P(U) up to U^22).
 pub const MAXC: usize = 12;
@@ -19,7 +20,8 @@ pub const MAXC: usize = 12;
 pub(crate) const CAP: usize = MAXC + 1;
 
 /// Which polynomial a classification looks at.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum What {
     /// Stable limit cycles of the noise-free averaged system: stable roots of g = f/A.
     #[default]
