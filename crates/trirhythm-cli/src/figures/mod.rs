@@ -33,8 +33,11 @@ mod fig07_pseudo_potential;
 mod fig08_barriers;
 mod fig09_barrier_surfaces;
 mod fig10_pbif_lambda_tau;
+mod fig11_amplitude_lambda;
 mod fig12_pbif_maps;
+mod fig13_pdf_restitution;
 mod mapfig;
+mod montecarlo;
 
 use crate::common::bad;
 use crate::output::write_atomic;
@@ -133,7 +136,9 @@ pub fn registry() -> Vec<Entry> {
         entry::<fig08_barriers::Fig08>(),
         entry::<fig09_barrier_surfaces::Fig09>(),
         entry::<fig10_pbif_lambda_tau::Fig10>(),
+        entry::<fig11_amplitude_lambda::Fig11>(),
         entry::<fig12_pbif_maps::Fig12>(),
+        entry::<fig13_pdf_restitution::Fig13>(),
     ]
 }
 

@@ -35,7 +35,6 @@
 
 use super::ensemble::{EnsembleResult, Estimate, Wells};
 use crate::theory::averaging::{AmplitudePdf, Theory};
-use crate::theory::quadrature::integrate_with_breakpoints;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
@@ -70,24 +69,19 @@ pub struct TheoryComparison {
     pub escape_times: Vec<f64>,
 }
 
-/// Exact mean first-passage time of the averaged amplitude diffusion from `a` to `b`.
+/// Subintervals of composite Simpson per piece between consecutive extrema of P(A).
+const ESCAPE_NODES: usize = 2000;
+
+/// Exact mean first-passage time of the averaged amplitude diffusion from `a` to `b`: composite
+/// Simpson on each piece between the extrema of P(A) (the integrand 1/P peaks at the antimodes,
+/// which are piece ends), with F (or 1 − F) accumulated node by node from small exact
+/// integrals of P, in log form so that deep barriers do not overflow.
 pub fn escape_time(pdf: &AmplitudePdf, sigma1: f64, a: f64, b: f64) -> f64 {
     if a == b {
         return 0.0;
     }
-    let (lo, hi) = (a.min(b), a.max(b));
+    let (lo, hi) = (a.min(b).max(0.0), a.max(b));
     let up = b > a;
-    let integrand = |y: f64| {
-        if y <= 0.0 {
-            return 0.0;
-        }
-        let f = pdf.probability(0.0, y);
-        let tail = if up { f } else { (1.0 - f).max(0.0) };
-        if tail <= 0.0 {
-            return 0.0;
-        }
-        2.0 * (tail.ln() - pdf.log_density(y)).exp() / sigma1
-    };
     let mut cuts = vec![lo];
     cuts.extend(
         pdf.modes
@@ -98,7 +92,45 @@ pub fn escape_time(pdf: &AmplitudePdf, sigma1: f64, a: f64, b: f64) -> f64 {
     );
     cuts.push(hi);
     cuts.sort_by(f64::total_cmp);
-    integrate_with_breakpoints(&integrand, &cuts, 1e-8)
+    let mut nodes = Vec::new();
+    for w in cuts.windows(2) {
+        for k in 0..ESCAPE_NODES {
+            nodes.push(w[0] + (w[1] - w[0]) * k as f64 / ESCAPE_NODES as f64);
+        }
+    }
+    nodes.push(hi);
+    // the mass below (up) or above (down) each node
+    let mut mass = vec![0.0; nodes.len()];
+    if up {
+        mass[0] = pdf.probability(0.0, nodes[0]);
+        for k in 1..nodes.len() {
+            mass[k] = mass[k - 1] + pdf.probability(nodes[k - 1], nodes[k]);
+        }
+    } else {
+        let n = nodes.len();
+        mass[n - 1] = pdf.probability(nodes[n - 1], pdf.support_end);
+        for k in (0..n - 1).rev() {
+            mass[k] = mass[k + 1] + pdf.probability(nodes[k], nodes[k + 1]);
+        }
+    }
+    let f = |k: usize| {
+        let y = nodes[k];
+        if y <= 0.0 || mass[k] <= 0.0 {
+            return 0.0;
+        }
+        2.0 * (mass[k].ln() - pdf.log_density(y)).exp() / sigma1
+    };
+    let mut total = 0.0;
+    for piece in 0..cuts.len() - 1 {
+        let k0 = piece * ESCAPE_NODES;
+        let h = nodes[k0 + 1] - nodes[k0];
+        let mut s = f(k0) + f(k0 + ESCAPE_NODES);
+        for j in 1..ESCAPE_NODES {
+            s += if j % 2 == 1 { 4.0 } else { 2.0 } * f(k0 + j);
+        }
+        total += s * h / 3.0;
+    }
+    total
 }
 
 /// Local maxima with prominence above `floor` and above `noise[i]` (the same bin's noise).

@@ -1,0 +1,122 @@
+//! Fig. 13: the stationary P(A) for several restitution coefficients at μ0 = 0.005 (a) and
+//! μ0 = 0.2 (b): the averaged theory (Eq. 27, both variants) against Monte Carlo ensembles of
+//! the fractional system (Eq. 1) and of its integer-order equivalent (Eq. 5), with error bars,
+//! distances and the stationarity verdict of every ensemble.
+
+use super::montecarlo::{amplitude_csv, amplitude_panel, draw_amplitude_grid, amplitude_legend, AmplitudePanel, Sizes};
+use super::{csv_header, heading, Figure, FigureContext};
+use crate::output::write_atomic;
+use crate::plot::{save, Heading, Picture};
+use anyhow::Result;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use trirhythm::engine::System;
+use trirhythm::model::preset;
+
+/// (preset, label, r) per panel: the paper's r for (a), four of "0.7 to 0.999" for (b).
+const PANELS: [(&str, &str, f64); 8] = [
+    ("fig13a", "a1", 0.99),
+    ("fig13a", "a2", 0.97),
+    ("fig13a", "a3", 0.96),
+    ("fig13a", "a4", 0.84),
+    ("fig13b", "b1", 0.999),
+    ("fig13b", "b2", 0.95),
+    ("fig13b", "b3", 0.85),
+    ("fig13b", "b4", 0.7),
+];
+
+/// The ensemble sizes of Fig. 13 (full quality and `--quick`).
+pub fn sizes(quick: bool) -> Sizes {
+    if quick {
+        Sizes { paths: 2, burn_in: 10.0, t_end: 100.0, bins: 50 }
+    } else {
+        Sizes { paths: 16, burn_in: 500.0, t_end: 20000.0, bins: 80 }
+    }
+}
+
+/// Fig. 13's data.
+#[derive(Serialize, Deserialize)]
+pub struct Fig13 {
+    heading: Heading,
+    header: Vec<String>,
+    panels: Vec<AmplitudePanel>,
+}
+
+impl Figure for Fig13 {
+    const NUMBER: u32 = 13;
+    const TITLE: &'static str = "P(A) for several r: theory against Monte Carlo of Eq. 1 and Eq. 5";
+
+    fn compute(ctx: &FigureContext) -> Result<Fig13> {
+        let sz = sizes(ctx.quick);
+        let mut notes = vec![
+            format!("ensembles: {}; starts at the theory's modes in turn", sz.describe()),
+            "the paper prints r for (a) only; (b) shows four r from its range 0.7–0.999".into(),
+        ];
+        let mut panels = Vec::new();
+        for (name, label, r) in PANELS {
+            let pre = preset(name)?;
+            let p = pre.params.with("r", r)?;
+            let mu0 = p.mu0;
+            let (panel, n) = amplitude_panel(
+                format!("({label}) μ0 = {mu0}, r = {r}"),
+                &p,
+                ctx.variant,
+                &[System::Fractional, System::Equivalent],
+                sz,
+            )?;
+            notes.extend(n);
+            panels.push(panel);
+        }
+        let passed = panels.iter().flat_map(|p| &p.runs).filter(|r| r.stationary).count();
+        let total = panels.iter().map(|p| p.runs.len()).sum::<usize>();
+        let verdict = format!(
+            "stationarity check passed by {passed} of {total} ensembles (panels marked \"MC not stationary\" are not stationary results)"
+        );
+        notes.push(verdict.clone());
+        notes.push("the paper claims agreement between theory and Monte Carlo in every panel; the distances above say where it holds".into());
+        let base = preset("fig13a")?.params;
+        let heading = heading(
+            13,
+            "stationary P(A) for several r, theory against Monte Carlo",
+            ctx,
+            &base,
+            &["mu0", "r"],
+            vec![format!("Monte Carlo: {}", sz.describe()), verdict],
+        );
+        Ok(Fig13 {
+            heading,
+            header: csv_header(13, Self::TITLE, ctx, &notes),
+            panels,
+        })
+    }
+
+    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
+        let csv_path = stem.with_extension("csv");
+        write_atomic(&csv_path, amplitude_csv(&self.header, &self.panels)?.as_bytes())?;
+        let mut files = vec![csv_path];
+        files.extend(save(self, stem)?);
+        Ok(files)
+    }
+}
+
+const PANEL: (u32, u32) = (470, 400);
+
+impl Picture for Fig13 {
+    fn size(&self) -> (u32, u32) {
+        let w = 4 * PANEL.0;
+        (w, 2 * PANEL.1 + amplitude_legend(&self.panels).height(w))
+    }
+
+    fn heading(&self) -> Heading {
+        self.heading.clone()
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        draw_amplitude_grid(root, &self.panels, (2, 4), PANEL.1)
+    }
+}
