@@ -108,7 +108,7 @@ impl Window {
     }
 
     /// Append a piece; returns the one that left (the oldest) when the window was full.
-    #[inline]
+    #[inline(always)]
     fn push(&mut self, left: f64, right: f64) -> Option<(f64, f64)> {
         let cap = self.cap;
         if cap == 0 {
@@ -145,7 +145,7 @@ impl Window {
 
 /// Σ a_i b_i with four fixed partial sums, combined as (s0 + s1) + (s2 + s3): the same bits
 /// whatever vector width the compiler uses.
-#[inline]
+#[inline(always)]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     let mut acc = [0.0; 4];
     let (ac, ar) = a.split_at(a.len() - a.len() % 4);
@@ -157,6 +157,25 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     }
     for (i, (x, y)) in ar.iter().zip(br).enumerate() {
         acc[i] += x * y;
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3])
+}
+
+/// Σ a_i b_i + c_i d_i (equal lengths) with four fixed partial sums, lane i taking
+/// ((acc + a·b) + c·d), combined as (s0 + s1) + (s2 + s3): the same bits whatever vector width
+/// the compiler uses.
+#[inline(always)]
+fn dot2(a: &[f64], b: &[f64], c: &[f64], d: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let m = a.len() - a.len() % 4;
+    let (a, b, c, d) = (a, &b[..a.len()], &c[..a.len()], &d[..a.len()]);
+    for k in (0..m).step_by(4) {
+        for i in 0..4 {
+            acc[i] = (acc[i] + a[k + i] * b[k + i]) + c[k + i] * d[k + i];
+        }
+    }
+    for i in 0..a.len() - m {
+        acc[i] = (acc[i] + a[m + i] * b[m + i]) + c[m + i] * d[m + i];
     }
     (acc[0] + acc[1]) + (acc[2] + acc[3])
 }
@@ -174,35 +193,42 @@ struct Modes {
     out: Vec<[f64; 4]>,
 }
 
-/// Y ← e^{−sh}Y + a·l + b·r and Σ out·Y, lane by lane as ((d·y + a·l) + b·r), the four lane
-/// sums combined as (s0 + s1) + (s2 + s3).
+/// Y ← e^{−sh}Y + a·l + b·r and Σ out·Y, lane by lane as (d·y + (a·l + b·r)) (the part that
+/// does not depend on Y first), the sums of out·Y kept in two accumulators of four lanes (even
+/// and odd blocks: half the serial additions), combined lane by lane and then as
+/// (s0 + s1) + (s2 + s3).
+#[inline(always)]
 fn advance_modes(m: &mut Modes, l: f64, r: f64) -> f64 {
-    let mut acc = [0.0; 4];
-    for ((((y, d), a), b), o) in
+    let mut acc = [[0.0; 4]; 2];
+    for (k, ((((y, d), a), b), o)) in
         m.y.iter_mut()
             .zip(&m.decay)
             .zip(&m.start)
             .zip(&m.end)
             .zip(&m.out)
+            .enumerate()
     {
         for i in 0..4 {
-            let v = d[i] * y[i] + a[i] * l + b[i] * r;
+            let v = d[i] * y[i] + (a[i] * l + b[i] * r);
             y[i] = v;
-            acc[i] += o[i] * v;
+            acc[k % 2][i] += o[i] * v;
         }
     }
-    (acc[0] + acc[1]) + (acc[2] + acc[3])
+    let s: [f64; 4] = std::array::from_fn(|i| acc[0][i] + acc[1][i]);
+    (s[0] + s[1]) + (s[2] + s[3])
 }
 
 /// [`advance_modes`] in AVX: the same operations in the same order, four lanes at once.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
+#[inline]
 unsafe fn advance_modes_avx(m: &mut Modes, l: f64, r: f64) -> f64 {
     use std::arch::x86_64::*;
     let lv = _mm256_set1_pd(l);
     let rv = _mm256_set1_pd(r);
-    let mut acc = _mm256_setzero_pd();
+    let mut acc = [_mm256_setzero_pd(); 2];
     let n = m.y.len();
+    assert!(m.decay.len() == n && m.start.len() == n && m.end.len() == n && m.out.len() == n);
     let (y, d, a, b, o) = (
         m.y.as_mut_ptr() as *mut f64,
         m.decay.as_ptr() as *const f64,
@@ -212,20 +238,45 @@ unsafe fn advance_modes_avx(m: &mut Modes, l: f64, r: f64) -> f64 {
     );
     for k in 0..n {
         let i = 4 * k;
-        // SAFETY: all five arrays hold n blocks of four f64.
+        // SAFETY: all five arrays hold n blocks of four f64 (asserted above).
         let yv = _mm256_loadu_pd(y.add(i));
         let v = _mm256_add_pd(
+            _mm256_mul_pd(_mm256_loadu_pd(d.add(i)), yv),
             _mm256_add_pd(
-                _mm256_mul_pd(_mm256_loadu_pd(d.add(i)), yv),
                 _mm256_mul_pd(_mm256_loadu_pd(a.add(i)), lv),
+                _mm256_mul_pd(_mm256_loadu_pd(b.add(i)), rv),
             ),
-            _mm256_mul_pd(_mm256_loadu_pd(b.add(i)), rv),
         );
         _mm256_storeu_pd(y.add(i), v);
-        acc = _mm256_add_pd(acc, _mm256_mul_pd(_mm256_loadu_pd(o.add(i)), v));
+        acc[k % 2] = _mm256_add_pd(acc[k % 2], _mm256_mul_pd(_mm256_loadu_pd(o.add(i)), v));
+    }
+    let mut s = [0.0; 4];
+    _mm256_storeu_pd(s.as_mut_ptr(), _mm256_add_pd(acc[0], acc[1]));
+    (s[0] + s[1]) + (s[2] + s[3])
+}
+
+/// [`dot2`] in AVX: the same operations in the same order, four lanes at once.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+unsafe fn dot2_avx(a: &[f64], b: &[f64], c: &[f64], d: &[f64]) -> f64 {
+    use std::arch::x86_64::*;
+    let n = a.len();
+    let m = n - n % 4;
+    assert!(b.len() >= n && c.len() >= n && d.len() >= n);
+    let mut acc = _mm256_setzero_pd();
+    let (pa, pb, pc, pd) = (a.as_ptr(), b.as_ptr(), c.as_ptr(), d.as_ptr());
+    for k in (0..m).step_by(4) {
+        // SAFETY: k + 4 ≤ m ≤ the length of all four slices.
+        let ab = _mm256_mul_pd(_mm256_loadu_pd(pa.add(k)), _mm256_loadu_pd(pb.add(k)));
+        let cd = _mm256_mul_pd(_mm256_loadu_pd(pc.add(k)), _mm256_loadu_pd(pd.add(k)));
+        acc = _mm256_add_pd(_mm256_add_pd(acc, ab), cd);
     }
     let mut s = [0.0; 4];
     _mm256_storeu_pd(s.as_mut_ptr(), acc);
+    for i in 0..n - m {
+        s[i] = (s[i] + a[m + i] * b[m + i]) + c[m + i] * d[m + i];
+    }
     (s[0] + s[1]) + (s[2] + s[3])
 }
 
@@ -235,13 +286,7 @@ impl Modes {
     }
 
     #[inline]
-    fn advance(&mut self, l: f64, r: f64, avx: bool) -> f64 {
-        #[cfg(target_arch = "x86_64")]
-        if avx {
-            // SAFETY: `avx` is true only when the CPU reported AVX at construction.
-            return unsafe { advance_modes_avx(self, l, r) };
-        }
-        let _ = avx;
+    fn advance(&mut self, l: f64, r: f64) -> f64 {
         advance_modes(self, l, r)
     }
 
@@ -291,6 +336,11 @@ pub(crate) struct History {
     /// SOE: the same weights for the window's slice, oldest (distance cap) first.
     wl_rev: Vec<f64>,
     wr_rev: Vec<f64>,
+    /// The same, times h^λ/Γ(λ), without the newest piece (distance 1), whose scaled weights
+    /// are `newest`: the fast path of [`History::push`].
+    swl_rev: Vec<f64>,
+    swr_rev: Vec<f64>,
+    newest: (f64, f64),
     soe: Option<SoeKernel>,
     /// SOE mode state Y_j = ∫ e^{−s_j (t_m − s)} g(s) ds up to the window's start t_m.
     modes: Modes,
@@ -336,6 +386,9 @@ impl History {
             wr: vec![wa],
             wl_rev: vec![],
             wr_rev: vec![],
+            swl_rev: vec![],
+            swr_rev: vec![],
+            newest: (0.0, 0.0),
             soe: None,
             modes: Modes::default(),
             avx: false,
@@ -390,6 +443,11 @@ impl History {
             c.grow_weights(cap);
             c.wl_rev = (1..=cap).rev().map(|p| c.wl[p]).collect();
             c.wr_rev = (1..=cap).rev().map(|p| c.wr[p]).collect();
+            if cap > 0 {
+                c.swl_rev = (2..=cap).rev().map(|p| scale * c.wl[p]).collect();
+                c.swr_rev = (2..=cap).rev().map(|p| scale * c.wr[p]).collect();
+                c.newest = (scale * c.wl[1], scale * c.wr[1]);
+            }
             c.constant = k.constant;
             c.slope = k.slope;
             c.soe = Some(k);
@@ -487,7 +545,93 @@ impl History {
     }
 
     /// Store a completed (corrected) piece and prepare the history of the next step.
+    #[inline]
     pub fn push(&mut self, piece: Piece) {
+        if !self.direct && self.local.cap == 0 && piece.split.is_none() && self.slope == 0.0 {
+            // a constant kernel (λ = 1): the running trapezoidal integral
+            self.pushed += 1;
+            self.integral += 0.5 * self.dt * (piece.left + piece.right);
+            self.cached = self.constant * self.integral;
+            return;
+        }
+        if !self.direct && self.local.cap > 0 && piece.split.is_none() && self.splits.is_empty() {
+            #[cfg(target_arch = "x86_64")]
+            if self.avx {
+                // SAFETY: `avx` is true only when the CPU reported AVX at construction.
+                unsafe { self.push_plain_avx(piece.left, piece.right) };
+                return;
+            }
+            self.push_plain(piece.left, piece.right);
+            return;
+        }
+        self.push_general(piece);
+    }
+
+    /// [`History::push_plain`] compiled for AVX: the same operations in the same order (no
+    /// fused multiply–add), four lanes at a time, so the same bits.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn push_plain_avx(&mut self, left: f64, right: f64) {
+        self.push_plain_body(
+            left,
+            right,
+            |m, l, r| advance_modes_avx(m, l, r),
+            |a, b, c, d| dot2_avx(a, b, c, d),
+        )
+    }
+
+    fn push_plain(&mut self, left: f64, right: f64) {
+        self.push_plain_body(left, right, advance_modes, dot2)
+    }
+
+    /// The fast path of [`History::push`]: an unsplit piece into an SOE memory with a window
+    /// and no split piece in it. Everything that does not depend on the newest piece — the
+    /// modes advanced by the piece leaving the window, the lumped terms, the window's older
+    /// pieces — is summed first; the newest piece enters last, through one multiply–add pair,
+    /// so that the step's dependency chain (newest g → memory value → next V) is two
+    /// operations long and the rest overlaps with it.
+    #[inline(always)]
+    fn push_plain_body(
+        &mut self,
+        left: f64,
+        right: f64,
+        advance: impl FnOnce(&mut Modes, f64, f64) -> f64,
+        dot2: impl FnOnce(&[f64], &[f64], &[f64], &[f64]) -> f64,
+    ) {
+        self.pushed += 1;
+        let leaving = self.local.push(left, right);
+        let mut off = 0.0;
+        if let Some((l0, r0)) = leaving {
+            if !self.modes.y.is_empty() {
+                off = advance(&mut self.modes, l0, r0);
+            }
+            let h = self.dt;
+            if self.slope != 0.0 {
+                self.moment += h * self.integral + h * h * (l0 / 3.0 + r0 / 6.0);
+            }
+            self.integral += 0.5 * h * (l0 + r0);
+        }
+        if self.slope != 0.0 {
+            let back = (self.local.cap + 1) as f64 * self.dt;
+            off +=
+                self.constant * self.integral - self.slope * (self.moment + back * self.integral);
+        } else {
+            off += self.constant * self.integral;
+        }
+        let (l, r) = self.local.slices();
+        let n = l.len() - 1;
+        let w = self.swl_rev.len();
+        off += dot2(
+            &l[..n],
+            &self.swl_rev[w - n..],
+            &r[..n],
+            &self.swr_rev[w - n..],
+        );
+        self.cached = off + (self.newest.0 * left + self.newest.1 * right);
+    }
+
+    /// [`History::push`] in general: Direct memory, split pieces, λ = 1.
+    fn push_general(&mut self, piece: Piece) {
         let seq = self.pushed;
         self.pushed += 1;
         if let Some(s) = piece.split {
@@ -576,7 +720,7 @@ impl History {
                 let modes = if self.modes.y.is_empty() {
                     0.0
                 } else {
-                    self.modes.advance(left, right, self.avx)
+                    self.modes.advance(left, right)
                 };
                 if self.slope != 0.0 {
                     self.moment += h * self.integral + h * h * (left / 3.0 + right / 6.0);
