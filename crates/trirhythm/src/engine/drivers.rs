@@ -159,6 +159,9 @@ pub const MAX_KEPT_SAMPLES: u64 = 100_000_000;
 #[derive(Debug, Clone)]
 pub struct TrajectoryRecorder {
     every: u64,
+    /// No node before this step is recorded (the next multiple of `every` after the last one
+    /// looked at).
+    next_record: u64,
     record_impacts: bool,
     has_noise: bool,
     omega1: f64,
@@ -192,6 +195,7 @@ impl TrajectoryRecorder {
         let t_end = steps as f64 * dt;
         Ok(TrajectoryRecorder {
             every,
+            next_record: 0,
             record_impacts: options.record_impacts,
             has_noise,
             omega1,
@@ -245,7 +249,12 @@ impl Observer for TrajectoryRecorder {
                 self.amp_n += 1;
             }
         }
-        if n % self.every == 0 {
+        // n % every only from the next multiple on: an integer division per step would cost
+        // more than the rest of the observation
+        if n >= self.next_record {
+            self.next_record = (n / self.every + 1) * self.every;
+        }
+        if n + self.every == self.next_record {
             self.out.t.push(s.time());
             self.out.u.push(s.u());
             self.out.v.push(s.v());
