@@ -92,13 +92,7 @@ struct FigureArgs {
 }
 
 /// The paper's figures that are not reproduced yet, with what they need.
-const PLANNED: [(u32, &str); 6] = [
-    (
-        11,
-        "limit-cycle amplitude vs λ and P(A) against Monte Carlo ensembles",
-    ),
-    (13, "P(A) against Monte Carlo ensembles for r and μ0"),
-    (14, "joint density P(U, U̇) against Monte Carlo ensembles"),
+const PLANNED: [(u32, &str); 3] = [
     (15, "oscillation (Hopf) boundaries by simulation"),
     (16, "oscillation (Hopf) boundaries by simulation"),
     (17, "largest Lyapunov exponent against noise"),

@@ -116,7 +116,9 @@ fn compute(ctx: &FigureContext) -> Result<Fig05> {
 }
 
 /// Split a branch into runs of equal stability, sharing the boundary points.
-pub(super) fn runs(points: &[trirhythm::theory::bifurcation::BranchPoint]) -> Vec<(bool, Vec<(f64, f64)>)> {
+pub(super) fn runs(
+    points: &[trirhythm::theory::bifurcation::BranchPoint],
+) -> Vec<(bool, Vec<(f64, f64)>)> {
     let mut out: Vec<(bool, Vec<(f64, f64)>)> = Vec::new();
     for q in points {
         let xy = (q.param, q.amplitude);

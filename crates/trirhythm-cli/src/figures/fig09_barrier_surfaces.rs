@@ -4,7 +4,7 @@
 use super::{csv_header, panel_line, Figure, FigureContext};
 use crate::common::{num, progress, Csv};
 use crate::output::write_atomic;
-use crate::plot::{chart, pe, save, tick_formatter, Heading, Picture, FONT};
+use crate::plot::{chart, colour_bar, pe, save, viridis, Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -135,66 +135,6 @@ fn compute(ctx: &FigureContext) -> Result<Fig09> {
         header,
         surfaces,
     })
-}
-
-/// Viridis by linear interpolation between five of its anchor colours, t ∈ [0, 1].
-fn viridis(t: f64) -> RGBColor {
-    const A: [(f64, f64, f64); 5] = [
-        (68.0, 1.0, 84.0),
-        (59.0, 82.0, 139.0),
-        (33.0, 145.0, 140.0),
-        (94.0, 201.0, 98.0),
-        (253.0, 231.0, 37.0),
-    ];
-    let t = t.clamp(0.0, 1.0) * 4.0;
-    let i = (t.floor() as usize).min(3);
-    let f = t - i as f64;
-    let mix = |a: f64, b: f64| (a + f * (b - a)).round() as u8;
-    RGBColor(
-        mix(A[i].0, A[i + 1].0),
-        mix(A[i].1, A[i + 1].1),
-        mix(A[i].2, A[i + 1].2),
-    )
-}
-
-/// A horizontal colour bar for values in [lo, hi] with its ticks.
-fn colour_bar<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    label: &str,
-    lo: f64,
-    hi: f64,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
-    let fx = tick_formatter(&(lo..hi), 5);
-    let mut c = ChartBuilder::on(area)
-        .margin_left(70)
-        .margin_right(20)
-        .margin_top(8)
-        .x_label_area_size(40)
-        .build_cartesian_2d(lo..hi, 0.0..1.0)
-        .map_err(pe)?;
-    c.configure_mesh()
-        .disable_y_axis()
-        .disable_mesh()
-        .x_labels(5)
-        .x_label_formatter(&fx)
-        .x_desc(label)
-        .axis_desc_style((FONT, 16))
-        .label_style((FONT, 14))
-        .draw()
-        .map_err(pe)?;
-    let n = 64;
-    c.draw_series((0..n).map(|i| {
-        let (a, b) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
-        Rectangle::new(
-            [(lo + a * (hi - lo), 0.0), (lo + b * (hi - lo), 1.0)],
-            viridis((i as f64 + 0.5) / n as f64).filled(),
-        )
-    }))
-    .map_err(pe)?;
-    Ok(())
 }
 
 impl Picture for Fig09 {

@@ -53,7 +53,16 @@ fn settle(p: &Params, u0: f64, t_end: f64) -> Result<Settled> {
     let osc = Oscillator::new(p)?;
     let m = PredictorCorrector::default();
     let steps = (t_end / m.dt).round() as u64;
-    let mut s = Stepper::new(&osc, &m, System::Fractional, Barrier::On, (u0, 0.0), (0, 0), t_end, 1e8)?;
+    let mut s = Stepper::new(
+        &osc,
+        &m,
+        System::Fractional,
+        Barrier::On,
+        (u0, 0.0),
+        (0, 0),
+        t_end,
+        1e8,
+    )?;
     let from = 0.9 * t_end;
     let (mut prev_v, mut maxima) = (0.0f64, Vec::new());
     run(
@@ -86,12 +95,38 @@ impl Figure for Fig11 {
     fn compute(ctx: &FigureContext) -> Result<Fig11> {
         let pre = preset("fig11")?;
         let (t_settle, step, sz) = if ctx.quick {
-            (200.0, 0.005, Sizes { paths: 2, burn_in: 10.0, t_end: 100.0, bins: 50 })
+            (
+                200.0,
+                0.005,
+                Sizes {
+                    paths: 2,
+                    burn_in: 10.0,
+                    t_end: 100.0,
+                    bins: 50,
+                },
+            )
         } else {
-            (3000.0, 0.001, Sizes { paths: 16, burn_in: 500.0, t_end: 20000.0, bins: 80 })
+            (
+                3000.0,
+                0.001,
+                Sizes {
+                    paths: 16,
+                    burn_in: 500.0,
+                    t_end: 20000.0,
+                    bins: 80,
+                },
+            )
         };
         let quiet = pre.params.with("D", 0.0)?;
-        let branches = branch_diagram(&quiet, ctx.variant, What::Rhythmicity, "lambda", 0.9, 1.0, step)?;
+        let branches = branch_diagram(
+            &quiet,
+            ctx.variant,
+            What::Rhythmicity,
+            "lambda",
+            0.9,
+            1.0,
+            step,
+        )?;
         let jobs: Vec<(f64, f64)> = LAMBDAS_A
             .iter()
             .flat_map(|&l| STARTS_A.iter().map(move |&u| (l, u)))
@@ -112,7 +147,10 @@ impl Figure for Fig11 {
         notes.push(if unsettled.is_empty() {
             "(a): every simulation settled (maxima spread < 1 %)".into()
         } else {
-            format!("(a): not settled (maxima spread ≥ 1 %): {}", unsettled.join("; "))
+            format!(
+                "(a): not settled (maxima spread ≥ 1 %): {}",
+                unsettled.join("; ")
+            )
         });
         notes.push(format!("(b): λ ∈ {LAMBDAS_B:?} chosen (the paper does not print them): 1, 2, 3 and 2 peaks in the theory; ensembles: {}", sz.describe()));
         let mut panels = Vec::new();
@@ -128,7 +166,11 @@ impl Figure for Fig11 {
             notes.extend(n);
             panels.push(panel);
         }
-        let passed = panels.iter().flat_map(|p| &p.runs).filter(|r| r.stationary).count();
+        let passed = panels
+            .iter()
+            .flat_map(|p| &p.runs)
+            .filter(|r| r.stationary)
+            .count();
         let total = panels.iter().map(|p| p.runs.len()).sum::<usize>();
         let verdict = format!("(b): stationarity check passed by {passed} of {total} ensembles");
         notes.push(verdict.clone());
@@ -161,7 +203,10 @@ impl Figure for Fig11 {
         write_atomic(&a_path, csv.finish()?.as_bytes())?;
         let name = stem.file_name().unwrap_or_default().to_string_lossy();
         let b_path = stem.with_file_name(format!("{name}_pdf.csv"));
-        write_atomic(&b_path, amplitude_csv(&self.header, &self.panels)?.as_bytes())?;
+        write_atomic(
+            &b_path,
+            amplitude_csv(&self.header, &self.panels)?.as_bytes(),
+        )?;
         let mut files = vec![a_path, b_path];
         files.extend(save(self, stem)?);
         Ok(files)
@@ -213,17 +258,28 @@ impl Picture for Fig11 {
                 }
             }
         }
-        c.draw_series(self.settled.iter().map(|s| {
-            Circle::new((s.lambda, s.amplitude), 6, PALETTE[2].stroke_width(2))
-        }))
+        c.draw_series(
+            self.settled
+                .iter()
+                .map(|s| Circle::new((s.lambda, s.amplitude), 6, PALETTE[2].stroke_width(2))),
+        )
         .map_err(pe)?;
         // panel (a)'s key, beside it
         let (_, key) = top.split_horizontally(3 * PANEL.0);
         crate::plot::LegendStrip {
             entries: vec![
-                (crate::plot::Symbol::Line(PALETTE[0]), "stable branch".into()),
-                (crate::plot::Symbol::Dashed(PALETTE[1]), "unstable branch".into()),
-                (crate::plot::Symbol::Ring(PALETTE[2]), "simulation of Eq. 1".into()),
+                (
+                    crate::plot::Symbol::Line(PALETTE[0]),
+                    "stable branch".into(),
+                ),
+                (
+                    crate::plot::Symbol::Dashed(PALETTE[1]),
+                    "unstable branch".into(),
+                ),
+                (
+                    crate::plot::Symbol::Ring(PALETTE[2]),
+                    "simulation of Eq. 1".into(),
+                ),
             ],
         }
         .draw(&key.margin(60, 0, 0, 0))?;

@@ -3,7 +3,9 @@
 //! the fractional system (Eq. 1) and of its integer-order equivalent (Eq. 5), with error bars,
 //! distances and the stationarity verdict of every ensemble.
 
-use super::montecarlo::{amplitude_csv, amplitude_panel, draw_amplitude_grid, amplitude_legend, AmplitudePanel, Sizes};
+use super::montecarlo::{
+    amplitude_csv, amplitude_legend, amplitude_panel, draw_amplitude_grid, AmplitudePanel, Sizes,
+};
 use super::{csv_header, heading, Figure, FigureContext};
 use crate::output::write_atomic;
 use crate::plot::{save, Heading, Picture};
@@ -30,9 +32,19 @@ const PANELS: [(&str, &str, f64); 8] = [
 /// The ensemble sizes of Fig. 13 (full quality and `--quick`).
 pub fn sizes(quick: bool) -> Sizes {
     if quick {
-        Sizes { paths: 2, burn_in: 10.0, t_end: 100.0, bins: 50 }
+        Sizes {
+            paths: 2,
+            burn_in: 10.0,
+            t_end: 100.0,
+            bins: 50,
+        }
     } else {
-        Sizes { paths: 16, burn_in: 500.0, t_end: 20000.0, bins: 80 }
+        Sizes {
+            paths: 16,
+            burn_in: 500.0,
+            t_end: 20000.0,
+            bins: 80,
+        }
     }
 }
 
@@ -51,7 +63,10 @@ impl Figure for Fig13 {
     fn compute(ctx: &FigureContext) -> Result<Fig13> {
         let sz = sizes(ctx.quick);
         let mut notes = vec![
-            format!("ensembles: {}; starts at the theory's modes in turn", sz.describe()),
+            format!(
+                "ensembles: {}; starts at the theory's modes in turn",
+                sz.describe()
+            ),
             "the paper prints r for (a) only; (b) shows four r from its range 0.7–0.999".into(),
         ];
         let mut panels = Vec::new();
@@ -69,7 +84,11 @@ impl Figure for Fig13 {
             notes.extend(n);
             panels.push(panel);
         }
-        let passed = panels.iter().flat_map(|p| &p.runs).filter(|r| r.stationary).count();
+        let passed = panels
+            .iter()
+            .flat_map(|p| &p.runs)
+            .filter(|r| r.stationary)
+            .count();
         let total = panels.iter().map(|p| p.runs.len()).sum::<usize>();
         let verdict = format!(
             "stationarity check passed by {passed} of {total} ensembles (panels marked \"MC not stationary\" are not stationary results)"
@@ -94,7 +113,10 @@ impl Figure for Fig13 {
 
     fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
         let csv_path = stem.with_extension("csv");
-        write_atomic(&csv_path, amplitude_csv(&self.header, &self.panels)?.as_bytes())?;
+        write_atomic(
+            &csv_path,
+            amplitude_csv(&self.header, &self.panels)?.as_bytes(),
+        )?;
         let mut files = vec![csv_path];
         files.extend(save(self, stem)?);
         Ok(files)

@@ -36,6 +36,7 @@ mod fig10_pbif_lambda_tau;
 mod fig11_amplitude_lambda;
 mod fig12_pbif_maps;
 mod fig13_pdf_restitution;
+mod fig14_joint_pdf;
 mod mapfig;
 mod montecarlo;
 
@@ -139,6 +140,7 @@ pub fn registry() -> Vec<Entry> {
         entry::<fig11_amplitude_lambda::Fig11>(),
         entry::<fig12_pbif_maps::Fig12>(),
         entry::<fig13_pdf_restitution::Fig13>(),
+        entry::<fig14_joint_pdf::Fig14>(),
     ]
 }
 

@@ -175,7 +175,13 @@ pub fn amplitude_panel(
                 .iter()
                 .map(|d| format!(
                     "{}: Hellinger {:.3} ± {:.3}, L1 {:.3}, KS {:.3}, modes {} (theory) vs {} (MC)",
-                    d.variant, d.hellinger, d.hellinger_stderr, d.l1, d.ks, d.modes_theory, d.modes_mc
+                    d.variant,
+                    d.hellinger,
+                    d.hellinger_stderr,
+                    d.l1,
+                    d.ks,
+                    d.modes_theory,
+                    d.modes_mc
                 ))
                 .collect::<Vec<_>>()
                 .join("; ")
@@ -216,7 +222,10 @@ pub fn amplitude_panel(
 /// The legend entries of an amplitude panel's series.
 pub fn legend_entries(systems: &[&str]) -> Vec<(Symbol, String)> {
     let mut e = vec![
-        (Symbol::Line(PALETTE[0]), "theory, paper variant (Eq. 27)".to_string()),
+        (
+            Symbol::Line(PALETTE[0]),
+            "theory, paper variant (Eq. 27)".to_string(),
+        ),
         (
             Symbol::Dashed(PALETTE[2]),
             "theory, consistent variant".to_string(),
@@ -272,13 +281,8 @@ where
             c.draw_series(LineSeries::new(pts, PALETTE[0].stroke_width(2)))
                 .map_err(pe)?;
         } else {
-            c.draw_series(DashedLineSeries::new(
-                pts,
-                7,
-                5,
-                PALETTE[2].stroke_width(2),
-            ))
-            .map_err(pe)?;
+            c.draw_series(DashedLineSeries::new(pts, 7, 5, PALETTE[2].stroke_width(2)))
+                .map_err(pe)?;
         }
     }
     for (k, r) in p.runs.iter().enumerate() {
