@@ -32,8 +32,11 @@ pub struct Panel {
     t: Vec<f64>,
     u: Vec<f64>,
     v: Vec<f64>,
-    /// Recurrence rate and determinism of the recurrence matrix of (u, v) at ε.
+    /// Recurrence rate and determinism of the recurrence matrix of (u, v) at ε (ratios:
+    /// carried through JSON whatever their value).
+    #[serde(with = "super::non_finite")]
     rr: f64,
+    #[serde(with = "super::non_finite")]
     det: f64,
     amplitude: f64,
 }
