@@ -95,27 +95,9 @@ impl Figure for Fig11 {
     fn compute(ctx: &FigureContext) -> Result<Fig11> {
         let pre = preset("fig11")?;
         let (t_settle, step, sz) = if ctx.quick {
-            (
-                200.0,
-                0.005,
-                Sizes {
-                    paths: 2,
-                    burn_in: 10.0,
-                    t_end: 100.0,
-                    bins: 50,
-                },
-            )
+            (200.0, 0.005, Sizes::of(true))
         } else {
-            (
-                3000.0,
-                0.001,
-                Sizes {
-                    paths: 16,
-                    burn_in: 500.0,
-                    t_end: 20000.0,
-                    bins: 80,
-                },
-            )
+            (3000.0, 0.001, Sizes::of(false))
         };
         let quiet = pre.params.with("D", 0.0)?;
         let branches = branch_diagram(

@@ -29,25 +29,6 @@ const PANELS: [(&str, &str, f64); 8] = [
     ("fig13b", "b4", 0.7),
 ];
 
-/// The ensemble sizes of Fig. 13 (full quality and `--quick`).
-pub fn sizes(quick: bool) -> Sizes {
-    if quick {
-        Sizes {
-            paths: 2,
-            burn_in: 10.0,
-            t_end: 100.0,
-            bins: 50,
-        }
-    } else {
-        Sizes {
-            paths: 16,
-            burn_in: 500.0,
-            t_end: 20000.0,
-            bins: 80,
-        }
-    }
-}
-
 /// Fig. 13's data.
 #[derive(Serialize, Deserialize)]
 pub struct Fig13 {
@@ -61,7 +42,7 @@ impl Figure for Fig13 {
     const TITLE: &'static str = "P(A) for several r: theory against Monte Carlo of Eq. 1 and Eq. 5";
 
     fn compute(ctx: &FigureContext) -> Result<Fig13> {
-        let sz = sizes(ctx.quick);
+        let sz = Sizes::of(ctx.quick);
         let mut notes = vec![
             format!(
                 "ensembles: {}; starts at the theory's modes in turn",

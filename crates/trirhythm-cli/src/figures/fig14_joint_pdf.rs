@@ -30,6 +30,7 @@ pub struct JointPanel {
     mc: Vec<Vec<f64>>,
     hellinger: f64,
     stationary: bool,
+    #[serde(with = "super::non_finite")]
     r_hat: f64,
 }
 
@@ -47,21 +48,7 @@ impl Figure for Fig14 {
 
     fn compute(ctx: &FigureContext) -> Result<Fig14> {
         let pre = preset("fig14")?;
-        let sz = if ctx.quick {
-            Sizes {
-                paths: 2,
-                burn_in: 10.0,
-                t_end: 100.0,
-                bins: 50,
-            }
-        } else {
-            Sizes {
-                paths: 16,
-                burn_in: 500.0,
-                t_end: 20000.0,
-                bins: 80,
-            }
-        };
+        let sz = Sizes::of(ctx.quick);
         let bins = if ctx.quick { 32 } else { 64 };
         let mut notes: Vec<String> = pre.notes.iter().map(|s| s.to_string()).collect();
         notes.push(format!(

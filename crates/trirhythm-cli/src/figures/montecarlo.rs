@@ -10,7 +10,7 @@ use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec};
 use trirhythm::analysis::versus::theory_layout;
-use trirhythm::engine::{Oscillator, PredictorCorrector, System};
+use trirhythm::engine::{ImpactMemory, Oscillator, PredictorCorrector, System};
 use trirhythm::model::Params;
 use trirhythm::theory::averaging::{Theory, Variant};
 
@@ -28,10 +28,31 @@ pub struct Sizes {
 }
 
 impl Sizes {
+    /// The ensembles of Figs 11, 13 and 14: full quality (16 paths of 1.5e5 time units; each
+    /// figure in a few minutes on 2 cores) or `--quick`.
+    pub fn of(quick: bool) -> Sizes {
+        if quick {
+            Sizes {
+                paths: 2,
+                burn_in: 10.0,
+                t_end: 100.0,
+                bins: 50,
+            }
+        } else {
+            Sizes {
+                paths: 16,
+                burn_in: 500.0,
+                t_end: 150_000.0,
+                bins: 80,
+            }
+        }
+    }
+
     /// One line for headings and notes.
     pub fn describe(&self) -> String {
         format!(
-            "{} paths per ensemble, burn-in {}, window {} per path, Δt = 0.01, seed 1, {} bins",
+            "{} paths per ensemble, burn-in {}, window {} per path, Δt = 0.01, impact memory \
+             restarted, seed 1, {} bins",
             self.paths, self.burn_in, self.t_end, self.bins
         )
     }
@@ -45,6 +66,7 @@ pub struct Distance {
     /// Hellinger distance and its bootstrap standard error, L1, KS.
     pub hellinger: f64,
     /// Bootstrap standard error of the Hellinger distance.
+    #[serde(with = "super::non_finite")]
     pub hellinger_stderr: f64,
     /// L1 distance.
     pub l1: f64,
@@ -70,6 +92,7 @@ pub struct McRun {
     /// Passed the stationarity check.
     pub stationary: bool,
     /// R̂ and ESS.
+    #[serde(with = "super::non_finite")]
     pub r_hat: f64,
     /// Effective sample size of the mean amplitude.
     pub ess: f64,
@@ -120,14 +143,12 @@ pub fn ensemble(
         ..Default::default()
     };
     let osc = Oscillator::new(params)?;
-    Ok(run_ensemble(
-        &osc,
-        &PredictorCorrector::default(),
-        &spec,
-        &[],
-        &|_| Ok(()),
-        None,
-    )?)
+    // the ensembles' convention (README, "Ensembles"): the memory restarts at each impact
+    let method = PredictorCorrector {
+        impact_memory: ImpactMemory::Restart,
+        ..Default::default()
+    };
+    Ok(run_ensemble(&osc, &method, &spec, &[], &|_| Ok(()), None)?)
 }
 
 /// A P(A) panel: the theory of both variants and ensembles of each of `systems`.
@@ -260,20 +281,32 @@ where
         .filter_map(|r| r.edges.last().copied())
         .chain(p.theory.iter().filter_map(|t| t.1.last().copied()))
         .fold(1.0f64, f64::max);
-    let y_max = p
-        .runs
-        .iter()
-        .flat_map(|r| r.density.iter().zip(&r.stderr).map(|(d, s)| d + s.max(0.0)))
-        .chain(p.theory.iter().flat_map(|t| t.2.iter().copied()))
-        .filter(|v| v.is_finite())
-        .fold(0.0f64, f64::max)
-        .max(1e-3);
-    let stationary = p.runs.iter().all(|r| r.stationary);
-    let caption = if stationary {
-        p.caption.clone()
+    let finite_max =
+        |it: &mut dyn Iterator<Item = f64>| it.filter(|v| v.is_finite()).fold(0.0f64, f64::max);
+    let mc_max = finite_max(
+        &mut p
+            .runs
+            .iter()
+            .flat_map(|r| r.density.iter().zip(&r.stderr).map(|(d, s)| d + s.max(0.0))),
+    );
+    let theory_max = finite_max(&mut p.theory.iter().flat_map(|t| t.2.iter().copied()));
+    // a theory spike far above the histograms would flatten them: it is cut, and its height
+    // given in the caption
+    let cut = theory_max > 3.0 * mc_max && mc_max > 0.0;
+    let y_max = if cut {
+        1.5 * mc_max
     } else {
-        format!("{} — MC not stationary", p.caption)
-    };
+        theory_max.max(mc_max)
+    }
+    .max(1e-3);
+    let stationary = p.runs.iter().all(|r| r.stationary);
+    let mut caption = p.caption.clone();
+    if !stationary {
+        caption.push_str(" — MC not stationary");
+    }
+    if cut {
+        caption.push_str(&format!(" (theory peak {theory_max:.1} cut)"));
+    }
     let mut c = chart(area, &caption, 0.0..x_max, 0.0..y_max * 1.08, "A", "P(A)")?;
     for (i, (_, xs, ys)) in p.theory.iter().enumerate() {
         let pts: Vec<(f64, f64)> = xs.iter().copied().zip(ys.iter().copied()).collect();
