@@ -251,10 +251,11 @@ impl Observer for TrajectoryRecorder {
         }
         // n % every only from the next multiple on: an integer division per step would cost
         // more than the rest of the observation
+        // (saturating: `every` may be u64::MAX, "record the start only")
         if n >= self.next_record {
-            self.next_record = (n / self.every + 1) * self.every;
+            self.next_record = (n / self.every + 1).saturating_mul(self.every);
         }
-        if n + self.every == self.next_record {
+        if self.next_record - n == self.every {
             self.out.t.push(s.time());
             self.out.u.push(s.u());
             self.out.v.push(s.v());
@@ -363,4 +364,27 @@ pub struct Trajectory {
     pub soe_error: f64,
     /// Bytes of memory state held at the end of the run.
     pub memory_bytes: usize,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_recorder_keeps_every_kth_node_and_only_the_start_for_the_largest_k() {
+        let osc = Oscillator::new(&crate::model::preset("fig1").unwrap().params).unwrap();
+        let m = PredictorCorrector::default();
+        for (every, times) in [(3usize, vec![0.0, 0.03, 0.06, 0.09]), (usize::MAX, vec![0.0])] {
+            let o = Options {
+                t_end: 0.1,
+                record_every: every,
+                ..Default::default()
+            };
+            let tr = simulate(&osc, &m, &o, 1).unwrap();
+            assert_eq!(tr.t.len(), times.len(), "every {every}");
+            for (a, b) in tr.t.iter().zip(&times) {
+                assert!((a - b).abs() < 1e-12, "every {every}: {:?}", tr.t);
+            }
+        }
+    }
 }
