@@ -249,7 +249,10 @@ fn method_line(a: &EnsembleArgs) -> String {
         a.dt,
         a.memory.to_possible_value().expect("named").get_name(),
         a.tolerance,
-        a.impact_memory.to_possible_value().expect("named").get_name(),
+        a.impact_memory
+            .to_possible_value()
+            .expect("named")
+            .get_name(),
         a.barrier.to_possible_value().expect("named").get_name(),
         a.system.to_possible_value().expect("named").get_name(),
         a.paths,
@@ -388,7 +391,10 @@ impl Checkpoint {
 
     fn save(&self, p: &PathStats) -> Result<()> {
         let text = serde_json::to_string(p)?;
-        crate::output::write_atomic(&self.dir.join(format!("path-{}.json", p.path)), text.as_bytes())
+        crate::output::write_atomic(
+            &self.dir.join(format!("path-{}.json", p.path)),
+            text.as_bytes(),
+        )
     }
 }
 

@@ -212,7 +212,11 @@ mod tests {
 
     #[test]
     fn spectral_moments_reproduce_the_closed_forms_at_order_one() {
-        for &(mu, w, d, tau) in &[(0.2, 1.0, 0.1, 0.0), (0.05, 0.7, 0.3, 0.5), (1.5, 2.0, 1.0, 3.0)] {
+        for &(mu, w, d, tau) in &[
+            (0.2, 1.0, 0.1, 0.0),
+            (0.05, 0.7, 0.3, 0.5),
+            (1.5, 2.0, 1.0, 3.0),
+        ] {
             let (vu, vv) = linear_fractional_moments(1.0, mu, w, d, tau);
             let k = 1.0 + mu * tau + w * w * tau * tau;
             let eu = d * (1.0 + mu * tau) / (mu * w * w * k);

@@ -39,8 +39,12 @@ fn linear_oscillator_variances_match_the_spectral_integrals() {
         println!(
             "λ = {lambda}, τ = {tau}: Var U {:.5} ± {:.5} (exact {vu:.5}, z = {zu:.2}); \
              Var U̇ {:.5} ± {:.5} (exact {vv:.5}, z = {zv:.2}); ⟨U⟩ z = {zm:.2}; R̂ {:.3}, ESS {:.0}",
-            r.var_u.value, r.var_u.stderr, r.var_v.value, r.var_v.stderr,
-            r.stationarity.r_hat, r.stationarity.ess
+            r.var_u.value,
+            r.var_u.stderr,
+            r.var_v.value,
+            r.var_v.stderr,
+            r.stationarity.r_hat,
+            r.stationarity.ess
         );
         assert!(zu.abs() < 3.0, "Var U off by {zu:.2} standard errors");
         assert!(zm.abs() < 3.0, "⟨U⟩ off by {zm:.2} standard errors");
@@ -49,7 +53,10 @@ fn linear_oscillator_variances_match_the_spectral_integrals() {
         if tau > 0.0 || lambda == 1.0 {
             assert!(zv.abs() < 3.0, "Var U̇ off by {zv:.2} standard errors");
         }
-        assert!(r.var_u.stderr < 0.1 * vu, "too few samples to test anything");
+        assert!(
+            r.var_u.stderr < 0.1 * vu,
+            "too few samples to test anything"
+        );
         assert!(r.stationarity.stationary, "{:?}", r.warnings);
     }
 }
@@ -65,7 +72,10 @@ fn escape_time_of_the_rayleigh_process_is_exact() {
     let pdf = th.amplitude_pdf().unwrap();
     let down = escape_time(&pdf, s1, 1.0, 0.3);
     let exact_down = (1.0f64 / 0.3).ln() / kappa;
-    assert!((down / exact_down - 1.0).abs() < 1e-6, "{down} vs {exact_down}");
+    assert!(
+        (down / exact_down - 1.0).abs() < 1e-6,
+        "{down} vs {exact_down}"
+    );
     let (a, b) = (0.2, 1.5);
     let n = 20_000;
     let h = (b - a) / n as f64;
@@ -102,7 +112,11 @@ fn fig13a_spec(paths: usize, length: f64) -> (Oscillator, PredictorCorrector, En
         wells: Some(Wells::new(pdf.modes.clone(), pdf.antimodes.clone()).unwrap()),
         ..Default::default()
     };
-    (Oscillator::new(&p).unwrap(), PredictorCorrector::default(), spec)
+    (
+        Oscillator::new(&p).unwrap(),
+        PredictorCorrector::default(),
+        spec,
+    )
 }
 
 #[test]
@@ -132,7 +146,8 @@ fn results_do_not_depend_on_threads_and_a_resumed_run_equals_the_whole() {
         (r, saved.into_inner().unwrap())
     };
     // compared as printed: NaN (a passage never completed) is not equal to itself
-    let same = |a: &trirhythm::analysis::EnsembleResult, b: &trirhythm::analysis::EnsembleResult| {
+    let same = |a: &trirhythm::analysis::EnsembleResult,
+                b: &trirhythm::analysis::EnsembleResult| {
         format!("{a:?}") == format!("{b:?}")
     };
     let (one, saved) = run(1, &[]);

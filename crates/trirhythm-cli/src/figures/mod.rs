@@ -15,6 +15,8 @@ mod fig08_barriers;
 mod fig09_barrier_surfaces;
 mod fig10_pbif_lambda_tau;
 mod fig12_pbif_maps;
+mod fig15_oscillation_boundaries;
+mod fig16_oscillation_regions;
 mod mapfig;
 
 use crate::plot::Heading;
@@ -95,6 +97,16 @@ pub fn registry() -> Vec<(u32, &'static str, FigureFn)> {
             12,
             "P-bifurcation maps in (μ0, r) and (λ, r)",
             fig12_pbif_maps::run,
+        ),
+        (
+            15,
+            "oscillation (Hopf) boundary μ0 against λ and r, three ω0",
+            fig15_oscillation_boundaries::run,
+        ),
+        (
+            16,
+            "oscillation and rest regions in (μ0, λ) and (μ0, r)",
+            fig16_oscillation_regions::run,
         ),
     ]
 }

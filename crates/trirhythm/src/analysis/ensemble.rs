@@ -80,7 +80,10 @@ impl Wells {
     pub fn new(modes: Vec<f64>, antimodes: Vec<f64>) -> Result<Self> {
         let ok = !modes.is_empty()
             && antimodes.len() + 1 == modes.len()
-            && modes.iter().chain(&antimodes).all(|x| x.is_finite() && *x >= 0.0)
+            && modes
+                .iter()
+                .chain(&antimodes)
+                .all(|x| x.is_finite() && *x >= 0.0)
             && (0..antimodes.len()).all(|i| modes[i] < antimodes[i] && antimodes[i] < modes[i + 1]);
         if !ok {
             return Err(Error::invalid(
@@ -250,11 +253,7 @@ impl EnsembleSpec {
             ));
         }
         if !(4..=1000).contains(&self.batches) {
-            return Err(Error::invalid(
-                "batches",
-                self.batches as f64,
-                "4 to 1000",
-            ));
+            return Err(Error::invalid("batches", self.batches as f64, "4 to 1000"));
         }
         if !(self.amplitude_max > 0.0 && self.amplitude_max.is_finite()) {
             return Err(Error::invalid(
@@ -572,7 +571,11 @@ impl crate::engine::Observer for Recorder<'_> {
         let jb = l.joint_bins;
         let iu = bin(u - l.u_lo, l.u_scale, jb);
         let iv = bin(v - l.v_lo, l.v_scale, jb);
-        let cell = if iu < jb && iv < jb { iu * jb + iv } else { jb * jb };
+        let cell = if iu < jb && iv < jb {
+            iu * jb + iv
+        } else {
+            jb * jb
+        };
         st.joint[quarter][cell] += 1;
         Flow::Continue
     }
@@ -876,7 +879,10 @@ pub fn run_ensemble(
         return Err(Error::invalid(
             "paths",
             all.len() as f64,
-            format!("{} paths (saved statistics belong to another run)", spec.paths),
+            format!(
+                "{} paths (saved statistics belong to another run)",
+                spec.paths
+            ),
         ));
     }
     Ok(merge(spec, &layout, &sizes, omega1, steps, &all))
@@ -1043,7 +1049,11 @@ fn merge(
         .filter(|x| !x.is_nan())
         .fold(f64::NAN, |m, x| if m.is_nan() || x > m { x } else { m });
     // ESS of the mean amplitude from batch means
-    let n_total: f64 = all.iter().flat_map(|p| &p.batches).map(|b| b.n as f64).sum();
+    let n_total: f64 = all
+        .iter()
+        .flat_map(|p| &p.batches)
+        .map(|b| b.n as f64)
+        .sum();
     let bm: Vec<f64> = all
         .iter()
         .flat_map(|p| &p.batches)

@@ -131,7 +131,11 @@ pub fn count_modes(values: &[f64], noise: &[f64]) -> usize {
             let left = side_min(&mut (0..i).rev());
             let right = side_min(&mut (j..n));
             let prominence = v - left.max(right);
-            let noise_i = noise.get(i).copied().filter(|x| x.is_finite()).unwrap_or(0.0);
+            let noise_i = noise
+                .get(i)
+                .copied()
+                .filter(|x| x.is_finite())
+                .unwrap_or(0.0);
             if prominence > floor && prominence > noise_i {
                 count += 1;
             }
@@ -289,7 +293,11 @@ pub fn theory_layout(
             continue;
         };
         let (modes, antimodes, widths) = match th.amplitude_pdf() {
-            Ok(pdf) => (pdf.modes.clone(), pdf.antimodes.clone(), pdf.mode_widths.clone()),
+            Ok(pdf) => (
+                pdf.modes.clone(),
+                pdf.antimodes.clone(),
+                pdf.mode_widths.clone(),
+            ),
             Err(_) => {
                 let c: Vec<f64> = th
                     .limit_cycles()
