@@ -17,11 +17,12 @@ use trirhythm::theory::averaging::Variant;
 const SLACK: f64 = 2e-4;
 
 fn params(omega0: f64, lambda: f64, r: f64) -> Params {
-    let mut p = Params::default();
-    p.omega0 = omega0;
-    p.lambda = lambda;
-    p.restitution = r;
-    p
+    Params {
+        omega0,
+        lambda,
+        restitution: r,
+        ..Default::default()
+    }
 }
 
 fn mu0_boundary(p: &Params, barrier: Barrier, method: Method, hi: f64) -> Boundary {
@@ -170,8 +171,8 @@ fn averaging_boundary_is_its_closed_form_along_mu0_and_along_r() {
         let q = b.points[0];
         assert_eq!(q.side, Side::Boundary);
         assert!(
-            !q.oscillates_above,
-            "more restitution, less loss: oscillates below r*? no"
+            q.oscillates_above,
+            "more restitution, less loss: it oscillates above r*"
         );
         let mu = averaging_closed_form(0.9, 0.999, q.y, variant);
         assert!((mu - 0.02).abs() < 1e-13, "{variant:?}: μ0(r*) = {mu}");
@@ -283,10 +284,14 @@ fn simulated_boundary_with_the_wall_is_converged_in_step_and_memory() {
     let reference = simulated(&p, Barrier::On, 0.3).points[0];
     let mut fine = Classifier::default();
     fine.method.dt = 0.005;
-    let mut direct = Classifier::default();
+    // Direct memory is O(N²): compare it with the SOE memory on a shorter horizon (the
+    // boundary with the wall at λ < 1 depends on the horizon; see the module docs)
+    let mut short = Classifier::default();
+    short.max_periods = 40.0;
+    let reference_short = mu0_boundary(&p, Barrier::On, Method::Simulation(short), 0.3).points[0];
+    let mut direct = short;
     direct.method.memory = Memory::Direct;
-    direct.max_periods = 40.0;
-    for c in [fine, direct] {
+    for (c, reference) in [(fine, reference), (direct, reference_short)] {
         let q = mu0_boundary(&p, Barrier::On, Method::Simulation(c), 0.3).points[0];
         let gap = (q.y - reference.y).abs() / reference.y;
         assert!(gap < 1e-3, "{q:?} vs {reference:?}: {gap}");
