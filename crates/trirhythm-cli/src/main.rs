@@ -10,6 +10,7 @@ mod common;
 mod ensemble;
 mod figures;
 mod maps;
+mod oscillation;
 mod output;
 mod plot;
 mod simulate;
@@ -56,6 +57,9 @@ enum Command {
     Map(maps::MapArgs),
     /// One-parameter branch diagram: every cycle branch traced through its folds.
     Branches(maps::BranchArgs),
+    /// Oscillation (Hopf) boundary along one parameter by simulation, averaging and exact
+    /// linearisation (CSV method,x,y,y_lo,y_hi), or a plane classified (--grid).
+    Oscillation(oscillation::OscillationArgs),
     /// Reproduce a figure of the paper: data (CSV, and JSON with --data) and picture (PNG + SVG).
     Figure(FigureArgs),
     /// List the parameter presets (one per figure panel) with their notes.
@@ -92,11 +96,7 @@ struct FigureArgs {
 }
 
 /// The paper's figures that are not reproduced yet, with what they need.
-const PLANNED: [(u32, &str); 3] = [
-    (15, "oscillation (Hopf) boundaries by simulation"),
-    (16, "oscillation (Hopf) boundaries by simulation"),
-    (17, "largest Lyapunov exponent against noise"),
-];
+const PLANNED: [(u32, &str); 1] = [(17, "largest Lyapunov exponent against noise")];
 
 fn figure(args: &FigureArgs) -> Result<()> {
     let registry = figures::registry();
@@ -206,6 +206,7 @@ impl Command {
             Command::Ensemble(a) => a.out.as_deref(),
             Command::Map(a) => a.output.out.as_deref(),
             Command::Branches(a) => a.output.out.as_deref(),
+            Command::Oscillation(a) => a.out.as_deref(),
             Command::Figure(_) | Command::Presets => None,
         }
     }
@@ -232,6 +233,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Ensemble(a) => ensemble::ensemble(a),
         Command::Map(a) => maps::map(a),
         Command::Branches(a) => maps::branches(a),
+        Command::Oscillation(a) => oscillation::oscillation(a),
         Command::Figure(a) => figure(a),
         Command::Presets => presets(),
     }?;

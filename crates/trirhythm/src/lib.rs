@@ -15,7 +15,8 @@
 //! - [`engine`]: the simulation (memory kernels, noise, the stepper with impacts, drivers); it
 //!   does not import the theory;
 //! - [`analysis`]: analyses of simulated paths (recurrence plots and their quantification);
-//! - [`known_answers`]: problems with exact solutions, shared by tests and benchmarks.
+//! - [`known_answers`]: problems with exact solutions, shared by tests and benchmarks;
+//! - [`non_finite`]: serde for numbers that may be NaN or ±∞.
 //!
 //! The library computes; it does no file I/O and prints nothing. The `trirhythm` binary writes.
 
@@ -24,6 +25,7 @@ pub mod engine;
 pub mod error;
 pub mod known_answers;
 pub mod model;
+pub mod non_finite;
 pub mod special;
 pub mod theory;
 

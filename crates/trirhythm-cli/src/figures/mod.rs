@@ -39,6 +39,8 @@ mod fig11_amplitude_lambda;
 mod fig12_pbif_maps;
 mod fig13_pdf_restitution;
 mod fig14_joint_pdf;
+mod fig15_oscillation_boundaries;
+mod fig16_oscillation_regions;
 mod mapfig;
 mod montecarlo;
 
@@ -143,6 +145,8 @@ pub fn registry() -> Vec<Entry> {
         entry::<fig12_pbif_maps::Fig12>(),
         entry::<fig13_pdf_restitution::Fig13>(),
         entry::<fig14_joint_pdf::Fig14>(),
+        entry::<fig15_oscillation_boundaries::Fig15>(),
+        entry::<fig16_oscillation_regions::Fig16>(),
     ]
 }
 
@@ -227,67 +231,23 @@ fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
     }
 }
 
-/// Serde for an `f64` that may be NaN or ±∞, which JSON numbers cannot be: finite values as
-/// numbers, the others as the strings `"NaN"`, `"inf"` and `"-inf"`. Use it as
-/// `#[serde(with = "non_finite")]` (`super::non_finite` from a figure's module).
-pub mod non_finite {
-    use serde::{Deserialize, Deserializer, Serializer};
+/// JSON for an `f64` that may be NaN or ±∞ (the library's [`trirhythm::non_finite`]).
+pub use trirhythm::non_finite;
 
-    /// A number, or the name of a non-finite value.
-    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
-        match *v {
-            v if v.is_finite() => s.serialize_f64(v),
-            v if v.is_nan() => s.serialize_str("NaN"),
-            v if v > 0.0 => s.serialize_str("inf"),
-            _ => s.serialize_str("-inf"),
-        }
+/// Serde for a plotters colour, as `[r, g, b]`: `#[serde(with = "super::rgb")]`.
+pub mod rgb {
+    use plotters::style::RGBColor;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    /// `[r, g, b]`.
+    pub fn serialize<S: Serializer>(c: &RGBColor, s: S) -> Result<S::Ok, S::Error> {
+        [c.0, c.1, c.2].serialize(s)
     }
 
     /// The inverse of [`serialize`].
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-        #[derive(Deserialize)]
-        #[serde(untagged)]
-        enum Repr {
-            Number(f64),
-            Name(String),
-        }
-        match Repr::deserialize(d)? {
-            Repr::Number(v) => Ok(v),
-            Repr::Name(name) => match name.as_str() {
-                "NaN" => Ok(f64::NAN),
-                "inf" => Ok(f64::INFINITY),
-                "-inf" => Ok(f64::NEG_INFINITY),
-                _ => Err(serde::de::Error::custom(format!(
-                    "`{name}` is not a number (NaN, inf and -inf are)"
-                ))),
-            },
-        }
-    }
-
-    #[cfg(test)]
-    mod tests {
-        #[derive(serde::Serialize, serde::Deserialize)]
-        struct Value(#[serde(with = "super")] f64);
-
-        #[test]
-        fn every_float_reads_back() {
-            for v in [
-                0.1,
-                -0.0,
-                1e-300,
-                f64::MAX,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-            ] {
-                let json = serde_json::to_string(&Value(v)).unwrap();
-                let back: Value = serde_json::from_str(&json).unwrap();
-                assert_eq!(back.0.to_bits(), v.to_bits(), "{json}");
-            }
-            let json = serde_json::to_string(&Value(f64::NAN)).unwrap();
-            assert_eq!(json, "\"NaN\"");
-            assert!(serde_json::from_str::<Value>(&json).unwrap().0.is_nan());
-            assert!(serde_json::from_str::<Value>("\"nan\"").is_err());
-        }
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<RGBColor, D::Error> {
+        let [r, g, b] = <[u8; 3]>::deserialize(d)?;
+        Ok(RGBColor(r, g, b))
     }
 }
 

@@ -2,9 +2,13 @@
 //! stationary statistics and diagnosis, and the averaged theory tested against them.
 
 pub mod ensemble;
+pub mod oscillation;
 pub mod recurrence;
 pub mod versus;
 
 pub use ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, Estimate, PathStats, Wells};
+pub use oscillation::{
+    boundary, classify_plane, growth_rate, Boundary, BoundaryPoint, Classifier, Growth, Search,
+};
 pub use recurrence::{RecurrenceMatrix, RecurrenceThreshold};
 pub use versus::{compare, escape_time, theory_layout, TheoryComparison, TheoryLayout};

@@ -374,7 +374,10 @@ mod tests {
     fn the_recorder_keeps_every_kth_node_and_only_the_start_for_the_largest_k() {
         let osc = Oscillator::new(&crate::model::preset("fig1").unwrap().params).unwrap();
         let m = PredictorCorrector::default();
-        for (every, times) in [(3usize, vec![0.0, 0.03, 0.06, 0.09]), (usize::MAX, vec![0.0])] {
+        for (every, times) in [
+            (3usize, vec![0.0, 0.03, 0.06, 0.09]),
+            (usize::MAX, vec![0.0]),
+        ] {
             let o = Options {
                 t_end: 0.1,
                 record_every: every,

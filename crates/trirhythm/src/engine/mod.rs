@@ -24,6 +24,7 @@ pub use drivers::{
     run, simulate, simulate_ensemble, simulate_path, Flow, Observer, Progress, Trajectory,
     TrajectoryRecorder, MAX_KEPT_SAMPLES, MAX_STEPS,
 };
+pub(crate) use memory::History;
 pub use memory::{probe_memory, solve_scalar, Memory, DEFAULT_WINDOW};
 pub use problem::{Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System};
 pub(crate) use stepper::fresh_history;
