@@ -18,7 +18,9 @@ use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
-use trirhythm::engine::{run, Barrier, Flow, Oscillator, PredictorCorrector, Stepper, System};
+use trirhythm::engine::{
+    run, Barrier, Flow, ImpactMemory, Oscillator, PredictorCorrector, Stepper, System,
+};
 use trirhythm::model::{preset, Params};
 use trirhythm::theory::bifurcation::{BranchDiagram, What};
 
@@ -51,7 +53,11 @@ pub struct Fig11 {
 /// The maxima of U over the last tenth of a noise-free path from U(0) = u0.
 fn settle(p: &Params, u0: f64, t_end: f64) -> Result<Settled> {
     let osc = Oscillator::new(p)?;
-    let m = PredictorCorrector::default();
+    // the ensembles' convention: the memory restarts at each impact (README, "Ensembles")
+    let m = PredictorCorrector {
+        impact_memory: ImpactMemory::Restart,
+        ..Default::default()
+    };
     let steps = (t_end / m.dt).round() as u64;
     let mut s = Stepper::new(
         &osc,
@@ -119,7 +125,7 @@ impl Figure for Fig11 {
             .collect::<Result<Vec<_>>>()?;
         let mut notes: Vec<String> = pre.notes.iter().map(|s| s.to_string()).collect();
         notes.push(format!(
-            "(a): branches of f(A) = 0 (Eq. 18, D = 0) by continuation in λ; simulations of Eq. 1 at D = 0 from U(0) ∈ {STARTS_A:?} for {t_settle} time units, amplitude = mean of the maxima of U over the last tenth"
+            "(a): branches of f(A) = 0 (Eq. 18, D = 0) by continuation in λ; simulations of Eq. 1 at D = 0 (impact memory restarted) from U(0) ∈ {STARTS_A:?} for {t_settle} time units, amplitude = mean of the maxima of U over the last tenth (0: the path came to rest)"
         ));
         let unsettled: Vec<String> = settled
             .iter()

@@ -72,7 +72,7 @@ impl Figure for Fig13 {
             .count();
         let total = panels.iter().map(|p| p.runs.len()).sum::<usize>();
         let verdict = format!(
-            "stationarity check passed by {passed} of {total} ensembles (panels marked \"MC not stationary\" are not stationary results)"
+            "stationarity check passed by {passed} of {total} ensembles (panels marked \"Monte Carlo NOT stationary\" are not stationary results)"
         );
         notes.push(verdict.clone());
         notes.push("the paper claims agreement between theory and Monte Carlo in every panel; the distances above say where it holds".into());

@@ -7,6 +7,7 @@ use crate::plot::{chart, pe, Symbol, PALETTE};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec};
 use trirhythm::analysis::versus::theory_layout;
@@ -300,14 +301,32 @@ where
     }
     .max(1e-3);
     let stationary = p.runs.iter().all(|r| r.stationary);
-    let mut caption = p.caption.clone();
+    let mut c = chart(area, &p.caption, 0.0..x_max, 0.0..y_max * 1.08, "A", "P(A)")?;
+    // the verdicts, inside the panel at its upper right
+    let mut status = Vec::new();
     if !stationary {
-        caption.push_str(" — MC not stationary");
+        status.push((
+            "Monte Carlo NOT stationary".to_string(),
+            RGBColor(200, 0, 0),
+        ));
     }
     if cut {
-        caption.push_str(&format!(" (theory peak {theory_max:.1} cut)"));
+        status.push((
+            format!("theory peak {theory_max:.1}, cut"),
+            RGBColor(90, 90, 90),
+        ));
     }
-    let mut c = chart(area, &caption, 0.0..x_max, 0.0..y_max * 1.08, "A", "P(A)")?;
+    for (k, (text, colour)) in status.into_iter().enumerate() {
+        let style = (crate::plot::FONT, 14)
+            .into_font()
+            .color(&colour)
+            .pos(Pos::new(HPos::Right, VPos::Top));
+        c.draw_series(std::iter::once(
+            EmptyElement::at((x_max, y_max * 1.08))
+                + Text::new(text, (-8, 6 + 18 * k as i32), style),
+        ))
+        .map_err(pe)?;
+    }
     for (i, (_, xs, ys)) in p.theory.iter().enumerate() {
         let pts: Vec<(f64, f64)> = xs.iter().copied().zip(ys.iter().copied()).collect();
         if i == 0 {
