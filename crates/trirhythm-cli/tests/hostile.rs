@@ -295,7 +295,7 @@ fn messages_name_what_the_user_typed() {
         );
     }
     // figures: planned ones are "not yet implemented", others do not exist
-    let out = run(&["figure", "15"]);
+    let out = run(&["figure", "17"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("not yet implemented"));
     let out = run(&["figure", "20"]);
