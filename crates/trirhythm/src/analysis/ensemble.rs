@@ -436,12 +436,38 @@ fn bin(x: f64, scale: f64, n: usize) -> usize {
     }
 }
 
+/// First window step k (1-based) of quarter q: the smallest k with 4(k − 1) ≥ q·len.
+fn quarter_start(q: usize, len: u64) -> u64 {
+    if q >= QUARTERS {
+        return u64::MAX;
+    }
+    (q as u64 * len).div_ceil(QUARTERS as u64) + 1
+}
+
+/// First sample (0-based) of batch b of `batches` over `samples`: the smallest i with
+/// i·batches ≥ b·samples.
+fn batch_start(b: usize, batches: usize, samples: u64) -> u64 {
+    if b >= batches {
+        return u64::MAX;
+    }
+    (b as u64 * samples).div_ceil(batches as u64)
+}
+
 /// Streams the statistics of one path.
+/// Counters replace divisions on the hot path: the window step k, the steps to the next sample,
+/// the quarter and batch in force with the step / sample at which the next one begins.
 struct Recorder<'a> {
     layout: &'a Layout,
     burn: u64,
     every: u64,
     sample: u64,
+    /// Window steps so far (k = n − burn).
+    k: u64,
+    until_sample: u64,
+    quarter: usize,
+    next_quarter: u64,
+    batch: usize,
+    next_batch: u64,
     stats: PathStats,
     /// sgn(Z)·U̇ of the previous node (the direction of |U|).
     rising: bool,
@@ -459,6 +485,12 @@ impl<'a> Recorder<'a> {
             burn,
             every,
             sample: 0,
+            k: 0,
+            until_sample: every,
+            quarter: 0,
+            next_quarter: quarter_start(1, every * layout.samples),
+            batch: 0,
+            next_batch: batch_start(1, layout.batches, layout.samples),
             stats: PathStats {
                 path,
                 u0,
@@ -539,8 +571,12 @@ impl crate::engine::Observer for Recorder<'_> {
         }
         let (u, v) = (s.u(), s.v());
         let l = self.layout;
-        let quarter = (((n - self.burn - 1) * QUARTERS as u64) / (self.every * l.samples))
-            .min(QUARTERS as u64 - 1) as usize;
+        self.k += 1;
+        if self.k >= self.next_quarter {
+            self.quarter += 1;
+            self.next_quarter = quarter_start(self.quarter + 1, self.every * l.samples);
+        }
+        let quarter = self.quarter;
         // turning points of |U| are looked for at every step of the window
         let side = if l.crossing { u.signum() } else { 1.0 };
         let rising = side * v > 0.0;
@@ -548,10 +584,19 @@ impl crate::engine::Observer for Recorder<'_> {
             self.turning_point(u.abs(), s.time(), quarter);
         }
         self.rising = rising;
-        if (n - self.burn) % self.every != 0 || self.sample >= l.samples {
+        self.until_sample -= 1;
+        if self.until_sample != 0 {
             return Flow::Continue;
         }
-        let b = ((self.sample * l.batches as u64) / l.samples) as usize;
+        self.until_sample = self.every;
+        if self.sample >= l.samples {
+            return Flow::Continue;
+        }
+        if self.sample >= self.next_batch {
+            self.batch += 1;
+            self.next_batch = batch_start(self.batch + 1, l.batches, l.samples);
+        }
+        let b = self.batch;
         self.sample += 1;
         let a2 = u * u + v * v * l.inv_omega1_sq;
         let a = a2.sqrt();
@@ -1218,6 +1263,31 @@ mod tests {
         assert!(r < 1.05, "{r}");
         let r = split_r_hat(&[vec![1.0; 20], vec![0.0; 20]]);
         assert!(r.is_infinite());
+    }
+
+    #[test]
+    fn counters_give_the_quarters_and_batches_of_the_divisions() {
+        for (len, batches, samples) in [(40u64, 20usize, 40u64), (1003, 7, 1003), (4, 4, 4)] {
+            let mut q = 0;
+            let mut next = quarter_start(1, len);
+            for k in 1..=len {
+                if k >= next {
+                    q += 1;
+                    next = quarter_start(q + 1, len);
+                }
+                let by_division = (((k - 1) * 4) / len).min(3) as usize;
+                assert_eq!(q, by_division, "k = {k} of {len}");
+            }
+            let mut b = 0;
+            let mut next = batch_start(1, batches, samples);
+            for i in 0..samples {
+                if i >= next {
+                    b += 1;
+                    next = batch_start(b + 1, batches, samples);
+                }
+                assert_eq!(b, ((i * batches as u64) / samples) as usize, "sample {i}");
+            }
+        }
     }
 
     #[test]
