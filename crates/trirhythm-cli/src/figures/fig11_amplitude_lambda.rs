@@ -85,7 +85,15 @@ fn settle(p: &Params, u0: f64, t_end: f64) -> Result<Settled> {
     )?;
     let n = maxima.len().max(1) as f64;
     let mean = maxima.iter().sum::<f64>() / n;
-    let spread = maxima.iter().fold(0.0f64, |m, &x| m.max((x - mean).abs()));
+    // below 1e-6 the path has come to rest (the rest state is stable there)
+    let (mean, spread) = if mean < 1e-6 {
+        (0.0, 0.0)
+    } else {
+        (
+            mean,
+            maxima.iter().fold(0.0f64, |m, &x| m.max((x - mean).abs())),
+        )
+    };
     Ok(Settled {
         lambda: p.lambda,
         u0,
