@@ -14,7 +14,9 @@
 //!   certified polynomial roots, quadrature, bifurcation maps and fold curves);
 //! - [`engine`]: the simulation (memory kernels, noise, the stepper with impacts, drivers); it
 //!   does not import the theory;
-//! - [`analysis`]: analyses of simulated paths (recurrence plots and their quantification);
+//! - [`analysis`]: analyses of simulated paths, where simulation and theory meet (recurrence
+//!   quantification, ensembles with stationary statistics and the theory against them,
+//!   oscillation boundaries);
 //! - [`known_answers`]: problems with exact solutions, shared by tests and benchmarks;
 //! - [`non_finite`]: serde for numbers that may be NaN or ±∞.
 //!

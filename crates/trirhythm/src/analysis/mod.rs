@@ -1,5 +1,6 @@
 //! Analyses of simulated paths: recurrence quantification (Eq. 6–7), ensembles with their
-//! stationary statistics and diagnosis, and the averaged theory tested against them.
+//! stationary statistics and diagnosis, the averaged theory tested against them, and
+//! oscillation (Hopf) boundaries by simulation, averaging and exact linearisation.
 
 pub mod ensemble;
 pub mod oscillation;
