@@ -77,6 +77,13 @@ impl Figure for Fig14 {
                 + ((1.0 - q_in).max(0.0) * (1.0 - p_in).max(0.0)).sqrt();
             let hellinger = (1.0 - bc).max(0.0).sqrt();
             let st = &res.stationarity;
+            if let Some(&outer) = pdf.modes.last() {
+                notes.push(format!(
+                    "r = {r}: at the theory's outer mode A = {outer:.2} the damping is μ0|P(A)| = {:.0} against ω0 = {}: the simulated outer cycle is a relaxation oscillation (a slow creep near U ≈ A with dU/dt ≈ 0, the bright cells, and fast returns), which the averaging's uniform-phase ring of Eq. 31 cannot represent",
+                    p.mu0 * p.damping.eval(outer).abs(),
+                    p.omega0
+                ));
+            }
             notes.push(format!(
                 "r = {r}: Hellinger distance theory–MC over the cells {hellinger:.3}; MC {} (R̂ = {:.3}, ESS = {:.0}); theory's mass on the grid {q_in:.4}, MC's {p_in:.4}",
                 if st.stationary { "stationarity check passed" } else { "NOT STATIONARY" },
@@ -103,7 +110,7 @@ impl Figure for Fig14 {
             &pre.params,
             &["r"],
             vec![
-                format!("Monte Carlo: {}; one colour scale per r", sz.describe()),
+                format!("Monte Carlo: {}; one logarithmic colour scale per r (three decades; white below)", sz.describe()),
                 format!("stationarity check passed by {passed} of {} ensembles", panels.len()),
             ],
         );
@@ -182,6 +189,8 @@ fn cell_averages(
 }
 
 const PANEL: (u32, u32) = (460, 400);
+/// Decades of the logarithmic colour scale.
+const DECADES: f64 = 3.0;
 const BAR: u32 = 70;
 
 fn heat<DB: DrawingBackend>(
@@ -200,10 +209,11 @@ where
     let cells = p.u_edges.windows(2).enumerate().flat_map(|(i, u)| {
         p.v_edges.windows(2).enumerate().filter_map(move |(k, v)| {
             let x = values[i][k];
-            (x > 0.0).then(|| {
+            // three decades below the panel's top, logarithmic: rings and creeping phases alike
+            (x > top * 1e-3).then(|| {
                 Rectangle::new(
                     [(u[0], v[0]), (u[1], v[1])],
-                    viridis((x / top).min(1.0)).filled(),
+                    viridis(((x / top).log10() + DECADES) / DECADES).filled(),
                 )
             })
         })
@@ -262,7 +272,12 @@ impl Picture for Fig14 {
                 &p.mc,
                 top,
             )?;
-            colour_bar(&bar, "P(U, dU/dt)", 0.0, top)?;
+            colour_bar(
+                &bar,
+                "log10 P(U, dU/dt)",
+                top.log10() - DECADES,
+                top.log10(),
+            )?;
         }
         Ok(())
     }
