@@ -80,6 +80,16 @@ pub enum Error {
         /// Residual or iteration count.
         detail: String,
     },
+    /// One path of an ensemble failed: which path (noise stream), from where, and why.
+    #[error("path {path} (noise stream {path}, from U = {}): {error}", Readable(*.u0))]
+    InPath {
+        /// The path index.
+        path: u64,
+        /// Its initial displacement.
+        u0: f64,
+        /// What went wrong on it.
+        error: Box<Error>,
+    },
 }
 
 /// Result alias of the library.

@@ -178,3 +178,20 @@ fn paths_stuck_in_different_wells_are_not_called_stationary() {
     let total: f64 = r.occupancy.iter().map(|o| o.value).sum();
     assert!((total - 1.0).abs() < 1e-12);
 }
+
+#[test]
+fn well_probabilities_sum_to_one_however_narrow_the_peaks() {
+    // μ0 = 1000 makes peaks ~1e-3 wide inside wells several units wide: the quadrature must
+    // still find them (it once returned 0.5)
+    for mu0 in [0.005, 0.2, 1.0, 1000.0] {
+        let p = preset("fig13a").unwrap().params.with("mu0", mu0).unwrap();
+        for v in [Variant::Paper, Variant::Consistent] {
+            let pdf = Theory::new(&p, v).unwrap().amplitude_pdf().unwrap();
+            let w = Wells::new(pdf.modes.clone(), pdf.antimodes.clone()).unwrap();
+            let total: f64 = trirhythm::analysis::versus::well_probabilities(&pdf, &w)
+                .iter()
+                .sum();
+            assert!((total - 1.0).abs() < 1e-9, "μ0 = {mu0}, {v:?}: {total}");
+        }
+    }
+}

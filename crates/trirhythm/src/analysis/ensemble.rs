@@ -905,12 +905,10 @@ pub fn run_ensemble(
                 }
                 f
             };
-            crate::engine::run(&mut s, steps, &mut observe, None).map_err(|e| match e {
-                Error::BlowUp { .. } => Error::Undefined {
-                    what: "ensemble",
-                    why: format!("path {i} (from U = {u0}): {e}"),
-                },
-                other => other,
+            crate::engine::run(&mut s, steps, &mut observe, None).map_err(|e| Error::InPath {
+                path: i,
+                u0,
+                error: Box::new(e),
             })?;
             let stats = rec.finish(&s);
             on_path(&stats)?;

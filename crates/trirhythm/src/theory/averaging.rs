@@ -718,7 +718,17 @@ impl AmplitudePdf {
                 .copied()
                 .filter(|&m| m > a && m < b),
         );
+        // around each peak, cuts at m ± w·2^k (w its width), as in the normalisation: a peak
+        // much narrower than the interval is otherwise missed by the first panels
+        for (&m, &w) in self.modes.iter().zip(&self.mode_widths) {
+            let mut step = w;
+            while step < b - a && (m - step > a || m + step < b) {
+                cuts.extend([m - step, m + step].into_iter().filter(|&c| c > a && c < b));
+                step *= 2.0;
+            }
+        }
         cuts.sort_by(|x, y| x.partial_cmp(y).unwrap());
+        cuts.dedup();
         cuts.push(b);
         integrate_with_breakpoints(&|x: f64| self.density(x), &cuts, 1e-12)
     }
