@@ -240,9 +240,10 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
         bar.finish_and_clear();
         let text = match args.format.unwrap_or(SimFormat::Csv) {
             SimFormat::Csv => {
-                let mut csv = Csv::new(&header, &[key.as_str(), "lle", "stderr"]);
+                let mut csv =
+                    Csv::new(&header, &[key.as_str(), "lle", "stderr"]).allow_infinity("lle");
                 for (v, r) in &rows {
-                    csv.row([num(*v), num(r.lle.value), num(r.lle.stderr)]);
+                    csv.row([num(*v), num(r.lle.value), opt_cell(r.lle.stderr)]);
                 }
                 csv.finish()?
             }
@@ -254,7 +255,7 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
                     "window": jnum(spec.length),
                     "points": rows.iter().map(|(v, r)| json!({
                         key.as_str(): jnum(*v),
-                        "lle": {"value": jnum(r.lle.value), "stderr": stderr_json(r.lle.stderr)},
+                        "lle": {"value": stderr_json(r.lle.value), "stderr": stderr_json(r.lle.stderr)},
                     })).collect::<Vec<_>>(),
                 });
                 serde_json::to_string_pretty(&doc)? + "\n"
@@ -287,17 +288,9 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
                 }
             ));
             header.push("columns: running estimate (time since the transient, mean over paths, standard error)".into());
-            let mut csv = Csv::new(&header, &["t", "lle", "stderr"]);
+            let mut csv = Csv::new(&header, &["t", "lle", "stderr"]).allow_infinity("lle");
             for q in &r.running {
-                csv.row([
-                    num(q.t),
-                    num(q.value),
-                    if q.stderr.is_finite() {
-                        num(q.stderr)
-                    } else {
-                        String::new()
-                    },
-                ]);
+                csv.row([num(q.t), num(q.value), opt_cell(q.stderr)]);
             }
             csv.finish()?
         }
@@ -315,16 +308,16 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
                 "seed": spec.seed,
                 "separation": jnum(spec.separation),
                 "renormalise_every": spec.renormalise_every,
-                "lle": {"value": jnum(r.lle.value), "stderr": stderr_json(r.lle.stderr)},
+                "lle": {"value": stderr_json(r.lle.value), "stderr": stderr_json(r.lle.stderr)},
                 "per_path": r.per_path.iter().map(|q| json!({
                     "path": q.path,
-                    "exponent": jnum(q.exponent),
+                    "exponent": stderr_json(q.exponent),
                     "measured_time": jnum(q.measured_time),
                     "renormalisations": q.renormalisations,
                     "deferred": q.deferred,
                     "impacts": q.impacts,
                 })).collect::<Vec<_>>(),
-                "running": r.running.iter().map(|q| json!([jnum(q.t), jnum(q.value)])).collect::<Vec<_>>(),
+                "running": r.running.iter().map(|q| json!([jnum(q.t), stderr_json(q.value)])).collect::<Vec<_>>(),
                 "running_stderr": r.running.iter().map(|q| stderr_json(q.stderr)).collect::<Vec<_>>(),
             });
             serde_json::to_string_pretty(&doc)? + "\n"
@@ -333,7 +326,8 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
     emit(args.out.as_deref(), &text)
 }
 
-/// A standard error, `null` when undefined (one path).
+/// A number, `null` when not finite (a standard error from one path; an exponent of −∞ where
+/// the perturbation was annihilated at rest on the wall).
 fn stderr_json(s: f64) -> Value {
     if s.is_finite() {
         jnum(s)
@@ -517,7 +511,7 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
                     "D_c_hi": if c.found() { jnum(c.d_c_hi) } else { Value::Null },
                     "rising": c.found().then_some(c.rising),
                     "evaluated": c.evaluated.iter().map(|q| json!({
-                        "D": jnum(q.d), "lle": jnum(q.lle.value), "stderr": stderr_json(q.lle.stderr),
+                        "D": jnum(q.d), "lle": stderr_json(q.lle.value), "stderr": stderr_json(q.lle.stderr),
                     })).collect::<Vec<_>>(),
                 })).collect::<Vec<_>>(),
             });
@@ -525,6 +519,15 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
         }
     };
     emit(args.out.as_deref(), &text)
+}
+
+/// A CSV cell: the number, or empty when undefined.
+fn opt_cell(v: f64) -> String {
+    if v.is_finite() {
+        num(v)
+    } else {
+        String::new()
+    }
 }
 
 fn sign_word(c: &CriticalNoise) -> &'static str {

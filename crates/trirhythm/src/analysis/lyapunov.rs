@@ -204,7 +204,9 @@ impl LyapunovSpec {
     }
 }
 
-/// The exponent of one noise realisation.
+/// The exponent of one noise realisation: −∞ when the perturbation was annihilated (the copy
+/// and the reference coincide in U and U̇ at every renormalisation of the window: both at rest
+/// on the wall), which makes the mean −∞ too.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PathExponent {
     /// Noise stream index.
@@ -290,7 +292,7 @@ fn one_path(
     let checkpoints = spec.running_points as u64;
     let mut running = Vec::with_capacity(spec.running_points);
     let mut next_checkpoint = 1;
-    let (mut log_sum, mut count, mut deferred) = (0.0, 0u64, 0u64);
+    let (mut log_sum, mut count, mut deferred, mut merged) = (0.0, 0u64, 0u64, 0u64);
     // the step of the last accepted renormalisation, and of the one that opened the window
     let (mut last, mut start) = (0u64, 0u64);
     let mut next = every;
@@ -318,13 +320,22 @@ fn one_path(
                 next = n + every;
             } else {
                 deferred += 1;
+                if d == 0.0 && n > transient {
+                    merged += 1;
+                }
             }
         }
         if n > transient {
             let k = n - transient;
             if k * checkpoints >= next_checkpoint * window {
                 let span = (last.saturating_sub(start)) as f64 * dt;
-                running.push(if count > 0 { log_sum / span } else { f64::NAN });
+                running.push(if count > 0 {
+                    log_sum / span
+                } else if merged > 0 {
+                    f64::NEG_INFINITY
+                } else {
+                    f64::NAN
+                });
                 next_checkpoint += 1;
             }
         }
@@ -334,6 +345,21 @@ fn one_path(
     }
     tick(total % tick_every);
     let measured_time = (last - start) as f64 * dt;
+    if count == 0 && merged > 0 {
+        // the copy coincides with the reference (both at rest on the wall): the perturbation
+        // was annihilated, a contraction faster than any exponential
+        return Ok((
+            PathExponent {
+                path,
+                exponent: f64::NEG_INFINITY,
+                measured_time: 0.0,
+                renormalisations: 0,
+                deferred,
+                impacts: a.impacts(),
+            },
+            running,
+        ));
+    }
     if count == 0 {
         return Err(Error::Undefined {
             what: "Lyapunov exponent",
@@ -560,7 +586,11 @@ pub fn critical_noise(
         }
     }
     evaluated.sort_by(|p, q| p.d.total_cmp(&q.d));
-    let d_c = a.d - a.lle.value * (b.d - a.d) / (b.lle.value - a.lle.value);
+    let d_c = if a.lle.value.is_finite() && b.lle.value.is_finite() {
+        a.d - a.lle.value * (b.d - a.d) / (b.lle.value - a.lle.value)
+    } else {
+        0.5 * (a.d + b.d)
+    };
     let significant = |p: &NoisePoint, below: bool| {
         let s = if p.lle.stderr.is_finite() {
             p.lle.stderr
