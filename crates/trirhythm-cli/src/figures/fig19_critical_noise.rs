@@ -65,6 +65,7 @@ impl Figure for Fig19 {
         for (label, key, values, claim) in PANELS {
             let mut points = Vec::new();
             let mut missing = Vec::new();
+            let mut falling: Vec<String> = Vec::new();
             for v in values {
                 let p = base.with(key, v)?;
                 let c = critical_noise(&p, &sz.method, &sz.spec, &search, None)?;
@@ -87,11 +88,17 @@ impl Figure for Fig19 {
                     ));
                     missing.push(format!("{}{sign}", num(v)));
                 }
+                if c.found() && !c.rising {
+                    falling.push(num(v));
+                }
+                // only a negative → positive change is the paper's D_c
+                let drawn = c.found() && c.rising;
+                let nan = f64::NAN;
                 points.push(Point {
                     x: v,
-                    y: c.d_c,
-                    lo: c.d_c_lo,
-                    hi: c.d_c_hi,
+                    y: if drawn { c.d_c } else { nan },
+                    lo: if drawn { c.d_c_lo } else { nan },
+                    hi: if drawn { c.d_c_hi } else { nan },
                 });
             }
             let found: Vec<&Point> = points.iter().filter(|q| q.y.is_finite()).collect();
@@ -112,10 +119,17 @@ impl Figure for Fig19 {
                 "not reproduced"
             };
             notes.push(format!(
-                "{label} paper: D_c {claim} with {}; here: {trend} (sign change at {} of {} values): {verdict}",
-                symbol(key), found.len(), values.len()
+                "{label} paper: D_c {claim} with {}; here: {trend} (negative → positive change at {} of {} values; positive → negative, the opposite transition, at {}): {verdict}",
+                symbol(key), found.len(), values.len(), falling.len()
             ));
             let mut verdicts = vec![format!("paper: D_c {claim}; here: {trend}")];
+            if !falling.is_empty() {
+                verdicts.push(format!(
+                    "LLE + → − (not drawn) at {} = {}",
+                    symbol(key),
+                    falling.join(", ")
+                ));
+            }
             if !missing.is_empty() {
                 verdicts.push(format!(
                     "no sign change in range at {} = {}",
