@@ -9,6 +9,7 @@
 mod common;
 mod ensemble;
 mod figures;
+mod lyapunov;
 mod maps;
 mod oscillation;
 mod output;
@@ -60,6 +61,12 @@ enum Command {
     /// Oscillation (Hopf) boundary along one parameter by simulation, averaging and exact
     /// linearisation (CSV method,x,y,y_lo,y_hi), or a plane classified (--grid).
     Oscillation(oscillation::OscillationArgs),
+    /// Largest Lyapunov exponent with frozen noise (two trajectories, whole-memory
+    /// renormalisation): JSON lle, per_path, running; with --sweep CSV KEY,lle,stderr.
+    Lyapunov(lyapunov::LyapunovArgs),
+    /// Critical noise D_c where the largest Lyapunov exponent changes sign (CSV
+    /// KEY,D_c,D_c_lo,D_c_hi).
+    CriticalNoise(lyapunov::CriticalNoiseArgs),
     /// Reproduce a figure of the paper: data (CSV, and JSON with --data) and picture (PNG + SVG).
     Figure(FigureArgs),
     /// List the parameter presets (one per figure panel) with their notes.
@@ -96,8 +103,6 @@ struct FigureArgs {
 }
 
 /// The paper's figures that are not reproduced yet, with what they need.
-const PLANNED: [(u32, &str); 1] = [(17, "largest Lyapunov exponent against noise")];
-
 fn figure(args: &FigureArgs) -> Result<()> {
     let registry = figures::registry();
     let available = registry
@@ -126,15 +131,6 @@ fn figure(args: &FigureArgs) -> Result<()> {
         };
         match registry.iter().find(|r| r.number == n) {
             Some(r) => vec![r],
-            None if (1..=19).contains(&n) => {
-                let what = PLANNED
-                    .iter()
-                    .find(|p| p.0 == n)
-                    .map_or("Lyapunov exponents and the critical noise", |p| p.1);
-                return common::bad(format!(
-                    "figure {n} is not yet implemented ({what}); available: {available}, or all"
-                ));
-            }
             None => {
                 return common::bad(format!(
                     "figure {n}: no such figure (the paper has figures 1 to 19; available: \
@@ -207,6 +203,8 @@ impl Command {
             Command::Map(a) => a.output.out.as_deref(),
             Command::Branches(a) => a.output.out.as_deref(),
             Command::Oscillation(a) => a.out.as_deref(),
+            Command::Lyapunov(a) => a.out.as_deref(),
+            Command::CriticalNoise(a) => a.out.as_deref(),
             Command::Figure(_) | Command::Presets => None,
         }
     }
@@ -234,6 +232,8 @@ fn run(cli: Cli) -> Result<()> {
         Command::Map(a) => maps::map(a),
         Command::Branches(a) => maps::branches(a),
         Command::Oscillation(a) => oscillation::oscillation(a),
+        Command::Lyapunov(a) => lyapunov::lyapunov(a),
+        Command::CriticalNoise(a) => lyapunov::critical(a),
         Command::Figure(a) => figure(a),
         Command::Presets => presets(),
     }?;

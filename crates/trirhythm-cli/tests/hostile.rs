@@ -294,10 +294,7 @@ fn messages_name_what_the_user_typed() {
             "a readable message, not a dump: {stderr}"
         );
     }
-    // figures: planned ones are "not yet implemented", others do not exist
-    let out = run(&["figure", "17"]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("not yet implemented"));
+    // figures: every one of the paper's 19 exists; others do not
     let out = run(&["figure", "20"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("no such figure"));

@@ -61,6 +61,6 @@ fn every_picture_states_what_it_shows() {
         let png = std::fs::metadata(path.with_extension("png")).unwrap();
         assert!(png.len() > 10_000, "{name}: PNG of {} bytes", png.len());
     }
-    assert_eq!(seen, 16, "pictures written");
+    assert_eq!(seen, 19, "pictures written");
     let _ = std::fs::remove_dir_all(&dir);
 }

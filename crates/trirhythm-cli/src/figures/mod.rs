@@ -41,6 +41,10 @@ mod fig13_pdf_restitution;
 mod fig14_joint_pdf;
 mod fig15_oscillation_boundaries;
 mod fig16_oscillation_regions;
+mod fig17_lle_noise;
+mod fig18_lle_noise_fractional;
+mod fig19_critical_noise;
+mod lle;
 mod mapfig;
 mod montecarlo;
 
@@ -147,6 +151,9 @@ pub fn registry() -> Vec<Entry> {
         entry::<fig14_joint_pdf::Fig14>(),
         entry::<fig15_oscillation_boundaries::Fig15>(),
         entry::<fig16_oscillation_regions::Fig16>(),
+        entry::<fig17_lle_noise::Fig17>(),
+        entry::<fig18_lle_noise_fractional::Fig18>(),
+        entry::<fig19_critical_noise::Fig19>(),
     ]
 }
 

@@ -1,0 +1,129 @@
+//! `trirhythm lyapunov` and `trirhythm critical-noise` from the outside: the JSON and CSV
+//! contracts, the known exponent of the damped linear oscillator, "no sign change in range"
+//! said plainly, and bad input (exit 2 naming the flag).
+
+mod common;
+
+use common::{ok_json, ok_stdout as ok, run};
+
+const LINEAR: [&str; 16] = [
+    "--param",
+    "c0=-1",
+    "--param",
+    "c1=0",
+    "--param",
+    "alpha0=0",
+    "--param",
+    "beta0=0",
+    "--param",
+    "gamma0=0",
+    "--param",
+    "delta0=0",
+    "--param",
+    "lambda=1",
+    "--barrier",
+    "off",
+];
+
+#[test]
+fn json_has_the_exponent_its_error_per_path_and_running() {
+    let mut args = vec![
+        "lyapunov",
+        "--param",
+        "mu0=0.1",
+        "--param",
+        "omega0=1",
+        "--param",
+        "D=0.5",
+        "--param",
+        "tau=0.1",
+        "--paths",
+        "2",
+        "--t-end",
+        "500",
+        "--transient",
+        "50",
+    ];
+    args.extend(LINEAR);
+    let doc = ok_json(&args);
+    let v = doc["lle"]["value"].as_f64().unwrap();
+    assert!((v + 0.05).abs() < 2e-3, "LLE {v} vs −μ0/2 = −0.05");
+    assert!(doc["lle"]["stderr"].as_f64().unwrap() < 1e-6);
+    assert_eq!(doc["per_path"].as_array().unwrap().len(), 2);
+    let running = doc["running"].as_array().unwrap();
+    assert_eq!(running.len(), 100);
+    assert_eq!(running[0].as_array().unwrap().len(), 2);
+    assert_eq!(doc["method"], "two-trajectory");
+}
+
+#[test]
+fn sweep_writes_key_lle_stderr() {
+    let text = ok(&[
+        "lyapunov",
+        "--preset",
+        "fig17a",
+        "--paths",
+        "2",
+        "--t-end",
+        "50",
+        "--transient",
+        "0",
+        "--sweep",
+        "D=0.1:0.5:3",
+    ]);
+    let rows: Vec<&str> = text.lines().filter(|l| !l.starts_with('#')).collect();
+    assert_eq!(rows[0], "D,lle,stderr");
+    assert_eq!(rows.len(), 4);
+}
+
+#[test]
+fn critical_noise_says_when_there_is_no_sign_change() {
+    let mut args = vec![
+        "critical-noise",
+        "--param",
+        "mu0=0.1",
+        "--paths",
+        "2",
+        "--t-end",
+        "100",
+        "--transient",
+        "10",
+        "--d-range",
+        "0:1",
+        "--grid",
+        "2",
+        "--refinements",
+        "0",
+    ];
+    args.extend(LINEAR);
+    let out = run(&args);
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("no sign change in range"), "{text}");
+    assert!(text.lines().any(|l| l == "D_c,D_c_lo,D_c_hi"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no sign change in range"));
+}
+
+#[test]
+fn bad_input_names_the_flag() {
+    for (args, needle) in [
+        (
+            vec!["lyapunov", "--method", "tangent"],
+            "not yet implemented",
+        ),
+        (vec!["lyapunov", "--paths", "0"], "--paths"),
+        (vec!["lyapunov", "--dt", "1"], "--dt"),
+        (vec!["lyapunov", "--separation", "0.1"], "--separation"),
+        (vec!["lyapunov", "--sweep", "D=1:0:3"], "--sweep"),
+        (vec!["critical-noise", "--d-range", "2:1"], "--d-range"),
+        (
+            vec!["critical-noise", "--d-range", "0:1", "--sweep", "D=0:1:2"],
+            "--sweep",
+        ),
+    ] {
+        let out = run(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains(needle), "{args:?}: {stderr}");
+    }
+}

@@ -1,0 +1,192 @@
+//! The largest Lyapunov exponent with frozen noise (`analysis::lyapunov`) on problems whose
+//! exponent is known.
+//!
+//! - The damped linear oscillator U″ + μ0U′ + ω0²U = η (P ≡ −1, no wall, λ = 1) has LLE = −μ0/2
+//!   for every noise intensity: additive noise does not enter the difference of two paths.
+//! - A stable deterministic limit cycle (λ = 1, no wall, D = 0) has LLE 0 (the phase is neutral).
+//! - At λ = 1, Eq. (1) with the wall and Eq. (9) on the whole line are the same motion (U = |Z|),
+//!   so they have the same LLE, noise included.
+//! - Path i depends only on (seed, i): one thread and two give bit-identical results.
+//! - A family without a sign change (the linear oscillator) is reported as such by the
+//!   critical-noise search, never with a made-up D_c.
+
+use trirhythm::analysis::lyapunov::{
+    critical_noise, largest_lyapunov, CriticalSearch, LyapunovResult, LyapunovSpec,
+};
+use trirhythm::engine::{Barrier, Oscillator, PredictorCorrector, System};
+use trirhythm::model::{preset, Params};
+
+const SEED: u64 = 20240611;
+
+fn params(pairs: &[(&str, f64)]) -> Params {
+    let mut p = preset("fig17a").unwrap().params;
+    for &(k, v) in pairs {
+        p = p.with(k, v).unwrap();
+    }
+    p
+}
+
+fn linear(mu0: f64, d: f64) -> Params {
+    params(&[
+        ("c0", -1.0),
+        ("c1", 0.0),
+        ("alpha0", 0.0),
+        ("beta0", 0.0),
+        ("gamma0", 0.0),
+        ("delta0", 0.0),
+        ("lambda", 1.0),
+        ("omega0", 1.0),
+        ("mu0", mu0),
+        ("D", d),
+        ("tau", 0.1),
+    ])
+}
+
+fn lle(p: &Params, spec: &LyapunovSpec) -> LyapunovResult {
+    let osc = Oscillator::new(p).unwrap();
+    largest_lyapunov(&osc, &PredictorCorrector::default(), spec, None).unwrap()
+}
+
+#[test]
+fn damped_linear_oscillator_has_minus_half_the_damping_for_every_noise() {
+    let mu0 = 0.1;
+    let spec = LyapunovSpec {
+        paths: 2,
+        seed: SEED,
+        transient: 50.0,
+        length: 1000.0,
+        barrier: Barrier::Off,
+        ..Default::default()
+    };
+    for d in [0.0, 0.1, 1.0] {
+        let r = lle(&linear(mu0, d), &spec);
+        let err = r.lle.value + mu0 / 2.0;
+        assert!(
+            err.abs() < 1e-3,
+            "D = {d}: LLE {} vs −μ0/2 = {} (error {err:e})",
+            r.lle.value,
+            -mu0 / 2.0
+        );
+        // the noise does not enter: every realisation has the same exponent
+        assert!(r.lle.stderr < 1e-6, "D = {d}: stderr {}", r.lle.stderr);
+        assert_eq!(r.running.len(), spec.running_points);
+    }
+}
+
+#[test]
+fn stable_limit_cycle_has_a_zero_exponent() {
+    let p = params(&[("lambda", 1.0), ("mu0", 0.1), ("omega0", 1.0), ("D", 0.0)]);
+    let spec = LyapunovSpec {
+        paths: 1,
+        seed: SEED,
+        transient: 500.0,
+        length: 2000.0,
+        u0: 2.0,
+        barrier: Barrier::Off,
+        ..Default::default()
+    };
+    let r = lle(&p, &spec);
+    assert!(
+        r.lle.value.abs() < 2e-3,
+        "limit cycle: LLE {} (should be 0)",
+        r.lle.value
+    );
+}
+
+#[test]
+fn wall_and_zhuravlev_agree_at_lambda_one() {
+    let p = params(&[
+        ("lambda", 1.0),
+        ("mu0", 0.05),
+        ("r", 0.9),
+        ("D", 0.2),
+        ("tau", 0.1),
+    ]);
+    let spec = LyapunovSpec {
+        paths: 4,
+        seed: SEED,
+        transient: 100.0,
+        length: 1000.0,
+        u0: 1.0,
+        ..Default::default()
+    };
+    let wall = lle(&p, &spec);
+    let z = lle(
+        &p,
+        &LyapunovSpec {
+            system: System::Zhuravlev,
+            ..spec.clone()
+        },
+    );
+    assert!(wall.per_path.iter().all(|q| q.impacts > 50));
+    // a positive exponent amplifies the rounding differences of the two formulations, so a
+    // path may drift apart late; most agree closely, and the means agree within their errors
+    let close = wall
+        .per_path
+        .iter()
+        .zip(&z.per_path)
+        .filter(|(a, b)| (a.exponent - b.exponent).abs() < 1e-3)
+        .count();
+    assert!(close >= 3, "only {close} of 4 paths agree within 1e-3");
+    let diff = (wall.lle.value - z.lle.value).abs();
+    let sigma = wall.lle.stderr.hypot(z.lle.stderr);
+    assert!(
+        diff < 2.0 * sigma && diff < 0.01,
+        "Eq. 1 with the wall {} ± {} vs Eq. 9 {} ± {}",
+        wall.lle.value,
+        wall.lle.stderr,
+        z.lle.value,
+        z.lle.stderr
+    );
+}
+
+#[test]
+fn one_thread_or_two_give_the_same_exponent() {
+    let p = params(&[("D", 0.3)]);
+    let spec = LyapunovSpec {
+        paths: 3,
+        seed: SEED,
+        transient: 20.0,
+        length: 200.0,
+        ..Default::default()
+    };
+    let run = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| lle(&p, &spec))
+    };
+    assert_eq!(run(1), run(2));
+}
+
+#[test]
+fn no_sign_change_is_reported_as_such() {
+    let spec = LyapunovSpec {
+        paths: 2,
+        seed: SEED,
+        transient: 20.0,
+        length: 300.0,
+        barrier: Barrier::Off,
+        ..Default::default()
+    };
+    let search = CriticalSearch {
+        d_lo: 0.0,
+        d_hi: 1.0,
+        grid: 3,
+        refinements: 2,
+        z: 2.0,
+    };
+    let c = critical_noise(
+        &linear(0.1, 0.0),
+        &PredictorCorrector::default(),
+        &spec,
+        &search,
+        None,
+    )
+    .unwrap();
+    assert!(!c.found());
+    assert!(c.d_c.is_nan() && c.d_c_lo.is_nan() && c.d_c_hi.is_nan());
+    assert_eq!(c.evaluated.len(), 3);
+    assert!(c.evaluated.iter().all(|q| q.lle.value < 0.0));
+}
