@@ -19,9 +19,8 @@
 //! d = ‖(U − U_ref, U̇ − U̇_ref)‖ is measured, ln(d/d₀) is added to the sum and the copy is pulled
 //! back by the factor d₀/d with [`Stepper::contract_toward`], which scales **every number of the
 //! memory** (exact window, SOE modes, Volterra constant with the impact jumps) about the
-//! reference's. The published fractional-order codes restart the memory at each
-//! renormalisation instead, which changes the dynamics being measured.
-//! When the two paths cannot be combined at that step (an impact split inside the exact window
+//! reference's (restarting the memory at a renormalisation instead would change the dynamics
+//! being measured). When the two paths cannot be combined at that step (an impact split inside the exact window
 //! of either, different sticking states, or d = 0 because both sit at rest on the wall) the
 //! renormalisation is tried again at the next step; the sum is divided by the time actually
 //! spanned between the first and the last accepted renormalisation of the measured window, so
