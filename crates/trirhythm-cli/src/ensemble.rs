@@ -336,6 +336,7 @@ pub fn result_json(
             "u_edges": jvec(&r.joint.u_edges),
             "v_edges": jvec(&r.joint.v_edges),
             "density": Value::Array(r.joint.density.iter().map(|row| jvec(row)).collect()),
+            "stderr": Value::Array(r.joint.stderr.iter().map(|row| jstats(row)).collect()),
             "outside": jnum(r.joint.outside),
         },
         "wells": r.wells.as_ref().map(|w| json!({"modes": jvec(&w.modes), "antimodes": jvec(&w.antimodes)})),
@@ -509,6 +510,30 @@ pub fn summary_text(
                 .map(|&e| fmt_est(e))
                 .collect::<Vec<_>>()
                 .join(", ")
+        ));
+    }
+    for (k, p) in r.passages.iter().enumerate() {
+        let theory_times: Vec<String> = theory
+            .iter()
+            .filter_map(|(v, c)| {
+                c.as_ref()
+                    .ok()
+                    .and_then(|c| c.escape_times.get(k))
+                    .map(|t| format!("{} {t:.4e}", v.name()))
+            })
+            .collect();
+        t.push_str(&format!(
+            "first passage {} → {}: {} ({} completed, {} censored); theory's escape time: {}\n",
+            p.from,
+            p.to,
+            if p.count > 0 {
+                fmt_est(p.mean_time)
+            } else {
+                "none completed".into()
+            },
+            p.count,
+            p.censored,
+            theory_times.join(", ")
         ));
     }
     for (v, c) in theory {

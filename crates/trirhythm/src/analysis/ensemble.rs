@@ -685,40 +685,55 @@ pub struct Density {
     pub count: u64,
 }
 
+/// The fraction of all samples in each bin (the units' counts; the last entry is the mass
+/// beyond the grid) with its delete-one jackknife standard error over the units (NaN with one
+/// unit), in O(units × bins).
+fn fractions(units: &[Vec<u64>]) -> (Vec<f64>, Vec<f64>) {
+    let m = units.first().map_or(0, Vec::len);
+    let mut total = vec![0u64; m];
+    for u in units {
+        for (t, c) in total.iter_mut().zip(u) {
+            *t += c;
+        }
+    }
+    let all: u64 = total.iter().sum();
+    let value: Vec<f64> = total
+        .iter()
+        .map(|&t| if all > 0 { t as f64 / all as f64 } else { 0.0 })
+        .collect();
+    let n = units.len();
+    let mut stderr = vec![f64::NAN; m];
+    if n >= 2 {
+        let sizes: Vec<u64> = units.iter().map(|u| u.iter().sum()).collect();
+        let mut loo = vec![0.0; n];
+        for (b, se) in stderr.iter_mut().enumerate() {
+            for ((x, u), &size) in loo.iter_mut().zip(units).zip(&sizes) {
+                let rest = all - size;
+                *x = if rest > 0 {
+                    (total[b] - u[b]) as f64 / rest as f64
+                } else {
+                    0.0
+                };
+            }
+            let mean = loo.iter().sum::<f64>() / n as f64;
+            let ss: f64 = loo.iter().map(|x| (x - mean) * (x - mean)).sum();
+            *se = ((n as f64 - 1.0) / n as f64 * ss).sqrt();
+        }
+    }
+    (value, stderr)
+}
+
 impl Density {
     fn from_units(edges: Vec<f64>, units: &[Vec<u64>]) -> Self {
         let nb = edges.len() - 1;
-        let fl: Vec<Vec<f64>> = units
-            .iter()
-            .map(|u| u.iter().map(|&c| c as f64).collect())
-            .collect();
-        let count: u64 = units.iter().flatten().sum();
-        let mut density = Vec::with_capacity(nb);
-        let mut stderr = Vec::with_capacity(nb);
-        for b in 0..nb {
-            let w = edges[b + 1] - edges[b];
-            let e = jackknife(&fl, |t| {
-                let total: f64 = t.iter().sum();
-                if total > 0.0 {
-                    t[b] / (total * w)
-                } else {
-                    0.0
-                }
-            });
-            density.push(e.value);
-            stderr.push(e.stderr);
-        }
-        let beyond = if count > 0 {
-            units.iter().map(|u| u[nb]).sum::<u64>() as f64 / count as f64
-        } else {
-            0.0
-        };
+        let (fraction, se) = fractions(units);
+        let width = |b: usize| edges[b + 1] - edges[b];
         Density {
+            density: (0..nb).map(|b| fraction[b] / width(b)).collect(),
+            stderr: (0..nb).map(|b| se[b] / width(b)).collect(),
+            beyond: fraction[nb],
+            count: units.iter().flatten().sum(),
             edges,
-            density,
-            stderr,
-            beyond,
-            count,
         }
     }
 }
@@ -732,6 +747,8 @@ pub struct JointDensity {
     pub v_edges: Vec<f64>,
     /// Density, row-major: `density[i][j]` for U bin i and U̇ bin j.
     pub density: Vec<Vec<f64>>,
+    /// Standard error of each cell's density (jackknife over the units; NaN with one unit).
+    pub stderr: Vec<Vec<f64>>,
     /// Fraction of the samples outside the grid.
     pub outside: f64,
 }
@@ -993,25 +1010,20 @@ fn merge(
     let energy = Density::from_units(layout.edges(h_max), &hist_units(&|p| &p.energy));
     let joint_units = hist_units(&|p| &p.joint);
     let jb = layout.joint_bins;
-    let mut jc = vec![0u64; jb * jb + 1];
-    for u in &joint_units {
-        for (x, y) in jc.iter_mut().zip(u) {
-            *x += y;
-        }
-    }
-    let jtotal: u64 = jc.iter().sum();
+    let (fraction, se) = fractions(&joint_units);
     let (du, dv) = (1.0 / layout.u_scale, 1.0 / layout.v_scale);
+    let cells = |x: &[f64]| -> Vec<Vec<f64>> {
+        x[..jb * jb]
+            .chunks(jb)
+            .map(|row| row.iter().map(|f| f / (du * dv)).collect())
+            .collect()
+    };
     let joint = JointDensity {
         u_edges: (0..=jb).map(|i| layout.u_lo + du * i as f64).collect(),
         v_edges: (0..=jb).map(|i| layout.v_lo + dv * i as f64).collect(),
-        density: (0..jb)
-            .map(|i| {
-                (0..jb)
-                    .map(|j| jc[i * jb + j] as f64 / (jtotal.max(1) as f64 * du * dv))
-                    .collect()
-            })
-            .collect(),
-        outside: jc[jb * jb] as f64 / jtotal.max(1) as f64,
+        density: cells(&fraction),
+        stderr: cells(&se),
+        outside: fraction[jb * jb],
     };
 
     // wells
