@@ -5,10 +5,10 @@
 //! Both start at the turning point U = A02, U̇ = 0 of the smallest stable cycle of the averaged
 //! theory (Eq. 18), as the paper's text says ("around the attractor's minimum amplitude").
 
+use super::write_figure;
 use super::{csv_header, panel_line, Figure, FigureContext};
 use crate::common::{num, Csv};
-use crate::output::write_atomic;
-use crate::plot::{chart, padded_range, pe, save, Heading, Picture};
+use crate::plot::{chart, padded_range, pe, Heading, Picture};
 use anyhow::{bail, Result};
 use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -75,11 +75,7 @@ impl Figure for Fig01 {
                 ]);
             }
         }
-        let csv_path = stem.with_extension("csv");
-        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-        let mut files = vec![csv_path];
-        files.extend(save(self, stem)?);
-        Ok(files)
+        write_figure(self, stem, &csv.finish()?)
     }
 }
 

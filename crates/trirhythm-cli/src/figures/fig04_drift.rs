@@ -3,12 +3,10 @@
 //! f > 0 means the amplitude grows (energy uptake); f < 0 that it decays. The paper labels
 //! f > 0 "dissipation"; the figure labels by the physics and says so in its notes.
 
+use super::write_figure;
 use super::{csv_header, heading, panel_line, Figure, FigureContext};
 use crate::common::{num, Csv};
-use crate::output::write_atomic;
-use crate::plot::{
-    chart, framed, legend, padded_range, pe, save, ChartSize, Heading, Picture, FONT,
-};
+use crate::plot::{chart, framed, legend, padded_range, pe, ChartSize, Heading, Picture, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -56,11 +54,7 @@ impl Figure for Fig04 {
                 csv.row([p.label.clone(), num(p.r), num(a), num(f)]);
             }
         }
-        let csv_path = stem.with_extension("csv");
-        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-        let mut files = vec![csv_path];
-        files.extend(save(self, stem)?);
-        Ok(files)
+        write_figure(self, stem, &csv.finish()?)
     }
 }
 

@@ -2,11 +2,11 @@
 //! branch traced by pseudo-arclength continuation through its folds (stable solid, unstable
 //! dashed, folds and births at A0 = 0 marked).
 
+use super::write_figure;
 use super::{csv_header, heading, panel_line, Figure, FigureContext};
 use crate::common::{num, Csv};
 use crate::maps::branch_diagram;
-use crate::output::write_atomic;
-use crate::plot::{chart, legend, pe, save, Heading, Picture};
+use crate::plot::{chart, legend, pe, Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -60,11 +60,7 @@ impl Figure for Fig05 {
                 }
             }
         }
-        let csv_path = stem.with_extension("csv");
-        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-        let mut files = vec![csv_path];
-        files.extend(save(self, stem)?);
-        Ok(files)
+        write_figure(self, stem, &csv.finish()?)
     }
 }
 

@@ -1,11 +1,9 @@
 //! Fig. 7: the pseudo-potential U_eff(A0) (Eq. 23) for several r (a) and several λ (b).
 
+use super::write_figure;
 use super::{csv_header, heading, panel_line, Figure, FigureContext};
 use crate::common::{num, Csv};
-use crate::output::write_atomic;
-use crate::plot::{
-    chart, framed, legend, padded_range, pe, save, ChartSize, Heading, Picture, PALETTE,
-};
+use crate::plot::{chart, framed, legend, padded_range, pe, ChartSize, Heading, Picture, PALETTE};
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -204,11 +202,7 @@ impl Figure for Fig07 {
                 }
             }
         }
-        let csv_path = stem.with_extension("csv");
-        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-        let mut files = vec![csv_path];
-        files.extend(save(self, stem)?);
-        Ok(files)
+        write_figure(self, stem, &csv.finish()?)
     }
 }
 

@@ -1,10 +1,10 @@
 //! Fig. 8: the energy barriers ΔU_i between the wells and crests of U_eff (Eq. 23), D > 0.
 
 use super::fig07_pseudo_potential::{draw_curves, frame, Curve};
+use super::write_figure;
 use super::{csv_header, panel_line, Figure, FigureContext};
 use crate::common::{num, Csv};
-use crate::output::write_atomic;
-use crate::plot::{chart, pe, save, Heading, Picture, FONT};
+use crate::plot::{chart, pe, Heading, Picture, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -36,11 +36,7 @@ impl Figure for Fig08 {
         for &(a, u) in &self.curve.points {
             csv.row([num(a), num(u)]);
         }
-        let csv_path = stem.with_extension("csv");
-        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-        let mut files = vec![csv_path];
-        files.extend(save(self, stem)?);
-        Ok(files)
+        write_figure(self, stem, &csv.finish()?)
     }
 }
 

@@ -1,10 +1,10 @@
 //! Fig. 9: energy barriers ΔU1…ΔU4 of U_eff (Eq. 23) over the (τ, λ) plane for r = 0.998 and
 //! r = 0.990, as heat maps; blank where U_eff does not have the three wells the labels refer to.
 
+use super::write_figure;
 use super::{csv_header, panel_line, Figure, FigureContext};
 use crate::common::{num, progress, Csv};
-use crate::output::write_atomic;
-use crate::plot::{chart, colour_bar, pe, save, viridis, Heading, Picture};
+use crate::plot::{chart, colour_bar, pe, viridis, Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -70,11 +70,7 @@ impl Figure for Fig09 {
                 }
             }
         }
-        let csv_path = stem.with_extension("csv");
-        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-        let mut files = vec![csv_path];
-        files.extend(save(self, stem)?);
-        Ok(files)
+        write_figure(self, stem, &csv.finish()?)
     }
 }
 

@@ -5,7 +5,8 @@
 
 use super::fig05_branches::runs;
 use super::montecarlo::{
-    amplitude_csv, amplitude_legend, amplitude_panel, draw_amplitude_panel, AmplitudePanel, Sizes,
+    amplitude_csv, amplitude_legend, amplitude_panel, draw_amplitude_panel, stationary_count,
+    two_rows_of_four, AmplitudePanel, Sizes, PANEL,
 };
 use super::{csv_header, heading, Figure, FigureContext};
 use crate::common::{num, Csv};
@@ -162,12 +163,7 @@ impl Figure for Fig11 {
             notes.extend(n);
             panels.push(panel);
         }
-        let passed = panels
-            .iter()
-            .flat_map(|p| &p.runs)
-            .filter(|r| r.stationary)
-            .count();
-        let total = panels.iter().map(|p| p.runs.len()).sum::<usize>();
+        let (passed, total) = stationary_count(&panels);
         let verdict = format!("(b): stationarity check passed by {passed} of {total} ensembles");
         notes.push(verdict.clone());
         let heading = heading(
@@ -209,12 +205,9 @@ impl Figure for Fig11 {
     }
 }
 
-const PANEL: (u32, u32) = (470, 400);
-
 impl Picture for Fig11 {
     fn size(&self) -> (u32, u32) {
-        let w = 4 * PANEL.0;
-        (w, 2 * PANEL.1 + amplitude_legend(&self.panels).height(w))
+        two_rows_of_four(&self.panels)
     }
 
     fn heading(&self) -> Heading {

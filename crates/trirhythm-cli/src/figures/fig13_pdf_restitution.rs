@@ -4,11 +4,12 @@
 //! distances and the stationarity verdict of every ensemble.
 
 use super::montecarlo::{
-    amplitude_csv, amplitude_legend, amplitude_panel, draw_amplitude_grid, AmplitudePanel, Sizes,
+    amplitude_csv, amplitude_panel, draw_amplitude_grid, stationary_count, two_rows_of_four,
+    AmplitudePanel, Sizes, PANEL,
 };
+use super::write_figure;
 use super::{csv_header, heading, Figure, FigureContext};
-use crate::output::write_atomic;
-use crate::plot::{save, Heading, Picture};
+use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -65,12 +66,7 @@ impl Figure for Fig13 {
             notes.extend(n);
             panels.push(panel);
         }
-        let passed = panels
-            .iter()
-            .flat_map(|p| &p.runs)
-            .filter(|r| r.stationary)
-            .count();
-        let total = panels.iter().map(|p| p.runs.len()).sum::<usize>();
+        let (passed, total) = stationary_count(&panels);
         let verdict = format!(
             "stationarity check passed by {passed} of {total} ensembles (panels marked \"Monte Carlo NOT stationary\" are not stationary results)"
         );
@@ -93,23 +89,13 @@ impl Figure for Fig13 {
     }
 
     fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let csv_path = stem.with_extension("csv");
-        write_atomic(
-            &csv_path,
-            amplitude_csv(&self.header, &self.panels)?.as_bytes(),
-        )?;
-        let mut files = vec![csv_path];
-        files.extend(save(self, stem)?);
-        Ok(files)
+        write_figure(self, stem, &amplitude_csv(&self.header, &self.panels)?)
     }
 }
 
-const PANEL: (u32, u32) = (470, 400);
-
 impl Picture for Fig13 {
     fn size(&self) -> (u32, u32) {
-        let w = 4 * PANEL.0;
-        (w, 2 * PANEL.1 + amplitude_legend(&self.panels).height(w))
+        two_rows_of_four(&self.panels)
     }
 
     fn heading(&self) -> Heading {

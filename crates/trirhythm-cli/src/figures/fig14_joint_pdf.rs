@@ -4,10 +4,10 @@
 //! stationarity verdict of each ensemble.
 
 use super::montecarlo::{ensemble, Sizes};
+use super::write_figure;
 use super::{csv_header, heading, Figure, FigureContext};
 use crate::common::{num, Csv};
-use crate::output::write_atomic;
-use crate::plot::{chart, colour_bar, pe, save, viridis, Heading, Picture};
+use crate::plot::{chart, colour_bar, pe, viridis, Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -136,11 +136,7 @@ impl Figure for Fig14 {
                 }
             }
         }
-        let csv_path = stem.with_extension("csv");
-        write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-        let mut files = vec![csv_path];
-        files.extend(save(self, stem)?);
-        Ok(files)
+        write_figure(self, stem, &csv.finish()?)
     }
 }
 

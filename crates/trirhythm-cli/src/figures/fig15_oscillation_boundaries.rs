@@ -6,10 +6,10 @@
 //! The panel machinery ([`Panel`], [`Curve`], [`compute`], [`draw_panel`], [`distances`]) is
 //! shared with Fig. 16.
 
+use super::write_figure;
 use super::{csv_header, heading, Figure, FigureContext};
 use crate::common::{num, progress, Csv};
-use crate::output::write_atomic;
-use crate::plot::{chart, legend, pe, save, Heading, Picture};
+use crate::plot::{chart, legend, pe, Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -338,11 +338,7 @@ pub fn render_panels(
     for p in panels {
         csv_rows(&mut csv, p);
     }
-    let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-    let mut files = vec![csv_path];
-    files.extend(save(picture, stem)?);
-    Ok(files)
+    write_figure(picture, stem, &csv.finish()?)
 }
 
 fn compute_fig15(ctx: &FigureContext) -> Result<Fig15> {

@@ -3,11 +3,11 @@
 //! LLE turns positive past a critical D) checked curve by curve.
 
 use super::lle::{
-    draw_panel, lle_against_noise, panel_height, panels_csv, Panel, Sizes, PANEL_WIDTH,
+    draw_side_by_side, lle_against_noise, panel_height, panels_csv, Panel, Sizes, PANEL_WIDTH,
 };
+use super::write_figure;
 use super::{csv_header, heading, Figure, FigureContext};
-use crate::output::write_atomic;
-use crate::plot::{save, Heading, Picture};
+use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -80,14 +80,7 @@ impl Figure for Fig17 {
     }
 
     fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let csv_path = stem.with_extension("csv");
-        write_atomic(
-            &csv_path,
-            panels_csv(&self.header, &self.panels)?.as_bytes(),
-        )?;
-        let mut files = vec![csv_path];
-        files.extend(save(self, stem)?);
-        Ok(files)
+        write_figure(self, stem, &panels_csv(&self.header, &self.panels)?)
     }
 }
 
@@ -104,9 +97,6 @@ impl Picture for Fig17 {
     where
         DB::ErrorType: 'static,
     {
-        for (area, panel) in root.split_evenly((1, 2)).iter().zip(&self.panels) {
-            draw_panel(area, panel)?;
-        }
-        Ok(())
+        draw_side_by_side(root, &self.panels)
     }
 }

@@ -5,11 +5,11 @@
 
 use super::fig17_lle_noise::noises;
 use super::lle::{
-    draw_panel, lle_against_noise, panel_height, panels_csv, Panel, Sizes, PANEL_WIDTH,
+    draw_side_by_side, lle_against_noise, panel_height, panels_csv, Panel, Sizes, PANEL_WIDTH,
 };
+use super::write_figure;
 use super::{csv_header, heading, Figure, FigureContext};
-use crate::output::write_atomic;
-use crate::plot::{save, Heading, Picture};
+use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -67,14 +67,7 @@ impl Figure for Fig18 {
     }
 
     fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let csv_path = stem.with_extension("csv");
-        write_atomic(
-            &csv_path,
-            panels_csv(&self.header, &self.panels)?.as_bytes(),
-        )?;
-        let mut files = vec![csv_path];
-        files.extend(save(self, stem)?);
-        Ok(files)
+        write_figure(self, stem, &panels_csv(&self.header, &self.panels)?)
     }
 }
 
@@ -91,9 +84,6 @@ impl Picture for Fig18 {
     where
         DB::ErrorType: 'static,
     {
-        for (area, panel) in root.split_evenly((1, 2)).iter().zip(&self.panels) {
-            draw_panel(area, panel)?;
-        }
-        Ok(())
+        draw_side_by_side(root, &self.panels)
     }
 }

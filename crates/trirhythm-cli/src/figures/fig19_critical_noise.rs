@@ -2,13 +2,12 @@
 //! (a), τ (b), λ (c) and r (d), with its uncertainty from the standard errors; values without a
 //! sign change in the searched range are said so on the panel, never drawn as a made-up value.
 
-use super::lle::{
-    draw_panel, panel_height, panels_csv, symbol, Curve, Panel, Point, Sizes, PANEL_WIDTH,
-};
+use super::lle::{draw_panel, panel_height, panels_csv, Curve, Panel, Point, Sizes, PANEL_WIDTH};
+use super::symbol;
+use super::write_figure;
 use super::{csv_header, heading, Figure, FigureContext};
 use crate::common::num;
-use crate::output::write_atomic;
-use crate::plot::{save, Heading, Picture};
+use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -173,14 +172,7 @@ impl Figure for Fig19 {
     }
 
     fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let csv_path = stem.with_extension("csv");
-        write_atomic(
-            &csv_path,
-            panels_csv(&self.header, &self.panels)?.as_bytes(),
-        )?;
-        let mut files = vec![csv_path];
-        files.extend(save(self, stem)?);
-        Ok(files)
+        write_figure(self, stem, &panels_csv(&self.header, &self.panels)?)
     }
 }
 

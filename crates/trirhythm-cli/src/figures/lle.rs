@@ -2,6 +2,7 @@
 //! panels of curves with error bars, and their CSV and drawing. Each panel keeps its legend in
 //! a strip below its chart, so no legend covers data.
 
+use super::symbol;
 use crate::common::{num, Csv};
 use crate::plot::{chart, padded_range, pe, LegendStrip, Symbol, PALETTE};
 use anyhow::Result;
@@ -251,16 +252,18 @@ where
     strip(panel).draw(&bottom)
 }
 
-/// The symbol of a parameter key for captions and legends.
-pub fn symbol(key: &str) -> &'static str {
-    match key {
-        "mu0" => "μ0",
-        "tau" => "τ",
-        "lambda" => "λ",
-        "r" => "r",
-        "D" => "D",
-        _ => "?",
+/// Two panels side by side (Figs 17 and 18).
+pub fn draw_side_by_side<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    panels: &[Panel],
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    for (area, panel) in root.split_evenly((1, 2)).iter().zip(panels) {
+        draw_panel(area, panel)?;
     }
+    Ok(())
 }
 
 /// A panel of LLE against D, one curve per value of `key`, with its notes (a verdict per

@@ -50,7 +50,7 @@ mod montecarlo;
 
 use crate::common::bad;
 use crate::output::write_atomic;
-use crate::plot::Heading;
+use crate::plot::{save, Heading, Picture};
 use anyhow::{Context, Result};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
@@ -192,6 +192,16 @@ fn make<F: Figure>(request: &Request) -> Result<Vec<PathBuf>> {
     Ok(files)
 }
 
+/// Write a figure's CSV (`stem.csv`) and its pictures (`stem.png`, `stem.svg`); returns the
+/// paths written. The usual tail of [`Figure::render`].
+pub fn write_figure(picture: &impl Picture, stem: &Path, csv: &str) -> Result<Vec<PathBuf>> {
+    let csv_path = stem.with_extension("csv");
+    write_atomic(&csv_path, csv.as_bytes())?;
+    let mut files = vec![csv_path];
+    files.extend(save(picture, stem)?);
+    Ok(files)
+}
+
 /// Read `dir/figNN.json` for figure `F` (bad input when missing, malformed or of another
 /// figure).
 fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
@@ -288,17 +298,17 @@ pub fn variant_line(v: Variant) -> String {
 }
 
 /// The user-facing symbol of a parameter key.
-fn symbol(key: &str) -> String {
+pub fn symbol(key: &str) -> &str {
     match key {
-        "mu0" => "μ0".into(),
-        "omega0" => "ω0".into(),
-        "lambda" => "λ".into(),
-        "alpha0" => "α0".into(),
-        "beta0" => "β0".into(),
-        "gamma0" => "γ0".into(),
-        "delta0" => "δ0".into(),
-        "tau" => "τ".into(),
-        k => k.into(),
+        "mu0" => "μ0",
+        "omega0" => "ω0",
+        "lambda" => "λ",
+        "alpha0" => "α0",
+        "beta0" => "β0",
+        "gamma0" => "γ0",
+        "delta0" => "δ0",
+        "tau" => "τ",
+        k => k,
     }
 }
 

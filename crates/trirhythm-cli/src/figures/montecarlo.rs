@@ -424,6 +424,21 @@ where
     amplitude_legend(panels).draw(&strip)
 }
 
+/// Size of one amplitude panel in pixels (Figs 11 and 13).
+pub const PANEL: (u32, u32) = (470, 400);
+
+/// Size of a figure of two rows of four amplitude panels with the legend strip below.
+pub fn two_rows_of_four(panels: &[AmplitudePanel]) -> (u32, u32) {
+    let w = 4 * PANEL.0;
+    (w, 2 * PANEL.1 + amplitude_legend(panels).height(w))
+}
+
+/// (ensembles that passed the stationarity check, ensembles) over `panels`.
+pub fn stationary_count(panels: &[AmplitudePanel]) -> (usize, usize) {
+    let runs = || panels.iter().flat_map(|p| &p.runs);
+    (runs().filter(|r| r.stationary).count(), runs().count())
+}
+
 /// The legend of amplitude panels: both theories and every simulated system.
 pub fn amplitude_legend(panels: &[AmplitudePanel]) -> crate::plot::LegendStrip {
     let systems: Vec<&str> = panels
