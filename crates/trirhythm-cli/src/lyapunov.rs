@@ -270,23 +270,14 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
     let r = largest_lyapunov(&osc, &method, &spec, Some(&report))?;
     bar.finish_and_clear();
     eprintln!(
-        "LLE = {} ± {} (finite-time, window {}; {} paths)",
-        num(r.lle.value),
-        num(r.lle.stderr),
+        "LLE = {} (finite-time, window {}; {} paths)",
+        lle_text(r.lle.value, r.lle.stderr),
         num(spec.length),
         spec.paths
     );
     let text = match args.format.unwrap_or(SimFormat::Json) {
         SimFormat::Csv => {
-            header.push(format!(
-                "lle: {} ± {}",
-                num(r.lle.value),
-                if r.lle.stderr.is_finite() {
-                    num(r.lle.stderr)
-                } else {
-                    "n/a (one path)".into()
-                }
-            ));
+            header.push(format!("lle: {}", lle_text(r.lle.value, r.lle.stderr)));
             header.push("columns: running estimate (time since the transient, mean over paths, standard error)".into());
             let mut csv = Csv::new(&header, &["t", "lle", "stderr"]).allow_infinity("lle");
             for q in &r.running {
@@ -535,5 +526,20 @@ fn sign_word(c: &CriticalNoise) -> &'static str {
         "negative"
     } else {
         "positive"
+    }
+}
+
+/// An exponent with its standard error in words: −∞ and a missing standard error are
+/// explained, never printed as bare `-inf ± nan`.
+fn lle_text(value: f64, stderr: f64) -> String {
+    if value == f64::NEG_INFINITY {
+        return "−∞: the perturbation vanished on some path (the copy and the reference came to \
+                rest together on the wall); no standard error"
+            .into();
+    }
+    if stderr.is_finite() {
+        format!("{} ± {}", num(value), num(stderr))
+    } else {
+        format!("{} (no standard error: one path)", num(value))
     }
 }

@@ -98,6 +98,14 @@ fn bad_input_names_the_flag() {
         (vec!["--u0", "-2"], "u0 = -2"),
         (vec!["--amplitude-max", "0"], "amplitude_max = 0"),
         (vec!["--dt", "0"], "dt = 0"),
+        (vec!["--amplitude-max", "1e300"], "amplitude_max = 1e300"),
+        (vec!["--t-end", "inf"], "t_end = inf"),
+        (vec!["--u0", "nan"], "u0 = NaN"),
+        // the statistics of every path are held until the merge: bounded before work starts
+        (
+            vec!["--paths", "1000000", "--joint-bins", "1000"],
+            "paths = 1000000",
+        ),
     ] {
         let mut a = vec!["ensemble", "--preset", "fig13a"];
         if args[0] != "--t-end" {

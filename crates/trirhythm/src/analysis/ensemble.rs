@@ -63,6 +63,10 @@ pub const MAX_PATHS: usize = 1_000_000;
 pub const MAX_BINS: usize = 10_000;
 /// Most bins per axis of the joint (U, U̇) histogram.
 pub const MAX_JOINT_BINS: usize = 1_000;
+/// Largest histogram range of the amplitude.
+pub const MAX_AMPLITUDE: f64 = 1e6;
+/// Most bytes of per-path statistics held at once (paths × histograms, batches, passages).
+pub const MAX_STATISTICS_BYTES: usize = 4_000_000_000;
 /// Quarters of a path whose histograms are kept apart (the units for one path).
 const QUARTERS: usize = 4;
 
@@ -255,11 +259,29 @@ impl EnsembleSpec {
         if !(4..=1000).contains(&self.batches) {
             return Err(Error::invalid("batches", self.batches as f64, "4 to 1000"));
         }
-        if !(self.amplitude_max > 0.0 && self.amplitude_max.is_finite()) {
+        if !(self.amplitude_max > 0.0 && self.amplitude_max <= MAX_AMPLITUDE) {
             return Err(Error::invalid(
                 "amplitude_max",
                 self.amplitude_max,
-                "(0, ∞), finite",
+                format!("(0, {MAX_AMPLITUDE:e}] (beyond it the energy's range overflows)"),
+            ));
+        }
+        // every path's statistics are held until the merge: bound them before any work
+        let wells = self.wells.as_ref().map_or(0, Wells::len);
+        let per_path = 8
+            * (QUARTERS * (3 * (self.bins + 1) + self.joint_bins * self.joint_bins + 1)
+                + self.batches * (6 + wells)
+                + 4 * wells * wells);
+        let total = per_path as f64 * self.paths as f64;
+        if total > MAX_STATISTICS_BYTES as f64 {
+            return Err(Error::invalid(
+                "paths",
+                self.paths as f64,
+                format!(
+                    "at most {} with these bins ({per_path} bytes of statistics per path, \
+                     {MAX_STATISTICS_BYTES:e} in all)",
+                    MAX_STATISTICS_BYTES / per_path
+                ),
             ));
         }
         if self.starts.is_empty() {
