@@ -37,6 +37,38 @@ pub struct Curve {
     pub shade: bool,
 }
 
+/// What a curve is: its method name, colour and whether its lower side is shaded.
+#[derive(Clone, Copy)]
+pub enum Role {
+    /// The simulated boundary (shaded below).
+    Simulation,
+    /// The averaging's f′(0) = 0.
+    Averaging,
+    /// The exact linearisation.
+    Exact,
+    /// The exact linearisation without the wall, drawn for reference.
+    ExactNoWall,
+}
+
+impl Curve {
+    /// A boundary curve drawn as its role says.
+    pub fn new(role: Role, label: impl Into<String>, points: Vec<BoundaryPoint>) -> Curve {
+        let (method, color, shade) = match role {
+            Role::Simulation => ("simulation", SIM, true),
+            Role::Averaging => ("averaging", AVG, false),
+            Role::Exact => ("exact", EXACT, false),
+            Role::ExactNoWall => ("exact, no wall", NOWALL, false),
+        };
+        Curve {
+            label: label.into(),
+            method: method.into(),
+            points,
+            color,
+            shade,
+        }
+    }
+}
+
 /// One panel: an abscissa, μ0 searched in an interval, curves.
 #[derive(Serialize, Deserialize)]
 pub struct Panel {
@@ -380,34 +412,18 @@ fn compute_fig15(ctx: &FigureContext) -> Result<Fig15> {
             x_range: (0.9, 1.0),
             y_range: yr,
             curves: vec![
-                Curve {
-                    label: "simulation (bracket < line width)".into(),
-                    method: "simulation".into(),
-                    points: s,
-                    color: SIM,
-                    shade: true,
-                },
-                Curve {
-                    label: format!("averaging, f′(0) = 0 ({})", ctx.variant.name()),
-                    method: "averaging".into(),
-                    points: a,
-                    color: AVG,
-                    shade: false,
-                },
-                Curve {
-                    label: "exact, wall (λ = 1 only)".into(),
-                    method: "exact".into(),
-                    points: e,
-                    color: EXACT,
-                    shade: false,
-                },
-                Curve {
-                    label: "exact without the wall (reference)".into(),
-                    method: "exact, no wall".into(),
-                    points: free,
-                    color: NOWALL,
-                    shade: false,
-                },
+                Curve::new(Role::Simulation, "simulation (bracket < line width)", s),
+                Curve::new(
+                    Role::Averaging,
+                    format!("averaging, f′(0) = 0 ({})", ctx.variant.name()),
+                    a,
+                ),
+                Curve::new(Role::Exact, "exact, wall (λ = 1 only)", e),
+                Curve::new(
+                    Role::ExactNoWall,
+                    "exact without the wall (reference)",
+                    free,
+                ),
             ],
         });
         bar.inc(1);
@@ -433,27 +449,13 @@ fn compute_fig15(ctx: &FigureContext) -> Result<Fig15> {
             x_range: (0.9, 0.999),
             y_range: yr,
             curves: vec![
-                Curve {
-                    label: "simulation".into(),
-                    method: "simulation".into(),
-                    points: s,
-                    color: SIM,
-                    shade: true,
-                },
-                Curve {
-                    label: format!("averaging ({})", ctx.variant.name()),
-                    method: "averaging".into(),
-                    points: a,
-                    color: AVG,
-                    shade: false,
-                },
-                Curve {
-                    label: "exact: μ0π/(2ω_d) + ln r = 0".into(),
-                    method: "exact".into(),
-                    points: e,
-                    color: EXACT,
-                    shade: false,
-                },
+                Curve::new(Role::Simulation, "simulation", s),
+                Curve::new(
+                    Role::Averaging,
+                    format!("averaging ({})", ctx.variant.name()),
+                    a,
+                ),
+                Curve::new(Role::Exact, "exact: μ0π/(2ω_d) + ln r = 0", e),
             ],
         });
         bar.inc(1);

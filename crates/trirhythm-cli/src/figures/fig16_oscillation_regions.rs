@@ -3,8 +3,8 @@
 //! each boundary by simulation, by averaging and (where exact) by the linearisation at U = 0.
 
 use super::fig15_oscillation_boundaries::{
-    compute, distance_text, draw_panel, linspace, render_panels, settings, Curve, Panel, AVG,
-    EXACT, NOWALL, SIM,
+    compute, distance_text, draw_panel, linspace, render_panels, settings, Curve, Panel, Role,
+    EXACT,
 };
 use super::{csv_header, heading, Figure, FigureContext};
 use crate::common::progress;
@@ -89,34 +89,14 @@ fn compute_fig16(ctx: &FigureContext) -> Result<Fig16> {
         x_range: (0.9, 1.0),
         y_range: yr,
         curves: vec![
-            Curve {
-                label: "simulation".into(),
-                method: "simulation".into(),
-                points: s,
-                color: SIM,
-                shade: true,
-            },
-            Curve {
-                label: format!("averaging ({})", ctx.variant.name()),
-                method: "averaging".into(),
-                points: a,
-                color: AVG,
-                shade: false,
-            },
-            Curve {
-                label: "exact, wall (λ = 1 only)".into(),
-                method: "exact".into(),
-                points: e,
-                color: EXACT,
-                shade: false,
-            },
-            Curve {
-                label: "exact without the wall".into(),
-                method: "exact, no wall".into(),
-                points: free,
-                color: NOWALL,
-                shade: false,
-            },
+            Curve::new(Role::Simulation, "simulation", s),
+            Curve::new(
+                Role::Averaging,
+                format!("averaging ({})", ctx.variant.name()),
+                a,
+            ),
+            Curve::new(Role::Exact, "exact, wall (λ = 1 only)", e),
+            Curve::new(Role::ExactNoWall, "exact without the wall", free),
         ],
     }];
     bar.inc(1);
@@ -194,20 +174,12 @@ fn compute_fig16(ctx: &FigureContext) -> Result<Fig16> {
         x_range: (0.9, 0.999),
         y_range: yr2,
         curves: vec![
-            Curve {
-                label: "simulation".into(),
-                method: "simulation".into(),
-                points: s,
-                color: SIM,
-                shade: true,
-            },
-            Curve {
-                label: format!("averaging ({})", ctx.variant.name()),
-                method: "averaging".into(),
-                points: a,
-                color: AVG,
-                shade: false,
-            },
+            Curve::new(Role::Simulation, "simulation", s),
+            Curve::new(
+                Role::Averaging,
+                format!("averaging ({})", ctx.variant.name()),
+                a,
+            ),
             Curve {
                 label: "exact at λ = 1 (reference)".into(),
                 method: "exact, λ = 1".into(),
