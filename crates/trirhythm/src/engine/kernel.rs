@@ -97,23 +97,59 @@ pub fn interval_weights(lambda: f64, ua: f64, ub: f64) -> (f64, f64) {
 /// function under e^{−s(ℓ−v)} on [0, ℓ] (z = sℓ): ∫ = ℓψ g_start + ℓ(φ − ψ) g_end.
 pub(crate) fn phi_psi(z: f64) -> (f64, f64) {
     if z < 0.5 {
-        // series: φ = Σ (−z)^k/(k+1)!, ψ = Σ (−1)^k (k+1) z^k/(k+2)!
-        let mut phi = 0.0;
-        let mut psi = 0.0;
-        let mut zk = 1.0; // z^k / k!
-        for k in 0..24usize {
-            let kf = k as f64;
-            let sgn = if k % 2 == 0 { 1.0 } else { -1.0 };
-            phi += sgn * zk / (kf + 1.0);
-            psi += sgn * zk * (kf + 1.0) / ((kf + 1.0) * (kf + 2.0));
-            zk *= z / (kf + 1.0);
-        }
+        // series in x = −z by Horner, 17 terms (the next is below 1e-19 for z < 0.5):
+        // φ = Σ x^k/(k+1)!, ψ = Σ (k+1) x^k/(k+2)! = Σ x^k/((k+2)·k!)
+        let x = -z;
+        let phi = PHI_SERIES.iter().rev().fold(0.0, |acc, &c| acc * x + c);
+        let psi = PSI_SERIES.iter().rev().fold(0.0, |acc, &c| acc * x + c);
         (phi, psi)
     } else {
         let e = (-z).exp();
         ((1.0 - e) / z, (1.0 - e * (1.0 + z)) / (z * z))
     }
 }
+
+/// 1/(k+1)!, k = 0..=16 (the series of φ; checked against the factorials in a unit test).
+const PHI_SERIES: [f64; 17] = [
+    1.0,
+    0.5,
+    0.16666666666666666,
+    0.041666666666666664,
+    0.008333333333333333,
+    0.001388888888888889,
+    0.0001984126984126984,
+    2.48015873015873e-05,
+    2.7557319223985893e-06,
+    2.755731922398589e-07,
+    2.505210838544172e-08,
+    2.08767569878681e-09,
+    1.6059043836821613e-10,
+    1.1470745597729725e-11,
+    7.647163731819816e-13,
+    4.779477332387385e-14,
+    2.8114572543455206e-15,
+];
+
+/// 1/((k+2)·k!), k = 0..=16 (the series of ψ).
+const PSI_SERIES: [f64; 17] = [
+    0.5,
+    0.3333333333333333,
+    0.125,
+    0.03333333333333333,
+    0.006944444444444444,
+    0.0011904761904761906,
+    0.00017361111111111112,
+    2.2045855379188714e-05,
+    2.48015873015873e-06,
+    2.505210838544172e-07,
+    2.296443268665491e-08,
+    1.9270852604185937e-09,
+    1.4911969277048643e-10,
+    1.0706029224547743e-11,
+    7.169215998581078e-13,
+    4.498331606952833e-14,
+    2.6552651846596585e-15,
+];
 
 /// The kernel t^{λ−1}/Γ(λ) approximated by C₀ + Σ_j c_j e^{−s_j t} on [δ, T].
 #[derive(Debug, Clone, PartialEq)]
@@ -319,6 +355,28 @@ mod tests {
                 let rel1 = (ua * wa + ub * wb - m1).abs() / m1;
                 assert!(rel1 < 1e-9, "moment λ={l} [{ua},{ub}]: {rel1}");
             }
+        }
+    }
+
+    #[test]
+    fn phi_psi_series_coefficients_are_the_factorials() {
+        let mut fact = 1.0; // k!
+        for k in 0..PHI_SERIES.len() {
+            if k > 0 {
+                fact *= k as f64;
+            }
+            let phi = 1.0 / (fact * (k as f64 + 1.0));
+            let psi = 1.0 / (fact * (k as f64 + 2.0));
+            assert!((PHI_SERIES[k] - phi).abs() <= 1e-15 * phi, "phi {k}");
+            assert!((PSI_SERIES[k] - psi).abs() <= 1e-15 * psi, "psi {k}");
+        }
+        // and the series against the closed form at small z, where it is well conditioned
+        for &z in &[1e-3, 0.01, 0.1, 0.3] {
+            let (p, s) = phi_psi(z);
+            let em1 = (-z).exp_m1();
+            assert!((p - (-em1 / z)).abs() < 2e-16, "phi at {z}");
+            let exact = (-em1 - z * (-z).exp()) / (z * z);
+            assert!((s - exact).abs() < 1e-12, "psi at {z}");
         }
     }
 

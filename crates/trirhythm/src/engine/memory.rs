@@ -365,6 +365,10 @@ pub(crate) struct History {
     local: Window,
     /// Split pieces still held exactly, by sequence number (pieces pushed since the start).
     splits: Vec<(u64, Split)>,
+    /// For each held split (same order), with a window: its scaled corrections — exact minus
+    /// plain weights of (left, before, after, right) — at distances 1..=cap (index p − 1),
+    /// computed once when the split is pushed, so that the fast path carries split pieces.
+    split_weights: Vec<Vec<[f64; 4]>>,
     pushed: u64,
     /// Weights of left/right of an unsplit piece at distance p (index p).
     wl: Vec<f64>,
@@ -417,6 +421,7 @@ impl History {
             all_right: vec![],
             local: Window::new(0),
             splits: vec![],
+            split_weights: vec![],
             pushed: 0,
             wl: vec![wb],
             wr: vec![wa],
@@ -590,7 +595,7 @@ impl History {
             self.cached = self.constant * self.integral;
             return;
         }
-        if !self.direct && self.local.cap > 0 && piece.split.is_none() && self.splits.is_empty() {
+        if !self.direct && self.local.cap > 0 && piece.split.is_none() && !self.split_leaves() {
             #[cfg(target_arch = "x86_64")]
             if self.avx {
                 // SAFETY: `avx` is true only when the CPU reported AVX at construction.
@@ -664,6 +669,60 @@ impl History {
             &self.swr_rev[w - n..],
         );
         self.cached = off + (self.newest.0 * left + self.newest.1 * right);
+        if !self.splits.is_empty() {
+            self.cached += self.held_split_corrections();
+        }
+    }
+
+    /// Whether the next push moves a split piece out of a full window (the general path).
+    #[inline]
+    fn split_leaves(&self) -> bool {
+        match self.splits.first() {
+            None => false,
+            Some(&(seq, _)) => {
+                self.local.len == self.local.cap && seq + self.local.cap as u64 == self.pushed
+            }
+        }
+    }
+
+    /// The held split pieces' corrections (exact minus plain weights, scaled), from the
+    /// weights computed when each was pushed.
+    #[cold]
+    fn held_split_corrections(&self) -> f64 {
+        let (l, r) = self.local.slices();
+        let first = self.pushed - l.len() as u64;
+        let mut acc = 0.0;
+        for (&(seq, s), w) in self.splits.iter().zip(&self.split_weights) {
+            let k = (seq - first) as usize;
+            let c = w[(self.pushed - seq) as usize - 1];
+            acc += ((c[0] * l[k] + c[1] * s.before) + c[2] * s.after) + c[3] * r[k];
+        }
+        acc
+    }
+
+    /// The scaled corrections of a split piece at distances 1..=cap (see `split_weights`).
+    fn split_weight_table(&mut self, s: &Split) -> Vec<[f64; 4]> {
+        let cap = self.local.cap;
+        self.grow_weights(cap);
+        (1..=cap)
+            .map(|p| {
+                let pf = p as f64;
+                let mid = pf + 1.0 - s.theta;
+                let (wa, wb) = interval_weights(self.lambda, pf, mid);
+                let (wa2, wb2) = if s.keep_before {
+                    interval_weights(self.lambda, mid, pf + 1.0)
+                } else {
+                    (0.0, 0.0)
+                };
+                let k = self.scale;
+                [
+                    k * (wb2 - self.wl[p]),
+                    k * wa2,
+                    k * wb,
+                    k * (wa - self.wr[p]),
+                ]
+            })
+            .collect()
     }
 
     /// [`History::push`] in general: Direct memory, split pieces, λ = 1.
@@ -672,6 +731,10 @@ impl History {
         self.pushed += 1;
         if let Some(s) = piece.split {
             self.splits.push((seq, s));
+            if !self.direct && self.local.cap > 0 {
+                let w = self.split_weight_table(&s);
+                self.split_weights.push(w);
+            }
         }
         if self.direct {
             self.all_left.push(piece.left);
@@ -701,6 +764,9 @@ impl History {
             let split = match self.splits.first() {
                 Some(&(s, sp)) if s == gone => {
                     self.splits.remove(0);
+                    if !self.split_weights.is_empty() {
+                        self.split_weights.remove(0);
+                    }
                     Some(sp)
                 }
                 _ => None,
@@ -798,6 +864,7 @@ impl History {
         self.all_left.clear();
         self.all_right.clear();
         self.splits.clear();
+        self.split_weights.clear();
         self.local.clear();
         self.modes.flat_mut().for_each(|y| *y = 0.0);
         self.integral = 0.0;
