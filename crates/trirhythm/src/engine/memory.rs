@@ -41,7 +41,7 @@
 //! portable and AVX fast paths give the same bits);
 //! `tests/soe.rs` (SOE against Direct on Eq. 1).
 
-use super::kernel::{interval_weights, phi_psi, SoeKernel};
+use super::kernel::{phi_psi, phi_psi_given, IntervalWeights, SoeKernel};
 use crate::error::{Error, Result};
 use crate::special::gamma;
 
@@ -90,18 +90,18 @@ pub(crate) struct Piece {
 
 /// Weights (of `left`, `right`) of an unsplit piece at distance p plus, when split, the
 /// exact contribution, all in units where the scale h^λ/Γ(λ) is left out.
-fn piece_integral(lambda: f64, piece: &Piece, p: f64) -> f64 {
+fn piece_integral(weights: &IntervalWeights, piece: &Piece, p: f64) -> f64 {
     match piece.split {
         None => {
-            let (wa, wb) = interval_weights(lambda, p, p + 1.0);
+            let (wa, wb) = weights.of(p, p + 1.0);
             wa * piece.right + wb * piece.left
         }
         Some(s) => {
             let mid = p + 1.0 - s.theta;
-            let (wa, wb) = interval_weights(lambda, p, mid);
+            let (wa, wb) = weights.of(p, mid);
             let mut v = wa * piece.right + wb * s.after;
             if s.keep_before {
-                let (wa, wb) = interval_weights(lambda, mid, p + 1.0);
+                let (wa, wb) = weights.of(mid, p + 1.0);
                 v += wa * s.before + wb * piece.left;
             }
             v
@@ -354,7 +354,8 @@ impl Modes {
 /// trapezoidal integral.
 #[derive(Debug, Clone)]
 pub(crate) struct History {
-    lambda: f64,
+    /// The exact weights of an interval at this λ (series coefficients computed once).
+    iw: IntervalWeights,
     dt: f64,
     /// h^λ / Γ(λ)
     scale: f64,
@@ -411,9 +412,10 @@ impl History {
         }
         let scale = dt.powf(lambda) / gamma(lambda);
         let direct = matches!(memory, Memory::Direct);
-        let (wa, wb) = interval_weights(lambda, 0.0, 1.0);
+        let iw = IntervalWeights::new(lambda);
+        let (wa, wb) = iw.of(0.0, 1.0);
         let mut c = History {
-            lambda,
+            iw,
             dt,
             scale,
             direct,
@@ -500,7 +502,7 @@ impl History {
     fn grow_weights(&mut self, p: usize) {
         while self.wl.len() <= p {
             let q = self.wl.len() as f64;
-            let (wa, wb) = interval_weights(self.lambda, q, q + 1.0);
+            let (wa, wb) = self.iw.of(q, q + 1.0);
             self.wl.push(wb);
             self.wr.push(wa);
         }
@@ -527,10 +529,10 @@ impl History {
     /// value) and the scaled weight of g_{n+1}.
     pub fn current_split(&self, left: f64, split: &Split) -> (f64, f64) {
         let mid = 1.0 - split.theta;
-        let (wa, wb) = interval_weights(self.lambda, 0.0, mid);
+        let (wa, wb) = self.iw.of(0.0, mid);
         let mut known = wb * split.after;
         if split.keep_before {
-            let (wa2, wb2) = interval_weights(self.lambda, mid, 1.0);
+            let (wa2, wb2) = self.iw.of(mid, 1.0);
             known += wa2 * split.before + wb2 * left;
         }
         (self.scale * known, self.scale * wa)
@@ -569,7 +571,7 @@ impl History {
         };
         let mut sum = 0.0;
         for (k, piece) in self.exact_pieces().enumerate() {
-            sum += piece_integral(self.lambda, &piece, (len - k) as f64 - shift);
+            sum += piece_integral(&self.iw, &piece, (len - k) as f64 - shift);
         }
         let mut total = self.scale * sum;
         if let Some(kernel) = &self.soe {
@@ -581,7 +583,7 @@ impl History {
             total += kernel.constant * self.integral
                 - kernel.slope * (self.moment + back * self.integral);
         }
-        let (wa, wb) = interval_weights(self.lambda, 0.0, theta);
+        let (wa, wb) = self.iw.of(0.0, theta);
         (total + self.scale * wb * left, self.scale * wa)
     }
 
@@ -708,9 +710,9 @@ impl History {
             .map(|p| {
                 let pf = p as f64;
                 let mid = pf + 1.0 - s.theta;
-                let (wa, wb) = interval_weights(self.lambda, pf, mid);
+                let (wa, wb) = self.iw.of(pf, mid);
                 let (wa2, wb2) = if s.keep_before {
-                    interval_weights(self.lambda, mid, pf + 1.0)
+                    self.iw.of(mid, pf + 1.0)
                 } else {
                     (0.0, 0.0)
                 };
@@ -808,7 +810,7 @@ impl History {
                 right: r[k],
                 split: Some(s),
             };
-            acc += piece_integral(self.lambda, &piece, p as f64)
+            acc += piece_integral(&self.iw, &piece, p as f64)
                 - (self.wl[p] * piece.left + self.wr[p] * piece.right);
         }
         acc
@@ -834,15 +836,20 @@ impl History {
                 let l1 = s.theta * h;
                 let l2 = h - l1;
                 let kernel = self.soe.as_ref().expect("SOE memory");
-                for (&rate, y) in kernel.rates.iter().zip(self.modes.y.iter_mut().flatten()) {
-                    let (phi, psi) = phi_psi(rate * l1);
+                let decays = self.modes.decay.iter().flatten();
+                let modes = kernel.rates.iter().zip(decays);
+                for ((&rate, &decay), y) in modes.zip(self.modes.y.iter_mut().flatten()) {
+                    // e^{−s l₂} = e^{−sh}/e^{−s l₁}: one exponential per mode (s·h ≤ ~2.4)
+                    let e1 = (-rate * l1).exp();
+                    let e2 = decay / e1;
+                    let (phi, psi) = phi_psi_given(rate * l1, e1);
                     let mut v = if s.keep_before {
-                        (-rate * l1).exp() * *y + l1 * psi * left + l1 * (phi - psi) * s.before
+                        e1 * *y + l1 * psi * left + l1 * (phi - psi) * s.before
                     } else {
                         0.0
                     };
-                    let (phi, psi) = phi_psi(rate * l2);
-                    v = (-rate * l2).exp() * v + l2 * psi * s.after + l2 * (phi - psi) * right;
+                    let (phi, psi) = phi_psi_given(rate * l2, e2);
+                    v = e2 * v + l2 * psi * s.after + l2 * (phi - psi) * right;
                     *y = v;
                 }
                 if s.keep_before {
