@@ -6,34 +6,39 @@
 //! ring, so their weighted sum is two dot products; a piece leaving the window enters every
 //! exponential mode by the exact recursion Y ← e^{−sΔt}Y + Δtψ g_start + Δt(φ − ψ) g_end (four
 //! lanes at a time, no fused multiply–add, so the bits do not depend on the CPU), and the lumped
-//! slow rates by their integral and first moment. At λ = 1 there is no window: J¹g is the running
-//! trapezoidal integral. `Direct` keeps every piece (the O(N) reference). The history is linear
-//! in g, so a perturbed copy is renormalised toward its reference number by number, the whole
-//! memory included ([`History::contract_toward`], Benettin's method for the fractional state).
+//! slow rates (a cubic in t, see [`super::kernel`]) by the moments m_k = ∫(t_m − s)ᵏ g ds,
+//! k ≤ 3, advanced exactly by the binomial theorem. At λ = 1 there is no window: J¹g is the
+//! running trapezoidal integral. `Direct` keeps every piece (the O(N) reference). The history
+//! is linear in g, so a perturbed copy is renormalised toward its reference number by number,
+//! the whole memory included ([`History::contract_toward`], Benettin's method for the
+//! fractional state).
 //!
 //! # Cost and the step's dependency chain
 //! The step's critical path runs through the memory: the newest piece (g_n, computed from
 //! V_n) enters J for the next step, which gives V_{n+1}. Everything else — the modes advanced
 //! by the piece leaving the window (15 steps old), the lumped terms, the window's 14 older
-//! pieces — does not depend on it. The fast path ([`History::push`] for an unsplit piece with
-//! no split piece in the window, the common case) therefore sums all of that first and adds the
-//! newest piece last, with its weights pre-multiplied by h^λ/Γ(λ): two operations on the chain
-//! instead of a 15-term dot product, and the rest overlaps with the step. The mode sums Σ out·Y
-//! run in two accumulators (even and odd blocks of four), halving the serial additions; the
-//! part a·l + b·r of each mode, independent of Y, is formed first. The AVX versions do the
-//! portable versions' operations in the same order (no FMA): same bits on every CPU (unit test
-//! `portable_and_avx_memories_give_the_same_bits`). Split pieces, `Direct` and the first steps
-//! take the general path. At λ = 1 a push is one addition to the running integral.
+//! pieces — does not depend on it. The fast path ([`History::push`] for an unsplit piece that
+//! does not push a split piece out of the window, all but two steps per impact) therefore sums
+//! all of that first and adds the newest piece last, with its weights pre-multiplied by
+//! h^λ/Γ(λ): two operations on the chain instead of a 15-term dot product, and the rest
+//! overlaps with the step. The mode sums Σ out·Y run in two accumulators (even and odd blocks
+//! of four), halving the serial additions; the part a·l + b·r of each mode, independent of Y,
+//! is formed first. The AVX versions do the portable versions' operations in the same order
+//! (no FMA): same bits on every CPU (unit test `portable_and_avx_memories_give_the_same_bits`).
+//! A split piece inside the window adds its exact-minus-plain weights, tabulated for every
+//! distance once when it is pushed; pushing a split piece, a split piece leaving the window,
+//! `Direct` and the first steps take the general path. At λ = 1 a push is one addition to the
+//! running integral.
 //!
-//! What bounds the cost (measured, see the README's Simulation section): with 49 modes the
-//! mode update is ~13 four-lane blocks of 4 multiplies and 3 adds and one store per step, plus
-//! ~30 multiply–adds of the window: throughput work of the same order as the step's own
-//! dependency chain (two evaluations of P, a division). Fewer modes at the same verified
-//! tolerance would help most: 17 of the 49 rates have s·T < 1e-4…1 and could be lumped into a
-//! few more moments than the present constant and slope (about a fifth fewer modes; not
-//! implemented). Updating the modes in blocks of B steps does not reduce the work: every piece
-//! still needs its two weights in every mode and every step its own output weights (about 6
-//! instead of 7 flops per mode and step at B = 4), so it is not used.
+//! What bounds the cost (measured, see the README's Simulation section): with 39 modes (λ =
+//! 0.998, 10⁷ steps, 1e-10) the mode update is 10 four-lane blocks of 4 multiplies, 3 adds and
+//! one store per step, plus ~30 multiply–adds of the window: throughput work of the same order
+//! as the step's own dependency chain (two evaluations of P, a division). Impacts cost ~4 µs
+//! each at λ < 1 (the split's weight table, the Volterra value at the impact instant, the
+//! split piece entering every mode with its own exponential). Updating the modes in blocks of
+//! B steps does not reduce the work: every piece still needs its two weights in every mode
+//! and every step its own output weights (about 6 instead of 7 flops per mode and step at
+//! B = 4), so it is not used.
 //!
 //! # Tests
 //! Unit tests below (the scalar solver at order 1 is the trapezoidal PECE by hand; scaling the
