@@ -64,7 +64,9 @@
 //! critical noise of a family with a known sign change is bracketed.
 
 use super::ensemble::Estimate;
-use crate::engine::{fresh_history, Barrier, Oscillator, PredictorCorrector, Stepper, System};
+use crate::engine::{
+    fresh_history, Barrier, Oscillator, PredictorCorrector, Stepper, System, Tangent,
+};
 use crate::error::{Error, Result};
 use crate::model::Params;
 use rayon::prelude::*;
@@ -101,6 +103,30 @@ pub struct LyapunovSpec {
     pub running_points: usize,
     /// |U| or |U̇| above this is a blow-up.
     pub blow_up: f64,
+    /// Tangent (variational) equation or two trajectories.
+    pub method: LyapunovMethod,
+}
+
+/// How the perturbation is followed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LyapunovMethod {
+    /// A perturbed copy on the same noise, pulled back with its whole memory (Benettin).
+    #[default]
+    TwoTrajectory,
+    /// The variational equation stepped with the path, its memory a second history of δg, the
+    /// saltation of the impact map at impacts (`engine::stepper::tangent`).
+    Tangent,
+}
+
+impl LyapunovMethod {
+    /// The name used on the command line and in output files.
+    pub fn name(self) -> &'static str {
+        match self {
+            LyapunovMethod::TwoTrajectory => "two-trajectory",
+            LyapunovMethod::Tangent => "tangent",
+        }
+    }
 }
 
 impl Default for LyapunovSpec {
@@ -118,6 +144,7 @@ impl Default for LyapunovSpec {
             separation: 1e-8,
             running_points: 100,
             blow_up: 1e8,
+            method: LyapunovMethod::TwoTrajectory,
         }
     }
 }
@@ -266,26 +293,84 @@ pub fn mean_and_stderr(xs: &[f64]) -> Estimate {
     }
 }
 
+/// The outcome of a due renormalisation.
+enum Renormalised {
+    /// Done: the perturbation had grown by this factor since the last one.
+    Grown(f64),
+    /// Refused now (tried again at the next step); `merged` when the perturbation is 0 in
+    /// (δU, δU̇) (at rest on the wall).
+    Refused { merged: bool },
+}
+
+/// How one realisation follows its perturbation: advance both one step, renormalise.
+trait Perturbation {
+    fn step(&mut self) -> Result<()>;
+    fn renormalise(&mut self) -> Renormalised;
+    /// The reference path.
+    fn reference(&self) -> &Stepper;
+}
+
+/// Two trajectories on the same noise; the copy pulled back to d₀ with its whole memory.
+struct TwoPaths {
+    a: Stepper,
+    b: Stepper,
+    d0: f64,
+}
+
+impl Perturbation for TwoPaths {
+    fn step(&mut self) -> Result<()> {
+        self.a.step().and_then(|_| self.b.step())
+    }
+
+    fn renormalise(&mut self) -> Renormalised {
+        let (du, dv) = self.b.separation(&self.a);
+        let d = du.hypot(dv);
+        if d > 0.0 && d.is_finite() && self.b.contract_toward(&self.a, self.d0 / d) {
+            Renormalised::Grown(d / self.d0)
+        } else {
+            Renormalised::Refused { merged: d == 0.0 }
+        }
+    }
+
+    fn reference(&self) -> &Stepper {
+        &self.a
+    }
+}
+
+/// The path and its tangent, renormalised to norm 1 by scaling the whole tangent state.
+struct PathAndTangent {
+    a: Stepper,
+    t: Tangent,
+}
+
+impl Perturbation for PathAndTangent {
+    fn step(&mut self) -> Result<()> {
+        self.a.step_with_tangent(&mut self.t)
+    }
+
+    fn renormalise(&mut self) -> Renormalised {
+        let d = self.t.norm();
+        if d > 0.0 && d.is_finite() {
+            self.t.scale(1.0 / d);
+            Renormalised::Grown(d)
+        } else {
+            Renormalised::Refused { merged: d == 0.0 }
+        }
+    }
+
+    fn reference(&self) -> &Stepper {
+        &self.a
+    }
+}
+
 /// One realisation: its exponent and its running estimate at `running_points` checkpoints.
 fn one_path(
-    reference: Stepper,
+    mut p: impl Perturbation,
     spec: &LyapunovSpec,
     (transient, window): (u64, u64),
     path: u64,
-    copy: Stepper,
     tick: &dyn Fn(u64),
 ) -> Result<(PathExponent, Vec<f64>)> {
-    let mut a = reference;
-    let mut b = copy;
-    let d0 = spec.separation;
-    // the copy starts one unit away along U: pull it to d₀ (both at step 0, empty memories)
-    let (du, dv) = b.separation(&a);
-    if !b.contract_toward(&a, d0 / du.hypot(dv)) {
-        return Err(Error::Undefined {
-            what: "Lyapunov exponent",
-            why: "the perturbed copy could not be placed at the start".into(),
-        });
-    }
     let total = transient + window;
     let every = spec.renormalise_every;
     let checkpoints = spec.running_points as u64;
@@ -295,10 +380,10 @@ fn one_path(
     // the step of the last accepted renormalisation, and of the one that opened the window
     let (mut last, mut start) = (0u64, 0u64);
     let mut next = every;
-    let dt = a.dt();
+    let dt = p.reference().dt();
     let tick_every = 1u64 << 14;
     for n in 1..=total {
-        a.step().and_then(|_| b.step()).map_err(|e| match e {
+        p.step().map_err(|e| match e {
             Error::BlowUp { .. } => Error::Undefined {
                 what: "Lyapunov exponent",
                 why: format!("path {path}: {e}"),
@@ -306,21 +391,22 @@ fn one_path(
             other => other,
         })?;
         if n >= next {
-            let (du, dv) = b.separation(&a);
-            let d = du.hypot(dv);
-            if d > 0.0 && d.is_finite() && b.contract_toward(&a, d0 / d) {
-                if n > transient {
-                    log_sum += (d / d0).ln();
-                    count += 1;
-                } else {
-                    start = n;
+            match p.renormalise() {
+                Renormalised::Grown(factor) => {
+                    if n > transient {
+                        log_sum += factor.ln();
+                        count += 1;
+                    } else {
+                        start = n;
+                    }
+                    last = n;
+                    next = n + every;
                 }
-                last = n;
-                next = n + every;
-            } else {
-                deferred += 1;
-                if d == 0.0 && n > transient {
-                    merged += 1;
+                Renormalised::Refused { merged: zero } => {
+                    deferred += 1;
+                    if zero && n > transient {
+                        merged += 1;
+                    }
                 }
             }
         }
@@ -343,10 +429,11 @@ fn one_path(
         }
     }
     tick(total % tick_every);
+    let impacts = p.reference().impacts();
     let measured_time = (last - start) as f64 * dt;
     if count == 0 && merged > 0 {
-        // the copy coincides with the reference (both at rest on the wall): the perturbation
-        // was annihilated, a contraction faster than any exponential
+        // the perturbation vanished (at rest on the wall): a contraction faster than any
+        // exponential
         return Ok((
             PathExponent {
                 path,
@@ -354,7 +441,7 @@ fn one_path(
                 measured_time: 0.0,
                 renormalisations: 0,
                 deferred,
-                impacts: a.impacts(),
+                impacts,
             },
             running,
         ));
@@ -375,7 +462,7 @@ fn one_path(
             measured_time,
             renormalisations: count,
             deferred,
-            impacts: a.impacts(),
+            impacts,
         },
         running,
     ))
@@ -421,8 +508,27 @@ pub fn largest_lyapunov(
                 )
             };
             let a = make(spec.u0)?;
-            let b = make(spec.u0 + shift)?;
-            one_path(a, spec, (transient, window), i, b, &tick)
+            let sizes = (transient, window);
+            match spec.method {
+                LyapunovMethod::TwoTrajectory => {
+                    let mut b = make(spec.u0 + shift)?;
+                    // the copy starts one unit away along U: pull it to d₀ (both at step 0,
+                    // empty memories)
+                    let (du, dv) = b.separation(&a);
+                    let d0 = spec.separation;
+                    if !b.contract_toward(&a, d0 / du.hypot(dv)) {
+                        return Err(Error::Undefined {
+                            what: "Lyapunov exponent",
+                            why: "the perturbed copy could not be placed at the start".into(),
+                        });
+                    }
+                    one_path(TwoPaths { a, b, d0 }, spec, sizes, i, &tick)
+                }
+                LyapunovMethod::Tangent => {
+                    let t = Tangent::new(&a, (shift, 0.0));
+                    one_path(PathAndTangent { a, t }, spec, sizes, i, &tick)
+                }
+            }
         })
         .collect::<Result<_>>()?;
     let exponents: Vec<f64> = results.iter().map(|r| r.0.exponent).collect();
