@@ -1,4 +1,4 @@
-//! `trirhythm lyapunov`: the largest Lyapunov exponent with frozen noise (two trajectories,
+//! `trirhythm lyapunov`: the largest Lyapunov exponent with frozen noise (two trajectories or the tangent equation,
 //! whole-history renormalisation), optionally swept over a parameter; `trirhythm
 //! critical-noise`: the noise D_c where it changes sign. Keys, columns and flags are a
 //! contract: keep them.
