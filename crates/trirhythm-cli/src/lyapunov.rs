@@ -1,4 +1,4 @@
-//! `trirhythm lyapunov`: the largest Lyapunov exponent with frozen noise (two trajectories,
+//! `trirhythm lyapunov`: the largest Lyapunov exponent with frozen noise (two trajectories or the tangent equation,
 //! whole-history renormalisation), optionally swept over a parameter; `trirhythm
 //! critical-noise`: the noise D_c where it changes sign. Keys, columns and flags are a
 //! contract: keep them.
@@ -18,11 +18,29 @@ use trirhythm::model::Params;
 /// How the exponent is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
 pub enum LyapunovMethod {
-    /// The variational equation with the saltation matrix at impacts (not yet implemented).
+    /// The variational equation stepped with the path: its memory a second history of δg,
+    /// renormalised whole; at impacts the saltation of the impact map, the shift of the impact
+    /// time included (exact derivative of the step between impacts).
     Tangent,
-    /// Two paths on the same noise, the copy pulled back with its whole memory (Benettin).
+    /// Two paths on the same noise, the copy pulled back to --separation with its whole memory
+    /// (Benettin).
     #[default]
     TwoTrajectory,
+}
+
+impl LyapunovMethod {
+    fn library(self) -> trirhythm::analysis::lyapunov::LyapunovMethod {
+        match self {
+            LyapunovMethod::Tangent => trirhythm::analysis::lyapunov::LyapunovMethod::Tangent,
+            LyapunovMethod::TwoTrajectory => {
+                trirhythm::analysis::lyapunov::LyapunovMethod::TwoTrajectory
+            }
+        }
+    }
+
+    fn name(self) -> &'static str {
+        self.library().name()
+    }
 }
 
 /// The simulation shared by `lyapunov` and `critical-noise`.
@@ -63,7 +81,10 @@ pub struct LleArgs {
     /// Relative tolerance of the sum-of-exponentials kernel.
     #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
     pub tolerance: f64,
-    /// How the exponent is computed.
+    /// How the exponent is computed: `two-trajectory` (a perturbed copy on the same noise,
+    /// pulled back to --separation with its whole memory) or `tangent` (the variational
+    /// equation with its own memory and the saltation of the impact map; --separation unused).
+    /// They agree within their standard errors (README, "Lyapunov exponents").
     #[arg(long, value_enum, default_value_t = LyapunovMethod::TwoTrajectory)]
     pub method: LyapunovMethod,
     /// Steps between renormalisations, 1 to 1000000.
@@ -80,12 +101,6 @@ pub struct LleArgs {
 
 impl LleArgs {
     fn setup(&self) -> Result<(Params, PredictorCorrector, LyapunovSpec)> {
-        if self.method == LyapunovMethod::Tangent {
-            return bad(
-                "--method tangent is not yet implemented (the variational equation with the \
-                 saltation matrix at impacts); use --method two-trajectory",
-            );
-        }
         let params = self.params.resolve()?;
         if !(self.dt >= 1e-4 && self.dt <= 0.1) {
             return bad(format!(
@@ -148,6 +163,7 @@ impl LleArgs {
             },
             renormalise_every: self.renormalise_every,
             separation: self.separation,
+            method: self.method.library(),
             ..Default::default()
         };
         Ok((params, method, spec))
@@ -155,12 +171,20 @@ impl LleArgs {
 
     fn describe(&self) -> Vec<String> {
         vec![
-            format!(
-                "method: two trajectories on the same noise (frozen noise), the copy pulled back \
-                 to d0 = {} every {} steps with its whole memory",
-                num(self.separation),
-                self.renormalise_every
-            ),
+            match self.method {
+                LyapunovMethod::TwoTrajectory => format!(
+                    "method: two trajectories on the same noise (frozen noise), the copy pulled \
+                     back to d0 = {} every {} steps with its whole memory",
+                    num(self.separation),
+                    self.renormalise_every
+                ),
+                LyapunovMethod::Tangent => format!(
+                    "method: tangent (variational) equation along the path (frozen noise), its \
+                     memory a second history of the perturbation, the saltation of the impact \
+                     map at impacts; the whole tangent state renormalised every {} steps",
+                    self.renormalise_every
+                ),
+            },
             format!(
                 "simulation: predictor-corrector dt = {}, {} memory, {} impact memory, system {}, \
                  barrier {}, U(0) = {}",
@@ -250,7 +274,7 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
             SimFormat::Json => {
                 let doc = json!({
                     "params": params_json(&base),
-                    "method": "two-trajectory",
+                    "method": args.sim.method.name(),
                     "sweep": key,
                     "window": jnum(spec.length),
                     "points": rows.iter().map(|(v, r)| json!({
@@ -288,7 +312,7 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
         SimFormat::Json => {
             let doc = json!({
                 "params": params_json(&base),
-                "method": "two-trajectory",
+                "method": args.sim.method.name(),
                 "system": args.sim.system.to_possible_value().expect("named").get_name(),
                 "barrier": args.sim.barrier.to_possible_value().expect("named").get_name(),
                 "impact_memory": args.sim.impact_memory.to_possible_value().expect("named").get_name(),
@@ -486,7 +510,7 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
         SimFormat::Json => {
             let doc = json!({
                 "params": params_json(&base),
-                "method": "two-trajectory",
+                "method": args.sim.method.name(),
                 "window": jnum(spec.length),
                 "paths": spec.paths,
                 "d_range": [jnum(d_lo), jnum(d_hi)],

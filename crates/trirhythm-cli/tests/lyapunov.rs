@@ -1,6 +1,6 @@
 //! `trirhythm lyapunov` and `trirhythm critical-noise` from the outside: the JSON and CSV
 //! contracts, the known exponent of the damped linear oscillator, "no sign change in range"
-//! said plainly, and bad input (exit 2 naming the flag).
+//! said plainly, both methods (`--method two-trajectory | tangent`), and bad input (exit 2 naming the flag).
 
 mod common;
 
@@ -54,6 +54,13 @@ fn json_has_the_exponent_its_error_per_path_and_running() {
     assert_eq!(running.len(), 100);
     assert_eq!(running[0].as_array().unwrap().len(), 2);
     assert_eq!(doc["method"], "two-trajectory");
+    // the tangent method: the same known exponent, and recorded as such
+    args.extend(["--method", "tangent"]);
+    let doc = ok_json(&args);
+    let t = doc["lle"]["value"].as_f64().unwrap();
+    assert!((t + 0.05).abs() < 2e-3, "tangent LLE {t} vs −μ0/2 = −0.05");
+    assert!((t - v).abs() < 1e-6, "tangent {t} vs two trajectories {v}");
+    assert_eq!(doc["method"], "tangent");
 }
 
 #[test]
@@ -107,10 +114,6 @@ fn critical_noise_says_when_there_is_no_sign_change() {
 #[test]
 fn bad_input_names_the_flag() {
     for (args, needle) in [
-        (
-            vec!["lyapunov", "--method", "tangent"],
-            "not yet implemented",
-        ),
         (vec!["lyapunov", "--paths", "0"], "--paths"),
         (vec!["lyapunov", "--dt", "1"], "--dt"),
         (vec!["lyapunov", "--separation", "0.1"], "--separation"),

@@ -7,13 +7,18 @@
 //! - At λ = 1, Eq. (1) with the wall and Eq. (9) on the whole line are the same motion (U = |Z|),
 //!   so they have the same LLE, noise included.
 //! - Path i depends only on (seed, i): one thread and two give bit-identical results.
+//! - The tangent (variational) method: the damped oscillator's −μ0/2, and agreement with two
+//!   trajectories within their combined standard errors on a limit cycle with the wall (λ = 1),
+//!   a noisy case with the wall (λ = 0.998, Fig. 17(a)'s parameters, both impact memories) and a
+//!   fractional case without the wall (where, with no impact, the tangent is the exact
+//!   derivative of the step and the two agree path by path).
 //! - A family without a sign change (the linear oscillator) is reported as such by the
 //!   critical-noise search, never with a made-up D_c.
 
 use trirhythm::analysis::lyapunov::{
-    critical_noise, largest_lyapunov, CriticalSearch, LyapunovResult, LyapunovSpec,
+    critical_noise, largest_lyapunov, CriticalSearch, LyapunovMethod, LyapunovResult, LyapunovSpec,
 };
-use trirhythm::engine::{Barrier, Oscillator, PredictorCorrector, System};
+use trirhythm::engine::{Barrier, ImpactMemory, Oscillator, PredictorCorrector, System};
 use trirhythm::model::{preset, Params};
 
 const SEED: u64 = 20240611;
@@ -189,4 +194,166 @@ fn no_sign_change_is_reported_as_such() {
     assert!(c.d_c.is_nan() && c.d_c_lo.is_nan() && c.d_c_hi.is_nan());
     assert_eq!(c.evaluated.len(), 3);
     assert!(c.evaluated.iter().all(|q| q.lle.value < 0.0));
+}
+
+fn lle_with(p: &Params, method: &PredictorCorrector, spec: &LyapunovSpec) -> LyapunovResult {
+    let osc = Oscillator::new(p).unwrap();
+    largest_lyapunov(&osc, method, spec, None).unwrap()
+}
+
+/// Both methods on the same paths; returns (two-trajectory, tangent, z of their difference).
+fn both(
+    p: &Params,
+    method: &PredictorCorrector,
+    spec: &LyapunovSpec,
+) -> (LyapunovResult, LyapunovResult, f64) {
+    let two = lle_with(
+        p,
+        method,
+        &LyapunovSpec {
+            method: LyapunovMethod::TwoTrajectory,
+            ..spec.clone()
+        },
+    );
+    let tangent = lle_with(
+        p,
+        method,
+        &LyapunovSpec {
+            method: LyapunovMethod::Tangent,
+            ..spec.clone()
+        },
+    );
+    let z = (two.lle.value - tangent.lle.value).abs() / two.lle.stderr.hypot(tangent.lle.stderr);
+    eprintln!(
+        "two-trajectory {} ± {}, tangent {} ± {}, z = {z:.3}; largest per-path difference {:e}",
+        two.lle.value,
+        two.lle.stderr,
+        tangent.lle.value,
+        tangent.lle.stderr,
+        largest_difference(&two, &tangent)
+    );
+    (two, tangent, z)
+}
+
+fn largest_difference(a: &LyapunovResult, b: &LyapunovResult) -> f64 {
+    a.per_path
+        .iter()
+        .zip(&b.per_path)
+        .map(|(x, y)| (x.exponent - y.exponent).abs())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn tangent_damped_linear_oscillator_has_minus_half_the_damping() {
+    let mu0 = 0.1;
+    let spec = LyapunovSpec {
+        paths: 2,
+        seed: SEED,
+        transient: 50.0,
+        length: 1000.0,
+        barrier: Barrier::Off,
+        method: LyapunovMethod::Tangent,
+        ..Default::default()
+    };
+    for d in [0.0, 1.0] {
+        let r = lle(&linear(mu0, d), &spec);
+        let err = r.lle.value + mu0 / 2.0;
+        eprintln!("D = {d}: tangent LLE {} (error {err:e})", r.lle.value);
+        assert!(
+            err.abs() < 1e-3,
+            "D = {d}: LLE {} (error {err:e})",
+            r.lle.value
+        );
+        assert!(r.lle.stderr < 1e-9, "D = {d}: stderr {}", r.lle.stderr);
+    }
+}
+
+#[test]
+fn tangent_and_two_trajectories_agree_on_a_limit_cycle_with_the_wall() {
+    // λ = 1, an impacting limit cycle (≈ 0.3 impacts per unit time), a trace of noise so that
+    // the paths differ and the standard errors exist
+    let p = params(&[("lambda", 1.0), ("mu0", 0.1), ("omega0", 1.0), ("D", 1e-4)]);
+    let spec = LyapunovSpec {
+        paths: 4,
+        seed: SEED,
+        transient: 200.0,
+        length: 1000.0,
+        u0: 2.0,
+        ..Default::default()
+    };
+    let method = PredictorCorrector {
+        impact_memory: ImpactMemory::Continuous,
+        ..Default::default()
+    };
+    let (two, tangent, z) = both(&p, &method, &spec);
+    assert!(two.per_path.iter().all(|q| q.impacts > 200));
+    assert!(z < 3.0, "z = {z}");
+    // a limit cycle: both near 0
+    assert!(two.lle.value.abs() < 1e-3 && tangent.lle.value.abs() < 1e-3);
+}
+
+#[test]
+fn tangent_and_two_trajectories_agree_on_a_noisy_fractional_impact_oscillator() {
+    // Fig. 17(a)'s parameters at λ = 0.998, D = 0.5: ≈ 0.3 impacts per unit time
+    let p = params(&[("lambda", 0.998), ("D", 0.5)]);
+    let spec = LyapunovSpec {
+        paths: 8,
+        seed: SEED,
+        transient: 100.0,
+        length: 1000.0,
+        ..Default::default()
+    };
+    for memory in [ImpactMemory::Restart, ImpactMemory::Continuous] {
+        let method = PredictorCorrector {
+            impact_memory: memory,
+            ..Default::default()
+        };
+        let (two, _, z) = both(&p, &method, &spec);
+        assert!(two.per_path.iter().all(|q| q.impacts > 200));
+        assert!(z < 3.0, "{memory:?}: z = {z}");
+    }
+}
+
+#[test]
+fn tangent_and_two_trajectories_agree_path_by_path_without_the_wall() {
+    // no impact: the tangent is the exact derivative of the step, so the two differ only by
+    // the two-trajectory method's O(d₀) nonlinearity and rounding
+    for lambda in [0.998, 0.95] {
+        let p = params(&[("lambda", lambda), ("D", 0.3)]);
+        let spec = LyapunovSpec {
+            paths: 4,
+            seed: SEED,
+            transient: 100.0,
+            length: 1000.0,
+            barrier: Barrier::Off,
+            ..Default::default()
+        };
+        let (two, tangent, z) = both(&p, &PredictorCorrector::default(), &spec);
+        assert!(z < 3.0, "λ = {lambda}: z = {z}");
+        let worst = largest_difference(&two, &tangent);
+        assert!(worst < 3e-6, "λ = {lambda}: per-path difference {worst:e}");
+    }
+}
+
+#[test]
+fn tangent_one_thread_or_two_give_the_same_exponent() {
+    let p = params(&[("D", 0.3)]);
+    let spec = LyapunovSpec {
+        paths: 3,
+        seed: SEED,
+        transient: 20.0,
+        length: 200.0,
+        method: LyapunovMethod::Tangent,
+        ..Default::default()
+    };
+    let run = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| lle(&p, &spec))
+    };
+    let one = run(1);
+    assert!(one.per_path.iter().all(|q| q.impacts > 10));
+    assert_eq!(one, run(2));
 }

@@ -1079,6 +1079,24 @@ pub fn probe_memory(lambda: f64, dt: f64, steps: usize) -> Result<f64> {
     Ok(acc)
 }
 
+/// What the tangent (variational) method needs from a history: the memory of δg is a second
+/// [`History`] with the reference's layout (same kernel, same pieces held exactly, splits at the
+/// same fractions), renormalised by scaling every number of it.
+impl History {
+    /// Multiply every number of the history's state by `c` (window, split values, SOE modes,
+    /// lumped integral and moment, the cached value): the history of c·g, since J^λ is linear.
+    pub(crate) fn scale_state(&mut self, c: f64) {
+        self.zip_state(None, &mut |_, v| *v *= c);
+    }
+
+    /// Whether `other` holds its history in the same layout as this one (see
+    /// [`History::contract_toward`]): a tangent memory must stay in step with its reference's.
+    #[cfg(test)]
+    pub(crate) fn same_layout_as(&self, other: &History) -> bool {
+        self.same_layout(other)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

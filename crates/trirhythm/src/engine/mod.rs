@@ -27,5 +27,5 @@ pub use drivers::{
 pub(crate) use memory::History;
 pub use memory::{probe_memory, solve_scalar, Memory, DEFAULT_WINDOW};
 pub use problem::{Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System};
-pub(crate) use stepper::fresh_history;
+pub(crate) use stepper::{fresh_history, Tangent};
 pub use stepper::{Impact, StepEvents, Stepper};

@@ -78,6 +78,10 @@ use super::noise::NoiseStream;
 use super::problem::{Barrier, ImpactMemory, Oscillator, PredictorCorrector, System};
 use crate::error::{Error, Exact, Result};
 
+#[path = "tangent.rs"]
+mod tangent;
+pub(crate) use tangent::Tangent;
+
 /// A polynomial Σ a_k x^k: up to degree 7 evaluated by Estrin's scheme (three levels of
 /// independent multiply–adds instead of Horner's chain of seven: it is on the step's critical
 /// path twice), beyond that by Horner.
@@ -90,7 +94,10 @@ enum Polynomial {
 impl Polynomial {
     /// μ·(c_0, c_1, …).
     fn scaled(mu: f64, c: &[f64]) -> Self {
-        let a: Vec<f64> = c.iter().map(|&c| mu * c).collect();
+        Self::from_coefficients(c.iter().map(|&c| mu * c).collect())
+    }
+
+    fn from_coefficients(a: Vec<f64>) -> Self {
         if a.len() <= 8 {
             let mut s = [0.0; 8];
             s[..a.len()].copy_from_slice(&a);
@@ -115,6 +122,21 @@ impl Polynomial {
             Polynomial::Long(c) => c.iter().rev().fold(0.0, |acc, &c| acc * x + c),
         }
     }
+
+    /// The derivative Σ k a_k x^{k−1}.
+    fn derivative(&self) -> Self {
+        let a: &[f64] = match self {
+            Polynomial::Short(c) => c,
+            Polynomial::Long(c) => c,
+        };
+        Self::from_coefficients(
+            a.iter()
+                .enumerate()
+                .skip(1)
+                .map(|(k, &c)| k as f64 * c)
+                .collect(),
+        )
+    }
 }
 
 /// g(U, V, η) = μP(U)V − ω²U + γ·side·η of one system.
@@ -123,6 +145,8 @@ pub(crate) struct Rhs {
     pub lambda: f64,
     /// μP as a polynomial in U².
     damping: Polynomial,
+    /// Its derivative in U², so that d(μP)/dU = 2U·slope(U²) (the tangent method).
+    slope: Polynomial,
     omega2: f64,
     gain: f64,
     /// Eq. (1) and (5) reflect at the wall; Eq. (9) crosses.
@@ -137,6 +161,7 @@ impl Rhs {
         match system {
             System::Fractional => Rhs {
                 lambda: p.lambda,
+                slope: Polynomial::scaled(p.mu0, &p.damping.coefficients).derivative(),
                 damping: Polynomial::scaled(p.mu0, &p.damping.coefficients),
                 omega2: p.omega0 * p.omega0,
                 gain: 1.0,
@@ -148,6 +173,7 @@ impl Rhs {
                 c[0] = e.beta1;
                 Rhs {
                     lambda: 1.0,
+                    slope: Polynomial::scaled(e.mu1, &c).derivative(),
                     damping: Polynomial::scaled(e.mu1, &c),
                     omega2: e.omega1 * e.omega1,
                     gain: e.beta2,
@@ -162,6 +188,12 @@ impl Rhs {
     #[inline]
     fn damping(&self, u: f64) -> f64 {
         self.damping.eval(u * u)
+    }
+
+    /// d(μP)/dU = 2U·(μP)′ in U², the tangent method's derivative of the damping.
+    #[inline]
+    fn damping_slope(&self, u: f64) -> f64 {
+        2.0 * u * self.slope.eval(u * u)
     }
 
     /// The deterministic part μP(U)V − ω²U of g.
@@ -555,16 +587,38 @@ impl Stepper {
     /// state at the end of the step.
     #[cold]
     fn impact(&mut self, gl: f64, (el, er): (f64, f64), (u1, v1): (f64, f64)) -> (Split, f64, f64) {
+        let c = self.locate(gl, (el, er), (u1, v1));
+        let rest = self.jump(&c, gl, er);
+        (rest.split, rest.u_end, rest.v_end)
+    }
+
+    /// Where the current step, whose free end was (u1, v1), crosses U = 0, and the scheme's
+    /// velocity there (changes nothing).
+    fn locate(&self, gl: f64, (el, er): (f64, f64), (u1, v1): (f64, f64)) -> Crossing {
         let h = self.h;
-        let side = self.side;
         let theta = hermite_root(self.u, self.v, u1, v1, h);
         let eta_star = el + theta * (er - el);
         // g at U = 0 is a0·V + forcing
         let a0 = self.rhs.damping(0.0);
         let (hs, ws) = self.history.at_fraction(theta, gl);
-        let forcing = self.rhs.forcing(eta_star, side);
+        let forcing = self.rhs.forcing(eta_star, self.side);
         // the scheme's own V(t*−); at a grazing wall impact it may come out ≥ 0: then V₋ = 0
         let v_at = (self.base + hs + ws * forcing) / (1.0 - ws * a0);
+        Crossing {
+            theta,
+            eta_star,
+            a0,
+            ws,
+            forcing,
+            v_at,
+        }
+    }
+
+    /// Jump at the located crossing `c` and redo the rest of the step.
+    fn jump(&mut self, c: &Crossing, gl: f64, er: f64) -> Rest {
+        let h = self.h;
+        let side = self.side;
+        let (theta, a0, v_at) = (c.theta, c.a0, c.v_at);
         let (v_minus, v_plus, new_side) = if self.crossing {
             (v_at, self.rhs.restitution * v_at, -side)
         } else {
@@ -578,10 +632,10 @@ impl Stepper {
             v_plus,
         });
         self.side = new_side;
-        let after_forcing = self.rhs.forcing(eta_star, new_side);
+        let after_forcing = self.rhs.forcing(c.eta_star, new_side);
         let split = Split {
             theta,
-            before: a0 * v_at + forcing,
+            before: a0 * v_at + c.forcing,
             after: a0 * v_plus + after_forcing,
             keep_before: !self.restart,
         };
@@ -598,10 +652,54 @@ impl Stepper {
         let hh = (1.0 - theta) * h;
         let up = hh * v_plus;
         let a = self.rhs.damping(up);
-        let v_end = (known + wr_s * (self.rhs.forcing(er, new_side) - self.rhs.omega2 * up))
-            / (1.0 - wr_s * a);
-        (split, 0.5 * hh * (v_plus + v_end), v_end)
+        let denominator = 1.0 - wr_s * a;
+        let v_end =
+            (known + wr_s * (self.rhs.forcing(er, new_side) - self.rhs.omega2 * up)) / denominator;
+        Rest {
+            split,
+            v_minus,
+            hh,
+            wr_s,
+            up,
+            denominator,
+            u_end: 0.5 * hh * (v_plus + v_end),
+            v_end,
+        }
     }
+}
+
+/// An impact located inside a step ([`Stepper::locate`]).
+#[derive(Debug, Clone, Copy)]
+struct Crossing {
+    /// Its fraction θ of the step.
+    theta: f64,
+    /// η at the instant.
+    eta_star: f64,
+    /// μP(0).
+    a0: f64,
+    /// The scaled weight of g(t*) in V(t*).
+    ws: f64,
+    /// The forcing at the instant, on the side before.
+    forcing: f64,
+    /// The scheme's V(t*−), before the wall's clipping of a grazing impact.
+    v_at: f64,
+}
+
+/// The jump and the redone rest of an impact step ([`Stepper::jump`]).
+#[derive(Debug, Clone, Copy)]
+struct Rest {
+    split: Split,
+    v_minus: f64,
+    /// Length (1 − θ)Δt of the rest of the step.
+    hh: f64,
+    /// Scaled weight of g at the step's end.
+    wr_s: f64,
+    /// The predictor (1 − θ)Δt·V₊ of U at the end.
+    up: f64,
+    /// 1 − wr_s·μP(up).
+    denominator: f64,
+    u_end: f64,
+    v_end: f64,
 }
 
 /// The empty memory of a path (with its verified SOE kernel), built once per ensemble.
