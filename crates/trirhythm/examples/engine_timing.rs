@@ -85,7 +85,7 @@ fn main() {
     let tm1 = memory_only(1.0, n);
     let per = |t: f64| t / n as f64 * 1e9;
     println!("  per-step breakdown of the noisy lambda = 0.998 path (each part timed alone):");
-    println!("    memory (SOE modes + 15-step window)      : {:5.1} ns  (lambda = 1, running integral: {:.1} ns)", per(tm), per(tm1));
+    println!("    memory (SOE modes + 7-step window)       : {:5.1} ns  (lambda = 1, running integral: {:.1} ns)", per(tm), per(tm1));
     println!(
         "    noise (OU, two normal deviates)           : {:5.1} ns",
         per(tn)

@@ -158,7 +158,7 @@ fn contraction_is_refused_while_an_impact_is_inside_the_window() {
     let before = (b.u(), b.v());
     assert!(!b.contract_toward(&a, 0.5));
     assert_eq!((b.u(), b.v()), before);
-    // and accepted once the impact has left the window (16 steps)
+    // and accepted once the impact has left the exact window (8 steps)
     for _ in 0..20 {
         a.step().unwrap();
         b.step().unwrap();

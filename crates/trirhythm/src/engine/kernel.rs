@@ -170,11 +170,25 @@ pub(crate) fn phi_psi(z: f64) -> (f64, f64) {
 #[inline]
 pub(crate) fn phi_psi_given(z: f64, e: f64) -> (f64, f64) {
     if z < 0.5 {
-        // series in x = −z by Horner, 17 terms (the next is below 1e-19 for z < 0.5):
+        // series in x = −z by Horner, as many terms as z needs for the first omitted one to be
+        // below 1e-18 (6 for z < 1e-3, 10 for z < 0.05, else 17: slow modes are cheap):
         // φ = Σ x^k/(k+1)!, ψ = Σ (k+1) x^k/(k+2)! = Σ x^k/((k+2)·k!)
         let x = -z;
-        let phi = PHI_SERIES.iter().rev().fold(0.0, |acc, &c| acc * x + c);
-        let psi = PSI_SERIES.iter().rev().fold(0.0, |acc, &c| acc * x + c);
+        let terms = if z < 1e-3 {
+            6
+        } else if z < 0.05 {
+            10
+        } else {
+            PHI_SERIES.len()
+        };
+        let phi = PHI_SERIES[..terms]
+            .iter()
+            .rev()
+            .fold(0.0, |acc, &c| acc * x + c);
+        let psi = PSI_SERIES[..terms]
+            .iter()
+            .rev()
+            .fold(0.0, |acc, &c| acc * x + c);
         (phi, psi)
     } else {
         ((1.0 - e) / z, (1.0 - e * (1.0 + z)) / (z * z))
@@ -490,13 +504,27 @@ mod tests {
             assert!((PHI_SERIES[k] - phi).abs() <= 1e-15 * phi, "phi {k}");
             assert!((PSI_SERIES[k] - psi).abs() <= 1e-15 * psi, "psi {k}");
         }
-        // and the series against the closed form at small z, where it is well conditioned
-        for &z in &[1e-3, 0.01, 0.1, 0.3] {
+        // the truncated series against all 17 terms (the truncation is below rounding), and
+        // against the closed form where that is well conditioned
+        let full = |z: f64, c: &[f64]| c.iter().rev().fold(0.0, |acc, &c| acc * -z + c);
+        for &z in &[
+            1e-7, 1e-5, 9.99e-4, 1e-3, 0.01, 0.0499, 0.05, 0.1, 0.3, 0.4999,
+        ] {
             let (p, s) = phi_psi(z);
+            assert!(
+                (p - full(z, &PHI_SERIES)).abs() <= 2.3e-16 * p,
+                "phi series at {z}"
+            );
+            assert!(
+                (s - full(z, &PSI_SERIES)).abs() <= 2.3e-16 * s,
+                "psi series at {z}"
+            );
             let em1 = (-z).exp_m1();
             assert!((p - (-em1 / z)).abs() < 2e-16, "phi at {z}");
-            let exact = (-em1 - z * (-z).exp()) / (z * z);
-            assert!((s - exact).abs() < 1e-12, "psi at {z}");
+            if z >= 0.01 {
+                let exact = (-em1 - z * (-z).exp()) / (z * z);
+                assert!((s - exact).abs() < 1e-12, "psi at {z}");
+            }
         }
     }
 

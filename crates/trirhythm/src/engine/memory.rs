@@ -16,11 +16,11 @@
 //! # Cost and the step's dependency chain
 //! The step's critical path runs through the memory: the newest piece (g_n, computed from
 //! V_n) enters J for the next step, which gives V_{n+1}. Everything else — the modes advanced
-//! by the piece leaving the window (15 steps old), the lumped terms, the window's 14 older
-//! pieces — does not depend on it. The fast path ([`History::push`] for an unsplit piece that
+//! by the piece leaving the window (7 steps old with the default 8-step window), the lumped
+//! terms, the window's 6 older pieces — does not depend on it. The fast path ([`History::push`] for an unsplit piece that
 //! does not push a split piece out of the window, all but two steps per impact) therefore sums
 //! all of that first and adds the newest piece last, with its weights pre-multiplied by
-//! h^λ/Γ(λ): two operations on the chain instead of a 15-term dot product, and the rest
+//! h^λ/Γ(λ): two operations on the chain instead of a 7-term dot product, and the rest
 //! overlaps with the step. The mode sums Σ out·Y run in two accumulators (even and odd blocks
 //! of four), halving the serial additions; the part a·l + b·r of each mode, independent of Y,
 //! is formed first. The AVX versions do the portable versions' operations in the same order
@@ -30,9 +30,9 @@
 //! `Direct` and the first steps take the general path. At λ = 1 a push is one addition to the
 //! running integral.
 //!
-//! What bounds the cost (measured, see the README's Simulation section): with 39 modes (λ =
-//! 0.998, 10⁷ steps, 1e-10) the mode update is 10 four-lane blocks of 4 multiplies, 3 adds and
-//! one store per step, plus ~30 multiply–adds of the window: throughput work of the same order
+//! What bounds the cost (measured, see the README's Simulation section): with 41 modes (λ =
+//! 0.998, 10⁷ steps, 1e-10) the mode update is 11 four-lane blocks of 4 multiplies, 3 adds and
+//! one store per step, plus ~14 multiply–adds of the window: throughput work of the same order
 //! as the step's own dependency chain (two evaluations of P, a division). Impacts cost ~4 µs
 //! each at λ < 1 (the split's weight table, the Volterra value at the impact instant, the
 //! split piece entering every mode with its own exponential). Updating the modes in blocks of
@@ -69,8 +69,11 @@ impl Default for Memory {
     }
 }
 
-/// Default number of steps in the exact local window of [`Memory::SumOfExponentials`].
-pub const DEFAULT_WINDOW: usize = 16;
+/// Default number of steps in the exact local window of [`Memory::SumOfExponentials`]. Any
+/// window ≥ 2 is exact (the kernel beyond it is certified to the tolerance and split pieces
+/// enter the modes exactly); 8 costs about two more exponentials than 16 but half the window's
+/// dot product and half the work per impact (the split's weights at each distance).
+pub const DEFAULT_WINDOW: usize = 8;
 
 /// An impact inside an interval: g jumps at the fraction `theta` of the step.
 #[derive(Debug, Clone, Copy, PartialEq)]
