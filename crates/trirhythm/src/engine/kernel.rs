@@ -270,7 +270,7 @@ pub struct SoeKernel {
     pub weights: Vec<f64>,
     /// The lumped slow rates (s·T ≤ q, q ≪ 1) as a polynomial in t, coefficients of t⁰…t³:
     /// Σ_slow c_j e^{−s_j t} = Σ_k (−t)^k/k! Σ_slow c_j s_jᵏ + O((qt/T)⁴), so the kernel is
-    /// Σ_k lumped[k]·tᵏ + Σ_j c_j e^{−s_j t} ((1, 0, 0, 0) at λ = 1).
+    /// Σ_k lumped_k·tᵏ + Σ_j c_j e^{−s_j t} ((1, 0, 0, 0) at λ = 1).
     pub lumped: [f64; LUMPED_TERMS],
     /// Lower end δ of the interval on which the approximation is certified.
     pub from: f64,
