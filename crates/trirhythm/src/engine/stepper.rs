@@ -69,9 +69,11 @@
 //! converged in Δt), `tests/pinned.rs` (a λ = 0.998 trajectory against an independent
 //! integrator, exact counts of a noisy run), `tests/impacts.rs`, `tests/systems.rs`,
 //! `tests/stochastic.rs`, `tests/tangent.rs` (the renormalisation of a perturbed copy acts on
-//! the whole memory: exact for a linear system, −μ/2 for the damped oscillator), and the unit
-//! tests below (λ = 1 is the linearly implicit trapezoidal
-//! rule, written out by hand; blow-up reports its stiffness).
+//! the whole memory: exact for a linear system, −μ/2 for the damped oscillator), the unit
+//! tests of [`tangent`] (the tangent step against finite differences of [`Stepper::step`],
+//! smooth and impact steps), and the unit tests below (λ = 1 is the linearly implicit
+//! trapezoidal rule, written out by hand; blow-up reports its stiffness; the crossing by
+//! Newton equals bisection).
 
 use super::memory::{History, Piece, Split};
 use super::noise::NoiseStream;
