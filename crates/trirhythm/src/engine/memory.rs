@@ -434,8 +434,8 @@ pub(crate) struct History {
     /// λ = 1 only p₀ ≠ 0 (`flat`), and only the integral is kept.
     lumped: [f64; LUMPED_TERMS],
     flat: bool,
-    /// The lumped polynomial's weights of the moments at the fixed distance (w + 1)h of the
-    /// window's start from the next node: Σ_k p_k (back + x)ᵏ = Σ_i out_i xⁱ.
+    /// The lumped polynomial's weights of the moments at the fixed distance back = w·h of the
+    /// window's start from the next node (w = cap + 1): Σ_k p_k (back + x)ᵏ = Σ_i out_i xⁱ.
     lumped_out: [f64; LUMPED_TERMS],
     /// m_k = ∫ (t_m − s)ᵏ g(s) ds, k = 0…3, over the history up to the window's start t_m
     /// (the lumped terms' state; m₀ is ∫ g).
@@ -1007,6 +1007,8 @@ impl History {
             + self.wr.capacity()
             + 5 * self.modes.len())
             + std::mem::size_of::<(u64, Split)>() * self.splits.capacity()
+            + std::mem::size_of::<[f64; 4]>()
+                * self.split_weights.iter().map(Vec::len).sum::<usize>()
     }
 }
 
