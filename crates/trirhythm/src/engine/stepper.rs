@@ -560,17 +560,7 @@ impl Stepper {
             }
         }
         self.steps += 1;
-        if !(u1.abs() <= self.blow_up && v1.abs() <= self.blow_up) {
-            return Err(Error::BlowUp {
-                t: self.time(),
-                u: u1,
-                v: v1,
-                from_u: u,
-                from_v: v,
-                stiffness: h * self.rhs.damping(u).abs(),
-                dt: h,
-            });
-        }
+        self.check_blow_up((u, v), (u1, v1))?;
         if self.crossing && u1 != 0.0 {
             self.side = u1.signum();
         }
@@ -582,6 +572,24 @@ impl Stepper {
         self.u = u1;
         self.v = v1;
         Ok(())
+    }
+
+    /// Err([`Error::BlowUp`]) when the step from `from` ended at `to` beyond the blow-up
+    /// threshold (or not finite), with the time, both states and the stiffness Δt·μ|P(U)|.
+    #[inline]
+    fn check_blow_up(&self, from: (f64, f64), to: (f64, f64)) -> Result<()> {
+        if to.0.abs() <= self.blow_up && to.1.abs() <= self.blow_up {
+            return Ok(());
+        }
+        Err(Error::BlowUp {
+            t: self.time(),
+            u: to.0,
+            v: to.1,
+            from_u: from.0,
+            from_v: from.1,
+            stiffness: self.h * self.rhs.damping(from.0).abs(),
+            dt: self.h,
+        })
     }
 
     /// The impact (wall) or crossing (Eq. 9) inside the current step, whose free end was

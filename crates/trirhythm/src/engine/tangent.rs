@@ -91,7 +91,7 @@
 
 use super::{Piece, Split, Stepper};
 use crate::engine::History;
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 /// The tangent of a path: δU, δV, δ of the Volterra constant, δg at the node (without noise)
 /// and the memory of δg, with the reference's layout.
@@ -217,17 +217,7 @@ impl Stepper {
             }
         }
         self.steps += 1;
-        if !(u1.abs() <= self.blow_up && v1.abs() <= self.blow_up) {
-            return Err(Error::BlowUp {
-                t: self.time(),
-                u: u1,
-                v: v1,
-                from_u: u,
-                from_v: v,
-                stiffness: h * self.rhs.damping(u).abs(),
-                dt: h,
-            });
-        }
+        self.check_blow_up((u, v), (u1, v1))?;
         if self.crossing && u1 != 0.0 {
             self.side = u1.signum();
         }
