@@ -120,7 +120,9 @@ fn fractional_oscillation_orders() {
         let theory = f64::min(2.0, 1.0 + lambda);
         let p = finest_order(&hs, &errs);
         eprintln!(
-            "Mittag-Leffler oscillation λ = {lambda}: observed order {p:.3}, theory {theory}"
+            "Mittag-Leffler oscillation λ = {lambda}: observed order {p:.3}, theory {theory}, \
+             finest error {:.2e}",
+            errs[errs.len() - 1]
         );
         assert!(
             (p - theory).abs() < 0.1,
@@ -159,7 +161,10 @@ fn linear_impact_oscillator_order_two() {
         errs.push(e);
     }
     let p = finest_order(&hs, &errs);
-    eprintln!("linear impact oscillator: observed order {p:.3}, theory 2");
+    eprintln!(
+        "linear impact oscillator: observed order {p:.3}, theory 2, finest error {:.2e}",
+        errs[errs.len() - 1]
+    );
     assert!((p - 2.0).abs() < 0.1, "observed {p:.3} ({errs:?})");
 }
 

@@ -96,16 +96,21 @@ fn fig13b_from_u13_settles_on_the_outer_cycle_and_converges_in_dt() {
     assert!(runs[0].1 > 2.0, "stiffness {}", runs[0].1);
     // on the outer cycle (the other stable cycles are at 2.6 and 8.4)
     assert!((a1 - outer).abs() < 0.02 * outer, "{a1} vs {outer}");
-    // converged at second order
-    assert!((1.5..2.6).contains(&order), "order {order}");
-    assert!(d12 < 3e-3 && d23 < 1e-3, "{d12:e} {d23:e}");
+    // the issue's criterion: halving Δt = 0.01 moves the amplitude by less than 10⁻³
+    assert!(d12 < 1e-3, "{d12:e}");
+    // and it converges at least at second order (the Hermite-corrected U and the second pass
+    // of stiff steps make the pre-asymptotic rate higher, ≈ 3)
+    assert!(
+        order > 1.8 && d23 < d12 / 3.0,
+        "order {order}, {d12:e} {d23:e}"
+    );
 }
 
 #[test]
 fn fig5e_cycles_at_mu0_07_are_integrated_at_dt_001_and_converge() {
     // Fig. 5(e): μ0 = 0.7, λ = 1, r = 1: the averaging's outer cycle. At Δt = 0.01 the step is
-    // stable (stiffness up to ≈ 90) but the relaxation's fast phase is under-resolved: the
-    // turning amplitude is ≈ 10 % high there and converges at second order below Δt = 0.005.
+    // stable (stiffness Δt·μ0|P| up to ≈ 50) but the relaxation's fast phase is under-resolved:
+    // the turning amplitude is ≈ 10 % high there. Halving Δt five times converges it.
     let p = preset("fig5").unwrap().params.with("mu0", 0.7).unwrap();
     let outer = Theory::new(&p, Variant::Paper)
         .unwrap()
@@ -113,25 +118,38 @@ fn fig5e_cycles_at_mu0_07_are_integrated_at_dt_001_and_converge() {
         .last()
         .unwrap()
         .amplitude;
-    let amp = |dt: f64| {
-        let (m, stiff) = turning_points("fig5", Some(0.7), dt, 300.0);
-        (*m.last().unwrap(), stiff)
-    };
-    let (a1, stiff) = amp(0.01);
-    let (a2, _) = amp(0.005);
-    let (a3, _) = amp(0.0025);
-    let (a4, _) = amp(0.00125);
-    let order = ((a2 - a3) / (a3 - a4)).abs().log2();
+    let dts = [0.01, 0.005, 0.0025, 0.00125, 0.000625, 0.0003125];
+    let runs: Vec<(f64, f64)> = dts
+        .iter()
+        .map(|&dt| {
+            let (m, stiff) = turning_points("fig5", Some(0.7), dt, 300.0);
+            (*m.last().unwrap(), stiff)
+        })
+        .collect();
+    let a: Vec<f64> = runs.iter().map(|r| r.0).collect();
+    let stiff = runs[0].1;
+    let n = a.len();
+    let order = ((a[n - 3] - a[n - 2]) / (a[n - 2] - a[n - 1])).abs().log2();
     println!(
-        "fig5 μ0 = 0.7: turning amplitudes {a1:.5} / {a2:.5} / {a3:.5} / {a4:.5} \
-         (Δt = 0.01 / 0.005 / 0.0025 / 0.00125); averaging {outer:.5}; stiffness up to \
-         {stiff:.1} at Δt = 0.01; observed order {order:.2}"
+        "fig5 μ0 = 0.7: turning amplitudes {} (Δt = 0.01 … 0.0003125); averaging {outer:.5}; \
+         stiffness up to {stiff:.1} at Δt = 0.01; observed order over the finest three {order:.2}",
+        a.iter()
+            .map(|x| format!("{x:.5}"))
+            .collect::<Vec<_>>()
+            .join(" / ")
     );
-    assert!(stiff > 50.0, "stiffness {stiff}");
+    assert!(stiff > 20.0, "stiffness {stiff}");
     // integrated without blow-up and on the outer branch (the others are below 9)
-    assert!(a1 > 11.0 && a1 < 15.0, "{a1}");
-    assert!((a4 - outer).abs() < 0.01 * outer, "{a4} vs {outer}");
-    assert!((1.5..2.6).contains(&order), "order {order}");
+    assert!(a[0] > 11.0 && a[0] < 15.0, "{}", a[0]);
+    // converged: the finest halving moves it by < 10⁻⁵, at least at second order, onto the
+    // averaging's cycle within 1 %
+    assert!((a[n - 2] - a[n - 1]).abs() < 1e-5 * a[n - 1], "{a:?}");
+    assert!(order > 1.8, "order {order} ({a:?})");
+    assert!(
+        (a[n - 1] - outer).abs() < 0.01 * outer,
+        "{} vs {outer}",
+        a[n - 1]
+    );
 }
 
 #[test]

@@ -16,37 +16,55 @@
 //! With the product-trapezoidal weights (w_l, w_r) of the step and the memory's value J of all
 //! completed pieces ([`super::memory`]), the corrector of Diethelm–Ford–Freed reads
 //! V_{n+1} = V₀ + J + w_l g_n + w_r g(U_{n+1}, V_{n+1}, η). g is **affine in V**, so the
-//! corrector is solved for V exactly with U frozen at its predictor U^P = U_n + ΔtV_n:
+//! corrector is solved for V exactly with U frozen at a predictor U^P:
 //!
-//!   V_{n+1} = (V₀ + J + w_l g_n + w_r(−ω²U^P + γη)) / (1 − w_r μ P(U^P)),
-//!   U_{n+1} = U_n + Δt(V_n + V_{n+1})/2,
+//!   U^P = U_n + ΔtV_n + ½Δt² g_n/(1 + Δt|μP(U_n)|),
+//!   V_{n+1} = (V₀ + J + w_l g_n + w_r(−ω²U^P + γη)) / (1 − w_r μP(U^P)),
+//!   U_{n+1} = U_n + Δt(V_n + V_{n+1})/2 + (Δt²/12)·L(z)·(g_n − g^P_{n+1}),
 //!
-//! and g_{n+1} = g(U_{n+1}, V_{n+1}, η) is stored (only corrected values enter the history).
-//! Why this and not step control: the explicit corrector g(U^P, V^P) amplifies the damping mode
-//! by 1 + w_r a(1 + w_r a) with a = μP(U); it is unstable once Δt·μ|P(U)| ≳ 2, which the paper's
-//! own parameters reach (μ0 = 0.2 at U ≈ 13: μ0|P| ≈ 350). Solving the affine equation costs one
-//! division, keeps the step's order (U^P is O(Δt²) accurate and enters g through w_r = O(Δt),
-//! so the local error stays O(Δt³)), keeps the grid uniform — which the SOE memory and the
-//! bit-identical ensembles rely on — and turns the damping factor into the trapezoidal
-//! (1 + w_r a)/(1 − w_r a) at λ = 1, bounded by 1 for every a ≤ 0: A-stable in the stiff
-//! direction. An adaptive step would break the uniform grid of the memory and, with it, the
-//! O(1) cost per step. What is still not integrable is reported as [`Error::BlowUp`] with the
-//! time, the state and the stiffness Δt·μ|P(U)|.
+//! with g^P_{n+1} = μP(U^P)V_{n+1} − ω²U^P + γη, z = 2w_r μP(U^P) (= Δt·μP at λ = 1) and
+//! L(z) = 1/(1 + z²/12). Where |z| > 1/2 (stiff damping) the pass is repeated once with U^P
+//! replaced by the U_{n+1} of the first pass. g_{n+1} = g(U_{n+1}, V_{n+1}, η) is stored (only
+//! corrected values enter the history).
 //!
-//! Not used, measured: a second linearly implicit pass with μP and ω²U at the corrected U,
-//! taken only where Δt·μ|P(U^P)| exceeds a threshold, leaves the Δt-sensitivity of Fig. 13(b)'s
-//! outer cycle (`tests/stiff.rs`) where it is — relative change of the turning amplitude
-//! between Δt = 0.01 and 0.005 2.4·10⁻³, 2.2·10⁻³, 2.3·10⁻³ for thresholds 0.5, 0.1, 0.02
-//! against 2.1·10⁻³ without it — so the error at Δt = 0.01 comes from the product-trapezoidal
-//! rule itself, not from U frozen at its predictor; on Fig. 5(e) it moves the Δt = 0.01
-//! amplitude erratically (14.74, 13.78, 12.94 against 14.24; converged ≈ 12.85).
+//! - Why linearly implicit: the explicit corrector g(U^P, V^P) amplifies the damping mode by
+//!   1 + w_r a(1 + w_r a) with a = μP(U); it is unstable once Δt·μ|P(U)| ≳ 2, which the paper's
+//!   own parameters reach (μ0 = 0.2 at U ≈ 13: μ0|P| ≈ 350). Solving the affine equation costs
+//!   one division, keeps the grid uniform — which the SOE memory and the bit-identical
+//!   ensembles rely on — and turns the damping factor into the trapezoidal
+//!   (1 + w_r a)/(1 − w_r a) at λ = 1, bounded by 1 for every a ≤ 0. An adaptive step would
+//!   break the uniform grid of the memory and, with it, the O(1) cost per step.
+//! - U: the product-trapezoidal rule holds g linear on the step, so V is quadratic there at
+//!   λ = 1 and ∫V = Δt(V_n + V_{n+1})/2 + (Δt²/12)(g_n − g_{n+1}) exactly (the Euler–Maclaurin
+//!   correction with V′ = g). For λ < 1, V′ = g + O(1 − λ) smoothly, so the correction stays
+//!   consistent and the method second order. The factor L(z) keeps it bounded where the
+//!   damping is stiff: without it the U-increment of the frozen linear mode grows like
+//!   Δt|z|V/6 as |z| → ∞ (measured: Fig. 5(e) blows up at t = 39.6); with it the increment
+//!   decays like |z|⁻³ and L = 1 − O(Δt²) elsewhere.
+//! - U^P: the Taylor predictor with U″ ≈ g, its g-term damped by 1/(1 + Δt|μP|) so that it
+//!   stays bounded (→ Δt/(2|μP|)·g) where the damping is stiff. Its error O(Δt³) enters V
+//!   through w_r·μP′; the second pass on stiff steps removes the part that is multiplied by
+//!   the stiffness.
+//! - Measured on Fig. 13(b)'s outer cycle from U = 13 (`tests/stiff.rs`; turning amplitude,
+//!   relative change from Δt = 0.01 to 0.005 / 0.005 to 0.0025): the plain trapezoidal U with
+//!   U^P = U_n + ΔtV_n 1.98·10⁻³ / 5.9·10⁻⁴; the Hermite-corrected U 1.38·10⁻³ / 1.9·10⁻⁴ (but
+//!   unstable at μ0 = 0.7); with L(z) and the damped Taylor predictor 1.27·10⁻³ / 1.6·10⁻⁴;
+//!   with the second pass on stiff steps (this method) 7.5·10⁻⁴ / 8.2·10⁻⁵ (second-pass
+//!   thresholds |z| > 1 and > 2: 8.1·10⁻⁴ and 7.4·10⁻⁴). The same at λ = 1, with r = 1 and
+//!   without the wall: 7.5–8.4·10⁻⁴, so the error is the smooth stiff turning point's, not the
+//!   impacts' or the memory's. The steps of ordinary paths (μ0 ≤ 0.05) never reach |z| > 1/2.
+//!   The Mittag-Leffler and impact-oscillator errors (`tests/convergence.rs`) are equal or
+//!   smaller than with the plain trapezoidal U (λ = 0.998: 7.3·10⁻⁷ against 1.5·10⁻⁶ at the
+//!   finest level; λ = 0.5 unchanged, where the t^λ start dominates).
+//! - What is still not integrable is reported as [`Error::BlowUp`] with the time, the state
+//!   and the stiffness Δt·μ|P(U)|.
 //!
 //! - Impacts (one routine for the wall and for the Zhuravlev crossing): when the step ends
 //!   across U = 0, the crossing θ ∈ (0, 1) is located on the cubic Hermite interpolant of
 //!   (U_n, V_n, U_{n+1}, V_{n+1}); the velocity just before it, V₋, is the scheme's own Volterra
 //!   value at t* = t_n + θΔt (g is affine in V at U = 0: solved exactly); the jump V₊ = −rV₋
 //!   (wall) or V₊ = rV₋ (Zhuravlev, sgn Z flips) is applied and the rest of the step is redone
-//!   from (0, V₊) with the same linearly implicit corrector. g is stored as two linear pieces on
+//!   from (0, V₊) with the same corrector over (1 − θ)Δt. g is stored as two linear pieces on
 //!   that step, so its memory stays exact. [`ImpactMemory::Continuous`] (default) keeps the lower
 //!   terminal at 0 and adds the jump to the constant of V's Volterra form;
 //!   [`ImpactMemory::Restart`] restarts the memory at t*. They coincide at λ = 1.
@@ -211,6 +229,174 @@ impl Rhs {
     }
 }
 
+/// The predictor's weight of g at the start of a step of length `len`: ½len²/(1 + len|a|), a
+/// = μP(U) there. ½len² is the Taylor term (U″ = V′ ≈ g); the factor 1/(1 + len|a|) keeps the
+/// predictor bounded where the damping is stiff (|a|len ≫ 1: it tends to len/(2|a|), the
+/// linearly implicit Euler's velocity increment) and changes it by O(len³) elsewhere.
+#[inline]
+fn predictor_weight(len: f64, a: f64) -> f64 {
+    0.5 * len * len / (1.0 + len * a.abs())
+}
+
+/// d/dU of [`predictor_weight`] where da/dU = `slope`.
+fn predictor_weight_slope(len: f64, a: f64, slope: f64) -> f64 {
+    let d = 1.0 + len * a.abs();
+    -0.5 * len * len * len * a.signum() * slope / (d * d)
+}
+
+/// The factor 1/(1 + z²/12) of the Hermite correction of U, z = 2w·a the stiffness of the
+/// step's implicit velocity (z = Δt·μP at λ = 1).
+#[inline]
+fn hermite_limiter(z: f64) -> f64 {
+    1.0 / (1.0 + z * z * (1.0 / 12.0))
+}
+
+/// |z| = |2w·μP| above which a step takes its second pass ([`Rhs::advance`]).
+const SECOND_PASS: f64 = 0.5;
+
+/// One pass of the linearly implicit corrector: U frozen at `up` in μP and ω²U.
+#[derive(Debug, Clone, Copy)]
+struct Pass {
+    up: f64,
+    /// μP(up).
+    a: f64,
+    /// 1/(1 − w·a).
+    inv: f64,
+    /// The Hermite limiter at z = 2w·a.
+    lim: f64,
+    /// g at the end, with μP and ω²U at `up`.
+    gr: f64,
+    u1: f64,
+    v1: f64,
+}
+
+/// One linearly implicit step of length `len` from (u, v), where g = `g0`, to its free end
+/// (module docs): the quantities the step forms, kept for the tangent's derivative.
+#[derive(Debug, Clone, Copy)]
+struct Free {
+    len: f64,
+    /// Scaled weight of g at the end.
+    w: f64,
+    g0: f64,
+    /// The predictor's weight of g0.
+    pw: f64,
+    /// The first pass (from the predictor) and, on stiff steps, the second (from the first
+    /// pass's U).
+    passes: [Pass; 2],
+    stiff: bool,
+}
+
+impl Free {
+    /// The end (U₁, V₁) of the step.
+    #[inline]
+    fn end(&self) -> (f64, f64) {
+        let p = &self.passes[self.stiff as usize];
+        (p.u1, p.v1)
+    }
+}
+
+impl Rhs {
+    /// One corrector pass with U frozen at `up` (see [`Rhs::advance`]).
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn pass(
+        &self,
+        len: f64,
+        (u, v, g0): (f64, f64, f64),
+        up: f64,
+        known: f64,
+        w: f64,
+        fr: f64,
+    ) -> Pass {
+        let a = self.damping(up);
+        let inv = 1.0 / (1.0 - w * a);
+        let lim = hermite_limiter(2.0 * w * a);
+        let v1 = (known + w * (fr - self.omega2 * up)) * inv;
+        let gr = a * v1 - self.omega2 * up + fr;
+        let u1 = u + 0.5 * len * (v + v1) + len * len * (1.0 / 12.0) * lim * (g0 - gr);
+        Pass {
+            up,
+            a,
+            inv,
+            lim,
+            gr,
+            u1,
+            v1,
+        }
+    }
+
+    /// The step of length `len` from (u, v) with g = `g0` there, `known` the part of V at the
+    /// end that does not depend on g at the end, `w` the scaled weight of g at the end, `fr`
+    /// the forcing there:
+    /// up = u + len·v + pw·g0, V₁ = (known + w(fr − ω²up))/(1 − w·μP(up)),
+    /// U₁ = u + len(v + V₁)/2 + (len²/12)·lim·(g0 − g₁); where |2w·μP(up)| > [`SECOND_PASS`]
+    /// the pass is repeated once with up = U₁.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn advance(
+        &self,
+        len: f64,
+        (u, v, g0): (f64, f64, f64),
+        pw: f64,
+        known: f64,
+        w: f64,
+        fr: f64,
+    ) -> Free {
+        let first = self.pass(len, (u, v, g0), u + len * v + pw * g0, known, w, fr);
+        let stiff = (2.0 * w * first.a).abs() > SECOND_PASS;
+        let second = if stiff {
+            self.pass(len, (u, v, g0), first.u1, known, w, fr)
+        } else {
+            first
+        };
+        Free {
+            len,
+            w,
+            g0,
+            pw,
+            passes: [first, second],
+            stiff,
+        }
+    }
+
+    /// The derivative of one pass along (δu, δv, δg0, δup, δknown): (δU₁, δV₁).
+    fn pass_tangent(
+        &self,
+        f: &Free,
+        p: &Pass,
+        (du, dv, dg0): (f64, f64, f64),
+        dup: f64,
+        dknown: f64,
+    ) -> (f64, f64) {
+        let da = self.damping_slope(p.up) * dup;
+        let dv1 = p.inv * (dknown - f.w * self.omega2 * dup + p.v1 * f.w * da);
+        let dgr = da * p.v1 + p.a * dv1 - self.omega2 * dup;
+        let z = 2.0 * f.w * p.a;
+        let dlim = -p.lim * p.lim * (z / 6.0) * 2.0 * f.w * da;
+        let c = f.len * f.len / 12.0;
+        let du1 = du + 0.5 * f.len * (dv + dv1) + c * (dlim * (f.g0 - p.gr) + p.lim * (dg0 - dgr));
+        (du1, dv1)
+    }
+
+    /// The derivative of [`Rhs::advance`] along (δu, δv, δg0), with δpw the predictor weight's
+    /// and δknown the known part's: returns (δU₁, δV₁).
+    fn advance_tangent(
+        &self,
+        f: &Free,
+        (du, dv, dg0): (f64, f64, f64),
+        dpw: f64,
+        dknown: f64,
+    ) -> (f64, f64) {
+        let dup = du + f.len * dv + f.pw * dg0 + f.g0 * dpw;
+        let first = self.pass_tangent(f, &f.passes[0], (du, dv, dg0), dup, dknown);
+        if f.stiff {
+            self.pass_tangent(f, &f.passes[1], (du, dv, dg0), first.0, dknown)
+        } else {
+            first
+        }
+    }
+}
+
 /// One impact (or Zhuravlev crossing).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Impact {
@@ -298,6 +484,8 @@ pub struct Stepper {
     v: f64,
     /// μP(U)V − ω²U at the current node (g without its forcing).
     drift: f64,
+    /// The predictor's weight of g at the current node ([`predictor_weight`]).
+    pw: f64,
     /// sgn Z (Eq. 9), else 1.
     side: f64,
     stuck: bool,
@@ -376,6 +564,7 @@ impl Stepper {
         let noise = NoiseStream::new(oscillator.noise(), h, seed, path)?;
         let (wl, wr) = history.current_weights();
         let drift = rhs.drift(u0, v0);
+        let pw = predictor_weight(h, rhs.damping(u0));
         Ok(Stepper {
             h,
             wall,
@@ -386,6 +575,7 @@ impl Stepper {
             u: u0,
             v: v0,
             drift,
+            pw,
             side: if u0 < 0.0 { -1.0 } else { 1.0 },
             stuck: false,
             base: v0,
@@ -500,6 +690,7 @@ impl Stepper {
         self.v = pull(reference.v, self.v);
         self.base = pull(reference.base, self.base);
         self.drift = pull(reference.drift, self.drift);
+        self.pw = predictor_weight(self.h, self.rhs.damping(self.u));
         true
     }
 
@@ -528,11 +719,15 @@ impl Stepper {
         let (u, v, side) = (self.u, self.v, self.side);
         let gl = self.drift + rhs.forcing(el, side);
         let known = self.base + self.history.value() + self.wl * gl;
-        let up = u + h * v;
-        // the reciprocal depends on (U_n, V_n) only: it is formed while the memory is summed
-        let inv = 1.0 / (1.0 - self.wr * rhs.damping(up));
-        let mut v1 = (known + self.wr * (rhs.forcing(er, side) - rhs.omega2 * up)) * inv;
-        let mut u1 = u + 0.5 * h * (v + v1);
+        let free = rhs.advance(
+            h,
+            (u, v, gl),
+            self.pw,
+            known,
+            self.wr,
+            rhs.forcing(er, side),
+        );
+        let (mut u1, mut v1) = free.end();
         self.events = StepEvents::default();
         let mut piece = Piece {
             left: gl,
@@ -564,7 +759,7 @@ impl Stepper {
         if self.crossing && u1 != 0.0 {
             self.side = u1.signum();
         }
-        self.drift = self.rhs.drift(u1, v1);
+        self.set_node(u1, v1);
         if push {
             piece.right = self.drift + self.rhs.forcing(er, self.side);
             self.history.push(piece);
@@ -572,6 +767,16 @@ impl Stepper {
         self.u = u1;
         self.v = v1;
         Ok(())
+    }
+
+    /// The node's g without forcing and the predictor's weight at the end of a step at (u1, v1)
+    /// (not yet stored as the state); returns μP(u1).
+    #[inline]
+    fn set_node(&mut self, u1: f64, v1: f64) -> f64 {
+        let a1 = self.rhs.damping(u1);
+        self.drift = a1 * v1 - self.rhs.omega2 * u1;
+        self.pw = predictor_weight(self.h, a1);
+        a1
     }
 
     /// Err([`Error::BlowUp`]) when the step from `from` ended at `to` beyond the blow-up
@@ -599,7 +804,8 @@ impl Stepper {
     fn impact(&mut self, gl: f64, (el, er): (f64, f64), (u1, v1): (f64, f64)) -> (Split, f64, f64) {
         let c = self.locate(gl, (el, er), (u1, v1));
         let rest = self.jump(&c, gl, er);
-        (rest.split, rest.u_end, rest.v_end)
+        let (u_end, v_end) = rest.free.end();
+        (rest.split, u_end, v_end)
     }
 
     /// Where the current step, whose free end was (u1, v1), crosses U = 0, and the scheme's
@@ -660,20 +866,18 @@ impl Stepper {
         let (known_s, wr_s) = self.history.current_split(gl, &split);
         let known = self.base + self.history.value() + known_s;
         let hh = (1.0 - theta) * h;
-        let up = hh * v_plus;
-        let a = self.rhs.damping(up);
-        let denominator = 1.0 - wr_s * a;
-        let v_end =
-            (known + wr_s * (self.rhs.forcing(er, new_side) - self.rhs.omega2 * up)) / denominator;
+        let free = self.rhs.advance(
+            hh,
+            (0.0, v_plus, split.after),
+            predictor_weight(hh, a0),
+            known,
+            wr_s,
+            self.rhs.forcing(er, new_side),
+        );
         Rest {
             split,
             v_minus,
-            hh,
-            wr_s,
-            up,
-            denominator,
-            u_end: 0.5 * hh * (v_plus + v_end),
-            v_end,
+            free,
         }
     }
 }
@@ -700,16 +904,8 @@ struct Crossing {
 struct Rest {
     split: Split,
     v_minus: f64,
-    /// Length (1 − θ)Δt of the rest of the step.
-    hh: f64,
-    /// Scaled weight of g at the step's end.
-    wr_s: f64,
-    /// The predictor (1 − θ)Δt·V₊ of U at the end.
-    up: f64,
-    /// 1 − wr_s·μP(up).
-    denominator: f64,
-    u_end: f64,
-    v_end: f64,
+    /// The rest of the step, of length (1 − θ)Δt from (0, V₊).
+    free: Free,
 }
 
 /// The empty memory of a path (with its verified SOE kernel), built once per ensemble.
