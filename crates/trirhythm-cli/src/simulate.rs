@@ -22,7 +22,7 @@ use trirhythm::engine::{Memory, DEFAULT_WINDOW};
 /// `soe` or `direct`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
 pub enum MemoryArg {
-    /// Sum of exponentials beyond a 16-step exact window: O(1) work and memory per step.
+    /// Sum of exponentials beyond an 8-step exact window: O(1) work and memory per step.
     #[default]
     Soe,
     /// Exact weights over the whole history: O(N) per step (reference; short runs only).

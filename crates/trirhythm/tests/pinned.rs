@@ -1,7 +1,8 @@
-//! Pinned counts of a noisy chattering run: a refactor that changes the engine's results (the
-//! noise stream, the impact or sticking logic, the memory) fails here. The values were produced
-//! by this engine (linearly implicit corrector, blocked normal deviates that keep the ChaCha8
-//! stream) and are checked to be identical for 1 and 2 threads.
+//! Pinned counts and end state of a noisy chattering run: a refactor that changes the engine's
+//! results (the noise stream, the step, the impact or sticking logic, the memory) fails here.
+//! The values were produced by this engine (linearly implicit corrector with the
+//! Hermite-corrected U, blocked normal deviates that keep the ChaCha8 stream) and are checked
+//! to be identical for 1 and 2 threads.
 //!
 //! Case: `trirhythm simulate --preset fig13a --param r=0.3 --param D=0.5 --t-end 200 --seed 7`
 //! (λ = 0.998, OU noise τ = 0.5, wall on, Δt = 0.01, U(0) = 1), both impact-memory conventions.
@@ -33,9 +34,19 @@ fn case(impact_memory: ImpactMemory) -> (Oscillator, PredictorCorrector, Options
 
 #[test]
 fn counts_of_a_noisy_chattering_run_are_pinned() {
-    for (im, impacts, sticking) in [
-        (ImpactMemory::Continuous, 154, 1341),
-        (ImpactMemory::Restart, 157, 1422),
+    for (im, impacts, sticking, end) in [
+        (
+            ImpactMemory::Continuous,
+            154,
+            1341,
+            (8.780651902644946e-1, 1.6922451264075997),
+        ),
+        (
+            ImpactMemory::Restart,
+            157,
+            1422,
+            (8.814732661414687e-1, 1.6837799492244865),
+        ),
     ] {
         let (osc, m, o) = case(im);
         let tr = simulate(&osc, &m, &o, 7).unwrap();
@@ -46,6 +57,14 @@ fn counts_of_a_noisy_chattering_run_are_pinned() {
             // versions); the counts of impacts and sticking steps did not change
             (impacts, sticking, 29, 20_000),
             "{im:?}"
+        );
+        // the counts alone survive small changes of the step (the Hermite-corrected U left
+        // them as they were, and moved the final U by 4·10⁻⁵): the end state is pinned too, to
+        // 10⁻⁹ relative (room for a last-bit difference of the platform's exp, amplified)
+        let (u, v) = (*tr.u.last().unwrap(), *tr.v.last().unwrap());
+        assert!(
+            (u - end.0).abs() < 1e-9 * end.0.abs() && (v - end.1).abs() < 1e-9 * end.1.abs(),
+            "{im:?}: end (U, V) = ({u:e}, {v:e}), pinned {end:?}"
         );
     }
 }
