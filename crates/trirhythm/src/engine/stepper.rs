@@ -39,16 +39,17 @@
 //!   correction with V′ = g). For λ < 1, V′ = g + O(1 − λ) smoothly, so the correction stays
 //!   consistent and the method second order. The factor L(z) keeps it bounded where the
 //!   damping is stiff: without it the U-increment of the frozen linear mode grows like
-//!   Δt|z|V/6 as |z| → ∞ (measured: Fig. 5(e) blows up at t = 39.6); with it the increment
-//!   decays like |z|⁻³ and L = 1 − O(Δt²) elsewhere.
+//!   Δt|z|V/6 as |z| → ∞ (measured with the Taylor predictor: Fig. 5(e) blows up at
+//!   t = 39.6); with it the increment decays like |z|⁻³ and L = 1 − O(Δt²) elsewhere.
 //! - U^P: the Taylor predictor with U″ ≈ g, its g-term damped by 1/(1 + Δt|μP|) so that it
 //!   stays bounded (→ Δt/(2|μP|)·g) where the damping is stiff. Its error O(Δt³) enters V
-//!   through w_r·μP′; the second pass on stiff steps removes the part that is multiplied by
-//!   the stiffness.
+//!   through w_r·μP′; on stiff steps the second pass evaluates μP and ω²U at the first pass's
+//!   U instead.
 //! - Measured on Fig. 13(b)'s outer cycle from U = 13 (`tests/stiff.rs`; turning amplitude,
 //!   relative change from Δt = 0.01 to 0.005 / 0.005 to 0.0025): the plain trapezoidal U with
-//!   U^P = U_n + ΔtV_n 1.98·10⁻³ / 5.9·10⁻⁴; the Hermite-corrected U 1.38·10⁻³ / 1.9·10⁻⁴ (but
-//!   unstable at μ0 = 0.7); with L(z) and the damped Taylor predictor 1.27·10⁻³ / 1.6·10⁻⁴;
+//!   U^P = U_n + ΔtV_n 1.98·10⁻³ / 5.9·10⁻⁴; the Hermite-corrected U 1.38·10⁻³ / 1.9·10⁻⁴;
+//!   with the Taylor predictor too 2.2·10⁻⁴ / 2.5·10⁻⁵, but without L(z) that blows up on
+//!   Fig. 5(e); with L(z) and the damped Taylor predictor 1.27·10⁻³ / 1.6·10⁻⁴;
 //!   with the second pass on stiff steps (this method) 7.5·10⁻⁴ / 8.2·10⁻⁵ (second-pass
 //!   thresholds |z| > 1 and > 2: 8.1·10⁻⁴ and 7.4·10⁻⁴). The same at λ = 1, with r = 1 and
 //!   without the wall: 7.5–8.4·10⁻⁴, so the error is the smooth stiff turning point's, not the
