@@ -124,18 +124,41 @@ fn wall_and_zhuravlev_agree_at_lambda_one() {
         },
     );
     assert!(wall.per_path.iter().all(|q| q.impacts > 50));
-    // path by path the two formulations can part: they are different discrete models at a
-    // grazing impact (the wall may hold the oscillator where Eq. 9 crosses twice), and their
-    // rounding differs (the memories sum g with opposite signs after a crossing); a positive
-    // exponent then separates the paths (measured over T = 200: one of four paths differs by
-    // 9e-3 in the exponent, the others by < 5e-6). The means must agree within their errors.
+    // path by path the two formulations part after a while: their rounding differs (the
+    // memories sum g with opposite signs after a crossing) and near-grazing impacts amplify it
+    // (measured: no sticking steps; U and |Z| of paths 0 and 2 part beyond 1e-6 at t = 317 and
+    // 159, paths 1 and 3 stay within 1.2e-7 up to t = 1100). So over T = 1000 only some paths
+    // agree (2 of 4 within 1e-3); over a window that ends before t = 159 every path must
+    // (measured: 1.8e-6 … 1.8e-5 apart over T = 50, the rounding against the copy's 1e-8
+    // separation amplified at near-grazing impacts)
     let close = wall
         .per_path
         .iter()
         .zip(&z.per_path)
         .filter(|(a, b)| (a.exponent - b.exponent).abs() < 1e-3)
         .count();
-    eprintln!("{close} of 4 paths agree within 1e-3");
+    eprintln!("T = 1000: {close} of 4 paths agree within 1e-3");
+    let early = LyapunovSpec {
+        length: 50.0,
+        ..spec.clone()
+    };
+    let early_z = LyapunovSpec {
+        system: System::Zhuravlev,
+        ..early.clone()
+    };
+    for (a, b) in lle(&p, &early)
+        .per_path
+        .iter()
+        .zip(&lle(&p, &early_z).per_path)
+    {
+        assert!(
+            (a.exponent - b.exponent).abs() < 1e-4,
+            "path {}, T = 50: {} vs {}",
+            a.path,
+            a.exponent,
+            b.exponent
+        );
+    }
     let diff = (wall.lle.value - z.lle.value).abs();
     let sigma = wall.lle.stderr.hypot(z.lle.stderr);
     assert!(

@@ -109,7 +109,7 @@ fn fig13b_from_u13_settles_on_the_outer_cycle_and_converges_in_dt() {
 #[test]
 fn fig5e_cycles_at_mu0_07_are_integrated_at_dt_001_and_converge() {
     // Fig. 5(e): μ0 = 0.7, λ = 1, r = 1: the averaging's outer cycle. At Δt = 0.01 the step is
-    // stable (stiffness Δt·μ0|P| up to ≈ 50) but the relaxation's fast phase is under-resolved:
+    // stable (stiffness Δt·μ0|P| up to ≈ 80) but the relaxation's fast phase is under-resolved:
     // the turning amplitude is ≈ 10 % high there. Halving Δt five times converges it.
     let p = preset("fig5").unwrap().params.with("mu0", 0.7).unwrap();
     let outer = Theory::new(&p, Variant::Paper)
@@ -138,7 +138,7 @@ fn fig5e_cycles_at_mu0_07_are_integrated_at_dt_001_and_converge() {
             .collect::<Vec<_>>()
             .join(" / ")
     );
-    assert!(stiff > 20.0, "stiffness {stiff}");
+    assert!(stiff > 50.0, "stiffness {stiff}");
     // integrated without blow-up and on the outer branch (the others are below 9)
     assert!(a[0] > 11.0 && a[0] < 15.0, "{}", a[0]);
     // converged: the finest halving moves it by < 10⁻⁵, at least at second order, onto the

@@ -314,9 +314,9 @@ impl Stepper {
         // δg₊ without the folded impulse (that is a memory artefact; the impulse's effect on
         // V₊ is in δV₊)
         let dg_p = c.a0 * dv_p - omega2 * du_p;
-        let dpw = predictor_weight_slope(f.len, c.a0, self.rhs.damping_slope(0.0)) * du_p;
+        // the predictor's weight at U = 0 does not move to first order: d(μP)/dU = 0 there
         let dknown = t.base + t.history.value() + dknown_s;
-        let (du_end, dv_end) = self.rhs.advance_tangent(f, (du_p, dv_p, dg_p), dpw, dknown);
+        let (du_end, dv_end) = self.rhs.advance_tangent(f, (du_p, dv_p, dg_p), 0.0, dknown);
         let (u_end, v_end) = f.end();
         (rest.split, dsplit, [u_end, v_end, du_end, dv_end])
     }
