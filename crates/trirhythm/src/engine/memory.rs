@@ -117,13 +117,15 @@ fn piece_integral(weights: &IntervalWeights, piece: &Piece, p: f64) -> f64 {
     }
 }
 
-/// The last `cap` pieces of g in chronological order, stored twice (mirrored ring) so that they
-/// are always one contiguous slice: the local window's sum is then two plain dot products.
+/// The last `cap` pieces of g in chronological order as (left, right) pairs, stored twice
+/// (mirrored ring) so that they are always one contiguous slice, after one pair of zeros that
+/// is never written: the fast path reads the window's older pieces as one run of doubles whose
+/// length is a multiple of four, starting up to one pair early (with zero weights there).
 #[derive(Debug, Clone)]
 struct Window {
     cap: usize,
-    left: Vec<f64>,
-    right: Vec<f64>,
+    /// The zero pair, then the ring twice.
+    pairs: Vec<[f64; 2]>,
     /// Index of the oldest piece in `0..cap`.
     head: usize,
     len: usize,
@@ -133,8 +135,7 @@ impl Window {
     fn new(cap: usize) -> Self {
         Window {
             cap,
-            left: vec![0.0; 2 * cap],
-            right: vec![0.0; 2 * cap],
+            pairs: vec![[0.0; 2]; 1 + 2 * cap],
             head: 0,
             len: 0,
         }
@@ -154,20 +155,27 @@ impl Window {
         } else {
             let h = self.head;
             self.head = if h + 1 == cap { 0 } else { h + 1 };
-            (h, Some((self.left[h], self.right[h])))
+            let [l, r] = self.pairs[1 + h];
+            (h, Some((l, r)))
         };
-        self.left[pos] = left;
-        self.left[pos + cap] = left;
-        self.right[pos] = right;
-        self.right[pos + cap] = right;
+        self.pairs[1 + pos] = [left, right];
+        self.pairs[1 + pos + cap] = [left, right];
         leaving
     }
 
-    /// The pieces, oldest first.
+    /// The pieces as (left, right), oldest first.
     #[inline]
-    fn slices(&self) -> (&[f64], &[f64]) {
-        let r = self.head..self.head + self.len;
-        (&self.left[r.clone()], &self.right[r])
+    fn pieces(&self) -> &[[f64; 2]] {
+        &self.pairs[1 + self.head..1 + self.head + self.len]
+    }
+
+    /// The `n` doubles (a multiple of four, at most 2·cap) that end with the right value of
+    /// the piece before the newest: all of the window's older pieces, preceded by whatever
+    /// (finite) values the zero-weighted padding meets. The window must be full.
+    #[inline(always)]
+    fn older_run(&self, n: usize) -> &[f64] {
+        let end = 2 * (self.head + self.cap);
+        &self.pairs.as_flattened()[end - n..end]
     }
 
     fn clear(&mut self) {
@@ -194,25 +202,6 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     (acc[0] + acc[1]) + (acc[2] + acc[3])
 }
 
-/// Σ a_i b_i + c_i d_i (equal lengths) with four fixed partial sums, lane i taking
-/// ((acc + a·b) + c·d), combined as (s0 + s1) + (s2 + s3): the same bits whatever vector width
-/// the compiler uses.
-#[inline(always)]
-fn dot2(a: &[f64], b: &[f64], c: &[f64], d: &[f64]) -> f64 {
-    let mut acc = [0.0; 4];
-    let m = a.len() - a.len() % 4;
-    let (a, b, c, d) = (a, &b[..a.len()], &c[..a.len()], &d[..a.len()]);
-    for k in (0..m).step_by(4) {
-        for i in 0..4 {
-            acc[i] = (acc[i] + a[k + i] * b[k + i]) + c[k + i] * d[k + i];
-        }
-    }
-    for i in 0..a.len() - m {
-        acc[i] = (acc[i] + a[m + i] * b[m + i]) + c[m + i] * d[m + i];
-    }
-    (acc[0] + acc[1]) + (acc[2] + acc[3])
-}
-
 /// Move the window's start t_m on by ℓ over a linear piece (l → r) of g: the moments
 /// m_k = ∫ (t_m − s)ᵏ g(s) ds become Σ_{i≤k} C(k, i) ℓ^{k−i} m_i (the old history, now ℓ
 /// further away) + ℓ^{k+1}(l/(k + 2) + r/((k + 1)(k + 2))) (the piece). With a `flat` kernel
@@ -228,6 +217,40 @@ fn advance_moments(m: &mut [f64; LUMPED_TERMS], flat: bool, len: f64, l: f64, r:
         m[1] = (m1 + h * m0) + h2 * (l / 3.0 + r / 6.0);
     }
     m[0] += 0.5 * len * (l + r);
+}
+
+/// [`advance_moments`] over one full step Δt with its coefficients (the powers of Δt over the
+/// binomial and the pieces' integers) precomputed: the fast path's version.
+#[derive(Debug, Clone, Copy)]
+struct MomentStep {
+    /// 3h, 3h², h³, 2h, h², h, h/2.
+    shift: [f64; 7],
+    /// The piece's weights (of l, of r) in m₃, m₂, m₁: h⁴/5, h⁴/20, h³/4, h³/12, h²/3, h²/6.
+    piece: [f64; 6],
+}
+
+impl MomentStep {
+    fn new(h: f64) -> Self {
+        let (h2, h3) = (h * h, h * h * h);
+        let h4 = h2 * h2;
+        MomentStep {
+            shift: [3.0 * h, 3.0 * h2, h3, 2.0 * h, h2, h, 0.5 * h],
+            piece: [h4 / 5.0, h4 / 20.0, h3 / 4.0, h3 / 12.0, h2 / 3.0, h2 / 6.0],
+        }
+    }
+
+    #[inline(always)]
+    fn advance(&self, m: &mut [f64; LUMPED_TERMS], flat: bool, l: f64, r: f64) {
+        let [s3, s31, s30, s2, s20, s1, half] = self.shift;
+        let [a3, b3, a2, b2, a1, b1] = self.piece;
+        if !flat {
+            let [m0, m1, m2, m3] = *m;
+            m[3] = ((m3 + s3 * m2) + (s31 * m1 + s30 * m0)) + (a3 * l + b3 * r);
+            m[2] = (m2 + s2 * m1) + (s20 * m0 + (a2 * l + b2 * r));
+            m[1] = (m1 + s1 * m0) + (a1 * l + b1 * r);
+        }
+        m[0] += half * (l + r);
+    }
 }
 
 /// The weights of the moments in Σ_k p_k (back + x)ᵏ = Σ_i out_i xⁱ (the lumped polynomial at a
@@ -334,28 +357,26 @@ unsafe fn advance_modes_avx(m: &mut Modes, l: f64, r: f64) -> f64 {
     (s[0] + s[1]) + (s[2] + s[3])
 }
 
-/// [`dot2`] in AVX: the same operations in the same order, four lanes at once.
+/// [`dot`] of two slices of equal length, a multiple of four, in AVX: the same operations in
+/// the same order, four lanes at once.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
 #[inline]
-unsafe fn dot2_avx(a: &[f64], b: &[f64], c: &[f64], d: &[f64]) -> f64 {
+unsafe fn dot_avx(a: &[f64], b: &[f64]) -> f64 {
     use std::arch::x86_64::*;
     let n = a.len();
-    let m = n - n % 4;
-    assert!(b.len() >= n && c.len() >= n && d.len() >= n);
+    assert!(b.len() == n && n % 4 == 0);
     let mut acc = _mm256_setzero_pd();
-    let (pa, pb, pc, pd) = (a.as_ptr(), b.as_ptr(), c.as_ptr(), d.as_ptr());
-    for k in (0..m).step_by(4) {
-        // SAFETY: k + 4 ≤ m ≤ the length of all four slices.
-        let ab = _mm256_mul_pd(_mm256_loadu_pd(pa.add(k)), _mm256_loadu_pd(pb.add(k)));
-        let cd = _mm256_mul_pd(_mm256_loadu_pd(pc.add(k)), _mm256_loadu_pd(pd.add(k)));
-        acc = _mm256_add_pd(_mm256_add_pd(acc, ab), cd);
+    for k in (0..n).step_by(4) {
+        // SAFETY: k + 4 ≤ n, the length of both slices (asserted above).
+        let ab = _mm256_mul_pd(
+            _mm256_loadu_pd(a.as_ptr().add(k)),
+            _mm256_loadu_pd(b.as_ptr().add(k)),
+        );
+        acc = _mm256_add_pd(acc, ab);
     }
     let mut s = [0.0; 4];
     _mm256_storeu_pd(s.as_mut_ptr(), acc);
-    for i in 0..n - m {
-        s[i] = (s[i] + a[m + i] * b[m + i]) + c[m + i] * d[m + i];
-    }
     (s[0] + s[1]) + (s[2] + s[3])
 }
 
@@ -404,8 +425,7 @@ pub(crate) struct History {
     scale: f64,
     direct: bool,
     /// Direct: every piece (chronological); SOE: the last `window − 1` (none at λ = 1).
-    all_left: Vec<f64>,
-    all_right: Vec<f64>,
+    all: Vec<[f64; 2]>,
     local: Window,
     /// Split pieces still held exactly, by sequence number (pieces pushed since the start).
     splits: Vec<(u64, Split)>,
@@ -417,14 +437,14 @@ pub(crate) struct History {
     /// Weights of left/right of an unsplit piece at distance p (index p).
     wl: Vec<f64>,
     wr: Vec<f64>,
-    /// SOE: the same weights for the window's slice, oldest (distance cap) first.
-    wl_rev: Vec<f64>,
-    wr_rev: Vec<f64>,
-    /// The same, times h^λ/Γ(λ), without the newest piece (distance 1), whose scaled weights
-    /// are `newest`: the fast path of [`History::push`].
-    swl_rev: Vec<f64>,
-    swr_rev: Vec<f64>,
+    /// SOE with a window, the fast path of [`History::push`]: the weights (wl, wr) of the
+    /// window's older pieces (distances cap … 2) times h^λ/Γ(λ), interleaved as the window
+    /// stores its pieces, after zeros up to a multiple of four ([`Window::older_run`]).
+    older: Vec<f64>,
+    /// The scaled weights of the newest piece (distance 1).
     newest: (f64, f64),
+    /// The moments' advance over one full step, its coefficients precomputed.
+    moment_step: MomentStep,
     soe: Option<SoeKernel>,
     /// SOE mode state Y_j = ∫ e^{−s_j (t_m − s)} g(s) ds up to the window's start t_m.
     modes: Modes,
@@ -465,19 +485,16 @@ impl History {
             dt,
             scale,
             direct,
-            all_left: vec![],
-            all_right: vec![],
+            all: vec![],
             local: Window::new(0),
             splits: vec![],
             split_weights: vec![],
             pushed: 0,
             wl: vec![wb],
             wr: vec![wa],
-            wl_rev: vec![],
-            wr_rev: vec![],
-            swl_rev: vec![],
-            swr_rev: vec![],
+            older: vec![],
             newest: (0.0, 0.0),
+            moment_step: MomentStep::new(dt),
             soe: None,
             modes: Modes::default(),
             avx: false,
@@ -530,11 +547,12 @@ impl History {
             }
             c.local = Window::new(cap);
             c.grow_weights(cap);
-            c.wl_rev = (1..=cap).rev().map(|p| c.wl[p]).collect();
-            c.wr_rev = (1..=cap).rev().map(|p| c.wr[p]).collect();
             if cap > 0 {
-                c.swl_rev = (2..=cap).rev().map(|p| scale * c.wl[p]).collect();
-                c.swr_rev = (2..=cap).rev().map(|p| scale * c.wr[p]).collect();
+                let pairs = 2 * (cap - 1);
+                c.older = vec![0.0; pairs.next_multiple_of(4) - pairs];
+                for p in (2..=cap).rev() {
+                    c.older.extend([scale * c.wl[p], scale * c.wr[p]]);
+                }
                 c.newest = (scale * c.wl[1], scale * c.wr[1]);
             }
             c.lumped = k.lumped;
@@ -585,25 +603,27 @@ impl History {
         (self.scale * known, self.scale * wa)
     }
 
+    /// The pieces held exactly as (left, right), oldest first.
+    fn held(&self) -> &[[f64; 2]] {
+        if self.direct {
+            &self.all
+        } else {
+            self.local.pieces()
+        }
+    }
+
     /// The pieces held exactly, oldest first, with their splits.
     fn exact_pieces(&self) -> impl Iterator<Item = Piece> + '_ {
-        let (l, r) = if self.direct {
-            (&self.all_left[..], &self.all_right[..])
-        } else {
-            self.local.slices()
-        };
-        let first = self.pushed - l.len() as u64;
-        l.iter()
-            .zip(r)
-            .enumerate()
-            .map(move |(k, (&left, &right))| {
-                let seq = first + k as u64;
-                Piece {
-                    left,
-                    right,
-                    split: self.splits.iter().find(|(s, _)| *s == seq).map(|(_, s)| *s),
-                }
-            })
+        let held = self.held();
+        let first = self.pushed - held.len() as u64;
+        held.iter().enumerate().map(move |(k, &[left, right])| {
+            let seq = first + k as u64;
+            Piece {
+                left,
+                right,
+                split: self.splits.iter().find(|(s, _)| *s == seq).map(|(_, s)| *s),
+            }
+        })
     }
 
     /// J^λ g at the instant t_n + θh inside the current step: all completed pieces plus the
@@ -611,11 +631,7 @@ impl History {
     /// scaled weight is returned second. Used to find the velocity just before an impact.
     pub fn at_fraction(&self, theta: f64, left: f64) -> (f64, f64) {
         let shift = 1.0 - theta; // distances to t* are (distances to t_{n+1}) − shift
-        let len = if self.direct {
-            self.all_left.len()
-        } else {
-            self.local.len
-        };
+        let len = self.held().len();
         let mut sum = 0.0;
         for (k, piece) in self.exact_pieces().enumerate() {
             sum += piece_integral(&self.iw, &piece, (len - k) as f64 - shift);
@@ -643,7 +659,12 @@ impl History {
             self.cached = self.lumped[0] * self.moments[0];
             return;
         }
-        if !self.direct && self.local.cap > 0 && piece.split.is_none() && !self.split_leaves() {
+        if !self.direct
+            && self.local.cap > 0
+            && self.local.len + 1 >= self.local.cap
+            && piece.split.is_none()
+            && !self.split_leaves()
+        {
             #[cfg(target_arch = "x86_64")]
             if self.avx {
                 // SAFETY: `avx` is true only when the CPU reported AVX at construction.
@@ -665,16 +686,16 @@ impl History {
             left,
             right,
             |m, l, r| advance_modes_avx(m, l, r),
-            |a, b, c, d| dot2_avx(a, b, c, d),
+            |a, b| dot_avx(a, b),
         )
     }
 
     fn push_plain(&mut self, left: f64, right: f64) {
-        self.push_plain_body(left, right, advance_modes, dot2)
+        self.push_plain_body(left, right, advance_modes, dot)
     }
 
     /// The fast path of [`History::push`]: an unsplit piece into an SOE memory with a window
-    /// and no split piece in it. Everything that does not depend on the newest piece — the
+    /// that is full after it, no split piece leaving it. Everything that does not depend on the newest piece — the
     /// modes advanced by the piece leaving the window, the lumped terms, the window's older
     /// pieces — is summed first; the newest piece enters last, through one multiply–add pair,
     /// so that the step's dependency chain (newest g → memory value → next V) is two
@@ -685,7 +706,7 @@ impl History {
         left: f64,
         right: f64,
         advance: impl FnOnce(&mut Modes, f64, f64) -> f64,
-        dot2: impl FnOnce(&[f64], &[f64], &[f64], &[f64]) -> f64,
+        dot: impl FnOnce(&[f64], &[f64]) -> f64,
     ) {
         self.pushed += 1;
         let leaving = self.local.push(left, right);
@@ -694,18 +715,11 @@ impl History {
             if !self.modes.y.is_empty() {
                 off = advance(&mut self.modes, l0, r0);
             }
-            advance_moments(&mut self.moments, self.flat, self.dt, l0, r0);
+            self.moment_step
+                .advance(&mut self.moments, self.flat, l0, r0);
         }
         off += self.lumped_value();
-        let (l, r) = self.local.slices();
-        let n = l.len() - 1;
-        let w = self.swl_rev.len();
-        off += dot2(
-            &l[..n],
-            &self.swl_rev[w - n..],
-            &r[..n],
-            &self.swr_rev[w - n..],
-        );
+        off += dot(self.local.older_run(self.older.len()), &self.older);
         self.cached = off + (self.newest.0 * left + self.newest.1 * right);
         if !self.splits.is_empty() {
             self.cached += self.held_split_corrections();
@@ -737,13 +751,13 @@ impl History {
     /// weights computed when each was pushed.
     #[cold]
     fn held_split_corrections(&self) -> f64 {
-        let (l, r) = self.local.slices();
-        let first = self.pushed - l.len() as u64;
+        let held = self.local.pieces();
+        let first = self.pushed - held.len() as u64;
         let mut acc = 0.0;
         for (&(seq, s), w) in self.splits.iter().zip(&self.split_weights) {
-            let k = (seq - first) as usize;
+            let [l, r] = held[(seq - first) as usize];
             let c = w[(self.pushed - seq) as usize - 1];
-            acc += ((c[0] * l[k] + c[1] * s.before) + c[2] * s.after) + c[3] * r[k];
+            acc += ((c[0] * l + c[1] * s.before) + c[2] * s.after) + c[3] * r;
         }
         acc
     }
@@ -785,23 +799,10 @@ impl History {
             }
         }
         if self.direct {
-            self.all_left.push(piece.left);
-            self.all_right.push(piece.right);
-            let len = self.all_left.len();
+            self.all.push([piece.left, piece.right]);
+            let len = self.all.len();
             self.grow_weights(len);
-            // Σ_k wl[p_k] left_k + wr[p_k] right_k with p_k = len − k
-            let mut acc = 0.0;
-            let wl = &self.wl[1..=len];
-            let wr = &self.wr[1..=len];
-            for ((l, r), (a, b)) in self
-                .all_left
-                .iter()
-                .zip(&self.all_right)
-                .zip(wl.iter().rev().zip(wr.iter().rev()))
-            {
-                acc += a * l + b * r;
-            }
-            acc += self.split_corrections(len);
+            let acc = self.plain_sum(&self.all) + self.split_corrections(len);
             self.cached = self.scale * acc;
             return;
         }
@@ -822,12 +823,21 @@ impl History {
             modes = self.absorb(left, right, split);
         }
         modes += self.lumped_value();
-        let (l, r) = self.local.slices();
-        let n = l.len();
-        let cap = self.local.cap;
-        let mut local = dot(l, &self.wl_rev[cap - n..]) + dot(r, &self.wr_rev[cap - n..]);
-        local += self.split_corrections(n);
+        let held = self.local.pieces();
+        let local = self.plain_sum(held) + self.split_corrections(held.len());
         self.cached = modes + self.scale * local;
+    }
+
+    /// Σ_k wl[p]·left_k + wr[p]·right_k over `pieces` (the last ones held exactly, oldest
+    /// first) at their distances p = n − k from the next node, as if none were split
+    /// (unscaled).
+    fn plain_sum(&self, pieces: &[[f64; 2]]) -> f64 {
+        let n = pieces.len();
+        pieces
+            .iter()
+            .enumerate()
+            .map(|(k, &[l, r])| self.wl[n - k] * l + self.wr[n - k] * r)
+            .sum()
     }
 
     /// Exact minus plain weights for the split pieces among the last `len` held exactly.
@@ -835,19 +845,16 @@ impl History {
         if self.splits.is_empty() {
             return 0.0;
         }
-        let (l, r) = if self.direct {
-            (&self.all_left[..], &self.all_right[..])
-        } else {
-            self.local.slices()
-        };
+        let held = self.held();
         let first = self.pushed - len as u64;
         let mut acc = 0.0;
         for &(seq, s) in &self.splits {
             let k = (seq - first) as usize;
             let p = len - k;
+            let [left, right] = held[k];
             let piece = Piece {
-                left: l[k],
-                right: r[k],
+                left,
+                right,
                 split: Some(s),
             };
             acc += piece_integral(&self.iw, &piece, p as f64)
@@ -902,8 +909,7 @@ impl History {
 
     /// Forget everything (the memory restarts; the lower terminal moves to now).
     pub fn restart(&mut self) {
-        self.all_left.clear();
-        self.all_right.clear();
+        self.all.clear();
         self.splits.clear();
         self.split_weights.clear();
         self.local.clear();
@@ -928,16 +934,14 @@ impl History {
         }
         let flat = |m: &Modes| -> Vec<f64> { m.y.iter().flatten().copied().collect() };
         let r_modes = reference.map(|r| flat(&r.modes));
-        pair(reference.map(|r| &r.all_left[..]), &mut self.all_left, f);
-        pair(reference.map(|r| &r.all_right[..]), &mut self.all_right, f);
         pair(
-            reference.map(|r| &r.local.left[..]),
-            &mut self.local.left,
+            reference.map(|r| r.all.as_flattened()),
+            self.all.as_flattened_mut(),
             f,
         );
         pair(
-            reference.map(|r| &r.local.right[..]),
-            &mut self.local.right,
+            reference.map(|r| r.local.pairs.as_flattened()),
+            self.local.pairs.as_flattened_mut(),
             f,
         );
         for (k, (_, s)) in self.splits.iter_mut().enumerate() {
@@ -959,7 +963,7 @@ impl History {
     fn same_layout(&self, other: &History) -> bool {
         self.direct == other.direct
             && self.pushed == other.pushed
-            && self.all_left.len() == other.all_left.len()
+            && self.all.len() == other.all.len()
             && self.local.cap == other.local.cap
             && self.local.head == other.local.head
             && self.local.len == other.local.len
@@ -999,10 +1003,8 @@ impl History {
 
     /// Bytes of state held (grows with N for Direct, constant for SOE).
     pub fn state_bytes(&self) -> usize {
-        8 * (self.all_left.capacity()
-            + self.all_right.capacity()
-            + self.local.left.len()
-            + self.local.right.len()
+        8 * (2 * self.all.capacity()
+            + 2 * self.local.pairs.len()
             + self.wl.capacity()
             + self.wr.capacity()
             + 5 * self.modes.len())
