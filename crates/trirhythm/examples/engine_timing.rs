@@ -4,7 +4,9 @@
 //! Prints, in one run:
 //! - the noisy fractional path of the speed target (Fig. 13(a) set: λ = 0.998, OU noise D = 0.1,
 //!   τ = 0.5, wall on, Δt = 0.01, 10⁷ steps) against the same path at λ = 1 and without noise,
-//!   in steps per second on one core, with the per-step breakdown (memory, noise, the rest);
+//!   in steps per second on one core, the best of five runs with the cases alternating (one run
+//!   with `quick`), the ratio λ = 0.998 / λ = 1 of the best runs and run by run, and the
+//!   per-step breakdown (memory, noise, the rest);
 //! - SOE vs Direct at 1e4, 3e4, 1e5 steps (speed-up and max |ΔU|).
 
 use std::hint::black_box;
@@ -65,20 +67,38 @@ fn memory_only(lambda: f64, steps: usize) -> f64 {
 fn main() {
     let quick = std::env::args().any(|a| a == "quick");
     let n: usize = if quick { 1_000_000 } else { 10_000_000 };
-    println!("Eq. (1), fig13a set (mu0 = 0.005, r = 0.99), wall on, dt = 0.01, U(0) = 7, N = {n}, one core");
-    let mut rows = vec![];
-    for (lambda, d) in [(0.998, 0.1), (1.0, 0.1), (0.998, 0.0), (1.0, 0.0)] {
-        let (t, impacts, amp) = speed_case(lambda, d, n);
-        println!(
-            "  lambda = {lambda:<5} D = {d:<3}: {t:7.3} s  {:>6.2e} steps/s  ({:5.1} ns/step, {impacts} impacts, final A {amp:.4})",
-            n as f64 / t,
-            t / n as f64 * 1e9
-        );
-        rows.push(t);
+    // best of `reps` runs, the cases alternating: on a shared machine single runs vary by
+    // ±10 %; the fastest run is the one least disturbed
+    let reps = if quick { 1 } else { 5 };
+    println!("Eq. (1), fig13a set (mu0 = 0.005, r = 0.99), wall on, dt = 0.01, U(0) = 7, N = {n}, one core, best of {reps} alternating runs");
+    let cases = [(0.998, 0.1), (1.0, 0.1), (0.998, 0.0), (1.0, 0.0)];
+    let mut best = [f64::INFINITY; 4];
+    let mut seen = [(0, 0.0); 4];
+    let mut ratios = vec![];
+    for _ in 0..reps {
+        let mut times = [0.0; 4];
+        for (k, &(lambda, d)) in cases.iter().enumerate() {
+            let (t, impacts, amp) = speed_case(lambda, d, n);
+            times[k] = t;
+            best[k] = best[k].min(t);
+            seen[k] = (impacts, amp);
+        }
+        ratios.push(times[0] / times[1]);
     }
+    for (k, &(lambda, d)) in cases.iter().enumerate() {
+        let (impacts, amp) = seen[k];
+        println!(
+            "  lambda = {lambda:<5} D = {d:<3}: {:7.3} s  {:>6.2e} steps/s  ({:5.1} ns/step, {impacts} impacts, final A {amp:.4})",
+            best[k],
+            n as f64 / best[k],
+            best[k] / n as f64 * 1e9
+        );
+    }
+    let listed: Vec<String> = ratios.iter().map(|r| format!("{r:.2}")).collect();
     println!(
-        "  cost of lambda = 0.998 relative to lambda = 1, both noisy: {:.2}x",
-        rows[0] / rows[1]
+        "  cost of lambda = 0.998 relative to lambda = 1, both noisy: {:.2}x (best runs; run by run: {})",
+        best[0] / best[1],
+        listed.join(", ")
     );
     let tn = noise_only(n);
     let tm = memory_only(0.998, n);
@@ -92,11 +112,11 @@ fn main() {
     );
     println!(
         "    the rest (g, corrector, impacts, driver)   : {:5.1} ns",
-        per(rows[0]) - per(tm) - per(tn)
+        per(best[0]) - per(tm) - per(tn)
     );
     println!(
         "    total                                     : {:5.1} ns",
-        per(rows[0])
+        per(best[0])
     );
 
     if std::env::args().any(|a| a == "speed") {

@@ -367,13 +367,15 @@ unsafe fn dot_avx(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len();
     assert!(b.len() == n && n % 4 == 0);
     let mut acc = _mm256_setzero_pd();
-    for k in (0..n).step_by(4) {
+    let mut k = 0;
+    while k < n {
         // SAFETY: k + 4 ≤ n, the length of both slices (asserted above).
         let ab = _mm256_mul_pd(
             _mm256_loadu_pd(a.as_ptr().add(k)),
             _mm256_loadu_pd(b.as_ptr().add(k)),
         );
         acc = _mm256_add_pd(acc, ab);
+        k += 4;
     }
     let mut s = [0.0; 4];
     _mm256_storeu_pd(s.as_mut_ptr(), acc);
