@@ -1217,6 +1217,39 @@ mod tests {
     }
 
     #[test]
+    fn every_window_size_agrees_with_the_direct_memory() {
+        // the fast path reads the window's older pieces as one run whose length is rounded up
+        // to a multiple of four, zero-weighted values in front (a padding of two doubles when
+        // the window holds an odd number of older pieces): against the exact O(N) memory, for
+        // windows of 2 … 10 steps, through the fill, the steady state and a restart
+        let g = |n: usize| (0.37 * n as f64).sin() + 0.02 * n as f64;
+        for lambda in [0.6, 0.998] {
+            for window in 2..=10 {
+                let soe = Memory::SumOfExponentials { tolerance: 1e-12 };
+                let mut fast = History::new(lambda, 0.01, 4.0, soe, window).unwrap();
+                let mut exact = History::new(lambda, 0.01, 4.0, Memory::Direct, window).unwrap();
+                let mut worst: f64 = 0.0;
+                for n in 0..400 {
+                    if n == 250 {
+                        fast.restart();
+                        exact.restart();
+                    }
+                    let piece = Piece {
+                        left: g(n),
+                        right: g(n + 1) + 0.01,
+                        split: None,
+                    };
+                    fast.push(piece);
+                    exact.push(piece);
+                    let scale = exact.value().abs().max(1e-3);
+                    worst = worst.max((fast.value() - exact.value()).abs() / scale);
+                }
+                assert!(worst < 1e-10, "λ = {lambda}, window {window}: {worst:e}");
+            }
+        }
+    }
+
+    #[test]
     fn scaling_the_history_equals_the_history_of_the_scaled_g() {
         // J^λ is linear: scale(c) after pieces of g = pieces of c·g, for every memory, through
         // the window, the modes and a split (impact) piece
