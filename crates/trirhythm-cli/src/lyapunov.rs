@@ -3,14 +3,14 @@
 //! critical-noise`: the noise D_c where it changes sign. Keys, columns and flags are a
 //! contract: keep them.
 
-use crate::common::{bad, emit, jnum, num, params_json, progress, Csv, Grid, ParamArgs};
+use crate::common::{bad, emit, jnum, num, params_json, progress, sig, Csv, Grid, ParamArgs};
 use crate::simulate::{method_from, ImpactMemoryArg, MemoryArg, OnOff, SimFormat, SystemArg};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
 use std::path::PathBuf;
 use trirhythm::analysis::lyapunov::{
-    critical_noise, largest_lyapunov, CriticalNoise, CriticalSearch, LyapunovSpec,
+    critical_noise, largest_lyapunov, CriticalNoise, CriticalSearch, LyapunovResult, LyapunovSpec,
 };
 use trirhythm::engine::{Barrier, Oscillator, PredictorCorrector, System};
 use trirhythm::model::Params;
@@ -264,10 +264,32 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
         bar.finish_and_clear();
         let text = match args.format.unwrap_or(SimFormat::Csv) {
             SimFormat::Csv => {
-                let mut csv =
-                    Csv::new(&header, &[key.as_str(), "lle", "stderr"]).allow_infinity("lle");
+                header.push(
+                    "merged: realisations whose copy merged with its reference (then lle = -inf); \
+                     unmerged: the mean over the others"
+                        .into(),
+                );
+                let mut csv = Csv::new(
+                    &header,
+                    &[
+                        key.as_str(),
+                        "lle",
+                        "stderr",
+                        "merged",
+                        "unmerged",
+                        "unmerged_stderr",
+                    ],
+                )
+                .allow_infinity("lle");
                 for (v, r) in &rows {
-                    csv.row([num(*v), num(r.lle.value), opt_cell(r.lle.stderr)]);
+                    csv.row([
+                        num(*v),
+                        num(r.lle.value),
+                        opt_cell(r.lle.stderr),
+                        r.merged.to_string(),
+                        opt_cell(r.unmerged.value),
+                        opt_cell(r.unmerged.stderr),
+                    ]);
                 }
                 csv.finish()?
             }
@@ -280,6 +302,8 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
                     "points": rows.iter().map(|(v, r)| json!({
                         key.as_str(): jnum(*v),
                         "lle": {"value": stderr_json(r.lle.value), "stderr": stderr_json(r.lle.stderr)},
+                        "merged": r.merged,
+                        "unmerged": {"value": stderr_json(r.unmerged.value), "stderr": stderr_json(r.unmerged.stderr)},
                     })).collect::<Vec<_>>(),
                 });
                 serde_json::to_string_pretty(&doc)? + "\n"
@@ -295,13 +319,13 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
     bar.finish_and_clear();
     eprintln!(
         "LLE = {} (finite-time, window {}; {} paths)",
-        lle_text(r.lle.value, r.lle.stderr),
+        lle_text(&r),
         num(spec.length),
         spec.paths
     );
     let text = match args.format.unwrap_or(SimFormat::Json) {
         SimFormat::Csv => {
-            header.push(format!("lle: {}", lle_text(r.lle.value, r.lle.stderr)));
+            header.push(format!("lle: {}", lle_text(&r)));
             header.push("columns: running estimate (time since the transient, mean over paths, standard error)".into());
             let mut csv = Csv::new(&header, &["t", "lle", "stderr"]).allow_infinity("lle");
             for q in &r.running {
@@ -324,6 +348,8 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
                 "separation": jnum(spec.separation),
                 "renormalise_every": spec.renormalise_every,
                 "lle": {"value": stderr_json(r.lle.value), "stderr": stderr_json(r.lle.stderr)},
+                "merged": r.merged,
+                "unmerged": {"value": stderr_json(r.unmerged.value), "stderr": stderr_json(r.unmerged.stderr)},
                 "per_path": r.per_path.iter().map(|q| json!({
                     "path": q.path,
                     "exponent": stderr_json(q.exponent),
@@ -331,6 +357,7 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
                     "renormalisations": q.renormalisations,
                     "deferred": q.deferred,
                     "impacts": q.impacts,
+                    "merged_at": q.merged_at.map_or(Value::Null, jnum),
                 })).collect::<Vec<_>>(),
                 "running": r.running.iter().map(|q| json!([jnum(q.t), stderr_json(q.value)])).collect::<Vec<_>>(),
                 "running_stderr": r.running.iter().map(|q| stderr_json(q.stderr)).collect::<Vec<_>>(),
@@ -459,11 +486,11 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
     for (v, c) in &found {
         if !c.found() {
             eprintln!(
-                "{}: no sign change in range (LLE {} throughout D ∈ [{}, {}])",
+                "{}: no sign change in range D ∈ [{}, {}] (LLE {})",
                 label(*v),
-                sign_word(c),
                 num(d_lo),
-                num(d_hi)
+                num(d_hi),
+                sign_word(c)
             );
         }
     }
@@ -485,9 +512,23 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
             for (v, c) in &found {
                 if !c.found() {
                     header.push(format!(
-                        "{}: no sign change in range (LLE {} throughout)",
+                        "{}: no sign change in range (LLE {})",
                         label(*v),
                         sign_word(c)
+                    ));
+                }
+                let merged: Vec<String> = c
+                    .evaluated
+                    .iter()
+                    .filter(|q| q.merged > 0)
+                    .map(noise_point_text)
+                    .collect();
+                if !merged.is_empty() {
+                    header.push(format!(
+                        "{}: no sign at D = {} (realisations whose copy merged with its \
+                         reference: LLE −∞)",
+                        label(*v),
+                        merged.join(", ")
                     ));
                 }
             }
@@ -519,14 +560,14 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
                     "value": if key.is_some() { jnum(*v) } else { Value::Null },
                     "sign_change": c.found(),
                     "verdict": if c.found() { "sign change".to_string() } else {
-                        format!("no sign change in range (LLE {} throughout)", sign_word(c))
+                        format!("no sign change in range (LLE {})", sign_word(c))
                     },
                     "D_c": if c.found() { jnum(c.d_c) } else { Value::Null },
                     "D_c_lo": if c.found() { jnum(c.d_c_lo) } else { Value::Null },
                     "D_c_hi": if c.found() { jnum(c.d_c_hi) } else { Value::Null },
                     "rising": c.found().then_some(c.rising),
                     "evaluated": c.evaluated.iter().map(|q| json!({
-                        "D": jnum(q.d), "lle": stderr_json(q.lle.value), "stderr": stderr_json(q.lle.stderr),
+                        "D": jnum(q.d), "lle": stderr_json(q.lle.value), "stderr": stderr_json(q.lle.stderr), "merged": q.merged,
                     })).collect::<Vec<_>>(),
                 })).collect::<Vec<_>>(),
             });
@@ -545,25 +586,71 @@ fn opt_cell(v: f64) -> String {
     }
 }
 
-fn sign_word(c: &CriticalNoise) -> &'static str {
-    if c.evaluated.iter().all(|q| q.lle.value < 0.0) {
-        "negative"
+/// The LLE's sign over the evaluated D without a merged realisation (a search without a sign
+/// change), in words: "negative throughout", "positive at every D without a merged
+/// realisation", …
+pub(crate) fn sign_word(c: &CriticalNoise) -> &'static str {
+    let signed: Vec<f64> = c
+        .evaluated
+        .iter()
+        .filter(|q| q.merged == 0)
+        .map(|q| q.lle.value)
+        .collect();
+    let merged = signed.len() < c.evaluated.len();
+    match (signed.is_empty(), signed.iter().all(|&v| v < 0.0), merged) {
+        (true, _, _) => "without a sign: a realisation merged at every D",
+        (false, true, false) => "negative throughout",
+        (false, false, false) => "positive throughout",
+        (false, true, true) => "negative at every D without a merged realisation",
+        (false, false, true) => "positive at every D without a merged realisation",
+    }
+}
+
+/// An evaluated D of a critical-noise search in words: "D: LLE ± s.e.", or the merged count.
+pub(crate) fn noise_point_text(q: &trirhythm::analysis::lyapunov::NoisePoint) -> String {
+    if q.merged > 0 {
+        format!("{}: −∞ ({} merged)", sig(q.d, 4), q.merged)
     } else {
-        "positive"
+        format!(
+            "{}: {} ± {}",
+            sig(q.d, 4),
+            sig(q.lle.value, 3),
+            sig(q.lle.stderr, 2)
+        )
     }
 }
 
 /// An exponent with its standard error in words: −∞ and a missing standard error are
 /// explained, never printed as bare `-inf ± nan`.
-fn lle_text(value: f64, stderr: f64) -> String {
+fn lle_text(r: &LyapunovResult) -> String {
+    let (value, stderr) = (r.lle.value, r.lle.stderr);
     if value == f64::NEG_INFINITY {
-        return "−∞: the perturbation vanished on some path (the copy and the reference came to \
-                rest together on the wall); no standard error"
-            .into();
+        let others = r.per_path.len() - r.merged;
+        let rest = if others == 0 {
+            String::new()
+        } else {
+            format!(
+                "; the other {others}: {}",
+                estimate_text(r.unmerged.value, r.unmerged.stderr)
+            )
+        };
+        return format!(
+            "−∞: {} of {} realisations merged (the copy became identical to its reference, whole \
+             memory included: both stuck at the wall on the same step with the memory restarted; \
+             `per_path[].merged_at` in JSON){rest}",
+            r.merged,
+            r.per_path.len()
+        );
     }
+    estimate_text(value, stderr)
+}
+
+/// A finite exponent with its standard error (4 and 2 significant digits: prose; the JSON has
+/// every digit), or without one (a single path).
+fn estimate_text(value: f64, stderr: f64) -> String {
     if stderr.is_finite() {
-        format!("{} ± {}", num(value), num(stderr))
+        format!("{} ± {}", sig(value, 4), sig(stderr, 2))
     } else {
-        format!("{} (no standard error: one path)", num(value))
+        format!("{} (no standard error: one path)", sig(value, 4))
     }
 }

@@ -79,8 +79,45 @@ fn sweep_writes_key_lle_stderr() {
         "D=0.1:0.5:3",
     ]);
     let rows: Vec<&str> = text.lines().filter(|l| !l.starts_with('#')).collect();
-    assert_eq!(rows[0], "D,lle,stderr");
+    assert_eq!(rows[0], "D,lle,stderr,merged,unmerged,unmerged_stderr");
     assert_eq!(rows.len(), 4);
+}
+
+/// A realisation whose copy merges with its reference (both stuck at the wall on the same step,
+/// memory restarted): −∞ said in words with the count and the others' mean, the merge time per
+/// path in JSON.
+#[test]
+fn a_merged_realisation_is_reported_with_its_time_and_the_others_mean() {
+    let out = run(&[
+        "lyapunov",
+        "--preset",
+        "fig18b",
+        "--param",
+        "r=0.8",
+        "--param",
+        "D=0.29375",
+        "--paths",
+        "6",
+        "--t-end",
+        "380",
+        "--transient",
+        "20",
+        "--u0",
+        "1",
+    ]);
+    assert!(out.status.success());
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(doc["lle"]["value"].is_null());
+    assert_eq!(doc["merged"], 1);
+    let path4 = &doc["per_path"][4];
+    assert!(path4["exponent"].is_null());
+    let t = path4["merged_at"].as_f64().unwrap();
+    assert!((t - 67.21).abs() < 1e-6, "{t}");
+    assert!(doc["per_path"][0]["merged_at"].is_null());
+    assert!(doc["unmerged"]["value"].as_f64().unwrap() > 0.0);
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(said.contains("−∞: 1 of 6 realisations merged"), "{said}");
+    assert!(said.contains("the other 5: "), "{said}");
 }
 
 #[test]

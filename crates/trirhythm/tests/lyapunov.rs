@@ -383,3 +383,62 @@ fn tangent_one_thread_or_two_give_the_same_exponent() {
     assert!(one.per_path.iter().all(|q| q.impacts > 10));
     assert_eq!(one, run(2));
 }
+
+/// With the wall and the memory restarted at sticking, a copy can merge with its reference:
+/// both stick on the same step and their whole states become identical. That realisation's
+/// exponent is −∞ with its merge time, whenever it happens; the others keep finite exponents,
+/// and `unmerged` is their mean.
+#[test]
+fn a_copy_that_merges_with_its_reference_gives_minus_infinity_with_its_time() {
+    let p = preset("fig18b")
+        .unwrap()
+        .params
+        .with("r", 0.8)
+        .unwrap()
+        .with("D", 0.29375)
+        .unwrap();
+    let method = PredictorCorrector {
+        impact_memory: ImpactMemory::Restart,
+        ..Default::default()
+    };
+    let spec = LyapunovSpec {
+        paths: 6,
+        seed: 1,
+        transient: 20.0,
+        length: 380.0,
+        u0: 1.0,
+        ..Default::default()
+    };
+    let r = lle_with(&p, &method, &spec);
+    let merged: Vec<_> = r
+        .per_path
+        .iter()
+        .filter(|q| q.merged_at.is_some())
+        .collect();
+    assert!(!merged.is_empty(), "{:?}", r.per_path);
+    assert_eq!(r.merged, merged.len());
+    for q in &merged {
+        assert_eq!(q.exponent, f64::NEG_INFINITY);
+        let t = q.merged_at.unwrap();
+        assert!(t > 0.0 && t <= 400.0, "{t}");
+    }
+    assert_eq!(r.lle.value, f64::NEG_INFINITY);
+    let others: Vec<f64> = r
+        .per_path
+        .iter()
+        .filter(|q| q.merged_at.is_none())
+        .map(|q| q.exponent)
+        .collect();
+    assert!(!others.is_empty() && others.iter().all(|e| e.is_finite()));
+    let mean = others.iter().sum::<f64>() / others.len() as f64;
+    assert!((r.unmerged.value - mean).abs() < 1e-15);
+    eprintln!(
+        "merged {:?}; unmerged {:.4} ± {:.4}",
+        merged
+            .iter()
+            .map(|q| (q.path, q.merged_at))
+            .collect::<Vec<_>>(),
+        r.unmerged.value,
+        r.unmerged.stderr
+    );
+}

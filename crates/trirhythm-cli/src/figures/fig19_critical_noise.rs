@@ -6,7 +6,8 @@ use super::lle::{draw_panel, panel_height, panels_csv, Curve, Panel, Point, Size
 use super::symbol;
 use super::write_figure;
 use super::{csv_header, heading, Figure, FigureContext};
-use crate::common::num;
+use crate::common::{num, sig};
+use crate::lyapunov::{noise_point_text, sign_word};
 use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
@@ -68,24 +69,38 @@ impl Figure for Fig19 {
             for v in values {
                 let p = base.with(key, v)?;
                 let c = critical_noise(&p, &sz.method, &sz.spec, &search, None)?;
+                let merged: Vec<String> = c
+                    .evaluated
+                    .iter()
+                    .filter(|q| q.merged > 0)
+                    .map(noise_point_text)
+                    .collect();
                 if c.found() {
                     notes.push(format!(
-                        "{label} {} = {}: D_c = {} in [{}, {}] ({})",
-                        symbol(key), num(v), num(c.d_c), num(c.d_c_lo), num(c.d_c_hi),
-                        if c.rising { "LLE negative below, positive above" } else { "LLE positive below, negative above: the opposite of the paper's transition" }
+                        "{label} {} = {}: D_c = {} in [{}, {}] ({}){}",
+                        symbol(key), num(v), sig(c.d_c, 4), sig(c.d_c_lo, 4), sig(c.d_c_hi, 4),
+                        if c.rising { "LLE negative below, positive above" } else { "LLE positive below, negative above: the opposite of the paper's transition" },
+                        if merged.is_empty() { String::new() } else { format!("; no sign at D = {} (realisations merged)", merged.join(", ")) }
                     ));
                 } else {
-                    let sign = if c.evaluated.iter().all(|q| q.lle.value < 0.0) {
-                        "negative"
-                    } else {
-                        "positive"
-                    };
+                    let sign = sign_word(&c);
                     notes.push(format!(
-                        "{label} {} = {}: no sign change in range (LLE {sign} throughout D ∈ [{}, {}]; evaluated: {})",
+                        "{label} {} = {}: no sign change in range D ∈ [{}, {}] (LLE {sign}; evaluated: {})",
                         symbol(key), num(v), num(search.d_lo), num(search.d_hi),
-                        c.evaluated.iter().map(|q| format!("{}: {} ± {}", num(q.d), num(q.lle.value), num(q.lle.stderr))).collect::<Vec<_>>().join("; ")
+                        c.evaluated.iter().map(noise_point_text).collect::<Vec<_>>().join("; ")
                     ));
-                    missing.push(format!("{}{sign}", num(v)));
+                    let tag = match sign {
+                        "negative throughout" => "LLE < 0",
+                        "positive throughout" => "LLE > 0",
+                        "negative at every D without a merged realisation" => {
+                            "LLE < 0 or a realisation merged"
+                        }
+                        "positive at every D without a merged realisation" => {
+                            "LLE > 0 or a realisation merged"
+                        }
+                        _ => "a realisation merged at every D",
+                    };
+                    missing.push((num(v), tag));
                 }
                 if c.found() && !c.rising {
                     falling.push(num(v));
@@ -129,17 +144,23 @@ impl Figure for Fig19 {
                     falling.join(", ")
                 ));
             }
-            if !missing.is_empty() {
+            // one line per kind of outcome, so that no line runs past the chart
+            let mut tags: Vec<&str> = Vec::new();
+            for m in &missing {
+                if !tags.contains(&m.1) {
+                    tags.push(m.1);
+                }
+            }
+            for tag in tags {
+                let at: Vec<&str> = missing
+                    .iter()
+                    .filter(|m| m.1 == tag)
+                    .map(|m| m.0.as_str())
+                    .collect();
                 verdicts.push(format!(
-                    "no sign change in range at {} = {}",
+                    "no sign change in range at {} = {} ({tag})",
                     symbol(key),
-                    missing
-                        .iter()
-                        .map(|m| m
-                            .replace("negative", " (LLE < 0)")
-                            .replace("positive", " (LLE > 0)"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
+                    at.join(", ")
                 ));
             }
             panels.push(Panel {

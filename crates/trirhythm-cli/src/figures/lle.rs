@@ -3,7 +3,7 @@
 //! a strip below its chart, so no legend covers data.
 
 use super::symbol;
-use crate::common::{num, Csv};
+use crate::common::{num, sig, Csv};
 use crate::plot::{chart, padded_range, pe, LegendStrip, Symbol, PALETTE};
 use anyhow::Result;
 use plotters::coord::Shift;
@@ -222,8 +222,13 @@ where
             .filter(|q| q.y.is_finite())
             .map(|q| (q.x + shift, q.y))
             .collect();
-        c.draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
-            .map_err(pe)?;
+        // the line is broken where a point has no value (−∞: merged realisations), so that it
+        // never suggests a measurement there
+        for run in curve.points.split(|q| !q.y.is_finite()) {
+            let run: Vec<(f64, f64)> = run.iter().map(|q| (q.x + shift, q.y)).collect();
+            c.draw_series(LineSeries::new(run, colour.stroke_width(2)))
+                .map_err(pe)?;
+        }
         c.draw_series(pts.iter().map(|&p| Circle::new(p, 4, colour.filled())))
             .map_err(pe)?;
         let cap = (x.end - x.start) * 0.006;
@@ -280,12 +285,38 @@ pub fn lle_against_noise(
     use trirhythm::engine::Oscillator;
     let mut curves = Vec::new();
     let mut notes = Vec::new();
-    let (mut pos, mut neg, mut all) = (0, 0, 0);
+    let (mut pos, mut neg, mut all, mut merged_points) = (0, 0, 0, 0);
     for &v in values {
         let mut points = Vec::new();
         for &d in noises {
             let p = base.with(key, v)?.with("D", d)?;
             let r = largest_lyapunov(&Oscillator::new(&p)?, &sizes.method, &sizes.spec, None)?;
+            if r.merged > 0 {
+                merged_points += 1;
+                let when: Vec<String> = r
+                    .per_path
+                    .iter()
+                    .filter_map(|q| {
+                        q.merged_at
+                            .map(|t| format!("{} at t = {}", q.path, sig(t, 4)))
+                    })
+                    .collect();
+                notes.push(format!(
+                    "{caption}, {} = {}, D = {}: LLE −∞, not drawn: {} of {} realisations merged (the copy became identical to its reference, both stuck at the wall on the same step with the memory restarted; path {}); the other {}: {}",
+                    symbol(key),
+                    num(v),
+                    sig(d, 4),
+                    r.merged,
+                    r.per_path.len(),
+                    when.join(", path "),
+                    r.per_path.len() - r.merged,
+                    if r.unmerged.value.is_finite() {
+                        format!("{} ± {}", sig(r.unmerged.value, 3), sig(r.unmerged.stderr, 2))
+                    } else {
+                        "none".into()
+                    }
+                ));
+            }
             let s = if r.lle.stderr.is_finite() {
                 r.lle.stderr
             } else {
@@ -298,15 +329,28 @@ pub fn lle_against_noise(
                 hi: r.lle.value + s,
             });
         }
-        let sig = |q: &Point| (q.hi - q.lo) / 2.0 * 2.0;
-        let p_count = points.iter().filter(|q| q.y > sig(q)).count();
-        let n_count = points.iter().filter(|q| q.y < -sig(q)).count();
+        // two standard errors; a −∞ point (merged realisations) has no sign
+        let two_se = |q: &Point| (q.hi - q.lo) / 2.0 * 2.0;
+        let p_count = points
+            .iter()
+            .filter(|q| q.y.is_finite() && q.y > two_se(q))
+            .count();
+        let n_count = points
+            .iter()
+            .filter(|q| q.y.is_finite() && q.y < -two_se(q))
+            .count();
         pos += p_count;
         neg += n_count;
         all += points.len();
-        let first_pos = points.iter().find(|q| q.y > sig(q)).map(|q| q.x);
-        let neg_before =
-            first_pos.is_some_and(|d0| points.iter().any(|q| q.x < d0 && q.y < -sig(q)));
+        let first_pos = points
+            .iter()
+            .find(|q| q.y.is_finite() && q.y > two_se(q))
+            .map(|q| q.x);
+        let neg_before = first_pos.is_some_and(|d0| {
+            points
+                .iter()
+                .any(|q| q.x < d0 && q.y.is_finite() && q.y < -two_se(q))
+        });
         notes.push(format!(
             "{caption}, {} = {}: LLE > 0 by 2 standard errors at {p_count} of {} D, < 0 at {n_count}; {}",
             symbol(key),
@@ -332,9 +376,13 @@ pub fn lle_against_noise(
         y_key: "lle".into(),
         zero_line: true,
         curves,
-        verdicts: vec![format!(
-            "LLE > 0 (2 s.e.) at {pos} of {all} points, < 0 at {neg}"
-        )],
+        verdicts: vec![if merged_points > 0 {
+            format!(
+                "LLE > 0 (2 s.e.) at {pos} of {all} points, < 0 at {neg}; −∞ (merged, not drawn) at {merged_points}"
+            )
+        } else {
+            format!("LLE > 0 (2 s.e.) at {pos} of {all} points, < 0 at {neg}")
+        }],
     };
     Ok((panel, notes))
 }

@@ -657,6 +657,16 @@ pub struct Estimate {
     pub stderr: f64,
 }
 
+impl Estimate {
+    /// No estimate: value and standard error NaN.
+    pub fn undefined() -> Self {
+        Estimate {
+            value: f64::NAN,
+            stderr: f64::NAN,
+        }
+    }
+}
+
 /// Delete-one jackknife of `f` over units: `f` gets the sums over all units but one (or all).
 fn jackknife(units: &[Vec<f64>], f: impl Fn(&[f64]) -> f64) -> Estimate {
     let m = units.first().map_or(0, Vec::len);

@@ -28,6 +28,17 @@
 //! renormalised the same way but not counted (they align the perturbation with its most
 //! unstable direction and let the path reach its attractor).
 //!
+//! **Merged realisations.** With the wall the map can collapse states: when the copy and the
+//! reference stick at the wall on the same step with the memory restarted, their whole states
+//! become identical ([`Stepper::coincides_with`]) and stay so under the same noise. The
+//! perturbation has then vanished for good: that realisation's exponent is −∞ whenever the
+//! merge happens (transient or window), and [`PathExponent::merged_at`] gives its time. A zero
+//! distance in (U, U̇) alone (both at rest on the wall with different memories) is not a merge:
+//! the renormalisation is retried. The mean over realisations is then −∞;
+//! [`LyapunovResult::merged`] counts such realisations and [`LyapunovResult::unmerged`] gives
+//! the mean over the others, a statement about the realisations that did not synchronise.
+//! [`critical_noise`] gives no sign to a D at which a realisation merged.
+//!
 //! # Second method: the tangent (variational) equation
 //! [`LyapunovMethod::Tangent`] steps the variational equation with the reference in one pass
 //! (`Stepper::step_with_tangent`, module `engine::stepper::tangent`): δg = (μP′(U)U̇ − ω²)δU +
@@ -66,7 +77,9 @@
 //!
 //! # Critical noise
 //! [`critical_noise`] evaluates the LLE on a grid of D (the same seed at every D: common random
-//! numbers make LLE(D) smooth), takes the first sign change in ascending D and bisects it; D_c
+//! numbers make LLE(D) smooth), takes the first sign change in ascending D among the D at which
+//! no realisation merged (there the mean is −∞, which says synchronisation, not a sign) and
+//! bisects it (stopping early if a midpoint has a merged realisation); D_c
 //! is the linear interpolation of the final bracket. Its uncertainty [D_c_lo, D_c_hi] runs from
 //! the largest evaluated D below D_c whose LLE differs from 0 by more than `z` standard errors
 //! with the sign below, to the smallest evaluated D above with the sign above (the range's end
@@ -80,7 +93,10 @@
 //! `tests/lyapunov.rs`: the damped linear oscillator (P ≡ −1, no wall, λ = 1) has LLE = −μ0/2
 //! for every D; a stable deterministic limit cycle has LLE → 0; at λ = 1 Eq. (1) with the wall
 //! and Eq. (9) on the whole line give the same LLE; the thread count changes nothing; the
-//! critical noise of a family with a known sign change is bracketed. The tangent method: −μ0/2 for
+//! critical noise of a family with a known sign change is bracketed; a copy that merges with its
+//! reference (Fig. 18(b)'s r = 0.8 at D = 0.29375, path 4, both stuck at t ≈ 67) gives −∞ with
+//! its merge time while the others keep finite exponents; `first_sign_change` skips D with merged
+//! realisations (unit test below). The tangent method: −μ0/2 for
 //! the damped oscillator (error 7e-6); agreement with two trajectories (z = |Δ|/√(σ₁² + σ₂²) < 3;
 //! measured z ≤ 0.03) on an impacting limit cycle at λ = 1, on Fig. 17(a)'s parameters at
 //! λ = 0.998 with the wall (both impact memories) and on λ = 0.998, 0.95 without the wall (path by
@@ -254,9 +270,8 @@ impl LyapunovSpec {
     }
 }
 
-/// The exponent of one noise realisation: −∞ when the perturbation was annihilated (the copy
-/// and the reference coincide in U and U̇ at every renormalisation of the window: both at rest
-/// on the wall), which makes the mean −∞ too.
+/// The exponent of one noise realisation: −∞ when the perturbation vanished for good (the copy
+/// merged with its reference, module docs), which makes the mean −∞ too.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PathExponent {
     /// Noise stream index.
@@ -272,6 +287,10 @@ pub struct PathExponent {
     pub deferred: u64,
     /// Impacts of the reference path.
     pub impacts: u64,
+    /// Time at which the copy merged with its reference for good (the exponent is then −∞;
+    /// `measured_time` and `renormalisations` are those before the merge).
+    #[serde(default)]
+    pub merged_at: Option<f64>,
 }
 
 /// A point of the running estimate: time since the transient and the estimate so far.
@@ -292,6 +311,13 @@ pub struct RunningPoint {
 pub struct LyapunovResult {
     /// Mean of the paths' exponents with its standard error over paths (NaN for one path).
     pub lle: Estimate,
+    /// Realisations whose copy merged with its reference (exponent −∞).
+    #[serde(default)]
+    pub merged: usize,
+    /// Mean and standard error over the realisations that did not merge (NaN when fewer than
+    /// one / two remain); equal to `lle` when none merged.
+    #[serde(default = "Estimate::undefined")]
+    pub unmerged: Estimate,
     /// Each realisation's exponent.
     pub per_path: Vec<PathExponent>,
     /// The running estimate over the measured window.
@@ -321,8 +347,8 @@ pub fn mean_and_stderr(xs: &[f64]) -> Estimate {
 enum Renormalised {
     /// Done: the perturbation had grown by this factor since the last one.
     Grown(f64),
-    /// Refused now (tried again at the next step); `merged` when the perturbation is 0 in
-    /// (δU, δU̇) (at rest on the wall).
+    /// Refused now (tried again at the next step); `merged` when the perturbation has
+    /// vanished for good (the copy coincides with the reference, or the whole tangent is 0).
     Refused { merged: bool },
 }
 
@@ -352,7 +378,9 @@ impl Perturbation for TwoPaths {
         if d > 0.0 && d.is_finite() && self.b.contract_toward(&self.a, self.d0 / d) {
             Renormalised::Grown(d / self.d0)
         } else {
-            Renormalised::Refused { merged: d == 0.0 }
+            Renormalised::Refused {
+                merged: d == 0.0 && self.b.coincides_with(&self.a),
+            }
         }
     }
 
@@ -378,7 +406,9 @@ impl Perturbation for PathAndTangent {
             self.t.scale(1.0 / d);
             Renormalised::Grown(d)
         } else {
-            Renormalised::Refused { merged: d == 0.0 }
+            Renormalised::Refused {
+                merged: d == 0.0 && self.t.is_zero(),
+            }
         }
     }
 
@@ -400,7 +430,9 @@ fn one_path(
     let checkpoints = spec.running_points as u64;
     let mut running = Vec::with_capacity(spec.running_points);
     let mut next_checkpoint = 1;
-    let (mut log_sum, mut count, mut deferred, mut merged) = (0.0, 0u64, 0u64, 0u64);
+    let (mut log_sum, mut count, mut deferred) = (0.0, 0u64, 0u64);
+    // the step at which the copy merged with the reference for good
+    let mut merged_at: Option<u64> = None;
     // the step of the last accepted renormalisation, and of the one that opened the window
     let (mut last, mut start) = (0u64, 0u64);
     let mut next = every;
@@ -414,7 +446,7 @@ fn one_path(
             },
             other => other,
         })?;
-        if n >= next {
+        if n >= next && merged_at.is_none() {
             match p.renormalise() {
                 Renormalised::Grown(factor) => {
                     if n > transient {
@@ -426,22 +458,19 @@ fn one_path(
                     last = n;
                     next = n + every;
                 }
-                Renormalised::Refused { merged: zero } => {
-                    deferred += 1;
-                    if zero && n > transient {
-                        merged += 1;
-                    }
-                }
+                // identical for good: nothing left to renormalise
+                Renormalised::Refused { merged: true } => merged_at = Some(n),
+                Renormalised::Refused { merged: false } => deferred += 1,
             }
         }
         if n > transient {
             let k = n - transient;
             if k * checkpoints >= next_checkpoint * window {
                 let span = (last.saturating_sub(start)) as f64 * dt;
-                running.push(if count > 0 {
-                    log_sum / span
-                } else if merged > 0 {
+                running.push(if merged_at.is_some() {
                     f64::NEG_INFINITY
+                } else if count > 0 {
+                    log_sum / span
                 } else {
                     f64::NAN
                 });
@@ -454,18 +483,22 @@ fn one_path(
     }
     tick(total % tick_every);
     let impacts = p.reference().impacts();
-    let measured_time = (last - start) as f64 * dt;
-    if count == 0 && merged > 0 {
-        // the perturbation vanished (at rest on the wall): a contraction faster than any
-        // exponential
+    let measured_time = if count > 0 {
+        (last - start) as f64 * dt
+    } else {
+        0.0
+    };
+    if let Some(m) = merged_at {
+        // the perturbation vanished for good: a contraction faster than any exponential
         return Ok((
             PathExponent {
                 path,
                 exponent: f64::NEG_INFINITY,
-                measured_time: 0.0,
-                renormalisations: 0,
+                measured_time,
+                renormalisations: count,
                 deferred,
                 impacts,
+                merged_at: Some(m as f64 * dt),
             },
             running,
         ));
@@ -487,6 +520,7 @@ fn one_path(
             renormalisations: count,
             deferred,
             impacts,
+            merged_at: None,
         },
         running,
     ))
@@ -569,8 +603,19 @@ pub fn largest_lyapunov(
             }
         })
         .collect();
+    let unmerged: Vec<f64> = exponents
+        .iter()
+        .copied()
+        .filter(|e| *e > f64::NEG_INFINITY)
+        .collect();
     Ok(LyapunovResult {
         lle,
+        merged: exponents.len() - unmerged.len(),
+        unmerged: if unmerged.is_empty() {
+            Estimate::undefined()
+        } else {
+            mean_and_stderr(&unmerged)
+        },
         per_path: results.into_iter().map(|r| r.0).collect(),
         running,
         window: spec.length,
@@ -609,8 +654,30 @@ impl Default for CriticalSearch {
 pub struct NoisePoint {
     /// D.
     pub d: f64,
-    /// Its LLE.
+    /// Its LLE (−∞ when a realisation merged).
     pub lle: Estimate,
+    /// Realisations whose copy merged with its reference: such a D gets no sign.
+    #[serde(default)]
+    pub merged: usize,
+}
+
+impl NoisePoint {
+    /// The sign of the LLE (true: negative), or None when a realisation merged (−∞).
+    fn negative(&self) -> Option<bool> {
+        (self.merged == 0).then_some(self.lle.value < 0.0)
+    }
+}
+
+/// The first pair of consecutive signed points (those without merged realisations, in the
+/// given order) whose LLEs have opposite signs: their indices.
+fn first_sign_change(points: &[NoisePoint]) -> Option<(usize, usize)> {
+    let signed: Vec<usize> = (0..points.len())
+        .filter(|&k| points[k].negative().is_some())
+        .collect();
+    signed
+        .windows(2)
+        .find(|w| points[w[0]].negative() != points[w[1]].negative())
+        .map(|w| (w[0], w[1]))
 }
 
 /// The outcome of a critical-noise search.
@@ -679,7 +746,11 @@ pub fn critical_noise(
         if let Some(p) = progress {
             p(done, planned);
         }
-        Ok(NoisePoint { d, lle: r.lle })
+        Ok(NoisePoint {
+            d,
+            lle: r.lle,
+            merged: r.merged,
+        })
     };
     let h = (search.d_hi - search.d_lo) / (search.grid - 1) as f64;
     let mut evaluated = Vec::with_capacity(planned);
@@ -691,10 +762,7 @@ pub fn critical_noise(
         };
         evaluated.push(eval(d)?);
     }
-    let negative = |p: &NoisePoint| p.lle.value < 0.0;
-    let Some(k) =
-        (0..search.grid - 1).find(|&k| negative(&evaluated[k]) != negative(&evaluated[k + 1]))
-    else {
+    let Some((i, j)) = first_sign_change(&evaluated) else {
         return Ok(CriticalNoise {
             d_c: f64::NAN,
             d_c_lo: f64::NAN,
@@ -703,15 +771,16 @@ pub fn critical_noise(
             evaluated,
         });
     };
-    let rising = negative(&evaluated[k]);
-    let (mut a, mut b) = (evaluated[k], evaluated[k + 1]);
+    let rising = evaluated[i].negative() == Some(true);
+    let (mut a, mut b) = (evaluated[i], evaluated[j]);
     for _ in 0..search.refinements {
         let m = eval(0.5 * (a.d + b.d))?;
         evaluated.push(m);
-        if negative(&m) == negative(&a) {
-            a = m;
-        } else {
-            b = m;
+        match m.negative() {
+            Some(neg) if Some(neg) == a.negative() => a = m,
+            Some(_) => b = m,
+            // a realisation merged at the midpoint: no sign there, the bracket stays
+            None => break,
         }
     }
     evaluated.sort_by(|p, q| p.d.total_cmp(&q.d));
@@ -721,6 +790,9 @@ pub fn critical_noise(
         0.5 * (a.d + b.d)
     };
     let significant = |p: &NoisePoint, below: bool| {
+        if p.merged > 0 {
+            return false;
+        }
         let s = if p.lle.stderr.is_finite() {
             p.lle.stderr
         } else {
@@ -753,6 +825,31 @@ pub fn critical_noise(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_sign_change_skips_merged_points() {
+        let p = |d: f64, value: f64, merged: usize| NoisePoint {
+            d,
+            lle: Estimate {
+                value,
+                stderr: 0.01,
+            },
+            merged,
+        };
+        // − then −∞ (merged) then +: the change is between the first and the third
+        let pts = [
+            p(0.1, -0.2, 0),
+            p(0.2, f64::NEG_INFINITY, 1),
+            p(0.3, 0.1, 0),
+        ];
+        assert_eq!(first_sign_change(&pts), Some((0, 2)));
+        // + then merged then +: no change (the −∞ is not a negative exponent)
+        let pts = [p(0.1, 0.2, 0), p(0.2, f64::NEG_INFINITY, 2), p(0.3, 0.1, 0)];
+        assert_eq!(first_sign_change(&pts), None);
+        // a merged point never starts a bracket, even with a finite mean recorded
+        let pts = [p(0.1, -0.2, 1), p(0.2, 0.3, 0), p(0.3, -0.1, 0)];
+        assert_eq!(first_sign_change(&pts), Some((1, 2)));
+    }
 
     #[test]
     fn standard_error_of_a_mean() {

@@ -985,6 +985,27 @@ impl History {
                 })
     }
 
+    /// Whether this history and `other` are the same history, number by number (same layout
+    /// and every number of the state equal): two paths whose states coincide in this sense and
+    /// in (U, V, …) stay identical under the same noise.
+    pub fn coincides(&self, other: &History) -> bool {
+        if !self.same_layout(other) {
+            return false;
+        }
+        let mut same = true;
+        self.clone().zip_state(Some(other), &mut |r, v| {
+            same &= r == Some(*v);
+        });
+        same
+    }
+
+    /// Whether every number of the history's state is zero (the history of g ≡ 0).
+    pub(crate) fn is_zero(&self) -> bool {
+        let mut zero = true;
+        self.clone().zip_state(None, &mut |_, v| zero &= *v == 0.0);
+        zero
+    }
+
     /// Pull this history toward `reference` by the factor `c`: every number x of its state
     /// becomes x_ref + c·(x − x_ref). The map is affine in the history and J^λ is linear in g,
     /// so this is exactly the history of the path g_ref + c·(g − g_ref): the renormalisation of

@@ -695,6 +695,24 @@ impl Stepper {
         true
     }
 
+    /// Whether this path and `other` are in the same state, whole history included: same step,
+    /// U, V, side, sticking state, Volterra constant, g at the node, noise and every number of
+    /// the memory. Two such paths of the same problem and noise stream stay identical for good
+    /// (a perturbed copy that has merged with its reference, e.g. both stuck at the wall at the
+    /// same step with the memory restarted).
+    pub fn coincides_with(&self, other: &Stepper) -> bool {
+        self.steps == other.steps
+            && self.h == other.h
+            && self.u == other.u
+            && self.v == other.v
+            && self.side == other.side
+            && self.stuck == other.stuck
+            && self.base == other.base
+            && self.drift == other.drift
+            && self.noise.current() == other.noise.current()
+            && self.history.coincides(&other.history)
+    }
+
     /// Hold the oscillator at rest on the wall at the end of a step whose free value was V = v1:
     /// the wall's reaction goes into the constant of V's Volterra form (continuous memory), or
     /// the memory restarts at rest. Returns whether the step's g still enters the history.

@@ -129,6 +129,16 @@ impl Tangent {
         self.u.hypot(self.v)
     }
 
+    /// Whether the whole tangent state is zero (δU, δV, δ of the Volterra constant, δg at the
+    /// node and the tangent memory): the perturbation has vanished for good.
+    pub fn is_zero(&self) -> bool {
+        self.u == 0.0
+            && self.v == 0.0
+            && self.drift == 0.0
+            && self.base == 0.0
+            && self.history.is_zero()
+    }
+
     /// Multiply the whole tangent state by `c`: δU, δV, δ of the Volterra constant, δg at the
     /// node and every number of the tangent memory (the variational system is linear).
     pub fn scale(&mut self, c: f64) {
