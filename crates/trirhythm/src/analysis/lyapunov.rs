@@ -287,8 +287,9 @@ pub struct PathExponent {
     pub deferred: u64,
     /// Impacts of the reference path.
     pub impacts: u64,
-    /// Time at which the copy merged with its reference for good (the exponent is then −∞;
-    /// `measured_time` and `renormalisations` are those before the merge).
+    /// Time at which the copy was found merged with its reference for good (at the first
+    /// renormalisation due after the merge, so at most `renormalise_every` steps late; the
+    /// exponent is then −∞; `measured_time` and `renormalisations` are those before it).
     #[serde(default)]
     pub merged_at: Option<f64>,
 }

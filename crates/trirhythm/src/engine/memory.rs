@@ -985,25 +985,33 @@ impl History {
                 })
     }
 
-    /// Whether this history and `other` are the same history, number by number (same layout
-    /// and every number of the state equal): two paths whose states coincide in this sense and
-    /// in (U, V, …) stay identical under the same noise.
+    /// Whether this history and `other` are the same history, number by number: the same
+    /// layout and equal pieces held exactly (not the ring's stale slots), split values, modes,
+    /// moments and cached value. Two paths whose states coincide in this sense and in (U, V, …)
+    /// stay identical under the same noise.
     pub fn coincides(&self, other: &History) -> bool {
-        if !self.same_layout(other) {
-            return false;
-        }
-        let mut same = true;
-        self.clone().zip_state(Some(other), &mut |r, v| {
-            same &= r == Some(*v);
-        });
-        same
+        self.same_layout(other)
+            && self.all == other.all
+            && self.local.pieces() == other.local.pieces()
+            && self.splits == other.splits
+            && self.modes.y == other.modes.y
+            && self.moments == other.moments
+            && self.cached == other.cached
     }
 
-    /// Whether every number of the history's state is zero (the history of g ≡ 0).
+    /// Whether every number of the history's state is zero (the history of g ≡ 0), the ring's
+    /// stale slots aside.
     pub(crate) fn is_zero(&self) -> bool {
-        let mut zero = true;
-        self.clone().zip_state(None, &mut |_, v| zero &= *v == 0.0);
-        zero
+        let zero = |x: &f64| *x == 0.0;
+        self.all.as_flattened().iter().all(zero)
+            && self.local.pieces().as_flattened().iter().all(zero)
+            && self
+                .splits
+                .iter()
+                .all(|(_, s)| s.before == 0.0 && s.after == 0.0)
+            && self.modes.y.as_flattened().iter().all(zero)
+            && self.moments.iter().all(zero)
+            && self.cached == 0.0
     }
 
     /// Pull this history toward `reference` by the factor `c`: every number x of its state
@@ -1240,6 +1248,35 @@ mod tests {
             b.push(piece);
             assert_eq!(a.value().to_bits(), b.value().to_bits(), "step {n}");
         }
+    }
+
+    #[test]
+    fn histories_coincide_after_the_same_restart_whatever_their_stale_slots() {
+        // two paths with different pasts that restart on the same step and then see the same
+        // pieces hold the same history, although the ring's unused slots still differ
+        let mut a = History::new(0.998, 0.01, 100.0, Memory::default(), DEFAULT_WINDOW).unwrap();
+        let mut b = a.clone();
+        let piece = |x: f64| Piece {
+            left: x,
+            right: x + 0.5,
+            split: None,
+        };
+        for n in 0..20 {
+            a.push(piece(n as f64));
+            b.push(piece(n as f64 + 1e-8));
+        }
+        assert!(!a.coincides(&b));
+        a.restart();
+        b.restart();
+        assert!(a.coincides(&b) && a.is_zero() && b.is_zero());
+        for n in 0..3 {
+            a.push(piece(-(n as f64)));
+            b.push(piece(-(n as f64)));
+        }
+        assert!(a.coincides(&b));
+        assert!(!a.is_zero());
+        b.push(piece(1.0));
+        assert!(!a.coincides(&b));
     }
 
     #[test]
