@@ -32,7 +32,8 @@
 //! reference stick at the wall on the same step with the memory restarted, their whole states
 //! become identical ([`Stepper::coincides_with`]) and stay so under the same noise. The
 //! perturbation has then vanished for good: that realisation's exponent is −∞ whenever the
-//! merge happens (transient or window), and [`PathExponent::merged_at`] gives its time. A zero
+//! merge happens (transient or window), and [`PathExponent::merged_at`] gives its time (by the
+//! tangent method: the whole tangent state, memory included, is 0). A zero
 //! distance in (U, U̇) alone (both at rest on the wall with different memories) is not a merge:
 //! the renormalisation is retried. The mean over realisations is then −∞;
 //! [`LyapunovResult::merged`] counts such realisations and [`LyapunovResult::unmerged`] gives
