@@ -230,7 +230,7 @@ fn parse_sweep(s: &str) -> Result<(String, Vec<f64>)> {
 pub struct LyapunovArgs {
     #[command(flatten)]
     pub sim: LleArgs,
-    /// Sweep a parameter: KEY=START:STOP:COUNT (CSV `KEY,lle,stderr`).
+    /// Sweep a parameter: KEY=START:STOP:COUNT (CSV `KEY,lle,stderr,merged,unmerged,unmerged_stderr`).
     #[arg(long, value_name = "KEY=START:STOP:COUNT", allow_hyphen_values = true)]
     pub sweep: Option<String>,
     /// Output format (default: json; csv with --sweep).
@@ -490,7 +490,7 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
                 label(*v),
                 num(d_lo),
                 num(d_hi),
-                sign_word(c)
+                Sign::of(c).words()
             );
         }
     }
@@ -514,7 +514,7 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
                     header.push(format!(
                         "{}: no sign change in range (LLE {})",
                         label(*v),
-                        sign_word(c)
+                        Sign::of(c).words()
                     ));
                 }
                 let merged: Vec<String> = c
@@ -560,7 +560,7 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
                     "value": if key.is_some() { jnum(*v) } else { Value::Null },
                     "sign_change": c.found(),
                     "verdict": if c.found() { "sign change".to_string() } else {
-                        format!("no sign change in range (LLE {})", sign_word(c))
+                        format!("no sign change in range (LLE {})", Sign::of(c).words())
                     },
                     "D_c": if c.found() { jnum(c.d_c) } else { Value::Null },
                     "D_c_lo": if c.found() { jnum(c.d_c_lo) } else { Value::Null },
@@ -586,23 +586,55 @@ fn opt_cell(v: f64) -> String {
     }
 }
 
-/// The LLE's sign over the evaluated D without a merged realisation (a search without a sign
-/// change), in words: "negative throughout", "positive at every D without a merged
-/// realisation", …
-pub(crate) fn sign_word(c: &CriticalNoise) -> &'static str {
-    let signed: Vec<f64> = c
-        .evaluated
-        .iter()
-        .filter(|q| q.merged == 0)
-        .map(|q| q.lle.value)
-        .collect();
-    let merged = signed.len() < c.evaluated.len();
-    match (signed.is_empty(), signed.iter().all(|&v| v < 0.0), merged) {
-        (true, _, _) => "without a sign: a realisation merged at every D",
-        (false, true, false) => "negative throughout",
-        (false, false, false) => "positive throughout",
-        (false, true, true) => "negative at every D without a merged realisation",
-        (false, false, true) => "positive at every D without a merged realisation",
+/// The LLE's sign over the evaluated D of a search without a sign change, D with a merged
+/// realisation aside.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Sign {
+    Negative,
+    Positive,
+    NegativeOrMerged,
+    PositiveOrMerged,
+    AllMerged,
+}
+
+impl Sign {
+    pub(crate) fn of(c: &CriticalNoise) -> Self {
+        let signed: Vec<f64> = c
+            .evaluated
+            .iter()
+            .filter(|q| q.merged == 0)
+            .map(|q| q.lle.value)
+            .collect();
+        let merged = signed.len() < c.evaluated.len();
+        match (signed.is_empty(), signed.iter().all(|&v| v < 0.0), merged) {
+            (true, _, _) => Sign::AllMerged,
+            (false, true, false) => Sign::Negative,
+            (false, false, false) => Sign::Positive,
+            (false, true, true) => Sign::NegativeOrMerged,
+            (false, false, true) => Sign::PositiveOrMerged,
+        }
+    }
+
+    /// In a sentence: "LLE {words}".
+    pub(crate) fn words(self) -> &'static str {
+        match self {
+            Sign::Negative => "negative throughout",
+            Sign::Positive => "positive throughout",
+            Sign::NegativeOrMerged => "negative at every D without a merged realisation",
+            Sign::PositiveOrMerged => "positive at every D without a merged realisation",
+            Sign::AllMerged => "without a sign: a realisation merged at every D",
+        }
+    }
+
+    /// Short, for a figure's verdict line.
+    pub(crate) fn tag(self) -> &'static str {
+        match self {
+            Sign::Negative => "LLE < 0",
+            Sign::Positive => "LLE > 0",
+            Sign::NegativeOrMerged => "LLE < 0 or a realisation merged",
+            Sign::PositiveOrMerged => "LLE > 0 or a realisation merged",
+            Sign::AllMerged => "a realisation merged at every D",
+        }
     }
 }
 

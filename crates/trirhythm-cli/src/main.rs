@@ -62,7 +62,7 @@ enum Command {
     /// linearisation (CSV method,x,y,y_lo,y_hi), or a plane classified (--grid).
     Oscillation(oscillation::OscillationArgs),
     /// Largest Lyapunov exponent with frozen noise (two trajectories, whole-memory
-    /// renormalisation): JSON lle, per_path, running; with --sweep CSV KEY,lle,stderr.
+    /// renormalisation): JSON lle, per_path, running; with --sweep CSV KEY,lle,stderr,merged,unmerged,unmerged_stderr.
     Lyapunov(lyapunov::LyapunovArgs),
     /// Critical noise D_c where the largest Lyapunov exponent changes sign (CSV
     /// KEY,D_c,D_c_lo,D_c_hi).

@@ -7,7 +7,7 @@ use super::symbol;
 use super::write_figure;
 use super::{csv_header, heading, Figure, FigureContext};
 use crate::common::{num, sig};
-use crate::lyapunov::{noise_point_text, sign_word};
+use crate::lyapunov::{noise_point_text, Sign};
 use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
@@ -83,23 +83,13 @@ impl Figure for Fig19 {
                         if merged.is_empty() { String::new() } else { format!("; no sign at D = {} (realisations merged)", merged.join(", ")) }
                     ));
                 } else {
-                    let sign = sign_word(&c);
+                    let sign = Sign::of(&c);
                     notes.push(format!(
-                        "{label} {} = {}: no sign change in range D ∈ [{}, {}] (LLE {sign}; evaluated: {})",
-                        symbol(key), num(v), num(search.d_lo), num(search.d_hi),
+                        "{label} {} = {}: no sign change in range D ∈ [{}, {}] (LLE {}; evaluated: {})",
+                        symbol(key), num(v), num(search.d_lo), num(search.d_hi), sign.words(),
                         c.evaluated.iter().map(noise_point_text).collect::<Vec<_>>().join("; ")
                     ));
-                    let tag = match sign {
-                        "negative throughout" => "LLE < 0",
-                        "positive throughout" => "LLE > 0",
-                        "negative at every D without a merged realisation" => {
-                            "LLE < 0 or a realisation merged"
-                        }
-                        "positive at every D without a merged realisation" => {
-                            "LLE > 0 or a realisation merged"
-                        }
-                        _ => "a realisation merged at every D",
-                    };
+                    let tag = sign.tag();
                     missing.push((num(v), tag));
                 }
                 if c.found() && !c.rising {
