@@ -517,12 +517,7 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
                         Sign::of(c).words()
                     ));
                 }
-                let merged: Vec<String> = c
-                    .evaluated
-                    .iter()
-                    .filter(|q| q.merged > 0)
-                    .map(noise_point_text)
-                    .collect();
+                let merged = merged_points_text(c);
                 if !merged.is_empty() {
                     header.push(format!(
                         "{}: no sign at D = {} (realisations whose copy merged with its \
@@ -636,6 +631,15 @@ impl Sign {
             Sign::AllMerged => "a realisation merged at every D",
         }
     }
+}
+
+/// The evaluated D of a critical-noise search at which a realisation merged, in words.
+pub(crate) fn merged_points_text(c: &CriticalNoise) -> Vec<String> {
+    c.evaluated
+        .iter()
+        .filter(|q| q.merged > 0)
+        .map(noise_point_text)
+        .collect()
 }
 
 /// An evaluated D of a critical-noise search in words: "D: LLE ± s.e.", or the merged count.

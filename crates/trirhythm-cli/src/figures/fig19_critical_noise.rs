@@ -7,7 +7,7 @@ use super::symbol;
 use super::write_figure;
 use super::{csv_header, heading, Figure, FigureContext};
 use crate::common::{num, sig};
-use crate::lyapunov::{noise_point_text, Sign};
+use crate::lyapunov::{merged_points_text, noise_point_text, Sign};
 use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
@@ -69,12 +69,7 @@ impl Figure for Fig19 {
             for v in values {
                 let p = base.with(key, v)?;
                 let c = critical_noise(&p, &sz.method, &sz.spec, &search, None)?;
-                let merged: Vec<String> = c
-                    .evaluated
-                    .iter()
-                    .filter(|q| q.merged > 0)
-                    .map(noise_point_text)
-                    .collect();
+                let merged = merged_points_text(&c);
                 if c.found() {
                     notes.push(format!(
                         "{label} {} = {}: D_c = {} in [{}, {}] ({}){}",

@@ -613,11 +613,8 @@ pub fn largest_lyapunov(
     Ok(LyapunovResult {
         lle,
         merged: exponents.len() - unmerged.len(),
-        unmerged: if unmerged.is_empty() {
-            Estimate::undefined()
-        } else {
-            mean_and_stderr(&unmerged)
-        },
+        // NaN when none is left (mean_and_stderr of no values)
+        unmerged: mean_and_stderr(&unmerged),
         per_path: results.into_iter().map(|r| r.0).collect(),
         running,
         window: spec.length,

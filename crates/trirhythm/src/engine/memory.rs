@@ -989,7 +989,7 @@ impl History {
     /// layout and equal pieces held exactly (not the ring's stale slots), split values, modes,
     /// moments and cached value. Two paths whose states coincide in this sense and in (U, V, …)
     /// stay identical under the same noise.
-    pub fn coincides(&self, other: &History) -> bool {
+    pub(crate) fn coincides(&self, other: &History) -> bool {
         self.same_layout(other)
             && self.all == other.all
             && self.local.pieces() == other.local.pieces()
