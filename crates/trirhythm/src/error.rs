@@ -90,6 +90,9 @@ pub enum Error {
         /// What went wrong on it.
         error: Box<Error>,
     },
+    /// The caller's [`crate::monitor::Monitor`] asked the run to stop.
+    #[error("cancelled")]
+    Cancelled,
 }
 
 /// Result alias of the library.

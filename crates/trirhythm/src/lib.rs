@@ -17,6 +17,8 @@
 //! - [`analysis`]: analyses of simulated paths, where simulation and theory meet (recurrence
 //!   quantification, ensembles with stationary statistics and the theory against them,
 //!   oscillation boundaries);
+//! - [`monitor`]: the one convention for watching a long call (progress, finished pieces,
+//!   cancellation);
 //! - [`known_answers`]: problems with exact solutions, shared by tests and benchmarks;
 //! - [`non_finite`]: serde for numbers that may be NaN or ±∞.
 //!
@@ -27,6 +29,7 @@ pub mod engine;
 pub mod error;
 pub mod known_answers;
 pub mod model;
+pub mod monitor;
 pub mod non_finite;
 pub mod special;
 pub mod theory;
