@@ -16,9 +16,9 @@
 use super::modes::{advance_modes, Modes};
 use super::moments::{dot_moments, lumped_weights, MomentStep};
 use super::window::{dot, Window};
-use super::{piece_integral, Memory, Piece, Split};
 #[cfg(target_arch = "x86_64")]
 use super::{modes::advance_modes_avx, window::dot_avx};
+use super::{piece_integral, Memory, Piece, Split};
 use crate::engine::kernel::{phi_psi, IntervalWeights, SoeKernel, LUMPED_TERMS};
 use crate::error::{Error, Result};
 use crate::special::gamma;
@@ -379,5 +379,4 @@ impl History {
         }
         acc
     }
-
 }

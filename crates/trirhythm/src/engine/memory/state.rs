@@ -18,7 +18,6 @@ use super::{History, Split};
 use crate::engine::kernel::LUMPED_TERMS;
 
 impl History {
-
     /// Forget everything (the memory restarts; the lower terminal moves to now).
     pub fn restart(&mut self) {
         self.all.clear();
