@@ -12,9 +12,11 @@ use super::{History, Memory, Piece, DEFAULT_WINDOW};
 use crate::error::Result;
 
 /// Push `steps` pieces of a smooth g into a fresh memory of order λ and return its final value:
-/// the memory's own cost per step, for the engine's timing breakdown.
+/// the memory's own cost per step, for the engine's timing breakdown. `lambda` ∈ (0, 1],
+/// `dt` > 0 finite, `steps` ≤ 10⁸.
 #[doc(hidden)]
 pub fn probe_memory(lambda: f64, dt: f64, steps: usize) -> Result<f64> {
+    super::scalar::check_steps(dt, steps)?;
     let mut h = History::new(
         lambda,
         dt,

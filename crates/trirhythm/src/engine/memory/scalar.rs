@@ -19,6 +19,9 @@ use crate::error::{Error, Result};
 /// (see [`crate::engine::Stepper`]): the predictor replaces f_{n+1} by f_n in the corrector's sum
 /// (constant extrapolation of the composite f(t, y(t)), which stays smooth when y does not); only corrected values are stored (at α = 1: the trapezoidal rule in integral form,
 /// corrected once from an Euler predictor). Returns y at every node.
+///
+/// Arguments: `alpha` ∈ (0, 1], `y0` finite, `dt` > 0 finite, `steps` ≤ 10⁸ (the nodes are
+/// kept), dt·steps finite; an SOE memory's tolerance as [`crate::engine::kernel::SoeKernel`].
 pub fn solve_scalar(
     alpha: f64,
     f: &dyn Fn(f64, f64) -> f64,
@@ -27,6 +30,13 @@ pub fn solve_scalar(
     steps: usize,
     memory: Memory,
 ) -> Result<Vec<f64>> {
+    if !(alpha > 0.0 && alpha <= 1.0) {
+        return Err(Error::invalid("alpha", alpha, "(0, 1]"));
+    }
+    if !y0.is_finite() {
+        return Err(Error::invalid("y0", y0, "a finite number"));
+    }
+    check_steps(dt, steps)?;
     let t_end = dt * steps as f64;
     let mut conv = History::new(alpha, dt, t_end, memory, DEFAULT_WINDOW)?;
     let mut ys = Vec::with_capacity(steps + 1);
@@ -55,4 +65,27 @@ pub fn solve_scalar(
         ys.push(y1);
     }
     Ok(ys)
+}
+
+/// Most steps of [`solve_scalar`] and [`super::probe_memory`] (the scalar solve keeps every
+/// node: 800 MB at the bound).
+pub(crate) const MAX_SCALAR_STEPS: usize = 100_000_000;
+
+/// `dt` > 0 finite, `steps` ≤ [`MAX_SCALAR_STEPS`], and their product (the horizon) finite.
+pub(super) fn check_steps(dt: f64, steps: usize) -> Result<()> {
+    if !(dt > 0.0 && dt.is_finite()) {
+        return Err(Error::invalid("dt", dt, "(0, ∞), finite"));
+    }
+    if steps > MAX_SCALAR_STEPS {
+        return Err(Error::invalid("steps", steps as f64, "[0, 1e8]"));
+    }
+    let t_end = dt * steps as f64;
+    if !t_end.is_finite() {
+        return Err(Error::invalid(
+            "dt",
+            dt,
+            format!("a step whose {steps} steps end at a finite time"),
+        ));
+    }
+    Ok(())
 }

@@ -35,7 +35,7 @@ mod grid;
 mod kernel;
 
 pub use barrier::{barrier_surfaces, paper_barriers, BarrierSurfaces};
-pub use branch::{branches, Branch, BranchDiagram, BranchPoint};
+pub use branch::{branches, Branch, BranchDiagram, BranchPoint, MAX_STEP_RANGE};
 pub use fold::{
     cusp_monitor, fold_residuals, trace_folds, trace_printed_eq37, CurveEnd, FoldCurve, FoldPoint,
     FoldSystem, Folds, TraceOptions,
