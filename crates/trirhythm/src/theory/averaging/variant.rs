@@ -137,6 +137,17 @@ mod tests {
         }
     }
 
+    #[test]
+    fn large_k_weights_continue_the_product() {
+        // beyond 10⁶ the asymptotic series takes over: w_{k+1}/w_k = (2k+1)/(2k+4) across the
+        // seam (the product's own rounding over 10⁶ factors is ~1e-10)
+        let k = 1_000_000;
+        let ratio = phase_average_weight(k + 1) / phase_average_weight(k);
+        let exact = (2.0 * k as f64 + 1.0) / (2.0 * k as f64 + 4.0);
+        assert!((ratio / exact - 1.0).abs() < 1e-9, "{ratio} vs {exact}");
+        assert!(phase_average_weight(usize::MAX) > 0.0);
+    }
+
     /// The series summed directly to K = 10⁶ with the integral of its large-k form as tail
     /// (π/2 − atan(y) written as atan(1/y), which does not cancel for large y).
     fn harmonic_series(c: f64) -> f64 {
