@@ -40,7 +40,7 @@ impl Variant {
 
 impl Equivalents {
     /// The impact loss rate κ of the averaged drift (−κA): (1−r)ω1/π (paper) or −ω1 ln(r)/π
-    /// (consistent; +∞ at r = 0, which [`Theory::new`] rejects).
+    /// (consistent; +∞ at r = 0, which [`super::Theory::new`] rejects).
     #[inline]
     pub fn loss_rate(&self, variant: Variant, r: f64) -> f64 {
         match variant {
