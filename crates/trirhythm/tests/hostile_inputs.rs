@@ -22,11 +22,15 @@ use trirhythm::analysis::versus::{escape_time, theory_layout};
 use trirhythm::engine::kernel::{interval_weights, SoeKernel};
 use trirhythm::engine::{probe_memory, solve_scalar, Memory};
 use trirhythm::model::preset;
+use trirhythm::model::Equivalents;
 use trirhythm::special::{gamma, ln_gamma, mittag_leffler};
 use trirhythm::theory::averaging::{
     phase_average_weight, sgn_harmonic_sum, AmplitudePdf, Theory, Variant,
 };
-use trirhythm::theory::bifurcation::{branches, Axis, Plane, What};
+use trirhythm::theory::bifurcation::{
+    branches, cusp_monitor, fold_residuals, Axis, FoldPoint, FoldSystem, Kernel, Key, Plane, Point,
+    What,
+};
 use trirhythm::theory::polynomial::Polynomial;
 use trirhythm::theory::quadrature::integrate_with_breakpoints;
 use trirhythm::{Damping, Error, Params};
@@ -426,6 +430,44 @@ fn rows() -> Vec<Row> {
             Real,
             |v| (1e-6..=0.1).contains(&v),
             |v| branch(0.7, 1.0, v)
+        ),
+        // the stack kernel and the fold certificates evaluate at any point (hot paths: no checks)
+        row!(
+            "Kernel::stable_count",
+            "point mu0",
+            "",
+            Total,
+            anything,
+            |v| {
+                let mut point = Point::new(&Params::default())?;
+                point.set(Key::parse("mu0")?, v);
+                total(Kernel::new(Variant::Paper).stable_count(&point, What::Rhythmicity))
+            }
+        ),
+        row!("fold_residuals", "amplitude", "", Total, anything, |v| {
+            let pl = Plane::new(
+                &Params::default(),
+                Axis::new("mu0", 0.01, 0.5, 3)?,
+                Axis::new("r", 0.5, 1.0, 3)?,
+                Variant::Paper,
+            )?;
+            let p = FoldPoint {
+                x: 0.1,
+                y: 0.9,
+                amplitude: v,
+            };
+            total((
+                fold_residuals(&pl, FoldSystem::Drift, &p),
+                cusp_monitor(&pl, FoldSystem::Fpk, &p),
+            ))
+        }),
+        row!(
+            "Equivalents::from_scalars",
+            "mu0",
+            "",
+            Total,
+            anything,
+            |v| total(Equivalents::from_scalars(v, 1.0, 0.9, 1.0))
         ),
         // ---- theory::polynomial and quadrature: total functions
         row!(

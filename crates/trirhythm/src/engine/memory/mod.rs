@@ -1,6 +1,10 @@
 //! The memory of one path: J^λ g over the whole history, kept exactly over a short window and
 //! by the verified sum of exponentials of [`super::kernel`] beyond it.
 //!
+//! # Equation
+//! J^λ g(t) = (1/Γ(λ)) ∫₀ᵗ (t − s)^{λ−1} g(s) ds for g piecewise linear on the grid t_n = n·h
+//! (split at impacts), λ ∈ (0, 1]: the memory term of the Caputo derivative in Eq. (1).
+//!
 //! # Method
 //! The last w − 1 pieces of g (piecewise linear, split in two at impacts) are held as
 //! (left, right) pairs in a mirrored ring, so the weighted sum of the older ones is one dot
@@ -44,8 +48,12 @@
 //! and every step its own output weights (about 6 instead of 7 flops per mode and step at
 //! B = 4), so it is not used.
 //!
+//! # Reference
+//! Diethelm, Ford & Freed, Nonlinear Dyn. 29 (2002) 3–22 (product trapezoidal rule); Jiang,
+//! Zhang, Zhang & Zhang, Commun. Comput. Phys. 21 (2017) 650–678 (sum of exponentials).
+//!
 //! # Tests
-//! Unit tests below (the scalar solver at order 1 is the trapezoidal PECE by hand; scaling the
+//! Unit tests in `tests.rs` (the scalar solver at order 1 is the trapezoidal PECE by hand; scaling the
 //! history equals the history of the scaled g, for both memories, with a split piece; the
 //! portable and AVX fast paths give the same bits; every window of 2 … 10 steps, padded or
 //! not, agrees with `Direct` to 10⁻¹⁰);
