@@ -469,6 +469,19 @@ fn rows() -> Vec<Row> {
             anything,
             |v| total(Equivalents::from_scalars(v, 1.0, 0.9, 1.0))
         ),
+        // the extrema of P(A) need noise: D = 0 is refused there (a valid D elsewhere)
+        row!(
+            "branches (modes)",
+            "D",
+            "D",
+            Real,
+            |v| v > 0.0 && v <= 1e6,
+            |v| {
+                let mut base = preset("fig5").unwrap().params;
+                base.set("D", v)?;
+                branches(&base, Variant::Paper, What::Modes, "r", 0.7, 1.0, 0.01).map(|_| ())
+            }
+        ),
         // ---- theory::polynomial and quadrature: total functions
         row!(
             "Polynomial::real_roots",

@@ -230,7 +230,8 @@ pub const MAX_STEP_RANGE: (f64, f64) = (1e-6, 0.1);
 /// already traced branch starts a new one, traced both ways through folds until the interval's
 /// ends, A = 0, or closure. `max_step` is in units of the interval (and of the largest x = A²),
 /// in [`MAX_STEP_RANGE`]; `start` and `stop` are finite, different, and valid values of `key`
-/// (errors name them `<key> start`, `<key> stop`).
+/// (errors name them `<key> start`, `<key> stop`); the extrema of P(A) need noise (D > 0) unless
+/// D is the swept parameter.
 pub fn branches(
     base: &Params,
     variant: Variant,
@@ -242,6 +243,13 @@ pub fn branches(
 ) -> Result<BranchDiagram> {
     let k = Key::parse(key)?;
     check_interval(base, variant, key, start, stop)?;
+    if what == What::Modes && key != "D" && base.noise_intensity <= 0.0 {
+        return Err(Error::invalid(
+            "D",
+            base.noise_intensity,
+            "(0, 1e6] for the extrema of P(A) (no noise, no stationary density)",
+        ));
+    }
     let (lo, hi) = MAX_STEP_RANGE;
     if !(max_step >= lo && max_step <= hi) {
         return Err(Error::invalid(
