@@ -72,11 +72,6 @@ pub fn square_rhs(alpha: f64) -> impl Fn(f64, f64) -> f64 {
     move |t: f64, y: f64| c * t.powf(2.0 - alpha) + t * t - y
 }
 
-/// Stationary variance D/τ of the OU forcing.
-pub fn ou_variance(intensity: f64, correlation_time: f64) -> f64 {
-    intensity / correlation_time
-}
-
 /// Parameters of the linear oscillator D^{1+λ}U + ω²U = 0 (P ≡ 0, no noise) with restitution
 /// r: with λ = 1 and the wall on, the linear impact oscillator of [`impact_oscillator`].
 pub fn linear_oscillator(lambda: f64, omega: f64, r: f64) -> Params {

@@ -287,12 +287,16 @@ pub struct SoeKernel {
 /// (λ = 1e-12 fails; the exact `Memory::Direct` weights have no such floor).
 pub const MIN_SOE_LAMBDA: f64 = 1e-6;
 
+/// Largest ratio of an [`SoeKernel`]'s end to its start: 20 decades (a simulation of the
+/// most steps a driver takes spans 11); the construction's work grows with the decades.
+pub const MAX_SOE_SPAN: f64 = 1e20;
+
 /// Points per decade of the log grid on which an [`SoeKernel`] is verified.
 pub const SOE_CHECK_POINTS_PER_DECADE: usize = 60;
 
 impl SoeKernel {
     /// Build and verify the approximation of t^{λ−1}/Γ(λ) on [`from`, `to`] to relative
-    /// `tolerance`. Errors when the parameters are invalid or no step Δx meets the tolerance.
+    /// `tolerance`; `to` at most [`MAX_SOE_SPAN`] × `from`. Errors when the parameters are invalid or no step Δx meets the tolerance.
     pub fn new(lambda: f64, from: f64, to: f64, tolerance: f64) -> Result<Self> {
         if !(lambda > 0.0 && lambda <= 1.0) {
             return Err(Error::invalid("lambda", lambda, "(0, 1]"));
@@ -307,8 +311,12 @@ impl SoeKernel {
         if !(from > 0.0 && from.is_finite()) {
             return Err(Error::invalid("soe window", from, "(0, ∞)"));
         }
-        if !(to.is_finite() && to > 0.0) {
-            return Err(Error::invalid("t_end", to, "(0, ∞), finite"));
+        if !(to.is_finite() && to > 0.0 && to <= MAX_SOE_SPAN * from) {
+            return Err(Error::invalid(
+                "t_end",
+                to,
+                "(0, 1e20 × the kernel's start (the window)], finite",
+            ));
         }
         if !(tolerance > 1e-15 && tolerance < 1.0) {
             return Err(Error::invalid("tolerance", tolerance, "(1e-15, 1)"));
@@ -429,10 +437,11 @@ impl SoeKernel {
     }
 
     /// Largest relative error on a log grid with `per_decade` points per decade over
-    /// [`from`, `to`] (both ends included).
+    /// [`from`, `to`] (both ends included), at most 10⁵ points in all (bounded work whatever
+    /// `per_decade`).
     pub fn check(&self, per_decade: usize) -> f64 {
         let decades = (self.to / self.from).log10();
-        let n = ((decades * per_decade as f64).ceil() as usize).max(2);
+        let n = ((decades * per_decade as f64).ceil() as usize).clamp(2, 100_000);
         let mut worst: f64 = 0.0;
         for i in 0..=n {
             let t = self.from * (self.to / self.from).powf(i as f64 / n as f64);

@@ -51,12 +51,25 @@ impl Damping {
         self.coefficients.get(k).copied().unwrap_or(0.0)
     }
 
-    /// Set the coefficient of U^{2k}, growing the polynomial if needed.
-    pub fn set_coefficient(&mut self, k: usize, value: f64) {
+    /// Set the coefficient of U^{2k}, growing the polynomial if needed; k < [`MAX_COEFFICIENTS`]
+    /// (the value itself is checked by [`Params::validate`]).
+    pub fn set_coefficient(&mut self, k: usize, value: f64) -> Result<()> {
+        if k >= MAX_COEFFICIENTS {
+            return Err(Error::invalid(
+                format!("c{k}"),
+                value,
+                format!(
+                    "keys c0 … c{} only (P of degree ≤ {} in U)",
+                    MAX_COEFFICIENTS - 1,
+                    2 * (MAX_COEFFICIENTS - 1)
+                ),
+            ));
+        }
         if self.coefficients.len() <= k {
             self.coefficients.resize(k + 1, 0.0);
         }
         self.coefficients[k] = value;
+        Ok(())
     }
 
     /// The paper's control parameters (α0, β0, γ0, δ0) read back from the coefficients.
@@ -226,14 +239,14 @@ impl Params {
             "omega0" => self.omega0 = value,
             "lambda" => self.lambda = value,
             "r" => self.restitution = value,
-            "alpha0" => self.damping.set_coefficient(2, value),
-            "beta0" => self.damping.set_coefficient(3, -value),
-            "gamma0" => self.damping.set_coefficient(4, value),
-            "delta0" => self.damping.set_coefficient(5, -value),
+            "alpha0" => self.damping.set_coefficient(2, value)?,
+            "beta0" => self.damping.set_coefficient(3, -value)?,
+            "gamma0" => self.damping.set_coefficient(4, value)?,
+            "delta0" => self.damping.set_coefficient(5, -value)?,
             "D" => self.noise_intensity = value,
             "tau" => self.correlation_time = value,
             _ => match coefficient_index(key) {
-                Some(k) if k < MAX_COEFFICIENTS => self.damping.set_coefficient(k, value),
+                Some(k) if k < MAX_COEFFICIENTS => self.damping.set_coefficient(k, value)?,
                 Some(_) => {
                     return Err(Error::invalid(
                         key,

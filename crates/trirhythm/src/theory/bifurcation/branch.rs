@@ -3,7 +3,7 @@
 
 use super::fold::{one_sided, CurveEnd};
 use super::kernel::{Coeffs, Kernel, Key, Point, What};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::model::Params;
 use crate::theory::averaging::Variant;
 use crate::theory::polynomial::Polynomial;
@@ -220,11 +220,18 @@ impl Line {
     }
 }
 
+/// Allowed range of the continuation's largest step `max_step` (a fraction of the interval):
+/// a branch takes at least 1/`max_step` steps, so the lower end bounds the work.
+pub const MAX_STEP_RANGE: (f64, f64) = (1e-6, 0.1);
+
 /// All branches of cycles (or P(A) extrema) as `key` runs from `start` to `stop`.
 ///
 /// Seeds: the positive roots at `samples` equally spaced parameter values; each root not on an
 /// already traced branch starts a new one, traced both ways through folds until the interval's
-/// ends, A = 0, or closure. `max_step` is in units of the interval (and of the largest x = A²).
+/// ends, A = 0, or closure. `max_step` is in units of the interval (and of the largest x = A²),
+/// in [`MAX_STEP_RANGE`]; `start` and `stop` are finite, different, and valid values of `key`
+/// (errors name them `<key> start`, `<key> stop`); the extrema of P(A) need noise (D > 0) unless
+/// D is the swept parameter.
 pub fn branches(
     base: &Params,
     variant: Variant,
@@ -235,8 +242,22 @@ pub fn branches(
     max_step: f64,
 ) -> Result<BranchDiagram> {
     let k = Key::parse(key)?;
-    base.with(key, start)?;
-    base.with(key, stop)?;
+    check_interval(base, variant, key, start, stop)?;
+    if what == What::Modes && key != "D" && base.noise_intensity <= 0.0 {
+        return Err(Error::invalid(
+            "D",
+            base.noise_intensity,
+            "(0, 1e6] for the extrema of P(A) (no noise, no stationary density)",
+        ));
+    }
+    let (lo, hi) = MAX_STEP_RANGE;
+    if !(max_step >= lo && max_step <= hi) {
+        return Err(Error::invalid(
+            "max_step",
+            max_step,
+            "[1e-6, 0.1] (the fraction of the interval per continuation step)",
+        ));
+    }
     let mut line = Line {
         point: Point::new(base)?,
         key: k,
@@ -326,4 +347,35 @@ pub fn branches(
         folds: fold_pts,
         hopf,
     })
+}
+
+/// `start` and `stop` of a branch diagram's interval: finite, different, valid values of `key`
+/// (for the consistent variant r = 0 excluded); errors name them `<key> start`, `<key> stop`.
+fn check_interval(base: &Params, variant: Variant, key: &str, start: f64, stop: f64) -> Result<()> {
+    for (end, value) in [("start", start), ("stop", stop)] {
+        let name = format!("{key} {end}");
+        if !value.is_finite() {
+            return Err(Error::invalid(name, value, "a finite number"));
+        }
+        let p = base.with(key, value).map_err(|e| match e {
+            Error::InvalidParameter {
+                name: n,
+                value,
+                allowed,
+            } if n == key => Error::invalid(name.clone(), value, allowed),
+            e => e,
+        })?;
+        if variant == Variant::Consistent && p.restitution == 0.0 {
+            let n = if key == "r" { name } else { "r".into() };
+            return Err(Error::invalid(n, 0.0, "(0, 1] for the consistent variant"));
+        }
+    }
+    if start == stop {
+        return Err(Error::invalid(
+            format!("{key} stop"),
+            stop,
+            "a finite number different from the start",
+        ));
+    }
+    Ok(())
 }

@@ -22,7 +22,8 @@ pub struct Axis {
 }
 
 impl Axis {
-    /// An axis; the key must be known, the range finite and non-empty, `count` ≥ 2.
+    /// An axis; the key must be known, the range finite and non-empty, `count` in
+    /// [2, [`MAX_PLANE_POINTS`]/2] (a plane has at least two values on its other axis).
     pub fn new(key: &str, start: f64, stop: f64, count: usize) -> Result<Axis> {
         Key::parse(key)?;
         if !start.is_finite() {
@@ -39,11 +40,11 @@ impl Axis {
                 "a finite number different from the start",
             ));
         }
-        if count < 2 {
+        if !(2..=MAX_PLANE_POINTS / 2).contains(&count) {
             return Err(Error::invalid(
                 format!("{key} count"),
                 count as f64,
-                "at least 2",
+                format!("[2, {:e}]", (MAX_PLANE_POINTS / 2) as f64),
             ));
         }
         Ok(Axis {

@@ -276,11 +276,6 @@ impl Kernel {
     pub fn stable_count(&self, p: &Point, what: What) -> usize {
         stable_count(&self.coefficients(p, what))
     }
-
-    /// Number of distinct positive roots of g or h.
-    pub fn root_count(&self, p: &Point, what: What) -> usize {
-        sturm_count_positive(&self.coefficients(p, what))
-    }
 }
 
 /// Stable roots (+ → − crossings) on x > 0, as [`crate::theory::averaging::stable_count`].

@@ -27,6 +27,34 @@
 //! curve; curve points satisfy both equations to 1e-10; an analytic cusp; branches against
 //! `Theory::limit_cycles` at sampled parameter values; the fast count against
 //! `Theory::stable_count_fast` by proptest) and unit tests in `kernel.rs`.
+//!
+//! # Example
+//! A map of stable-cycle counts on a 9 × 9 grid of Fig. 2(ii)'s (γ0, δ0) plane, checked point
+//! by point against the averaged theory; the plane holds trirhythmic points:
+//! ```
+//! use trirhythm::model::preset;
+//! use trirhythm::theory::averaging::{Theory, Variant};
+//! use trirhythm::theory::bifurcation::{classify, Axis, Plane, What};
+//!
+//! let base = preset("fig2ii")?.params;
+//! let plane = Plane::new(
+//!     &base,
+//!     Axis::new("gamma0", 2e-5, 1e-4, 9)?,
+//!     Axis::new("delta0", 2e-8, 4e-7, 9)?,
+//!     Variant::Paper,
+//! )?;
+//! let map = classify(&plane, What::Rhythmicity, &|_rows_done, _rows| {});
+//! for iy in 0..9 {
+//!     for ix in 0..9 {
+//!         let p = plane.params(plane.x.value(ix), plane.y.value(iy))?;
+//!         let theory = Theory::new(&p, Variant::Paper)?;
+//!         assert_eq!(map.count(ix, iy) as usize, theory.rhythmicity().count());
+//!     }
+//! }
+//! let [_none, _mono, _bi, tri, _more] = map.histogram();
+//! assert!(tri > 0, "three coexisting stable cycles somewhere on the plane");
+//! # Ok::<(), trirhythm::Error>(())
+//! ```
 
 mod barrier;
 mod branch;
@@ -35,7 +63,7 @@ mod grid;
 mod kernel;
 
 pub use barrier::{barrier_surfaces, paper_barriers, BarrierSurfaces};
-pub use branch::{branches, Branch, BranchDiagram, BranchPoint};
+pub use branch::{branches, Branch, BranchDiagram, BranchPoint, MAX_STEP_RANGE};
 pub use fold::{
     cusp_monitor, fold_residuals, trace_folds, trace_printed_eq37, CurveEnd, FoldCurve, FoldPoint,
     FoldSystem, Folds, TraceOptions,

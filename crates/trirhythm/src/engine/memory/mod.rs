@@ -1,0 +1,154 @@
+//! The memory of one path: J^λ g over the whole history, kept exactly over a short window and
+//! by the verified sum of exponentials of [`super::kernel`] beyond it.
+//!
+//! # Equation
+//! J^λ g(t) = (1/Γ(λ)) ∫₀ᵗ (t − s)^{λ−1} g(s) ds for g piecewise linear on the grid t_n = n·h
+//! (split at impacts), λ ∈ (0, 1]: the memory term of the Caputo derivative in Eq. (1).
+//!
+//! # Method
+//! The last w − 1 pieces of g (piecewise linear, split in two at impacts) are held as
+//! (left, right) pairs in a mirrored ring, so the weighted sum of the older ones is one dot
+//! product over a contiguous run of doubles (rounded up to a multiple of four, zero weights in
+//! front: no scalar tail); a piece leaving the window enters every
+//! exponential mode by the exact recursion Y ← e^{−sΔt}Y + Δtψ g_start + Δt(φ − ψ) g_end (four
+//! lanes at a time, no fused multiply–add, so the bits do not depend on the CPU), and the lumped
+//! slow rates (a cubic in t, see [`super::kernel`]) by the moments m_k = ∫(t_m − s)ᵏ g ds,
+//! k ≤ 3, advanced exactly by the binomial theorem. At λ = 1 there is no window: J¹g is the
+//! running trapezoidal integral. `Direct` keeps every piece (the O(N) reference). The history
+//! is linear in g, so a perturbed copy is renormalised toward its reference number by number,
+//! the whole memory included ([`History::contract_toward`], Benettin's method for the
+//! fractional state).
+//!
+//! # Cost and the step's dependency chain
+//! The step's critical path runs through the memory: the newest piece (g_n, computed from
+//! V_n) enters J for the next step, which gives V_{n+1}. Everything else — the modes advanced
+//! by the piece leaving the window (7 steps old with the default 8-step window), the lumped
+//! terms, the window's 6 older pieces — does not depend on it. The fast path ([`History::push`] for an unsplit piece that
+//! does not push a split piece out of the window, all but two steps per impact) therefore sums
+//! all of that first and adds the newest piece last, with its weights pre-multiplied by
+//! h^λ/Γ(λ): two operations on the chain instead of a 7-term dot product, and the rest
+//! overlaps with the step. The mode sums Σ out·Y run in two accumulators (even and odd blocks
+//! of four), halving the serial additions; the part a·l + b·r of each mode, independent of Y,
+//! is formed first. The AVX versions do the portable versions' operations in the same order
+//! (no FMA): same bits on every CPU (unit test `portable_and_avx_memories_give_the_same_bits`).
+//! The moments advance over a full step with their coefficients (powers of Δt over the
+//! binomial and the pieces' integers) computed once.
+//! A split piece inside the window adds its exact-minus-plain weights, tabulated for every
+//! distance once when it is pushed; pushing a split piece, a split piece leaving the window,
+//! `Direct` and the first steps take the general path. At λ = 1 a push is one addition to the
+//! running integral.
+//!
+//! What bounds the cost (measured, see the README's Simulation section): with 41 modes (λ =
+//! 0.998, 10⁷ steps, 1e-10) the mode update is 11 four-lane blocks of 4 multiplies, 3 adds and
+//! one store per step, plus ~14 multiply–adds of the window: throughput work of the same order
+//! as the step's own dependency chain (two evaluations of P, a division). Impacts cost ~4 µs
+//! each at λ < 1 (the split's weight table, the Volterra value at the impact instant, the
+//! split piece entering every mode with its own exponential). Updating the modes in blocks of
+//! B steps does not reduce the work: every piece still needs its two weights in every mode
+//! and every step its own output weights (about 6 instead of 7 flops per mode and step at
+//! B = 4), so it is not used.
+//!
+//! # Reference
+//! Diethelm, Ford & Freed, Nonlinear Dyn. 29 (2002) 3–22 (product trapezoidal rule); Jiang,
+//! Zhang, Zhang & Zhang, Commun. Comput. Phys. 21 (2017) 650–678 (sum of exponentials).
+//!
+//! # Tests
+//! Unit tests in `tests.rs` (the scalar solver at order 1 is the trapezoidal PECE by hand; scaling the
+//! history equals the history of the scaled g, for both memories, with a split piece; the
+//! portable and AVX fast paths give the same bits; every window of 2 … 10 steps, padded or
+//! not, agrees with `Direct` to 10⁻¹⁰);
+//! `tests/soe.rs` (SOE against Direct on Eq. 1).
+//!
+//! # Layout
+//! - `window`: the exact local window (the mirrored ring of the last pieces, its dot product);
+//! - `modes`: the exponential (SOE) modes and their exact recursion;
+//! - `moments`: the lumped slow rates' moments m_k;
+//! - `history`: [`History`], the whole memory of one path, and its fast path;
+//! - `general`: the general path of a push (split pieces, the direct memory, λ = 1);
+//! - `state`: the history as numbers (restart, scaling, renormalisation, comparisons);
+//! - `scalar`: [`solve_scalar`], scalar Caputo problems on the same memory;
+//! - `probe`: [`probe_memory`], the memory's own cost per step.
+
+mod general;
+mod history;
+mod modes;
+mod moments;
+mod probe;
+mod scalar;
+mod state;
+#[cfg(test)]
+mod tests;
+mod window;
+
+use super::kernel::IntervalWeights;
+
+pub(crate) use history::History;
+pub use probe::probe_memory;
+pub use scalar::solve_scalar;
+
+/// How the history of J^λ g is kept.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Memory {
+    /// The exact product-integration weights over the whole history: O(N) work per step.
+    /// The reference, for tests and short runs.
+    Direct,
+    /// Exact weights over a short local window, a verified sum of exponentials beyond it.
+    SumOfExponentials {
+        /// Relative tolerance of the kernel approximation on [window·Δt, T] (e.g. 1e-10).
+        tolerance: f64,
+    },
+}
+
+impl Default for Memory {
+    fn default() -> Self {
+        Memory::SumOfExponentials { tolerance: 1e-10 }
+    }
+}
+
+/// Default number of steps in the exact local window of [`Memory::SumOfExponentials`]. Any
+/// window ≥ 2 is exact (the kernel beyond it is certified to the tolerance and split pieces
+/// enter the modes exactly); 8 costs about two more exponentials than 16 but half the window's
+/// dot product and half the work per impact (the split's weights at each distance).
+pub const DEFAULT_WINDOW: usize = 8;
+
+/// An impact inside an interval: g jumps at the fraction `theta` of the step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Split {
+    /// Position of the impact in the step, θ ∈ (0, 1).
+    pub theta: f64,
+    /// g just before the impact.
+    pub before: f64,
+    /// g just after the impact.
+    pub after: f64,
+    /// False when the memory restarted at the impact (the part before it is forgotten).
+    pub keep_before: bool,
+}
+
+/// One completed step of g: linear from `left` to `right`, or two linear pieces when split.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Piece {
+    pub left: f64,
+    pub right: f64,
+    pub split: Option<Split>,
+}
+
+/// Weights (of `left`, `right`) of an unsplit piece at distance p plus, when split, the
+/// exact contribution, all in units where the scale h^λ/Γ(λ) is left out.
+pub(super) fn piece_integral(weights: &IntervalWeights, piece: &Piece, p: f64) -> f64 {
+    match piece.split {
+        None => {
+            let (wa, wb) = weights.of(p, p + 1.0);
+            wa * piece.right + wb * piece.left
+        }
+        Some(s) => {
+            let mid = p + 1.0 - s.theta;
+            let (wa, wb) = weights.of(p, mid);
+            let mut v = wa * piece.right + wb * s.after;
+            if s.keep_before {
+                let (wa, wb) = weights.of(mid, p + 1.0);
+                v += wa * s.before + wb * piece.left;
+            }
+            v
+        }
+    }
+}
