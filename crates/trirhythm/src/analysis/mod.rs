@@ -9,12 +9,15 @@ pub mod oscillation;
 pub mod recurrence;
 pub mod versus;
 
-pub use ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, Estimate, PathStats, Wells};
+pub use ensemble::{
+    merge, run_ensemble, run_paths, EnsembleResult, EnsembleSpec, Estimate, PathStats, Wells,
+};
 pub use lyapunov::{
     critical_noise, largest_lyapunov, CriticalNoise, CriticalSearch, LyapunovResult, LyapunovSpec,
 };
 pub use oscillation::{
-    boundary, classify_plane, growth_rate, Boundary, BoundaryPoint, Classifier, Growth, Search,
+    boundary, classify_plane, growth_rate, Boundary, BoundaryPoint, Classifier, Growth, Plane,
+    Search,
 };
 pub use recurrence::{RecurrenceMatrix, RecurrenceThreshold};
 pub use versus::{compare, escape_time, theory_layout, TheoryComparison, TheoryLayout};

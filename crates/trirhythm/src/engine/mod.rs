@@ -8,6 +8,7 @@
 //! - [`noise`]: Ornstein–Uhlenbeck and white forcing with seeded per-path streams;
 //! - [`Stepper`]: the linearly implicit predictor–corrector step with impacts (module docs of
 //!   `stepper` give the method and why);
+//! - the [`Problem`] every driver takes (oscillator, system, wall, start, blow-up bound);
 //! - drivers: [`run`] with an [`Observer`], [`simulate`], [`simulate_ensemble`].
 //!
 //! The engine depends on [`crate::model`] (parameters, Eq. 5 equivalents) and
@@ -20,12 +21,15 @@ pub mod noise;
 mod problem;
 mod stepper;
 
+pub(crate) use drivers::whole_steps;
 pub use drivers::{
-    run, simulate, simulate_ensemble, simulate_path, Flow, Observer, Progress, Trajectory,
+    run, simulate, simulate_ensemble, simulate_with, Flow, Observer, Trajectory,
     TrajectoryRecorder, MAX_KEPT_SAMPLES, MAX_STEPS,
 };
 pub(crate) use memory::History;
 pub use memory::{probe_memory, solve_scalar, Memory, DEFAULT_WINDOW};
-pub use problem::{Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System};
+pub use problem::{
+    Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, Problem, System, MAX_STARTS,
+};
 pub(crate) use stepper::{fresh_history, Tangent};
 pub use stepper::{Impact, StepEvents, Stepper};
