@@ -190,6 +190,13 @@ pub fn merge(
     let sizes = spec.sizes(method.dt)?;
     let layout = Layout::new(spec, problem, sizes.samples);
     stats.sort_by_key(|p| p.path);
+    if let Some(p) = stats.iter().find(|p| p.path >= spec.paths as u64) {
+        return Err(Error::invalid(
+            "paths",
+            p.path as f64,
+            format!("path indices in 0..{} (statistics of another run)", spec.paths),
+        ));
+    }
     for w in stats.windows(2) {
         if w[0].path == w[1].path {
             return Err(Error::invalid(
@@ -200,13 +207,6 @@ pub fn merge(
         }
     }
     for (k, p) in stats.iter().enumerate() {
-        if p.path >= spec.paths as u64 {
-            return Err(Error::invalid(
-                "paths",
-                p.path as f64,
-                format!("path indices in 0..{} (statistics of another run)", spec.paths),
-            ));
-        }
         if p.path != k as u64 {
             return Err(Error::invalid(
                 "paths",
