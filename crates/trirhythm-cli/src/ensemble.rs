@@ -21,8 +21,8 @@ use trirhythm::analysis::ensemble::{
 };
 use trirhythm::analysis::versus::{compare, theory_layout, TheoryComparison};
 use trirhythm::engine::{PredictorCorrector, Problem};
-use trirhythm::monitor::Monitor;
 use trirhythm::model::Params;
+use trirhythm::monitor::Monitor;
 use trirhythm::theory::averaging::{Theory, Variant};
 
 /// `json` or `csv`.

@@ -17,8 +17,8 @@ use trirhythm::analysis::lyapunov::{
     critical_noise, largest_lyapunov, CriticalNoise, CriticalSearch, LyapunovResult, LyapunovSpec,
 };
 use trirhythm::engine::{PredictorCorrector, Problem};
-use trirhythm::monitor::Silent;
 use trirhythm::model::Params;
+use trirhythm::monitor::Silent;
 
 /// How the exponent is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]

@@ -10,8 +10,8 @@ use std::time::Duration;
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, Wells};
 use trirhythm::analysis::versus::compare;
 use trirhythm::engine::{PredictorCorrector, Problem};
-use trirhythm::monitor::Silent;
 use trirhythm::model::preset;
+use trirhythm::monitor::Silent;
 use trirhythm::theory::averaging::{Theory, Variant};
 
 fn case() -> (Problem, EnsembleSpec, Theory) {

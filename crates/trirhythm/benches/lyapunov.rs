@@ -8,8 +8,8 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use std::time::Duration;
 use trirhythm::analysis::lyapunov::{largest_lyapunov, LyapunovMethod, LyapunovSpec};
 use trirhythm::engine::{simulate, Options, PredictorCorrector, Problem};
-use trirhythm::monitor::Silent;
 use trirhythm::model::preset;
+use trirhythm::monitor::Silent;
 
 const T: f64 = 200.0;
 
@@ -18,7 +18,8 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10)
         .warm_up_time(Duration::from_millis(300))
         .measurement_time(Duration::from_secs(3));
-    let osc = Problem::from_params(&preset("fig17a").unwrap().params.with("D", 0.5).unwrap()).unwrap();
+    let osc =
+        Problem::from_params(&preset("fig17a").unwrap().params.with("D", 0.5).unwrap()).unwrap();
     let method = PredictorCorrector::default();
     let options = Options {
         t_end: T,

@@ -8,8 +8,8 @@ use trirhythm::analysis::oscillation::{
     boundary, classify_plane, Classifier, Method, Plane, Refinement, Search,
 };
 use trirhythm::engine::{Barrier, Problem};
-use trirhythm::monitor::Silent;
 use trirhythm::model::Params;
+use trirhythm::monitor::Silent;
 
 /// ω0 = 0.5, λ = 0.95, r = 0.99 with the wall: the fractional case without an exact answer.
 fn problem() -> Plane {

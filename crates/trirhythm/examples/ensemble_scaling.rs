@@ -6,8 +6,8 @@
 use std::time::Instant;
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleSpec};
 use trirhythm::engine::{PredictorCorrector, Problem};
-use trirhythm::monitor::Silent;
 use trirhythm::model::preset;
+use trirhythm::monitor::Silent;
 
 fn main() {
     let steps: f64 = std::env::args()

@@ -10,11 +10,11 @@ use trirhythm::analysis::ensemble::{
 };
 use trirhythm::analysis::versus::escape_time;
 use trirhythm::engine::{Barrier, PredictorCorrector, Problem};
-use trirhythm::monitor::{CancelFlag, Monitor, Silent};
-use trirhythm::{Error, Result};
 use trirhythm::known_answers::{linear_fractional_moments, linear_fractional_oscillator};
 use trirhythm::model::preset;
+use trirhythm::monitor::{CancelFlag, Monitor, Silent};
 use trirhythm::theory::averaging::{Theory, Variant};
+use trirhythm::{Error, Result};
 
 fn linear_run(lambda: f64, tau: f64) -> (trirhythm::analysis::EnsembleResult, (f64, f64)) {
     let (mu, w, d) = (0.5, 1.0, 0.1);
@@ -241,7 +241,10 @@ fn pieces_in_any_split_and_order_merge_to_the_whole_run() {
     let mut foreign = pieces.clone();
     foreign.iter_mut().find(|p| p.path == 4).unwrap().path = 9;
     named(merge(&problem, &m, &spec, foreign), 9.0);
-    let other_spec = EnsembleSpec { bins: 50, ..spec.clone() };
+    let other_spec = EnsembleSpec {
+        bins: 50,
+        ..spec.clone()
+    };
     assert!(merge(&problem, &m, &other_spec, pieces).is_err());
     // and run_paths refuses indices out of range or asked twice
     assert!(run_paths(&problem, &m, &spec, &[6], &Silent).is_err());

@@ -110,7 +110,10 @@ fn plastic_impacts_do_not_hang() {
     let mut p = preset("fig1").unwrap().params;
     p.restitution = 0.0;
     p.lambda = 0.9;
-    let problem = Problem::from_params(&p).unwrap().with_start(1.0, -1.0).unwrap();
+    let problem = Problem::from_params(&p)
+        .unwrap()
+        .with_start(1.0, -1.0)
+        .unwrap();
     let o = Options {
         t_end: 50.0,
         ..Default::default()

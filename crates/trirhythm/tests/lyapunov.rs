@@ -19,8 +19,8 @@ use trirhythm::analysis::lyapunov::{
     critical_noise, largest_lyapunov, CriticalSearch, LyapunovMethod, LyapunovResult, LyapunovSpec,
 };
 use trirhythm::engine::{Barrier, ImpactMemory, PredictorCorrector, Problem, System};
-use trirhythm::monitor::Silent;
 use trirhythm::model::{preset, Params};
+use trirhythm::monitor::Silent;
 
 const SEED: u64 = 20240611;
 

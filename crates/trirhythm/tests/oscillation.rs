@@ -9,8 +9,8 @@ use trirhythm::analysis::oscillation::{
     Refinement, Search, Side,
 };
 use trirhythm::engine::{Barrier, Problem};
-use trirhythm::monitor::Silent;
 use trirhythm::model::Params;
+use trirhythm::monitor::Silent;
 use trirhythm::theory::averaging::Variant;
 
 /// Allowed distance between the exact boundary and the simulated bracket, relative to the
@@ -170,8 +170,7 @@ fn averaging_boundary_is_its_closed_form_along_mu0_and_along_r() {
         // along r at fixed μ0: the root r* puts μ0 on the closed form
         let mut p = params(0.9, 0.999, 0.9);
         p.mu0 = 0.02;
-        let problem =
-            plane(&p, Barrier::On, ("lambda", vec![0.999]), ("r", 0.5, 1.0)).unwrap();
+        let problem = plane(&p, Barrier::On, ("lambda", vec![0.999]), ("r", 0.5, 1.0)).unwrap();
         let b = boundary(
             &problem,
             &Method::Averaging(variant),

@@ -4,8 +4,8 @@
 //! on the averaging's outer cycle, and converge in Δt.
 
 use trirhythm::engine::{run, Barrier, Flow, PredictorCorrector, Problem, Stepper};
-use trirhythm::monitor::Silent;
 use trirhythm::model::preset;
+use trirhythm::monitor::Silent;
 use trirhythm::theory::averaging::{Theory, Variant};
 use trirhythm::Error;
 

@@ -19,9 +19,7 @@ use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
-use trirhythm::engine::{
-    run, Flow, ImpactMemory, PredictorCorrector, Problem, Stepper, System,
-};
+use trirhythm::engine::{run, Flow, ImpactMemory, PredictorCorrector, Problem, Stepper, System};
 use trirhythm::model::{preset, Params};
 use trirhythm::theory::bifurcation::{BranchDiagram, What};
 

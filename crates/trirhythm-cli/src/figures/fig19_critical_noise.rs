@@ -69,7 +69,13 @@ impl Figure for Fig19 {
             for v in values {
                 let p = base.with(key, v)?;
                 let problem = trirhythm::engine::Problem::from_params(&p)?;
-                let c = critical_noise(&problem, &sz.method, &sz.spec, &search, &trirhythm::monitor::Silent)?;
+                let c = critical_noise(
+                    &problem,
+                    &sz.method,
+                    &sz.spec,
+                    &search,
+                    &trirhythm::monitor::Silent,
+                )?;
                 let merged = merged_points_text(&c);
                 if c.found() {
                     notes.push(format!(

@@ -294,7 +294,12 @@ pub fn lle_against_noise(
         let mut points = Vec::new();
         for &d in noises {
             let p = base.with(key, v)?.with("D", d)?;
-            let r = largest_lyapunov(&Problem::from_params(&p)?, &sizes.method, &sizes.spec, &Silent)?;
+            let r = largest_lyapunov(
+                &Problem::from_params(&p)?,
+                &sizes.method,
+                &sizes.spec,
+                &Silent,
+            )?;
             if r.merged > 0 {
                 merged_points += 1;
                 let when: Vec<String> = r

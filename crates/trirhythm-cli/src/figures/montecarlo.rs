@@ -12,8 +12,8 @@ use serde::{Deserialize, Serialize};
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec};
 use trirhythm::analysis::versus::theory_layout;
 use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem, System};
-use trirhythm::monitor::Silent;
 use trirhythm::model::Params;
+use trirhythm::monitor::Silent;
 use trirhythm::theory::averaging::{Theory, Variant};
 
 /// Ensemble sizes of a figure.

@@ -98,7 +98,11 @@ pub(crate) fn whole_steps(name: &str, t: f64, dt: f64, allow_zero: bool) -> Resu
     if !(dt > 0.0 && dt.is_finite()) {
         return Err(Error::invalid("dt", dt, "(0, ∞), finite"));
     }
-    let least = if allow_zero { "0 or more" } else { "one or more" };
+    let least = if allow_zero {
+        "0 or more"
+    } else {
+        "one or more"
+    };
     let ratio = t / dt;
     let steps = ratio.round();
     let min = if allow_zero { 0.0 } else { 1.0 };
@@ -125,7 +129,9 @@ pub(crate) fn whole_steps(name: &str, t: f64, dt: f64, allow_zero: bool) -> Resu
 }
 
 impl Options {
-    /// The number of steps of Δt in [0, T] ([`whole_steps`]'s checks).
+    /// The number of steps of Δt in [0, T], checked: T finite, a whole number of steps (to
+    /// 10⁻⁹ relative; the grid is uniform, so a T between two grid points is refused rather
+    /// than silently moved) and at most [`MAX_STEPS`] of them.
     pub fn steps(&self, dt: f64) -> Result<u64> {
         whole_steps("t_end", self.t_end, dt, false)
     }

@@ -303,7 +303,10 @@ mod tests {
         named(p.clone().with_starts(&[]), "u0");
         named(p.clone().with_blow_up(0.0), "blow_up");
         named(p.clone().with_blow_up(f64::NAN), "blow_up");
-        named(p.clone().with_start(5.0, 0.0).unwrap().with_blow_up(5.0), "u0");
+        named(
+            p.clone().with_start(5.0, 0.0).unwrap().with_blow_up(5.0),
+            "u0",
+        );
         let z = p.clone().with_system(System::Zhuravlev).unwrap();
         assert_eq!(z.with_start(-1.0, 0.0).unwrap().start(7), (-1.0, 0.0));
         assert!(p.with_blow_up(f64::INFINITY).is_ok());

@@ -391,7 +391,14 @@ pub(super) fn assemble(
     let occupancy = occupancy(all, between, nw);
     let passages = passages(all, nw);
     let stationarity = stationarity(all, spec, &m, layout.inv_omega1_sq);
-    let warnings = warnings(&stationarity, between, &amplitude, &energy, &joint, &passages);
+    let warnings = warnings(
+        &stationarity,
+        between,
+        &amplitude,
+        &energy,
+        &joint,
+        &passages,
+    );
     EnsembleResult {
         paths: all.len(),
         steps_per_path: sizes.burn + sizes.window,

@@ -151,7 +151,8 @@ pub fn run_paths(
         .map(|&i| {
             monitor.check()?;
             let start = problem.start(i);
-            let mut s = Stepper::with_history(problem, method, start, (spec.seed, i), history.clone())?;
+            let mut s =
+                Stepper::with_history(problem, method, start, (spec.seed, i), history.clone())?;
             let mut rec = Recorder::new(&layout, sizes.burn, spec.sample_every, i, start.0);
             let mut observe = |st: &Stepper| {
                 let f = rec.observe(st);
@@ -194,7 +195,10 @@ pub fn merge(
         return Err(Error::invalid(
             "paths",
             p.path as f64,
-            format!("path indices in 0..{} (statistics of another run)", spec.paths),
+            format!(
+                "path indices in 0..{} (statistics of another run)",
+                spec.paths
+            ),
         ));
     }
     for w in stats.windows(2) {
@@ -237,7 +241,8 @@ pub fn merge(
 /// Whether `p` has the shape of this spec's statistics and this problem's start.
 fn fits(p: &PathStats, spec: &EnsembleSpec, problem: &Problem) -> bool {
     let nw = spec.wells.as_ref().map_or(0, Wells::len);
-    let quarters = |q: &Vec<Vec<u64>>, n: usize| q.len() == QUARTERS && q.iter().all(|h| h.len() == n + 1);
+    let quarters =
+        |q: &Vec<Vec<u64>>, n: usize| q.len() == QUARTERS && q.iter().all(|h| h.len() == n + 1);
     p.u0.to_bits() == problem.start(p.path).0.to_bits()
         && p.batches.len() == spec.batches
         && p.batches.iter().all(|b| b.wells.len() == nw)

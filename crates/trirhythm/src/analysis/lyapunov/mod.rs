@@ -107,11 +107,12 @@
 //! # Example
 //! ```
 //! use trirhythm::analysis::lyapunov::{largest_lyapunov, LyapunovSpec};
-//! use trirhythm::engine::{Memory, PredictorCorrector, Problem};
+//! use trirhythm::engine::{Barrier, Memory, PredictorCorrector, Problem};
 //! use trirhythm::model::preset;
 //! use trirhythm::monitor::Silent;
 //!
-//! let problem = Problem::from_params(&preset("fig1")?.params.with("D", 0.05)?)?.with_start(6.8, 0.0)?;
+//! let params = preset("fig1")?.params.with("D", 0.05)?;
+//! let problem = Problem::from_params(&params)?.with_barrier(Barrier::Off)?.with_start(6.8, 0.0)?;
 //! let method = PredictorCorrector { dt: 0.05, memory: Memory::Direct, ..Default::default() };
 //! let spec = LyapunovSpec {
 //!     paths: 2, seed: 3, transient: 2.0, length: 20.0, renormalise_every: 10, running_points: 4,
@@ -411,7 +412,6 @@ pub fn largest_lyapunov(
         window: spec.length,
     })
 }
-
 
 #[cfg(test)]
 mod tests {

@@ -3,7 +3,7 @@
 //!
 //! # Equation
 //! D^{1+λ}U − μ0 P(U) U̇ + ω0² U = 0 on U ≥ 0 with U̇₊ = −rU̇₋ at U = 0 (or on the whole line,
-//! [`Barrier::Off`]). P(0) = c0 (= 1 for the paper's polynomial), so at rest the term
+//! [`Barrier::Off`](crate::engine::Barrier::Off)). P(0) = c0 (= 1 for the paper's polynomial), so at rest the term
 //! −μ0c0U̇ is a *negative* damping μ0c0 against the fractional term's positive one. A small
 //! oscillation grows (the system oscillates) or dies (it rests); the boundary in one parameter
 //! y at fixed other parameters is where the growth rate of the amplitude changes sign.

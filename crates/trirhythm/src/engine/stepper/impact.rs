@@ -61,7 +61,12 @@ impl Stepper {
     /// (u1, v1): locate it, jump, and redo the rest of the step. Returns the split of g and the
     /// state at the end of the step.
     #[cold]
-    pub(super) fn impact(&mut self, gl: f64, (el, er): (f64, f64), (u1, v1): (f64, f64)) -> (Split, f64, f64) {
+    pub(super) fn impact(
+        &mut self,
+        gl: f64,
+        (el, er): (f64, f64),
+        (u1, v1): (f64, f64),
+    ) -> (Split, f64, f64) {
         let c = self.locate(gl, (el, er), (u1, v1));
         let rest = self.jump(&c, gl, er);
         let (u_end, v_end) = rest.free.end();

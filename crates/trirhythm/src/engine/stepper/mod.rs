@@ -2,7 +2,12 @@
 //! — U, V, the noise, the memory (exact window, SOE modes, lumped terms, impact jumps), the
 //! impact bookkeeping — and advances it one step at a time. Every driver (trajectories,
 //! ensembles, streaming statistics, early-stopping sweeps) is a loop over [`Stepper::step`]; see
-//! [`super::drivers`].
+//! [`super::drivers`]. A stepper is built from a [`Problem`] ([`Stepper::new`]): the
+//! equation, the wall, the start of its path and the blow-up bound are the problem's.
+//!
+//! The step is here; `impact` locates an impact inside a step and redoes the rest of it,
+//! `tangent` steps the variational equation with the path, `renormalise` pulls a perturbed
+//! copy toward its reference, `polynomial` evaluates μP.
 //!
 //! # Equation
 //! Caputo D^{1+λ}U = D^λ(U′), so Eq. (1) is the multi-order system
@@ -90,9 +95,8 @@
 //! `tests/stochastic.rs`, `tests/tangent.rs` (the renormalisation of a perturbed copy acts on
 //! the whole memory: exact for a linear system, −μ/2 for the damped oscillator), the unit
 //! tests of [`tangent`] (the tangent step against finite differences of [`Stepper::step`],
-//! smooth and impact steps), and the unit tests below (λ = 1 is the linearly implicit
-//! trapezoidal rule, written out by hand; blow-up reports its stiffness; the crossing by
-//! Newton equals bisection).
+//! smooth and impact steps), the unit tests of `impact` (the crossing by Newton equals
+//! bisection).
 
 use super::memory::{History, Piece, Split};
 use super::noise::NoiseStream;
@@ -414,7 +418,8 @@ impl Stepper {
         (seed, path): (u64, u64),
         history: History,
     ) -> Result<Self> {
-        let (oscillator, system, blow_up) = (problem.oscillator(), problem.system(), problem.blow_up());
+        let (oscillator, system, blow_up) =
+            (problem.oscillator(), problem.system(), problem.blow_up());
         let h = method.dt;
         if !(h > 0.0 && h.is_finite()) {
             return Err(Error::invalid("dt", h, "(0, ∞), finite"));
@@ -644,4 +649,3 @@ pub(crate) fn fresh_history(
     let lambda = Rhs::new(problem.oscillator(), problem.system()).lambda;
     History::new(lambda, method.dt, horizon, method.memory, method.window)
 }
-
