@@ -20,7 +20,7 @@ use trirhythm::analysis::lyapunov::{
 };
 use trirhythm::engine::{Barrier, ImpactMemory, PredictorCorrector, Problem, System};
 use trirhythm::model::{preset, Params};
-use trirhythm::monitor::Silent;
+use trirhythm::monitor::{CancelFlag, Silent};
 
 const SEED: u64 = 20240611;
 
@@ -435,4 +435,23 @@ fn a_copy_that_merges_with_its_reference_gives_minus_infinity_with_its_time() {
         r.unmerged.value,
         r.unmerged.stderr
     );
+}
+
+#[test]
+fn a_cancelled_estimate_or_search_stops_with_cancelled() {
+    let flag = CancelFlag::default();
+    flag.cancel();
+    let spec = LyapunovSpec {
+        paths: 2,
+        seed: SEED,
+        transient: 20.0,
+        length: 200.0,
+        ..Default::default()
+    };
+    let at = problem(&params(&[("D", 0.3)]), Barrier::On, 1.0);
+    let method = PredictorCorrector::default();
+    let r = largest_lyapunov(&at, &method, &spec, &flag);
+    assert!(matches!(r, Err(trirhythm::Error::Cancelled)), "{r:?}");
+    let c = critical_noise(&at, &method, &spec, &CriticalSearch::default(), &flag);
+    assert!(matches!(c, Err(trirhythm::Error::Cancelled)), "{c:?}");
 }

@@ -307,7 +307,7 @@ pub struct LyapunovResult {
 }
 
 /// Mean and standard error of the mean (NaN with fewer than two values).
-pub fn mean_and_stderr(xs: &[f64]) -> Estimate {
+pub(crate) fn mean_and_stderr(xs: &[f64]) -> Estimate {
     let n = xs.len() as f64;
     let mean = xs.iter().sum::<f64>() / n;
     if xs.len() < 2 {

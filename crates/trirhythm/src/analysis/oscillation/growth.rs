@@ -53,7 +53,8 @@ impl Default for Classifier {
 /// The growth rate of one simulated path.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Growth {
-    /// σ, the slope of ln(amplitude) over the window (per unit time).
+    /// σ, the slope of ln(amplitude) over the window (per unit time): > 0 where a small
+    /// oscillation grows.
     pub rate: f64,
     /// Its standard error from the fit's residuals.
     pub standard_error: f64,
@@ -63,13 +64,6 @@ pub struct Growth {
     pub peaks: usize,
     /// Steps taken.
     pub steps: u64,
-}
-
-impl Growth {
-    /// The small oscillation grows.
-    pub fn oscillates(&self) -> bool {
-        self.rate > 0.0
-    }
 }
 
 /// Growth rate of a small oscillation of `problem` (Eq. 1 with D = 0, with or without its wall,
