@@ -18,6 +18,7 @@
 use trirhythm::analysis::lyapunov::{
     critical_noise, largest_lyapunov, CriticalSearch, LyapunovMethod, LyapunovResult, LyapunovSpec,
 };
+use trirhythm::analysis::lyapunov::{merge, run_paths, PathRun};
 use trirhythm::engine::{Barrier, ImpactMemory, PredictorCorrector, Problem, System};
 use trirhythm::model::{preset, Params};
 use trirhythm::monitor::{CancelFlag, Silent};
@@ -454,4 +455,31 @@ fn a_cancelled_estimate_or_search_stops_with_cancelled() {
     assert!(matches!(r, Err(trirhythm::Error::Cancelled)), "{r:?}");
     let c = critical_noise(&at, &method, &spec, &CriticalSearch::default(), &flag);
     assert!(matches!(c, Err(trirhythm::Error::Cancelled)), "{c:?}");
+}
+
+#[test]
+fn realisations_in_any_split_and_order_merge_to_the_whole_estimate() {
+    let spec = LyapunovSpec {
+        paths: 5,
+        seed: SEED,
+        transient: 20.0,
+        length: 200.0,
+        ..Default::default()
+    };
+    let at = problem(&params(&[("D", 0.3)]), Barrier::On, 1.0);
+    let method = PredictorCorrector::default();
+    let whole = largest_lyapunov(&at, &method, &spec, &Silent).unwrap();
+    let mut runs: Vec<PathRun> = Vec::new();
+    for piece in [&[4u64, 1][..], &[0], &[3, 2]] {
+        runs.extend(run_paths(&at, &method, &spec, piece, &Silent).unwrap());
+    }
+    // through JSON and back, as a piece run elsewhere would come
+    let runs: Vec<PathRun> = serde_json::from_str(&serde_json::to_string(&runs).unwrap()).unwrap();
+    let merged = merge(&spec, runs.clone()).unwrap();
+    assert_eq!(format!("{merged:?}"), format!("{whole:?}"));
+    assert!(merge(&spec, runs[1..].to_vec()).is_err());
+    let mut twice = runs.clone();
+    twice.push(runs[0].clone());
+    assert!(merge(&spec, twice).is_err());
+    assert!(run_paths(&at, &method, &spec, &[5], &Silent).is_err());
 }

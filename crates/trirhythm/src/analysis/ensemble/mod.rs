@@ -119,23 +119,7 @@ pub fn run_paths(
     monitor: &dyn Monitor<PathStats>,
 ) -> Result<Vec<PathStats>> {
     let sizes = spec.sizes(method.dt)?;
-    let mut seen = vec![false; spec.paths];
-    for &i in paths {
-        if i >= spec.paths as u64 {
-            return Err(Error::invalid(
-                "paths",
-                i as f64,
-                format!("path indices in 0..{}", spec.paths),
-            ));
-        }
-        if std::mem::replace(&mut seen[i as usize], true) {
-            return Err(Error::invalid(
-                "paths",
-                i as f64,
-                "each path at most once (this one is asked twice)",
-            ));
-        }
-    }
+    super::check_indices(paths, spec.paths)?;
     monitor.check()?;
     if paths.is_empty() {
         return Ok(vec![]);

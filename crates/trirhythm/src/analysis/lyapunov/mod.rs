@@ -88,7 +88,9 @@
 //!
 //! # Reproducibility
 //! Path i depends only on (seed, i); paths run in parallel and are merged in path order, so the
-//! result is bit-identical whatever the number of threads.
+//! result is bit-identical whatever the number of threads. [`largest_lyapunov`] is
+//! [`run_paths`] over every path, then [`merge`]: the realisations can be run anywhere, in any
+//! split and order, and merged into the same result.
 //!
 //! # Tests
 //! `tests/lyapunov.rs`: the damped linear oscillator (P ≡ −1, no wall, λ = 1) has LLE = −μ0/2
@@ -323,30 +325,61 @@ pub(crate) fn mean_and_stderr(xs: &[f64]) -> Estimate {
     }
 }
 
+/// One realisation's part of an estimate: its exponent and its running estimate at the spec's
+/// checkpoints. The unit of [`merge`] (serialisable, restored bit for bit).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PathRun {
+    /// The realisation's exponent.
+    pub exponent: PathExponent,
+    /// Its exponent so far at each checkpoint of the window (−∞ after a merge, NaN before the
+    /// first renormalisation).
+    #[serde(with = "crate::non_finite::vec")]
+    pub running: Vec<f64>,
+}
+
 /// The largest Lyapunov exponent of `problem` with frozen noise (module docs): path i from
-/// `problem.start(i)` on noise stream i of `spec.seed`. `monitor` hears the steps done,
-/// receives each path's exponent as it is finished, and may stop the run
-/// ([`Error::Cancelled`]).
+/// `problem.start(i)` on noise stream i of `spec.seed`; [`run_paths`] over every path, then
+/// [`merge`]. `monitor` hears the steps done, receives each path as it is finished, and may
+/// stop the run ([`Error::Cancelled`]).
 pub fn largest_lyapunov(
     problem: &Problem,
     method: &PredictorCorrector,
     spec: &LyapunovSpec,
-    monitor: &dyn Monitor<PathExponent>,
+    monitor: &dyn Monitor<PathRun>,
 ) -> Result<LyapunovResult> {
+    let all: Vec<u64> = (0..spec.paths as u64).collect();
+    let runs = run_paths(problem, method, spec, &all, monitor)?;
+    merge(spec, runs)
+}
+
+/// Run the realisations `paths` (indices in 0..`spec.paths`, each at most once, in any order) in
+/// parallel; they come back in the order asked. `monitor` hears the steps done, receives each
+/// path as it is finished, and may stop the run ([`Error::Cancelled`]).
+pub fn run_paths(
+    problem: &Problem,
+    method: &PredictorCorrector,
+    spec: &LyapunovSpec,
+    paths: &[u64],
+    monitor: &dyn Monitor<PathRun>,
+) -> Result<Vec<PathRun>> {
     let (transient, window) = spec.sizes(method.dt)?;
+    super::check_indices(paths, spec.paths)?;
     monitor.check()?;
+    if paths.is_empty() {
+        return Ok(vec![]);
+    }
     let steps = transient + window;
     let history = fresh_history(problem, method, steps as f64 * method.dt)?;
     let counter = AtomicU64::new(0);
-    let total = spec.paths as u64 * steps;
+    let total = paths.len() as u64 * steps;
     let tick = |k: u64| {
         let done = counter.fetch_add(k, Ordering::Relaxed) + k;
         monitor.progress(done.min(total), total);
         monitor.check()
     };
-    let results: Vec<(PathExponent, Vec<f64>)> = (0..spec.paths as u64)
-        .into_par_iter()
-        .map(|i| {
+    paths
+        .par_iter()
+        .map(|&i| {
             monitor.check()?;
             let (u0, v0) = problem.start(i);
             let shift = if u0 + 1.0 < problem.blow_up() {
@@ -359,7 +392,7 @@ pub fn largest_lyapunov(
             };
             let a = make(u0)?;
             let sizes = (transient, window);
-            let path = match spec.method {
+            let (exponent, running) = match spec.method {
                 LyapunovMethod::TwoTrajectory => {
                     let mut b = make(u0 + shift)?;
                     // the copy starts one unit away along U: pull it to d₀ (both at step 0,
@@ -379,16 +412,49 @@ pub fn largest_lyapunov(
                     one_path(PathAndTangent { a, t }, spec, sizes, i, &tick)
                 }
             }?;
-            monitor.finished(&path.0)?;
-            Ok(path)
+            let run = PathRun { exponent, running };
+            monitor.finished(&run)?;
+            Ok(run)
         })
-        .collect::<Result<_>>()?;
-    let exponents: Vec<f64> = results.iter().map(|r| r.0.exponent).collect();
+        .collect()
+}
+
+/// Merge the realisations 0..`spec.paths` (from [`run_paths`], in any split and order) into the
+/// estimate, bit-identical to one whole run. Refuses a path given twice, a missing path and a
+/// path out of range.
+pub fn merge(spec: &LyapunovSpec, mut runs: Vec<PathRun>) -> Result<LyapunovResult> {
+    runs.sort_by_key(|r| r.exponent.path);
+    if let Some(r) = runs.iter().find(|r| r.exponent.path >= spec.paths as u64) {
+        return Err(Error::invalid(
+            "paths",
+            r.exponent.path as f64,
+            format!("path indices in 0..{} (a run of another spec)", spec.paths),
+        ));
+    }
+    for w in runs.windows(2) {
+        if w[0].exponent.path == w[1].exponent.path {
+            return Err(Error::invalid(
+                "paths",
+                w[0].exponent.path as f64,
+                "each path once (this one is given twice)",
+            ));
+        }
+    }
+    if let Some(k) =
+        (0..spec.paths).find(|&k| runs.get(k).map(|r| r.exponent.path) != Some(k as u64))
+    {
+        return Err(Error::invalid(
+            "paths",
+            k as f64,
+            format!("all {} paths (this one is missing)", spec.paths),
+        ));
+    }
+    let exponents: Vec<f64> = runs.iter().map(|r| r.exponent.exponent).collect();
     let lle = mean_and_stderr(&exponents);
-    let points = results.iter().map(|r| r.1.len()).min().unwrap_or(0);
+    let points = runs.iter().map(|r| r.running.len()).min().unwrap_or(0);
     let running = (0..points)
         .map(|k| {
-            let xs: Vec<f64> = results.iter().map(|r| r.1[k]).collect();
+            let xs: Vec<f64> = runs.iter().map(|r| r.running[k]).collect();
             let e = mean_and_stderr(&xs);
             RunningPoint {
                 t: (k + 1) as f64 * spec.length / spec.running_points as f64,
@@ -407,7 +473,7 @@ pub fn largest_lyapunov(
         merged: exponents.len() - unmerged.len(),
         // NaN when none is left (mean_and_stderr of no values)
         unmerged: mean_and_stderr(&unmerged),
-        per_path: results.into_iter().map(|r| r.0).collect(),
+        per_path: runs.into_iter().map(|r| r.exponent).collect(),
         running,
         window: spec.length,
     })
