@@ -6,13 +6,15 @@
 //! - `memory`: the whole history of J^λ g of one path (exact window, SOE modes, lumped terms),
 //!   with [`Memory`] choosing how it is kept, and [`solve_scalar`] for scalar Caputo problems;
 //! - [`noise`]: Ornstein–Uhlenbeck and white forcing with seeded per-path streams;
+//! - the [`Problem`] every driver takes (oscillator, system, wall, starts, blow-up bound) and
+//!   the method [`PredictorCorrector`];
 //! - [`Stepper`]: the linearly implicit predictor–corrector step with impacts (module docs of
 //!   `stepper` give the method and why);
-//! - the [`Problem`] every driver takes (oscillator, system, wall, start, blow-up bound);
-//! - drivers: [`run`] with an [`Observer`], [`simulate`], [`simulate_ensemble`].
+//! - drivers: [`run`] with an [`Observer`], [`simulate`], [`simulate_ensemble`]; a
+//!   [`crate::monitor::Monitor`] hears their progress and can stop them.
 //!
-//! The engine depends on [`crate::model`] (parameters, Eq. 5 equivalents) and
-//! [`crate::special`] only, never on the averaged theory.
+//! The engine depends on [`crate::model`] (parameters, Eq. 5 equivalents), [`crate::special`]
+//! and [`crate::monitor`] only, never on the averaged theory.
 
 mod drivers;
 pub mod kernel;

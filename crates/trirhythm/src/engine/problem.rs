@@ -147,7 +147,9 @@ pub const MAX_STARTS: usize = 100_000;
 /// use trirhythm::model::preset;
 ///
 /// let osc = Oscillator::new(&preset("fig1")?.params)?;
-/// let problem = Problem::new(osc).with_barrier(Barrier::Off)?.with_starts(&[(-1.0, 0.0), (2.0, 0.5)])?;
+/// let problem = Problem::new(osc)
+///     .with_barrier(Barrier::Off)?
+///     .with_starts(&[(-1.0, 0.0), (2.0, 0.5)])?;
 /// assert_eq!(problem.start(3), (2.0, 0.5)); // path 3 takes start 3 mod 2
 /// assert!(problem.clone().with_barrier(Barrier::On).is_err()); // U(0) = −1 below the wall
 /// # Ok::<(), trirhythm::Error>(())

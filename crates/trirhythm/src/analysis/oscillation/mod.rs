@@ -3,10 +3,15 @@
 //!
 //! # Equation
 //! D^{1+λ}U − μ0 P(U) U̇ + ω0² U = 0 on U ≥ 0 with U̇₊ = −rU̇₋ at U = 0 (or on the whole line,
-//! [`Barrier::Off`](crate::engine::Barrier::Off)). P(0) = c0 (= 1 for the paper's polynomial), so at rest the term
-//! −μ0c0U̇ is a *negative* damping μ0c0 against the fractional term's positive one. A small
+//! [`Barrier::Off`](crate::engine::Barrier::Off)). P(0) = c0 (= 1 for the paper's
+//! polynomial), so at rest the term −μ0c0U̇ is a *negative* damping μ0c0 against the
+//! fractional term's positive one. A small
 //! oscillation grows (the system oscillates) or dies (it rests); the boundary in one parameter
 //! y at fixed other parameters is where the growth rate of the amplitude changes sign.
+//!
+//! The search runs over a [`Plane`]: a [`Problem`] template (its parameters at D = 0, its wall
+//! and blow-up bound; Eq. 1 only) with one parameter as abscissa and the interval of another in
+//! which the boundary is sought.
 //!
 //! # Methods
 //! - [`Method::Simulation`]: from U(0) = a0 tiny (10⁻⁹, so P(U) = c0 to 10⁻¹⁸ and the run
