@@ -430,6 +430,16 @@ pub fn table(columns: &[&str], rows: &[Vec<String>], infinite: &[&str]) -> Resul
 }
 
 /// A progress bar on a terminal, hidden otherwise.
+/// A library call's monitor that hands its progress (done, total) to a closure (which moves a
+/// progress bar).
+pub struct Report<F>(pub F);
+
+impl<T: ?Sized, F: Fn(u64, u64) + Sync> trirhythm::monitor::Monitor<T> for Report<F> {
+    fn progress(&self, done: u64, total: u64) {
+        (self.0)(done, total)
+    }
+}
+
 pub fn progress(len: u64, message: &str) -> indicatif::ProgressBar {
     use std::io::IsTerminal;
     if !std::io::stderr().is_terminal() {

@@ -8,16 +8,21 @@
 //! are a contract: keep them.
 
 use crate::common::{bad, emit, jnum, params_json, progress, ParamArgs};
-use crate::simulate::{method_from, ImpactMemoryArg, MemoryArg, OnOff, SystemArg};
+use crate::simulate::{
+    barrier_from, method_from, system_from, ImpactMemoryArg, MemoryArg, OnOff, SystemArg,
+};
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, PathStats, Wells};
+use trirhythm::analysis::ensemble::{
+    merge, run_paths, EnsembleResult, EnsembleSpec, PathStats, Wells,
+};
 use trirhythm::analysis::versus::{compare, theory_layout, TheoryComparison};
-use trirhythm::engine::{Barrier, Oscillator, PredictorCorrector, System};
+use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
+use trirhythm::monitor::Monitor;
 use trirhythm::theory::averaging::{Theory, Variant};
 
 /// `json` or `csv`.
@@ -97,7 +102,7 @@ pub struct EnsembleArgs {
 /// An ensemble's inputs in library types, with the choices made for the user.
 pub struct EnsembleSetup {
     pub params: Params,
-    pub oscillator: Oscillator,
+    pub problem: Problem,
     pub method: PredictorCorrector,
     pub spec: EnsembleSpec,
     /// What was chosen where the user left a value open (printed with the result).
@@ -157,16 +162,6 @@ impl EnsembleArgs {
             seed: self.seed,
             burn_in: self.burn_in,
             length: self.t_end,
-            starts,
-            system: match self.system {
-                SystemArg::Fractional => System::Fractional,
-                SystemArg::Equivalent => System::Equivalent,
-                SystemArg::Zhuravlev => System::Zhuravlev,
-            },
-            barrier: match self.barrier {
-                OnOff::On => Barrier::On,
-                OnOff::Off => Barrier::Off,
-            },
             sample_every: self.sample_every,
             bins: self.bins,
             joint_bins: self.joint_bins,
@@ -174,8 +169,13 @@ impl EnsembleArgs {
             wells,
             ..Default::default()
         };
+        let starts: Vec<(f64, f64)> = starts.iter().map(|&u| (u, 0.0)).collect();
+        let problem = Problem::from_params(&params)?
+            .with_barrier(barrier_from(self.barrier))?
+            .with_system(system_from(self.system))?
+            .with_starts(&starts)?;
         Ok(EnsembleSetup {
-            oscillator: Oscillator::new(&params)?,
+            problem,
             params,
             method,
             spec,
@@ -401,14 +401,47 @@ impl Checkpoint {
     }
 }
 
+/// How the command watches its run: the progress bar, and each finished path saved in the
+/// checkpoint directory.
+struct Watch<'a> {
+    bar: &'a indicatif::ProgressBar,
+    checkpoint: Option<&'a Checkpoint>,
+    save_error: std::sync::Mutex<Option<anyhow::Error>>,
+}
+
+impl Monitor<PathStats> for Watch<'_> {
+    fn progress(&self, done: u64, total: u64) {
+        let f = done as f64 / total as f64;
+        self.bar.set_position((f * 1000.0).min(1000.0) as u64);
+    }
+
+    fn finished(&self, p: &PathStats) -> trirhythm::Result<()> {
+        if let Some(c) = self.checkpoint {
+            if let Err(e) = c.save(p) {
+                *self.save_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
+                return Err(trirhythm::Error::Undefined {
+                    what: "checkpoint",
+                    why: "a path's statistics could not be saved".into(),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Run `ensemble`.
 pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     let s = args.setup()?;
     let method = method_line(args);
     let fingerprint = format!(
-        "trirhythm ensemble\nparams: {}\n{method}\nspec: {:?}\n",
+        "trirhythm ensemble\nparams: {}\n{method}\nspec: {:?}\nstarts: {:?} system: {:?} barrier: {:?} \
+         blow_up: {:e}\n",
         s.params.describe(),
-        s.spec
+        s.spec,
+        s.problem.starts(),
+        s.problem.system(),
+        s.problem.barrier(),
+        s.problem.blow_up()
     );
     let (checkpoint, done) = match &args.checkpoint {
         Some(dir) => {
@@ -428,34 +461,31 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
         eprintln!("chosen: {c}");
     }
     let bar = progress(1000, "ensemble");
-    let report = |f: f64| bar.set_position((f * 1000.0).min(1000.0) as u64);
     let start = Instant::now();
-    let save_error = std::sync::Mutex::new(None);
-    let on_path = |p: &PathStats| -> trirhythm::Result<()> {
-        if let Some(c) = &checkpoint {
-            if let Err(e) = c.save(p) {
-                *save_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
-                return Err(trirhythm::Error::Undefined {
-                    what: "checkpoint",
-                    why: "a path's statistics could not be saved".into(),
-                });
-            }
-        }
-        Ok(())
+    let watch = Watch {
+        bar: &bar,
+        checkpoint: checkpoint.as_ref(),
+        save_error: std::sync::Mutex::new(None),
     };
-    let result = run_ensemble(
-        &s.oscillator,
-        &s.method,
-        &s.spec,
-        &done,
-        &on_path,
-        Some(&report),
-    );
+    let todo: Vec<u64> = (0..args.paths as u64)
+        .filter(|i| !done.iter().any(|d| d.path == *i))
+        .collect();
+    let result = run_paths(&s.problem, &s.method, &s.spec, &todo, &watch);
     bar.finish_and_clear();
-    if let Some(e) = save_error.into_inner().unwrap_or_else(|e| e.into_inner()) {
+    if let Some(e) = watch
+        .save_error
+        .into_inner()
+        .unwrap_or_else(|e| e.into_inner())
+    {
         return Err(e.context("saving a checkpoint"));
     }
-    let r = result?;
+    let fresh = result?;
+    let r = merge(
+        &s.problem,
+        &s.method,
+        &s.spec,
+        done.into_iter().chain(fresh).collect(),
+    )?;
     let wall = start.elapsed().as_secs_f64();
     let theory = comparisons(&s.params, &r, args.seed);
     eprint!("{}", summary_text(&r, &theory, wall));

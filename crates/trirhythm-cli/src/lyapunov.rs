@@ -3,8 +3,12 @@
 //! critical-noise`: the noise D_c where it changes sign. Keys, columns and flags are a
 //! contract: keep them.
 
-use crate::common::{bad, emit, jnum, num, params_json, progress, sig, Csv, Grid, ParamArgs};
-use crate::simulate::{method_from, ImpactMemoryArg, MemoryArg, OnOff, SimFormat, SystemArg};
+use crate::common::{
+    bad, emit, jnum, num, params_json, progress, sig, Csv, Grid, ParamArgs, Report,
+};
+use crate::simulate::{
+    barrier_from, method_from, system_from, ImpactMemoryArg, MemoryArg, OnOff, SimFormat, SystemArg,
+};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
@@ -12,8 +16,9 @@ use std::path::PathBuf;
 use trirhythm::analysis::lyapunov::{
     critical_noise, largest_lyapunov, CriticalNoise, CriticalSearch, LyapunovResult, LyapunovSpec,
 };
-use trirhythm::engine::{Barrier, Oscillator, PredictorCorrector, System};
+use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
+use trirhythm::monitor::Silent;
 
 /// How the exponent is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -100,7 +105,7 @@ pub struct LleArgs {
 }
 
 impl LleArgs {
-    fn setup(&self) -> Result<(Params, PredictorCorrector, LyapunovSpec)> {
+    fn setup(&self) -> Result<(Params, Problem, PredictorCorrector, LyapunovSpec)> {
         let params = self.params.resolve()?;
         if !(self.dt >= 1e-4 && self.dt <= 0.1) {
             return bad(format!(
@@ -150,23 +155,16 @@ impl LleArgs {
             seed: self.seed,
             transient: self.transient,
             length: self.t_end,
-            u0: self.u0,
-            v0: 0.0,
-            system: match self.system {
-                SystemArg::Fractional => System::Fractional,
-                SystemArg::Equivalent => System::Equivalent,
-                SystemArg::Zhuravlev => System::Zhuravlev,
-            },
-            barrier: match self.barrier {
-                OnOff::On => Barrier::On,
-                OnOff::Off => Barrier::Off,
-            },
             renormalise_every: self.renormalise_every,
             separation: self.separation,
             method: self.method.library(),
             ..Default::default()
         };
-        Ok((params, method, spec))
+        let problem = Problem::from_params(&params)?
+            .with_barrier(barrier_from(self.barrier))?
+            .with_system(system_from(self.system))?
+            .with_start(self.u0, 0.0)?;
+        Ok((params, problem, method, spec))
     }
 
     fn describe(&self) -> Vec<String> {
@@ -243,7 +241,7 @@ pub struct LyapunovArgs {
 
 /// `lyapunov`.
 pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
-    let (base, method, spec) = args.sim.setup()?;
+    let (base, problem, method, spec) = args.sim.setup()?;
     let mut header = vec!["trirhythm lyapunov: largest Lyapunov exponent".to_string()];
     header.push(format!("params: {}", base.describe()));
     header.extend(args.sim.describe());
@@ -256,8 +254,7 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
         let bar = progress(values.len() as u64, "lyapunov sweep");
         let mut rows = Vec::new();
         for (i, p) in points.iter().enumerate() {
-            let osc = Oscillator::new(p)?;
-            let r = largest_lyapunov(&osc, &method, &spec, None)?;
+            let r = largest_lyapunov(&problem.with_params(p)?, &method, &spec, &Silent)?;
             rows.push((values[i], r));
             bar.set_position(i as u64 + 1);
         }
@@ -311,11 +308,12 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
         };
         return emit(args.out.as_deref(), &text);
     }
-    let osc = Oscillator::new(&base)?;
     let total = 1000u64;
     let bar = progress(total, "lyapunov");
-    let report = |f: f64| bar.set_position((f * total as f64) as u64);
-    let r = largest_lyapunov(&osc, &method, &spec, Some(&report))?;
+    let report = Report(|done: u64, all: u64| {
+        bar.set_position((done as f64 / all as f64 * total as f64) as u64)
+    });
+    let r = largest_lyapunov(&problem, &method, &spec, &report)?;
     bar.finish_and_clear();
     eprintln!(
         "LLE = {} (finite-time, window {}; {} paths)",
@@ -408,7 +406,7 @@ pub struct CriticalNoiseArgs {
 
 /// `critical-noise`.
 pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
-    let (base, method, spec) = args.sim.setup()?;
+    let (base, problem, method, spec) = args.sim.setup()?;
     let Some((lo, hi)) = args.d_range.split_once(':') else {
         return bad(format!("--d-range expects LO:HI, got `{}`", args.d_range));
     };
@@ -472,10 +470,10 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
     let mut found: Vec<(f64, CriticalNoise)> = Vec::new();
     for (i, p) in points.iter().enumerate() {
         let offset = (i * (args.grid + args.refinements)) as u64;
-        let report = |done: usize, _: usize| bar.set_position(offset + done as u64);
+        let report = Report(|done: u64, _: u64| bar.set_position(offset + done));
         found.push((
             values[i],
-            critical_noise(p, &method, &spec, &search, Some(&report))?,
+            critical_noise(&problem.with_params(p)?, &method, &spec, &search, &report)?,
         ));
     }
     bar.finish_and_clear();

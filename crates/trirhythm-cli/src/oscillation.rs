@@ -2,16 +2,16 @@
 //! oscillation (Hopf boundary), by simulation, by averaging (f′(0) = 0 of Eq. 18) and by the
 //! exact linearisation; or, with `--grid`, a whole plane classified.
 
-use crate::common::{bad, jnum, num, params_json, progress, Csv, Grid, ParamArgs};
+use crate::common::{bad, jnum, num, params_json, progress, Csv, Grid, ParamArgs, Report};
 use crate::simulate::{ImpactMemoryArg, OnOff, SimFormat};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
 use std::path::PathBuf;
 use trirhythm::analysis::oscillation::{
-    boundary, classify_plane, Boundary, Classifier, Method, Problem, Search, Side,
+    boundary, classify_plane, Boundary, Classifier, Method, Plane, Search, Side,
 };
-use trirhythm::engine::{Barrier, ImpactMemory};
+use trirhythm::engine::{Barrier, ImpactMemory, Problem};
 use trirhythm::theory::averaging::Variant;
 
 /// Which boundary.
@@ -170,7 +170,8 @@ pub fn oscillation(args: &OscillationArgs) -> Result<()> {
         ImpactMemoryArg::Continuous => ImpactMemory::Continuous,
         ImpactMemoryArg::Restart => ImpactMemory::Restart,
     };
-    let problem = Problem::new(&base, barrier, (&kx, xs), (&ky, lo, hi))?;
+    let template = Problem::from_params(&base)?.with_barrier(barrier)?;
+    let problem = Plane::new(&template, (&kx, xs), (&ky, lo, hi))?;
     let search = Search {
         tolerance: args.tolerance,
         ..Default::default()
@@ -212,8 +213,8 @@ pub fn oscillation(args: &OscillationArgs) -> Result<()> {
         }
         let method = method_of(m, classifier, variant);
         let bar = progress(cells as u64, "oscillation grid");
-        let report = |done: usize, _total: usize| bar.set_position(done as u64);
-        let cells = classify_plane(&problem, &ys, &method, Some(&report))?;
+        let report = Report(|done: u64, _total: u64| bar.set_position(done));
+        let cells = classify_plane(&problem, &ys, &method, &report)?;
         bar.finish_and_clear();
         if let Some(c) = cells.iter().find(|c| c.rate.is_nan()) {
             return bad(format!(
@@ -269,8 +270,8 @@ pub fn oscillation(args: &OscillationArgs) -> Result<()> {
     let bar = progress((n * methods.len()) as u64, "oscillation boundary");
     let mut results: Vec<Boundary> = Vec::new();
     for (i, m) in methods.iter().enumerate() {
-        let report = |done: usize, _total: usize| bar.set_position((i * n + done) as u64);
-        results.push(boundary(&problem, m, &search, Some(&report))?);
+        let report = Report(|done: u64, _total: u64| bar.set_position((i * n) as u64 + done));
+        results.push(boundary(&problem, m, &search, &report)?);
     }
     bar.finish_and_clear();
     let simulations: usize = results.iter().map(|b| b.simulations()).sum();

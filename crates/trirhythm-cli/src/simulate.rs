@@ -5,7 +5,7 @@
 //! header lines and the summary on standard error, or one JSON object with the summary and the
 //! columns. Flags, keys and column names are a contract: keep them.
 
-use crate::common::{bad, emit, jnum, num, params_json, progress, ParamArgs};
+use crate::common::{bad, emit, jnum, num, params_json, progress, ParamArgs, Report};
 use crate::output::Stream;
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
@@ -14,8 +14,8 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
 use trirhythm::engine::{
-    run, simulate_path, Barrier, Flow, ImpactMemory, Observer, Options, Oscillator,
-    PredictorCorrector, Stepper, System, Trajectory, TrajectoryRecorder,
+    run, simulate_with, Barrier, Flow, ImpactMemory, Observer, Options, PredictorCorrector,
+    Problem, Stepper, System, Trajectory, TrajectoryRecorder,
 };
 use trirhythm::engine::{Memory, DEFAULT_WINDOW};
 
@@ -119,7 +119,7 @@ pub struct SimulateArgs {
 
 /// The run's inputs in library types.
 pub struct Setup {
-    pub oscillator: Oscillator,
+    pub problem: Problem,
     pub method: PredictorCorrector,
     pub options: Options,
 }
@@ -134,25 +134,36 @@ impl SimulateArgs {
         let method = method_from(self.dt, self.memory, self.tolerance, self.impact_memory);
         let options = Options {
             t_end: self.t_end,
-            u0: self.u0,
-            v0: self.v0,
-            barrier: match self.barrier {
-                OnOff::On => Barrier::On,
-                OnOff::Off => Barrier::Off,
-            },
-            system: match self.system {
-                SystemArg::Fractional => System::Fractional,
-                SystemArg::Equivalent => System::Equivalent,
-                SystemArg::Zhuravlev => System::Zhuravlev,
-            },
+            seed: self.seed,
             record_every: self.every,
             ..Default::default()
         };
+        let problem = Problem::from_params(&p)?
+            .with_barrier(barrier_from(self.barrier))?
+            .with_system(system_from(self.system))?
+            .with_start(self.u0, self.v0)?;
         Ok(Setup {
-            oscillator: Oscillator::new(&p)?,
+            problem,
             method,
             options,
         })
+    }
+}
+
+/// The wall of the command-line flag.
+pub fn barrier_from(barrier: OnOff) -> Barrier {
+    match barrier {
+        OnOff::On => Barrier::On,
+        OnOff::Off => Barrier::Off,
+    }
+}
+
+/// The equation of the command-line flag.
+pub fn system_from(system: SystemArg) -> System {
+    match system {
+        SystemArg::Fractional => System::Fractional,
+        SystemArg::Equivalent => System::Equivalent,
+        SystemArg::Zhuravlev => System::Zhuravlev,
     }
 }
 
@@ -280,18 +291,13 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
         _ => {}
     }
     let bar = progress(1000, "simulate");
-    let report = |f: f64| bar.set_position((f * 1000.0) as u64);
-    let p = s.oscillator.params();
+    let report = Report(|done: u64, total: u64| {
+        bar.set_position((done as f64 / total as f64 * 1000.0) as u64)
+    });
+    let p = s.problem.params();
     let start = Instant::now();
     if args.format == SimFormat::Json {
-        let tr = simulate_path(
-            &s.oscillator,
-            &s.method,
-            &s.options,
-            args.seed,
-            0,
-            Some(&report),
-        )?;
+        let tr = simulate_with(&s.problem, &s.method, &s.options, &report)?;
         let wall = start.elapsed().as_secs_f64();
         bar.finish_and_clear();
         let mut m = serde_json::Map::new();
@@ -309,15 +315,13 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
         text.push('\n');
         return emit(args.out.as_deref(), &text);
     }
-    let mut stepper = s
-        .options
-        .stepper(&s.oscillator, &s.method, (args.seed, 0))?;
-    let eta = !s.oscillator.noise().is_none();
+    let mut stepper = s.options.stepper(&s.problem, &s.method)?;
+    let eta = !s.problem.oscillator().noise().is_none();
     let quiet = Options {
         record_every: usize::MAX,
         ..s.options.clone()
     };
-    let summary = TrajectoryRecorder::new(&s.oscillator, &quiet, steps, s.method.dt)?;
+    let summary = TrajectoryRecorder::new(s.problem.oscillator(), &quiet, steps, s.method.dt)?;
     let mut stream = Stream::open(args.out.as_deref())?;
     let header = [
         format!("trirhythm simulate: {steps} steps"),
@@ -336,7 +340,7 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
         summary,
         error: None,
     };
-    let result = run(&mut stepper, steps, &mut rows, Some(&report));
+    let result = run(&mut stepper, steps, &mut rows, &report);
     bar.finish_and_clear();
     if let Some(e) = rows.error {
         return Err(e).context("writing the path");

@@ -16,7 +16,7 @@ use trirhythm::known_answers::{diethelm_rhs, engine_benchmark_case};
 
 fn path(lambda: f64, steps: usize, memory: Memory) -> f64 {
     let (osc, m, o) = engine_benchmark_case(lambda, steps, memory, steps).unwrap();
-    simulate(&osc, &m, &o, 0).unwrap().final_amplitude
+    simulate(&osc, &m, &o).unwrap().final_amplitude
 }
 
 fn soe_vs_lambda_one(c: &mut Criterion) {

@@ -9,11 +9,12 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::time::Duration;
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, Wells};
 use trirhythm::analysis::versus::compare;
-use trirhythm::engine::{Oscillator, PredictorCorrector};
+use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::preset;
+use trirhythm::monitor::Silent;
 use trirhythm::theory::averaging::{Theory, Variant};
 
-fn case() -> (Oscillator, EnsembleSpec, Theory) {
+fn case() -> (Problem, EnsembleSpec, Theory) {
     let p = preset("fig13a").unwrap().params;
     let th = Theory::new(&p, Variant::Paper).unwrap();
     let pdf = th.amplitude_pdf().unwrap();
@@ -21,24 +22,19 @@ fn case() -> (Oscillator, EnsembleSpec, Theory) {
         paths: 8,
         burn_in: 0.0,
         length: 200.0,
-        starts: pdf.modes.clone(),
         amplitude_max: 16.0,
         wells: Some(Wells::new(pdf.modes.clone(), pdf.antimodes.clone()).unwrap()),
         ..Default::default()
     };
-    (Oscillator::new(&p).unwrap(), spec, th)
+    let starts: Vec<(f64, f64)> = pdf.modes.iter().map(|&a| (a, 0.0)).collect();
+    let problem = Problem::from_params(&p)
+        .and_then(|q| q.with_starts(&starts))
+        .unwrap();
+    (problem, spec, th)
 }
 
-fn ensemble(osc: &Oscillator, spec: &EnsembleSpec) -> EnsembleResult {
-    run_ensemble(
-        osc,
-        &PredictorCorrector::default(),
-        spec,
-        &[],
-        &|_| Ok(()),
-        None,
-    )
-    .unwrap()
+fn ensemble(problem: &Problem, spec: &EnsembleSpec) -> EnsembleResult {
+    run_ensemble(problem, &PredictorCorrector::default(), spec, &Silent).unwrap()
 }
 
 fn threads(c: &mut Criterion) {

@@ -7,8 +7,9 @@
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use std::time::Duration;
 use trirhythm::analysis::lyapunov::{largest_lyapunov, LyapunovMethod, LyapunovSpec};
-use trirhythm::engine::{simulate, Options, Oscillator, PredictorCorrector};
+use trirhythm::engine::{simulate, Options, PredictorCorrector, Problem};
 use trirhythm::model::preset;
+use trirhythm::monitor::Silent;
 
 const T: f64 = 200.0;
 
@@ -17,15 +18,17 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10)
         .warm_up_time(Duration::from_millis(300))
         .measurement_time(Duration::from_secs(3));
-    let osc = Oscillator::new(&preset("fig17a").unwrap().params.with("D", 0.5).unwrap()).unwrap();
+    let osc =
+        Problem::from_params(&preset("fig17a").unwrap().params.with("D", 0.5).unwrap()).unwrap();
     let method = PredictorCorrector::default();
     let options = Options {
         t_end: T,
+        seed: 1,
         record_every: usize::MAX,
         ..Default::default()
     };
     g.bench_function("plain path, T = 200", |b| {
-        b.iter(|| black_box(simulate(&osc, &method, &options, 1).unwrap()))
+        b.iter(|| black_box(simulate(&osc, &method, &options).unwrap()))
     });
     let one = LyapunovSpec {
         paths: 1,
@@ -34,14 +37,14 @@ fn bench(c: &mut Criterion) {
         ..Default::default()
     };
     g.bench_function("LLE, one realisation, T = 200", |b| {
-        b.iter(|| black_box(largest_lyapunov(&osc, &method, &one, None).unwrap()))
+        b.iter(|| black_box(largest_lyapunov(&osc, &method, &one, &Silent).unwrap()))
     });
     let tangent = LyapunovSpec {
         method: LyapunovMethod::Tangent,
         ..one.clone()
     };
     g.bench_function("LLE by the tangent, one realisation, T = 200", |b| {
-        b.iter(|| black_box(largest_lyapunov(&osc, &method, &tangent, None).unwrap()))
+        b.iter(|| black_box(largest_lyapunov(&osc, &method, &tangent, &Silent).unwrap()))
     });
     // long enough that the serial part (the verified SOE kernel, built once) is small
     let eight = LyapunovSpec {
@@ -59,7 +62,7 @@ fn bench(c: &mut Criterion) {
             |b| {
                 b.iter(|| {
                     pool.install(|| {
-                        black_box(largest_lyapunov(&osc, &method, &eight, None).unwrap())
+                        black_box(largest_lyapunov(&osc, &method, &eight, &Silent).unwrap())
                     })
                 })
             },

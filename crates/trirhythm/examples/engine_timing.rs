@@ -12,7 +12,9 @@
 use std::hint::black_box;
 use std::time::Instant;
 use trirhythm::engine::noise::NoiseStream;
-use trirhythm::engine::{probe_memory, simulate, Memory, Options, Oscillator, PredictorCorrector};
+use trirhythm::engine::{
+    probe_memory, simulate, Memory, Options, Oscillator, PredictorCorrector, Problem,
+};
 use trirhythm::known_answers::engine_benchmark_case;
 use trirhythm::model::preset;
 
@@ -24,20 +26,21 @@ fn speed_case(lambda: f64, d: f64, steps: usize) -> (f64, usize, f64) {
         .unwrap()
         .with("D", d)
         .unwrap();
-    let osc = Oscillator::new(&p).unwrap();
+    let problem = Problem::from_params(&p)
+        .and_then(|q| q.with_start(7.0, 0.0))
+        .unwrap();
     let m = PredictorCorrector {
         dt: 0.01,
         ..Default::default()
     };
     let o = Options {
         t_end: steps as f64 * 0.01,
-        u0: 7.0,
-        v0: 0.0,
+        seed: 1,
         record_every: steps,
         ..Default::default()
     };
     let start = Instant::now();
-    let tr = simulate(&osc, &m, &o, 1).unwrap();
+    let tr = simulate(&problem, &m, &o).unwrap();
     (
         start.elapsed().as_secs_f64(),
         tr.impacts,
@@ -134,7 +137,7 @@ fn main() {
         let run = |memory| {
             let (osc, m, o) = engine_benchmark_case(0.998, n, memory, 1).unwrap();
             let start = Instant::now();
-            let tr = simulate(&osc, &m, &o, 0).unwrap();
+            let tr = simulate(&osc, &m, &o).unwrap();
             (tr, start.elapsed().as_secs_f64())
         };
         let (s, ts) = run(Memory::SumOfExponentials { tolerance: 1e-12 });

@@ -5,8 +5,9 @@
 
 use std::time::Instant;
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleSpec};
-use trirhythm::engine::{Oscillator, PredictorCorrector};
+use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::preset;
+use trirhythm::monitor::Silent;
 
 fn main() {
     let steps: f64 = std::env::args()
@@ -14,13 +15,14 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(1e6);
     let p = preset("fig13a").unwrap().params;
-    let osc = Oscillator::new(&p).unwrap();
+    let osc = Problem::from_params(&p)
+        .and_then(|q| q.with_starts(&[(2.9, 0.0), (7.4, 0.0), (12.9, 0.0)]))
+        .unwrap();
     let m = PredictorCorrector::default();
     let spec = |t: f64| EnsembleSpec {
         paths: 8,
         burn_in: 0.0,
         length: t,
-        starts: vec![2.9, 7.4, 12.9],
         amplitude_max: 16.0,
         ..Default::default()
     };
@@ -31,7 +33,7 @@ fn main() {
             .unwrap();
         let start = Instant::now();
         let r = pool
-            .install(|| run_ensemble(&osc, &m, &spec(t), &[], &|_| Ok(()), None))
+            .install(|| run_ensemble(&osc, &m, &spec(t), &Silent))
             .unwrap();
         (start.elapsed().as_secs_f64(), r)
     };

@@ -29,7 +29,7 @@
 //! checks the exact solutions against their equations where that is elementary.
 
 use crate::engine::Memory;
-use crate::engine::{Barrier, Options, Oscillator, PredictorCorrector};
+use crate::engine::{Barrier, Options, PredictorCorrector, Problem};
 use crate::error::Result;
 use crate::model::{Damping, Params};
 use crate::special::{gamma, mittag_leffler};
@@ -96,7 +96,7 @@ pub fn engine_benchmark_case(
     steps: usize,
     memory: Memory,
     every: usize,
-) -> Result<(Oscillator, PredictorCorrector, Options)> {
+) -> Result<(Problem, PredictorCorrector, Options)> {
     let params = crate::model::preset("fig1")?
         .params
         .with("lambda", lambda)?
@@ -108,13 +108,13 @@ pub fn engine_benchmark_case(
     };
     let options = Options {
         t_end: steps as f64 * 0.01,
-        u0: 2.0,
-        v0: 0.0,
-        barrier: Barrier::On,
         record_every: every,
         ..Default::default()
     };
-    Ok((Oscillator::new(&params)?, method, options))
+    let problem = Problem::from_params(&params)?
+        .with_barrier(Barrier::On)?
+        .with_start(2.0, 0.0)?;
+    Ok((problem, method, options))
 }
 
 /// Stationary (Var U, Var U̇) of the linear fractional oscillator D^{1+λ}U + μU̇ + ω²U = η,

@@ -15,7 +15,8 @@
 //!   stops as soon as it can and returns [`Error::Cancelled`]. Nothing half-done is returned.
 //!
 //! [`Silent`] watches nothing; [`CancelFlag`] stops a run from another thread (a signal
-//! handler, a Python `KeyboardInterrupt`, a Dask cancellation).
+//! handler, a Python `KeyboardInterrupt`, a Dask cancellation); [`OnlyCancel`] hands a
+//! monitor's cancellation, and nothing else, to an inner call that reports other pieces.
 //!
 //! # Example
 //! ```
@@ -78,5 +79,18 @@ impl CancelFlag {
 impl<T: ?Sized> Monitor<T> for CancelFlag {
     fn cancelled(&self) -> bool {
         self.0.load(Ordering::Relaxed)
+    }
+}
+
+/// Forwards only the cancellation of a monitor of other pieces: what a driver hands to the
+/// inner calls it makes (one Lyapunov estimate of a critical-noise search, one simulation of a
+/// boundary search), so that the caller's stop reaches them while their own progress and
+/// pieces stay inside.
+#[derive(Clone, Copy)]
+pub struct OnlyCancel<'a, T: ?Sized>(pub &'a dyn Monitor<T>);
+
+impl<T: ?Sized, U: ?Sized> Monitor<U> for OnlyCancel<'_, T> {
+    fn cancelled(&self) -> bool {
+        self.0.cancelled()
     }
 }

@@ -36,6 +36,28 @@ pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
     }
 }
 
+/// The same for a list: `#[serde(with = "trirhythm::non_finite::vec")]` on a `Vec<f64>`.
+pub mod vec {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    /// One number of the list, as [`super::serialize`] writes it.
+    #[derive(Serialize, Deserialize)]
+    struct Item(#[serde(with = "super")] f64);
+
+    /// Each number, or the name of a non-finite value.
+    pub fn serialize<S: Serializer>(v: &[f64], s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(v.iter().map(|&x| Item(x)))
+    }
+
+    /// The inverse of [`serialize`].
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
+        Ok(Vec::<Item>::deserialize(d)?
+            .into_iter()
+            .map(|i| i.0)
+            .collect())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     #[derive(serde::Serialize, serde::Deserialize)]

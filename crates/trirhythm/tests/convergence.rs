@@ -89,7 +89,10 @@ fn fractional_oscillation_orders() {
         (0.9, Memory::Direct),
         (0.998, Memory::SumOfExponentials { tolerance: 1e-12 }),
     ] {
-        let osc = trirhythm::engine::Oscillator::new(&linear_oscillator(lambda, 1.0, 1.0)).unwrap();
+        let problem = Problem::from_params(&linear_oscillator(lambda, 1.0, 1.0))
+            .and_then(|p| p.with_barrier(Barrier::Off))
+            .and_then(|p| p.with_start(1.0, 0.0))
+            .unwrap();
         let t_end = 3.0;
         let mut hs = vec![];
         let mut errs = vec![];
@@ -102,12 +105,9 @@ fn fractional_oscillation_orders() {
             };
             let o = Options {
                 t_end,
-                u0: 1.0,
-                v0: 0.0,
-                barrier: Barrier::Off,
                 ..Default::default()
             };
-            let tr = simulate(&osc, &m, &o, 0).unwrap();
+            let tr = simulate(&problem, &m, &o).unwrap();
             let mut e: f64 = 0.0;
             for (i, &t) in tr.t.iter().enumerate().step_by(1 << k) {
                 let (u, _) = oscillation(lambda, 1.0, t).unwrap();
@@ -135,7 +135,9 @@ fn fractional_oscillation_orders() {
 fn linear_impact_oscillator_order_two() {
     // λ = 1, μ0·P = 0: U = A_k |sin|, amplitude × r per impact
     let (omega, r, v0) = (1.7, 0.8, 1.0);
-    let osc = Oscillator::new(&linear_oscillator(1.0, omega, r)).unwrap();
+    let problem = Problem::from_params(&linear_oscillator(1.0, omega, r))
+        .and_then(|p| p.with_start(0.0, v0))
+        .unwrap();
     let t_end = 7.0; // three impacts
     let mut hs = vec![];
     let mut errs = vec![];
@@ -147,11 +149,9 @@ fn linear_impact_oscillator_order_two() {
         };
         let o = Options {
             t_end,
-            u0: 0.0,
-            v0,
             ..Default::default()
         };
-        let tr = simulate(&osc, &m, &o, 0).unwrap();
+        let tr = simulate(&problem, &m, &o).unwrap();
         let (u, v, impacts) = impact_oscillator(omega, r, v0, tr.t[tr.t.len() - 1]);
         assert_eq!(tr.impacts, impacts);
         let e = (tr.u.last().unwrap() - u)
@@ -174,11 +174,11 @@ fn continuous_and_restart_coincide_at_lambda_one() {
     p.lambda = 1.0;
     p.restitution = 0.9;
     p.mu0 = 0.05;
-    let osc = Oscillator::new(&p).unwrap();
+    let problem = Problem::from_params(&p)
+        .and_then(|p| p.with_start(0.0, 3.0))
+        .unwrap();
     let o = Options {
         t_end: 60.0,
-        u0: 0.0,
-        v0: 3.0,
         ..Default::default()
     };
     let mut runs = vec![];
@@ -190,7 +190,7 @@ fn continuous_and_restart_coincide_at_lambda_one() {
                 impact_memory: im,
                 ..Default::default()
             };
-            runs.push(simulate(&osc, &m, &o, 0).unwrap());
+            runs.push(simulate(&problem, &m, &o).unwrap());
         }
     }
     assert!(runs[0].impacts > 10);
@@ -205,13 +205,13 @@ fn continuous_and_restart_coincide_at_lambda_one() {
     }
     // and they differ for λ < 1 (the convention matters there)
     p.lambda = 0.9;
-    let osc = Oscillator::new(&p).unwrap();
-    let a = simulate(&osc, &PredictorCorrector::default(), &o, 0).unwrap();
+    let problem = problem.with_params(&p).unwrap();
+    let a = simulate(&problem, &PredictorCorrector::default(), &o).unwrap();
     let m = PredictorCorrector {
         impact_memory: ImpactMemory::Restart,
         ..Default::default()
     };
-    let b = simulate(&osc, &m, &o, 0).unwrap();
+    let b = simulate(&problem, &m, &o).unwrap();
     let du =
         a.u.iter()
             .zip(&b.u)

@@ -1,31 +1,38 @@
 //! Ensembles against known answers: the stationary variances of the linear fractional
 //! oscillator under white and coloured noise (spectral integrals, closed form at λ = 1); the
 //! exact escape time of the Rayleigh amplitude process; thread-count invariance; a resumed run
-//! equals the uninterrupted one; the diagnosis flags paths stuck in different wells.
+//! equals the uninterrupted one; pieces run in any split and order merge to the whole run;
+//! a cancelled run stops at once; the diagnosis flags paths stuck in different wells.
 
-use trirhythm::analysis::ensemble::{run_ensemble, EnsembleSpec, PathStats, Wells};
+use std::time::{Duration, Instant};
+use trirhythm::analysis::ensemble::{
+    merge, run_ensemble, run_paths, EnsembleResult, EnsembleSpec, PathStats, Wells,
+};
 use trirhythm::analysis::versus::escape_time;
-use trirhythm::engine::{Barrier, Oscillator, PredictorCorrector};
+use trirhythm::engine::{Barrier, PredictorCorrector, Problem};
 use trirhythm::known_answers::{linear_fractional_moments, linear_fractional_oscillator};
 use trirhythm::model::preset;
+use trirhythm::monitor::{CancelFlag, Monitor, Silent};
 use trirhythm::theory::averaging::{Theory, Variant};
+use trirhythm::{Error, Result};
 
 fn linear_run(lambda: f64, tau: f64) -> (trirhythm::analysis::EnsembleResult, (f64, f64)) {
     let (mu, w, d) = (0.5, 1.0, 0.1);
     let p = linear_fractional_oscillator(lambda, mu, w, d, tau);
-    let osc = Oscillator::new(&p).unwrap();
+    let problem = Problem::from_params(&p)
+        .and_then(|q| q.with_barrier(Barrier::Off))
+        .and_then(|q| q.with_start(0.0, 0.0))
+        .unwrap();
     let method = PredictorCorrector::default();
     let spec = EnsembleSpec {
         paths: 8,
         seed: 11,
         burn_in: 100.0,
         length: 2000.0,
-        starts: vec![0.0],
-        barrier: Barrier::Off,
         amplitude_max: 3.0,
         ..Default::default()
     };
-    let r = run_ensemble(&osc, &method, &spec, &[], &|_| Ok(()), None).unwrap();
+    let r = run_ensemble(&problem, &method, &spec, &Silent).unwrap();
     (r, linear_fractional_moments(lambda, mu, w, d, tau))
 }
 
@@ -98,7 +105,7 @@ fn escape_time_of_the_rayleigh_process_is_exact() {
     assert!((up / simpson - 1.0).abs() < 1e-6, "{up} vs {simpson}");
 }
 
-fn fig13a_spec(paths: usize, length: f64) -> (Oscillator, PredictorCorrector, EnsembleSpec) {
+fn fig13a_spec(paths: usize, length: f64) -> (Problem, PredictorCorrector, EnsembleSpec) {
     let p = preset("fig13a").unwrap().params;
     let th = Theory::new(&p, Variant::Paper).unwrap();
     let pdf = th.amplitude_pdf().unwrap();
@@ -107,43 +114,36 @@ fn fig13a_spec(paths: usize, length: f64) -> (Oscillator, PredictorCorrector, En
         seed: 5,
         burn_in: 10.0,
         length,
-        starts: pdf.modes.clone(),
         amplitude_max: 16.0,
         wells: Some(Wells::new(pdf.modes.clone(), pdf.antimodes.clone()).unwrap()),
         ..Default::default()
     };
-    (
-        Oscillator::new(&p).unwrap(),
-        PredictorCorrector::default(),
-        spec,
-    )
+    let starts: Vec<(f64, f64)> = pdf.modes.iter().map(|&a| (a, 0.0)).collect();
+    let problem = Problem::from_params(&p)
+        .and_then(|q| q.with_starts(&starts))
+        .unwrap();
+    (problem, PredictorCorrector::default(), spec)
 }
 
 #[test]
 fn results_do_not_depend_on_threads_and_a_resumed_run_equals_the_whole() {
     let (osc, m, spec) = fig13a_spec(5, 100.0);
     let run = |threads: usize, done: &[PathStats]| {
-        let saved = std::sync::Mutex::new(Vec::new());
+        let saved = Saved::default();
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
             .unwrap();
+        let todo: Vec<u64> = (0..spec.paths as u64)
+            .filter(|i| !done.iter().any(|d| d.path == *i))
+            .collect();
         let r = pool
             .install(|| {
-                run_ensemble(
-                    &osc,
-                    &m,
-                    &spec,
-                    done,
-                    &|p: &PathStats| {
-                        saved.lock().unwrap().push(p.clone());
-                        Ok(())
-                    },
-                    None,
-                )
+                let fresh = run_paths(&osc, &m, &spec, &todo, &saved)?;
+                merge(&osc, &m, &spec, done.iter().cloned().chain(fresh).collect())
             })
             .unwrap();
-        (r, saved.into_inner().unwrap())
+        (r, saved.0.into_inner().unwrap())
     };
     // compared as printed: NaN (a passage never completed) is not equal to itself
     let same = |a: &trirhythm::analysis::EnsembleResult,
@@ -169,7 +169,7 @@ fn paths_stuck_in_different_wells_are_not_called_stationary() {
     // fig13a's wells are separated by barriers far above σ1: over 200 time units no path
     // leaves the well it started in, so the occupancies differ between paths
     let (osc, m, spec) = fig13a_spec(6, 200.0);
-    let r = run_ensemble(&osc, &m, &spec, &[], &|_| Ok(()), None).unwrap();
+    let r = run_ensemble(&osc, &m, &spec, &Silent).unwrap();
     println!("{:?}\n{:?}", r.stationarity, r.warnings);
     assert!(!r.stationarity.stationary);
     assert!(r.stationarity.r_hat > 1.1);
@@ -194,4 +194,87 @@ fn well_probabilities_sum_to_one_however_narrow_the_peaks() {
             assert!((total - 1.0).abs() < 1e-9, "μ0 = {mu0}, {v:?}: {total}");
         }
     }
+}
+
+/// A monitor that keeps every finished path (a checkpoint in memory).
+#[derive(Default)]
+struct Saved(std::sync::Mutex<Vec<PathStats>>);
+
+impl Monitor<PathStats> for Saved {
+    fn finished(&self, p: &PathStats) -> Result<()> {
+        self.0.lock().unwrap().push(p.clone());
+        Ok(())
+    }
+}
+
+/// The result as serialised JSON: equal results print the same (NaN included).
+fn json(r: &EnsembleResult) -> String {
+    serde_json::to_string(r).unwrap()
+}
+
+#[test]
+fn pieces_in_any_split_and_order_merge_to_the_whole_run() {
+    let (problem, m, spec) = fig13a_spec(6, 20.0);
+    let whole = run_ensemble(&problem, &m, &spec, &Silent).unwrap();
+    // {0, 3}, {5, 1}, {2, 4}, run separately and handed over shuffled
+    let mut pieces: Vec<PathStats> = Vec::new();
+    for piece in [[5u64, 1], [0, 3], [2, 4]] {
+        let mut stats = run_paths(&problem, &m, &spec, &piece, &Silent).unwrap();
+        stats.reverse();
+        pieces.splice(0..0, stats);
+    }
+    let merged = merge(&problem, &m, &spec, pieces.clone()).unwrap();
+    assert_eq!(json(&merged), json(&whole));
+    assert_eq!(format!("{merged:?}"), format!("{whole:?}"));
+    // a duplicate, a missing path and a foreign path are refused, naming the path
+    let named = |r: Result<EnsembleResult>, path: f64| match r {
+        Err(Error::InvalidParameter { name, value, .. }) => {
+            assert_eq!((name.as_str(), value), ("paths", path))
+        }
+        other => panic!("expected an error naming path {path}: {other:?}"),
+    };
+    let mut twice = pieces.clone();
+    twice.push(pieces[2].clone());
+    named(merge(&problem, &m, &spec, twice), pieces[2].path as f64);
+    let missing: Vec<PathStats> = pieces.iter().filter(|p| p.path != 3).cloned().collect();
+    named(merge(&problem, &m, &spec, missing), 3.0);
+    let mut foreign = pieces.clone();
+    foreign.iter_mut().find(|p| p.path == 4).unwrap().path = 9;
+    named(merge(&problem, &m, &spec, foreign), 9.0);
+    let other_spec = EnsembleSpec {
+        bins: 50,
+        ..spec.clone()
+    };
+    assert!(merge(&problem, &m, &other_spec, pieces).is_err());
+    // and run_paths refuses indices out of range or asked twice
+    assert!(run_paths(&problem, &m, &spec, &[6], &Silent).is_err());
+    assert!(run_paths(&problem, &m, &spec, &[1, 1], &Silent).is_err());
+}
+
+#[test]
+fn a_cancelled_ensemble_stops_at_once() {
+    // 4 paths of 10⁷ steps each: minutes of work, stopped within a few ticks
+    let (problem, m, spec) = fig13a_spec(4, 100_000.0);
+    let flag = CancelFlag::default();
+    flag.cancel();
+    let start = Instant::now();
+    let r = run_ensemble(&problem, &m, &spec, &flag);
+    assert!(matches!(r, Err(Error::Cancelled)), "{r:?}");
+    assert!(start.elapsed() < Duration::from_secs(1));
+    // cancelled from another thread while it runs
+    let flag = CancelFlag::default();
+    let start = Instant::now();
+    let r = std::thread::scope(|s| {
+        s.spawn(|| {
+            std::thread::sleep(Duration::from_millis(200));
+            flag.cancel();
+        });
+        run_ensemble(&problem, &m, &spec, &flag)
+    });
+    assert!(matches!(r, Err(Error::Cancelled)), "{r:?}");
+    assert!(
+        start.elapsed() < Duration::from_secs(20),
+        "{:?}",
+        start.elapsed()
+    );
 }

@@ -24,14 +24,14 @@ proptest! {
         p.mu0 = 0.05;
         p.noise_intensity = noise;
         p.correlation_time = 0.3;
-        let osc = Oscillator::new(&p).unwrap();
+        let problem = Problem::from_params(&p).unwrap().with_start(u0, v0).unwrap();
         let m = PredictorCorrector {
             dt: 0.01,
             impact_memory: if restart { ImpactMemory::Restart } else { ImpactMemory::Continuous },
             ..Default::default()
         };
-        let o = Options { t_end: 30.0, u0, v0, record_impacts: true, ..Default::default() };
-        let tr = simulate(&osc, &m, &o, 11).unwrap();
+        let o = Options { t_end: 30.0, seed: 11, record_impacts: true, ..Default::default() };
+        let tr = simulate(&problem, &m, &o).unwrap();
         prop_assert_eq!(tr.impacts, tr.impact_events.len());
         for i in &tr.impact_events {
             prop_assert!(i.v_minus <= 0.0);
@@ -59,14 +59,15 @@ fn chattering_ends_in_sticking() {
         noise_intensity: 1e6,
         correlation_time: 1e6,
     };
-    let osc = Oscillator::new(&p).unwrap();
-    let probe = Options {
-        t_end: 0.01,
-        ..Default::default()
-    };
+    let problem = Problem::from_params(&p).unwrap();
     let seed = (0..100u64)
-        .find(|&s| {
-            simulate(&osc, &PredictorCorrector::default(), &probe, s)
+        .find(|&seed| {
+            let probe = Options {
+                t_end: 0.01,
+                seed,
+                ..Default::default()
+            };
+            simulate(&problem, &PredictorCorrector::default(), &probe)
                 .unwrap()
                 .eta[0]
                 < -0.5
@@ -82,11 +83,11 @@ fn chattering_ends_in_sticking() {
             };
             let o = Options {
                 t_end: 20.0,
-                u0: 0.0,
-                v0: 2.0,
+                seed,
                 ..Default::default()
             };
-            let tr = simulate(&osc, &m, &o, seed).unwrap();
+            let problem = problem.clone().with_start(0.0, 2.0).unwrap();
+            let tr = simulate(&problem, &m, &o).unwrap();
             assert!(
                 tr.impacts >= 3 && tr.impacts < 200,
                 "{} impacts",
@@ -109,14 +110,15 @@ fn plastic_impacts_do_not_hang() {
     let mut p = preset("fig1").unwrap().params;
     p.restitution = 0.0;
     p.lambda = 0.9;
-    let osc = Oscillator::new(&p).unwrap();
+    let problem = Problem::from_params(&p)
+        .unwrap()
+        .with_start(1.0, -1.0)
+        .unwrap();
     let o = Options {
         t_end: 50.0,
-        u0: 1.0,
-        v0: -1.0,
         ..Default::default()
     };
-    let tr = simulate(&osc, &PredictorCorrector::default(), &o, 0).unwrap();
+    let tr = simulate(&problem, &PredictorCorrector::default(), &o).unwrap();
     assert!(tr.impacts >= 1);
     assert!(tr.u.iter().all(|&u| u >= 0.0));
 }

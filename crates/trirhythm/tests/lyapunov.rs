@@ -18,8 +18,10 @@
 use trirhythm::analysis::lyapunov::{
     critical_noise, largest_lyapunov, CriticalSearch, LyapunovMethod, LyapunovResult, LyapunovSpec,
 };
-use trirhythm::engine::{Barrier, ImpactMemory, Oscillator, PredictorCorrector, System};
+use trirhythm::analysis::lyapunov::{merge, run_paths, PathRun};
+use trirhythm::engine::{Barrier, ImpactMemory, PredictorCorrector, Problem, System};
 use trirhythm::model::{preset, Params};
+use trirhythm::monitor::{CancelFlag, Silent};
 
 const SEED: u64 = 20240611;
 
@@ -47,9 +49,16 @@ fn linear(mu0: f64, d: f64) -> Params {
     ])
 }
 
-fn lle(p: &Params, spec: &LyapunovSpec) -> LyapunovResult {
-    let osc = Oscillator::new(p).unwrap();
-    largest_lyapunov(&osc, &PredictorCorrector::default(), spec, None).unwrap()
+/// The problem of `p` with the wall on or off, from (u0, 0).
+fn problem(p: &Params, barrier: Barrier, u0: f64) -> Problem {
+    Problem::from_params(p)
+        .and_then(|q| q.with_barrier(barrier))
+        .and_then(|q| q.with_start(u0, 0.0))
+        .unwrap()
+}
+
+fn lle(problem: &Problem, spec: &LyapunovSpec) -> LyapunovResult {
+    largest_lyapunov(problem, &PredictorCorrector::default(), spec, &Silent).unwrap()
 }
 
 #[test]
@@ -60,11 +69,10 @@ fn damped_linear_oscillator_has_minus_half_the_damping_for_every_noise() {
         seed: SEED,
         transient: 50.0,
         length: 1000.0,
-        barrier: Barrier::Off,
         ..Default::default()
     };
     for d in [0.0, 0.1, 1.0] {
-        let r = lle(&linear(mu0, d), &spec);
+        let r = lle(&problem(&linear(mu0, d), Barrier::Off, 1.0), &spec);
         let err = r.lle.value + mu0 / 2.0;
         assert!(
             err.abs() < 1e-3,
@@ -86,11 +94,9 @@ fn stable_limit_cycle_has_a_zero_exponent() {
         seed: SEED,
         transient: 500.0,
         length: 2000.0,
-        u0: 2.0,
-        barrier: Barrier::Off,
         ..Default::default()
     };
-    let r = lle(&p, &spec);
+    let r = lle(&problem(&p, Barrier::Off, 2.0), &spec);
     assert!(
         r.lle.value.abs() < 2e-3,
         "limit cycle: LLE {} (should be 0)",
@@ -112,17 +118,12 @@ fn wall_and_zhuravlev_agree_at_lambda_one() {
         seed: SEED,
         transient: 100.0,
         length: 1000.0,
-        u0: 1.0,
         ..Default::default()
     };
-    let wall = lle(&p, &spec);
-    let z = lle(
-        &p,
-        &LyapunovSpec {
-            system: System::Zhuravlev,
-            ..spec.clone()
-        },
-    );
+    let with_wall = problem(&p, Barrier::On, 1.0);
+    let zhuravlev = with_wall.clone().with_system(System::Zhuravlev).unwrap();
+    let wall = lle(&with_wall, &spec);
+    let z = lle(&zhuravlev, &spec);
     assert!(wall.per_path.iter().all(|q| q.impacts > 50));
     // path by path the two formulations part after a while: their rounding differs (the
     // memories sum g with opposite signs after a crossing) and near-grazing impacts amplify it
@@ -142,14 +143,10 @@ fn wall_and_zhuravlev_agree_at_lambda_one() {
         length: 50.0,
         ..spec.clone()
     };
-    let early_z = LyapunovSpec {
-        system: System::Zhuravlev,
-        ..early.clone()
-    };
-    for (a, b) in lle(&p, &early)
+    for (a, b) in lle(&with_wall, &early)
         .per_path
         .iter()
-        .zip(&lle(&p, &early_z).per_path)
+        .zip(&lle(&zhuravlev, &early).per_path)
     {
         assert!(
             (a.exponent - b.exponent).abs() < 1e-4,
@@ -186,7 +183,7 @@ fn one_thread_or_two_give_the_same_exponent() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| lle(&p, &spec))
+            .install(|| lle(&problem(&p, Barrier::On, 1.0), &spec))
     };
     assert_eq!(run(1), run(2));
 }
@@ -198,7 +195,6 @@ fn no_sign_change_is_reported_as_such() {
         seed: SEED,
         transient: 20.0,
         length: 300.0,
-        barrier: Barrier::Off,
         ..Default::default()
     };
     let search = CriticalSearch {
@@ -209,11 +205,11 @@ fn no_sign_change_is_reported_as_such() {
         z: 2.0,
     };
     let c = critical_noise(
-        &linear(0.1, 0.0),
+        &problem(&linear(0.1, 0.0), Barrier::Off, 1.0),
         &PredictorCorrector::default(),
         &spec,
         &search,
-        None,
+        &Silent,
     )
     .unwrap();
     assert!(!c.found());
@@ -222,14 +218,13 @@ fn no_sign_change_is_reported_as_such() {
     assert!(c.evaluated.iter().all(|q| q.lle.value < 0.0));
 }
 
-fn lle_with(p: &Params, method: &PredictorCorrector, spec: &LyapunovSpec) -> LyapunovResult {
-    let osc = Oscillator::new(p).unwrap();
-    largest_lyapunov(&osc, method, spec, None).unwrap()
+fn lle_with(p: &Problem, method: &PredictorCorrector, spec: &LyapunovSpec) -> LyapunovResult {
+    largest_lyapunov(p, method, spec, &Silent).unwrap()
 }
 
 /// Both methods on the same paths; returns (two-trajectory, tangent, z of their difference).
 fn both(
-    p: &Params,
+    p: &Problem,
     method: &PredictorCorrector,
     spec: &LyapunovSpec,
 ) -> (LyapunovResult, LyapunovResult, f64) {
@@ -277,12 +272,11 @@ fn tangent_damped_linear_oscillator_has_minus_half_the_damping() {
         seed: SEED,
         transient: 50.0,
         length: 1000.0,
-        barrier: Barrier::Off,
         method: LyapunovMethod::Tangent,
         ..Default::default()
     };
     for d in [0.0, 1.0] {
-        let r = lle(&linear(mu0, d), &spec);
+        let r = lle(&problem(&linear(mu0, d), Barrier::Off, 1.0), &spec);
         let err = r.lle.value + mu0 / 2.0;
         eprintln!("D = {d}: tangent LLE {} (error {err:e})", r.lle.value);
         assert!(
@@ -304,14 +298,13 @@ fn tangent_and_two_trajectories_agree_on_a_limit_cycle_with_the_wall() {
         seed: SEED,
         transient: 200.0,
         length: 1000.0,
-        u0: 2.0,
         ..Default::default()
     };
     let method = PredictorCorrector {
         impact_memory: ImpactMemory::Continuous,
         ..Default::default()
     };
-    let (two, tangent, z) = both(&p, &method, &spec);
+    let (two, tangent, z) = both(&problem(&p, Barrier::On, 2.0), &method, &spec);
     assert!(two.per_path.iter().all(|q| q.impacts > 200));
     assert!(z < 3.0, "z = {z}");
     // a limit cycle: both near 0
@@ -334,7 +327,7 @@ fn tangent_and_two_trajectories_agree_on_a_noisy_fractional_impact_oscillator() 
             impact_memory: memory,
             ..Default::default()
         };
-        let (two, _, z) = both(&p, &method, &spec);
+        let (two, _, z) = both(&problem(&p, Barrier::On, 1.0), &method, &spec);
         assert!(two.per_path.iter().all(|q| q.impacts > 200));
         assert!(z < 3.0, "{memory:?}: z = {z}");
     }
@@ -351,10 +344,13 @@ fn tangent_and_two_trajectories_agree_path_by_path_without_the_wall() {
             seed: SEED,
             transient: 100.0,
             length: 1000.0,
-            barrier: Barrier::Off,
             ..Default::default()
         };
-        let (two, tangent, z) = both(&p, &PredictorCorrector::default(), &spec);
+        let (two, tangent, z) = both(
+            &problem(&p, Barrier::Off, 1.0),
+            &PredictorCorrector::default(),
+            &spec,
+        );
         assert!(z < 3.0, "λ = {lambda}: z = {z}");
         let worst = largest_difference(&two, &tangent);
         assert!(worst < 3e-6, "λ = {lambda}: per-path difference {worst:e}");
@@ -377,7 +373,7 @@ fn tangent_one_thread_or_two_give_the_same_exponent() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| lle(&p, &spec))
+            .install(|| lle(&problem(&p, Barrier::On, 1.0), &spec))
     };
     let one = run(1);
     assert!(one.per_path.iter().all(|q| q.impacts > 10));
@@ -406,10 +402,9 @@ fn a_copy_that_merges_with_its_reference_gives_minus_infinity_with_its_time() {
         seed: 1,
         transient: 20.0,
         length: 380.0,
-        u0: 1.0,
         ..Default::default()
     };
-    let r = lle_with(&p, &method, &spec);
+    let r = lle_with(&problem(&p, Barrier::On, 1.0), &method, &spec);
     let merged: Vec<_> = r
         .per_path
         .iter()
@@ -441,4 +436,50 @@ fn a_copy_that_merges_with_its_reference_gives_minus_infinity_with_its_time() {
         r.unmerged.value,
         r.unmerged.stderr
     );
+}
+
+#[test]
+fn a_cancelled_estimate_or_search_stops_with_cancelled() {
+    let flag = CancelFlag::default();
+    flag.cancel();
+    let spec = LyapunovSpec {
+        paths: 2,
+        seed: SEED,
+        transient: 20.0,
+        length: 200.0,
+        ..Default::default()
+    };
+    let at = problem(&params(&[("D", 0.3)]), Barrier::On, 1.0);
+    let method = PredictorCorrector::default();
+    let r = largest_lyapunov(&at, &method, &spec, &flag);
+    assert!(matches!(r, Err(trirhythm::Error::Cancelled)), "{r:?}");
+    let c = critical_noise(&at, &method, &spec, &CriticalSearch::default(), &flag);
+    assert!(matches!(c, Err(trirhythm::Error::Cancelled)), "{c:?}");
+}
+
+#[test]
+fn realisations_in_any_split_and_order_merge_to_the_whole_estimate() {
+    let spec = LyapunovSpec {
+        paths: 5,
+        seed: SEED,
+        transient: 20.0,
+        length: 200.0,
+        ..Default::default()
+    };
+    let at = problem(&params(&[("D", 0.3)]), Barrier::On, 1.0);
+    let method = PredictorCorrector::default();
+    let whole = largest_lyapunov(&at, &method, &spec, &Silent).unwrap();
+    let mut runs: Vec<PathRun> = Vec::new();
+    for piece in [&[4u64, 1][..], &[0], &[3, 2]] {
+        runs.extend(run_paths(&at, &method, &spec, piece, &Silent).unwrap());
+    }
+    // through JSON and back, as a piece run elsewhere would come
+    let runs: Vec<PathRun> = serde_json::from_str(&serde_json::to_string(&runs).unwrap()).unwrap();
+    let merged = merge(&spec, runs.clone()).unwrap();
+    assert_eq!(format!("{merged:?}"), format!("{whole:?}"));
+    assert!(merge(&spec, runs[1..].to_vec()).is_err());
+    let mut twice = runs.clone();
+    twice.push(runs[0].clone());
+    assert!(merge(&spec, twice).is_err());
+    assert!(run_paths(&at, &method, &spec, &[5], &Silent).is_err());
 }

@@ -5,11 +5,12 @@
 
 use std::f64::consts::PI;
 use trirhythm::analysis::oscillation::{
-    averaging_mu0, boundary, classify_plane, exact_mu0, Boundary, Classifier, Method, Problem,
+    averaging_mu0, boundary, classify_plane, exact_mu0, Boundary, Classifier, Method, Plane,
     Refinement, Search, Side,
 };
-use trirhythm::engine::Barrier;
+use trirhythm::engine::{Barrier, Problem};
 use trirhythm::model::Params;
+use trirhythm::monitor::Silent;
 use trirhythm::theory::averaging::Variant;
 
 /// Allowed distance between the exact boundary and the simulated bracket, relative to the
@@ -25,9 +26,19 @@ fn params(omega0: f64, lambda: f64, r: f64) -> Params {
     }
 }
 
+/// The plane of `p` with the wall on or off.
+fn plane(
+    p: &Params,
+    barrier: Barrier,
+    x: (&str, Vec<f64>),
+    y: (&str, f64, f64),
+) -> trirhythm::Result<Plane> {
+    Plane::new(&Problem::from_params(p)?.with_barrier(barrier)?, x, y)
+}
+
 fn mu0_boundary(p: &Params, barrier: Barrier, method: Method, hi: f64) -> Boundary {
-    let problem = Problem::new(p, barrier, ("omega0", vec![p.omega0]), ("mu0", 1e-4, hi)).unwrap();
-    boundary(&problem, &method, &Search::default(), None).unwrap()
+    let problem = plane(p, barrier, ("omega0", vec![p.omega0]), ("mu0", 1e-4, hi)).unwrap();
+    boundary(&problem, &method, &Search::default(), &Silent).unwrap()
 }
 
 fn simulated(p: &Params, barrier: Barrier, hi: f64) -> Boundary {
@@ -159,13 +170,12 @@ fn averaging_boundary_is_its_closed_form_along_mu0_and_along_r() {
         // along r at fixed μ0: the root r* puts μ0 on the closed form
         let mut p = params(0.9, 0.999, 0.9);
         p.mu0 = 0.02;
-        let problem =
-            Problem::new(&p, Barrier::On, ("lambda", vec![0.999]), ("r", 0.5, 1.0)).unwrap();
+        let problem = plane(&p, Barrier::On, ("lambda", vec![0.999]), ("r", 0.5, 1.0)).unwrap();
         let b = boundary(
             &problem,
             &Method::Averaging(variant),
             &Search::default(),
-            None,
+            &Silent,
         )
         .unwrap();
         let q = b.points[0];
@@ -182,9 +192,9 @@ fn averaging_boundary_is_its_closed_form_along_mu0_and_along_r() {
 #[test]
 fn bisection_and_secant_agree_and_the_secant_is_cheaper() {
     let p = params(0.5, 0.95, 0.99);
-    let problem = Problem::new(&p, Barrier::On, ("omega0", vec![0.5]), ("mu0", 1e-3, 0.3)).unwrap();
+    let problem = plane(&p, Barrier::On, ("omega0", vec![0.5]), ("mu0", 1e-3, 0.3)).unwrap();
     let method = Method::Simulation(Classifier::default());
-    let secant = boundary(&problem, &method, &Search::default(), None).unwrap();
+    let secant = boundary(&problem, &method, &Search::default(), &Silent).unwrap();
     let bisection = boundary(
         &problem,
         &method,
@@ -192,7 +202,7 @@ fn bisection_and_secant_agree_and_the_secant_is_cheaper() {
             refinement: Refinement::Bisection,
             ..Default::default()
         },
-        None,
+        &Silent,
     )
     .unwrap();
     let (s, b) = (secant.points[0], bisection.points[0]);
@@ -204,13 +214,13 @@ fn bisection_and_secant_agree_and_the_secant_is_cheaper() {
 #[test]
 fn plane_classification_changes_sign_inside_the_bracket() {
     let p = params(0.9, 1.0, 0.9);
-    let problem = Problem::new(&p, Barrier::On, ("r", vec![0.9]), ("mu0", 0.001, 0.2)).unwrap();
+    let problem = plane(&p, Barrier::On, ("r", vec![0.9]), ("mu0", 0.001, 0.2)).unwrap();
     let method = Method::Simulation(Classifier::default());
-    let b = boundary(&problem, &method, &Search::default(), None)
+    let b = boundary(&problem, &method, &Search::default(), &Silent)
         .unwrap()
         .points[0];
     let ys: Vec<f64> = (0..21).map(|i| 0.001 + 0.01 * i as f64).collect();
-    let cells = classify_plane(&problem, &ys, &method, None).unwrap();
+    let cells = classify_plane(&problem, &ys, &method, &Silent).unwrap();
     for c in &cells {
         if c.y < b.y_lo {
             assert!(!c.oscillates, "{c:?} below {b:?}");
@@ -224,28 +234,28 @@ fn plane_classification_changes_sign_inside_the_bracket() {
 fn no_boundary_in_the_interval_is_reported_as_such() {
     let p = params(0.9, 1.0, 0.9);
     let method = Method::Simulation(Classifier::default());
-    let below = Problem::new(&p, Barrier::On, ("r", vec![0.9]), ("mu0", 0.001, 0.01)).unwrap();
-    let b = boundary(&below, &method, &Search::default(), None).unwrap();
+    let below = plane(&p, Barrier::On, ("r", vec![0.9]), ("mu0", 0.001, 0.01)).unwrap();
+    let b = boundary(&below, &method, &Search::default(), &Silent).unwrap();
     assert_eq!(b.points[0].side, Side::Rests);
     assert!(b.points[0].y.is_nan());
-    let above = Problem::new(&p, Barrier::On, ("r", vec![0.9]), ("mu0", 0.1, 0.2)).unwrap();
-    let b = boundary(&above, &method, &Search::default(), None).unwrap();
+    let above = plane(&p, Barrier::On, ("r", vec![0.9]), ("mu0", 0.1, 0.2)).unwrap();
+    let b = boundary(&above, &method, &Search::default(), &Silent).unwrap();
     assert_eq!(b.points[0].side, Side::Oscillates);
 }
 
 #[test]
 fn invalid_problems_name_the_parameter() {
     let p = params(0.9, 1.0, 0.9);
-    let err = Problem::new(&p, Barrier::On, ("lambda", vec![1.5]), ("mu0", 0.001, 0.1))
+    let err = plane(&p, Barrier::On, ("lambda", vec![1.5]), ("mu0", 0.001, 0.1))
         .unwrap_err()
         .to_string();
     assert!(err.contains("lambda") && err.contains("(0, 1]"), "{err}");
-    let err = Problem::new(&p, Barrier::On, ("r", vec![0.9]), ("mu0", 0.1, 0.01))
+    let err = plane(&p, Barrier::On, ("r", vec![0.9]), ("mu0", 0.1, 0.01))
         .unwrap_err()
         .to_string();
     assert!(err.contains("mu0"), "{err}");
     let noisy = p.with("D", 0.1).unwrap();
-    let err = Problem::new(&noisy, Barrier::On, ("r", vec![0.9]), ("mu0", 0.001, 0.1))
+    let err = plane(&noisy, Barrier::On, ("r", vec![0.9]), ("mu0", 0.001, 0.1))
         .unwrap_err()
         .to_string();
     assert!(err.contains("D = 0.1"), "{err}");
@@ -254,7 +264,7 @@ fn invalid_problems_name_the_parameter() {
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
     let p = params(0.5, 0.99, 0.99);
-    let problem = Problem::new(
+    let problem = plane(
         &p,
         Barrier::On,
         ("lambda", vec![0.95, 0.97, 0.99, 1.0]),
@@ -267,7 +277,7 @@ fn results_do_not_depend_on_the_thread_count() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| boundary(&problem, &method, &Search::default(), None).unwrap())
+            .install(|| boundary(&problem, &method, &Search::default(), &Silent).unwrap())
     };
     let (one, two) = (on(1), on(2));
     assert_eq!(one, two);

@@ -8,11 +8,11 @@
 //! (λ = 0.998, OU noise τ = 0.5, wall on, Δt = 0.01, U(0) = 1), both impact-memory conventions.
 
 use trirhythm::engine::{
-    simulate, simulate_ensemble, ImpactMemory, Options, Oscillator, PredictorCorrector,
+    simulate, simulate_ensemble, ImpactMemory, Options, PredictorCorrector, Problem,
 };
 use trirhythm::model::preset;
 
-fn case(impact_memory: ImpactMemory) -> (Oscillator, PredictorCorrector, Options) {
+fn case(impact_memory: ImpactMemory) -> (Problem, PredictorCorrector, Options) {
     let p = preset("fig13a")
         .unwrap()
         .params
@@ -26,10 +26,11 @@ fn case(impact_memory: ImpactMemory) -> (Oscillator, PredictorCorrector, Options
     };
     let o = Options {
         t_end: 200.0,
+        seed: 7,
         record_every: 20_000,
         ..Default::default()
     };
-    (Oscillator::new(&p).unwrap(), m, o)
+    (Problem::from_params(&p).unwrap(), m, o)
 }
 
 #[test]
@@ -49,7 +50,7 @@ fn counts_of_a_noisy_chattering_run_are_pinned() {
         ),
     ] {
         let (osc, m, o) = case(im);
-        let tr = simulate(&osc, &m, &o, 7).unwrap();
+        let tr = simulate(&osc, &m, &o).unwrap();
         assert_eq!(
             (tr.impacts, tr.sticking_steps, tr.exponentials, tr.steps),
             // 29 exponentials since the slowest rates are lumped into a cubic and the exact
@@ -77,11 +78,11 @@ fn ensembles_are_identical_for_one_and_two_threads() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| simulate_ensemble(&osc, &m, &o, 7, 4).unwrap())
+            .install(|| simulate_ensemble(&osc, &m, &o, 4).unwrap())
     };
     let (one, two) = (run(1), run(2));
     assert_eq!(one, two);
     // path 0 of the ensemble is the single path of the same seed
-    assert_eq!(one[0], simulate(&osc, &m, &o, 7).unwrap());
+    assert_eq!(one[0], simulate(&osc, &m, &o).unwrap());
     assert_eq!(one[0].impacts, 154);
 }

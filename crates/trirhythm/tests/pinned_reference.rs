@@ -38,7 +38,7 @@
 //! The whole test takes about 3–5 s (two threads, release or test profile): nothing is ignored.
 
 use std::time::Instant;
-use trirhythm::engine::{simulate, Barrier, Memory, Options, Oscillator, PredictorCorrector};
+use trirhythm::engine::{simulate, Barrier, Memory, Options, PredictorCorrector, Problem};
 use trirhythm::model::preset;
 use trirhythm::special::gamma;
 
@@ -457,7 +457,10 @@ fn library(dt: f64, t_end: f64) -> Library {
     for (k, &c) in C.iter().enumerate() {
         assert_eq!(p.get(&format!("c{k}")).unwrap(), c, "c{k}");
     }
-    let osc = Oscillator::new(&p).unwrap();
+    let problem = Problem::from_params(&p)
+        .and_then(|q| q.with_barrier(Barrier::On))
+        .and_then(|q| q.with_start(U0, V0))
+        .unwrap();
     let m = PredictorCorrector {
         dt,
         memory: Memory::SumOfExponentials { tolerance: 1e-12 },
@@ -465,14 +468,11 @@ fn library(dt: f64, t_end: f64) -> Library {
     };
     let o = Options {
         t_end,
-        u0: U0,
-        v0: V0,
-        barrier: Barrier::On,
         record_every: 1,
         record_impacts: true,
         ..Default::default()
     };
-    let tr = simulate(&osc, &m, &o, 0).unwrap();
+    let tr = simulate(&problem, &m, &o).unwrap();
     assert_eq!(tr.sticking_steps, 0);
     assert_eq!(tr.impacts, tr.impact_events.len());
     assert!((tr.t[tr.t.len() - 1] - t_end).abs() < 1e-9);

@@ -11,13 +11,13 @@ fn compare(lambda: f64, steps: usize, tolerance: f64) -> (f64, f64, usize) {
     let mut p = preset("fig1").unwrap().params;
     p.lambda = lambda;
     p.mu0 = 0.1;
-    let osc = Oscillator::new(&p).unwrap();
+    let problem = Problem::from_params(&p)
+        .and_then(|p| p.with_barrier(Barrier::Off))
+        .and_then(|p| p.with_start(2.0, 0.0))
+        .unwrap();
     let dt = 0.01;
     let o = Options {
         t_end: steps as f64 * dt,
-        u0: 2.0,
-        v0: 0.0,
-        barrier: Barrier::Off,
         record_every: 1,
         ..Default::default()
     };
@@ -28,7 +28,7 @@ fn compare(lambda: f64, steps: usize, tolerance: f64) -> (f64, f64, usize) {
             ..Default::default()
         };
         let start = Instant::now();
-        let tr = simulate(&osc, &m, &o, 0).unwrap();
+        let tr = simulate(&problem, &m, &o).unwrap();
         (tr, start.elapsed().as_secs_f64())
     };
     let (direct, td) = run(Memory::Direct);
@@ -79,10 +79,10 @@ fn soe_sizes_for_long_horizons() {
     // an unreachable tolerance is refused, not silently weakened
     assert!(SoeKernel::new(0.9, 0.1, 1e5, 1e-16).is_err());
     // Memory::SumOfExponentials with a bad tolerance is an error of the run
-    let osc = Oscillator::new(&preset("fig1").unwrap().params).unwrap();
+    let problem = Problem::from_params(&preset("fig1").unwrap().params).unwrap();
     let m = PredictorCorrector {
         memory: Memory::SumOfExponentials { tolerance: 0.0 },
         ..Default::default()
     };
-    assert!(simulate(&osc, &m, &Options::default(), 0).is_err());
+    assert!(simulate(&problem, &m, &Options::default()).is_err());
 }

@@ -3,8 +3,9 @@
 //! Δt = 0.01 (t = 0.06 and t = 0.04); the linearly implicit corrector must integrate them, land
 //! on the averaging's outer cycle, and converge in Δt.
 
-use trirhythm::engine::{run, Barrier, Flow, Oscillator, PredictorCorrector, Stepper, System};
+use trirhythm::engine::{run, Barrier, Flow, PredictorCorrector, Problem, Stepper};
 use trirhythm::model::preset;
+use trirhythm::monitor::Silent;
 use trirhythm::theory::averaging::{Theory, Variant};
 use trirhythm::Error;
 
@@ -15,22 +16,14 @@ fn turning_points(preset_name: &str, mu0: Option<f64>, dt: f64, t_end: f64) -> (
     if let Some(m) = mu0 {
         p = p.with("mu0", m).unwrap();
     }
-    let osc = Oscillator::new(&p).unwrap();
+    let problem = Problem::from_params(&p)
+        .and_then(|p| p.with_start(13.0, 0.0))
+        .unwrap();
     let m = PredictorCorrector {
         dt,
         ..Default::default()
     };
-    let mut s = Stepper::new(
-        &osc,
-        &m,
-        System::Fractional,
-        Barrier::On,
-        (13.0, 0.0),
-        (1, 0),
-        t_end,
-        1e8,
-    )
-    .unwrap();
+    let mut s = Stepper::new(&problem, &m, (1, 0), t_end).unwrap();
     let (mut prev, mut rising) = (13.0, false);
     let mut maxima = vec![];
     let mut stiffness: f64 = 0.0;
@@ -50,7 +43,7 @@ fn turning_points(preset_name: &str, mu0: Option<f64>, dt: f64, t_end: f64) -> (
             prev = u;
             Flow::Continue
         },
-        None,
+        &Silent,
     )
     .unwrap();
     (maxima, stiffness)
@@ -157,20 +150,14 @@ fn what_cannot_be_integrated_is_reported_with_time_state_and_stiffness() {
     // strongly negative damping everywhere: the model itself runs away
     let mut p = trirhythm::known_answers::linear_oscillator(1.0, 1.0, 1.0);
     p.damping.coefficients = vec![50.0];
-    let osc = Oscillator::new(&p).unwrap();
+    let problem = Problem::from_params(&p)
+        .and_then(|p| p.with_barrier(Barrier::Off))
+        .and_then(|p| p.with_start(1.0, 0.0))
+        .and_then(|p| p.with_blow_up(1e6))
+        .unwrap();
     let m = PredictorCorrector::default();
-    let mut s = Stepper::new(
-        &osc,
-        &m,
-        System::Fractional,
-        Barrier::Off,
-        (1.0, 0.0),
-        (0, 0),
-        100.0,
-        1e6,
-    )
-    .unwrap();
-    let err = run(&mut s, 10_000, &mut |_: &Stepper| Flow::Continue, None).unwrap_err();
+    let mut s = Stepper::new(&problem, &m, (0, 0), 100.0).unwrap();
+    let err = run(&mut s, 10_000, &mut |_: &Stepper| Flow::Continue, &Silent).unwrap_err();
     let Error::BlowUp {
         t,
         u,

@@ -21,10 +21,18 @@ fn free(d: f64, tau: f64) -> Params {
 }
 
 /// Ü + U = η from rest: E[U̇² + U²](T) = 2DT for white noise ⟨ηη⟩ = 2Dδ (Itô: d E/dt = 2D).
+/// [`free`] without the wall, from rest.
+fn free_problem(d: f64, tau: f64) -> Problem {
+    Problem::from_params(&free(d, tau))
+        .and_then(|q| q.with_barrier(Barrier::Off))
+        .and_then(|q| q.with_start(0.0, 0.0))
+        .unwrap()
+}
+
 #[test]
 fn white_noise_energy_grows_as_2dt() {
     let d = 0.2;
-    let osc = Oscillator::new(&free(d, 0.0)).unwrap();
+    let problem = free_problem(d, 0.0);
     let m = PredictorCorrector {
         dt: 0.01,
         memory: Memory::Direct,
@@ -33,14 +41,12 @@ fn white_noise_energy_grows_as_2dt() {
     let t_end = 2.0;
     let o = Options {
         t_end,
-        u0: 0.0,
-        v0: 0.0,
-        barrier: Barrier::Off,
+        seed: RNG_SEED,
         record_every: 200,
         ..Default::default()
     };
     let paths = 4000;
-    let runs = simulate_ensemble(&osc, &m, &o, RNG_SEED, paths).unwrap();
+    let runs = simulate_ensemble(&problem, &m, &o, paths).unwrap();
     let energies: Vec<f64> = runs
         .iter()
         .map(|r| r.u.last().unwrap().powi(2) + r.v.last().unwrap().powi(2))
@@ -65,9 +71,7 @@ fn colored_noise_tends_to_white_noise() {
     let t_end = 2.0;
     let o = Options {
         t_end,
-        u0: 0.0,
-        v0: 0.0,
-        barrier: Barrier::Off,
+        seed: RNG_SEED,
         record_every: 400,
         ..Default::default()
     };
@@ -78,8 +82,7 @@ fn colored_noise_tends_to_white_noise() {
     let paths = 4000;
     let white = 2.0 * d * t_end;
     for &tau in &[0.0005, 0.05] {
-        let osc = Oscillator::new(&free(d, tau)).unwrap();
-        let runs = simulate_ensemble(&osc, &m, &o, RNG_SEED, paths).unwrap();
+        let runs = simulate_ensemble(&free_problem(d, tau), &m, &o, paths).unwrap();
         let e: Vec<f64> = runs
             .iter()
             .map(|r| r.u.last().unwrap().powi(2) + r.v.last().unwrap().powi(2))
@@ -101,12 +104,13 @@ fn colored_noise_tends_to_white_noise() {
 fn paths_are_bit_identical_whatever_the_thread_count() {
     let mut p = preset("fig17a").unwrap().params; // D > 0, τ > 0, impacts
     p.noise_intensity = 0.3;
-    let osc = Oscillator::new(&p).unwrap();
+    let problem = Problem::from_params(&p)
+        .and_then(|q| q.with_start(0.5, 0.0))
+        .unwrap();
     let m = PredictorCorrector::default();
     let o = Options {
         t_end: 20.0,
-        u0: 0.5,
-        v0: 0.0,
+        seed: RNG_SEED,
         ..Default::default()
     };
     let run = |threads: usize| {
@@ -114,7 +118,7 @@ fn paths_are_bit_identical_whatever_the_thread_count() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| simulate_ensemble(&osc, &m, &o, RNG_SEED, 8).unwrap())
+            .install(|| simulate_ensemble(&problem, &m, &o, 8).unwrap())
     };
     let one = run(1);
     let two = run(2);
@@ -122,6 +126,6 @@ fn paths_are_bit_identical_whatever_the_thread_count() {
     assert!(one.iter().map(|t| t.impacts).sum::<usize>() > 0);
     assert_ne!(one[0].u, one[1].u, "paths must differ");
     // path i alone equals path i of the ensemble
-    let alone = simulate_path(&osc, &m, &o, RNG_SEED, 5, None).unwrap();
+    let alone = simulate(&problem, &m, &Options { path: 5, ..o }).unwrap();
     assert_eq!(alone, one[5]);
 }

@@ -10,15 +10,16 @@ fn equivalent_at_lambda_one_is_the_system_itself() {
     p.lambda = 1.0;
     p.mu0 = 0.05;
     p.restitution = 0.9;
-    let osc = Oscillator::new(&p).unwrap();
     let run = |system| {
+        let problem = Problem::from_params(&p)
+            .and_then(|q| q.with_system(system))
+            .and_then(|q| q.with_start(3.0, 0.0))
+            .unwrap();
         let o = Options {
             t_end: 50.0,
-            u0: 3.0,
-            system,
             ..Default::default()
         };
-        simulate(&osc, &PredictorCorrector::default(), &o, 0).unwrap()
+        simulate(&problem, &PredictorCorrector::default(), &o).unwrap()
     };
     let a = run(System::Fractional);
     let b = run(System::Equivalent);
@@ -37,14 +38,15 @@ fn zhuravlev_form_maps_onto_the_impacting_equivalent() {
         let mut p = preset("fig11").unwrap().params;
         p.restitution = r;
         p.noise_intensity = d;
-        let osc = Oscillator::new(&p).unwrap();
         let dt = 0.001;
         let run = |system| {
+            let problem = Problem::from_params(&p)
+                .and_then(|q| q.with_system(system))
+                .and_then(|q| q.with_start(2.0, 0.5))
+                .unwrap();
             let o = Options {
                 t_end: 30.0,
-                u0: 2.0,
-                v0: 0.5,
-                system,
+                seed: 5,
                 record_every: 100,
                 ..Default::default()
             };
@@ -52,7 +54,7 @@ fn zhuravlev_form_maps_onto_the_impacting_equivalent() {
                 dt,
                 ..Default::default()
             };
-            simulate(&osc, &m, &o, 5).unwrap()
+            simulate(&problem, &m, &o).unwrap()
         };
         let u = run(System::Equivalent);
         let z = run(System::Zhuravlev);

@@ -33,19 +33,20 @@ fn linear(lambda: f64, mu0: f64) -> Params {
 }
 
 fn path(p: &Params, barrier: Barrier, (u0, v0): (f64, f64), steps: f64, seed: u64) -> Stepper {
-    let osc = Oscillator::new(p).unwrap();
+    let problem = Problem::from_params(p)
+        .and_then(|q| q.with_barrier(barrier))
+        .and_then(|q| q.with_start(u0, v0))
+        .unwrap();
     let method = PredictorCorrector {
         dt: 0.01,
         ..Default::default()
     };
     let o = Options {
         t_end: steps * 0.01,
-        u0,
-        v0,
-        barrier,
+        seed,
         ..Default::default()
     };
-    o.stepper(&osc, &method, (seed, 0)).unwrap()
+    o.stepper(&problem, &method).unwrap()
 }
 
 #[test]

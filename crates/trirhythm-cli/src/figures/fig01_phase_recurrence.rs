@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use trirhythm::analysis::{RecurrenceMatrix, RecurrenceThreshold};
 use trirhythm::engine::{
-    simulate, Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System,
+    simulate, Barrier, ImpactMemory, Options, PredictorCorrector, Problem, System,
 };
 use trirhythm::model::preset;
 use trirhythm::theory::averaging::Theory;
@@ -97,7 +97,7 @@ fn compute(ctx: &FigureContext) -> Result<Fig01> {
     // missed whenever the period is not a multiple of the sampling interval: the stride is
     // the largest that keeps consecutive samples within ε/2.
     let window = 15.0;
-    let osc = Oscillator::new(&p)?;
+    let osc = Problem::from_params(&p)?.with_start(a02, 0.0)?;
     let method = PredictorCorrector {
         dt,
         ..Default::default()
@@ -113,12 +113,9 @@ fn compute(ctx: &FigureContext) -> Result<Fig01> {
     ] {
         let o = Options {
             t_end,
-            u0: a02,
-            v0: 0.0,
-            system,
             ..Default::default()
         };
-        let tr = simulate(&osc, &method, &o, 0)?;
+        let tr = simulate(&osc.clone().with_system(system)?, &method, &o)?;
         let first = tr.t.iter().position(|&t| t >= t_end - window).unwrap_or(0);
         let phase: Vec<(f64, f64)> = tr.u[first..]
             .iter()
@@ -159,13 +156,10 @@ fn compute(ctx: &FigureContext) -> Result<Fig01> {
         };
         let o = Options {
             t_end,
-            u0: a02,
-            v0: 0.0,
-            barrier,
             record_every: usize::MAX,
             ..Default::default()
         };
-        Ok(simulate(&osc, &method, &o, 0)?.final_amplitude)
+        Ok(simulate(&osc.clone().with_barrier(barrier)?, &method, &o)?.final_amplitude)
     };
     let free_amplitude = amplitude_with(Barrier::Off, ImpactMemory::Continuous)?;
     let restart_amplitude = amplitude_with(Barrier::On, ImpactMemory::Restart)?;

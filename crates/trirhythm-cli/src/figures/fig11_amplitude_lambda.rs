@@ -19,9 +19,7 @@ use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
-use trirhythm::engine::{
-    run, Barrier, Flow, ImpactMemory, Oscillator, PredictorCorrector, Stepper, System,
-};
+use trirhythm::engine::{run, Flow, ImpactMemory, PredictorCorrector, Problem, Stepper, System};
 use trirhythm::model::{preset, Params};
 use trirhythm::theory::bifurcation::{BranchDiagram, What};
 
@@ -53,23 +51,14 @@ pub struct Fig11 {
 
 /// The maxima of U over the last tenth of a noise-free path from U(0) = u0.
 fn settle(p: &Params, u0: f64, t_end: f64) -> Result<Settled> {
-    let osc = Oscillator::new(p)?;
+    let problem = Problem::from_params(p)?.with_start(u0, 0.0)?;
     // the ensembles' convention: the memory restarts at each impact (README, "Ensembles")
     let m = PredictorCorrector {
         impact_memory: ImpactMemory::Restart,
         ..Default::default()
     };
     let steps = (t_end / m.dt).round() as u64;
-    let mut s = Stepper::new(
-        &osc,
-        &m,
-        System::Fractional,
-        Barrier::On,
-        (u0, 0.0),
-        (0, 0),
-        t_end,
-        1e8,
-    )?;
+    let mut s = Stepper::new(&problem, &m, (0, 0), t_end)?;
     let from = 0.9 * t_end;
     let (mut prev_v, mut maxima) = (0.0f64, Vec::new());
     run(
@@ -82,7 +71,7 @@ fn settle(p: &Params, u0: f64, t_end: f64) -> Result<Settled> {
             prev_v = s.v();
             Flow::Continue
         },
-        None,
+        &trirhythm::monitor::Silent,
     )?;
     let n = maxima.len().max(1) as f64;
     let mean = maxima.iter().sum::<f64>() / n;

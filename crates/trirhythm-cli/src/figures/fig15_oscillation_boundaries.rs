@@ -16,9 +16,9 @@ use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use trirhythm::analysis::oscillation::{
-    boundary, BoundaryPoint, Classifier, Method, Problem, Search, Side,
+    boundary, BoundaryPoint, Classifier, Method, Plane, Search, Side,
 };
-use trirhythm::engine::Barrier;
+use trirhythm::engine::{Barrier, Problem};
 use trirhythm::model::{preset, Params};
 
 /// One boundary curve of a panel.
@@ -119,13 +119,13 @@ pub fn compute(
     method: &Method,
     search: &Search,
 ) -> Result<Vec<BoundaryPoint>> {
-    let problem = Problem::new(
-        base,
-        barrier,
+    let template = Problem::from_params(base)?.with_barrier(barrier)?;
+    let plane = Plane::new(
+        &template,
         (x_key, xs.to_vec()),
         ("mu0", y_range.0, y_range.1),
     )?;
-    Ok(boundary(&problem, method, search, None)?.points)
+    Ok(boundary(&plane, method, search, &trirhythm::monitor::Silent)?.points)
 }
 
 /// The largest |Δμ0| (and relative to the simulated value) between the simulated curve and

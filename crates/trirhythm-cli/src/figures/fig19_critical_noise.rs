@@ -68,7 +68,14 @@ impl Figure for Fig19 {
             let mut falling: Vec<String> = Vec::new();
             for v in values {
                 let p = base.with(key, v)?;
-                let c = critical_noise(&p, &sz.method, &sz.spec, &search, None)?;
+                let problem = trirhythm::engine::Problem::from_params(&p)?;
+                let c = critical_noise(
+                    &problem,
+                    &sz.method,
+                    &sz.spec,
+                    &search,
+                    &trirhythm::monitor::Silent,
+                )?;
                 let merged = merged_points_text(&c);
                 if c.found() {
                     notes.push(format!(

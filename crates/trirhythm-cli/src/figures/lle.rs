@@ -12,6 +12,9 @@ use serde::{Deserialize, Serialize};
 use trirhythm::analysis::lyapunov::LyapunovSpec;
 use trirhythm::engine::{ImpactMemory, PredictorCorrector};
 
+/// U(0) of every LLE run: a [`trirhythm::engine::Problem`]'s default start (1, 0).
+const START_U0: f64 = 1.0;
+
 /// Sizes of the runs behind one LLE.
 pub struct Sizes {
     /// Paths, transient, window.
@@ -57,7 +60,7 @@ impl Sizes {
             num(self.spec.separation),
             self.spec.renormalise_every,
             num(self.method.dt),
-            num(self.spec.u0),
+            num(START_U0),
             num(self.spec.length),
             num(self.spec.transient),
             self.spec.paths,
@@ -282,7 +285,8 @@ pub fn lle_against_noise(
     sizes: &Sizes,
 ) -> Result<(Panel, Vec<String>)> {
     use trirhythm::analysis::lyapunov::largest_lyapunov;
-    use trirhythm::engine::Oscillator;
+    use trirhythm::engine::Problem;
+    use trirhythm::monitor::Silent;
     let mut curves = Vec::new();
     let mut notes = Vec::new();
     let (mut pos, mut neg, mut all, mut merged_points) = (0, 0, 0, 0);
@@ -290,7 +294,12 @@ pub fn lle_against_noise(
         let mut points = Vec::new();
         for &d in noises {
             let p = base.with(key, v)?.with("D", d)?;
-            let r = largest_lyapunov(&Oscillator::new(&p)?, &sizes.method, &sizes.spec, None)?;
+            let r = largest_lyapunov(
+                &Problem::from_params(&p)?,
+                &sizes.method,
+                &sizes.spec,
+                &Silent,
+            )?;
             if r.merged > 0 {
                 merged_points += 1;
                 let when: Vec<String> = r

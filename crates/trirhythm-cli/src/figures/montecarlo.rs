@@ -11,8 +11,9 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec};
 use trirhythm::analysis::versus::theory_layout;
-use trirhythm::engine::{ImpactMemory, Oscillator, PredictorCorrector, System};
+use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem, System};
 use trirhythm::model::Params;
+use trirhythm::monitor::Silent;
 use trirhythm::theory::averaging::{Theory, Variant};
 
 /// Ensemble sizes of a figure.
@@ -135,21 +136,22 @@ pub fn ensemble(
         seed: 1,
         burn_in: sizes.burn_in,
         length: sizes.t_end,
-        starts: layout.starts,
-        system,
         bins: sizes.bins,
         joint_bins,
         amplitude_max: layout.amplitude_max,
         wells: layout.wells,
         ..Default::default()
     };
-    let osc = Oscillator::new(params)?;
+    let starts: Vec<(f64, f64)> = layout.starts.iter().map(|&u| (u, 0.0)).collect();
+    let problem = Problem::from_params(params)?
+        .with_system(system)?
+        .with_starts(&starts)?;
     // the ensembles' convention (README, "Ensembles"): the memory restarts at each impact
     let method = PredictorCorrector {
         impact_memory: ImpactMemory::Restart,
         ..Default::default()
     };
-    Ok(run_ensemble(&osc, &method, &spec, &[], &|_| Ok(()), None)?)
+    Ok(run_ensemble(&problem, &method, &spec, &Silent)?)
 }
 
 /// A P(A) panel: the theory of both variants and ensembles of each of `systems`.

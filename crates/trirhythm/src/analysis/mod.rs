@@ -9,12 +9,38 @@ pub mod oscillation;
 pub mod recurrence;
 pub mod versus;
 
-pub use ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, Estimate, PathStats, Wells};
+pub use ensemble::{
+    merge, run_ensemble, run_paths, EnsembleResult, EnsembleSpec, Estimate, PathStats, Wells,
+};
 pub use lyapunov::{
     critical_noise, largest_lyapunov, CriticalNoise, CriticalSearch, LyapunovResult, LyapunovSpec,
 };
 pub use oscillation::{
-    boundary, classify_plane, growth_rate, Boundary, BoundaryPoint, Classifier, Growth, Search,
+    boundary, classify_plane, growth_rate, Boundary, BoundaryPoint, Classifier, Growth, Plane,
+    Search,
 };
 pub use recurrence::{RecurrenceMatrix, RecurrenceThreshold};
 pub use versus::{compare, escape_time, theory_layout, TheoryComparison, TheoryLayout};
+
+/// `paths` are indices in 0..`n` of a driver's paths, none asked twice (the pieces of a run that
+/// a merge puts together).
+pub(crate) fn check_indices(paths: &[u64], n: usize) -> crate::Result<()> {
+    let mut seen = vec![false; n];
+    for &i in paths {
+        if i >= n as u64 {
+            return Err(crate::Error::invalid(
+                "paths",
+                i as f64,
+                format!("path indices in 0..{n}"),
+            ));
+        }
+        if std::mem::replace(&mut seen[i as usize], true) {
+            return Err(crate::Error::invalid(
+                "paths",
+                i as f64,
+                "each path at most once (this one is asked twice)",
+            ));
+        }
+    }
+    Ok(())
+}

@@ -9,32 +9,34 @@
 //!
 //! # Example
 //! ```
-//! use trirhythm::engine::{run, simulate, Flow, Options, Oscillator, PredictorCorrector, Stepper};
+//! use trirhythm::engine::{run, simulate, Flow, Options, PredictorCorrector, Problem, Stepper};
 //! use trirhythm::model::preset;
+//! use trirhythm::monitor::Silent;
 //!
-//! let osc = Oscillator::new(&preset("fig1")?.params)?;            // the problem (Eq. 1)
+//! let problem = Problem::from_params(&preset("fig1")?.params)?.with_start(6.78, 0.0)?; // Eq. 1
 //! let method = PredictorCorrector { dt: 0.01, ..Default::default() }; // SOE memory, 1e-10
-//! let options = Options { t_end: 50.0, u0: 6.78, v0: 0.0, ..Default::default() };
-//! let path = simulate(&osc, &method, &options, 42)?;               // seed 42, path 0
+//! let options = Options { t_end: 50.0, seed: 42, ..Default::default() }; // path 0 of seed 42
+//! let path = simulate(&problem, &method, &options)?;
 //! assert_eq!(path.steps, 5000);
 //! assert!(path.u.iter().all(|&u| u >= 0.0) && path.impacts > 0);
 //!
 //! // the same path, stopped at its first impact by an observer
-//! let mut stepper = options.stepper(&osc, &method, (42, 0))?;
+//! let mut stepper = options.stepper(&problem, &method)?;
 //! let mut first = None;
 //! run(&mut stepper, 5000, &mut |s: &Stepper| match s.events().impact {
 //!     Some(i) => { first = Some(i.time); Flow::Stop }
 //!     None => Flow::Continue,
-//! }, None)?;
+//! }, &Silent)?;
 //! let t = first.expect("an impact before t = 50");
 //! assert_eq!(stepper.impacts(), 1);
 //! assert!(stepper.time() - 0.01 < t && t <= stepper.time()); // inside the last step
 //! # Ok::<(), trirhythm::Error>(())
 //! ```
 
-use super::problem::{Options, Oscillator, PredictorCorrector};
+use super::problem::{Options, Oscillator, PredictorCorrector, Problem};
 use super::stepper::{fresh_history, Impact, Stepper};
 use crate::error::{Error, Result};
+use crate::monitor::{Monitor, Silent};
 use rayon::prelude::*;
 
 /// Whether a driver goes on after an observation.
@@ -58,87 +60,90 @@ impl<F: FnMut(&Stepper) -> Flow> Observer for F {
     }
 }
 
-/// Progress callback: the fraction of the requested steps done.
-pub type Progress<'a> = Option<&'a (dyn Fn(f64) + Sync)>;
-
 /// Step `path` up to `steps` times, showing the start and every step to `observer`; returns
-/// the number of steps taken (fewer when the observer stopped the path).
+/// the number of steps taken (fewer when the observer stopped the path). `monitor` hears the
+/// steps done about a thousand times, and is asked as often whether to stop
+/// ([`Error::Cancelled`]).
 pub fn run(
     path: &mut Stepper,
     steps: u64,
     observer: &mut impl Observer,
-    progress: Progress,
+    monitor: &dyn Monitor,
 ) -> Result<u64> {
     if observer.observe(path) == Flow::Stop {
         return Ok(0);
     }
     let tick = (steps / 1000).max(1);
+    // a countdown, not n % tick: an integer division per step would cost more than the check
+    let mut until_tick = tick;
     for n in 1..=steps {
         path.step()?;
         if observer.observe(path) == Flow::Stop {
             return Ok(n);
         }
-        if let Some(p) = progress {
-            if n % tick == 0 {
-                p(n as f64 / steps as f64);
-            }
+        until_tick -= 1;
+        if until_tick == 0 {
+            until_tick = tick;
+            monitor.progress(n, steps);
+            monitor.check()?;
         }
     }
     Ok(steps)
 }
 
+/// Whole steps of Δt = `dt` in a span `t` named `name` (0 allowed when `allow_zero`), checked:
+/// finite, a whole number of steps (to 10⁻⁹ relative; the grid is uniform, so a span between
+/// two grid points is refused rather than silently moved) and at most [`MAX_STEPS`].
+pub(crate) fn whole_steps(name: &str, t: f64, dt: f64, allow_zero: bool) -> Result<u64> {
+    if !(dt > 0.0 && dt.is_finite()) {
+        return Err(Error::invalid("dt", dt, "(0, ∞), finite"));
+    }
+    let least = if allow_zero {
+        "0 or more"
+    } else {
+        "one or more"
+    };
+    let ratio = t / dt;
+    let steps = ratio.round();
+    let min = if allow_zero { 0.0 } else { 1.0 };
+    if !(t >= 0.0 && t.is_finite() && steps >= min && steps <= MAX_STEPS as f64) {
+        return Err(Error::invalid(
+            name,
+            t,
+            format!("{least} steps of dt = {dt}, at most {MAX_STEPS:e} of them"),
+        ));
+    }
+    if (ratio - steps).abs() > 1e-9 * steps.max(1.0) {
+        let below = ratio.floor().max(min);
+        return Err(Error::invalid(
+            name,
+            t,
+            format!(
+                "a whole number of steps of dt = {dt} ({name}/dt = {ratio:.6}; nearest: {} or {})",
+                tidy(below * dt),
+                tidy((below + 1.0) * dt)
+            ),
+        ));
+    }
+    Ok(steps as u64)
+}
+
 impl Options {
-    /// The number of steps of Δt in [0, T], checked: T must be a whole number of steps (to
-    /// 1e-9 relative; the grid is uniform, so a T between two grid points is refused rather
+    /// The number of steps of Δt in [0, T], checked: T finite, a whole number of steps (to
+    /// 10⁻⁹ relative; the grid is uniform, so a T between two grid points is refused rather
     /// than silently moved) and at most [`MAX_STEPS`] of them.
     pub fn steps(&self, dt: f64) -> Result<u64> {
-        if !(dt > 0.0 && dt.is_finite()) {
-            return Err(Error::invalid("dt", dt, "(0, ∞), finite"));
-        }
-        if !(self.t_end > 0.0 && self.t_end.is_finite()) {
-            return Err(Error::invalid("t_end", self.t_end, "(0, ∞), finite"));
-        }
-        let ratio = self.t_end / dt;
-        let steps = ratio.round();
-        if !(1.0..=MAX_STEPS as f64).contains(&steps) {
-            return Err(Error::invalid(
-                "t_end",
-                self.t_end,
-                format!("between one step and {MAX_STEPS:e} steps of dt = {dt}"),
-            ));
-        }
-        if (ratio - steps).abs() > 1e-9 * steps {
-            let below = ratio.floor().max(1.0);
-            return Err(Error::invalid(
-                "t_end",
-                self.t_end,
-                format!(
-                    "a whole number of steps of dt = {dt} (t_end/dt = {ratio:.6}; nearest: {} or {})",
-                    tidy(below * dt),
-                    tidy((below + 1.0) * dt)
-                ),
-            ));
-        }
-        Ok(steps as u64)
+        whole_steps("t_end", self.t_end, dt, false)
     }
 
-    /// A stepper for path `path` of `seed` from these options' start, equation and wall.
-    pub fn stepper(
-        &self,
-        oscillator: &Oscillator,
-        method: &PredictorCorrector,
-        (seed, path): (u64, u64),
-    ) -> Result<Stepper> {
+    /// A stepper for these options' path of `problem`, its memory certified up to T.
+    pub fn stepper(&self, problem: &Problem, method: &PredictorCorrector) -> Result<Stepper> {
         let steps = self.steps(method.dt)?;
         Stepper::new(
-            oscillator,
+            problem,
             method,
-            self.system,
-            self.barrier,
-            (self.u0, self.v0),
-            (seed, path),
+            (self.seed, self.path),
             steps as f64 * method.dt,
-            self.blow_up,
         )
     }
 }
@@ -267,68 +272,54 @@ impl Observer for TrajectoryRecorder {
     }
 }
 
-/// Simulate one path (path 0 of `seed`).
+/// Simulate the path of `options` (stream `options.path` of `options.seed`, from
+/// `problem.start(options.path)`).
 pub fn simulate(
-    oscillator: &Oscillator,
+    problem: &Problem,
     method: &PredictorCorrector,
     options: &Options,
-    seed: u64,
 ) -> Result<Trajectory> {
-    simulate_path(oscillator, method, options, seed, 0, None)
+    simulate_with(problem, method, options, &Silent)
 }
 
-/// Simulate path `path` of `seed`, reporting progress (fraction done) to `progress`.
-pub fn simulate_path(
-    oscillator: &Oscillator,
+/// [`simulate`], reporting the steps done to `monitor`, which may stop the run.
+pub fn simulate_with(
+    problem: &Problem,
     method: &PredictorCorrector,
     options: &Options,
-    seed: u64,
-    path: u64,
-    progress: Progress,
+    monitor: &dyn Monitor,
 ) -> Result<Trajectory> {
     let steps = options.steps(method.dt)?;
-    let mut recorder = TrajectoryRecorder::new(oscillator, options, steps, method.dt)?;
-    let mut stepper = options.stepper(oscillator, method, (seed, path))?;
-    run(&mut stepper, steps, &mut recorder, progress)?;
+    let mut recorder = TrajectoryRecorder::new(problem.oscillator(), options, steps, method.dt)?;
+    let mut stepper = options.stepper(problem, method)?;
+    run(&mut stepper, steps, &mut recorder, monitor)?;
     Ok(recorder.finish(&stepper))
 }
 
-/// Simulate paths 0..`paths` of `seed` in parallel. Path i depends only on (seed, i), so the
-/// result is bit-identical whatever the number of threads.
+/// Simulate paths 0..`paths` of `options.seed` in parallel (`options.path` is not used). Path
+/// i depends only on (seed, i), so the result is bit-identical whatever the number of threads.
 pub fn simulate_ensemble(
-    oscillator: &Oscillator,
+    problem: &Problem,
     method: &PredictorCorrector,
     options: &Options,
-    seed: u64,
     paths: usize,
 ) -> Result<Vec<Trajectory>> {
     if paths == 0 {
         return Ok(vec![]);
     }
     let steps = options.steps(method.dt)?;
+    let osc = problem.oscillator();
     // validate once, and build (and verify) the SOE kernel once for all paths
-    TrajectoryRecorder::new(oscillator, options, 0, method.dt)?;
-    let first = options.stepper(oscillator, method, (seed, 0))?;
-    let history = fresh_history(oscillator, method, options.system, steps as f64 * method.dt)?;
+    TrajectoryRecorder::new(osc, options, 0, method.dt)?;
+    let history = fresh_history(problem, method, steps as f64 * method.dt)?;
     (0..paths as u64)
         .into_par_iter()
         .map(|i| {
-            let mut stepper = if i == 0 {
-                first.clone()
-            } else {
-                Stepper::with_history(
-                    oscillator,
-                    method,
-                    options.system,
-                    options.barrier,
-                    (options.u0, options.v0),
-                    (seed, i),
-                    history.clone(),
-                    options.blow_up,
-                )?
-            };
-            let mut recorder = TrajectoryRecorder::new(oscillator, options, steps, method.dt)?;
-            run(&mut stepper, steps, &mut recorder, None)?;
+            let start = problem.start(i);
+            let mut stepper =
+                Stepper::with_history(problem, method, start, (options.seed, i), history.clone())?;
+            let mut recorder = TrajectoryRecorder::new(osc, options, steps, method.dt)?;
+            run(&mut stepper, steps, &mut recorder, &Silent)?;
             Ok(recorder.finish(&stepper))
         })
         .collect()
@@ -372,7 +363,7 @@ mod tests {
 
     #[test]
     fn the_recorder_keeps_every_kth_node_and_only_the_start_for_the_largest_k() {
-        let osc = Oscillator::new(&crate::model::preset("fig1").unwrap().params).unwrap();
+        let problem = Problem::from_params(&crate::model::preset("fig1").unwrap().params).unwrap();
         let m = PredictorCorrector::default();
         for (every, times) in [
             (3usize, vec![0.0, 0.03, 0.06, 0.09]),
@@ -380,10 +371,11 @@ mod tests {
         ] {
             let o = Options {
                 t_end: 0.1,
+                seed: 1,
                 record_every: every,
                 ..Default::default()
             };
-            let tr = simulate(&osc, &m, &o, 1).unwrap();
+            let tr = simulate(&problem, &m, &o).unwrap();
             assert_eq!(tr.t.len(), times.len(), "every {every}");
             for (a, b) in tr.t.iter().zip(&times) {
                 assert!((a - b).abs() < 1e-12, "every {every}: {:?}", tr.t);

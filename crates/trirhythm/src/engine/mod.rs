@@ -6,12 +6,15 @@
 //! - `memory`: the whole history of J^λ g of one path (exact window, SOE modes, lumped terms),
 //!   with [`Memory`] choosing how it is kept, and [`solve_scalar`] for scalar Caputo problems;
 //! - [`noise`]: Ornstein–Uhlenbeck and white forcing with seeded per-path streams;
+//! - the [`Problem`] every driver takes (oscillator, system, wall, starts, blow-up bound) and
+//!   the method [`PredictorCorrector`];
 //! - [`Stepper`]: the linearly implicit predictor–corrector step with impacts (module docs of
 //!   `stepper` give the method and why);
-//! - drivers: [`run`] with an [`Observer`], [`simulate`], [`simulate_ensemble`].
+//! - drivers: [`run`] with an [`Observer`], [`simulate`], [`simulate_ensemble`]; a
+//!   [`crate::monitor::Monitor`] hears their progress and can stop them.
 //!
-//! The engine depends on [`crate::model`] (parameters, Eq. 5 equivalents) and
-//! [`crate::special`] only, never on the averaged theory.
+//! The engine depends on [`crate::model`] (parameters, Eq. 5 equivalents), [`crate::special`]
+//! and [`crate::monitor`] only, never on the averaged theory.
 
 mod drivers;
 pub mod kernel;
@@ -20,12 +23,15 @@ pub mod noise;
 mod problem;
 mod stepper;
 
+pub(crate) use drivers::whole_steps;
 pub use drivers::{
-    run, simulate, simulate_ensemble, simulate_path, Flow, Observer, Progress, Trajectory,
+    run, simulate, simulate_ensemble, simulate_with, Flow, Observer, Trajectory,
     TrajectoryRecorder, MAX_KEPT_SAMPLES, MAX_STEPS,
 };
 pub(crate) use memory::History;
 pub use memory::{probe_memory, solve_scalar, Memory, DEFAULT_WINDOW};
-pub use problem::{Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System};
+pub use problem::{
+    Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, Problem, System, MAX_STARTS,
+};
 pub(crate) use stepper::{fresh_history, Tangent};
 pub use stepper::{Impact, StepEvents, Stepper};

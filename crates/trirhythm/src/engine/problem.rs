@@ -1,10 +1,13 @@
-//! The problem and the method of a simulation: which equation ([`Oscillator`], [`System`],
-//! [`Barrier`]), how it is discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and
-//! what is simulated ([`Options`]). Results are in [`super::drivers`].
+//! The problem and the method of a simulation: which equation ([`Problem`]: the
+//! [`Oscillator`], the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
+//! discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and what one trajectory
+//! records ([`Options`]). Every driver — [`super::simulate`], the ensembles, the Lyapunov
+//! exponents, the oscillation search — takes the same [`Problem`]; its spec holds only what is
+//! its own. Results are in [`super::drivers`].
 
 use super::memory::{Memory, DEFAULT_WINDOW};
 use super::noise::Noise;
-use crate::error::Result;
+use crate::error::{Error, Exact, Result};
 use crate::model::{Equivalents, Params};
 
 /// What the memory does at an impact.
@@ -63,41 +66,32 @@ impl Default for PredictorCorrector {
     }
 }
 
-/// What to simulate beyond the parameters: span, start, barrier, system, output.
+/// What one trajectory records beyond the problem: span, noise stream, output.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
-    /// End time T (rounded to a whole number of steps).
+    /// End time T (a whole number of steps of Δt).
     pub t_end: f64,
-    /// U(0) (≥ 0 with the barrier on).
-    pub u0: f64,
-    /// V(0) = U̇(0).
-    pub v0: f64,
-    /// Wall on or off.
-    pub barrier: Barrier,
-    /// Equation.
-    pub system: System,
+    /// Seed of the noise streams.
+    pub seed: u64,
+    /// Which stream of the seed drives the path (and which of the problem's starts it takes).
+    pub path: u64,
     /// Keep every k-th node in the trajectory (k ≥ 1).
     pub record_every: usize,
     /// Keep the list of impacts (time, V₋, V₊).
     pub record_impacts: bool,
     /// The summary amplitude is averaged over this many periods 2π/ω1 before T.
     pub amplitude_periods: f64,
-    /// |U| or |V| above this is a blow-up.
-    pub blow_up: f64,
 }
 
 impl Default for Options {
     fn default() -> Self {
         Options {
             t_end: 100.0,
-            u0: 1.0,
-            v0: 0.0,
-            barrier: Barrier::On,
-            system: System::Fractional,
+            seed: 0,
+            path: 0,
             record_every: 1,
             record_impacts: false,
             amplitude_periods: 5.0,
-            blow_up: 1e8,
         }
     }
 }
@@ -134,5 +128,189 @@ impl Oscillator {
     /// The forcing.
     pub fn noise(&self) -> Noise {
         self.noise
+    }
+}
+
+/// Most starts of one problem.
+pub const MAX_STARTS: usize = 100_000;
+
+/// The problem every driver takes: Eq. (1) (or Eq. 5 / Eq. 9) for one oscillator, with or
+/// without the wall, from one start (or several, taken in turn by path index: path i starts
+/// at `starts[i mod len]`), with a bound beyond which a path has blown up.
+///
+/// Validated on construction: every setter checks the whole problem and names the offending
+/// value. Set the wall and the system before a start that needs them (a negative U(0) needs
+/// [`Barrier::Off`] or [`System::Zhuravlev`]).
+///
+/// ```
+/// use trirhythm::engine::{Barrier, Oscillator, Problem};
+/// use trirhythm::model::preset;
+///
+/// let osc = Oscillator::new(&preset("fig1")?.params)?;
+/// let problem = Problem::new(osc)
+///     .with_barrier(Barrier::Off)?
+///     .with_starts(&[(-1.0, 0.0), (2.0, 0.5)])?;
+/// assert_eq!(problem.start(3), (2.0, 0.5)); // path 3 takes start 3 mod 2
+/// assert!(problem.clone().with_barrier(Barrier::On).is_err()); // U(0) = −1 below the wall
+/// # Ok::<(), trirhythm::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Problem {
+    oscillator: Oscillator,
+    system: System,
+    barrier: Barrier,
+    starts: Vec<(f64, f64)>,
+    blow_up: f64,
+}
+
+impl Problem {
+    /// Eq. (1) of `oscillator` with the wall, from (U, U̇) = (1, 0), blow-up at 10⁸.
+    pub fn new(oscillator: Oscillator) -> Self {
+        Problem {
+            oscillator,
+            system: System::Fractional,
+            barrier: Barrier::On,
+            starts: vec![(1.0, 0.0)],
+            blow_up: 1e8,
+        }
+    }
+
+    /// [`Problem::new`] of the validated parameters.
+    pub fn from_params(params: &Params) -> Result<Self> {
+        Ok(Problem::new(Oscillator::new(params)?))
+    }
+
+    /// The same problem for other parameters (a sweep's point), validated.
+    pub fn with_params(&self, params: &Params) -> Result<Self> {
+        Problem {
+            oscillator: Oscillator::new(params)?,
+            ..self.clone()
+        }
+        .checked()
+    }
+
+    /// The equation integrated.
+    pub fn with_system(self, system: System) -> Result<Self> {
+        Problem { system, ..self }.checked()
+    }
+
+    /// The wall on or off.
+    pub fn with_barrier(self, barrier: Barrier) -> Result<Self> {
+        Problem { barrier, ..self }.checked()
+    }
+
+    /// One start (U(0), U̇(0)) for every path.
+    pub fn with_start(self, u0: f64, v0: f64) -> Result<Self> {
+        self.with_starts(&[(u0, v0)])
+    }
+
+    /// Starts (U(0), U̇(0)) taken in turn: path i starts at `starts[i mod len]`.
+    pub fn with_starts(self, starts: &[(f64, f64)]) -> Result<Self> {
+        Problem {
+            starts: starts.to_vec(),
+            ..self
+        }
+        .checked()
+    }
+
+    /// The bound on |U| and |U̇| beyond which a path has blown up, in (0, ∞].
+    pub fn with_blow_up(self, blow_up: f64) -> Result<Self> {
+        Problem { blow_up, ..self }.checked()
+    }
+
+    /// The oscillator (parameters and their Eq. 5 equivalents).
+    pub fn oscillator(&self) -> &Oscillator {
+        &self.oscillator
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &Params {
+        self.oscillator.params()
+    }
+
+    /// The equation.
+    pub fn system(&self) -> System {
+        self.system
+    }
+
+    /// The wall.
+    pub fn barrier(&self) -> Barrier {
+        self.barrier
+    }
+
+    /// The starts, taken in turn by path index.
+    pub fn starts(&self) -> &[(f64, f64)] {
+        &self.starts
+    }
+
+    /// The start of path `path`: `starts[path mod len]`.
+    pub fn start(&self, path: u64) -> (f64, f64) {
+        self.starts[(path % self.starts.len() as u64) as usize]
+    }
+
+    /// The blow-up bound.
+    pub fn blow_up(&self) -> f64 {
+        self.blow_up
+    }
+
+    /// Whether paths reflect at U = 0 (the wall is on and the system is not Eq. 9's, which
+    /// crosses).
+    pub fn wall(&self) -> bool {
+        self.barrier == Barrier::On && self.system != System::Zhuravlev
+    }
+
+    fn checked(self) -> Result<Self> {
+        let b = self.blow_up;
+        if b.is_nan() || b <= 0.0 {
+            return Err(Error::invalid("blow_up", b, "(0, ∞]"));
+        }
+        if self.starts.is_empty() || self.starts.len() > MAX_STARTS {
+            return Err(Error::invalid(
+                "u0",
+                self.starts.len() as f64,
+                format!("1 to {MAX_STARTS} starts"),
+            ));
+        }
+        // a start at or beyond the blow-up bound would be reported as a blow-up at once
+        let limit = format!("|·| < {} (the blow-up threshold)", Exact(b));
+        for &(u0, v0) in &self.starts {
+            if u0.is_nan() || u0.abs() >= b {
+                return Err(Error::invalid("u0", u0, limit.as_str()));
+            }
+            if v0.is_nan() || v0.abs() >= b {
+                return Err(Error::invalid("v0", v0, limit.as_str()));
+            }
+            if self.wall() && u0 < 0.0 {
+                return Err(Error::invalid("u0", u0, "[0, ∞) with the barrier on"));
+            }
+        }
+        Ok(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn setters_validate_the_whole_problem_and_name_the_value() {
+        let p = Problem::from_params(&crate::model::preset("fig1").unwrap().params).unwrap();
+        let named = |r: Result<Problem>, name: &str| match r {
+            Err(Error::InvalidParameter { name: n, .. }) => assert_eq!(n, name),
+            other => panic!("expected an error naming {name}: {other:?}"),
+        };
+        named(p.clone().with_start(-1.0, 0.0), "u0");
+        named(p.clone().with_start(f64::NAN, 0.0), "u0");
+        named(p.clone().with_start(1.0, f64::INFINITY), "v0");
+        named(p.clone().with_starts(&[]), "u0");
+        named(p.clone().with_blow_up(0.0), "blow_up");
+        named(p.clone().with_blow_up(f64::NAN), "blow_up");
+        named(
+            p.clone().with_start(5.0, 0.0).unwrap().with_blow_up(5.0),
+            "u0",
+        );
+        let z = p.clone().with_system(System::Zhuravlev).unwrap();
+        assert_eq!(z.with_start(-1.0, 0.0).unwrap().start(7), (-1.0, 0.0));
+        assert!(p.with_blow_up(f64::INFINITY).is_ok());
     }
 }

@@ -347,7 +347,7 @@ impl Stepper {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::{Barrier, ImpactMemory, Memory, Options, Oscillator, PredictorCorrector};
+    use crate::engine::{Barrier, ImpactMemory, Memory, Options, PredictorCorrector, Problem};
     use crate::model::{preset, Params};
 
     fn params(name: &str, pairs: &[(&str, f64)]) -> Params {
@@ -366,7 +366,10 @@ mod tests {
         (u0, v0): (f64, f64),
         t_end: f64,
     ) -> Stepper {
-        let osc = Oscillator::new(p).unwrap();
+        let problem = Problem::from_params(p)
+            .and_then(|q| q.with_barrier(barrier))
+            .and_then(|q| q.with_start(u0, v0))
+            .unwrap();
         let method = PredictorCorrector {
             dt,
             memory: Memory::default(),
@@ -375,12 +378,10 @@ mod tests {
         };
         let o = Options {
             t_end,
-            u0,
-            v0,
-            barrier,
+            seed: 5,
             ..Default::default()
         };
-        o.stepper(&osc, &method, (5, 0)).unwrap()
+        o.stepper(&problem, &method).unwrap()
     }
 
     /// A direction in the state: δU, δV, δbase and the memory scaled by (1 + s).
@@ -466,18 +467,20 @@ mod tests {
             (ImpactMemory::Continuous, crate::engine::System::Zhuravlev),
         ] {
             let p = params("fig13a", &[("r", 0.3), ("D", 0.5)]);
-            let osc = Oscillator::new(&p).unwrap();
+            let problem = Problem::from_params(&p)
+                .and_then(|q| q.with_system(system))
+                .and_then(|q| q.with_start(7.0, 0.0))
+                .unwrap();
             let method = PredictorCorrector {
                 impact_memory: memory,
                 ..Default::default()
             };
             let o = Options {
                 t_end: 200.0,
-                u0: 7.0,
-                system,
+                seed: 7,
                 ..Default::default()
             };
-            let mut a = o.stepper(&osc, &method, (7, 0)).unwrap();
+            let mut a = o.stepper(&problem, &method).unwrap();
             let mut b = a.clone();
             let mut t = Tangent::new(&b, (1.0, 0.0));
             for n in 0..20_000 {

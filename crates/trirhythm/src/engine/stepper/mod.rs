@@ -2,7 +2,12 @@
 //! — U, V, the noise, the memory (exact window, SOE modes, lumped terms, impact jumps), the
 //! impact bookkeeping — and advances it one step at a time. Every driver (trajectories,
 //! ensembles, streaming statistics, early-stopping sweeps) is a loop over [`Stepper::step`]; see
-//! [`super::drivers`].
+//! [`super::drivers`]. A stepper is built from a [`Problem`] ([`Stepper::new`]): the
+//! equation, the wall, the start of its path and the blow-up bound are the problem's.
+//!
+//! The step is here; `impact` locates an impact inside a step and redoes the rest of it,
+//! `tangent` steps the variational equation with the path, `renormalise` pulls a perturbed
+//! copy toward its reference, `polynomial` evaluates μP.
 //!
 //! # Equation
 //! Caputo D^{1+λ}U = D^λ(U′), so Eq. (1) is the multi-order system
@@ -90,75 +95,20 @@
 //! `tests/stochastic.rs`, `tests/tangent.rs` (the renormalisation of a perturbed copy acts on
 //! the whole memory: exact for a linear system, −μ/2 for the damped oscillator), the unit
 //! tests of [`tangent`] (the tangent step against finite differences of [`Stepper::step`],
-//! smooth and impact steps), and the unit tests below (λ = 1 is the linearly implicit
-//! trapezoidal rule, written out by hand; blow-up reports its stiffness; the crossing by
-//! Newton equals bisection).
+//! smooth and impact steps), the unit tests of `impact` (the crossing by Newton equals
+//! bisection).
 
 use super::memory::{History, Piece, Split};
 use super::noise::NoiseStream;
-use super::problem::{Barrier, ImpactMemory, Oscillator, PredictorCorrector, System};
+use super::problem::{ImpactMemory, Oscillator, PredictorCorrector, Problem, System};
 use crate::error::{Error, Exact, Result};
+use polynomial::Polynomial;
 
-#[path = "tangent.rs"]
+mod impact;
+mod polynomial;
+mod renormalise;
 mod tangent;
 pub(crate) use tangent::Tangent;
-
-/// A polynomial Σ a_k x^k: up to degree 7 evaluated by Estrin's scheme (three levels of
-/// independent multiply–adds instead of Horner's chain of seven: it is on the step's critical
-/// path twice), beyond that by Horner.
-#[derive(Debug, Clone)]
-enum Polynomial {
-    Short([f64; 8]),
-    Long(Vec<f64>),
-}
-
-impl Polynomial {
-    /// μ·(c_0, c_1, …).
-    fn scaled(mu: f64, c: &[f64]) -> Self {
-        Self::from_coefficients(c.iter().map(|&c| mu * c).collect())
-    }
-
-    fn from_coefficients(a: Vec<f64>) -> Self {
-        if a.len() <= 8 {
-            let mut s = [0.0; 8];
-            s[..a.len()].copy_from_slice(&a);
-            Polynomial::Short(s)
-        } else {
-            Polynomial::Long(a)
-        }
-    }
-
-    #[inline]
-    fn eval(&self, x: f64) -> f64 {
-        match self {
-            Polynomial::Short(c) => {
-                let x2 = x * x;
-                let x4 = x2 * x2;
-                let p01 = c[0] + c[1] * x;
-                let p23 = c[2] + c[3] * x;
-                let p45 = c[4] + c[5] * x;
-                let p67 = c[6] + c[7] * x;
-                (p01 + p23 * x2) + (p45 + p67 * x2) * x4
-            }
-            Polynomial::Long(c) => c.iter().rev().fold(0.0, |acc, &c| acc * x + c),
-        }
-    }
-
-    /// The derivative Σ k a_k x^{k−1}.
-    fn derivative(&self) -> Self {
-        let a: &[f64] = match self {
-            Polynomial::Short(c) => c,
-            Polynomial::Long(c) => c,
-        };
-        Self::from_coefficients(
-            a.iter()
-                .enumerate()
-                .skip(1)
-                .map(|(k, &c)| k as f64 * c)
-                .collect(),
-        )
-    }
-}
 
 /// g(U, V, η) = μP(U)V − ω²U + γ·side·η of one system.
 #[derive(Debug, Clone)]
@@ -170,8 +120,6 @@ pub(crate) struct Rhs {
     slope: Polynomial,
     omega2: f64,
     gain: f64,
-    /// Eq. (1) and (5) reflect at the wall; Eq. (9) crosses.
-    reflect: bool,
     restitution: f64,
 }
 
@@ -186,7 +134,6 @@ impl Rhs {
                 damping: Polynomial::scaled(p.mu0, &p.damping.coefficients),
                 omega2: p.omega0 * p.omega0,
                 gain: 1.0,
-                reflect: true,
                 restitution: p.restitution,
             },
             System::Equivalent | System::Zhuravlev => {
@@ -198,7 +145,6 @@ impl Rhs {
                     damping: Polynomial::scaled(e.mu1, &c),
                     omega2: e.omega1 * e.omega1,
                     gain: e.beta2,
-                    reflect: system == System::Equivalent,
                     restitution: p.restitution,
                 }
             }
@@ -418,58 +364,6 @@ pub struct StepEvents {
     pub stuck: bool,
 }
 
-/// θ ∈ (0, 1] where the cubic Hermite interpolant of (u0, v0) → (u1, v1) over a step h
-/// changes sign (u0 and u1 of opposite signs, or u1 = 0): Newton's method from the secant
-/// root, kept inside a bracket that every iterate shrinks (a bisection step whenever Newton
-/// would leave it), to |Δθ| ≤ 1e-15. Typically 3–5 iterations; at most 100.
-fn hermite_root(u0: f64, v0: f64, u1: f64, v1: f64, h: f64) -> f64 {
-    let (hv0, hv1) = (h * v0, h * v1);
-    let f = |t: f64| {
-        let t2 = t * t;
-        let t3 = t2 * t;
-        (2.0 * t3 - 3.0 * t2 + 1.0) * u0
-            + (t3 - 2.0 * t2 + t) * hv0
-            + (-2.0 * t3 + 3.0 * t2) * u1
-            + (t3 - t2) * hv1
-    };
-    let df = |t: f64| {
-        let t2 = t * t;
-        (6.0 * t2 - 6.0 * t) * (u0 - u1)
-            + (3.0 * t2 - 4.0 * t + 1.0) * hv0
-            + (3.0 * t2 - 2.0 * t) * hv1
-    };
-    let (mut a, mut b) = (0.0, 1.0);
-    let fa_pos = u0 > 0.0 || (u0 == 0.0 && u1 < 0.0);
-    let secant = if u0 != u1 { u0 / (u0 - u1) } else { 0.5 };
-    let mut t = if secant > 0.0 && secant < 1.0 {
-        secant
-    } else {
-        0.5
-    };
-    for _ in 0..100 {
-        let ft = f(t);
-        if ft == 0.0 {
-            return t;
-        }
-        if (ft > 0.0) == fa_pos {
-            a = t;
-        } else {
-            b = t;
-        }
-        let d = df(t);
-        let mut next = t - ft / d;
-        if !(next > a && next < b) {
-            next = 0.5 * (a + b);
-        }
-        let done = (next - t).abs() <= 1e-15 || b - a <= 1e-15;
-        t = next;
-        if done {
-            break;
-        }
-    }
-    t
-}
-
 /// The state and history of one path, advanced by [`Stepper::step`].
 #[derive(Debug, Clone)]
 pub struct Stepper {
@@ -503,45 +397,29 @@ pub struct Stepper {
 }
 
 impl Stepper {
-    /// A path of `oscillator` from (u0, v0) with the given method, equation and wall, noise
-    /// stream `path` of `seed`, and memory certified up to `horizon` (the SOE kernel's T).
-    #[allow(clippy::too_many_arguments)]
+    /// Path `path` of `problem` (its start `problem.start(path)`, noise stream `path` of
+    /// `seed`) with the given method, its memory certified up to `horizon` (the SOE kernel's T).
     pub fn new(
-        oscillator: &Oscillator,
+        problem: &Problem,
         method: &PredictorCorrector,
-        system: System,
-        barrier: Barrier,
-        (u0, v0): (f64, f64),
         (seed, path): (u64, u64),
         horizon: f64,
-        blow_up: f64,
     ) -> Result<Self> {
-        let history = fresh_history(oscillator, method, system, horizon)?;
-        Self::with_history(
-            oscillator,
-            method,
-            system,
-            barrier,
-            (u0, v0),
-            (seed, path),
-            history,
-            blow_up,
-        )
+        let history = fresh_history(problem, method, horizon)?;
+        Self::with_history(problem, method, problem.start(path), (seed, path), history)
     }
 
-    /// As [`Stepper::new`], reusing an empty memory built once (its SOE kernel verified once)
-    /// for many paths.
-    #[allow(clippy::too_many_arguments)]
+    /// As [`Stepper::new`] from the start (u0, v0), reusing an empty memory built once (its
+    /// SOE kernel verified once) for many paths.
     pub(crate) fn with_history(
-        oscillator: &Oscillator,
+        problem: &Problem,
         method: &PredictorCorrector,
-        system: System,
-        barrier: Barrier,
         (u0, v0): (f64, f64),
         (seed, path): (u64, u64),
         history: History,
-        blow_up: f64,
     ) -> Result<Self> {
+        let (oscillator, system, blow_up) =
+            (problem.oscillator(), problem.system(), problem.blow_up());
         let h = method.dt;
         if !(h > 0.0 && h.is_finite()) {
             return Err(Error::invalid("dt", h, "(0, ∞), finite"));
@@ -558,7 +436,7 @@ impl Stepper {
             return Err(Error::invalid("v0", v0, limit.as_str()));
         }
         let rhs = Rhs::new(oscillator, system);
-        let wall = rhs.reflect && barrier == Barrier::On;
+        let wall = problem.wall();
         if wall && u0 < 0.0 {
             return Err(Error::invalid("u0", u0, "[0, ∞) with the barrier on"));
         }
@@ -656,61 +534,6 @@ impl Stepper {
     /// Bytes of memory state held.
     pub fn memory_bytes(&self) -> usize {
         self.history.state_bytes()
-    }
-
-    /// (U − U_ref, V − V_ref) of this path against `reference` at the same time.
-    pub fn separation(&self, reference: &Stepper) -> (f64, f64) {
-        (self.u - reference.u, self.v - reference.v)
-    }
-
-    /// Benettin's renormalisation of a perturbed copy: pull this path toward `reference` (a
-    /// path of the same problem at the same step, usually the one this copy was cloned from,
-    /// so with the same noise) by the factor `c`, **whole state included** — U, V, the
-    /// Volterra constant, g at the node and every number of the memory become
-    /// x_ref + c·(x − x_ref). For a fractional system the state is the entire history: scaling
-    /// (δU, δV) alone would leave the old perturbation in the memory.
-    ///
-    /// Returns false and changes nothing when the two paths cannot be combined number by
-    /// number now: not at the same step, on different sides (Eq. 9) or in different sticking
-    /// states, or an impact still inside the exact window of either (its split falls at a
-    /// different fraction in each path; with `Memory::Direct` this holds after the first
-    /// impact for good). A driver then tries again at a later step.
-    pub fn contract_toward(&mut self, reference: &Stepper, c: f64) -> bool {
-        if self.steps != reference.steps
-            || self.side != reference.side
-            || self.stuck != reference.stuck
-            || self.h != reference.h
-        {
-            return false;
-        }
-        if !self.history.contract_toward(&reference.history, c) {
-            return false;
-        }
-        let pull = |r: f64, x: f64| r + c * (x - r);
-        self.u = pull(reference.u, self.u);
-        self.v = pull(reference.v, self.v);
-        self.base = pull(reference.base, self.base);
-        self.drift = pull(reference.drift, self.drift);
-        self.pw = predictor_weight(self.h, self.rhs.damping(self.u));
-        true
-    }
-
-    /// Whether this path and `other` are in the same state, whole history included: same step,
-    /// U, V, side, sticking state, Volterra constant, g at the node, noise and every number of
-    /// the memory. Two such paths of the same problem and noise stream stay identical for good
-    /// (a perturbed copy that has merged with its reference, e.g. both stuck at the wall at the
-    /// same step with the memory restarted).
-    pub fn coincides_with(&self, other: &Stepper) -> bool {
-        self.steps == other.steps
-            && self.h == other.h
-            && self.u == other.u
-            && self.v == other.v
-            && self.side == other.side
-            && self.stuck == other.stuck
-            && self.base == other.base
-            && self.drift == other.drift
-            && self.noise.current() == other.noise.current()
-            && self.history.coincides(&other.history)
     }
 
     /// Hold the oscillator at rest on the wall at the end of a step whose free value was V = v1:
@@ -815,173 +638,14 @@ impl Stepper {
             dt: self.h,
         })
     }
-
-    /// The impact (wall) or crossing (Eq. 9) inside the current step, whose free end was
-    /// (u1, v1): locate it, jump, and redo the rest of the step. Returns the split of g and the
-    /// state at the end of the step.
-    #[cold]
-    fn impact(&mut self, gl: f64, (el, er): (f64, f64), (u1, v1): (f64, f64)) -> (Split, f64, f64) {
-        let c = self.locate(gl, (el, er), (u1, v1));
-        let rest = self.jump(&c, gl, er);
-        let (u_end, v_end) = rest.free.end();
-        (rest.split, u_end, v_end)
-    }
-
-    /// Where the current step, whose free end was (u1, v1), crosses U = 0, and the scheme's
-    /// velocity there (changes nothing).
-    fn locate(&self, gl: f64, (el, er): (f64, f64), (u1, v1): (f64, f64)) -> Crossing {
-        let h = self.h;
-        let theta = hermite_root(self.u, self.v, u1, v1, h);
-        let eta_star = el + theta * (er - el);
-        // g at U = 0 is a0·V + forcing
-        let a0 = self.rhs.damping(0.0);
-        let (hs, ws) = self.history.at_fraction(theta, gl);
-        let forcing = self.rhs.forcing(eta_star, self.side);
-        // the scheme's own V(t*−); at a grazing wall impact it may come out ≥ 0: then V₋ = 0
-        let v_at = (self.base + hs + ws * forcing) / (1.0 - ws * a0);
-        Crossing {
-            theta,
-            eta_star,
-            a0,
-            ws,
-            forcing,
-            v_at,
-        }
-    }
-
-    /// Jump at the located crossing `c` and redo the rest of the step.
-    fn jump(&mut self, c: &Crossing, gl: f64, er: f64) -> Rest {
-        let h = self.h;
-        let side = self.side;
-        let (theta, a0, v_at) = (c.theta, c.a0, c.v_at);
-        let (v_minus, v_plus, new_side) = if self.crossing {
-            (v_at, self.rhs.restitution * v_at, -side)
-        } else {
-            let vm = v_at.min(0.0);
-            (vm, -self.rhs.restitution * vm, side)
-        };
-        self.impacts += 1;
-        self.events.impact = Some(Impact {
-            time: self.time() + theta * h,
-            v_minus,
-            v_plus,
-        });
-        self.side = new_side;
-        let after_forcing = self.rhs.forcing(c.eta_star, new_side);
-        let split = Split {
-            theta,
-            before: a0 * v_at + c.forcing,
-            after: a0 * v_plus + after_forcing,
-            keep_before: !self.restart,
-        };
-        // V(t*+) = V₊ exactly: restart the memory there, or shift V's Volterra constant
-        if self.restart {
-            self.history.restart();
-            self.base = v_plus;
-        } else {
-            self.base += v_plus - v_at;
-        }
-        // the rest of the step, [t*, t_{n+1}], from (0, V₊), linearly implicit in V
-        let (known_s, wr_s) = self.history.current_split(gl, &split);
-        let known = self.base + self.history.value() + known_s;
-        let hh = (1.0 - theta) * h;
-        let free = self.rhs.advance(
-            hh,
-            (0.0, v_plus, split.after),
-            predictor_weight(hh, a0),
-            known,
-            wr_s,
-            self.rhs.forcing(er, new_side),
-        );
-        Rest {
-            split,
-            v_minus,
-            free,
-        }
-    }
-}
-
-/// An impact located inside a step ([`Stepper::locate`]).
-#[derive(Debug, Clone, Copy)]
-struct Crossing {
-    /// Its fraction θ of the step.
-    theta: f64,
-    /// η at the instant.
-    eta_star: f64,
-    /// μP(0).
-    a0: f64,
-    /// The scaled weight of g(t*) in V(t*).
-    ws: f64,
-    /// The forcing at the instant, on the side before.
-    forcing: f64,
-    /// The scheme's V(t*−), before the wall's clipping of a grazing impact.
-    v_at: f64,
-}
-
-/// The jump and the redone rest of an impact step ([`Stepper::jump`]).
-#[derive(Debug, Clone, Copy)]
-struct Rest {
-    split: Split,
-    v_minus: f64,
-    /// The rest of the step, of length (1 − θ)Δt from (0, V₊).
-    free: Free,
 }
 
 /// The empty memory of a path (with its verified SOE kernel), built once per ensemble.
 pub(crate) fn fresh_history(
-    oscillator: &Oscillator,
+    problem: &Problem,
     method: &PredictorCorrector,
-    system: System,
     horizon: f64,
 ) -> Result<History> {
-    let lambda = Rhs::new(oscillator, system).lambda;
+    let lambda = Rhs::new(problem.oscillator(), problem.system()).lambda;
     History::new(lambda, method.dt, horizon, method.memory, method.window)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::hermite_root;
-
-    /// The root by plain bisection (60 halvings), the reference for Newton's iteration.
-    fn bisected(u0: f64, v0: f64, u1: f64, v1: f64, h: f64) -> f64 {
-        let f = |t: f64| {
-            let (t2, t3) = (t * t, t * t * t);
-            (2.0 * t3 - 3.0 * t2 + 1.0) * u0
-                + (t3 - 2.0 * t2 + t) * h * v0
-                + (-2.0 * t3 + 3.0 * t2) * u1
-                + (t3 - t2) * h * v1
-        };
-        let (mut a, mut b) = (0.0, 1.0);
-        for _ in 0..60 {
-            let m = 0.5 * (a + b);
-            if (f(m) > 0.0) == (u0 > 0.0) {
-                a = m;
-            } else {
-                b = m;
-            }
-        }
-        0.5 * (a + b)
-    }
-
-    #[test]
-    fn newton_crossing_equals_bisection() {
-        // steps that end across the wall: grazing (small velocities), fast, and skewed
-        let cases = [
-            (0.3, -40.0, -0.1, -41.0, 0.01),
-            (1e-6, -1e-3, -1e-7, -2e-3, 0.01),
-            (2.0, -1.0, -0.5, -3.0, 1.0),
-            (0.01, 0.5, -0.02, -6.0, 0.01),
-            (5e-3, -0.2, -1e-12, -0.2, 0.025),
-        ];
-        for (u0, v0, u1, v1, h) in cases {
-            let t = hermite_root(u0, v0, u1, v1, h);
-            let r = bisected(u0, v0, u1, v1, h);
-            assert!(t > 0.0 && t <= 1.0);
-            assert!(
-                (t - r).abs() < 1e-13,
-                "{t} vs {r} for {:?}",
-                (u0, v0, u1, v1, h)
-            );
-        }
-    }
 }

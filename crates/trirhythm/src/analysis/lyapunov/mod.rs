@@ -88,7 +88,9 @@
 //!
 //! # Reproducibility
 //! Path i depends only on (seed, i); paths run in parallel and are merged in path order, so the
-//! result is bit-identical whatever the number of threads.
+//! result is bit-identical whatever the number of threads. [`largest_lyapunov`] is
+//! [`run_paths`] over every path, then [`merge`]: the realisations can be run anywhere, in any
+//! split and order, and merged into the same result.
 //!
 //! # Tests
 //! `tests/lyapunov.rs`: the damped linear oscillator (P ≡ −1, no wall, λ = 1) has LLE = −μ0/2
@@ -103,13 +105,37 @@
 //! λ = 0.998 with the wall (both impact memories) and on λ = 0.998, 0.95 without the wall (path by
 //! path within 3e-6); one thread and two bit-identical. Finite differences of the step: unit
 //! tests of `engine::stepper::tangent`.
+//!
+//! # Example
+//! ```
+//! use trirhythm::analysis::lyapunov::{largest_lyapunov, LyapunovSpec};
+//! use trirhythm::engine::{Barrier, Memory, PredictorCorrector, Problem};
+//! use trirhythm::model::preset;
+//! use trirhythm::monitor::Silent;
+//!
+//! let params = preset("fig1")?.params.with("D", 0.05)?;
+//! let problem = Problem::from_params(&params)?.with_barrier(Barrier::Off)?.with_start(6.8, 0.0)?;
+//! let method = PredictorCorrector { dt: 0.05, memory: Memory::Direct, ..Default::default() };
+//! let spec = LyapunovSpec {
+//!     paths: 2, seed: 3, transient: 2.0, length: 20.0, renormalise_every: 10, running_points: 4,
+//!     ..Default::default()
+//! };
+//! let r = largest_lyapunov(&problem, &method, &spec, &Silent)?;
+//! assert_eq!(r.per_path.len(), 2);
+//! assert!(r.lle.value.is_finite() && r.running.len() == 4);
+//! # Ok::<(), trirhythm::Error>(())
+//! ```
+
+mod critical;
+mod perturbation;
+
+pub use critical::{critical_noise, CriticalNoise, CriticalSearch, NoisePoint};
 
 use super::ensemble::Estimate;
-use crate::engine::{
-    fresh_history, Barrier, Oscillator, PredictorCorrector, Stepper, System, Tangent,
-};
+use crate::engine::{fresh_history, whole_steps, PredictorCorrector, Problem, Stepper, Tangent};
 use crate::error::{Error, Result};
-use crate::model::Params;
+use crate::monitor::Monitor;
+use perturbation::{one_path, PathAndTangent, TwoPaths};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -117,7 +143,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// Most paths of one estimate.
 pub const MAX_PATHS: usize = 100_000;
 
-/// What to simulate: paths, seed, windows, start and renormalisation.
+/// What a Lyapunov estimate runs beyond its [`Problem`] and integrator: paths, seed, windows,
+/// renormalisation and the method that follows the perturbation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LyapunovSpec {
     /// Number of noise realisations N (path i is noise stream i of the seed).
@@ -128,22 +155,12 @@ pub struct LyapunovSpec {
     pub transient: f64,
     /// Measured time after the transient (the finite-time window).
     pub length: f64,
-    /// U(0) of the reference (≥ 0 with the wall).
-    pub u0: f64,
-    /// U̇(0) of the reference.
-    pub v0: f64,
-    /// Which equation.
-    pub system: System,
-    /// Wall on or off.
-    pub barrier: Barrier,
     /// Steps between renormalisations (tried again at each later step when refused).
     pub renormalise_every: u64,
     /// The separation d₀ the copy is pulled back to.
     pub separation: f64,
     /// Points of the running estimate.
     pub running_points: usize,
-    /// |U| or |U̇| above this is a blow-up.
-    pub blow_up: f64,
     /// Tangent (variational) equation or two trajectories.
     pub method: LyapunovMethod,
 }
@@ -177,42 +194,17 @@ impl Default for LyapunovSpec {
             seed: 1,
             transient: 200.0,
             length: 2000.0,
-            u0: 1.0,
-            v0: 0.0,
-            system: System::Fractional,
-            barrier: Barrier::On,
             renormalise_every: 100,
             separation: 1e-8,
             running_points: 100,
-            blow_up: 1e8,
             method: LyapunovMethod::TwoTrajectory,
         }
     }
 }
 
-/// Whole steps of `t` at step `dt`, or an error naming `name`.
-fn whole_steps(name: &str, t: f64, dt: f64, allow_zero: bool) -> Result<u64> {
-    let ratio = t / dt;
-    let n = ratio.round();
-    let min = if allow_zero { 0.0 } else { 1.0 };
-    if !(t.is_finite() && n >= min && n <= crate::engine::MAX_STEPS as f64)
-        || (ratio - n).abs() > 1e-9 * n.max(1.0)
-    {
-        return Err(Error::invalid(
-            name,
-            t,
-            format!(
-                "{} a whole number of steps of dt = {dt}",
-                if allow_zero { "0 or" } else { "one or more," }
-            ),
-        ));
-    }
-    Ok(n as u64)
-}
-
 impl LyapunovSpec {
     /// Checked (transient, measured) steps.
-    fn sizes(&self, dt: f64) -> Result<(u64, u64)> {
+    pub(crate) fn sizes(&self, dt: f64) -> Result<(u64, u64)> {
         if self.paths == 0 || self.paths > MAX_PATHS {
             return Err(Error::invalid(
                 "paths",
@@ -231,18 +223,6 @@ impl LyapunovSpec {
                 "running_points",
                 self.running_points as f64,
                 "1 to 100000",
-            ));
-        }
-        let wall = self.barrier == Barrier::On && self.system != System::Zhuravlev;
-        if !self.u0.is_finite() || (wall && self.u0 < 0.0) {
-            return Err(Error::invalid(
-                "u0",
-                self.u0,
-                if wall {
-                    "[0, ∞) with the barrier on"
-                } else {
-                    "finite"
-                },
             ));
         }
         let transient = whole_steps("transient", self.transient, dt, true)?;
@@ -329,7 +309,7 @@ pub struct LyapunovResult {
 }
 
 /// Mean and standard error of the mean (NaN with fewer than two values).
-pub fn mean_and_stderr(xs: &[f64]) -> Estimate {
+pub(crate) fn mean_and_stderr(xs: &[f64]) -> Estimate {
     let n = xs.len() as f64;
     let mean = xs.iter().sum::<f64>() / n;
     if xs.len() < 2 {
@@ -345,233 +325,76 @@ pub fn mean_and_stderr(xs: &[f64]) -> Estimate {
     }
 }
 
-/// The outcome of a due renormalisation.
-enum Renormalised {
-    /// Done: the perturbation had grown by this factor since the last one.
-    Grown(f64),
-    /// Refused now (tried again at the next step); `merged` when the perturbation has
-    /// vanished for good (the copy coincides with the reference, or the whole tangent is 0).
-    Refused { merged: bool },
+/// One realisation's part of an estimate: its exponent and its running estimate at the spec's
+/// checkpoints. The unit of [`merge`] (serialisable, restored bit for bit).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PathRun {
+    /// The realisation's exponent.
+    pub exponent: PathExponent,
+    /// Its exponent so far at each checkpoint of the window (−∞ after a merge, NaN before the
+    /// first renormalisation).
+    #[serde(with = "crate::non_finite::vec")]
+    pub running: Vec<f64>,
 }
 
-/// How one realisation follows its perturbation: advance both one step, renormalise.
-trait Perturbation {
-    fn step(&mut self) -> Result<()>;
-    fn renormalise(&mut self) -> Renormalised;
-    /// The reference path.
-    fn reference(&self) -> &Stepper;
-}
-
-/// Two trajectories on the same noise; the copy pulled back to d₀ with its whole memory.
-struct TwoPaths {
-    a: Stepper,
-    b: Stepper,
-    d0: f64,
-}
-
-impl Perturbation for TwoPaths {
-    fn step(&mut self) -> Result<()> {
-        self.a.step().and_then(|_| self.b.step())
-    }
-
-    fn renormalise(&mut self) -> Renormalised {
-        let (du, dv) = self.b.separation(&self.a);
-        let d = du.hypot(dv);
-        if d > 0.0 && d.is_finite() && self.b.contract_toward(&self.a, self.d0 / d) {
-            Renormalised::Grown(d / self.d0)
-        } else {
-            Renormalised::Refused {
-                merged: d == 0.0 && self.b.coincides_with(&self.a),
-            }
-        }
-    }
-
-    fn reference(&self) -> &Stepper {
-        &self.a
-    }
-}
-
-/// The path and its tangent, renormalised to norm 1 by scaling the whole tangent state.
-struct PathAndTangent {
-    a: Stepper,
-    t: Tangent,
-}
-
-impl Perturbation for PathAndTangent {
-    fn step(&mut self) -> Result<()> {
-        self.a.step_with_tangent(&mut self.t)
-    }
-
-    fn renormalise(&mut self) -> Renormalised {
-        let d = self.t.norm();
-        if d > 0.0 && d.is_finite() {
-            self.t.scale(1.0 / d);
-            Renormalised::Grown(d)
-        } else {
-            Renormalised::Refused {
-                merged: d == 0.0 && self.t.is_zero(),
-            }
-        }
-    }
-
-    fn reference(&self) -> &Stepper {
-        &self.a
-    }
-}
-
-/// One realisation: its exponent and its running estimate at `running_points` checkpoints.
-fn one_path(
-    mut p: impl Perturbation,
-    spec: &LyapunovSpec,
-    (transient, window): (u64, u64),
-    path: u64,
-    tick: &dyn Fn(u64),
-) -> Result<(PathExponent, Vec<f64>)> {
-    let total = transient + window;
-    let every = spec.renormalise_every;
-    let checkpoints = spec.running_points as u64;
-    let mut running = Vec::with_capacity(spec.running_points);
-    let mut next_checkpoint = 1;
-    let (mut log_sum, mut count, mut deferred) = (0.0, 0u64, 0u64);
-    // the step at which the copy merged with the reference for good
-    let mut merged_at: Option<u64> = None;
-    // the step of the last accepted renormalisation, and of the one that opened the window
-    let (mut last, mut start) = (0u64, 0u64);
-    let mut next = every;
-    let dt = p.reference().dt();
-    let tick_every = 1u64 << 14;
-    for n in 1..=total {
-        p.step().map_err(|e| match e {
-            Error::BlowUp { .. } => Error::Undefined {
-                what: "Lyapunov exponent",
-                why: format!("path {path}: {e}"),
-            },
-            other => other,
-        })?;
-        if n >= next && merged_at.is_none() {
-            match p.renormalise() {
-                Renormalised::Grown(factor) => {
-                    if n > transient {
-                        log_sum += factor.ln();
-                        count += 1;
-                    } else {
-                        start = n;
-                    }
-                    last = n;
-                    next = n + every;
-                }
-                // identical for good: nothing left to renormalise
-                Renormalised::Refused { merged: true } => merged_at = Some(n),
-                Renormalised::Refused { merged: false } => deferred += 1,
-            }
-        }
-        if n > transient {
-            let k = n - transient;
-            if k * checkpoints >= next_checkpoint * window {
-                let span = (last.saturating_sub(start)) as f64 * dt;
-                running.push(if merged_at.is_some() {
-                    f64::NEG_INFINITY
-                } else if count > 0 {
-                    log_sum / span
-                } else {
-                    f64::NAN
-                });
-                next_checkpoint += 1;
-            }
-        }
-        if n % tick_every == 0 {
-            tick(tick_every);
-        }
-    }
-    tick(total % tick_every);
-    let impacts = p.reference().impacts();
-    let measured_time = if count > 0 {
-        (last - start) as f64 * dt
-    } else {
-        0.0
-    };
-    if let Some(m) = merged_at {
-        // the perturbation vanished for good: a contraction faster than any exponential
-        return Ok((
-            PathExponent {
-                path,
-                exponent: f64::NEG_INFINITY,
-                measured_time,
-                renormalisations: count,
-                deferred,
-                impacts,
-                merged_at: Some(m as f64 * dt),
-            },
-            running,
-        ));
-    }
-    if count == 0 {
-        return Err(Error::Undefined {
-            what: "Lyapunov exponent",
-            why: format!(
-                "path {path}: no renormalisation was possible in the measured window (the two \
-                 paths were never combinable: at rest on the wall, or an impact in every window)"
-            ),
-        });
-    }
-    Ok((
-        PathExponent {
-            path,
-            exponent: log_sum / measured_time,
-            measured_time,
-            renormalisations: count,
-            deferred,
-            impacts,
-            merged_at: None,
-        },
-        running,
-    ))
-}
-
-/// The largest Lyapunov exponent of `oscillator` with frozen noise, by two trajectories with
-/// whole-history renormalisation (module docs). `progress` receives the fraction done.
+/// The largest Lyapunov exponent of `problem` with frozen noise (module docs): path i from
+/// `problem.start(i)` on noise stream i of `spec.seed`; [`run_paths`] over every path, then
+/// [`merge`]. `monitor` hears the steps done, receives each path as it is finished, and may
+/// stop the run ([`Error::Cancelled`]).
 pub fn largest_lyapunov(
-    oscillator: &Oscillator,
+    problem: &Problem,
     method: &PredictorCorrector,
     spec: &LyapunovSpec,
-    progress: crate::engine::Progress,
+    monitor: &dyn Monitor<PathRun>,
 ) -> Result<LyapunovResult> {
+    let all: Vec<u64> = (0..spec.paths as u64).collect();
+    let runs = run_paths(problem, method, spec, &all, monitor)?;
+    merge(spec, runs)
+}
+
+/// Run the realisations `paths` (indices in 0..`spec.paths`, each at most once, in any order) in
+/// parallel; they come back in the order asked. `monitor` hears the steps done, receives each
+/// path as it is finished, and may stop the run ([`Error::Cancelled`]).
+pub fn run_paths(
+    problem: &Problem,
+    method: &PredictorCorrector,
+    spec: &LyapunovSpec,
+    paths: &[u64],
+    monitor: &dyn Monitor<PathRun>,
+) -> Result<Vec<PathRun>> {
     let (transient, window) = spec.sizes(method.dt)?;
+    super::check_indices(paths, spec.paths)?;
+    monitor.check()?;
+    if paths.is_empty() {
+        return Ok(vec![]);
+    }
     let steps = transient + window;
-    let history = fresh_history(oscillator, method, spec.system, steps as f64 * method.dt)?;
+    let history = fresh_history(problem, method, steps as f64 * method.dt)?;
     let counter = AtomicU64::new(0);
-    let total = (spec.paths as u64 * steps) as f64;
+    let total = paths.len() as u64 * steps;
     let tick = |k: u64| {
         let done = counter.fetch_add(k, Ordering::Relaxed) + k;
-        if let Some(p) = progress {
-            p(done as f64 / total);
-        }
+        monitor.progress(done.min(total), total);
+        monitor.check()
     };
-    let shift = if spec.u0 + 1.0 < spec.blow_up {
-        1.0
-    } else {
-        -1.0
-    };
-    let results: Vec<(PathExponent, Vec<f64>)> = (0..spec.paths as u64)
-        .into_par_iter()
-        .map(|i| {
-            let make = |u0: f64| {
-                Stepper::with_history(
-                    oscillator,
-                    method,
-                    spec.system,
-                    spec.barrier,
-                    (u0, spec.v0),
-                    (spec.seed, i),
-                    history.clone(),
-                    spec.blow_up,
-                )
+    paths
+        .par_iter()
+        .map(|&i| {
+            monitor.check()?;
+            let (u0, v0) = problem.start(i);
+            let shift = if u0 + 1.0 < problem.blow_up() {
+                1.0
+            } else {
+                -1.0
             };
-            let a = make(spec.u0)?;
+            let make = |u0: f64| {
+                Stepper::with_history(problem, method, (u0, v0), (spec.seed, i), history.clone())
+            };
+            let a = make(u0)?;
             let sizes = (transient, window);
-            match spec.method {
+            let (exponent, running) = match spec.method {
                 LyapunovMethod::TwoTrajectory => {
-                    let mut b = make(spec.u0 + shift)?;
+                    let mut b = make(u0 + shift)?;
                     // the copy starts one unit away along U: pull it to d₀ (both at step 0,
                     // empty memories)
                     let (du, dv) = b.separation(&a);
@@ -588,15 +411,50 @@ pub fn largest_lyapunov(
                     let t = Tangent::new(&a, (shift, 0.0));
                     one_path(PathAndTangent { a, t }, spec, sizes, i, &tick)
                 }
-            }
+            }?;
+            let run = PathRun { exponent, running };
+            monitor.finished(&run)?;
+            Ok(run)
         })
-        .collect::<Result<_>>()?;
-    let exponents: Vec<f64> = results.iter().map(|r| r.0.exponent).collect();
+        .collect()
+}
+
+/// Merge the realisations 0..`spec.paths` (from [`run_paths`], in any split and order) into the
+/// estimate, bit-identical to one whole run. Refuses a path given twice, a missing path and a
+/// path out of range.
+pub fn merge(spec: &LyapunovSpec, mut runs: Vec<PathRun>) -> Result<LyapunovResult> {
+    runs.sort_by_key(|r| r.exponent.path);
+    if let Some(r) = runs.iter().find(|r| r.exponent.path >= spec.paths as u64) {
+        return Err(Error::invalid(
+            "paths",
+            r.exponent.path as f64,
+            format!("path indices in 0..{} (a run of another spec)", spec.paths),
+        ));
+    }
+    for w in runs.windows(2) {
+        if w[0].exponent.path == w[1].exponent.path {
+            return Err(Error::invalid(
+                "paths",
+                w[0].exponent.path as f64,
+                "each path once (this one is given twice)",
+            ));
+        }
+    }
+    if let Some(k) =
+        (0..spec.paths).find(|&k| runs.get(k).map(|r| r.exponent.path) != Some(k as u64))
+    {
+        return Err(Error::invalid(
+            "paths",
+            k as f64,
+            format!("all {} paths (this one is missing)", spec.paths),
+        ));
+    }
+    let exponents: Vec<f64> = runs.iter().map(|r| r.exponent.exponent).collect();
     let lle = mean_and_stderr(&exponents);
-    let points = results.iter().map(|r| r.1.len()).min().unwrap_or(0);
+    let points = runs.iter().map(|r| r.running.len()).min().unwrap_or(0);
     let running = (0..points)
         .map(|k| {
-            let xs: Vec<f64> = results.iter().map(|r| r.1[k]).collect();
+            let xs: Vec<f64> = runs.iter().map(|r| r.running[k]).collect();
             let e = mean_and_stderr(&xs);
             RunningPoint {
                 t: (k + 1) as f64 * spec.length / spec.running_points as f64,
@@ -615,240 +473,15 @@ pub fn largest_lyapunov(
         merged: exponents.len() - unmerged.len(),
         // NaN when none is left (mean_and_stderr of no values)
         unmerged: mean_and_stderr(&unmerged),
-        per_path: results.into_iter().map(|r| r.0).collect(),
+        per_path: runs.into_iter().map(|r| r.exponent).collect(),
         running,
         window: spec.length,
-    })
-}
-
-/// How [`critical_noise`] searches D.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CriticalSearch {
-    /// Lower end of the D range (≥ 0).
-    pub d_lo: f64,
-    /// Upper end of the D range.
-    pub d_hi: f64,
-    /// Equally spaced D values evaluated first, ends included (≥ 2).
-    pub grid: usize,
-    /// Bisections of the first bracketing pair.
-    pub refinements: usize,
-    /// Standard errors an LLE must be away from 0 to count as significant.
-    pub z: f64,
-}
-
-impl Default for CriticalSearch {
-    fn default() -> Self {
-        CriticalSearch {
-            d_lo: 0.0,
-            d_hi: 1.0,
-            grid: 5,
-            refinements: 3,
-            z: 2.0,
-        }
-    }
-}
-
-/// One evaluated noise intensity.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct NoisePoint {
-    /// D.
-    pub d: f64,
-    /// Its LLE (−∞ when a realisation merged).
-    pub lle: Estimate,
-    /// Realisations whose copy merged with its reference: such a D gets no sign.
-    #[serde(default)]
-    pub merged: usize,
-}
-
-impl NoisePoint {
-    /// The sign of the LLE (true: negative), or None when a realisation merged (−∞).
-    fn negative(&self) -> Option<bool> {
-        (self.merged == 0).then_some(self.lle.value < 0.0)
-    }
-}
-
-/// The first pair of consecutive signed points (those without merged realisations, in the
-/// given order) whose LLEs have opposite signs: their indices.
-fn first_sign_change(points: &[NoisePoint]) -> Option<(usize, usize)> {
-    let signed: Vec<usize> = (0..points.len())
-        .filter(|&k| points[k].negative().is_some())
-        .collect();
-    signed
-        .windows(2)
-        .find(|w| points[w[0]].negative() != points[w[1]].negative())
-        .map(|w| (w[0], w[1]))
-}
-
-/// The outcome of a critical-noise search.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct CriticalNoise {
-    /// D_c (NaN when the LLE has no sign change in the range).
-    #[serde(with = "crate::non_finite")]
-    pub d_c: f64,
-    /// Lower end of D_c's uncertainty (NaN without a sign change).
-    #[serde(with = "crate::non_finite")]
-    pub d_c_lo: f64,
-    /// Upper end of D_c's uncertainty (NaN without a sign change).
-    #[serde(with = "crate::non_finite")]
-    pub d_c_hi: f64,
-    /// Whether the LLE goes from negative to positive across D_c (false: the other way).
-    pub rising: bool,
-    /// Every evaluated D, ascending.
-    pub evaluated: Vec<NoisePoint>,
-}
-
-impl CriticalNoise {
-    /// Whether a sign change was found.
-    pub fn found(&self) -> bool {
-        self.d_c.is_finite()
-    }
-}
-
-/// The critical noise D_c of `params` (D overridden) where the LLE changes sign (module docs).
-/// `progress` receives (evaluations done, evaluations planned).
-pub fn critical_noise(
-    params: &Params,
-    method: &PredictorCorrector,
-    spec: &LyapunovSpec,
-    search: &CriticalSearch,
-    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
-) -> Result<CriticalNoise> {
-    if !(search.d_lo >= 0.0 && search.d_lo.is_finite()) {
-        return Err(Error::invalid("d_lo", search.d_lo, "[0, ∞), finite"));
-    }
-    if !(search.d_hi > search.d_lo && search.d_hi.is_finite()) {
-        return Err(Error::invalid(
-            "d_hi",
-            search.d_hi,
-            format!("above D_lo = {}, finite", search.d_lo),
-        ));
-    }
-    if !(2..=1000).contains(&search.grid) {
-        return Err(Error::invalid("grid", search.grid as f64, "2 to 1000"));
-    }
-    if search.refinements > 60 {
-        return Err(Error::invalid(
-            "refinements",
-            search.refinements as f64,
-            "0 to 60",
-        ));
-    }
-    if !(search.z >= 0.0 && search.z.is_finite()) {
-        return Err(Error::invalid("z", search.z, "[0, ∞), finite"));
-    }
-    let planned = search.grid + search.refinements;
-    let mut done = 0;
-    let mut eval = |d: f64| -> Result<NoisePoint> {
-        let osc = Oscillator::new(&params.with("D", d)?)?;
-        let r = largest_lyapunov(&osc, method, spec, None)?;
-        done += 1;
-        if let Some(p) = progress {
-            p(done, planned);
-        }
-        Ok(NoisePoint {
-            d,
-            lle: r.lle,
-            merged: r.merged,
-        })
-    };
-    let h = (search.d_hi - search.d_lo) / (search.grid - 1) as f64;
-    let mut evaluated = Vec::with_capacity(planned);
-    for k in 0..search.grid {
-        let d = if k + 1 == search.grid {
-            search.d_hi
-        } else {
-            search.d_lo + h * k as f64
-        };
-        evaluated.push(eval(d)?);
-    }
-    let Some((i, j)) = first_sign_change(&evaluated) else {
-        return Ok(CriticalNoise {
-            d_c: f64::NAN,
-            d_c_lo: f64::NAN,
-            d_c_hi: f64::NAN,
-            rising: false,
-            evaluated,
-        });
-    };
-    let rising = evaluated[i].negative() == Some(true);
-    let (mut a, mut b) = (evaluated[i], evaluated[j]);
-    for _ in 0..search.refinements {
-        let m = eval(0.5 * (a.d + b.d))?;
-        evaluated.push(m);
-        match m.negative() {
-            Some(neg) if Some(neg) == a.negative() => a = m,
-            Some(_) => b = m,
-            // a realisation merged at the midpoint: no sign there, the bracket stays
-            None => break,
-        }
-    }
-    evaluated.sort_by(|p, q| p.d.total_cmp(&q.d));
-    let d_c = if a.lle.value.is_finite() && b.lle.value.is_finite() {
-        a.d - a.lle.value * (b.d - a.d) / (b.lle.value - a.lle.value)
-    } else {
-        0.5 * (a.d + b.d)
-    };
-    let significant = |p: &NoisePoint, below: bool| {
-        if p.merged > 0 {
-            return false;
-        }
-        let s = if p.lle.stderr.is_finite() {
-            p.lle.stderr
-        } else {
-            0.0
-        };
-        if below == rising {
-            p.lle.value < -search.z * s
-        } else {
-            p.lle.value > search.z * s
-        }
-    };
-    let d_c_lo = evaluated
-        .iter()
-        .rev()
-        .find(|p| p.d <= d_c && significant(p, true))
-        .map_or(search.d_lo, |p| p.d);
-    let d_c_hi = evaluated
-        .iter()
-        .find(|p| p.d >= d_c && significant(p, false))
-        .map_or(search.d_hi, |p| p.d);
-    Ok(CriticalNoise {
-        d_c,
-        d_c_lo,
-        d_c_hi,
-        rising,
-        evaluated,
     })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_sign_change_skips_merged_points() {
-        let p = |d: f64, value: f64, merged: usize| NoisePoint {
-            d,
-            lle: Estimate {
-                value,
-                stderr: 0.01,
-            },
-            merged,
-        };
-        // − then −∞ (merged) then +: the change is between the first and the third
-        let pts = [
-            p(0.1, -0.2, 0),
-            p(0.2, f64::NEG_INFINITY, 1),
-            p(0.3, 0.1, 0),
-        ];
-        assert_eq!(first_sign_change(&pts), Some((0, 2)));
-        // + then merged then +: no change (the −∞ is not a negative exponent)
-        let pts = [p(0.1, 0.2, 0), p(0.2, f64::NEG_INFINITY, 2), p(0.3, 0.1, 0)];
-        assert_eq!(first_sign_change(&pts), None);
-        // a merged point never starts a bracket, even with a finite mean recorded
-        let pts = [p(0.1, -0.2, 1), p(0.2, 0.3, 0), p(0.3, -0.1, 0)];
-        assert_eq!(first_sign_change(&pts), Some((1, 2)));
-    }
 
     #[test]
     fn standard_error_of_a_mean() {

@@ -1,0 +1,245 @@
+//! What an ensemble runs: its spec (paths, seed, window, sampling, histograms, batches) with the
+//! checked sizes of a run, and the wells of the amplitude from the theory.
+
+use crate::engine::whole_steps;
+use crate::error::{Error, Result};
+use serde::{Deserialize, Serialize};
+
+/// Most paths of one ensemble.
+pub const MAX_PATHS: usize = 1_000_000;
+/// Most bins of a one-dimensional histogram.
+pub const MAX_BINS: usize = 10_000;
+/// Most bins per axis of the joint (U, U̇) histogram.
+pub const MAX_JOINT_BINS: usize = 1_000;
+/// Largest histogram range of the amplitude.
+pub const MAX_AMPLITUDE: f64 = 1e6;
+/// Most bytes of per-path statistics held at once (paths × histograms, batches, passages).
+pub const MAX_STATISTICS_BYTES: usize = 4_000_000_000;
+/// Quarters of a path whose histograms are kept apart (the units for one path).
+pub(super) const QUARTERS: usize = 4;
+
+/// The wells of the amplitude: modes m_0 < … < m_{k} of P(A) and the antimodes between them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Wells {
+    /// Amplitudes of the maxima of P(A), ascending.
+    pub modes: Vec<f64>,
+    /// Amplitudes of the minima between consecutive modes (one fewer than `modes`).
+    pub antimodes: Vec<f64>,
+}
+
+impl Wells {
+    /// Validated wells.
+    pub fn new(modes: Vec<f64>, antimodes: Vec<f64>) -> Result<Self> {
+        let ok = !modes.is_empty()
+            && antimodes.len() + 1 == modes.len()
+            && modes
+                .iter()
+                .chain(&antimodes)
+                .all(|x| x.is_finite() && *x >= 0.0)
+            && (0..antimodes.len()).all(|i| modes[i] < antimodes[i] && antimodes[i] < modes[i + 1]);
+        if !ok {
+            return Err(Error::invalid(
+                "wells",
+                modes.len() as f64,
+                "modes and antimodes alternating and ascending (one antimode between two modes)",
+            ));
+        }
+        Ok(Wells { modes, antimodes })
+    }
+
+    /// The well of amplitude `a` (by the antimodes).
+    #[inline]
+    pub fn well_of(&self, a: f64) -> usize {
+        self.antimodes.iter().take_while(|&&m| a > m).count()
+    }
+
+    /// The core [lo, hi] of well k: closer to the mode than half the distance to the
+    /// neighbouring antimodes (unbounded toward 0 and ∞ for the outer wells).
+    pub fn core(&self, k: usize) -> (f64, f64) {
+        let m = self.modes[k];
+        let lo = if k == 0 {
+            0.0
+        } else {
+            m - 0.5 * (m - self.antimodes[k - 1])
+        };
+        let hi = if k + 1 == self.modes.len() {
+            f64::INFINITY
+        } else {
+            m + 0.5 * (self.antimodes[k] - m)
+        };
+        (lo, hi)
+    }
+
+    /// The well whose core holds `a`, if any.
+    pub(super) fn core_of(&self, a: f64) -> Option<usize> {
+        let k = self.well_of(a);
+        let (lo, hi) = self.core(k);
+        (a >= lo && a <= hi).then_some(k)
+    }
+
+    /// Number of wells.
+    pub fn len(&self) -> usize {
+        self.modes.len()
+    }
+
+    /// True when there are no wells (never for validated wells).
+    pub fn is_empty(&self) -> bool {
+        self.modes.is_empty()
+    }
+}
+
+/// What an ensemble runs and records beyond its [`Problem`](crate::engine::Problem) and method: how many paths, the
+/// seed, the window, the sampling, the histograms, the batches and the wells.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EnsembleSpec {
+    /// Number of paths N (path i is noise stream i of the seed).
+    pub paths: usize,
+    /// Seed of the noise streams.
+    pub seed: u64,
+    /// Time discarded at the start of each path.
+    pub burn_in: f64,
+    /// Time recorded after the burn-in.
+    pub length: f64,
+    /// Record every k-th step of the window.
+    pub sample_every: u64,
+    /// Bins of the amplitude, turning-amplitude and energy histograms.
+    pub bins: usize,
+    /// Bins per axis of the joint (U, U̇) histogram.
+    pub joint_bins: usize,
+    /// Histogram range of A: [0, amplitude_max]; U in [0 or −max, max], U̇ in ±ω1·max, H up to
+    /// ω1²·max²/2.
+    pub amplitude_max: f64,
+    /// Batches per path (for batch means and R̂; at least 4).
+    pub batches: usize,
+    /// Wells for occupancies and passages (from the theory), if any.
+    pub wells: Option<Wells>,
+}
+
+impl Default for EnsembleSpec {
+    fn default() -> Self {
+        EnsembleSpec {
+            paths: 8,
+            seed: 1,
+            burn_in: 100.0,
+            length: 1000.0,
+            sample_every: 1,
+            bins: 100,
+            joint_bins: 48,
+            amplitude_max: 15.0,
+            batches: 20,
+            wells: None,
+        }
+    }
+}
+
+/// The checked sizes of a run.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Sizes {
+    pub(super) burn: u64,
+    pub(super) window: u64,
+    pub(super) samples: u64,
+}
+
+impl EnsembleSpec {
+    /// The checked steps of the burn-in and the window, and the samples per path.
+    pub(super) fn sizes(&self, dt: f64) -> Result<Sizes> {
+        if self.paths == 0 || self.paths > MAX_PATHS {
+            return Err(Error::invalid(
+                "paths",
+                self.paths as f64,
+                format!("1 to {MAX_PATHS}"),
+            ));
+        }
+        if !(2..=MAX_BINS).contains(&self.bins) {
+            return Err(Error::invalid(
+                "bins",
+                self.bins as f64,
+                format!("2 to {MAX_BINS}"),
+            ));
+        }
+        if !(2..=MAX_JOINT_BINS).contains(&self.joint_bins) {
+            return Err(Error::invalid(
+                "joint_bins",
+                self.joint_bins as f64,
+                format!("2 to {MAX_JOINT_BINS}"),
+            ));
+        }
+        if !(4..=1000).contains(&self.batches) {
+            return Err(Error::invalid("batches", self.batches as f64, "4 to 1000"));
+        }
+        if !(self.amplitude_max > 0.0 && self.amplitude_max <= MAX_AMPLITUDE) {
+            return Err(Error::invalid(
+                "amplitude_max",
+                self.amplitude_max,
+                format!("(0, {MAX_AMPLITUDE:e}] (beyond it the energy's range overflows)"),
+            ));
+        }
+        // every path's statistics are held until the merge: bound them before any work
+        let wells = self.wells.as_ref().map_or(0, Wells::len);
+        let per_path = 8
+            * (QUARTERS * (3 * (self.bins + 1) + self.joint_bins * self.joint_bins + 1)
+                + self.batches * (6 + wells)
+                + 4 * wells * wells);
+        let total = per_path as f64 * self.paths as f64;
+        if total > MAX_STATISTICS_BYTES as f64 {
+            return Err(Error::invalid(
+                "paths",
+                self.paths as f64,
+                format!(
+                    "at most {} with these bins ({per_path} bytes of statistics per path, \
+                     {MAX_STATISTICS_BYTES:e} in all)",
+                    MAX_STATISTICS_BYTES / per_path
+                ),
+            ));
+        }
+        if self.sample_every == 0 {
+            return Err(Error::invalid("sample_every", 0.0, "1 or more"));
+        }
+        let burn = whole_steps("burn_in", self.burn_in, dt, true)?;
+        let window = whole_steps("t_end", self.length, dt, false)?;
+        if burn + window > crate::engine::MAX_STEPS {
+            return Err(Error::invalid(
+                "t_end",
+                self.length,
+                format!(
+                    "burn-in and window together at most {:e} steps",
+                    crate::engine::MAX_STEPS as f64
+                ),
+            ));
+        }
+        let samples = window / self.sample_every;
+        if samples < 4 * self.batches as u64 {
+            return Err(Error::invalid(
+                "t_end",
+                self.length,
+                format!(
+                    "long enough for {} samples (4 per batch; {samples} with sample_every = {})",
+                    4 * self.batches,
+                    self.sample_every
+                ),
+            ));
+        }
+        Ok(Sizes {
+            burn,
+            window,
+            samples,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wells_assign_amplitudes_and_cores() {
+        let w = Wells::new(vec![1.0, 4.0, 9.0], vec![2.0, 6.0]).unwrap();
+        assert_eq!(w.well_of(0.5), 0);
+        assert_eq!(w.well_of(2.5), 1);
+        assert_eq!(w.well_of(7.0), 2);
+        assert_eq!(w.core(1), (3.0, 5.0));
+        assert_eq!(w.core_of(5.5), None);
+        assert_eq!(w.core_of(100.0), Some(2));
+        assert!(Wells::new(vec![1.0, 0.5], vec![2.0]).is_err());
+    }
+}

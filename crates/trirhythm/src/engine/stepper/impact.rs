@@ -1,0 +1,222 @@
+//! Impacts inside a step (one routine for the wall and for the Zhuravlev crossing): the
+//! crossing located on the step's cubic Hermite interpolant, the jump V₊ = ∓rV₋, and the rest
+//! of the step redone from the wall (module docs of [`super`]).
+
+use super::{predictor_weight, Free, Impact, Split, Stepper};
+
+/// θ ∈ (0, 1] where the cubic Hermite interpolant of (u0, v0) → (u1, v1) over a step h
+/// changes sign (u0 and u1 of opposite signs, or u1 = 0): Newton's method from the secant
+/// root, kept inside a bracket that every iterate shrinks (a bisection step whenever Newton
+/// would leave it), to |Δθ| ≤ 1e-15. Typically 3–5 iterations; at most 100.
+pub(super) fn hermite_root(u0: f64, v0: f64, u1: f64, v1: f64, h: f64) -> f64 {
+    let (hv0, hv1) = (h * v0, h * v1);
+    let f = |t: f64| {
+        let t2 = t * t;
+        let t3 = t2 * t;
+        (2.0 * t3 - 3.0 * t2 + 1.0) * u0
+            + (t3 - 2.0 * t2 + t) * hv0
+            + (-2.0 * t3 + 3.0 * t2) * u1
+            + (t3 - t2) * hv1
+    };
+    let df = |t: f64| {
+        let t2 = t * t;
+        (6.0 * t2 - 6.0 * t) * (u0 - u1)
+            + (3.0 * t2 - 4.0 * t + 1.0) * hv0
+            + (3.0 * t2 - 2.0 * t) * hv1
+    };
+    let (mut a, mut b) = (0.0, 1.0);
+    let fa_pos = u0 > 0.0 || (u0 == 0.0 && u1 < 0.0);
+    let secant = if u0 != u1 { u0 / (u0 - u1) } else { 0.5 };
+    let mut t = if secant > 0.0 && secant < 1.0 {
+        secant
+    } else {
+        0.5
+    };
+    for _ in 0..100 {
+        let ft = f(t);
+        if ft == 0.0 {
+            return t;
+        }
+        if (ft > 0.0) == fa_pos {
+            a = t;
+        } else {
+            b = t;
+        }
+        let d = df(t);
+        let mut next = t - ft / d;
+        if !(next > a && next < b) {
+            next = 0.5 * (a + b);
+        }
+        let done = (next - t).abs() <= 1e-15 || b - a <= 1e-15;
+        t = next;
+        if done {
+            break;
+        }
+    }
+    t
+}
+
+impl Stepper {
+    /// The impact (wall) or crossing (Eq. 9) inside the current step, whose free end was
+    /// (u1, v1): locate it, jump, and redo the rest of the step. Returns the split of g and the
+    /// state at the end of the step.
+    #[cold]
+    pub(super) fn impact(
+        &mut self,
+        gl: f64,
+        (el, er): (f64, f64),
+        (u1, v1): (f64, f64),
+    ) -> (Split, f64, f64) {
+        let c = self.locate(gl, (el, er), (u1, v1));
+        let rest = self.jump(&c, gl, er);
+        let (u_end, v_end) = rest.free.end();
+        (rest.split, u_end, v_end)
+    }
+
+    /// Where the current step, whose free end was (u1, v1), crosses U = 0, and the scheme's
+    /// velocity there (changes nothing).
+    pub(super) fn locate(&self, gl: f64, (el, er): (f64, f64), (u1, v1): (f64, f64)) -> Crossing {
+        let h = self.h;
+        let theta = hermite_root(self.u, self.v, u1, v1, h);
+        let eta_star = el + theta * (er - el);
+        // g at U = 0 is a0·V + forcing
+        let a0 = self.rhs.damping(0.0);
+        let (hs, ws) = self.history.at_fraction(theta, gl);
+        let forcing = self.rhs.forcing(eta_star, self.side);
+        // the scheme's own V(t*−); at a grazing wall impact it may come out ≥ 0: then V₋ = 0
+        let v_at = (self.base + hs + ws * forcing) / (1.0 - ws * a0);
+        Crossing {
+            theta,
+            eta_star,
+            a0,
+            ws,
+            forcing,
+            v_at,
+        }
+    }
+
+    /// Jump at the located crossing `c` and redo the rest of the step.
+    pub(super) fn jump(&mut self, c: &Crossing, gl: f64, er: f64) -> Rest {
+        let h = self.h;
+        let side = self.side;
+        let (theta, a0, v_at) = (c.theta, c.a0, c.v_at);
+        let (v_minus, v_plus, new_side) = if self.crossing {
+            (v_at, self.rhs.restitution * v_at, -side)
+        } else {
+            let vm = v_at.min(0.0);
+            (vm, -self.rhs.restitution * vm, side)
+        };
+        self.impacts += 1;
+        self.events.impact = Some(Impact {
+            time: self.time() + theta * h,
+            v_minus,
+            v_plus,
+        });
+        self.side = new_side;
+        let after_forcing = self.rhs.forcing(c.eta_star, new_side);
+        let split = Split {
+            theta,
+            before: a0 * v_at + c.forcing,
+            after: a0 * v_plus + after_forcing,
+            keep_before: !self.restart,
+        };
+        // V(t*+) = V₊ exactly: restart the memory there, or shift V's Volterra constant
+        if self.restart {
+            self.history.restart();
+            self.base = v_plus;
+        } else {
+            self.base += v_plus - v_at;
+        }
+        // the rest of the step, [t*, t_{n+1}], from (0, V₊), linearly implicit in V
+        let (known_s, wr_s) = self.history.current_split(gl, &split);
+        let known = self.base + self.history.value() + known_s;
+        let hh = (1.0 - theta) * h;
+        let free = self.rhs.advance(
+            hh,
+            (0.0, v_plus, split.after),
+            predictor_weight(hh, a0),
+            known,
+            wr_s,
+            self.rhs.forcing(er, new_side),
+        );
+        Rest {
+            split,
+            v_minus,
+            free,
+        }
+    }
+}
+
+/// An impact located inside a step ([`Stepper::locate`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Crossing {
+    /// Its fraction θ of the step.
+    pub(super) theta: f64,
+    /// η at the instant.
+    pub(super) eta_star: f64,
+    /// μP(0).
+    pub(super) a0: f64,
+    /// The scaled weight of g(t*) in V(t*).
+    pub(super) ws: f64,
+    /// The forcing at the instant, on the side before.
+    pub(super) forcing: f64,
+    /// The scheme's V(t*−), before the wall's clipping of a grazing impact.
+    pub(super) v_at: f64,
+}
+
+/// The jump and the redone rest of an impact step ([`Stepper::jump`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Rest {
+    pub(super) split: Split,
+    pub(super) v_minus: f64,
+    /// The rest of the step, of length (1 − θ)Δt from (0, V₊).
+    pub(super) free: Free,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::hermite_root;
+
+    /// The root by plain bisection (60 halvings), the reference for Newton's iteration.
+    fn bisected(u0: f64, v0: f64, u1: f64, v1: f64, h: f64) -> f64 {
+        let f = |t: f64| {
+            let (t2, t3) = (t * t, t * t * t);
+            (2.0 * t3 - 3.0 * t2 + 1.0) * u0
+                + (t3 - 2.0 * t2 + t) * h * v0
+                + (-2.0 * t3 + 3.0 * t2) * u1
+                + (t3 - t2) * h * v1
+        };
+        let (mut a, mut b) = (0.0, 1.0);
+        for _ in 0..60 {
+            let m = 0.5 * (a + b);
+            if (f(m) > 0.0) == (u0 > 0.0) {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        0.5 * (a + b)
+    }
+
+    #[test]
+    fn newton_crossing_equals_bisection() {
+        // steps that end across the wall: grazing (small velocities), fast, and skewed
+        let cases = [
+            (0.3, -40.0, -0.1, -41.0, 0.01),
+            (1e-6, -1e-3, -1e-7, -2e-3, 0.01),
+            (2.0, -1.0, -0.5, -3.0, 1.0),
+            (0.01, 0.5, -0.02, -6.0, 0.01),
+            (5e-3, -0.2, -1e-12, -0.2, 0.025),
+        ];
+        for (u0, v0, u1, v1, h) in cases {
+            let t = hermite_root(u0, v0, u1, v1, h);
+            let r = bisected(u0, v0, u1, v1, h);
+            assert!(t > 0.0 && t <= 1.0);
+            assert!(
+                (t - r).abs() < 1e-13,
+                "{t} vs {r} for {:?}",
+                (u0, v0, u1, v1, h)
+            );
+        }
+    }
+}

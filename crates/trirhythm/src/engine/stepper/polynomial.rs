@@ -1,0 +1,58 @@
+//! The polynomial μP of the damping, evaluated on the step's critical path.
+
+/// A polynomial Σ a_k x^k: up to degree 7 evaluated by Estrin's scheme (three levels of
+/// independent multiply–adds instead of Horner's chain of seven: it is on the step's critical
+/// path twice), beyond that by Horner.
+#[derive(Debug, Clone)]
+pub(super) enum Polynomial {
+    Short([f64; 8]),
+    Long(Vec<f64>),
+}
+
+impl Polynomial {
+    /// μ·(c_0, c_1, …).
+    pub(super) fn scaled(mu: f64, c: &[f64]) -> Self {
+        Self::from_coefficients(c.iter().map(|&c| mu * c).collect())
+    }
+
+    pub(super) fn from_coefficients(a: Vec<f64>) -> Self {
+        if a.len() <= 8 {
+            let mut s = [0.0; 8];
+            s[..a.len()].copy_from_slice(&a);
+            Polynomial::Short(s)
+        } else {
+            Polynomial::Long(a)
+        }
+    }
+
+    #[inline]
+    pub(super) fn eval(&self, x: f64) -> f64 {
+        match self {
+            Polynomial::Short(c) => {
+                let x2 = x * x;
+                let x4 = x2 * x2;
+                let p01 = c[0] + c[1] * x;
+                let p23 = c[2] + c[3] * x;
+                let p45 = c[4] + c[5] * x;
+                let p67 = c[6] + c[7] * x;
+                (p01 + p23 * x2) + (p45 + p67 * x2) * x4
+            }
+            Polynomial::Long(c) => c.iter().rev().fold(0.0, |acc, &c| acc * x + c),
+        }
+    }
+
+    /// The derivative Σ k a_k x^{k−1}.
+    pub(super) fn derivative(&self) -> Self {
+        let a: &[f64] = match self {
+            Polynomial::Short(c) => c,
+            Polynomial::Long(c) => c,
+        };
+        Self::from_coefficients(
+            a.iter()
+                .enumerate()
+                .skip(1)
+                .map(|(k, &c)| k as f64 * c)
+                .collect(),
+        )
+    }
+}
