@@ -45,7 +45,7 @@
 // TODO pub mod boundary;
 // TODO pub mod lle;
 pub mod maps;
-// TODO pub mod montecarlo;
+pub mod montecarlo;
 pub mod notes;
 
 pub mod fig01_phase_recurrence;
@@ -58,10 +58,10 @@ pub mod fig07_pseudo_potential;
 pub mod fig08_barriers;
 pub mod fig09_barrier_surfaces;
 pub mod fig10_pbif_lambda_tau;
-// TODO pub mod fig11_amplitude_lambda;
+pub mod fig11_amplitude_lambda;
 pub mod fig12_pbif_maps;
-// TODO pub mod fig13_pdf_restitution;
-// TODO pub mod fig14_joint_pdf;
+pub mod fig13_pdf_restitution;
+pub mod fig14_joint_pdf;
 // TODO pub mod fig15_oscillation_boundaries;
 // TODO pub mod fig16_oscillation_regions;
 // TODO pub mod fig17_lle_noise;
@@ -144,10 +144,10 @@ pub fn registry() -> Vec<Entry> {
         entry::<fig08_barriers::Fig08>(),
         entry::<fig09_barrier_surfaces::Fig09>(),
         entry::<fig10_pbif_lambda_tau::Fig10>(),
-        // TODO entry::<fig11_amplitude_lambda::Fig11>(),
+        entry::<fig11_amplitude_lambda::Fig11>(),
         entry::<fig12_pbif_maps::Fig12>(),
-        // TODO entry::<fig13_pdf_restitution::Fig13>(),
-        // TODO entry::<fig14_joint_pdf::Fig14>(),
+        entry::<fig13_pdf_restitution::Fig13>(),
+        entry::<fig14_joint_pdf::Fig14>(),
         // TODO entry::<fig15_oscillation_boundaries::Fig15>(),
         // TODO entry::<fig16_oscillation_regions::Fig16>(),
         // TODO entry::<fig17_lle_noise::Fig17>(),
