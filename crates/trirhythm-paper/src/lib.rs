@@ -43,7 +43,7 @@
 //! ```
 
 // TODO pub mod boundary;
-// TODO pub mod lle;
+pub mod lle;
 pub mod maps;
 pub mod montecarlo;
 pub mod notes;
@@ -64,9 +64,9 @@ pub mod fig13_pdf_restitution;
 pub mod fig14_joint_pdf;
 // TODO pub mod fig15_oscillation_boundaries;
 // TODO pub mod fig16_oscillation_regions;
-// TODO pub mod fig17_lle_noise;
-// TODO pub mod fig18_lle_noise_fractional;
-// TODO pub mod fig19_critical_noise;
+pub mod fig17_lle_noise;
+pub mod fig18_lle_noise_fractional;
+pub mod fig19_critical_noise;
 
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
@@ -150,9 +150,9 @@ pub fn registry() -> Vec<Entry> {
         entry::<fig14_joint_pdf::Fig14>(),
         // TODO entry::<fig15_oscillation_boundaries::Fig15>(),
         // TODO entry::<fig16_oscillation_regions::Fig16>(),
-        // TODO entry::<fig17_lle_noise::Fig17>(),
-        // TODO entry::<fig18_lle_noise_fractional::Fig18>(),
-        // TODO entry::<fig19_critical_noise::Fig19>(),
+        entry::<fig17_lle_noise::Fig17>(),
+        entry::<fig18_lle_noise_fractional::Fig18>(),
+        entry::<fig19_critical_noise::Fig19>(),
     ]
 }
 
