@@ -42,7 +42,7 @@
 //! # Ok::<(), trirhythm::Error>(())
 //! ```
 
-// TODO pub mod boundary;
+pub mod boundary;
 pub mod lle;
 pub mod maps;
 pub mod montecarlo;
@@ -62,8 +62,8 @@ pub mod fig11_amplitude_lambda;
 pub mod fig12_pbif_maps;
 pub mod fig13_pdf_restitution;
 pub mod fig14_joint_pdf;
-// TODO pub mod fig15_oscillation_boundaries;
-// TODO pub mod fig16_oscillation_regions;
+pub mod fig15_oscillation_boundaries;
+pub mod fig16_oscillation_regions;
 pub mod fig17_lle_noise;
 pub mod fig18_lle_noise_fractional;
 pub mod fig19_critical_noise;
@@ -148,8 +148,8 @@ pub fn registry() -> Vec<Entry> {
         entry::<fig12_pbif_maps::Fig12>(),
         entry::<fig13_pdf_restitution::Fig13>(),
         entry::<fig14_joint_pdf::Fig14>(),
-        // TODO entry::<fig15_oscillation_boundaries::Fig15>(),
-        // TODO entry::<fig16_oscillation_regions::Fig16>(),
+        entry::<fig15_oscillation_boundaries::Fig15>(),
+        entry::<fig16_oscillation_regions::Fig16>(),
         entry::<fig17_lle_noise::Fig17>(),
         entry::<fig18_lle_noise_fractional::Fig18>(),
         entry::<fig19_critical_noise::Fig19>(),
