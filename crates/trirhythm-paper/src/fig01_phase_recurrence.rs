@@ -77,7 +77,6 @@ impl Figure for Fig01 {
     }
 }
 
-
 fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig01> {
     let p = preset("fig1")?.params;
     let th = Theory::new(&p, ctx.variant)?;
@@ -249,4 +248,3 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig01> {
         epsilon: EPSILON,
     })
 }
-

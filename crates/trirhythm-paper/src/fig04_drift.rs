@@ -56,7 +56,6 @@ impl Figure for Fig04 {
     }
 }
 
-
 fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig04> {
     monitor.check()?;
     let n = if ctx.quick { 281 } else { 1401 };
@@ -120,4 +119,3 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig04> {
         panels,
     })
 }
-

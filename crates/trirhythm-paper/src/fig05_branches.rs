@@ -42,7 +42,6 @@ impl Figure for Fig05 {
     }
 }
 
-
 fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig05> {
     let pre = preset("fig5")?;
     let step = if ctx.quick { 0.01 } else { 0.002 };
@@ -90,4 +89,3 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig05> {
         panels,
     })
 }
-

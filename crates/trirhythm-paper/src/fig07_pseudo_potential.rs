@@ -199,4 +199,3 @@ fn compute(ctx: &FigureOptions) -> Result<Fig07> {
         ],
     })
 }
-

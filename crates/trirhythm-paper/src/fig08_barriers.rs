@@ -35,7 +35,6 @@ impl Figure for Fig08 {
     }
 }
 
-
 fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig08> {
     monitor.check()?;
     let pre = preset("fig8")?;
@@ -83,4 +82,3 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig08> {
         barriers,
     })
 }
-

@@ -52,7 +52,6 @@ impl Figure for Fig09 {
     }
 }
 
-
 fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig09> {
     let pre = preset("fig9")?;
     let n = if ctx.quick { 41 } else { 161 };
@@ -74,9 +73,7 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig09> {
             ctx.variant,
         )?;
         monitor.check()?;
-        let s = barrier_surfaces(&plane, &|d, total| {
-            monitor.progress(d as u64, total as u64)
-        });
+        let s = barrier_surfaces(&plane, &|d, total| monitor.progress(d as u64, total as u64));
         let three = s.wells.iter().filter(|&&w| w == 3).count();
         notes.push(format!(
             "r = {r}: three wells at {:.1}% of the grid points",
@@ -113,4 +110,3 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig09> {
         surfaces,
     })
 }
-

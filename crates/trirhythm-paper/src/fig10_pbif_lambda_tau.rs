@@ -9,9 +9,9 @@
 use crate::maps::{compute_panel, map_figure, AxisSpec, MapFigure};
 use crate::{Figure, FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
-use trirhythm::Result;
 use trirhythm::model::preset;
 use trirhythm::theory::bifurcation::What;
+use trirhythm::Result;
 
 /// The noise intensities D of the panels.
 pub const D_VALUES: [f64; 4] = [0.05, 0.3, 0.7, 1.2];

@@ -7,9 +7,9 @@
 use crate::maps::{compute_panel, map_figure, AxisSpec, MapFigure};
 use crate::{Figure, FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
-use trirhythm::Result;
 use trirhythm::model::preset;
 use trirhythm::theory::bifurcation::What;
+use trirhythm::Result;
 
 /// Fig. 12's data: four map panels.
 #[derive(Serialize, Deserialize)]

@@ -157,7 +157,14 @@ pub fn ensemble(
     monitor.check()?;
     // a finished path is where a cancelled run stops
     let progress = |f: f64| monitor.progress((1000.0 * f) as u64, 1000);
-    run_ensemble(&osc, &method, &spec, &[], &|_| monitor.check(), Some(&progress))
+    run_ensemble(
+        &osc,
+        &method,
+        &spec,
+        &[],
+        &|_| monitor.check(),
+        Some(&progress),
+    )
 }
 
 /// A P(A) panel: the theory of both variants and ensembles of each of `systems`.
@@ -255,7 +262,6 @@ pub fn stationary_count(panels: &[AmplitudePanel]) -> (usize, usize) {
     let runs = || panels.iter().flat_map(|p| &p.runs);
     (runs().filter(|r| r.stationary).count(), runs().count())
 }
-
 
 /// The theory of each variant against the result (an error, in words, where the theory has no
 /// P(A)).

@@ -4,67 +4,21 @@
 //!
 //! Both start at the turning point U = A02, U̇ = 0 of the smallest stable cycle of the averaged
 //! theory (Eq. 18), as the paper's text says ("around the attractor's minimum amplitude").
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig01_phase_recurrence`].
 
-use super::write_figure;
-use super::{csv_header, panel_line, Figure, FigureContext};
+use super::{heading_of, write_figure, Render};
 use crate::common::{num, Csv};
 use crate::plot::{chart, padded_range, pe, Heading, Picture};
-use anyhow::{bail, Result};
+use anyhow::Result;
 use plotters::prelude::*;
-use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use trirhythm::analysis::{RecurrenceMatrix, RecurrenceThreshold};
-use trirhythm::engine::{
-    simulate, Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System,
-};
-use trirhythm::model::preset;
-use trirhythm::theory::averaging::Theory;
+use trirhythm_paper::fig01_phase_recurrence::Fig01;
 
-const EPSILON: f64 = 0.1;
-
-/// One system's path: the phase portrait and the recurrence plot's samples.
-#[derive(Serialize, Deserialize)]
-pub struct Panel {
-    title: String,
-    /// The phase portrait at every step of the window.
-    phase: Vec<(f64, f64)>,
-    /// The recurrence plot's samples.
-    t: Vec<f64>,
-    u: Vec<f64>,
-    v: Vec<f64>,
-    /// Recurrence rate and determinism of the recurrence matrix of (u, v) at ε (ratios:
-    /// carried through JSON whatever their value).
-    #[serde(with = "super::non_finite")]
-    rr: f64,
-    #[serde(with = "super::non_finite")]
-    det: f64,
-    amplitude: f64,
-}
-
-/// Fig. 1's data: the two paths, sampled for the recurrence plots (the recurrence matrices
-/// follow from the samples and ε; the renderer rebuilds them).
-#[derive(Serialize, Deserialize)]
-pub struct Fig01 {
-    heading: Heading,
-    /// CSV comment lines.
-    header: Vec<String>,
-    panels: Vec<Panel>,
-    /// Start of the window shown.
-    start: f64,
-    /// Recurrence threshold ε.
-    epsilon: f64,
-}
-
-impl Figure for Fig01 {
-    const NUMBER: u32 = 1;
-    const TITLE: &'static str = "phase portraits and recurrence plots, Eq. (1) vs Eq. (5)";
-
-    fn compute(ctx: &FigureContext) -> Result<Fig01> {
-        compute(ctx)
-    }
-
+impl Render for Fig01 {
     fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let mut csv = Csv::new(&self.header, &["system", "t", "U", "V"]);
+        let mut csv = Csv::new(&self.notes, &["system", "t", "U", "V"]);
         for (panel, name) in self.panels.iter().zip(["fractional", "equivalent"]) {
             for i in 0..panel.t.len() {
                 csv.row([
@@ -79,172 +33,6 @@ impl Figure for Fig01 {
     }
 }
 
-fn compute(ctx: &FigureContext) -> Result<Fig01> {
-    let p = preset("fig1")?.params;
-    let th = Theory::new(&p, ctx.variant)?;
-    let Some(a02) = th
-        .limit_cycles()
-        .iter()
-        .find(|c| c.stable)
-        .map(|c| c.amplitude)
-    else {
-        bail!("figure 1: the averaged theory has no stable cycle for these parameters");
-    };
-    let dt = if ctx.quick { 0.01 } else { 0.005 };
-    let t_end = if ctx.quick { 200.0 } else { 1000.0 };
-    // The recurrence plot covers the last `window` time units (about four periods). Its
-    // samples must be closer than ε in the phase plane, or a return to the same point is
-    // missed whenever the period is not a multiple of the sampling interval: the stride is
-    // the largest that keeps consecutive samples within ε/2.
-    let window = 15.0;
-    let osc = Oscillator::new(&p)?;
-    let method = PredictorCorrector {
-        dt,
-        ..Default::default()
-    };
-    let mut panels = Vec::new();
-    let mut sampling = Vec::new();
-    for (title, system) in [
-        (
-            "fractional system, Eq. (1), continuous impact memory",
-            System::Fractional,
-        ),
-        ("integer-order equivalent, Eq. (5)", System::Equivalent),
-    ] {
-        let o = Options {
-            t_end,
-            u0: a02,
-            v0: 0.0,
-            system,
-            ..Default::default()
-        };
-        let tr = simulate(&osc, &method, &o, 0)?;
-        let first = tr.t.iter().position(|&t| t >= t_end - window).unwrap_or(0);
-        let phase: Vec<(f64, f64)> = tr.u[first..]
-            .iter()
-            .copied()
-            .zip(tr.v[first..].iter().copied())
-            .collect();
-        // impacts reverse U̇ in one step: the jump is not a sampling gap
-        let flights: Vec<f64> = tr.u[first..]
-            .windows(2)
-            .zip(tr.v[first..].windows(2))
-            .filter(|(_, v)| v[0] * v[1] > 0.0 || v[0].abs() < 1.0)
-            .map(|(a, b)| (a[1] - a[0]).hypot(b[1] - b[0]))
-            .collect();
-        let step = flights.iter().copied().fold(0.0, f64::max);
-        let stride = ((0.5 * EPSILON / step).floor() as usize).max(1);
-        let pick = |x: &[f64]| -> Vec<f64> { x[first..].iter().step_by(stride).copied().collect() };
-        let (t, u, v) = (pick(&tr.t), pick(&tr.u), pick(&tr.v));
-        // consecutive samples are at most `stride` flight steps apart
-        sampling.push((stride as f64 * dt, step * stride as f64));
-        let recurrence = RecurrenceMatrix::new(&u, &v, RecurrenceThreshold(EPSILON))?;
-        let (rr, det) = (recurrence.recurrence_rate(), recurrence.determinism(2));
-        panels.push(Panel {
-            title: title.to_string(),
-            phase,
-            t,
-            u,
-            v,
-            rr,
-            det,
-            amplitude: tr.final_amplitude,
-        });
-    }
-    let amplitude_with = |barrier, impact_memory| -> Result<f64> {
-        let method = PredictorCorrector {
-            dt,
-            impact_memory,
-            ..Default::default()
-        };
-        let o = Options {
-            t_end,
-            u0: a02,
-            v0: 0.0,
-            barrier,
-            record_every: usize::MAX,
-            ..Default::default()
-        };
-        Ok(simulate(&osc, &method, &o, 0)?.final_amplitude)
-    };
-    let free_amplitude = amplitude_with(Barrier::Off, ImpactMemory::Continuous)?;
-    let restart_amplitude = amplitude_with(Barrier::On, ImpactMemory::Restart)?;
-    let sampling_text = |k: usize| {
-        format!(
-            "sampled every {} time units, phase-plane step ≤ {:.3} (ε/2 = {})",
-            sampling[k].0,
-            sampling[k].1,
-            EPSILON / 2.0
-        )
-    };
-    let notes = vec![
-        format!(
-            "start: U(0) = A02 = {a02:.6} (smallest stable cycle of Eq. 18, {} variant), U'(0) = 0; barrier on, r = 1, D = 0",
-            ctx.variant.name()
-        ),
-        format!(
-            "predictor-corrector dt = {dt}, T = {t_end}, SOE memory (tolerance 1e-10), impact memory continuous; Eq. (5) by the same driver at lambda = 1"
-        ),
-        format!(
-            "phase portraits and recurrence plots over the last {window} time units; epsilon = {EPSILON}, Euclidean norm; DET with l_min = 2, main diagonal excluded"
-        ),
-        format!("fractional: {}", sampling_text(0)),
-        format!("Eq. (5): {}", sampling_text(1)),
-        format!(
-            "fractional: RR = {:.4}, DET = {:.4}, mean amplitude sqrt(U^2 + V^2/omega1^2) over the last 5 periods = {:.4}",
-            panels[0].rr, panels[0].det, panels[0].amplitude
-        ),
-        format!(
-            "Eq. (5): RR = {:.4}, DET = {:.4}, mean amplitude = {:.4}",
-            panels[1].rr, panels[1].det, panels[1].amplitude
-        ),
-        format!(
-            "impact-memory convention: continuous (drawn) gives amplitude {:.4}, restart gives {:.4}; without the barrier {:.4}",
-            panels[0].amplitude, restart_amplitude, free_amplitude
-        ),
-        "without the barrier the fractional system stays on the Eq. (5) cycle (the smooth oscillator Eq. 5 is derived for); with impacts (continuous memory) it settles on a larger cycle: the memory of the velocity reversals is what Eq. (5) misses (the Zhuravlev transformation is not exact for the fractional system). The amplitude is converged in dt (7.8862, 7.8865, 7.8866 at dt = 0.02, 0.01, 0.005) and the Direct memory gives the same path (checked to T = 300)".to_string(),
-    ];
-    let heading_lines = vec![
-        format!(
-            "start U(0) = A02 = {a02:.4}, dU/dt(0) = 0 (smallest stable cycle of Eq. 18); predictor–corrector Δt = {dt}, T = {t_end}; last {window} time units shown"
-        ),
-        format!(
-            "(a) impact memory: continuous (lower terminal kept at t = 0), amplitude {:.3}; the restart convention gives {:.3}, Eq. (5) {:.3}",
-            panels[0].amplitude, restart_amplitude, panels[1].amplitude
-        ),
-        format!(
-            "recurrence: ε = {EPSILON}, Euclidean norm; (c) {}; (d) {}",
-            sampling_text(0),
-            sampling_text(1)
-        ),
-    ];
-    let mut header = csv_header(
-        1,
-        "phase portraits and recurrence plots, Eq. (1) vs Eq. (5)",
-        ctx,
-        &notes,
-    );
-    header.push(panel_line("all", &p));
-    header.push(format!(
-        "fractional without the barrier (same start, T = {t_end}): mean amplitude = {:.4}",
-        free_amplitude
-    ));
-    Ok(Fig01 {
-        heading: super::heading(
-                1,
-                "phase portraits and recurrence plots, fractional system (Eq. 1) vs its integer-order equivalent (Eq. 5)",
-                ctx,
-                &p,
-                &[],
-                heading_lines,
-            ),
-        header,
-        panels,
-        start: t_end - window,
-        epsilon: EPSILON,
-    })
-}
-
 /// Most display cells per axis of a recurrence plot: a cell is drawn when any pair of
 /// samples in it recurs (the plot stays legible and the SVG small; RR and DET use every pair).
 const DISPLAY_CELLS: usize = 520;
@@ -255,7 +43,7 @@ impl Picture for Fig01 {
     }
 
     fn heading(&self) -> Heading {
-        self.heading.clone()
+        heading_of(&self.caption)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> Result<()>
