@@ -17,7 +17,7 @@ use crate::{Figure, FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::{RecurrenceMatrix, RecurrenceThreshold};
 use trirhythm::engine::{
-    simulate, Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System,
+    simulate, Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, System, Trajectory,
 };
 use trirhythm::model::preset;
 use trirhythm::theory::averaging::Theory;
@@ -77,6 +77,43 @@ impl Figure for Fig01 {
     }
 }
 
+/// One system's panel from its path: the phase portrait from `start` on, the recurrence
+/// samples strided so that consecutive samples stay within ε/2 in the phase plane, RR and DET;
+/// with the sampling interval and the largest phase-plane step between samples.
+fn panel(title: &str, tr: &Trajectory, start: f64, dt: f64) -> Result<(Panel, (f64, f64))> {
+    let first = tr.t.iter().position(|&t| t >= start).unwrap_or(0);
+    let phase: Vec<(f64, f64)> = tr.u[first..]
+        .iter()
+        .copied()
+        .zip(tr.v[first..].iter().copied())
+        .collect();
+    // impacts reverse U̇ in one step: the jump is not a sampling gap
+    let flights: Vec<f64> = tr.u[first..]
+        .windows(2)
+        .zip(tr.v[first..].windows(2))
+        .filter(|(_, v)| v[0] * v[1] > 0.0 || v[0].abs() < 1.0)
+        .map(|(a, b)| (a[1] - a[0]).hypot(b[1] - b[0]))
+        .collect();
+    let step = flights.iter().copied().fold(0.0, f64::max);
+    let stride = ((0.5 * EPSILON / step).floor() as usize).max(1);
+    let pick = |x: &[f64]| -> Vec<f64> { x[first..].iter().step_by(stride).copied().collect() };
+    let (t, u, v) = (pick(&tr.t), pick(&tr.u), pick(&tr.v));
+    let recurrence = RecurrenceMatrix::new(&u, &v, RecurrenceThreshold(EPSILON))?;
+    let (rr, det) = (recurrence.recurrence_rate(), recurrence.determinism(2));
+    let panel = Panel {
+        title: title.to_string(),
+        phase,
+        t,
+        u,
+        v,
+        rr,
+        det,
+        amplitude: tr.final_amplitude,
+    };
+    // consecutive samples are at most `stride` flight steps apart
+    Ok((panel, (stride as f64 * dt, step * stride as f64)))
+}
+
 fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig01> {
     let p = preset("fig1")?.params;
     let th = Theory::new(&p, ctx.variant)?;
@@ -120,38 +157,9 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig01> {
             system,
             ..Default::default()
         };
-        let tr = simulate(&osc, &method, &o, 0)?;
-        let first = tr.t.iter().position(|&t| t >= t_end - window).unwrap_or(0);
-        let phase: Vec<(f64, f64)> = tr.u[first..]
-            .iter()
-            .copied()
-            .zip(tr.v[first..].iter().copied())
-            .collect();
-        // impacts reverse U̇ in one step: the jump is not a sampling gap
-        let flights: Vec<f64> = tr.u[first..]
-            .windows(2)
-            .zip(tr.v[first..].windows(2))
-            .filter(|(_, v)| v[0] * v[1] > 0.0 || v[0].abs() < 1.0)
-            .map(|(a, b)| (a[1] - a[0]).hypot(b[1] - b[0]))
-            .collect();
-        let step = flights.iter().copied().fold(0.0, f64::max);
-        let stride = ((0.5 * EPSILON / step).floor() as usize).max(1);
-        let pick = |x: &[f64]| -> Vec<f64> { x[first..].iter().step_by(stride).copied().collect() };
-        let (t, u, v) = (pick(&tr.t), pick(&tr.u), pick(&tr.v));
-        // consecutive samples are at most `stride` flight steps apart
-        sampling.push((stride as f64 * dt, step * stride as f64));
-        let recurrence = RecurrenceMatrix::new(&u, &v, RecurrenceThreshold(EPSILON))?;
-        let (rr, det) = (recurrence.recurrence_rate(), recurrence.determinism(2));
-        panels.push(Panel {
-            title: title.to_string(),
-            phase,
-            t,
-            u,
-            v,
-            rr,
-            det,
-            amplitude: tr.final_amplitude,
-        });
+        let (panel, sampled) = panel(title, &simulate(&osc, &method, &o, 0)?, t_end - window, dt)?;
+        panels.push(panel);
+        sampling.push(sampled);
     }
     let amplitude_with = |barrier, impact_memory| -> Result<f64> {
         let method = PredictorCorrector {
@@ -173,6 +181,49 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig01> {
     let free_amplitude = amplitude_with(Barrier::Off, ImpactMemory::Continuous)?;
     crate::step(monitor, 3, 4)?;
     let restart_amplitude = amplitude_with(Barrier::On, ImpactMemory::Restart)?;
+    let (notes, heading_lines) = texts(
+        ctx,
+        (a02, dt, t_end, window),
+        &panels,
+        &sampling,
+        (free_amplitude, restart_amplitude),
+    );
+    let mut header = table_notes(
+        1,
+        "phase portraits and recurrence plots, Eq. (1) vs Eq. (5)",
+        ctx,
+        &notes,
+    );
+    header.push(panel_line("all", &p));
+    header.push(format!(
+        "fractional without the barrier (same start, T = {t_end}): mean amplitude = {:.4}",
+        free_amplitude
+    ));
+    Ok(Fig01 {
+        caption: caption(
+                1,
+                "phase portraits and recurrence plots, fractional system (Eq. 1) vs its integer-order equivalent (Eq. 5)",
+                ctx,
+                &p,
+                &[],
+                heading_lines,
+            ),
+        notes: header,
+        panels,
+        start: t_end - window,
+        epsilon: EPSILON,
+    })
+}
+
+/// The table's notes and the caption's lines: the start, the method, the sampling, RR, DET
+/// and the amplitudes of both systems, the impact-memory conventions compared.
+fn texts(
+    ctx: &FigureOptions,
+    (a02, dt, t_end, window): (f64, f64, f64, f64),
+    panels: &[Panel],
+    sampling: &[(f64, f64)],
+    (free_amplitude, restart_amplitude): (f64, f64),
+) -> (Vec<String>, Vec<String>) {
     let sampling_text = |k: usize| {
         format!(
             "sampled every {} time units, phase-plane step ≤ {:.3} (ε/2 = {})",
@@ -222,29 +273,5 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig01> {
             sampling_text(1)
         ),
     ];
-    let mut header = table_notes(
-        1,
-        "phase portraits and recurrence plots, Eq. (1) vs Eq. (5)",
-        ctx,
-        &notes,
-    );
-    header.push(panel_line("all", &p));
-    header.push(format!(
-        "fractional without the barrier (same start, T = {t_end}): mean amplitude = {:.4}",
-        free_amplitude
-    ));
-    Ok(Fig01 {
-        caption: caption(
-                1,
-                "phase portraits and recurrence plots, fractional system (Eq. 1) vs its integer-order equivalent (Eq. 5)",
-                ctx,
-                &p,
-                &[],
-                heading_lines,
-            ),
-        notes: header,
-        panels,
-        start: t_end - window,
-        epsilon: EPSILON,
-    })
+    (notes, heading_lines)
 }

@@ -68,6 +68,5 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<MapFigure> {
         "D = 0, r = 1, μ0 = 0.01, ω0 = 1, λ = 1 (λ not printed in the paper: chosen)".into(),
         notes,
         panels,
-        (1, 2),
     ))
 }

@@ -56,6 +56,5 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<MapFigure> {
         "unimodal (blue), bimodal (green), trimodal (black) P(A); μ0 = 0.01, ω0 = 0.9, cp = (0.144, 0.005, 5.862e-5, 2.13e-7), r = 0.998 (not printed: chosen)".into(),
         notes,
         panels,
-        (2, 2),
     ))
 }

@@ -68,6 +68,5 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<MapFigure> {
         "unimodal (blue), bimodal (green), trimodal (black) P(A); D = 0.1, τ = 0.5, cp = (0.144, 0.005, 5.862e-5, 2.13e-7); ω0 = 1.0 in b, d (caption prints 0.9 twice)".into(),
         notes,
         panels,
-        (2, 2),
     ))
 }

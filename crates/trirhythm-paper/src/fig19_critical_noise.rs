@@ -14,7 +14,7 @@ use crate::notes::{caption, num, sig, symbol, table_notes, Caption};
 use crate::{Figure, FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::lyapunov::{critical_noise, CriticalSearch};
-use trirhythm::model::preset;
+use trirhythm::model::{preset, Params};
 use trirhythm::Result;
 
 /// (panel, key, values, the paper's claimed trend of D_c).
@@ -67,106 +67,16 @@ impl Figure for Fig19 {
         ];
         let mut panels = Vec::new();
         let total = PANELS.len() * PANELS[0].2.len();
-        for (i, (label, key, values, claim)) in PANELS.into_iter().enumerate() {
-            let mut points = Vec::new();
-            let mut missing = Vec::new();
-            let mut falling: Vec<String> = Vec::new();
-            for (k, v) in values.into_iter().enumerate() {
-                crate::step(monitor, i * values.len() + k, total)?;
-                let p = base.with(key, v)?;
-                let c = critical_noise(&p, &sz.method, &sz.spec, &search, None)?;
-                let merged = merged_points_text(&c);
-                if c.found() {
-                    notes.push(format!(
-                        "{label} {} = {}: D_c = {} in [{}, {}] ({}){}",
-                        symbol(key), num(v), sig(c.d_c, 4), sig(c.d_c_lo, 4), sig(c.d_c_hi, 4),
-                        if c.rising { "LLE negative below, positive above" } else { "LLE positive below, negative above: the opposite of the paper's transition" },
-                        if merged.is_empty() { String::new() } else { format!("; no sign at D = {} (realisations merged)", merged.join(", ")) }
-                    ));
-                } else {
-                    let sign = Sign::of(&c);
-                    notes.push(format!(
-                        "{label} {} = {}: no sign change in range D ∈ [{}, {}] (LLE {}; evaluated: {})",
-                        symbol(key), num(v), num(search.d_lo), num(search.d_hi), sign.words(),
-                        c.evaluated.iter().map(noise_point_text).collect::<Vec<_>>().join("; ")
-                    ));
-                    let tag = sign.tag();
-                    missing.push((num(v), tag));
-                }
-                if c.found() && !c.rising {
-                    falling.push(num(v));
-                }
-                // only a negative → positive change is the paper's D_c
-                let drawn = c.found() && c.rising;
-                let nan = f64::NAN;
-                points.push(Point {
-                    x: v,
-                    y: if drawn { c.d_c } else { nan },
-                    lo: if drawn { c.d_c_lo } else { nan },
-                    hi: if drawn { c.d_c_hi } else { nan },
-                });
-            }
-            let found: Vec<&Point> = points.iter().filter(|q| q.y.is_finite()).collect();
-            let trend = if found.len() >= 2 {
-                let up = found.windows(2).all(|w| w[1].y >= w[0].y);
-                let down = found.windows(2).all(|w| w[1].y <= w[0].y);
-                match (up, down) {
-                    (true, false) => "increases",
-                    (false, true) => "decreases",
-                    _ => "not monotonic",
-                }
-            } else {
-                "undetermined"
-            };
-            let verdict = if trend == claim {
-                "agrees"
-            } else {
-                "not reproduced"
-            };
-            notes.push(format!(
-                "{label} paper: D_c {claim} with {}; here: {trend} (negative → positive change at {} of {} values; positive → negative, the opposite transition, at {}): {verdict}",
-                symbol(key), found.len(), values.len(), falling.len()
-            ));
-            let mut verdicts = vec![format!("paper: D_c {claim}; here: {trend}")];
-            if !falling.is_empty() {
-                verdicts.push(format!(
-                    "LLE + → − (not drawn) at {} = {}",
-                    symbol(key),
-                    falling.join(", ")
-                ));
-            }
-            // one line per kind of outcome, so that no line runs past the chart
-            let mut tags: Vec<&str> = Vec::new();
-            for m in &missing {
-                if !tags.contains(&m.1) {
-                    tags.push(m.1);
-                }
-            }
-            for tag in tags {
-                let at: Vec<&str> = missing
-                    .iter()
-                    .filter(|m| m.1 == tag)
-                    .map(|m| m.0.as_str())
-                    .collect();
-                verdicts.push(format!(
-                    "no sign change in range at {} = {} ({tag})",
-                    symbol(key),
-                    at.join(", ")
-                ));
-            }
-            panels.push(Panel {
-                caption: format!("{label} D_c against {}", symbol(key)),
-                x_key: key.into(),
-                x_desc: symbol(key).into(),
-                y_desc: "critical noise D_c".into(),
-                y_key: "D_c".into(),
-                zero_line: false,
-                curves: vec![Curve {
-                    label: "D_c with its uncertainty".into(),
-                    points,
-                }],
-                verdicts,
-            });
+        for (i, spec) in PANELS.into_iter().enumerate() {
+            let first = i * spec.2.len();
+            panels.push(panel(
+                monitor,
+                &base,
+                (&sz, &search),
+                spec,
+                (first, total),
+                &mut notes,
+            )?);
         }
         let caption = caption(
             19,
@@ -182,4 +92,138 @@ impl Figure for Fig19 {
             panels,
         })
     }
+}
+
+/// One panel: D_c against `key` with its uncertainty, where the LLE changes sign from negative
+/// to positive; a note per value and the paper's trend set against the computed one. Progress
+/// counts from `first` of `total` values.
+fn panel(
+    monitor: &dyn Monitor,
+    base: &Params,
+    (sz, search): (&Sizes, &CriticalSearch),
+    (label, key, values, claim): (&str, &str, [f64; 5], &str),
+    (first, total): (usize, usize),
+    notes: &mut Vec<String>,
+) -> Result<Panel> {
+    let mut points = Vec::new();
+    let mut missing = Vec::new();
+    let mut falling: Vec<String> = Vec::new();
+    for (k, v) in values.into_iter().enumerate() {
+        crate::step(monitor, first + k, total)?;
+        let p = base.with(key, v)?;
+        let c = critical_noise(&p, &sz.method, &sz.spec, search, None)?;
+        let merged = merged_points_text(&c);
+        if c.found() {
+            notes.push(format!(
+                "{label} {} = {}: D_c = {} in [{}, {}] ({}){}",
+                symbol(key),
+                num(v),
+                sig(c.d_c, 4),
+                sig(c.d_c_lo, 4),
+                sig(c.d_c_hi, 4),
+                if c.rising {
+                    "LLE negative below, positive above"
+                } else {
+                    "LLE positive below, negative above: the opposite of the paper's transition"
+                },
+                if merged.is_empty() {
+                    String::new()
+                } else {
+                    format!(
+                        "; no sign at D = {} (realisations merged)",
+                        merged.join(", ")
+                    )
+                }
+            ));
+        } else {
+            let sign = Sign::of(&c);
+            notes.push(format!(
+                "{label} {} = {}: no sign change in range D ∈ [{}, {}] (LLE {}; evaluated: {})",
+                symbol(key),
+                num(v),
+                num(search.d_lo),
+                num(search.d_hi),
+                sign.words(),
+                c.evaluated
+                    .iter()
+                    .map(noise_point_text)
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            ));
+            let tag = sign.tag();
+            missing.push((num(v), tag));
+        }
+        if c.found() && !c.rising {
+            falling.push(num(v));
+        }
+        // only a negative → positive change is the paper's D_c
+        let drawn = c.found() && c.rising;
+        let nan = f64::NAN;
+        points.push(Point {
+            x: v,
+            y: if drawn { c.d_c } else { nan },
+            lo: if drawn { c.d_c_lo } else { nan },
+            hi: if drawn { c.d_c_hi } else { nan },
+        });
+    }
+    let found: Vec<&Point> = points.iter().filter(|q| q.y.is_finite()).collect();
+    let trend = if found.len() >= 2 {
+        let up = found.windows(2).all(|w| w[1].y >= w[0].y);
+        let down = found.windows(2).all(|w| w[1].y <= w[0].y);
+        match (up, down) {
+            (true, false) => "increases",
+            (false, true) => "decreases",
+            _ => "not monotonic",
+        }
+    } else {
+        "undetermined"
+    };
+    let verdict = if trend == claim {
+        "agrees"
+    } else {
+        "not reproduced"
+    };
+    notes.push(format!(
+        "{label} paper: D_c {claim} with {}; here: {trend} (negative → positive change at {} of {} values; positive → negative, the opposite transition, at {}): {verdict}",
+        symbol(key), found.len(), values.len(), falling.len()
+    ));
+    let mut verdicts = vec![format!("paper: D_c {claim}; here: {trend}")];
+    if !falling.is_empty() {
+        verdicts.push(format!(
+            "LLE + → − (not drawn) at {} = {}",
+            symbol(key),
+            falling.join(", ")
+        ));
+    }
+    // one line per kind of outcome, so that no line runs past the chart
+    let mut tags: Vec<&str> = Vec::new();
+    for m in &missing {
+        if !tags.contains(&m.1) {
+            tags.push(m.1);
+        }
+    }
+    for tag in tags {
+        let at: Vec<&str> = missing
+            .iter()
+            .filter(|m| m.1 == tag)
+            .map(|m| m.0.as_str())
+            .collect();
+        verdicts.push(format!(
+            "no sign change in range at {} = {} ({tag})",
+            symbol(key),
+            at.join(", ")
+        ));
+    }
+    Ok(Panel {
+        caption: format!("{label} D_c against {}", symbol(key)),
+        x_key: key.into(),
+        x_desc: symbol(key).into(),
+        y_desc: "critical noise D_c".into(),
+        y_key: "D_c".into(),
+        curves: vec![Curve {
+            label: "D_c with its uncertainty".into(),
+            points,
+        }],
+        verdicts,
+    })
 }

@@ -12,7 +12,7 @@
 //! - [`Figure`]: number, title and `compute(options, monitor)` of a figure's data type.
 //! - [`registry`] / [`compute_json`]: the 19 figures by number, computed to a JSON value.
 //! - Every computation takes a [`Monitor`]: it reports progress per panel or point where the
-//!   work is long, and stops with [`Error::Cancelled`](trirhythm::Error::Cancelled) when the
+//!   work is long, and stops with [`Error::Cancelled`] when the
 //!   monitor asks (polled between panels and points).
 //!
 //! Shared machinery: [`montecarlo`] (ensembles against the theory, Figs 11, 13, 14), [`lle`]

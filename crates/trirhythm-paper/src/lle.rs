@@ -112,8 +112,6 @@ pub struct Panel {
     pub y_desc: String,
     /// Key of the ordinate in the CSV.
     pub y_key: String,
-    /// Draw the line y = 0.
-    pub zero_line: bool,
     /// The curves.
     pub curves: Vec<Curve>,
     /// Short verdicts drawn inside the chart's top-left corner.
@@ -224,7 +222,6 @@ pub fn lle_against_noise(
         x_desc: "noise intensity D".into(),
         y_desc: "largest Lyapunov exponent".into(),
         y_key: "lle".into(),
-        zero_line: true,
         curves,
         verdicts: vec![if merged_points > 0 {
             format!(

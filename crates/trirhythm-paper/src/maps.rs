@@ -261,8 +261,6 @@ pub struct MapFigure {
     pub notes: Vec<String>,
     /// The panels.
     pub panels: Vec<MapPanel>,
-    /// Panels per (row, column).
-    pub layout: (usize, usize),
 }
 
 /// Assemble a map figure from computed panels: the heading, and the CSV header with the
@@ -273,7 +271,6 @@ pub fn map_figure(
     subtitle: String,
     mut notes: Vec<String>,
     panels: Vec<MapPanel>,
-    layout: (usize, usize),
 ) -> MapFigure {
     for p in &panels {
         notes.extend(panel_notes(p));
@@ -292,7 +289,6 @@ pub fn map_figure(
         },
         notes: header,
         panels,
-        layout,
     }
 }
 
@@ -328,12 +324,5 @@ pub fn gamma_delta_family(
     notes.push(
         "count = number of stable limit cycles; red: folds f = ∂f/∂A = 0 traced exactly".into(),
     );
-    Ok(map_figure(
-        ctx,
-        (number, title),
-        subtitle,
-        notes,
-        panels,
-        (2, 2),
-    ))
+    Ok(map_figure(ctx, (number, title), subtitle, notes, panels))
 }

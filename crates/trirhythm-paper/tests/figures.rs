@@ -80,7 +80,10 @@ fn a_cancelled_monitor_stops_a_monte_carlo_figure() {
         fig17_lle_noise::Fig17::compute(&QUICK, &flag),
         Err(Error::Cancelled)
     ));
-    assert!(matches!(compute_json(11, &QUICK, &flag), Err(Error::Cancelled)));
+    assert!(matches!(
+        compute_json(11, &QUICK, &flag),
+        Err(Error::Cancelled)
+    ));
 }
 
 /// Counts progress reports; cancels after `after` of them.

@@ -8,6 +8,7 @@ use super::write_figure;
 use crate::common::{num, Csv};
 use crate::plot::{chart, legend, pe, Picture, PALETTE};
 use anyhow::Result;
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -120,77 +121,7 @@ where
         }
     }
     for curve in &panel.curves {
-        let pts: Vec<(f64, f64)> = curve
-            .points
-            .iter()
-            .filter(|q| q.side == Side::Boundary)
-            .map(|q| (q.x, q.y))
-            .collect();
-        if pts.is_empty() {
-            continue;
-        }
-        let color = colour(curve);
-        let label = curve.label.clone();
-        let keyed = !label.is_empty();
-        if pts.len() == 1 {
-            let s = c
-                .draw_series(std::iter::once(
-                    EmptyElement::at(pts[0])
-                        + Cross::new((0, 0), 7, color.stroke_width(3))
-                        + Circle::new((0, 0), 9, color.stroke_width(2)),
-                ))
-                .map_err(pe)?;
-            if keyed {
-                s.label(label)
-                    .legend(move |(x, y)| Cross::new((x + 8, y), 5, color.stroke_width(3)));
-            }
-            continue;
-        }
-        match curve.method.as_str() {
-            "simulation" => {
-                let s = c
-                    .draw_series(LineSeries::new(pts.clone(), color.stroke_width(3)))
-                    .map_err(pe)?;
-                if keyed {
-                    s.label(label).legend(move |(x, y)| {
-                        PathElement::new([(x, y), (x + 16, y)], color.stroke_width(3))
-                    });
-                }
-                c.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
-                    .map_err(pe)?;
-            }
-            "averaging" => {
-                let s = c
-                    .draw_series(DashedLineSeries::new(pts, 9, 6, color.stroke_width(2)))
-                    .map_err(pe)?;
-                if keyed {
-                    s.label(label).legend(move |(x, y)| {
-                        EmptyElement::at((x, y))
-                            + PathElement::new([(0, 0), (8, 0)], color.stroke_width(2))
-                            + PathElement::new([(12, 0), (20, 0)], color.stroke_width(2))
-                    });
-                }
-            }
-            _ => {
-                c.draw_series(DashedLineSeries::new(
-                    pts.clone(),
-                    3,
-                    5,
-                    color.stroke_width(3),
-                ))
-                .map_err(pe)?;
-                let s = c
-                    .draw_series(
-                        pts.iter()
-                            .map(|&p| Circle::new(p, 5, color.stroke_width(2))),
-                    )
-                    .map_err(pe)?;
-                if keyed {
-                    s.label(label)
-                        .legend(move |(x, y)| Circle::new((x + 8, y), 5, color.stroke_width(2)));
-                }
-            }
-        }
+        draw_curve(&mut c, curve)?;
     }
     if panel.is_family() {
         for (text, dash) in [
@@ -210,6 +141,89 @@ where
     }
     if with_legend {
         legend(&mut c, SeriesLabelPosition::UpperRight)?;
+    }
+    Ok(())
+}
+
+/// One curve in its method's style: simulation solid with markers, averaging dashed, exact
+/// dotted with rings, a single point as a marked cross; keyed in the legend when labelled.
+fn draw_curve<'a, DB: DrawingBackend + 'a>(
+    c: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    curve: &Curve,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let pts: Vec<(f64, f64)> = curve
+        .points
+        .iter()
+        .filter(|q| q.side == Side::Boundary)
+        .map(|q| (q.x, q.y))
+        .collect();
+    if pts.is_empty() {
+        return Ok(());
+    }
+    let color = colour(curve);
+    let label = curve.label.clone();
+    let keyed = !label.is_empty();
+    if pts.len() == 1 {
+        let s = c
+            .draw_series(std::iter::once(
+                EmptyElement::at(pts[0])
+                    + Cross::new((0, 0), 7, color.stroke_width(3))
+                    + Circle::new((0, 0), 9, color.stroke_width(2)),
+            ))
+            .map_err(pe)?;
+        if keyed {
+            s.label(label)
+                .legend(move |(x, y)| Cross::new((x + 8, y), 5, color.stroke_width(3)));
+        }
+        return Ok(());
+    }
+    match curve.method.as_str() {
+        "simulation" => {
+            let s = c
+                .draw_series(LineSeries::new(pts.clone(), color.stroke_width(3)))
+                .map_err(pe)?;
+            if keyed {
+                s.label(label).legend(move |(x, y)| {
+                    PathElement::new([(x, y), (x + 16, y)], color.stroke_width(3))
+                });
+            }
+            c.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                .map_err(pe)?;
+        }
+        "averaging" => {
+            let s = c
+                .draw_series(DashedLineSeries::new(pts, 9, 6, color.stroke_width(2)))
+                .map_err(pe)?;
+            if keyed {
+                s.label(label).legend(move |(x, y)| {
+                    EmptyElement::at((x, y))
+                        + PathElement::new([(0, 0), (8, 0)], color.stroke_width(2))
+                        + PathElement::new([(12, 0), (20, 0)], color.stroke_width(2))
+                });
+            }
+        }
+        _ => {
+            c.draw_series(DashedLineSeries::new(
+                pts.clone(),
+                3,
+                5,
+                color.stroke_width(3),
+            ))
+            .map_err(pe)?;
+            let s = c
+                .draw_series(
+                    pts.iter()
+                        .map(|&p| Circle::new(p, 5, color.stroke_width(2))),
+                )
+                .map_err(pe)?;
+            if keyed {
+                s.label(label)
+                    .legend(move |(x, y)| Circle::new((x + 8, y), 5, color.stroke_width(2)));
+            }
+        }
     }
     Ok(())
 }

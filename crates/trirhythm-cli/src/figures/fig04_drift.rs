@@ -164,8 +164,20 @@ where
     if p.label == "d" {
         legend(&mut c, SeriesLabelPosition::LowerLeft)?;
     }
-    // Where the small-amplitude part is flattened by the scale of the steep fall, an
-    // inset shows it at its own scale (roots there, or their absence, visible).
+    draw_zoom(area, p, &y, x_end)
+}
+
+/// Where the small-amplitude part is flattened by the scale of the steep fall (the panel's
+/// range `y`), an inset shows it at its own scale (roots there, or their absence, visible).
+fn draw_zoom<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    p: &Panel,
+    y: &std::ops::Range<f64>,
+    x_end: f64,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
     let span = y.end - y.start;
     let zoom_end = p
         .curve

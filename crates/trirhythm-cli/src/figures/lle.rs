@@ -89,7 +89,7 @@ where
         .filter(|q| q.y.is_finite())
         .flat_map(|q| [q.lo, q.hi, q.y])
         .collect();
-    if panel.zero_line {
+    if shows_zero(panel) {
         ys.push(0.0);
     }
     if ys.iter().all(|v| !v.is_finite()) {
@@ -106,7 +106,7 @@ where
         &panel.x_desc,
         &panel.y_desc,
     )?;
-    if panel.zero_line {
+    if shows_zero(panel) {
         c.draw_series(std::iter::once(PathElement::new(
             [(x.start, 0.0), (x.end, 0.0)],
             RGBColor(120, 120, 120).stroke_width(1),
@@ -195,4 +195,9 @@ impl Picture for Lle<'_> {
     {
         draw_side_by_side(root, &self.0.panels)
     }
+}
+
+/// Whether a panel draws the line y = 0: a Lyapunov exponent's sign is the point.
+fn shows_zero(panel: &Panel) -> bool {
+    panel.y_key == "lle"
 }

@@ -128,12 +128,20 @@ fn legend(fig: &MapFigure) -> LegendStrip {
 /// Panel size in pixels.
 const PANEL: (u32, u32) = (560, 470);
 
+/// Panels per (row, column): two side by side, four in a square.
+fn layout(fig: &MapFigure) -> (usize, usize) {
+    match fig.panels.len() {
+        n @ 0..=2 => (1, n.max(1)),
+        n => (2, n.div_ceil(2)),
+    }
+}
+
 /// A map figure as a picture.
 struct Map<'a>(&'a MapFigure);
 
 impl Picture for Map<'_> {
     fn size(&self) -> (u32, u32) {
-        let (r, c) = self.0.layout;
+        let (r, c) = layout(self.0);
         let w = PANEL.0 * c as u32;
         (w, PANEL.1 * r as u32 + legend(self.0).height(w))
     }
@@ -146,9 +154,9 @@ impl Picture for Map<'_> {
     where
         DB::ErrorType: 'static,
     {
-        let (panels, strip) = root.split_vertically(PANEL.1 * self.0.layout.0 as u32);
+        let (panels, strip) = root.split_vertically(PANEL.1 * layout(self.0).0 as u32);
         for (area, p) in panels
-            .split_evenly(self.0.layout)
+            .split_evenly(layout(self.0))
             .iter()
             .zip(&self.0.panels)
         {
