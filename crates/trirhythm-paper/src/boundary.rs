@@ -78,7 +78,7 @@ pub struct Panel {
 }
 
 impl Panel {
-    /// Whether the panel's curves are a family (one colour per parameter value).
+    /// Whether the panel's curves are a family (one set of curves per parameter value).
     pub fn is_family(&self) -> bool {
         self.curves.iter().any(|c| c.member.is_some())
     }

@@ -4,7 +4,6 @@
 //!
 //! Both start at the turning point U = A02, U̇ = 0 of the smallest stable cycle of the averaged
 //! theory (Eq. 18), as the paper's text says ("around the attractor's minimum amplitude").
-
 //!
 //! Method: [`simulate`] with the predictor–corrector for both systems, the last 15 time units
 //! kept; the recurrence samples are strided so that consecutive samples stay within ε/2 in

@@ -2,7 +2,6 @@
 //! D = 0) against long noise-free simulations of Eq. (1) from several initial amplitudes;
 //! (b) the stationary P(A) for four λ — theory (both variants) against Monte Carlo of Eq. (1)
 //! and Eq. (5), with error bars, distances and stationarity verdicts.
-
 //!
 //! Method: (a) [`trace_branches`] in λ at D = 0 and noise-free paths of Eq. (1) (impact memory
 //! restarted) from four initial amplitudes, the settled amplitude the mean of the last maxima;

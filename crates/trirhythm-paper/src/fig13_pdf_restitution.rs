@@ -2,7 +2,6 @@
 //! μ0 = 0.2 (b): the averaged theory (Eq. 27, both variants) against Monte Carlo ensembles of
 //! the fractional system (Eq. 1) and of its integer-order equivalent (Eq. 5), with error bars,
 //! distances and the stationarity verdict of every ensemble.
-
 //!
 //! Method: [`crate::montecarlo`]; r for (a) as printed, four r of the printed range for (b).
 //! Checked by `tests/figures.rs` (computes, reads back, stops when cancelled).

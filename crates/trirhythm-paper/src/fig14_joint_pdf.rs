@@ -2,7 +2,6 @@
 //! theory's Eq. (30–31) (top row) against the Monte Carlo histogram of Eq. (1) (bottom row),
 //! as heat maps with one colour scale per r, the Hellinger distance between them and the
 //! stationarity verdict of each ensemble.
-
 //!
 //! Method: [`crate::montecarlo::ensemble`] with a joint histogram; the theory's density
 //! averaged over each cell exactly (amplitude slices spread over their half-ellipses).

@@ -1,7 +1,6 @@
 //! Fig. 17: the largest Lyapunov exponent (frozen noise) against the noise intensity D for four
 //! μ0 at τ = 0.06 (a) and four τ at μ0 = 0.001 (b), with error bars, and the paper's claim (the
 //! LLE turns positive past a critical D) checked curve by curve.
-
 //!
 //! One configuration ([`FIG17`]) of the LLE-against-noise computation it shares with
 //! Fig. 18 ([`crate::lle`]). Checked by `tests/figures.rs`.

@@ -2,7 +2,6 @@
 //! λ at r = 0.998 (a) and four r at λ = 0.998 (b), μ0 = 0.001, τ = 0.025, with error bars, and the
 //! paper's claims (the LLE turns positive past a critical D; more impact loss, more chaos)
 //! checked curve by curve.
-
 //!
 //! One configuration ([`FIG18`]) of the LLE-against-noise computation it shares with
 //! Fig. 17 ([`crate::lle`]). Checked by `tests/figures.rs`.

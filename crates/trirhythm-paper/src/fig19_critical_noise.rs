@@ -1,7 +1,6 @@
 //! Fig. 19: the critical noise D_c where the largest Lyapunov exponent changes sign, against μ0
 //! (a), τ (b), λ (c) and r (d), with its uncertainty from the standard errors; values without a
 //! sign change in the searched range are said so on the panel, never drawn as a made-up value.
-
 //!
 //! Method: [`critical_noise`] (the first sign change of the LLE on a grid of D, bisected, the
 //! last bracket interpolated; the error bar from the nearest D whose LLE is two standard errors
