@@ -165,6 +165,36 @@ fn panel(
             hi: if drawn { c.d_c_hi } else { nan },
         });
     }
+    let verdicts = verdicts(
+        (label, key, values.len(), claim),
+        &points,
+        &falling,
+        &missing,
+        notes,
+    );
+    Ok(Panel {
+        caption: format!("{label} D_c against {}", symbol(key)),
+        x_key: key.into(),
+        x_desc: symbol(key).into(),
+        y_desc: "critical noise D_c".into(),
+        y_key: "D_c".into(),
+        curves: vec![Curve {
+            label: "D_c with its uncertainty".into(),
+            points,
+        }],
+        verdicts,
+    })
+}
+
+/// A panel's verdicts: the trend of the D_c found against the paper's claim (also as a note),
+/// the values with the opposite transition, and one line per kind of missing sign change.
+fn verdicts(
+    (label, key, count, claim): (&str, &str, usize, &str),
+    points: &[Point],
+    falling: &[String],
+    missing: &[(String, &str)],
+    notes: &mut Vec<String>,
+) -> Vec<String> {
     let found: Vec<&Point> = points.iter().filter(|q| q.y.is_finite()).collect();
     let trend = if found.len() >= 2 {
         let up = found.windows(2).all(|w| w[1].y >= w[0].y);
@@ -184,7 +214,7 @@ fn panel(
     };
     notes.push(format!(
         "{label} paper: D_c {claim} with {}; here: {trend} (negative → positive change at {} of {} values; positive → negative, the opposite transition, at {}): {verdict}",
-        symbol(key), found.len(), values.len(), falling.len()
+        symbol(key), found.len(), count, falling.len()
     ));
     let mut verdicts = vec![format!("paper: D_c {claim}; here: {trend}")];
     if !falling.is_empty() {
@@ -196,7 +226,7 @@ fn panel(
     }
     // one line per kind of outcome, so that no line runs past the chart
     let mut tags: Vec<&str> = Vec::new();
-    for m in &missing {
+    for m in missing {
         if !tags.contains(&m.1) {
             tags.push(m.1);
         }
@@ -213,16 +243,5 @@ fn panel(
             at.join(", ")
         ));
     }
-    Ok(Panel {
-        caption: format!("{label} D_c against {}", symbol(key)),
-        x_key: key.into(),
-        x_desc: symbol(key).into(),
-        y_desc: "critical noise D_c".into(),
-        y_key: "D_c".into(),
-        curves: vec![Curve {
-            label: "D_c with its uncertainty".into(),
-            points,
-        }],
-        verdicts,
-    })
+    verdicts
 }
