@@ -11,6 +11,7 @@
 //! `tests/figures.rs`.
 
 use crate::notes::num;
+use crate::table::Table;
 use crate::{FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::oscillation::{
@@ -267,5 +268,35 @@ pub fn distance_text(sim: &[BoundaryPoint], other: &[BoundaryPoint], x_name: &st
             num(x)
         ),
         None => "no abscissa where both have a boundary".into(),
+    }
+}
+
+/// The table of boundary panels: `panel,curve,method,x,mu0,mu0_lo,mu0_hi`, boundary points
+/// only (a bracket: mu0_lo ≤ mu0 ≤ mu0_hi).
+pub fn table(notes: &[String], panels: &[Panel]) -> Table {
+    let mut csv = Table::new(
+        notes,
+        &["panel", "curve", "method", "x", "mu0", "mu0_lo", "mu0_hi"],
+    );
+    for p in panels {
+        rows(&mut csv, p);
+    }
+    csv
+}
+
+/// The rows of a panel.
+fn rows(csv: &mut Table, panel: &Panel) {
+    for c in &panel.curves {
+        for q in c.points.iter().filter(|q| q.side == Side::Boundary) {
+            csv.row([
+                panel.label.clone(),
+                c.label.replace(',', ";"),
+                c.method.clone(),
+                num(q.x),
+                num(q.y),
+                num(q.y_lo),
+                num(q.y_hi),
+            ]);
+        }
     }
 }

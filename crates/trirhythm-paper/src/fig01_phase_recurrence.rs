@@ -11,8 +11,11 @@
 //! barrier; the restart impact-memory convention) are reported in the notes. Checked by
 //! `tests/figures.rs`; the recurrence quantities by the library's recurrence tests.
 
+use crate::notes::num;
 use crate::notes::{caption, panel_line, table_notes, Caption};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::{RecurrenceMatrix, RecurrenceThreshold};
 use trirhythm::engine::{
@@ -73,6 +76,21 @@ impl Figure for Fig01 {
 
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig01> {
         compute(options, monitor)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        let mut csv = Table::new(&self.notes, &["system", "t", "U", "V"]);
+        for (panel, name) in self.panels.iter().zip(["fractional", "equivalent"]) {
+            for i in 0..panel.t.len() {
+                csv.row([
+                    name.to_string(),
+                    num(panel.t[i]),
+                    num(panel.u[i]),
+                    num(panel.v[i]),
+                ]);
+            }
+        }
+        vec![csv]
     }
 }
 

@@ -6,6 +6,7 @@
 //! continuation); `tests/figures.rs` computes it and reads it back.
 
 use crate::maps::{compute_panel, map_figure, AxisSpec, MapFigure};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
 use trirhythm::model::preset;
@@ -23,6 +24,10 @@ impl Figure for Fig02 {
 
     fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig02> {
         compute(ctx, monitor).map(Fig02)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        self.0.tables()
     }
 }
 

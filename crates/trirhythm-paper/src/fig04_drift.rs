@@ -7,8 +7,11 @@
 //! root count is set against the count the paper's text gives. Checked by `tests/figures.rs`
 //! (every figure computes and reads back) and the CLI's quick figure run.
 
+use crate::notes::num;
 use crate::notes::{caption, panel_line, table_notes, Caption};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::model::preset;
 use trirhythm::theory::averaging::{Cycle, Theory};
@@ -53,6 +56,16 @@ impl Figure for Fig04 {
 
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig04> {
         compute(options, monitor)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        let mut csv = Table::new(&self.notes, &["panel", "r", "A", "f"]);
+        for p in &self.panels {
+            for &(a, f) in &p.curve {
+                csv.row([p.label.clone(), num(p.r), num(a), num(f)]);
+            }
+        }
+        vec![csv]
     }
 }
 

@@ -6,8 +6,11 @@
 //! fold (the paper does not print them). Checked by `tests/figures.rs` and, for the
 //! continuation itself, the library's bifurcation tests.
 
+use crate::notes::num;
 use crate::notes::{caption, panel_line, table_notes, Caption};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::model::preset;
 use trirhythm::theory::bifurcation::{branches as trace_branches, BranchDiagram, What};
@@ -39,6 +42,28 @@ impl Figure for Fig05 {
 
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig05> {
         compute(options, monitor)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        let mut csv = Table::new(
+            &self.notes,
+            &["panel", "mu0", "branch", "r", "A0", "stable"],
+        );
+        for (label, mu0, bd) in &self.panels {
+            for (i, b) in bd.branches.iter().enumerate() {
+                for q in &b.points {
+                    csv.row([
+                        label.clone(),
+                        num(*mu0),
+                        i.to_string(),
+                        num(q.param),
+                        num(q.amplitude),
+                        u8::from(q.stable).to_string(),
+                    ]);
+                }
+            }
+        }
+        vec![csv]
     }
 }
 

@@ -5,6 +5,7 @@
 //! continuation); `tests/figures.rs` computes it and reads it back.
 
 use crate::maps::{gamma_delta_family, MapFigure};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
 use trirhythm::Result;
@@ -31,5 +32,9 @@ impl Figure for Fig06 {
             "(α0, β0) = (0.144, 0.005), D = 0, μ0 = 0.01, r = 0.998, ω0 = 1; λ values not printed in the paper: chosen".into(),
         )
         .map(Fig06)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        self.0.tables()
     }
 }

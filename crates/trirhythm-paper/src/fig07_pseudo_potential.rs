@@ -8,8 +8,11 @@
 //! amplitudes barely move) are checked on the computed curves and stated in the notes.
 //! Checked by the crate's doctest (three wells at r = 1) and `tests/figures.rs`.
 
+use crate::notes::num;
 use crate::notes::{caption, panel_line, table_notes, Caption};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::model::preset;
 use trirhythm::theory::averaging::{Extremum, Theory};
@@ -133,6 +136,18 @@ impl Figure for Fig07 {
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig07> {
         monitor.check()?;
         compute(options)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        let mut csv = Table::new(&self.notes, &["panel", "r", "lambda", "A", "U_eff"]);
+        for panel in &self.panels {
+            for (cv, &(r, l)) in panel.curves.iter().zip(&panel.params) {
+                for &(a, u) in &cv.points {
+                    csv.row([panel.id.clone(), num(r), num(l), num(a), num(u)]);
+                }
+            }
+        }
+        vec![csv]
     }
 }
 

@@ -6,8 +6,11 @@
 //! by `tests/figures.rs` and the library's averaging tests of the barriers.
 
 use crate::fig07_pseudo_potential::Curve;
+use crate::notes::num;
 use crate::notes::{caption, panel_line, table_notes, Caption};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::model::preset;
 use trirhythm::theory::averaging::{Barrier, Side, Theory};
@@ -32,6 +35,14 @@ impl Figure for Fig08 {
 
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig08> {
         compute(options, monitor)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        let mut csv = Table::new(&self.notes, &["A", "U_eff"]);
+        for &(a, u) in &self.curve.points {
+            csv.row([num(a), num(u)]);
+        }
+        vec![csv]
     }
 }
 

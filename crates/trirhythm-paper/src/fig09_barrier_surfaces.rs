@@ -5,8 +5,11 @@
 //! three wells has no barriers of those names and is left empty. Checked by
 //! `tests/figures.rs`; the barriers themselves by the library's averaging tests.
 
+use crate::notes::num;
 use crate::notes::{caption, panel_line, table_notes, Caption};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::model::preset;
 use trirhythm::theory::bifurcation::{barrier_surfaces, Axis, Plane};
@@ -49,6 +52,29 @@ impl Figure for Fig09 {
 
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig09> {
         compute(options, monitor)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        let mut csv = Table::new(
+            &self.notes,
+            &["r", "tau", "lambda", "wells", "dU1", "dU2", "dU3", "dU4"],
+        );
+        for s in &self.surfaces {
+            for iy in 0..s.y.count {
+                for ix in 0..s.x.count {
+                    let i = iy * s.x.count + ix;
+                    let mut row = vec![
+                        num(s.r),
+                        num(s.x.value(ix)),
+                        num(s.y.value(iy)),
+                        s.wells[i].to_string(),
+                    ];
+                    row.extend(s.heights[i].iter().map(|h| h.map(num).unwrap_or_default()));
+                    csv.row(row);
+                }
+            }
+        }
+        vec![csv]
     }
 }
 

@@ -7,9 +7,14 @@
 //! restarted) from four initial amplitudes, the settled amplitude the mean of the last maxima;
 //! (b) [`crate::montecarlo`]. Checked by `tests/figures.rs`.
 
-use crate::montecarlo::{amplitude_panel, stationary_count, AmplitudePanel, Sizes};
+use crate::montecarlo::{
+    amplitude_panel, amplitude_table, stationary_count, AmplitudePanel, Sizes,
+};
+use crate::notes::num;
 use crate::notes::{caption, table_notes, Caption};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use trirhythm::engine::{
@@ -196,5 +201,16 @@ impl Figure for Fig11 {
             settled,
             panels,
         })
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        let mut csv = Table::new(&self.notes, &["lambda", "u0", "amplitude", "spread"]);
+        for s in &self.settled {
+            csv.row([num(s.lambda), num(s.u0), num(s.amplitude), num(s.spread)]);
+        }
+        vec![
+            csv,
+            amplitude_table(&self.notes, &self.panels).named("_pdf"),
+        ]
     }
 }

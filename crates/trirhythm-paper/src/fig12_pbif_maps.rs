@@ -5,6 +5,7 @@
 //! continuation); `tests/figures.rs` computes it and reads it back.
 
 use crate::maps::{compute_panel, map_figure, AxisSpec, MapFigure};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
 use trirhythm::model::preset;
@@ -22,6 +23,10 @@ impl Figure for Fig12 {
 
     fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig12> {
         compute(ctx, monitor).map(Fig12)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        self.0.tables()
     }
 }
 

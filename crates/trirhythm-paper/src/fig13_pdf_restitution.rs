@@ -6,9 +6,13 @@
 //! Method: [`crate::montecarlo`]; r for (a) as printed, four r of the printed range for (b).
 //! Checked by `tests/figures.rs` (computes, reads back, stops when cancelled).
 
-use crate::montecarlo::{amplitude_panel, stationary_count, AmplitudePanel, Sizes};
+use crate::montecarlo::{
+    amplitude_panel, amplitude_table, stationary_count, AmplitudePanel, Sizes,
+};
 use crate::notes::{caption, table_notes, Caption};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::engine::System;
 use trirhythm::model::preset;
@@ -88,5 +92,9 @@ impl Figure for Fig13 {
             notes: table_notes(13, Self::TITLE, ctx, &notes),
             panels,
         })
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        vec![amplitude_table(&self.notes, &self.panels)]
     }
 }

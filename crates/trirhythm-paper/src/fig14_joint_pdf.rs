@@ -8,8 +8,11 @@
 //! Checked by `tests/figures.rs`.
 
 use crate::montecarlo::{ensemble, Sizes};
+use crate::notes::num;
 use crate::notes::{caption, table_notes, Caption};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::engine::System;
 use trirhythm::model::preset;
@@ -131,6 +134,24 @@ impl Figure for Fig14 {
             notes: table_notes(14, Self::TITLE, ctx, &notes),
             panels,
         })
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        let mut csv = Table::new(&self.notes, &["r", "U", "V", "theory", "mc"]);
+        for p in &self.panels {
+            for (i, u) in p.u_edges.windows(2).enumerate() {
+                for (k, v) in p.v_edges.windows(2).enumerate() {
+                    csv.row([
+                        num(p.r),
+                        num(0.5 * (u[0] + u[1])),
+                        num(0.5 * (v[0] + v[1])),
+                        num(p.theory[i][k]),
+                        num(p.mc[i][k]),
+                    ]);
+                }
+            }
+        }
+        vec![csv]
     }
 }
 

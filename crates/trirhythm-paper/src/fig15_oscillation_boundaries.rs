@@ -6,9 +6,11 @@
 //! Method: [`crate::boundary`], shared with Fig. 16. Checked by the library's oscillation
 //! tests and `tests/figures.rs`.
 
-use crate::boundary::{distance_text, linspace, Boundaries, Curve, Panel, Sweep};
+use crate::boundary::{distance_text, linspace, table, Boundaries, Curve, Panel, Sweep};
 use crate::notes::{caption, table_notes, Caption};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::engine::Barrier;
 use trirhythm::model::{preset, Params};
@@ -36,6 +38,10 @@ impl Figure for Fig15 {
 
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig15> {
         compute(options, monitor)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        vec![table(&self.notes, &self.panels)]
     }
 }
 

@@ -5,9 +5,11 @@
 //! Method: [`crate::boundary`], shared with Fig. 15 (panels a and c compare the methods,
 //! b and d are families). Checked by the library's oscillation tests and `tests/figures.rs`.
 
-use crate::boundary::{distance_text, linspace, Boundaries, Curve, Family, Panel, Sweep};
+use crate::boundary::{distance_text, linspace, table, Boundaries, Curve, Family, Panel, Sweep};
 use crate::notes::{caption, table_notes, Caption};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::engine::Barrier;
 use trirhythm::model::{preset, Params};
@@ -35,6 +37,10 @@ impl Figure for Fig16 {
 
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig16> {
         compute(options, monitor)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        vec![table(&self.notes, &self.panels)]
     }
 }
 

@@ -5,8 +5,12 @@
 //! One configuration ([`FIG17`]) of the LLE-against-noise computation it shares with
 //! Fig. 18 ([`crate::lle`]). Checked by `tests/figures.rs`.
 
-use crate::lle::{lle_against_noise_figure, LleAgainstNoise, LleNoiseFigure, NoisePanel};
+use crate::lle::{
+    lle_against_noise_figure, panels_table, LleAgainstNoise, LleNoiseFigure, NoisePanel,
+};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::Result;
 
@@ -44,5 +48,9 @@ impl Figure for Fig17 {
 
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig17> {
         lle_against_noise_figure(&FIG17, options, monitor).map(Fig17)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        vec![panels_table(&self.0.notes, &self.0.panels)]
     }
 }

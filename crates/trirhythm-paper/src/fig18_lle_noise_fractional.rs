@@ -6,8 +6,12 @@
 //! One configuration ([`FIG18`]) of the LLE-against-noise computation it shares with
 //! Fig. 17 ([`crate::lle`]). Checked by `tests/figures.rs`.
 
-use crate::lle::{lle_against_noise_figure, LleAgainstNoise, LleNoiseFigure, NoisePanel};
+use crate::lle::{
+    lle_against_noise_figure, panels_table, LleAgainstNoise, LleNoiseFigure, NoisePanel,
+};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::Result;
 
@@ -45,5 +49,9 @@ impl Figure for Fig18 {
 
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig18> {
         lle_against_noise_figure(&FIG18, options, monitor).map(Fig18)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        vec![panels_table(&self.0.notes, &self.0.panels)]
     }
 }

@@ -8,9 +8,13 @@
 //! of D_c per panel set against the computed one. Checked by the library's critical-noise tests
 //! and `tests/figures.rs`.
 
-use crate::lle::{merged_points_text, noise_point_text, Curve, Panel, Point, Sign, Sizes};
+use crate::lle::{
+    merged_points_text, noise_point_text, panels_table, Curve, Panel, Point, Sign, Sizes,
+};
 use crate::notes::{caption, num, sig, symbol, table_notes, Caption};
+use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
+
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::lyapunov::{critical_noise, CriticalSearch};
 use trirhythm::model::{preset, Params};
@@ -90,6 +94,10 @@ impl Figure for Fig19 {
             notes: table_notes(19, Self::TITLE, ctx, &notes),
             panels,
         })
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        vec![panels_table(&self.notes, &self.panels)]
     }
 }
 

@@ -18,7 +18,8 @@
 //! Shared machinery: [`montecarlo`] (ensembles against the theory, Figs 11, 13, 14), [`lle`]
 //! (the largest Lyapunov exponent against the noise, Figs 17, 18), [`maps`] (classified
 //! parameter planes with fold curves, Figs 2, 3, 6, 10, 12), [`boundary`] (oscillation
-//! boundaries, Figs 15, 16) and [`notes`] (captions and number formats).
+//! boundaries, Figs 15, 16), [`notes`] (captions and number formats) and [`table`] (a
+//! figure's data as rows, what its CSV files hold).
 //!
 //! # Example
 //! ```
@@ -47,6 +48,7 @@ pub mod lle;
 pub mod maps;
 pub mod montecarlo;
 pub mod notes;
+pub mod table;
 
 pub mod fig01_phase_recurrence;
 pub mod fig02_rhythmicity_planes;
@@ -102,6 +104,8 @@ pub trait Figure: Serialize + DeserializeOwned + Sized {
     /// All the numerical work. Reports progress to `monitor` and stops with
     /// [`Error::Cancelled`] when it asks.
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Self>;
+    /// The data as tables (what `figNN.csv` and its siblings hold), in file order.
+    fn tables(&self) -> Vec<table::Table>;
 }
 
 /// One figure of the [`registry`].

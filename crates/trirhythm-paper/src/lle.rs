@@ -13,6 +13,7 @@
 //! exponent is its eigenvalue's real part) and `tests/figures.rs`.
 
 use crate::notes::{caption, num, sig, symbol, table_notes, Caption};
+use crate::table::Table;
 use crate::{FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::lyapunov::{largest_lyapunov, CriticalNoise, LyapunovSpec, NoisePoint};
@@ -409,4 +410,35 @@ pub fn noise_point_text(q: &NoisePoint) -> String {
             sig(q.lle.stderr, 2)
         )
     }
+}
+
+/// The table of panels: `panel,curve,X,Y,Y_lo,Y_hi` (points without a value are left out and
+/// named in the header's notes by the figure).
+pub fn panels_table(notes: &[String], panels: &[Panel]) -> Table {
+    let mut csv = Table::new(
+        notes,
+        &["panel", "curve", "x_key", "x", "y_key", "y", "y_lo", "y_hi"],
+    );
+    for p in panels {
+        for c in &p.curves {
+            for q in c.points.iter().filter(|q| q.y.is_finite()) {
+                csv.row([
+                    p.caption
+                        .split(')')
+                        .next()
+                        .unwrap_or("")
+                        .trim_start_matches('(')
+                        .into(),
+                    c.label.replace(',', ";"),
+                    p.x_key.clone(),
+                    num(q.x),
+                    p.y_key.clone(),
+                    num(q.y),
+                    num(q.lo),
+                    num(q.hi),
+                ]);
+            }
+        }
+    }
+    csv
 }

@@ -9,7 +9,8 @@
 //! [`trace_printed_eq37`]. Checked by the library's bifurcation tests (the cusp of Fig. 2 (i)
 //! at α0 = 1/6, β0 = 1/135) and `tests/figures.rs`.
 
-use crate::notes::{table_notes, variant_line, Caption};
+use crate::notes::{num, table_notes, variant_line, Caption};
+use crate::table::Table;
 use crate::{FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
 use trirhythm::model::Params;
@@ -290,6 +291,67 @@ pub fn map_figure(
         notes: header,
         panels,
     }
+}
+
+impl MapFigure {
+    /// The figure's tables: `panel,x,y,count` over every grid point (row by row), and
+    /// `panel,curve,system,x,y,amplitude` over the fold curves (and the printed Eq. 36–37
+    /// curves where traced) as `_folds`.
+    pub fn tables(&self) -> Vec<Table> {
+        let mut counts = Table::new(&self.notes, &["panel", "x", "y", "count"]);
+        for p in &self.panels {
+            for iy in 0..p.y.grid.count {
+                let y = num(p.y.grid.value(iy));
+                for ix in 0..p.x.grid.count {
+                    counts.row([
+                        p.label.clone(),
+                        num(p.x.grid.value(ix)),
+                        y.clone(),
+                        p.count(ix, iy).to_string(),
+                    ]);
+                }
+            }
+        }
+        let mut folds = Table::new(
+            &self.notes,
+            &["panel", "curve", "system", "x", "y", "amplitude"],
+        )
+        .named("_folds");
+        for p in &self.panels {
+            let mut sets = vec![&p.folds];
+            if let Some(pr) = &p.printed {
+                sets.push(pr);
+            }
+            folds
+                .rows
+                .extend(fold_rows(std::slice::from_ref(&p.label), &sets));
+        }
+        vec![counts, folds]
+    }
+}
+
+/// Rows `prefix…,curve,system,x,y,amplitude` for every curve of `sets`, the curves numbered
+/// on across the sets.
+pub fn fold_rows(prefix: &[String], sets: &[&Folds]) -> Vec<Vec<String>> {
+    let mut rows = Vec::new();
+    let mut i = 0;
+    for f in sets {
+        for c in &f.curves {
+            for p in &c.points {
+                let mut row = prefix.to_vec();
+                row.extend([
+                    i.to_string(),
+                    c.system.name().to_string(),
+                    num(p.x),
+                    num(p.y),
+                    num(p.amplitude),
+                ]);
+                rows.push(row);
+            }
+            i += 1;
+        }
+    }
+    rows
 }
 
 /// A figure of four (γ0, δ0) rhythmicity panels, one per value of `key` (Figs 3 and 6): the

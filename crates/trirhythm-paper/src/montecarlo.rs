@@ -8,6 +8,8 @@
 //! [`Theory`]. Checked by the library's ensemble tests (statistics, merge) and
 //! `tests/figures.rs` (cancellation, quick computation, JSON round trip).
 
+use crate::notes::num;
+use crate::table::Table;
 use crate::Monitor;
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec};
@@ -279,4 +281,43 @@ pub fn comparisons(
             (v, c)
         })
         .collect()
+}
+
+/// The table of amplitude panels: `panel,series,A_lo,A_hi,density,stderr` (theory rows have
+/// A_lo = A_hi = A and a zero standard error).
+pub fn amplitude_table(notes: &[String], panels: &[AmplitudePanel]) -> Table {
+    let mut csv = Table::new(
+        notes,
+        &["panel", "series", "A_lo", "A_hi", "density", "stderr"],
+    )
+    .allow_infinity("stderr");
+    for p in panels {
+        for (v, xs, ys) in &p.theory {
+            for (x, y) in xs.iter().zip(ys) {
+                csv.row([
+                    p.caption.clone(),
+                    format!("theory {v}"),
+                    num(*x),
+                    num(*x),
+                    num(*y),
+                    "0".into(),
+                ]);
+            }
+        }
+        for r in &p.runs {
+            for (i, w) in r.edges.windows(2).enumerate() {
+                let s = r.stderr[i];
+                csv.row([
+                    p.caption.clone(),
+                    format!("MC {}", r.system),
+                    num(w[0]),
+                    num(w[1]),
+                    num(r.density[i]),
+                    // one path: no standard error (said in the notes)
+                    if s.is_finite() { num(s) } else { "inf".into() },
+                ]);
+            }
+        }
+    }
+    csv
 }

@@ -4,33 +4,13 @@
 //!
 //! Drawing only: the boundaries and their distances are [`trirhythm_paper::boundary`].
 
-use super::write_figure;
-use crate::common::{num, Csv};
-use crate::plot::{chart, legend, pe, Picture, PALETTE};
+use crate::plot::{chart, legend, pe, PALETTE};
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
 use trirhythm::analysis::oscillation::{BoundaryPoint, Side};
 use trirhythm_paper::boundary::{Curve, Panel};
-
-/// The rows of a panel for the figure's CSV.
-pub fn csv_rows(csv: &mut Csv, panel: &Panel) {
-    for c in &panel.curves {
-        for q in c.points.iter().filter(|q| q.side == Side::Boundary) {
-            csv.row([
-                panel.label.clone(),
-                c.label.replace(',', ";"),
-                c.method.clone(),
-                num(q.x),
-                num(q.y),
-                num(q.y_lo),
-                num(q.y_hi),
-            ]);
-        }
-    }
-}
 
 /// Colours: simulation black, averaging red, exact blue, exact without the wall grey.
 pub const SIM: RGBColor = RGBColor(0, 0, 0);
@@ -52,23 +32,6 @@ fn colour(curve: &Curve) -> RGBColor {
         (None, "exact, no wall") => NOWALL,
         (None, _) => EXACT,
     }
-}
-
-/// The CSV of boundary panels (`panel,curve,method,x,mu0,mu0_lo,mu0_hi`) and the pictures.
-pub fn render_panels(
-    picture: &impl Picture,
-    header: &[String],
-    panels: &[Panel],
-    stem: &Path,
-) -> Result<Vec<PathBuf>> {
-    let mut csv = Csv::new(
-        header,
-        &["panel", "curve", "method", "x", "mu0", "mu0_lo", "mu0_hi"],
-    );
-    for p in panels {
-        csv_rows(&mut csv, p);
-    }
-    write_figure(picture, stem, &csv.finish()?)
 }
 
 /// Draw one panel: the shaded rest region under the simulated boundary, then every curve

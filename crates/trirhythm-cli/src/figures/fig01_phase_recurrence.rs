@@ -7,31 +7,12 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig01_phase_recurrence`].
 
-use super::{heading_of, write_figure, Render};
-use crate::common::{num, Csv};
+use super::heading_of;
 use crate::plot::{chart, padded_range, pe, Heading, Picture};
 use anyhow::Result;
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
 use trirhythm::analysis::{RecurrenceMatrix, RecurrenceThreshold};
 use trirhythm_paper::fig01_phase_recurrence::Fig01;
-
-impl Render for Fig01 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let mut csv = Csv::new(&self.notes, &["system", "t", "U", "V"]);
-        for (panel, name) in self.panels.iter().zip(["fractional", "equivalent"]) {
-            for i in 0..panel.t.len() {
-                csv.row([
-                    name.to_string(),
-                    num(panel.t[i]),
-                    num(panel.u[i]),
-                    num(panel.v[i]),
-                ]);
-            }
-        }
-        write_figure(self, stem, &csv.finish()?)
-    }
-}
 
 /// Most display cells per axis of a recurrence plot: a cell is drawn when any pair of
 /// samples in it recurs (the plot stays legible and the SVG small; RR and DET use every pair).

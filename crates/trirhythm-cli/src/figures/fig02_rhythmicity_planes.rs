@@ -4,14 +4,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig02_rhythmicity_planes`].
 
-use super::mapfig::render_map;
-use super::Render;
-use anyhow::Result;
-use std::path::{Path, PathBuf};
+use super::mapfig::Map;
 use trirhythm_paper::fig02_rhythmicity_planes::Fig02;
 
-impl Render for Fig02 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        render_map(&self.0, stem)
-    }
-}
+picture_through!(Fig02, Map);

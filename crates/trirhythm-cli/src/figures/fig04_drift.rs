@@ -5,26 +5,12 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig04_drift`].
 
-use super::{heading_of, write_figure, Render};
-use crate::common::{num, Csv};
+use super::heading_of;
 use crate::plot::{chart, framed, legend, padded_range, pe, ChartSize, Heading, Picture, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use std::path::{Path, PathBuf};
 use trirhythm_paper::fig04_drift::{Fig04, Panel};
-
-impl Render for Fig04 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let mut csv = Csv::new(&self.notes, &["panel", "r", "A", "f"]);
-        for p in &self.panels {
-            for &(a, f) in &p.curve {
-                csv.row([p.label.clone(), num(p.r), num(a), num(f)]);
-            }
-        }
-        write_figure(self, stem, &csv.finish()?)
-    }
-}
 
 impl Picture for Fig04 {
     fn size(&self) -> (u32, u32) {

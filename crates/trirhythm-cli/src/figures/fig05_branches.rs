@@ -4,38 +4,12 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig05_branches`].
 
-use super::{heading_of, write_figure, Render};
-use crate::common::{num, Csv};
+use super::heading_of;
 use crate::plot::{chart, legend, pe, Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
 use trirhythm_paper::fig05_branches::Fig05;
-
-impl Render for Fig05 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let mut csv = Csv::new(
-            &self.notes,
-            &["panel", "mu0", "branch", "r", "A0", "stable"],
-        );
-        for (label, mu0, bd) in &self.panels {
-            for (i, b) in bd.branches.iter().enumerate() {
-                for q in &b.points {
-                    csv.row([
-                        label.clone(),
-                        num(*mu0),
-                        i.to_string(),
-                        num(q.param),
-                        num(q.amplitude),
-                        u8::from(q.stable).to_string(),
-                    ]);
-                }
-            }
-        }
-        write_figure(self, stem, &csv.finish()?)
-    }
-}
 
 /// Split a branch into runs of equal stability, sharing the boundary points.
 pub(super) fn runs(

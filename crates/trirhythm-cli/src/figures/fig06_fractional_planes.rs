@@ -3,14 +3,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig06_fractional_planes`].
 
-use super::mapfig::render_map;
-use super::Render;
-use anyhow::Result;
-use std::path::{Path, PathBuf};
+use super::mapfig::Map;
 use trirhythm_paper::fig06_fractional_planes::Fig06;
 
-impl Render for Fig06 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        render_map(&self.0, stem)
-    }
-}
+picture_through!(Fig06, Map);

@@ -2,13 +2,11 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig07_pseudo_potential`].
 
-use super::{heading_of, write_figure, Render};
-use crate::common::{num, Csv};
+use super::heading_of;
 use crate::plot::{chart, framed, legend, padded_range, pe, ChartSize, Heading, Picture, PALETTE};
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
 use trirhythm::theory::averaging::Extremum;
 use trirhythm_paper::fig07_pseudo_potential::{Curve, Fig07, Panel};
 
@@ -79,20 +77,6 @@ where
         .map_err(pe)?;
     }
     Ok(())
-}
-
-impl Render for Fig07 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let mut csv = Csv::new(&self.notes, &["panel", "r", "lambda", "A", "U_eff"]);
-        for panel in &self.panels {
-            for (cv, &(r, l)) in panel.curves.iter().zip(&panel.params) {
-                for &(a, u) in &cv.points {
-                    csv.row([panel.id.clone(), num(r), num(l), num(a), num(u)]);
-                }
-            }
-        }
-        write_figure(self, stem, &csv.finish()?)
-    }
 }
 
 impl Picture for Fig07 {

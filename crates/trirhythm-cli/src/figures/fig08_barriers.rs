@@ -3,24 +3,12 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig08_barriers`].
 
 use super::fig07_pseudo_potential::{draw_curves, frame};
-use super::{heading_of, write_figure, Render};
-use crate::common::{num, Csv};
+use super::heading_of;
 use crate::plot::{chart, pe, Heading, Picture, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
 use trirhythm::theory::averaging::Side;
 use trirhythm_paper::fig08_barriers::Fig08;
-
-impl Render for Fig08 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let mut csv = Csv::new(&self.notes, &["A", "U_eff"]);
-        for &(a, u) in &self.curve.points {
-            csv.row([num(a), num(u)]);
-        }
-        write_figure(self, stem, &csv.finish()?)
-    }
-}
 
 /// The inner wells' right end: the first crest beyond the first well, with margin.
 fn zoom_end(fig: &Fig08) -> f64 {

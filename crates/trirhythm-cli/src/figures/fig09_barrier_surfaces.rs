@@ -3,39 +3,12 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig09_barrier_surfaces`].
 
-use super::{heading_of, write_figure, Render};
-use crate::common::{num, Csv};
+use super::heading_of;
 use crate::plot::{chart, colour_bar, pe, viridis, Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
 use trirhythm_paper::fig09_barrier_surfaces::Fig09;
-
-impl Render for Fig09 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let mut csv = Csv::new(
-            &self.notes,
-            &["r", "tau", "lambda", "wells", "dU1", "dU2", "dU3", "dU4"],
-        );
-        for s in &self.surfaces {
-            for iy in 0..s.y.count {
-                for ix in 0..s.x.count {
-                    let i = iy * s.x.count + ix;
-                    let mut row = vec![
-                        num(s.r),
-                        num(s.x.value(ix)),
-                        num(s.y.value(iy)),
-                        s.wells[i].to_string(),
-                    ];
-                    row.extend(s.heights[i].iter().map(|h| h.map(num).unwrap_or_default()));
-                    csv.row(row);
-                }
-            }
-        }
-        write_figure(self, stem, &csv.finish()?)
-    }
-}
 
 impl Picture for Fig09 {
     fn size(&self) -> (u32, u32) {

@@ -5,14 +5,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig10_pbif_lambda_tau`].
 
-use super::mapfig::render_map;
-use super::Render;
-use anyhow::Result;
-use std::path::{Path, PathBuf};
+use super::mapfig::Map;
 use trirhythm_paper::fig10_pbif_lambda_tau::Fig10;
 
-impl Render for Fig10 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        render_map(&self.0, stem)
-    }
-}
+picture_through!(Fig10, Map);

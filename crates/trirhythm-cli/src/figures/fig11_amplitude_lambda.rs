@@ -6,38 +6,13 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig11_amplitude_lambda`].
 
 use super::fig05_branches::runs;
-use super::montecarlo::{
-    amplitude_csv, amplitude_legend, draw_amplitude_panel, two_rows_of_four, PANEL,
-};
-use super::{heading_of, Render};
-use crate::common::{num, Csv};
-use crate::output::write_atomic;
-use crate::plot::{chart, pe, save, Heading, Picture, PALETTE};
+use super::heading_of;
+use super::montecarlo::{amplitude_legend, draw_amplitude_panel, two_rows_of_four, PANEL};
+use crate::plot::{chart, pe, Heading, Picture, PALETTE};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
 use trirhythm_paper::fig11_amplitude_lambda::Fig11;
-
-impl Render for Fig11 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let mut csv = Csv::new(&self.notes, &["lambda", "u0", "amplitude", "spread"]);
-        for s in &self.settled {
-            csv.row([num(s.lambda), num(s.u0), num(s.amplitude), num(s.spread)]);
-        }
-        let a_path = stem.with_extension("csv");
-        write_atomic(&a_path, csv.finish()?.as_bytes())?;
-        let name = stem.file_name().unwrap_or_default().to_string_lossy();
-        let b_path = stem.with_file_name(format!("{name}_pdf.csv"));
-        write_atomic(
-            &b_path,
-            amplitude_csv(&self.notes, &self.panels)?.as_bytes(),
-        )?;
-        let mut files = vec![a_path, b_path];
-        files.extend(save(self, stem)?);
-        Ok(files)
-    }
-}
 
 impl Picture for Fig11 {
     fn size(&self) -> (u32, u32) {

@@ -5,20 +5,13 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig13_pdf_restitution`].
 
-use super::montecarlo::{amplitude_csv, draw_amplitude_grid, two_rows_of_four, PANEL};
-use super::{heading_of, write_figure, Render};
+use super::heading_of;
+use super::montecarlo::{draw_amplitude_grid, two_rows_of_four, PANEL};
 use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
 use trirhythm_paper::fig13_pdf_restitution::Fig13;
-
-impl Render for Fig13 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        write_figure(self, stem, &amplitude_csv(&self.notes, &self.panels)?)
-    }
-}
 
 impl Picture for Fig13 {
     fn size(&self) -> (u32, u32) {

@@ -5,34 +5,12 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig14_joint_pdf`].
 
-use super::{heading_of, write_figure, Render};
-use crate::common::{num, Csv};
+use super::heading_of;
 use crate::plot::{chart, colour_bar, pe, viridis, Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
 use trirhythm_paper::fig14_joint_pdf::{Fig14, JointPanel};
-
-impl Render for Fig14 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let mut csv = Csv::new(&self.notes, &["r", "U", "V", "theory", "mc"]);
-        for p in &self.panels {
-            for (i, u) in p.u_edges.windows(2).enumerate() {
-                for (k, v) in p.v_edges.windows(2).enumerate() {
-                    csv.row([
-                        num(p.r),
-                        num(0.5 * (u[0] + u[1])),
-                        num(0.5 * (v[0] + v[1])),
-                        num(p.theory[i][k]),
-                        num(p.mc[i][k]),
-                    ]);
-                }
-            }
-        }
-        write_figure(self, stem, &csv.finish()?)
-    }
-}
 
 const PANEL: (u32, u32) = (460, 400);
 /// Decades of the logarithmic colour scale.

@@ -8,20 +8,13 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig15_oscillation_boundaries`].
 
-use super::boundary::{draw_panel, render_panels};
-use super::{heading_of, Render};
+use super::boundary::draw_panel;
+use super::heading_of;
 use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
 use trirhythm_paper::fig15_oscillation_boundaries::Fig15;
-
-impl Render for Fig15 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        render_panels(self, &self.notes, &self.panels, stem)
-    }
-}
 
 impl Picture for Fig15 {
     fn size(&self) -> (u32, u32) {

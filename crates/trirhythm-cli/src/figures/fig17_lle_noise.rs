@@ -5,14 +5,7 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig17_lle_noise`] (one
 //! LLE-against-noise computation shared with Fig. 18).
 
-use super::lle::render_lle_against_noise;
-use super::Render;
-use anyhow::Result;
-use std::path::{Path, PathBuf};
+use super::lle::Lle;
 use trirhythm_paper::fig17_lle_noise::Fig17;
 
-impl Render for Fig17 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        render_lle_against_noise(&self.0, stem)
-    }
-}
+picture_through!(Fig17, Lle);

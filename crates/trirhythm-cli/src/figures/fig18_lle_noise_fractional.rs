@@ -6,14 +6,7 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig18_lle_noise_fractional`] (one
 //! LLE-against-noise computation shared with Fig. 17).
 
-use super::lle::render_lle_against_noise;
-use super::Render;
-use anyhow::Result;
-use std::path::{Path, PathBuf};
+use super::lle::Lle;
 use trirhythm_paper::fig18_lle_noise_fractional::Fig18;
 
-impl Render for Fig18 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        render_lle_against_noise(&self.0, stem)
-    }
-}
+picture_through!(Fig18, Lle);

@@ -4,20 +4,13 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig19_critical_noise`].
 
-use super::lle::{draw_panel, panel_height, panels_csv, PANEL_WIDTH};
-use super::{heading_of, write_figure, Render};
+use super::heading_of;
+use super::lle::{draw_panel, panel_height, PANEL_WIDTH};
 use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
 use trirhythm_paper::fig19_critical_noise::Fig19;
-
-impl Render for Fig19 {
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        write_figure(self, stem, &panels_csv(&self.notes, &self.panels)?)
-    }
-}
 
 impl Picture for Fig19 {
     fn size(&self) -> (u32, u32) {

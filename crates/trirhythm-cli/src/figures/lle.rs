@@ -4,45 +4,12 @@
 //!
 //! Drawing only: the runs and verdicts are [`trirhythm_paper::lle`].
 
-use crate::common::{num, Csv};
 use crate::plot::{chart, padded_range, pe, LegendStrip, Symbol, PALETTE};
 use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
 use trirhythm_paper::lle::{LleAgainstNoise, Panel};
-
-/// The CSV of panels: `panel,curve,X,Y,Y_lo,Y_hi` (points without a value are left out and
-/// named in the header's notes by the figure).
-pub fn panels_csv(header: &[String], panels: &[Panel]) -> Result<String> {
-    let mut csv = Csv::new(
-        header,
-        &["panel", "curve", "x_key", "x", "y_key", "y", "y_lo", "y_hi"],
-    );
-    for p in panels {
-        for c in &p.curves {
-            for q in c.points.iter().filter(|q| q.y.is_finite()) {
-                csv.row([
-                    p.caption
-                        .split(')')
-                        .next()
-                        .unwrap_or("")
-                        .trim_start_matches('(')
-                        .into(),
-                    c.label.replace(',', ";"),
-                    p.x_key.clone(),
-                    num(q.x),
-                    p.y_key.clone(),
-                    num(q.y),
-                    num(q.lo),
-                    num(q.hi),
-                ]);
-            }
-        }
-    }
-    csv.finish()
-}
 
 /// Height of the chart part of a panel.
 pub const CHART_HEIGHT: u32 = 420;
@@ -172,13 +139,8 @@ where
     Ok(())
 }
 
-/// Figs 17 and 18: the CSV of both panels and the two panels side by side.
-pub fn render_lle_against_noise(data: &LleAgainstNoise, stem: &Path) -> Result<Vec<PathBuf>> {
-    super::write_figure(&Lle(data), stem, &panels_csv(&data.notes, &data.panels)?)
-}
-
-/// An LLE-against-noise figure as a picture.
-struct Lle<'a>(&'a LleAgainstNoise);
+/// An LLE-against-noise figure (Figs 17, 18) as a picture: the two panels side by side.
+pub struct Lle<'a>(pub &'a LleAgainstNoise);
 
 impl Picture for Lle<'_> {
     fn size(&self) -> (u32, u32) {

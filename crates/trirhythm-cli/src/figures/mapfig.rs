@@ -5,15 +5,11 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::maps`].
 
 use super::heading_of;
-use crate::common::{num, Csv};
-use crate::maps::folds_csv;
-use crate::output::write_atomic;
-use crate::plot::{chart, pe, save, Heading, LegendStrip, Picture, Symbol, FONT};
+use crate::plot::{chart, pe, Heading, LegendStrip, Picture, Symbol, FONT};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use std::path::{Path, PathBuf};
 use trirhythm::theory::bifurcation::What;
 use trirhythm_paper::maps::{MapFigure, MapPanel};
 
@@ -32,43 +28,6 @@ pub fn count_colour(c: u8) -> RGBColor {
 pub const FOLD: RGBColor = RGBColor(230, 40, 40);
 /// Printed-Eq. 37 curve colour.
 pub const PRINTED: RGBColor = RGBColor(255, 170, 0);
-
-/// Write `stem.csv` (panel,x,y,count), `stem_folds.csv` and the picture of a map figure.
-pub fn render_map(fig: &MapFigure, stem: &Path) -> Result<Vec<PathBuf>> {
-    let mut csv = Csv::new(&fig.notes, &["panel", "x", "y", "count"]);
-    for p in &fig.panels {
-        for iy in 0..p.y.grid.count {
-            let y = num(p.y.grid.value(iy));
-            for ix in 0..p.x.grid.count {
-                csv.row([
-                    p.label.clone(),
-                    num(p.x.grid.value(ix)),
-                    y.clone(),
-                    p.count(ix, iy).to_string(),
-                ]);
-            }
-        }
-    }
-    let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.finish()?.as_bytes())?;
-    let mut fc = Csv::new(
-        &fig.notes,
-        &["panel", "curve", "system", "x", "y", "amplitude"],
-    );
-    for p in &fig.panels {
-        let mut sets = vec![&p.folds];
-        if let Some(pr) = &p.printed {
-            sets.push(pr);
-        }
-        folds_csv(&mut fc, std::slice::from_ref(&p.label), &sets);
-    }
-    let name = stem.file_name().unwrap_or_default().to_string_lossy();
-    let folds_path = stem.with_file_name(format!("{name}_folds.csv"));
-    write_atomic(&folds_path, fc.finish()?.as_bytes())?;
-    let mut files = vec![csv_path, folds_path];
-    files.extend(save(&Map(fig), stem)?);
-    Ok(files)
-}
 
 /// One legend for every panel: the counts met in any panel, the curves and markers drawn.
 fn legend(fig: &MapFigure) -> LegendStrip {
@@ -136,8 +95,8 @@ fn layout(fig: &MapFigure) -> (usize, usize) {
     }
 }
 
-/// A map figure as a picture.
-struct Map<'a>(&'a MapFigure);
+/// A map figure as a picture (one legend strip for all panels below them).
+pub struct Map<'a>(pub &'a MapFigure);
 
 impl Picture for Map<'_> {
     fn size(&self) -> (u32, u32) {

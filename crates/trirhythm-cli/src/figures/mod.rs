@@ -9,16 +9,42 @@
 //! # Data first, pictures second
 //!
 //! A figure's data and its computation live in the library crate `trirhythm-paper`
-//! ([`trirhythm_paper::Figure`]: number, title, `compute(options, monitor)`); this module only
-//! renders it. [`Render::render`] writes the CSV, PNG and SVG from the data value alone,
-//! deterministically, so that rendering the data read back from `figNN.json` gives the same
-//! bytes. To add figure NN: its data type and computation in `trirhythm-paper`
-//! (`figNN_what.rs` there), then here `figNN_what.rs` with `impl Render for FigNN` and
+//! ([`trirhythm_paper::Figure`]: number, title, `compute(options, monitor)`, and its data as
+//! tables); this module only writes it: each table as a CSV file, and the picture (PNG + SVG)
+//! drawn from the data value alone, deterministically, so that rendering the data read back
+//! from `figNN.json` gives the same bytes. To add figure NN: its data type, computation and
+//! tables in `trirhythm-paper` (`figNN_what.rs` there), then here `figNN_what.rs` with
 //! `impl Picture for FigNN` (the drawing, [`crate::plot::save`] writes it), and
 //! `entry::<FigNN>()` in [`registry`]. Progress of a computation goes to a bar on the terminal
 //! through [`Bar`], the library's [`Monitor`].
 
 mod boundary;
+/// `impl Picture for $figure`, a newtype of shared data drawn through the view `$view`
+/// (`$view(&self.0)` is a [`Picture`]): the map figures and the LLE-against-noise figures.
+macro_rules! picture_through {
+    ($figure:ty, $view:ident) => {
+        impl crate::plot::Picture for $figure {
+            fn size(&self) -> (u32, u32) {
+                $view(&self.0).size()
+            }
+
+            fn heading(&self) -> crate::plot::Heading {
+                $view(&self.0).heading()
+            }
+
+            fn draw<DB: plotters::prelude::DrawingBackend>(
+                &self,
+                root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+            ) -> anyhow::Result<()>
+            where
+                DB::ErrorType: 'static,
+            {
+                $view(&self.0).draw(root)
+            }
+        }
+    };
+}
+
 mod fig01_phase_recurrence;
 mod fig02_rhythmicity_planes;
 mod fig03_restitution_planes;
@@ -42,7 +68,7 @@ mod lle;
 mod mapfig;
 mod montecarlo;
 
-use crate::common::bad;
+use crate::common::{bad, Csv};
 use crate::output::write_atomic;
 use crate::plot::{save, Heading, Picture};
 use anyhow::{Context, Result};
@@ -51,6 +77,7 @@ use std::path::{Path, PathBuf};
 use trirhythm::monitor::Monitor;
 use trirhythm::theory::averaging::Variant;
 use trirhythm_paper::notes::Caption;
+use trirhythm_paper::table::Table;
 use trirhythm_paper::{Figure, FigureOptions};
 
 /// What every figure gets.
@@ -76,13 +103,6 @@ impl FigureContext {
 /// `dir/figNN` (without extension).
 pub fn stem(dir: &Path, n: u32) -> PathBuf {
     dir.join(format!("fig{n:02}"))
-}
-
-/// A paper figure's data, rendered to files.
-pub trait Render: Figure {
-    /// Write `stem.csv` (and any other data files), `stem.png` and `stem.svg` from the data
-    /// alone; returns the paths written.
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>>;
 }
 
 /// The library's [`Monitor`] drawn as a progress bar on the terminal (hidden otherwise).
@@ -127,7 +147,7 @@ struct DataFile<F> {
     variant: Variant,
     /// Quick (coarse) or paper quality.
     quick: bool,
-    /// The value [`Render::render`] draws (the library's data type, serialised).
+    /// The value the files are drawn from (the library's data type, serialised).
     data: F,
 }
 
@@ -154,7 +174,7 @@ pub struct Entry {
     pub make: fn(&Request) -> Result<Vec<PathBuf>>,
 }
 
-fn entry<F: Render>() -> Entry {
+fn entry<F: Figure + Picture>() -> Entry {
     Entry {
         number: F::NUMBER,
         title: F::TITLE,
@@ -187,7 +207,7 @@ pub fn registry() -> Vec<Entry> {
     ]
 }
 
-fn make<F: Render>(request: &Request) -> Result<Vec<PathBuf>> {
+fn make<F: Figure + Picture>(request: &Request) -> Result<Vec<PathBuf>> {
     let (file, out_dir, data) = match request {
         Request::Compute { ctx, data } => {
             let file = DataFile {
@@ -218,23 +238,33 @@ fn make<F: Render>(request: &Request) -> Result<Vec<PathBuf>> {
         write_atomic(&path, json.as_bytes())?;
         files.push(path);
     }
-    files.extend(file.data.render(&stem)?);
+    for table in file.data.tables() {
+        files.push(write_table(&stem, &table)?);
+    }
+    files.extend(save(&file.data, &stem)?);
     Ok(files)
 }
 
-/// Write a figure's CSV (`stem.csv`) and its pictures (`stem.png`, `stem.svg`); returns the
-/// paths written. The usual tail of [`Figure::render`].
-pub fn write_figure(picture: &impl Picture, stem: &Path, csv: &str) -> Result<Vec<PathBuf>> {
-    let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.as_bytes())?;
-    let mut files = vec![csv_path];
-    files.extend(save(picture, stem)?);
-    Ok(files)
+/// Write one of a figure's tables as `stem{suffix}.csv` (notes as `#` lines); refuses a table
+/// with NaN, or ±∞ outside the columns that allow it. Returns the path written.
+fn write_table(stem: &Path, table: &Table) -> Result<PathBuf> {
+    let columns: Vec<&str> = table.columns.iter().map(String::as_str).collect();
+    let mut csv = Csv::new(&table.notes, &columns);
+    for column in &table.infinite {
+        csv = csv.allow_infinity(column);
+    }
+    for row in &table.rows {
+        csv.row(row.iter().cloned());
+    }
+    let name = stem.file_name().unwrap_or_default().to_string_lossy();
+    let path = stem.with_file_name(format!("{name}{}.csv", table.suffix));
+    write_atomic(&path, csv.finish()?.as_bytes())?;
+    Ok(path)
 }
 
 /// Read `dir/figNN.json` for figure `F` (bad input when missing, malformed or of another
 /// figure).
-fn read_data<F: Render>(dir: &Path) -> Result<DataFile<F>> {
+fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
     let path = stem(dir, F::NUMBER).with_extension("json");
     let text = match std::fs::read_to_string(&path) {
         Ok(t) => t,

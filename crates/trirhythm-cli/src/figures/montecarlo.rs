@@ -137,46 +137,6 @@ where
     Ok(())
 }
 
-/// CSV rows of amplitude panels: `panel,series,A_lo,A_hi,density,stderr` (theory rows have
-/// A_lo = A_hi = A and a zero standard error).
-pub fn amplitude_csv(header: &[String], panels: &[AmplitudePanel]) -> Result<String> {
-    use crate::common::{num, Csv};
-    let mut csv = Csv::new(
-        header,
-        &["panel", "series", "A_lo", "A_hi", "density", "stderr"],
-    )
-    .allow_infinity("stderr");
-    for p in panels {
-        for (v, xs, ys) in &p.theory {
-            for (x, y) in xs.iter().zip(ys) {
-                csv.row([
-                    p.caption.clone(),
-                    format!("theory {v}"),
-                    num(*x),
-                    num(*x),
-                    num(*y),
-                    "0".into(),
-                ]);
-            }
-        }
-        for r in &p.runs {
-            for (i, w) in r.edges.windows(2).enumerate() {
-                let s = r.stderr[i];
-                csv.row([
-                    p.caption.clone(),
-                    format!("MC {}", r.system),
-                    num(w[0]),
-                    num(w[1]),
-                    num(r.density[i]),
-                    // one path: no standard error (said in the notes)
-                    if s.is_finite() { num(s) } else { "inf".into() },
-                ]);
-            }
-        }
-    }
-    csv.finish()
-}
-
 /// A grid of amplitude panels with one legend strip below them.
 pub fn draw_amplitude_grid<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
