@@ -12,10 +12,27 @@ const QUICK: FigureOptions = FigureOptions {
     variant: Variant::Paper,
 };
 
-/// Compute `F` in quick mode; its JSON text reads back to a value that writes the same JSON.
+/// Compute `F` in quick mode; its tables are rectangular and not empty, and its JSON text
+/// reads back to a value that writes the same JSON.
 fn round_trip<F: Figure>() {
     let data = F::compute(&QUICK, &Silent)
         .unwrap_or_else(|e| panic!("figure {} does not compute: {e}", F::NUMBER));
+    let tables = data.tables();
+    assert!(!tables.is_empty(), "figure {}: no table", F::NUMBER);
+    for t in &tables {
+        assert!(
+            !t.rows.is_empty(),
+            "figure {}{}: no rows",
+            F::NUMBER,
+            t.suffix
+        );
+        assert!(
+            t.rows.iter().all(|r| r.len() == t.columns.len()),
+            "figure {}{}: a row with the wrong number of cells",
+            F::NUMBER,
+            t.suffix
+        );
+    }
     let value = to_json(&data).unwrap();
     let text = serde_json::to_string(&data).unwrap();
     let back: F = serde_json::from_str(&text)
