@@ -303,52 +303,8 @@ impl Csv {
     }
 }
 
-/// Format a number for CSV/table output: shortest round-trip representation.
-pub fn num(v: f64) -> String {
-    let v = v + 0.0; // −0 prints as 0
-    if v.is_nan() {
-        "nan".into()
-    } else if v == f64::NEG_INFINITY {
-        "-inf".into()
-    } else if v == f64::INFINITY {
-        "inf".into()
-    } else {
-        // shortest round-trip digits; exponent notation where plain digits would run long
-        trirhythm::error::Exact(v).to_string()
-    }
-}
-
-/// A number for prose (notes, messages) to `digits` significant digits, trailing zeros dropped:
-/// 0.40800000000000003 → "0.408", −3.6500952558839547e-4 → "-0.000365" (at 3), exponent
-/// notation outside [1e-4, 1e9). Data cells use [`num`] (round-trip) instead.
-pub fn sig(v: f64, digits: usize) -> String {
-    let v = v + 0.0;
-    let a = v.abs();
-    if !v.is_finite() || v == 0.0 {
-        return num(v);
-    }
-    let digits = digits.max(1);
-    let trim = |t: &str| -> String {
-        if t.contains('.') {
-            t.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            t.to_string()
-        }
-    };
-    if (1e-4..1e9).contains(&a) {
-        // round first, then count the decimals: 9.9996 at 4 digits is 10.00, not 9.9996
-        let rounded: f64 = format!("{:.*e}", digits - 1, v).parse().unwrap_or(v);
-        let exponent = rounded.abs().log10().floor() as i32;
-        let decimals = (digits as i32 - 1 - exponent).max(0) as usize;
-        trim(&format!("{rounded:.decimals$}"))
-    } else {
-        let t = format!("{:.*e}", digits - 1, v);
-        match t.split_once('e') {
-            Some((m, e)) => format!("{}e{e}", trim(m)),
-            None => t,
-        }
-    }
-}
+/// Numbers for CSV cells (round-trip) and prose (significant digits): the paper crate's.
+pub use trirhythm_paper::notes::{num, sig};
 
 /// A table cell with `digits` decimals, in exponent notation outside [1e-4, 1e9) so that no
 /// cell runs to hundreds of digits or rounds a small value to 0.
@@ -453,25 +409,4 @@ pub fn progress(len: u64, message: &str) -> indicatif::ProgressBar {
     );
     bar.set_message(message.to_string());
     bar
-}
-
-#[cfg(test)]
-mod tests {
-    use super::sig;
-
-    #[test]
-    fn significant_digits_for_prose() {
-        assert_eq!(sig(0.40800000000000003, 4), "0.408");
-        assert_eq!(sig(-0.00036500952558839547, 3), "-0.000365");
-        assert_eq!(sig(0.0002654057820450608, 2), "0.00027");
-        assert_eq!(sig(1.9901309893509918, 4), "1.99");
-        assert_eq!(sig(9.99996, 4), "10");
-        assert_eq!(sig(1234567.0, 3), "1230000");
-        assert_eq!(sig(-6.913418236253023e-5, 3), "-6.91e-5");
-        assert_eq!(sig(2.5e12, 2), "2.5e12");
-        assert_eq!(sig(0.0, 3), "0");
-        assert_eq!(sig(-0.0, 3), "0");
-        assert_eq!(sig(f64::NAN, 3), "nan");
-        assert_eq!(sig(2.0, 4), "2");
-    }
 }

@@ -19,11 +19,12 @@ use std::time::Instant;
 use trirhythm::analysis::ensemble::{
     merge, run_paths, EnsembleResult, EnsembleSpec, PathStats, Wells,
 };
-use trirhythm::analysis::versus::{compare, theory_layout, TheoryComparison};
+use trirhythm::analysis::versus::{theory_layout, TheoryComparison};
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
 use trirhythm::monitor::Monitor;
-use trirhythm::theory::averaging::{Theory, Variant};
+use trirhythm::theory::averaging::Variant;
+use trirhythm_paper::montecarlo::comparisons;
 
 /// `json` or `csv`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -207,23 +208,6 @@ fn jvec(v: &[f64]) -> Value {
 
 fn jstats(v: &[f64]) -> Value {
     Value::Array(v.iter().map(|&x| jstat(x)).collect())
-}
-
-/// The theory of each variant against the result (None where the theory has no P(A)).
-pub fn comparisons(
-    params: &Params,
-    r: &EnsembleResult,
-    seed: u64,
-) -> Vec<(Variant, std::result::Result<TheoryComparison, String>)> {
-    [Variant::Paper, Variant::Consistent]
-        .into_iter()
-        .map(|v| {
-            let c = Theory::new(params, v)
-                .and_then(|th| compare(r, &th, seed))
-                .map_err(|e| e.to_string());
-            (v, c)
-        })
-        .collect()
 }
 
 fn theory_json(c: &TheoryComparison) -> Value {

@@ -19,6 +19,7 @@ use trirhythm::analysis::lyapunov::{
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
 use trirhythm::monitor::Silent;
+use trirhythm_paper::lle::{merged_points_text, Sign};
 
 /// How the exponent is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -576,81 +577,6 @@ fn opt_cell(v: f64) -> String {
         num(v)
     } else {
         String::new()
-    }
-}
-
-/// The LLE's sign over the evaluated D of a search without a sign change, D with a merged
-/// realisation aside.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Sign {
-    Negative,
-    Positive,
-    NegativeOrMerged,
-    PositiveOrMerged,
-    AllMerged,
-}
-
-impl Sign {
-    pub(crate) fn of(c: &CriticalNoise) -> Self {
-        let signed: Vec<f64> = c
-            .evaluated
-            .iter()
-            .filter(|q| q.merged == 0)
-            .map(|q| q.lle.value)
-            .collect();
-        let merged = signed.len() < c.evaluated.len();
-        match (signed.is_empty(), signed.iter().all(|&v| v < 0.0), merged) {
-            (true, _, _) => Sign::AllMerged,
-            (false, true, false) => Sign::Negative,
-            (false, false, false) => Sign::Positive,
-            (false, true, true) => Sign::NegativeOrMerged,
-            (false, false, true) => Sign::PositiveOrMerged,
-        }
-    }
-
-    /// In a sentence: "LLE {words}".
-    pub(crate) fn words(self) -> &'static str {
-        match self {
-            Sign::Negative => "negative throughout",
-            Sign::Positive => "positive throughout",
-            Sign::NegativeOrMerged => "negative at every D without a merged realisation",
-            Sign::PositiveOrMerged => "positive at every D without a merged realisation",
-            Sign::AllMerged => "without a sign: a realisation merged at every D",
-        }
-    }
-
-    /// Short, for a figure's verdict line.
-    pub(crate) fn tag(self) -> &'static str {
-        match self {
-            Sign::Negative => "LLE < 0",
-            Sign::Positive => "LLE > 0",
-            Sign::NegativeOrMerged => "LLE < 0 or a realisation merged",
-            Sign::PositiveOrMerged => "LLE > 0 or a realisation merged",
-            Sign::AllMerged => "a realisation merged at every D",
-        }
-    }
-}
-
-/// The evaluated D of a critical-noise search at which a realisation merged, in words.
-pub(crate) fn merged_points_text(c: &CriticalNoise) -> Vec<String> {
-    c.evaluated
-        .iter()
-        .filter(|q| q.merged > 0)
-        .map(noise_point_text)
-        .collect()
-}
-
-/// An evaluated D of a critical-noise search in words: "D: LLE ± s.e.", or the merged count.
-pub(crate) fn noise_point_text(q: &trirhythm::analysis::lyapunov::NoisePoint) -> String {
-    if q.merged > 0 {
-        format!("{}: −∞ ({} merged)", sig(q.d, 4), q.merged)
-    } else {
-        format!(
-            "{}: {} ± {}",
-            sig(q.d, 4),
-            sig(q.lle.value, 3),
-            sig(q.lle.stderr, 2)
-        )
     }
 }
 

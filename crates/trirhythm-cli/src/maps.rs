@@ -111,24 +111,10 @@ fn curve_json(c: &FoldCurve) -> Value {
     })
 }
 
-/// Rows `curve,system,x,y,amplitude` for every curve of `sets`, numbered on from `first`.
+/// Rows `curve,system,x,y,amplitude` for every curve of `sets`, numbered on across them.
 pub fn folds_csv(csv: &mut Csv, prefix: &[String], sets: &[&Folds]) {
-    let mut i = 0;
-    for f in sets {
-        for c in &f.curves {
-            for p in &c.points {
-                let mut row = prefix.to_vec();
-                row.extend([
-                    i.to_string(),
-                    c.system.name().to_string(),
-                    num(p.x),
-                    num(p.y),
-                    num(p.amplitude),
-                ]);
-                csv.row(row);
-            }
-            i += 1;
-        }
+    for row in trirhythm_paper::maps::fold_rows(prefix, sets) {
+        csv.row(row);
     }
 }
 

@@ -1,36 +1,9 @@
 //! Fig. 3: rhythmicity in the (γ0, δ0) plane for four restitution coefficients r, with the
 //! saddle-node lines traced exactly.
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig03_restitution_planes`].
 
-use super::mapfig::{gamma_delta_family, MapFigure};
-use super::{Figure, FigureContext};
-use anyhow::Result;
-use serde::{Deserialize, Serialize};
-use std::path::{Path, PathBuf};
+use super::mapfig::Map;
+use trirhythm_paper::fig03_restitution_planes::Fig03;
 
-/// The r values (not printed in the paper).
-pub const R_VALUES: [f64; 4] = [1.0, 0.998, 0.995, 0.99];
-
-/// Fig. 3's data: four map panels, one per r.
-#[derive(Serialize, Deserialize)]
-#[serde(transparent)]
-pub struct Fig03(MapFigure);
-
-impl Figure for Fig03 {
-    const NUMBER: u32 = 3;
-    const TITLE: &'static str = "rhythmicity in (γ0, δ0) for four restitution coefficients";
-
-    fn compute(ctx: &FigureContext) -> Result<Fig03> {
-        gamma_delta_family(
-            ctx,
-            (3, "rhythmicity in the (γ0, δ0) plane for four restitution coefficients"),
-            "fig3",
-            ("r", "r", R_VALUES),
-            "(α0, β0) = (0.144, 0.005), D = 0, μ0 = 0.01, λ = 0.999, ω0 = 1; r values not printed in the paper: chosen".into(),
-        )
-        .map(Fig03)
-    }
-
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        self.0.render(stem)
-    }
-}
+picture_through!(Fig03, Map);

@@ -1,36 +1,9 @@
 //! Fig. 6: rhythmicity in the (γ0, δ0) plane for four fractional orders λ, with the
 //! saddle-node lines traced exactly.
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig06_fractional_planes`].
 
-use super::mapfig::{gamma_delta_family, MapFigure};
-use super::{Figure, FigureContext};
-use anyhow::Result;
-use serde::{Deserialize, Serialize};
-use std::path::{Path, PathBuf};
+use super::mapfig::Map;
+use trirhythm_paper::fig06_fractional_planes::Fig06;
 
-/// The λ values (not printed in the paper).
-pub const LAMBDA_VALUES: [f64; 4] = [1.0, 0.999, 0.998, 0.997];
-
-/// Fig. 6's data: four map panels, one per λ.
-#[derive(Serialize, Deserialize)]
-#[serde(transparent)]
-pub struct Fig06(MapFigure);
-
-impl Figure for Fig06 {
-    const NUMBER: u32 = 6;
-    const TITLE: &'static str = "mono/bi/tri regions in (γ0, δ0) for four fractional orders";
-
-    fn compute(ctx: &FigureContext) -> Result<Fig06> {
-        gamma_delta_family(
-            ctx,
-            (6, "mono (blue), bi (green), tri (black) regions in the (γ0, δ0) plane for four λ"),
-            "fig6",
-            ("lambda", "λ", LAMBDA_VALUES),
-            "(α0, β0) = (0.144, 0.005), D = 0, μ0 = 0.01, r = 0.998, ω0 = 1; λ values not printed in the paper: chosen".into(),
-        )
-        .map(Fig06)
-    }
-
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        self.0.render(stem)
-    }
-}
+picture_through!(Fig06, Map);

@@ -2,60 +2,10 @@
 //! number of maxima of the stationary P(A) (Eq. 27), the exact transition curves
 //! m1 = ∂m1/∂A = 0 (Eq. 35 with Eq. 37 corrected) and, for the paper variant, the paper's printed
 //! Eq. 36–37 construction.
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig10_pbif_lambda_tau`].
 
-use super::mapfig::{compute_panel, map_figure, AxisSpec, MapFigure};
-use super::{Figure, FigureContext};
-use anyhow::Result;
-use serde::{Deserialize, Serialize};
-use std::path::{Path, PathBuf};
-use trirhythm::model::preset;
-use trirhythm::theory::bifurcation::What;
+use super::mapfig::Map;
+use trirhythm_paper::fig10_pbif_lambda_tau::Fig10;
 
-const D_VALUES: [f64; 4] = [0.05, 0.3, 0.7, 1.2];
-
-/// Fig. 10's data: four map panels, one per D.
-#[derive(Serialize, Deserialize)]
-#[serde(transparent)]
-pub struct Fig10(MapFigure);
-
-impl Figure for Fig10 {
-    const NUMBER: u32 = 10;
-    const TITLE: &'static str = "P-bifurcation map in (λ, τ) for four D";
-
-    fn compute(ctx: &FigureContext) -> Result<Fig10> {
-        compute(ctx).map(Fig10)
-    }
-
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        self.0.render(stem)
-    }
-}
-
-fn compute(ctx: &FigureContext) -> Result<MapFigure> {
-    let pre = preset("fig10")?;
-    let mut panels = Vec::new();
-    for (label, d) in ["a", "b", "c", "d"].into_iter().zip(D_VALUES) {
-        panels.push(compute_panel(
-            ctx,
-            label,
-            format!("D = {d}"),
-            &pre.params.with("D", d)?,
-            AxisSpec::new("lambda", 0.9, 1.0, "λ", 1.0),
-            AxisSpec::new("tau", 0.0, 5.0, "τ", 1.0),
-            What::Modes,
-            true,
-        )?);
-    }
-    let mut notes: Vec<String> = pre.notes.iter().map(|s| s.to_string()).collect();
-    notes.push("λ ∈ [0.9, 1] and τ ∈ [0, 5] chosen (the paper prints no ranges)".into());
-    notes.push("count = number of maxima of P(A): stable roots of m1 (sign changes of d ln P/dA = 2m1/σ1 on the analytic expression)".into());
-    notes.push("red: m1 = ∂m1/∂A = 0 traced exactly; dashed orange: h = 0 with Eq. 37 as printed (β1 on the wrong term), which agrees with the exact curves only at λ = 1".into());
-    Ok(map_figure(
-        ctx,
-        (10, "P-bifurcation map in the (λ, τ) plane for four noise intensities"),
-        "unimodal (blue), bimodal (green), trimodal (black) P(A); μ0 = 0.01, ω0 = 0.9, cp = (0.144, 0.005, 5.862e-5, 2.13e-7), r = 0.998 (not printed: chosen)".into(),
-        notes,
-        panels,
-        (2, 2),
-    ))
-}
+picture_through!(Fig10, Map);

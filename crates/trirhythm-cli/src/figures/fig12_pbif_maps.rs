@@ -1,74 +1,9 @@
 //! Fig. 12: P-bifurcation maps in the (μ0, r) plane at λ = 0.995 (a, b) and the (λ, r) plane at
 //! μ0 = 0.01 (c, d), for ω0 = 0.9 (a, c) and ω0 = 1.0 (b, d; the caption prints 0.9 twice).
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig12_pbif_maps`].
 
-use super::mapfig::{compute_panel, map_figure, AxisSpec, MapFigure};
-use super::{Figure, FigureContext};
-use anyhow::Result;
-use serde::{Deserialize, Serialize};
-use std::path::{Path, PathBuf};
-use trirhythm::model::preset;
-use trirhythm::theory::bifurcation::What;
+use super::mapfig::Map;
+use trirhythm_paper::fig12_pbif_maps::Fig12;
 
-/// Fig. 12's data: four map panels.
-#[derive(Serialize, Deserialize)]
-#[serde(transparent)]
-pub struct Fig12(MapFigure);
-
-impl Figure for Fig12 {
-    const NUMBER: u32 = 12;
-    const TITLE: &'static str = "P-bifurcation maps in (μ0, r) and (λ, r)";
-
-    fn compute(ctx: &FigureContext) -> Result<Fig12> {
-        compute(ctx).map(Fig12)
-    }
-
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        self.0.render(stem)
-    }
-}
-
-fn compute(ctx: &FigureContext) -> Result<MapFigure> {
-    let mut panels = Vec::new();
-    let mut notes = Vec::new();
-    for label in ["a", "b", "c", "d"] {
-        let pre = preset(&format!("fig12{label}"))?;
-        notes.extend(pre.notes.iter().map(|s| format!("panel {label}: {s}")));
-        let w0 = pre.params.omega0;
-        let (xs, caption) = if label == "a" || label == "b" {
-            (
-                AxisSpec::new("mu0", 0.001, 0.1, "μ0", 1.0),
-                format!("λ = 0.995, ω0 = {w0}"),
-            )
-        } else {
-            (
-                AxisSpec::new("lambda", 0.95, 1.0, "λ", 1.0),
-                format!("μ0 = 0.01, ω0 = {w0}"),
-            )
-        };
-        panels.push(compute_panel(
-            ctx,
-            label,
-            caption,
-            &pre.params,
-            xs,
-            AxisSpec::new("r", 0.8, 1.0, "r", 1.0),
-            What::Modes,
-            true,
-        )?);
-    }
-    notes.push(
-        "μ0 ∈ [0.001, 0.1], λ ∈ [0.95, 1], r ∈ [0.8, 1] chosen (the paper prints no ranges)".into(),
-    );
-    notes.push(
-        "red: m1 = ∂m1/∂A = 0 traced exactly; dashed orange: the printed Eq. 36-37 construction"
-            .into(),
-    );
-    Ok(map_figure(
-        ctx,
-        (12, "P-bifurcation maps in the (μ0, r) and (λ, r) planes"),
-        "unimodal (blue), bimodal (green), trimodal (black) P(A); D = 0.1, τ = 0.5, cp = (0.144, 0.005, 5.862e-5, 2.13e-7); ω0 = 1.0 in b, d (caption prints 0.9 twice)".into(),
-        notes,
-        panels,
-        (2, 2),
-    ))
-}
+picture_through!(Fig12, Map);

@@ -2,96 +2,16 @@
 //! μ0 = 0.2 (b): the averaged theory (Eq. 27, both variants) against Monte Carlo ensembles of
 //! the fractional system (Eq. 1) and of its integer-order equivalent (Eq. 5), with error bars,
 //! distances and the stationarity verdict of every ensemble.
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig13_pdf_restitution`].
 
-use super::montecarlo::{
-    amplitude_csv, amplitude_panel, draw_amplitude_grid, stationary_count, two_rows_of_four,
-    AmplitudePanel, Sizes, PANEL,
-};
-use super::write_figure;
-use super::{csv_header, heading, Figure, FigureContext};
+use super::heading_of;
+use super::montecarlo::{draw_amplitude_grid, two_rows_of_four, PANEL};
 use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use serde::{Deserialize, Serialize};
-use std::path::{Path, PathBuf};
-use trirhythm::engine::System;
-use trirhythm::model::preset;
-
-/// (preset, label, r) per panel: the paper's r for (a), four of "0.7 to 0.999" for (b).
-const PANELS: [(&str, &str, f64); 8] = [
-    ("fig13a", "a1", 0.99),
-    ("fig13a", "a2", 0.97),
-    ("fig13a", "a3", 0.96),
-    ("fig13a", "a4", 0.84),
-    ("fig13b", "b1", 0.999),
-    ("fig13b", "b2", 0.95),
-    ("fig13b", "b3", 0.85),
-    ("fig13b", "b4", 0.7),
-];
-
-/// Fig. 13's data.
-#[derive(Serialize, Deserialize)]
-pub struct Fig13 {
-    heading: Heading,
-    header: Vec<String>,
-    panels: Vec<AmplitudePanel>,
-}
-
-impl Figure for Fig13 {
-    const NUMBER: u32 = 13;
-    const TITLE: &'static str = "P(A) for several r: theory against Monte Carlo of Eq. 1 and Eq. 5";
-
-    fn compute(ctx: &FigureContext) -> Result<Fig13> {
-        let sz = Sizes::of(ctx.quick);
-        let mut notes = vec![
-            format!(
-                "ensembles: {}; starts at the theory's modes in turn",
-                sz.describe()
-            ),
-            "the paper prints r for (a) only; (b) shows four r from its range 0.7–0.999".into(),
-        ];
-        let mut panels = Vec::new();
-        for (name, label, r) in PANELS {
-            let pre = preset(name)?;
-            let p = pre.params.with("r", r)?;
-            let mu0 = p.mu0;
-            let (panel, n) = amplitude_panel(
-                format!("({label}) μ0 = {mu0}, r = {r}"),
-                &p,
-                ctx.variant,
-                &[System::Fractional, System::Equivalent],
-                sz,
-            )?;
-            notes.extend(n);
-            panels.push(panel);
-        }
-        let (passed, total) = stationary_count(&panels);
-        let verdict = format!(
-            "stationarity check passed by {passed} of {total} ensembles (panels marked \"Monte Carlo NOT stationary\" are not stationary results)"
-        );
-        notes.push(verdict.clone());
-        notes.push("the paper claims agreement between theory and Monte Carlo in every panel; the distances above say where it holds".into());
-        let base = preset("fig13a")?.params;
-        let heading = heading(
-            13,
-            "stationary P(A) for several r, theory against Monte Carlo",
-            ctx,
-            &base,
-            &["mu0", "r"],
-            vec![format!("Monte Carlo: {}", sz.describe()), verdict],
-        );
-        Ok(Fig13 {
-            heading,
-            header: csv_header(13, Self::TITLE, ctx, &notes),
-            panels,
-        })
-    }
-
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        write_figure(self, stem, &amplitude_csv(&self.header, &self.panels)?)
-    }
-}
+use trirhythm_paper::fig13_pdf_restitution::Fig13;
 
 impl Picture for Fig13 {
     fn size(&self) -> (u32, u32) {
@@ -99,7 +19,7 @@ impl Picture for Fig13 {
     }
 
     fn heading(&self) -> Heading {
-        self.heading.clone()
+        heading_of(&self.caption)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>

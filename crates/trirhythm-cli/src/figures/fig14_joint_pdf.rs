@@ -2,187 +2,15 @@
 //! theory's Eq. (30–31) (top row) against the Monte Carlo histogram of Eq. (1) (bottom row),
 //! as heat maps with one colour scale per r, the Hellinger distance between them and the
 //! stationarity verdict of each ensemble.
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig14_joint_pdf`].
 
-use super::montecarlo::{ensemble, Sizes};
-use super::write_figure;
-use super::{csv_header, heading, Figure, FigureContext};
-use crate::common::{num, Csv};
+use super::heading_of;
 use crate::plot::{chart, colour_bar, pe, viridis, Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use serde::{Deserialize, Serialize};
-use std::path::{Path, PathBuf};
-use trirhythm::engine::System;
-use trirhythm::model::preset;
-use trirhythm::theory::averaging::Theory;
-
-/// The paper's r of panels (a)–(d).
-const RS: [f64; 4] = [0.999, 0.96, 0.92, 0.86];
-
-/// One r: the grid, both densities (row-major, U index then U̇ index), the verdict.
-#[derive(Serialize, Deserialize)]
-pub struct JointPanel {
-    r: f64,
-    u_edges: Vec<f64>,
-    v_edges: Vec<f64>,
-    theory: Vec<Vec<f64>>,
-    mc: Vec<Vec<f64>>,
-    hellinger: f64,
-    stationary: bool,
-    #[serde(with = "super::non_finite")]
-    r_hat: f64,
-}
-
-/// Fig. 14's data.
-#[derive(Serialize, Deserialize)]
-pub struct Fig14 {
-    heading: Heading,
-    header: Vec<String>,
-    panels: Vec<JointPanel>,
-}
-
-impl Figure for Fig14 {
-    const NUMBER: u32 = 14;
-    const TITLE: &'static str = "joint density P(U, dU/dt) for four r: theory against Monte Carlo";
-
-    fn compute(ctx: &FigureContext) -> Result<Fig14> {
-        let pre = preset("fig14")?;
-        let sz = Sizes::of(ctx.quick);
-        let bins = if ctx.quick { 32 } else { 64 };
-        let mut notes: Vec<String> = pre.notes.iter().map(|s| s.to_string()).collect();
-        notes.push(format!(
-            "Monte Carlo of Eq. 1: {}; joint histogram {bins} × {bins} on U ∈ [0, A_max], dU/dt ∈ ±ω1·A_max",
-            sz.describe()
-        ));
-        notes.push("theory: Eq. 31, P(U, dU/dt) = P(A)/(πω1A) on U ≥ 0 with A² = U² + (dU/dt)²/ω1², averaged over each cell exactly: in polar form its mass is P(A)dA·dφ/π, so each of 4000 amplitude slices (mass from the quadrature of P(A)) is spread over 720 angles of its half-ellipse".into());
-        let mut panels = Vec::new();
-        for r in RS {
-            let p = pre.params.with("r", r)?;
-            let res = ensemble(&p, ctx.variant, System::Fractional, sz, bins)?;
-            let pdf = Theory::new(&p, ctx.variant)?.amplitude_pdf()?;
-            let j = &res.joint;
-            let (du, dv) = (j.u_edges[1] - j.u_edges[0], j.v_edges[1] - j.v_edges[0]);
-            let theory = cell_averages(&pdf, res.omega1, &j.u_edges, &j.v_edges);
-            // Hellinger over the cells (each side's mass outside the grid as one more cell)
-            let cell = du * dv;
-            let q_in: f64 = theory.iter().flatten().sum::<f64>() * cell;
-            let p_in: f64 = j.density.iter().flatten().sum::<f64>() * cell;
-            let bc = theory
-                .iter()
-                .flatten()
-                .zip(j.density.iter().flatten())
-                .map(|(q, m)| (q * cell * m * cell).sqrt())
-                .sum::<f64>()
-                + ((1.0 - q_in).max(0.0) * (1.0 - p_in).max(0.0)).sqrt();
-            let hellinger = (1.0 - bc).max(0.0).sqrt();
-            let st = &res.stationarity;
-            if let Some(&outer) = pdf.modes.last() {
-                notes.push(format!(
-                    "r = {r}: at the theory's outer mode A = {outer:.2} the damping is μ0|P(A)| = {:.0} against ω0 = {}: the simulated outer cycle is a relaxation oscillation (a slow creep near U ≈ A with dU/dt ≈ 0, the bright cells, and fast returns), which the averaging's uniform-phase ring of Eq. 31 cannot represent",
-                    p.mu0 * p.damping.eval(outer).abs(),
-                    p.omega0
-                ));
-            }
-            notes.push(format!(
-                "r = {r}: Hellinger distance theory–MC over the cells {hellinger:.3}; MC {} (R̂ = {:.3}, ESS = {:.0}); theory's mass on the grid {q_in:.4}, MC's {p_in:.4}",
-                if st.stationary { "stationarity check passed" } else { "NOT STATIONARY" },
-                st.r_hat,
-                st.ess
-            ));
-            panels.push(JointPanel {
-                r,
-                u_edges: j.u_edges.clone(),
-                v_edges: j.v_edges.clone(),
-                theory,
-                mc: j.density.clone(),
-                hellinger,
-                stationary: st.stationary,
-                r_hat: st.r_hat,
-            });
-        }
-        notes.push("the paper's claims (a crater at r = 0.92 turning into four separate peaks at r = 0.999; the trimodal P(A) matching a three- or four-peak joint PDF) are checked against these maps: the joint density of Eq. 31 is a function of A alone, so its peaks are rings, never separate peaks".into());
-        let passed = panels.iter().filter(|p| p.stationary).count();
-        let heading = heading(
-            14,
-            "joint density P(U, dU/dt) for four r: theory (top) against Monte Carlo of Eq. 1 (bottom)",
-            ctx,
-            &pre.params,
-            &["r"],
-            vec![
-                format!("Monte Carlo: {}; one logarithmic colour scale per r (three decades; white below)", sz.describe()),
-                format!("stationarity check passed by {passed} of {} ensembles", panels.len()),
-            ],
-        );
-        Ok(Fig14 {
-            heading,
-            header: csv_header(14, Self::TITLE, ctx, &notes),
-            panels,
-        })
-    }
-
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        let mut csv = Csv::new(&self.header, &["r", "U", "V", "theory", "mc"]);
-        for p in &self.panels {
-            for (i, u) in p.u_edges.windows(2).enumerate() {
-                for (k, v) in p.v_edges.windows(2).enumerate() {
-                    csv.row([
-                        num(p.r),
-                        num(0.5 * (u[0] + u[1])),
-                        num(0.5 * (v[0] + v[1])),
-                        num(p.theory[i][k]),
-                        num(p.mc[i][k]),
-                    ]);
-                }
-            }
-        }
-        write_figure(self, stem, &csv.finish()?)
-    }
-}
-
-/// The theory's density averaged over each cell of the grid: P(U, U̇)dU dU̇ = P(A)dA dφ/π on
-/// U = A cos φ, U̇ = ω1 A sin φ, φ ∈ [−π/2, π/2], so amplitude slices (their mass from the
-/// quadrature of P(A)) are spread evenly in φ over their half-ellipses.
-fn cell_averages(
-    pdf: &trirhythm::theory::averaging::AmplitudePdf,
-    omega1: f64,
-    u_edges: &[f64],
-    v_edges: &[f64],
-) -> Vec<Vec<f64>> {
-    const SLICES: usize = 4000;
-    const ANGLES: usize = 720;
-    let (nu, nv) = (u_edges.len() - 1, v_edges.len() - 1);
-    let (u0, du) = (u_edges[0], u_edges[1] - u_edges[0]);
-    let (v0, dv) = (v_edges[0], v_edges[1] - v_edges[0]);
-    let a_max = (u_edges[nu].abs()).max(v_edges[nv].abs() / omega1);
-    let mut mass = vec![vec![0.0; nv]; nu];
-    for k in 0..SLICES {
-        let (a, b) = (
-            a_max * k as f64 / SLICES as f64,
-            a_max * (k + 1) as f64 / SLICES as f64,
-        );
-        let w = pdf.probability(a, b) / ANGLES as f64;
-        if w <= 0.0 {
-            continue;
-        }
-        let amp = 0.5 * (a + b);
-        for m in 0..ANGLES {
-            let phi = std::f64::consts::PI * ((m as f64 + 0.5) / ANGLES as f64 - 0.5);
-            let (s, c) = phi.sin_cos();
-            let i = ((amp * c - u0) / du).floor();
-            let l = ((omega1 * amp * s - v0) / dv).floor();
-            if i >= 0.0 && l >= 0.0 && (i as usize) < nu && (l as usize) < nv {
-                mass[i as usize][l as usize] += w;
-            }
-        }
-    }
-    for row in &mut mass {
-        for x in row.iter_mut() {
-            *x /= du * dv;
-        }
-    }
-    mass
-}
+use trirhythm_paper::fig14_joint_pdf::{Fig14, JointPanel};
 
 const PANEL: (u32, u32) = (460, 400);
 /// Decades of the logarithmic colour scale.
@@ -224,7 +52,7 @@ impl Picture for Fig14 {
     }
 
     fn heading(&self) -> Heading {
-        self.heading.clone()
+        heading_of(&self.caption)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>

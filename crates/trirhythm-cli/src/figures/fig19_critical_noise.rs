@@ -1,193 +1,16 @@
 //! Fig. 19: the critical noise D_c where the largest Lyapunov exponent changes sign, against μ0
 //! (a), τ (b), λ (c) and r (d), with its uncertainty from the standard errors; values without a
 //! sign change in the searched range are said so on the panel, never drawn as a made-up value.
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig19_critical_noise`].
 
-use super::lle::{draw_panel, panel_height, panels_csv, Curve, Panel, Point, Sizes, PANEL_WIDTH};
-use super::symbol;
-use super::write_figure;
-use super::{csv_header, heading, Figure, FigureContext};
-use crate::common::{num, sig};
-use crate::lyapunov::{merged_points_text, noise_point_text, Sign};
+use super::heading_of;
+use super::lle::{draw_panel, panel_height, PANEL_WIDTH};
 use crate::plot::{Heading, Picture};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use serde::{Deserialize, Serialize};
-use std::path::{Path, PathBuf};
-use trirhythm::analysis::lyapunov::{critical_noise, CriticalSearch};
-use trirhythm::model::preset;
-
-/// (panel, key, values, the paper's claimed trend of D_c).
-const PANELS: [(&str, &str, [f64; 5], &str); 4] = [
-    ("(a)", "mu0", [0.005, 0.01, 0.02, 0.05, 0.1], "decreases"),
-    ("(b)", "tau", [0.1, 0.3, 0.5, 0.75, 1.0], "increases"),
-    (
-        "(c)",
-        "lambda",
-        [0.95, 0.97, 0.98, 0.99, 0.998],
-        "increases",
-    ),
-    ("(d)", "r", [0.8, 0.85, 0.9, 0.95, 0.998], "increases"),
-];
-
-/// Fig. 19's data.
-#[derive(Serialize, Deserialize)]
-pub struct Fig19 {
-    heading: Heading,
-    header: Vec<String>,
-    panels: Vec<Panel>,
-}
-
-impl Figure for Fig19 {
-    const NUMBER: u32 = 19;
-    const TITLE: &'static str =
-        "critical noise D_c where the LLE changes sign, against μ0, τ, λ, r";
-
-    fn compute(ctx: &FigureContext) -> Result<Fig19> {
-        let sz = Sizes::of(ctx.quick);
-        let base = preset("fig19")?.params;
-        let search = CriticalSearch {
-            d_lo: 0.01,
-            d_hi: 2.0,
-            grid: if ctx.quick { 3 } else { 6 },
-            refinements: if ctx.quick { 1 } else { 3 },
-            z: 2.0,
-        };
-        let mut notes = vec![
-            sz.describe(),
-            format!(
-                "D_c: first sign change of the LLE on {} equally spaced D in [{}, {}], bisected {} times, linear interpolation of the last bracket; error bar: nearest evaluated D on each side whose LLE is {} standard errors from 0 (the range's end if none)",
-                search.grid, num(search.d_lo), num(search.d_hi), search.refinements, num(search.z)
-            ),
-            "the caption prints r = 9.998: 0.998 is meant; ω0 is not printed: 0.9 (as in Fig. 17); the swept values are chosen (not printed)".into(),
-        ];
-        let mut panels = Vec::new();
-        for (label, key, values, claim) in PANELS {
-            let mut points = Vec::new();
-            let mut missing = Vec::new();
-            let mut falling: Vec<String> = Vec::new();
-            for v in values {
-                let p = base.with(key, v)?;
-                let problem = trirhythm::engine::Problem::from_params(&p)?;
-                let c = critical_noise(
-                    &problem,
-                    &sz.method,
-                    &sz.spec,
-                    &search,
-                    &trirhythm::monitor::Silent,
-                )?;
-                let merged = merged_points_text(&c);
-                if c.found() {
-                    notes.push(format!(
-                        "{label} {} = {}: D_c = {} in [{}, {}] ({}){}",
-                        symbol(key), num(v), sig(c.d_c, 4), sig(c.d_c_lo, 4), sig(c.d_c_hi, 4),
-                        if c.rising { "LLE negative below, positive above" } else { "LLE positive below, negative above: the opposite of the paper's transition" },
-                        if merged.is_empty() { String::new() } else { format!("; no sign at D = {} (realisations merged)", merged.join(", ")) }
-                    ));
-                } else {
-                    let sign = Sign::of(&c);
-                    notes.push(format!(
-                        "{label} {} = {}: no sign change in range D ∈ [{}, {}] (LLE {}; evaluated: {})",
-                        symbol(key), num(v), num(search.d_lo), num(search.d_hi), sign.words(),
-                        c.evaluated.iter().map(noise_point_text).collect::<Vec<_>>().join("; ")
-                    ));
-                    let tag = sign.tag();
-                    missing.push((num(v), tag));
-                }
-                if c.found() && !c.rising {
-                    falling.push(num(v));
-                }
-                // only a negative → positive change is the paper's D_c
-                let drawn = c.found() && c.rising;
-                let nan = f64::NAN;
-                points.push(Point {
-                    x: v,
-                    y: if drawn { c.d_c } else { nan },
-                    lo: if drawn { c.d_c_lo } else { nan },
-                    hi: if drawn { c.d_c_hi } else { nan },
-                });
-            }
-            let found: Vec<&Point> = points.iter().filter(|q| q.y.is_finite()).collect();
-            let trend = if found.len() >= 2 {
-                let up = found.windows(2).all(|w| w[1].y >= w[0].y);
-                let down = found.windows(2).all(|w| w[1].y <= w[0].y);
-                match (up, down) {
-                    (true, false) => "increases",
-                    (false, true) => "decreases",
-                    _ => "not monotonic",
-                }
-            } else {
-                "undetermined"
-            };
-            let verdict = if trend == claim {
-                "agrees"
-            } else {
-                "not reproduced"
-            };
-            notes.push(format!(
-                "{label} paper: D_c {claim} with {}; here: {trend} (negative → positive change at {} of {} values; positive → negative, the opposite transition, at {}): {verdict}",
-                symbol(key), found.len(), values.len(), falling.len()
-            ));
-            let mut verdicts = vec![format!("paper: D_c {claim}; here: {trend}")];
-            if !falling.is_empty() {
-                verdicts.push(format!(
-                    "LLE + → − (not drawn) at {} = {}",
-                    symbol(key),
-                    falling.join(", ")
-                ));
-            }
-            // one line per kind of outcome, so that no line runs past the chart
-            let mut tags: Vec<&str> = Vec::new();
-            for m in &missing {
-                if !tags.contains(&m.1) {
-                    tags.push(m.1);
-                }
-            }
-            for tag in tags {
-                let at: Vec<&str> = missing
-                    .iter()
-                    .filter(|m| m.1 == tag)
-                    .map(|m| m.0.as_str())
-                    .collect();
-                verdicts.push(format!(
-                    "no sign change in range at {} = {} ({tag})",
-                    symbol(key),
-                    at.join(", ")
-                ));
-            }
-            panels.push(Panel {
-                caption: format!("{label} D_c against {}", symbol(key)),
-                x_key: key.into(),
-                x_desc: symbol(key).into(),
-                y_desc: "critical noise D_c".into(),
-                y_key: "D_c".into(),
-                zero_line: false,
-                curves: vec![Curve {
-                    label: "D_c with its uncertainty".into(),
-                    points,
-                }],
-                verdicts,
-            });
-        }
-        let heading = heading(
-            19,
-            "critical noise D_c where the largest Lyapunov exponent changes sign",
-            ctx,
-            &base,
-            &["mu0", "tau", "lambda", "r", "D"],
-            vec![sz.describe()],
-        );
-        Ok(Fig19 {
-            heading,
-            header: csv_header(19, Self::TITLE, ctx, &notes),
-            panels,
-        })
-    }
-
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>> {
-        write_figure(self, stem, &panels_csv(&self.header, &self.panels)?)
-    }
-}
+use trirhythm_paper::fig19_critical_noise::Fig19;
 
 impl Picture for Fig19 {
     fn size(&self) -> (u32, u32) {
@@ -195,7 +18,7 @@ impl Picture for Fig19 {
     }
 
     fn heading(&self) -> Heading {
-        self.heading.clone()
+        heading_of(&self.caption)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>

@@ -8,22 +8,42 @@
 //!
 //! # Data first, pictures second
 //!
-//! A figure is a serialisable data type that implements [`Figure`]:
-//! [`Figure::compute`] does all the numerical work and returns the data (the headings and CSV
-//! header lines included, as text); [`Figure::render`] writes the CSV, PNG and SVG from that
-//! value alone, deterministically, so that rendering the data read back from `figNN.json`
-//! gives the same bytes. To add figure NN:
-//!
-//! 1. write `figNN_what.rs` with `pub struct FigNN { … }` deriving `Serialize, Deserialize`
-//!    (plain numbers, strings and the library's serialisable result types, no plotting types),
-//!    `impl Figure for FigNN` (number, title, `compute`, `render`), and `impl Picture for FigNN`
-//!    for the drawing ([`crate::plot::save`] writes it);
-//! 2. add `mod figNN_what;` below and `entry::<figNN_what::FigNN>()` to [`registry`].
-//!
-//! Figures that share a drawing (the maps, [`mapfig::MapFigure`]) wrap it in a newtype per
-//! figure. JSON has no NaN or ±∞: an `f64` field that may hold one takes
-//! `#[serde(with = "non_finite")]` (written as the strings `"NaN"`, `"inf"`, `"-inf"`); data
-//! that would not read back is refused before `figNN.json` is written.
+//! A figure's data and its computation live in the library crate `trirhythm-paper`
+//! ([`trirhythm_paper::Figure`]: number, title, `compute(options, monitor)`, and its data as
+//! tables); this module only writes it: each table as a CSV file, and the picture (PNG + SVG)
+//! drawn from the data value alone, deterministically, so that rendering the data read back
+//! from `figNN.json` gives the same bytes. To add figure NN: its data type, computation and
+//! tables in `trirhythm-paper` (`figNN_what.rs` there), then here `figNN_what.rs` with
+//! `impl Picture for FigNN` (the drawing, [`crate::plot::save`] writes it), and
+//! `entry::<FigNN>()` in [`registry`]. Progress of a computation goes to a bar on the terminal
+//! through [`Bar`], the library's [`Monitor`].
+
+mod boundary;
+/// `impl Picture for $figure`, a newtype of shared data drawn through the view `$view`
+/// (`$view(&self.0)` is a [`Picture`]): the map figures and the LLE-against-noise figures.
+macro_rules! picture_through {
+    ($figure:ty, $view:ident) => {
+        impl crate::plot::Picture for $figure {
+            fn size(&self) -> (u32, u32) {
+                $view(&self.0).size()
+            }
+
+            fn heading(&self) -> crate::plot::Heading {
+                $view(&self.0).heading()
+            }
+
+            fn draw<DB: plotters::prelude::DrawingBackend>(
+                &self,
+                root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+            ) -> anyhow::Result<()>
+            where
+                DB::ErrorType: 'static,
+            {
+                $view(&self.0).draw(root)
+            }
+        }
+    };
+}
 
 mod fig01_phase_recurrence;
 mod fig02_rhythmicity_planes;
@@ -48,15 +68,17 @@ mod lle;
 mod mapfig;
 mod montecarlo;
 
-use crate::common::bad;
+use crate::common::{bad, Csv};
 use crate::output::write_atomic;
 use crate::plot::{save, Heading, Picture};
 use anyhow::{Context, Result};
-use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
-use trirhythm::model::Params;
+use trirhythm::monitor::Monitor;
 use trirhythm::theory::averaging::Variant;
+use trirhythm_paper::notes::Caption;
+use trirhythm_paper::table::Table;
+use trirhythm_paper::{Figure, FigureOptions};
 
 /// What every figure gets.
 pub struct FigureContext {
@@ -68,22 +90,50 @@ pub struct FigureContext {
     pub variant: Variant,
 }
 
+impl FigureContext {
+    /// What the library's computation needs.
+    pub fn options(&self) -> FigureOptions {
+        FigureOptions {
+            quick: self.quick,
+            variant: self.variant,
+        }
+    }
+}
+
 /// `dir/figNN` (without extension).
 pub fn stem(dir: &Path, n: u32) -> PathBuf {
     dir.join(format!("fig{n:02}"))
 }
 
-/// A paper figure: its data, computed once, and the files rendered from it.
-pub trait Figure: Serialize + DeserializeOwned {
-    /// The paper's figure number.
-    const NUMBER: u32;
-    /// What the figure shows, in one line (printed as each figure is made).
-    const TITLE: &'static str;
-    /// All the numerical work; writes no file.
-    fn compute(ctx: &FigureContext) -> Result<Self>;
-    /// Write `stem.csv` (and any other data files), `stem.png` and `stem.svg` from the data
-    /// alone; returns the paths written.
-    fn render(&self, stem: &Path) -> Result<Vec<PathBuf>>;
+/// The library's [`Monitor`] drawn as a progress bar on the terminal (hidden otherwise).
+pub struct Bar(indicatif::ProgressBar);
+
+impl Bar {
+    /// A bar labelled `message`, hidden until the first progress.
+    pub fn new(message: &str) -> Bar {
+        Bar(crate::common::progress(0, message))
+    }
+}
+
+impl Monitor for Bar {
+    fn progress(&self, done: u64, total: u64) {
+        self.0.set_length(total);
+        self.0.set_position(done);
+    }
+}
+
+impl Drop for Bar {
+    fn drop(&mut self) {
+        self.0.finish_and_clear();
+    }
+}
+
+/// A caption drawn as a picture's heading.
+pub fn heading_of(caption: &Caption) -> Heading {
+    Heading {
+        title: caption.title.clone(),
+        lines: caption.lines.clone(),
+    }
 }
 
 /// `figNN.json`: the figure's data with what produced it.
@@ -97,7 +147,7 @@ struct DataFile<F> {
     variant: Variant,
     /// Quick (coarse) or paper quality.
     quick: bool,
-    /// The value [`Figure::render`] draws.
+    /// The value the files are drawn from (the library's data type, serialised).
     data: F,
 }
 
@@ -124,7 +174,7 @@ pub struct Entry {
     pub make: fn(&Request) -> Result<Vec<PathBuf>>,
 }
 
-fn entry<F: Figure>() -> Entry {
+fn entry<F: Figure + Picture>() -> Entry {
     Entry {
         number: F::NUMBER,
         title: F::TITLE,
@@ -135,29 +185,29 @@ fn entry<F: Figure>() -> Entry {
 /// The figures this build can make, by number.
 pub fn registry() -> Vec<Entry> {
     vec![
-        entry::<fig01_phase_recurrence::Fig01>(),
-        entry::<fig02_rhythmicity_planes::Fig02>(),
-        entry::<fig03_restitution_planes::Fig03>(),
-        entry::<fig04_drift::Fig04>(),
-        entry::<fig05_branches::Fig05>(),
-        entry::<fig06_fractional_planes::Fig06>(),
-        entry::<fig07_pseudo_potential::Fig07>(),
-        entry::<fig08_barriers::Fig08>(),
-        entry::<fig09_barrier_surfaces::Fig09>(),
-        entry::<fig10_pbif_lambda_tau::Fig10>(),
-        entry::<fig11_amplitude_lambda::Fig11>(),
-        entry::<fig12_pbif_maps::Fig12>(),
-        entry::<fig13_pdf_restitution::Fig13>(),
-        entry::<fig14_joint_pdf::Fig14>(),
-        entry::<fig15_oscillation_boundaries::Fig15>(),
-        entry::<fig16_oscillation_regions::Fig16>(),
-        entry::<fig17_lle_noise::Fig17>(),
-        entry::<fig18_lle_noise_fractional::Fig18>(),
-        entry::<fig19_critical_noise::Fig19>(),
+        entry::<trirhythm_paper::fig01_phase_recurrence::Fig01>(),
+        entry::<trirhythm_paper::fig02_rhythmicity_planes::Fig02>(),
+        entry::<trirhythm_paper::fig03_restitution_planes::Fig03>(),
+        entry::<trirhythm_paper::fig04_drift::Fig04>(),
+        entry::<trirhythm_paper::fig05_branches::Fig05>(),
+        entry::<trirhythm_paper::fig06_fractional_planes::Fig06>(),
+        entry::<trirhythm_paper::fig07_pseudo_potential::Fig07>(),
+        entry::<trirhythm_paper::fig08_barriers::Fig08>(),
+        entry::<trirhythm_paper::fig09_barrier_surfaces::Fig09>(),
+        entry::<trirhythm_paper::fig10_pbif_lambda_tau::Fig10>(),
+        entry::<trirhythm_paper::fig11_amplitude_lambda::Fig11>(),
+        entry::<trirhythm_paper::fig12_pbif_maps::Fig12>(),
+        entry::<trirhythm_paper::fig13_pdf_restitution::Fig13>(),
+        entry::<trirhythm_paper::fig14_joint_pdf::Fig14>(),
+        entry::<trirhythm_paper::fig15_oscillation_boundaries::Fig15>(),
+        entry::<trirhythm_paper::fig16_oscillation_regions::Fig16>(),
+        entry::<trirhythm_paper::fig17_lle_noise::Fig17>(),
+        entry::<trirhythm_paper::fig18_lle_noise_fractional::Fig18>(),
+        entry::<trirhythm_paper::fig19_critical_noise::Fig19>(),
     ]
 }
 
-fn make<F: Figure>(request: &Request) -> Result<Vec<PathBuf>> {
+fn make<F: Figure + Picture>(request: &Request) -> Result<Vec<PathBuf>> {
     let (file, out_dir, data) = match request {
         Request::Compute { ctx, data } => {
             let file = DataFile {
@@ -165,7 +215,7 @@ fn make<F: Figure>(request: &Request) -> Result<Vec<PathBuf>> {
                 trirhythm: env!("CARGO_PKG_VERSION").to_string(),
                 variant: ctx.variant,
                 quick: ctx.quick,
-                data: F::compute(ctx)?,
+                data: F::compute(&ctx.options(), &Bar::new(&format!("figure {}", F::NUMBER)))?,
             };
             (file, ctx.out_dir.as_path(), *data)
         }
@@ -188,18 +238,28 @@ fn make<F: Figure>(request: &Request) -> Result<Vec<PathBuf>> {
         write_atomic(&path, json.as_bytes())?;
         files.push(path);
     }
-    files.extend(file.data.render(&stem)?);
+    for table in file.data.tables() {
+        files.push(write_table(&stem, &table)?);
+    }
+    files.extend(save(&file.data, &stem)?);
     Ok(files)
 }
 
-/// Write a figure's CSV (`stem.csv`) and its pictures (`stem.png`, `stem.svg`); returns the
-/// paths written. The usual tail of [`Figure::render`].
-pub fn write_figure(picture: &impl Picture, stem: &Path, csv: &str) -> Result<Vec<PathBuf>> {
-    let csv_path = stem.with_extension("csv");
-    write_atomic(&csv_path, csv.as_bytes())?;
-    let mut files = vec![csv_path];
-    files.extend(save(picture, stem)?);
-    Ok(files)
+/// Write one of a figure's tables as `stem{suffix}.csv` (notes as `#` lines); refuses a table
+/// with NaN, or ±∞ outside the columns that allow it. Returns the path written.
+fn write_table(stem: &Path, table: &Table) -> Result<PathBuf> {
+    let columns: Vec<&str> = table.columns.iter().map(String::as_str).collect();
+    let mut csv = Csv::new(&table.notes, &columns);
+    for column in &table.infinite {
+        csv = csv.allow_infinity(column);
+    }
+    for row in &table.rows {
+        csv.row(row.iter().cloned());
+    }
+    let name = stem.file_name().unwrap_or_default().to_string_lossy();
+    let path = stem.with_file_name(format!("{name}{}.csv", table.suffix));
+    write_atomic(&path, csv.finish()?.as_bytes())?;
+    Ok(path)
 }
 
 /// Read `dir/figNN.json` for figure `F` (bad input when missing, malformed or of another
@@ -245,113 +305,5 @@ fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
             path.display(),
             F::NUMBER
         )),
-    }
-}
-
-/// JSON for an `f64` that may be NaN or ±∞ (the library's [`trirhythm::non_finite`]).
-pub use trirhythm::non_finite;
-
-/// Serde for a plotters colour, as `[r, g, b]`: `#[serde(with = "super::rgb")]`.
-pub mod rgb {
-    use plotters::style::RGBColor;
-    use serde::{Deserialize, Deserializer, Serialize, Serializer};
-
-    /// `[r, g, b]`.
-    pub fn serialize<S: Serializer>(c: &RGBColor, s: S) -> Result<S::Ok, S::Error> {
-        [c.0, c.1, c.2].serialize(s)
-    }
-
-    /// The inverse of [`serialize`].
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<RGBColor, D::Error> {
-        let [r, g, b] = <[u8; 3]>::deserialize(d)?;
-        Ok(RGBColor(r, g, b))
-    }
-}
-
-/// Header comment lines for a figure's CSV: title, variant, notes.
-pub fn csv_header(n: u32, title: &str, ctx: &FigureContext, notes: &[String]) -> Vec<String> {
-    let mut h = vec![
-        format!("trirhythm figure {n}: {title}"),
-        format!("variant: {}", ctx.variant.name()),
-    ];
-    h.extend(notes.iter().map(|s| format!("note: {s}")));
-    h
-}
-
-/// A panel's parameters for a header line.
-pub fn panel_line(label: &str, p: &Params) -> String {
-    format!("panel {label}: {}", p.describe())
-}
-
-/// The formula variant, as a heading line: a `--variant consistent` picture says so on itself.
-pub fn variant_line(v: Variant) -> String {
-    match v {
-        Variant::Paper => {
-            "averaged theory: the paper's formulas as printed, typos fixed (--variant paper)".into()
-        }
-        Variant::Consistent => {
-            "averaged theory: CONSISTENT variant — exact impact loss ω1A ln r/π, \
-                                coloured noise through sgn Z (--variant consistent)"
-                .into()
-        }
-    }
-}
-
-/// The user-facing symbol of a parameter key.
-pub fn symbol(key: &str) -> &str {
-    match key {
-        "mu0" => "μ0",
-        "omega0" => "ω0",
-        "lambda" => "λ",
-        "alpha0" => "α0",
-        "beta0" => "β0",
-        "gamma0" => "γ0",
-        "delta0" => "δ0",
-        "tau" => "τ",
-        k => k,
-    }
-}
-
-/// "μ0 = 0.01, ω0 = 1, …" for the keys of `p` not in `varying` (those the panels set).
-pub fn params_text(p: &Params, varying: &[&str]) -> String {
-    p.key_values()
-        .into_iter()
-        .filter(|(k, _)| !varying.contains(&k.as_str()))
-        .map(|(k, v)| format!("{} = {}", symbol(&k), trirhythm::error::Exact(v)))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-/// A figure's heading: "Fig. N: title", the shared parameters (what the panels vary named),
-/// the formula variant, then `extra` lines (choices where the paper is silent, methods).
-pub fn heading(
-    n: u32,
-    title: &str,
-    ctx: &FigureContext,
-    base: &Params,
-    varying: &[&str],
-    extra: Vec<String>,
-) -> Heading {
-    let mut lines = vec![format!(
-        "{}{}",
-        params_text(base, varying),
-        if varying.is_empty() {
-            String::new()
-        } else {
-            format!(
-                "; per panel: {}",
-                varying
-                    .iter()
-                    .map(|k| symbol(k))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )
-        }
-    )];
-    lines.push(variant_line(ctx.variant));
-    lines.extend(extra);
-    Heading {
-        title: format!("Fig. {n}: {title}"),
-        lines,
     }
 }

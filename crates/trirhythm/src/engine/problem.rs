@@ -164,14 +164,20 @@ pub struct Problem {
 }
 
 impl Problem {
-    /// Eq. (1) of `oscillator` with the wall, from (U, U̇) = (1, 0), blow-up at 10⁸.
+    /// The start (U(0), U̇(0)) of a problem that sets none.
+    pub const DEFAULT_START: (f64, f64) = (1.0, 0.0);
+    /// The blow-up bound of a problem that sets none.
+    pub const DEFAULT_BLOW_UP: f64 = 1e8;
+
+    /// Eq. (1) of `oscillator` with the wall, from [`Problem::DEFAULT_START`], blow-up at
+    /// [`Problem::DEFAULT_BLOW_UP`].
     pub fn new(oscillator: Oscillator) -> Self {
         Problem {
             oscillator,
             system: System::Fractional,
             barrier: Barrier::On,
-            starts: vec![(1.0, 0.0)],
-            blow_up: 1e8,
+            starts: vec![Self::DEFAULT_START],
+            blow_up: Self::DEFAULT_BLOW_UP,
         }
     }
 

@@ -1,0 +1,134 @@
+//! Fig. 4: the averaged drift f(A0) of the amplitude equation (Eq. 18) for four parameter
+//! sets (presets `fig4a` … `fig4d`), its zones and its roots, the limit cycles.
+//!
+//! f > 0 means the amplitude grows (energy uptake); f < 0 that it decays. The paper labels
+//! f > 0 "dissipation"; the notes label by the physics and say so. Method: [`Theory::drift`]
+//! on a grid of A0 ∈ [0, 14] and [`Theory::limit_cycles`] (stable ⇔ df/dA0 < 0); each panel's
+//! root count is set against the count the paper's text gives. Checked by `tests/figures.rs`
+//! (every figure computes and reads back) and the CLI's quick figure run.
+
+use crate::notes::num;
+use crate::notes::{caption, panel_line, table_notes, Caption};
+use crate::table::Table;
+use crate::{Figure, FigureOptions, Monitor};
+
+use serde::{Deserialize, Serialize};
+use trirhythm::model::preset;
+use trirhythm::theory::averaging::{Cycle, Theory};
+use trirhythm::Result;
+
+/// What the paper's text says each panel shows (number of roots of f).
+const TEXT_ROOTS: [(&str, &str); 4] = [("a", "five"), ("b", "five"), ("c", "three"), ("d", "none")];
+
+/// One panel: f(A0) for one parameter set.
+#[derive(Serialize, Deserialize)]
+pub struct Panel {
+    /// `a` … `d`.
+    pub label: String,
+    /// Restitution coefficient r.
+    pub r: f64,
+    /// (A0, f(A0)) on the grid.
+    pub curve: Vec<(f64, f64)>,
+    /// f(A0) with the same control parameters at r = 1 (where r < 1).
+    pub reference: Option<Vec<(f64, f64)>>,
+    /// The roots of f: limit cycles, with their stability.
+    pub cycles: Vec<Cycle>,
+    /// The damping's control parameters (α0, β0, γ0, δ0).
+    pub cp: [f64; 4],
+    /// The outermost limit cycle of the r = 1 curve (the grid's end, 14, where it has none).
+    pub outermost_at_r1: f64,
+}
+
+/// Fig. 4's data: f(A0) on a grid, its roots, per panel.
+#[derive(Serialize, Deserialize)]
+pub struct Fig04 {
+    /// What the figure shows, shared parameters, variant, choices.
+    pub caption: Caption,
+    /// Notes of the data table: parameters per panel, methods, verdicts.
+    pub notes: Vec<String>,
+    /// Panels a … d.
+    pub panels: Vec<Panel>,
+}
+
+impl Figure for Fig04 {
+    const NUMBER: u32 = 4;
+    const TITLE: &'static str = "f(A0) with its zones and limit cycles (Eq. 18)";
+
+    fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig04> {
+        compute(options, monitor)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        let mut csv = Table::new(&self.notes, &["panel", "r", "A", "f"]);
+        for p in &self.panels {
+            for &(a, f) in &p.curve {
+                csv.row([p.label.clone(), num(p.r), num(a), num(f)]);
+            }
+        }
+        vec![csv]
+    }
+}
+
+fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig04> {
+    monitor.check()?;
+    let n = if ctx.quick { 281 } else { 1401 };
+    let a_max = 14.0;
+    let grid: Vec<f64> = (0..n).map(|i| a_max * i as f64 / (n - 1) as f64).collect();
+    let mut panels = Vec::new();
+    let mut notes = vec![
+        "f > 0: the amplitude grows (energy uptake); the paper calls this zone 'dissipation'"
+            .to_string(),
+        "stable cycle ⇔ df/dA0 < 0".to_string(),
+    ];
+    let mut params_lines = Vec::new();
+    for (label, said) in TEXT_ROOTS {
+        let p = preset(&format!("fig4{label}"))?.params;
+        let th = Theory::new(&p, ctx.variant)?;
+        let curve: Vec<(f64, f64)> = grid.iter().map(|&a| (a, th.drift(a))).collect();
+        let t1 = Theory::new(&p.with("r", 1.0)?, ctx.variant)?;
+        let outermost = t1
+            .limit_cycles()
+            .last()
+            .map(|c| c.amplitude)
+            .unwrap_or(a_max);
+        let reference =
+            (p.restitution < 1.0).then(|| grid.iter().map(|&a| (a, t1.drift(a))).collect());
+        let cycles = th.limit_cycles();
+        let stable = cycles.iter().filter(|c| c.stable).count();
+        notes.push(format!(
+            "panel {label} (r = {}): Eq. 18 gives {} positive roots ({} stable) at A0 = [{}]; the paper's text says {said}",
+            p.restitution,
+            cycles.len(),
+            stable,
+            cycles.iter().map(|c| format!("{:.4}{}", c.amplitude, if c.stable { " s" } else { " u" })).collect::<Vec<_>>().join(", ")
+        ));
+        params_lines.push(panel_line(label, &p));
+        panels.push(Panel {
+            label: label.to_string(),
+            r: p.restitution,
+            curve,
+            reference,
+            cycles,
+            cp: p.damping.control_parameters(),
+            outermost_at_r1: outermost,
+        });
+    }
+    let mut header = table_notes(4, "f(A0) (Eq. 18) with its zones and roots", ctx, &notes);
+    header.extend(params_lines);
+    let base = preset("fig4c")?.params;
+    let caption = caption(
+        4,
+        "the averaged drift f(A0) (Eq. 18): zones and limit cycles",
+        ctx,
+        &base,
+        &["r", "gamma0", "delta0"],
+        vec![
+            "red: f > 0, the amplitude grows (energy uptake; the paper calls this zone 'dissipation'); blue: f < 0, it decays; dashed: the same control parameters at r = 1".into(),
+        ],
+    );
+    Ok(Fig04 {
+        caption,
+        notes: header,
+        panels,
+    })
+}

@@ -1,0 +1,390 @@
+//! What the map figures (Figs 2, 3, 6, 10, 12) share: a parameter plane classified point by
+//! point — the number of stable limit cycles (roots of f with df/dA < 0, Eq. 18) or the
+//! number of modes of the stationary P(A) (Eq. 27) — with the fold curves traced exactly by
+//! pseudo-arclength continuation (f = ∂f/∂A = 0, or m1 = ∂m1/∂A = 0 for the P-bifurcation),
+//! the paper's printed Eq. 36–37 construction where asked, and the saddle-node lines named as
+//! the paper's text defines L1–L3.
+//!
+//! Method: [`classify`] (a Sturm count per grid point), [`trace_folds`],
+//! [`trace_printed_eq37`]. Checked by the library's bifurcation tests (the cusp of Fig. 2 (i)
+//! at α0 = 1/6, β0 = 1/135) and `tests/figures.rs`.
+
+use crate::notes::{num, table_notes, variant_line, Caption};
+use crate::table::Table;
+use crate::{FigureOptions, Monitor};
+use serde::{Deserialize, Serialize};
+use trirhythm::model::Params;
+use trirhythm::theory::bifurcation::{
+    classify, trace_folds, trace_printed_eq37, Axis, Folds, Plane, What,
+};
+use trirhythm::Result;
+
+/// One axis of a panel as requested: key, range, label and display scale (values / scale).
+#[derive(Clone)]
+pub struct AxisSpec {
+    /// Parameter key.
+    pub key: &'static str,
+    /// First grid value.
+    pub start: f64,
+    /// Last grid value.
+    pub stop: f64,
+    /// The parameter's symbol.
+    pub label: &'static str,
+    /// The unit its values are read in (values / scale).
+    pub scale: f64,
+}
+
+impl AxisSpec {
+    /// An axis of `key` from `start` to `stop`, named `label`, read in units of `scale`.
+    pub fn new(key: &'static str, start: f64, stop: f64, label: &'static str, scale: f64) -> Self {
+        AxisSpec {
+            key,
+            start,
+            stop,
+            label,
+            scale,
+        }
+    }
+}
+
+/// A computed panel's axis: the grid, and how it is drawn.
+#[derive(Clone, Serialize, Deserialize)]
+pub struct PanelAxis {
+    /// The grid's parameter key and values.
+    pub grid: Axis,
+    /// The parameter's symbol.
+    pub label: String,
+    /// The unit its values are read in (values / scale).
+    pub scale: f64,
+}
+
+impl PanelAxis {
+    /// The axis' name with its unit.
+    pub fn desc(&self) -> String {
+        if self.scale == 1.0 {
+            self.label.clone()
+        } else {
+            format!("{} / {:e}", self.label, self.scale)
+        }
+    }
+}
+
+/// A computed panel: counts on the grid, the fold curves, what is named and marked.
+#[derive(Serialize, Deserialize)]
+pub struct MapPanel {
+    /// `a`, `b`, … or `i`, `ii`.
+    pub label: String,
+    /// What the panel sets.
+    pub caption: String,
+    /// The panel's parameters (those not swept), described.
+    pub params: String,
+    /// Stable cycles or modes of P(A).
+    pub what: What,
+    /// Horizontal axis.
+    pub x: PanelAxis,
+    /// Vertical axis.
+    pub y: PanelAxis,
+    /// Count at each grid point, row-major (`counts[iy * nx + ix]`).
+    pub counts: Vec<u8>,
+    /// The fold curves, traced exactly.
+    pub folds: Folds,
+    /// The paper's printed Eq. 36–37 construction, where drawn.
+    pub printed: Option<Folds>,
+    /// A parameter point to mark (x, y, label), e.g. the paper's standard values.
+    pub mark: Option<(f64, f64, String)>,
+    /// Names of saddle-node lines drawn on the picture: (index of the curve, name).
+    pub fold_names: Vec<(usize, String)>,
+}
+
+impl MapPanel {
+    /// Count at grid indices.
+    pub fn count(&self, ix: usize, iy: usize) -> u8 {
+        self.counts[iy * self.x.grid.count + ix]
+    }
+
+    /// How many grid points have each count 0, 1, 2, 3, ≥ 4.
+    pub fn histogram(&self) -> [usize; 5] {
+        let mut h = [0; 5];
+        for &c in &self.counts {
+            h[(c as usize).min(4)] += 1;
+        }
+        h
+    }
+}
+
+/// The paper's names of the saddle-node lines (Sec. 3: "L1 … the saddle-node bifurcation of
+/// the outer limit cycle …, L3 … of the inner limit cycle"): at the middle of each curve, the
+/// double root is the outermost positive root of f (L1), the innermost (L3) or between (L2).
+/// The longest curve of each name is labelled.
+fn name_folds(base: &Params, plane: &Plane, folds: &Folds) -> Vec<(usize, String)> {
+    let mut best: Vec<(usize, String, usize)> = Vec::new();
+    for (i, curve) in folds.curves.iter().enumerate() {
+        let Some(q) = curve.points.get(curve.points.len() / 2) else {
+            continue;
+        };
+        let Ok(p) = base
+            .with(&plane.x.key, q.x)
+            .and_then(|p| p.with(&plane.y.key, q.y))
+        else {
+            continue;
+        };
+        let Ok(th) = trirhythm::theory::averaging::Theory::new(&p, plane.variant) else {
+            continue;
+        };
+        let roots = th.limit_cycles();
+        let tol = 1e-4 * q.amplitude.max(1e-9);
+        let below = roots
+            .iter()
+            .filter(|c| c.amplitude < q.amplitude - tol)
+            .count();
+        let above = roots
+            .iter()
+            .filter(|c| c.amplitude > q.amplitude + tol)
+            .count();
+        let name = match (below, above) {
+            (_, 0) => "L1 (outer cycle)",
+            (0, _) => "L3 (inner cycle)",
+            _ => "L2 (middle cycle)",
+        };
+        let len = curve.points.len();
+        match best.iter_mut().find(|b| b.1 == name) {
+            Some(b) if b.2 < len => *b = (i, name.to_string(), len),
+            Some(_) => {}
+            None => best.push((i, name.to_string(), len)),
+        }
+    }
+    best.into_iter().map(|(i, n, _)| (i, n)).collect()
+}
+
+/// Grid points per axis: quick or paper quality.
+pub fn resolution(ctx: &FigureOptions) -> usize {
+    if ctx.quick {
+        81
+    } else {
+        401
+    }
+}
+
+/// Classify a plane and trace its folds (and the printed Eq. 37 curves when asked).
+#[allow(clippy::too_many_arguments)]
+pub fn compute_panel(
+    ctx: &FigureOptions,
+    monitor: &dyn Monitor,
+    label: &str,
+    caption: String,
+    base: &Params,
+    xs: AxisSpec,
+    ys: AxisSpec,
+    what: What,
+    printed: bool,
+) -> Result<MapPanel> {
+    let n = resolution(ctx);
+    let plane = Plane::new(
+        base,
+        Axis::new(xs.key, xs.start, xs.stop, n)?,
+        Axis::new(ys.key, ys.start, ys.stop, n)?,
+        ctx.variant,
+    )?;
+    monitor.check()?;
+    let map = classify(&plane, what, &|done, total| {
+        monitor.progress(done as u64, total as u64)
+    });
+    monitor.check()?;
+    let folds = trace_folds(&map);
+    let printed = if printed && ctx.variant == trirhythm::theory::averaging::Variant::Paper {
+        Some(trace_printed_eq37(&map)?)
+    } else {
+        None
+    };
+    let fold_names = if what == What::Rhythmicity {
+        name_folds(base, &map.plane, &folds)
+    } else {
+        Vec::new()
+    };
+    let axis = |spec: AxisSpec, grid: &Axis| PanelAxis {
+        grid: grid.clone(),
+        label: spec.label.to_string(),
+        scale: spec.scale,
+    };
+    Ok(MapPanel {
+        label: label.to_string(),
+        caption,
+        params: map.plane.base.describe(),
+        what,
+        x: axis(xs, &map.plane.x),
+        y: axis(ys, &map.plane.y),
+        counts: map.counts,
+        folds,
+        printed,
+        mark: None,
+        fold_names,
+    })
+}
+
+/// Notes on a panel for the CSV header: counts, curves, cusps.
+pub fn panel_notes(p: &MapPanel) -> Vec<String> {
+    let h = p.histogram();
+    let total: usize = h.iter().sum();
+    let pct = |k: usize| 100.0 * h[k] as f64 / total as f64;
+    let mut v = vec![format!(
+        "panel {}: {} ({}); share of grid points with count 0/1/2/3: {:.1}% / {:.1}% / {:.1}% / {:.1}%; {} fold curves, {} cusps{}",
+        p.label,
+        p.caption,
+        p.params,
+        pct(0),
+        pct(1),
+        pct(2),
+        pct(3),
+        p.folds.curves.len(),
+        p.folds.cusps.len(),
+        p.folds
+            .cusps
+            .iter()
+            .map(|c| format!(" (cusp at {}={:.6e}, {}={:.6e}, A={:.5})", p.x.grid.key, c.x, p.y.grid.key, c.y, c.amplitude))
+            .collect::<String>()
+    )];
+    if let Some(pr) = &p.printed {
+        v.push(format!(
+            "panel {}: printed Eq. 36-37 construction gives {} curves",
+            p.label,
+            pr.curves.len()
+        ));
+    }
+    v
+}
+
+/// A map figure's data: panels on a grid of `layout` (rows, columns).
+#[derive(Serialize, Deserialize)]
+pub struct MapFigure {
+    /// What the figure shows, shared parameters, variant.
+    pub caption: Caption,
+    /// Notes of the data tables (counts, curves, cusps per panel).
+    pub notes: Vec<String>,
+    /// The panels.
+    pub panels: Vec<MapPanel>,
+}
+
+/// Assemble a map figure from computed panels: the heading, and the CSV header with the
+/// notes and each panel's counts, curves and cusps.
+pub fn map_figure(
+    ctx: &FigureOptions,
+    (n, title): (u32, &str),
+    subtitle: String,
+    mut notes: Vec<String>,
+    panels: Vec<MapPanel>,
+) -> MapFigure {
+    for p in &panels {
+        notes.extend(panel_notes(p));
+    }
+    let mut header = table_notes(n, title, ctx, &notes);
+    for p in &panels {
+        header.push(format!(
+            "panel {}: x = {}, y = {}",
+            p.label, p.x.grid.key, p.y.grid.key
+        ));
+    }
+    MapFigure {
+        caption: Caption {
+            title: format!("Fig. {n}: {title}"),
+            lines: vec![subtitle, variant_line(ctx.variant)],
+        },
+        notes: header,
+        panels,
+    }
+}
+
+impl MapFigure {
+    /// The figure's tables: `panel,x,y,count` over every grid point (row by row), and
+    /// `panel,curve,system,x,y,amplitude` over the fold curves (and the printed Eq. 36–37
+    /// curves where traced) as `_folds`.
+    pub fn tables(&self) -> Vec<Table> {
+        let mut counts = Table::new(&self.notes, &["panel", "x", "y", "count"]);
+        for p in &self.panels {
+            for iy in 0..p.y.grid.count {
+                let y = num(p.y.grid.value(iy));
+                for ix in 0..p.x.grid.count {
+                    counts.row([
+                        p.label.clone(),
+                        num(p.x.grid.value(ix)),
+                        y.clone(),
+                        p.count(ix, iy).to_string(),
+                    ]);
+                }
+            }
+        }
+        let mut folds = Table::new(
+            &self.notes,
+            &["panel", "curve", "system", "x", "y", "amplitude"],
+        )
+        .named("_folds");
+        for p in &self.panels {
+            let mut sets = vec![&p.folds];
+            if let Some(pr) = &p.printed {
+                sets.push(pr);
+            }
+            folds
+                .rows
+                .extend(fold_rows(std::slice::from_ref(&p.label), &sets));
+        }
+        vec![counts, folds]
+    }
+}
+
+/// Rows `prefix…,curve,system,x,y,amplitude` for every curve of `sets`, the curves numbered
+/// on across the sets.
+pub fn fold_rows(prefix: &[String], sets: &[&Folds]) -> Vec<Vec<String>> {
+    let mut rows = Vec::new();
+    let mut i = 0;
+    for f in sets {
+        for c in &f.curves {
+            for p in &c.points {
+                let mut row = prefix.to_vec();
+                row.extend([
+                    i.to_string(),
+                    c.system.name().to_string(),
+                    num(p.x),
+                    num(p.y),
+                    num(p.amplitude),
+                ]);
+                rows.push(row);
+            }
+            i += 1;
+        }
+    }
+    rows
+}
+
+/// A figure of four (γ0, δ0) rhythmicity panels, one per value of `key` (Figs 3 and 6): the
+/// preset's parameters with `key` set to each value, folds traced, the paper's point marked.
+pub fn gamma_delta_family(
+    ctx: &FigureOptions,
+    monitor: &dyn Monitor,
+    (number, title): (u32, &str),
+    preset_name: &str,
+    (key, symbol, values): (&str, &str, [f64; 4]),
+    subtitle: String,
+) -> Result<MapFigure> {
+    let pre = trirhythm::model::preset(preset_name)?;
+    let mut panels = Vec::new();
+    for (label, value) in ["a", "b", "c", "d"].into_iter().zip(values) {
+        let mut panel = compute_panel(
+            ctx,
+            monitor,
+            label,
+            format!("{symbol} = {value}"),
+            &pre.params.with(key, value)?,
+            AxisSpec::new("gamma0", 0.0, 1.2e-4, "γ0", 1e-5),
+            AxisSpec::new("delta0", 1e-8, 6e-7, "δ0", 1e-7),
+            What::Rhythmicity,
+            false,
+        )?;
+        panel.mark = Some((5.862e-5, 2.13e-7, "paper's (γ0, δ0)".into()));
+        panels.push(panel);
+    }
+    let mut notes: Vec<String> = pre.notes.iter().map(|s| s.to_string()).collect();
+    notes.push(format!("{symbol} values chosen: {values:?}"));
+    notes.push(
+        "count = number of stable limit cycles; red: folds f = ∂f/∂A = 0 traced exactly".into(),
+    );
+    Ok(map_figure(ctx, (number, title), subtitle, notes, panels))
+}

@@ -1,0 +1,329 @@
+//! What Figs 11, 13 and 14 share: Monte Carlo ensembles of Eq. (1) and Eq. (5) beside the
+//! averaged theory's P(A) (Eq. 27) in both variants, with the distances (Hellinger with its
+//! bootstrap standard error, L1, KS), the modes and the stationarity verdict (R̂, ESS, drift)
+//! of each run.
+//!
+//! Method: [`run_ensemble`] with the impact memory restarted at each impact (the ensembles'
+//! convention), starts and wells from [`theory_layout`]; [`compare`] against each variant's
+//! [`Theory`]. Checked by the library's ensemble tests (statistics, merge) and
+//! `tests/figures.rs` (cancellation, quick computation, JSON round trip).
+
+use crate::notes::num;
+use crate::table::Table;
+use crate::Monitor;
+use serde::{Deserialize, Serialize};
+use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, PathStats};
+use trirhythm::analysis::versus::{compare, theory_layout, TheoryComparison};
+use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem, System};
+use trirhythm::model::Params;
+use trirhythm::theory::averaging::{Theory, Variant};
+use trirhythm::{Error, Result};
+
+/// Ensemble sizes of a figure.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+pub struct Sizes {
+    /// Paths per ensemble.
+    pub paths: usize,
+    /// Burn-in and recorded window per path.
+    pub burn_in: f64,
+    /// Recorded window per path.
+    pub t_end: f64,
+    /// Bins of the amplitude histogram.
+    pub bins: usize,
+}
+
+impl Sizes {
+    /// The ensembles of Figs 11, 13 and 14: full quality (16 paths of 1.5e5 time units; each
+    /// figure in a few minutes on 2 cores) or `--quick`.
+    pub fn of(quick: bool) -> Sizes {
+        if quick {
+            Sizes {
+                paths: 2,
+                burn_in: 10.0,
+                t_end: 100.0,
+                bins: 50,
+            }
+        } else {
+            Sizes {
+                paths: 16,
+                burn_in: 500.0,
+                t_end: 150_000.0,
+                bins: 80,
+            }
+        }
+    }
+
+    /// One line for headings and notes.
+    pub fn describe(&self) -> String {
+        format!(
+            "{} paths per ensemble, burn-in {}, window {} per path, Δt = 0.01, impact memory \
+             restarted, seed 1, {} bins",
+            self.paths, self.burn_in, self.t_end, self.bins
+        )
+    }
+}
+
+/// The theory against one ensemble, one variant.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Distance {
+    /// `paper` or `consistent`.
+    pub variant: String,
+    /// Hellinger distance and its bootstrap standard error, L1, KS.
+    pub hellinger: f64,
+    /// Bootstrap standard error of the Hellinger distance.
+    #[serde(with = "trirhythm::non_finite")]
+    pub hellinger_stderr: f64,
+    /// L1 distance.
+    pub l1: f64,
+    /// Largest CDF difference.
+    pub ks: f64,
+    /// Modes of the binned theory and of the histogram (prominence rule).
+    pub modes_theory: usize,
+    /// Modes of the histogram.
+    pub modes_mc: usize,
+}
+
+/// One ensemble's amplitude histogram and verdict.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct McRun {
+    /// "Eq. 1" or "Eq. 5".
+    pub system: String,
+    /// Bin edges, density and standard error.
+    pub edges: Vec<f64>,
+    /// Density per bin.
+    pub density: Vec<f64>,
+    /// Standard error per bin.
+    pub stderr: Vec<f64>,
+    /// Passed the stationarity check.
+    pub stationary: bool,
+    /// R̂ and ESS.
+    #[serde(with = "trirhythm::non_finite")]
+    pub r_hat: f64,
+    /// Effective sample size of the mean amplitude.
+    pub ess: f64,
+    /// Distances to each variant's theory.
+    pub distances: Vec<Distance>,
+}
+
+/// One P(A) panel: theory curves and ensembles.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct AmplitudePanel {
+    /// Caption.
+    pub caption: String,
+    /// Theory curves: variant name, amplitudes, densities (empty where undefined).
+    pub theory: Vec<(String, Vec<f64>, Vec<f64>)>,
+    /// The ensembles.
+    pub runs: Vec<McRun>,
+}
+
+pub(crate) fn system_name(s: System) -> &'static str {
+    match s {
+        System::Fractional => "Eq. 1",
+        System::Equivalent => "Eq. 5",
+        System::Zhuravlev => "Eq. 9",
+    }
+}
+
+/// An ensemble of `system` for `params` (starts and wells from the theory of `variant`).
+pub fn ensemble(
+    monitor: &dyn Monitor,
+    params: &Params,
+    variant: Variant,
+    system: System,
+    sizes: Sizes,
+    joint_bins: usize,
+) -> Result<EnsembleResult> {
+    let layout = theory_layout(params, variant).ok_or_else(|| Error::Undefined {
+        what: "the theory's layout of starts and wells",
+        why: format!("no stable cycle or mode for {}", params.describe()),
+    })?;
+    let spec = EnsembleSpec {
+        paths: sizes.paths,
+        seed: 1,
+        burn_in: sizes.burn_in,
+        length: sizes.t_end,
+        bins: sizes.bins,
+        joint_bins,
+        amplitude_max: layout.amplitude_max,
+        wells: layout.wells,
+        ..Default::default()
+    };
+    let starts: Vec<(f64, f64)> = layout.starts.iter().map(|&u| (u, 0.0)).collect();
+    let problem = Problem::from_params(params)?
+        .with_system(system)?
+        .with_starts(&starts)?;
+    // the ensembles' convention (README, "Ensembles"): the memory restarts at each impact
+    let method = PredictorCorrector {
+        impact_memory: ImpactMemory::Restart,
+        ..Default::default()
+    };
+    monitor.check()?;
+    run_ensemble(&problem, &method, &spec, &Forward(monitor))
+}
+
+/// The figure's monitor watching one ensemble: its progress and its cancellation (the
+/// per-path statistics are not the figure's to keep).
+struct Forward<'a>(&'a dyn Monitor);
+
+impl Monitor<PathStats> for Forward<'_> {
+    fn progress(&self, done: u64, total: u64) {
+        self.0.progress(done, total);
+    }
+
+    fn cancelled(&self) -> bool {
+        self.0.cancelled()
+    }
+}
+
+/// A P(A) panel: the theory of both variants and ensembles of each of `systems`.
+pub fn amplitude_panel(
+    monitor: &dyn Monitor,
+    caption: String,
+    params: &Params,
+    variant: Variant,
+    systems: &[System],
+    sizes: Sizes,
+) -> Result<(AmplitudePanel, Vec<String>)> {
+    let mut runs = Vec::new();
+    let mut notes = Vec::new();
+    let mut a_max = 0.0f64;
+    for &system in systems {
+        let r = ensemble(monitor, params, variant, system, sizes, 8)?;
+        a_max = a_max.max(*r.amplitude.edges.last().unwrap_or(&1.0));
+        let mut distances = Vec::new();
+        for (v, c) in comparisons(params, &r, 1) {
+            match c {
+                Ok(c) => distances.push(Distance {
+                    variant: v.name().into(),
+                    hellinger: c.hellinger.value,
+                    hellinger_stderr: c.hellinger.stderr,
+                    l1: c.l1.value,
+                    ks: c.ks.value,
+                    modes_theory: c.modes_theory,
+                    modes_mc: c.modes_mc,
+                }),
+                Err(e) => notes.push(format!("{caption}: {} theory: {e}", v.name())),
+            }
+        }
+        let st = &r.stationarity;
+        notes.push(format!(
+            "{caption}, MC of {}: {}; R̂ = {:.3}, ESS = {:.0}, drift {:.1} s.e.; {}",
+            system_name(system),
+            if st.stationary {
+                "stationarity check passed"
+            } else {
+                "NOT STATIONARY"
+            },
+            st.r_hat,
+            st.ess,
+            st.drift_z,
+            distances
+                .iter()
+                .map(|d| format!(
+                    "{}: Hellinger {:.3} ± {:.3}, L1 {:.3}, KS {:.3}, modes {} (theory) vs {} (MC)",
+                    d.variant,
+                    d.hellinger,
+                    d.hellinger_stderr,
+                    d.l1,
+                    d.ks,
+                    d.modes_theory,
+                    d.modes_mc
+                ))
+                .collect::<Vec<_>>()
+                .join("; ")
+        ));
+        runs.push(McRun {
+            system: system_name(system).into(),
+            edges: r.amplitude.edges.clone(),
+            density: r.amplitude.density.clone(),
+            stderr: r.amplitude.stderr.clone(),
+            stationary: st.stationary,
+            r_hat: st.r_hat,
+            ess: st.ess,
+            distances,
+        });
+    }
+    let mut theory = Vec::new();
+    for v in [Variant::Paper, Variant::Consistent] {
+        let curve = Theory::new(params, v)
+            .and_then(|th| th.amplitude_pdf())
+            .map(|pdf| {
+                let xs: Vec<f64> = (1..=600).map(|i| a_max * i as f64 / 600.0).collect();
+                let ys = xs.iter().map(|&a| pdf.density(a)).collect();
+                (xs, ys)
+            })
+            .unwrap_or_default();
+        theory.push((v.name().to_string(), curve.0, curve.1));
+    }
+    Ok((
+        AmplitudePanel {
+            caption,
+            theory,
+            runs,
+        },
+        notes,
+    ))
+}
+
+/// (ensembles that passed the stationarity check, ensembles) over `panels`.
+pub fn stationary_count(panels: &[AmplitudePanel]) -> (usize, usize) {
+    let runs = || panels.iter().flat_map(|p| &p.runs);
+    (runs().filter(|r| r.stationary).count(), runs().count())
+}
+
+/// The theory of each variant against the result (an error, in words, where the theory has no
+/// P(A)).
+pub fn comparisons(
+    params: &Params,
+    r: &EnsembleResult,
+    seed: u64,
+) -> Vec<(Variant, std::result::Result<TheoryComparison, String>)> {
+    [Variant::Paper, Variant::Consistent]
+        .into_iter()
+        .map(|v| {
+            let c = Theory::new(params, v)
+                .and_then(|th| compare(r, &th, seed))
+                .map_err(|e| e.to_string());
+            (v, c)
+        })
+        .collect()
+}
+
+/// The table of amplitude panels: `panel,series,A_lo,A_hi,density,stderr` (theory rows have
+/// A_lo = A_hi = A and a zero standard error).
+pub fn amplitude_table(notes: &[String], panels: &[AmplitudePanel]) -> Table {
+    let mut csv = Table::new(
+        notes,
+        &["panel", "series", "A_lo", "A_hi", "density", "stderr"],
+    )
+    .allow_infinity("stderr");
+    for p in panels {
+        for (v, xs, ys) in &p.theory {
+            for (x, y) in xs.iter().zip(ys) {
+                csv.row([
+                    p.caption.clone(),
+                    format!("theory {v}"),
+                    num(*x),
+                    num(*x),
+                    num(*y),
+                    "0".into(),
+                ]);
+            }
+        }
+        for r in &p.runs {
+            for (i, w) in r.edges.windows(2).enumerate() {
+                let s = r.stderr[i];
+                csv.row([
+                    p.caption.clone(),
+                    format!("MC {}", r.system),
+                    num(w[0]),
+                    num(w[1]),
+                    num(r.density[i]),
+                    // one path: no standard error (said in the notes)
+                    if s.is_finite() { num(s) } else { "inf".into() },
+                ]);
+            }
+        }
+    }
+    csv
+}
