@@ -186,7 +186,7 @@ impl NoiseStream {
     }
 
     /// The forcing on the next step: (value at its start, value at its end).
-    #[inline]
+    #[inline(always)]
     pub fn next_step(&mut self) -> (f64, f64) {
         match self.kind {
             Noise::None => (0.0, 0.0),
