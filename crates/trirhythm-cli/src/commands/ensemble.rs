@@ -9,10 +9,12 @@
 
 use crate::args::{ImpactMemoryArg, MemoryArg, Named, OnOff, ParamArgs, SystemArg};
 use crate::error::bad;
-use crate::io::{emit, jnum, params_json, progress};
+use crate::io::{emit, num, params_json, progress};
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use serde_json::{json, Value};
+use serde::Serialize;
+use serde_json::Value;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use trirhythm::analysis::ensemble::{
@@ -191,42 +193,6 @@ fn list(v: &[f64]) -> String {
         .join(", ")
 }
 
-/// A statistic that may be undefined (NaN: one unit; ∞: R̂ of chains that never mix): `null`
-/// then, as documented, rather than an error.
-fn jstat(v: f64) -> Value {
-    serde_json::Number::from_f64(v).map_or(Value::Null, Value::Number)
-}
-
-fn jest(e: trirhythm::analysis::Estimate) -> Value {
-    json!({"value": jstat(e.value), "stderr": jstat(e.stderr)})
-}
-
-fn jvec(v: &[f64]) -> Value {
-    Value::Array(v.iter().map(|&x| jnum(x)).collect())
-}
-
-fn jstats(v: &[f64]) -> Value {
-    Value::Array(v.iter().map(|&x| jstat(x)).collect())
-}
-
-fn theory_json(c: &TheoryComparison) -> Value {
-    json!({
-        "hellinger": jnum(c.hellinger.value),
-        "hellinger_stderr": jstat(c.hellinger.stderr),
-        "l1": jnum(c.l1.value),
-        "l1_stderr": jstat(c.l1.stderr),
-        "ks": jnum(c.ks.value),
-        "ks_stderr": jstat(c.ks.stderr),
-        "modes_theory": c.modes_theory,
-        "modes_theory_exact": c.modes_theory_exact,
-        "modes_mc": c.modes_mc,
-        "mean_amplitude": jnum(c.mean_amplitude),
-        "occupancy": jvec(&c.occupancy),
-        "escape_times": jstats(&c.escape_times),
-        "density": jvec(&c.density),
-    })
-}
-
 fn method_line(a: &EnsembleArgs) -> String {
     format!(
         "method: predictor-corrector dt={} memory={} tolerance={} impact_memory={} barrier={} \
@@ -245,85 +211,54 @@ fn method_line(a: &EnsembleArgs) -> String {
     )
 }
 
+/// The JSON document: the library's result, with what the command adds (the parameters, the
+/// method, the choices made for the user, the wall time and the theory against the result).
+#[derive(Serialize)]
+struct Document<'a> {
+    params: Value,
+    method: &'a str,
+    choices: &'a [String],
+    wall_time_s: f64,
+    #[serde(flatten)]
+    result: &'a EnsembleResult,
+    theory: BTreeMap<&'static str, TheoryEntry<'a>>,
+}
+
+/// One variant of the theory against the result, or why there is none.
+#[derive(Serialize)]
+#[serde(untagged)]
+enum TheoryEntry<'a> {
+    Comparison(&'a TheoryComparison),
+    Error { error: &'a str },
+}
+
 /// The whole result as the JSON document of the command's contract.
-pub fn result_json(
+fn result_json(
     s: &EnsembleSetup,
     method: &str,
     r: &EnsembleResult,
     theory: &[(Variant, std::result::Result<TheoryComparison, String>)],
     wall: f64,
-) -> Value {
-    let mut warnings: Vec<Value> = r.warnings.iter().map(|w| json!(w)).collect();
-    let mut th = serde_json::Map::new();
-    for (v, c) in theory {
-        match c {
-            Ok(c) => {
-                th.insert(v.name().into(), theory_json(c));
-            }
-            Err(e) => warnings.push(json!(format!("{} theory: {e}", v.name()))),
-        }
-    }
-    let st = &r.stationarity;
-    let density = |d: &trirhythm::analysis::ensemble::Density| {
-        json!({"edges": jvec(&d.edges), "density": jvec(&d.density),
-               "stderr": jstats(&d.stderr), "beyond": jnum(d.beyond), "count": d.count})
-    };
-    let passages: Vec<Value> = r
-        .passages
+) -> Result<String> {
+    let theory = theory
         .iter()
-        .map(|p| {
-            json!({"from": p.from, "to": p.to, "count": p.count, "censored": p.censored,
-                   "mean_time": jest(p.mean_time)})
+        .map(|(v, c)| {
+            let entry = match c {
+                Ok(c) => TheoryEntry::Comparison(c),
+                Err(e) => TheoryEntry::Error { error: e },
+            };
+            (v.name(), entry)
         })
         .collect();
-    json!({
-        "params": params_json(&s.params),
-        "method": method,
-        "choices": s.choices,
-        "summary": {
-            "paths": r.paths,
-            "steps_per_path": r.steps_per_path,
-            "burn_in_steps": r.burn_in_steps,
-            "samples_per_path": r.samples_per_path,
-            "wall_time_s": jnum(wall),
-            "omega1": jnum(r.omega1),
-            "impacts": r.impacts,
-            "sticking_steps": r.sticking_steps,
-            "stderr_units": if r.between_paths { "paths" } else { "batches of the one path" },
-        },
-        "moments": {
-            "mean_U": jest(r.mean_u),
-            "var_U": jest(r.var_u),
-            "mean_V": jest(r.mean_v),
-            "var_V": jest(r.var_v),
-            "mean_A": jest(r.mean_amplitude),
-        },
-        "stationarity": {
-            "r_hat": jstat(st.r_hat),
-            "r_hat_amplitude": jstat(st.r_hat_amplitude),
-            "r_hat_wells": jstats(&st.r_hat_wells),
-            "ess": jnum(st.ess),
-            "drift": jnum(st.drift),
-            "drift_z": jstat(st.drift_z),
-            "stationary": st.stationary,
-            "suggested_t_end": jstat(st.suggested_length),
-        },
-        "warnings": warnings,
-        "amplitude_pdf": density(&r.amplitude),
-        "turning_amplitude_pdf": density(&r.turning),
-        "energy_pdf": density(&r.energy),
-        "joint_pdf": {
-            "u_edges": jvec(&r.joint.u_edges),
-            "v_edges": jvec(&r.joint.v_edges),
-            "density": Value::Array(r.joint.density.iter().map(|row| jvec(row)).collect()),
-            "stderr": Value::Array(r.joint.stderr.iter().map(|row| jstats(row)).collect()),
-            "outside": jnum(r.joint.outside),
-        },
-        "wells": r.wells.as_ref().map(|w| json!({"modes": jvec(&w.modes), "antimodes": jvec(&w.antimodes)})),
-        "occupancy": Value::Array(r.occupancy.iter().map(|&e| jest(e)).collect()),
-        "passages": passages,
-        "theory": th,
-    })
+    let doc = Document {
+        params: params_json(&s.params),
+        method,
+        choices: &s.choices,
+        wall_time_s: wall,
+        result: r,
+        theory,
+    };
+    Ok(serde_json::to_string(&doc)? + "\n")
 }
 
 /// The checkpoint directory of a run: `run.txt` names the run, `path-<i>.json` hold finished
@@ -470,11 +405,7 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     let theory = comparisons(&s.params, &r, args.seed);
     eprint!("{}", summary_text(&r, &theory, wall));
     let text = match args.format {
-        EnsembleFormat::Json => {
-            let mut t = serde_json::to_string(&result_json(&s, &method, &r, &theory, wall))?;
-            t.push('\n');
-            t
-        }
+        EnsembleFormat::Json => result_json(&s, &method, &r, &theory, wall)?,
         EnsembleFormat::Csv => csv_text(&s, &method, &r, &theory, wall),
     };
     emit(args.out.as_deref(), &text)
@@ -592,10 +523,10 @@ fn csv_text(
     for (i, w) in d.edges.windows(2).enumerate() {
         t.push_str(&format!(
             "{},{},{},{}\n",
-            crate::io::num(w[0]),
-            crate::io::num(w[1]),
-            crate::io::num(d.density[i]),
-            crate::io::num(d.stderr[i])
+            num(w[0]),
+            num(w[1]),
+            num(d.density[i]),
+            num(d.stderr[i])
         ));
     }
     t
