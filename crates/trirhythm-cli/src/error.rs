@@ -34,3 +34,42 @@ pub fn is_bad_input(err: &anyhow::Error) -> bool {
             )
     })
 }
+
+/// The flag a user typed for each argument the library names in its errors (parameter keys
+/// such as `lambda` or `D` are typed as they are named, with `--param`).
+const FLAGS: &[(&str, &str)] = &[
+    ("t_end", "--t-end"),
+    ("burn_in", "--burn-in"),
+    ("transient", "--transient"),
+    ("paths", "--paths"),
+    ("separation", "--separation"),
+    ("renormalise_every", "--renormalise-every"),
+    ("d_lo", "--d-range"),
+    ("d_hi", "--d-range"),
+    ("grid", "--grid"),
+    ("refinements", "--refinements"),
+    ("z", "--z"),
+    ("bins", "--bins"),
+    ("joint_bins", "--joint-bins"),
+    ("amplitude_max", "--amplitude-max"),
+    ("sample_every", "--sample-every"),
+    ("record_every", "--every"),
+    ("max_step", "--step"),
+];
+
+/// A library error told in the flag the user typed: `--t-end: invalid parameter t_end = …`.
+pub fn in_flags(err: anyhow::Error) -> anyhow::Error {
+    let flag = err
+        .chain()
+        .find_map(|e| match e.downcast_ref::<trirhythm::Error>() {
+            Some(trirhythm::Error::InvalidParameter { name, .. }) => FLAGS
+                .iter()
+                .find(|(library, _)| library == name)
+                .map(|(_, flag)| *flag),
+            _ => None,
+        });
+    match flag {
+        Some(flag) => err.context(flag),
+        None => err,
+    }
+}

@@ -131,6 +131,7 @@ fn main() -> ExitCode {
         // the reader went away (`trirhythm simulate | head`): end quietly
         Err(e) if io::files::is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
+            let e = error::in_flags(e);
             eprintln!("error: {e:#}");
             if error::is_bad_input(&e) {
                 ExitCode::from(2)

@@ -261,3 +261,23 @@ impl Grid {
         (0..self.count).map(|i| self.start + h * i as f64).collect()
     }
 }
+
+/// Parse `KEY=START:STOP:COUNT` (or `KEY=START:STOP` when `with_count` is false) for `flag`.
+pub fn parse_axis(s: &str, flag: &str, with_count: bool) -> Result<(String, Grid)> {
+    let form = if with_count {
+        "KEY=START:STOP:COUNT"
+    } else {
+        "KEY=START:STOP"
+    };
+    let Some((k, rest)) = s.split_once('=') else {
+        return bad(format!("{flag} expects {form}, got `{s}`"));
+    };
+    let rest = if with_count {
+        rest.to_string()
+    } else if rest.split(':').count() == 2 {
+        format!("{rest}:2")
+    } else {
+        return bad(format!("{flag} expects {form}, got `{s}`"));
+    };
+    Ok((k.trim().to_string(), Grid::parse(&rest, flag)?))
+}

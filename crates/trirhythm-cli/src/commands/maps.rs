@@ -1,7 +1,7 @@
 //! Commands of the bifurcation structure: `map` (two-parameter classification with exact fold
 //! curves) and `branches` (one-parameter branch diagrams by continuation).
 
-use crate::args::{Format, Grid, OutputArgs, ParamArgs};
+use crate::args::{parse_axis, Format, OutputArgs, ParamArgs};
 use crate::error::bad;
 use crate::io::{emit, jnum, num, params_json, progress, Csv, Stream, Temporary};
 use anyhow::{Context, Result};
@@ -60,31 +60,6 @@ pub struct MapArgs {
     pub folds_out: Option<PathBuf>,
     #[command(flatten)]
     pub output: OutputArgs,
-}
-
-/// Parse `KEY=START:STOP:COUNT` (or `KEY=START:STOP` when `with_count` is false).
-pub fn parse_axis(s: &str, flag: &str, with_count: bool) -> Result<(String, Grid)> {
-    let Some((k, rest)) = s.split_once('=') else {
-        return bad(format!(
-            "{flag} expects KEY={}, got `{s}`",
-            if with_count {
-                "START:STOP:COUNT"
-            } else {
-                "START:STOP"
-            }
-        ));
-    };
-    let key = k.trim().to_string();
-    let rest = if with_count {
-        rest.to_string()
-    } else {
-        if rest.split(':').count() != 2 {
-            return bad(format!("{flag} expects KEY=START:STOP, got `{s}`"));
-        }
-        format!("{rest}:2")
-    };
-    let g = Grid::parse(&rest, flag)?;
-    Ok((key, g))
 }
 
 fn end_name(e: trirhythm::theory::bifurcation::CurveEnd) -> &'static str {
