@@ -2,17 +2,18 @@
 //! oscillation (Hopf boundary), by simulation, by averaging (f′(0) = 0 of Eq. 18) and by the
 //! exact linearisation; or, with `--grid`, a whole plane classified.
 
-use crate::args::{Grid, ImpactMemoryArg, OnOff, ParamArgs, SimFormat};
+use crate::args::{parse_axis, ImpactMemoryArg, Named, OnOff, ParamArgs, SimFormat};
 use crate::error::bad;
-use crate::io::{jnum, num, params_json, progress, Csv, Report};
+use crate::io::{emit, jnum, num, params_json, progress, Csv, Report};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
-use serde_json::{json, Value};
+use serde_json::json;
 use std::path::PathBuf;
 use trirhythm::analysis::oscillation::{
     boundary, classify_plane, Boundary, Classifier, Method, Plane, Search, Side,
 };
-use trirhythm::engine::{Barrier, ImpactMemory, Problem};
+use trirhythm::engine::Problem;
+use trirhythm::model::Params;
 use trirhythm::theory::averaging::Variant;
 
 /// Which boundary.
@@ -72,10 +73,9 @@ const MAX_CELLS: usize = 1_000_000;
 
 /// Parse `KEY=START:STOP:COUNT`, COUNT ≥ 1 (COUNT = 1 needs START = STOP).
 fn parse_abscissae(s: &str) -> Result<(String, Vec<f64>)> {
-    let Some((k, rest)) = s.split_once('=') else {
-        return bad(format!("--x expects KEY=START:STOP:COUNT, got `{s}`"));
-    };
-    let parts: Vec<&str> = rest.split(':').collect();
+    let parts: Vec<&str> = s
+        .split_once('=')
+        .map_or(vec![], |(_, r)| r.split(':').collect());
     if parts.len() == 3 && parts[2].trim() == "1" {
         let num = |t: &str| -> Result<f64> {
             match t.trim().parse::<f64>() {
@@ -89,36 +89,17 @@ fn parse_abscissae(s: &str) -> Result<(String, Vec<f64>)> {
                 "--x: COUNT = 1 is one abscissa: START = {a} and STOP = {b} must be equal"
             ));
         }
-        return Ok((k.trim().to_string(), vec![a]));
+        let key = s.split_once('=').map_or("", |(k, _)| k.trim());
+        return Ok((key.to_string(), vec![a]));
     }
-    if parts.len() == 3 {
-        match parts[2].trim().parse::<usize>() {
-            Ok(c) if (1..=MAX_ABSCISSAE).contains(&c) => {}
-            _ => {
-                return bad(format!(
-                    "--x: COUNT = `{}` must be an integer in [1, {MAX_ABSCISSAE}]",
-                    parts[2]
-                ))
-            }
-        }
+    let (key, g) = parse_axis(s, "--x", true)?;
+    if g.count > MAX_ABSCISSAE {
+        return bad(format!(
+            "--x: COUNT = {}: allowed range is 1 to {MAX_ABSCISSAE}",
+            g.count
+        ));
     }
-    let g = Grid::parse(rest, "--x")?;
-    Ok((k.trim().to_string(), g.points()))
-}
-
-/// Parse `KEY=LO:HI` (boundary mode) or `KEY=LO:HI:COUNT` (grid mode).
-fn parse_ordinate(s: &str, grid: bool) -> Result<(String, f64, f64, Vec<f64>)> {
-    let form = if grid { "KEY=LO:HI:COUNT" } else { "KEY=LO:HI" };
-    let Some((k, rest)) = s.split_once('=') else {
-        return bad(format!("--y expects {form}, got `{s}`"));
-    };
-    let parts = rest.split(':').count();
-    let g = match (grid, parts) {
-        (false, 2) => Grid::parse(&format!("{rest}:2"), "--y")?,
-        (true, 3) => Grid::parse(rest, "--y")?,
-        _ => return bad(format!("--y expects {form}, got `{s}`")),
-    };
-    Ok((k.trim().to_string(), g.start, g.stop, g.points()))
+    Ok((key, g.points()))
 }
 
 fn method_of(m: MethodArg, classifier: Classifier, variant: Variant) -> Method {
@@ -129,210 +110,192 @@ fn method_of(m: MethodArg, classifier: Classifier, variant: Variant) -> Method {
     }
 }
 
+/// What both modes share: the plane, the classifier, the header lines.
+struct Setup {
+    base: Params,
+    variant: Variant,
+    kx: String,
+    ky: String,
+    plane: Plane,
+    classifier: Classifier,
+    header: Vec<String>,
+}
+
+impl OscillationArgs {
+    /// Check and convert the flags (the checks the library does not make: a noise-free
+    /// system, two different axes, the ranges this command is tested in).
+    fn setup(&self) -> Result<Setup> {
+        let base = self.params.resolve()?;
+        let variant = self.params.variant();
+        if !(self.tolerance > 0.0 && self.tolerance <= 0.1) {
+            return bad(format!(
+                "--tolerance = {}: allowed range is (0, 0.1]",
+                num(self.tolerance)
+            ));
+        }
+        if !(self.dt >= 1e-4 && self.dt <= 0.1) {
+            return bad(format!(
+                "--dt = {}: allowed range is [1e-4, 0.1]",
+                num(self.dt)
+            ));
+        }
+        if base.noise_intensity != 0.0 {
+            return bad(format!(
+                "--param D = {}: the oscillation boundary is that of the noise-free system; allowed: D = 0",
+                num(base.noise_intensity)
+            ));
+        }
+        let (kx, xs) = parse_abscissae(&self.x)?;
+        let (ky, gy) = parse_axis(&self.y, "--y", self.grid)?;
+        if kx == ky {
+            return bad(format!(
+                "--x and --y name the same parameter `{kx}`: choose two different keys"
+            ));
+        }
+        if kx == "D" || ky == "D" {
+            return bad("--x/--y: D cannot be an axis (the oscillation boundary is at D = 0)");
+        }
+        let mut classifier = Classifier::default();
+        classifier.method.dt = self.dt;
+        classifier.method.impact_memory = self.impact_memory.into();
+        let template = Problem::from_params(&base)?.with_barrier(self.barrier.into())?;
+        let plane = Plane::new(&template, (&kx, xs), (&ky, gy.start, gy.stop))?;
+        let header = vec![
+            format!("trirhythm oscillation: boundary of {ky} (rest below/above) along {kx}"),
+            format!("params: {}", base.describe()),
+            format!("barrier: {}", self.barrier.name()),
+            format!("averaging variant: {}", variant.name()),
+            format!(
+                "simulation: predictor–corrector from U(0) = {}, dt = {}, {} impact memory; growth rate of ln(amplitude) after {} periods 2π/ω0, early stop once its sign is clear (at most {} periods)",
+                num(classifier.amplitude),
+                num(classifier.method.dt),
+                self.impact_memory.name(),
+                num(classifier.settle_periods),
+                num(classifier.max_periods)
+            ),
+        ];
+        Ok(Setup {
+            base,
+            variant,
+            kx,
+            ky,
+            plane,
+            classifier,
+            header,
+        })
+    }
+}
+
 /// `oscillation`.
 pub fn oscillation(args: &OscillationArgs) -> Result<()> {
-    let base = args.params.resolve()?;
-    let variant = args.params.variant();
-    if !(args.tolerance > 0.0 && args.tolerance <= 0.1) {
-        return bad(format!(
-            "--tolerance = {}: allowed range is (0, 0.1]",
-            num(args.tolerance)
-        ));
-    }
-    if !(args.dt >= 1e-4 && args.dt <= 0.1) {
-        return bad(format!(
-            "--dt = {}: allowed range is [1e-4, 0.1]",
-            num(args.dt)
-        ));
-    }
-    if base.noise_intensity != 0.0 {
-        return bad(format!(
-            "--param D = {}: the oscillation boundary is that of the noise-free system; allowed: D = 0",
-            num(base.noise_intensity)
-        ));
-    }
-    let (kx, xs) = parse_abscissae(&args.x)?;
-    let (ky, lo, hi, ys) = parse_ordinate(&args.y, args.grid)?;
-    if kx == ky {
-        return bad(format!(
-            "--x and --y name the same parameter `{kx}`: choose two different keys"
-        ));
-    }
-    if kx == "D" || ky == "D" {
-        return bad("--x/--y: D cannot be an axis (the oscillation boundary is at D = 0)");
-    }
-    let barrier = match args.barrier {
-        OnOff::On => Barrier::On,
-        OnOff::Off => Barrier::Off,
+    let s = args.setup()?;
+    let text = if args.grid {
+        let (_, gy) = parse_axis(&args.y, "--y", true)?;
+        classify(args, s, &gy.points())?
+    } else {
+        boundaries(args, s)?
     };
-    let mut classifier = Classifier::default();
-    classifier.method.dt = args.dt;
-    classifier.method.impact_memory = match args.impact_memory {
-        ImpactMemoryArg::Continuous => ImpactMemory::Continuous,
-        ImpactMemoryArg::Restart => ImpactMemory::Restart,
-    };
-    let template = Problem::from_params(&base)?.with_barrier(barrier)?;
-    let problem = Plane::new(&template, (&kx, xs), (&ky, lo, hi))?;
-    let search = Search {
-        tolerance: args.tolerance,
-        ..Default::default()
-    };
-    let mut header = vec![
-        format!("trirhythm oscillation: boundary of {ky} (rest below/above) along {kx}"),
-        format!("params: {}", base.describe()),
-        format!(
-            "barrier: {}",
-            if barrier == Barrier::On { "on" } else { "off" }
+    emit(args.out.as_deref(), &text)
+}
+
+/// `--grid`: every point of the plane x × y classified.
+fn classify(args: &OscillationArgs, mut s: Setup, ys: &[f64]) -> Result<String> {
+    let m = match args.method.unwrap_or(MethodArg::Simulation) {
+        MethodArg::All => return bad(
+            "--method all needs boundary mode: with --grid choose simulation, averaging or exact",
         ),
-        format!("averaging variant: {}", variant.name()),
-        format!(
-            "simulation: predictor–corrector from U(0) = {}, dt = {}, {} impact memory; growth rate of ln(amplitude) after {} periods 2π/ω0, early stop once its sign is clear (at most {} periods)",
-            num(classifier.amplitude),
-            num(classifier.method.dt),
-            match classifier.method.impact_memory {
-                ImpactMemory::Continuous => "continuous",
-                ImpactMemory::Restart => "restart",
-            },
-            num(classifier.settle_periods),
-            num(classifier.max_periods)
-        ),
-    ];
-    if args.grid {
-        let m = match args.method.unwrap_or(MethodArg::Simulation) {
-            MethodArg::All => {
-                return bad("--method all needs boundary mode: with --grid choose simulation, averaging or exact")
-            }
-            m => m,
-        };
-        let cells = problem.x.len().saturating_mul(ys.len());
-        if cells > MAX_CELLS {
-            return bad(format!(
-                "--grid: {} × {} = {cells} points; at most {MAX_CELLS} are classified",
-                problem.x.len(),
-                ys.len()
-            ));
-        }
-        let method = method_of(m, classifier, variant);
-        let bar = progress(cells as u64, "oscillation grid");
-        let report = Report(|done: u64, _total: u64| bar.set_position(done));
-        let cells = classify_plane(&problem, &ys, &method, &report)?;
-        bar.finish_and_clear();
-        if let Some(c) = cells.iter().find(|c| c.rate.is_nan()) {
-            return bad(format!(
-                "--method exact: the exact linearisation with the wall is known at λ = 1 only (at {kx} = {}, {ky} = {} λ = {}); use --barrier off, or simulation",
-                num(c.x),
-                num(c.y),
-                num(problem.at(c.x, c.y)?.lambda)
-            ));
-        }
-        let simulations = if matches!(method, Method::Simulation(_)) {
-            cells.len()
-        } else {
-            0
-        };
-        let text = match args.format {
-            SimFormat::Csv => {
-                header.push(format!("method: {}", method.name()));
-                header.push(format!("simulations: {simulations}"));
-                let mut csv = Csv::new(&header, &["x", "y", "oscillates"]);
-                for c in &cells {
-                    csv.row([num(c.x), num(c.y), u8::from(c.oscillates).to_string()]);
-                }
-                csv.finish()?
-            }
-            SimFormat::Json => {
-                let doc = json!({
-                    "params": params_json(&base),
-                    "barrier": if barrier == Barrier::On { "on" } else { "off" },
-                    "variant": variant.name(),
-                    "method": method.name(),
-                    "x_key": kx,
-                    "y_key": ky,
-                    "dt": jnum(args.dt),
-                    "simulations": simulations,
-                    "cells": cells.iter().map(|c| json!({
-                        "x": jnum(c.x), "y": jnum(c.y), "oscillates": c.oscillates, "rate": jnum(c.rate),
-                    })).collect::<Vec<_>>(),
-                });
-                serde_json::to_string_pretty(&doc)? + "\n"
-            }
-        };
-        return crate::io::emit(args.out.as_deref(), &text);
-    }
-    let methods: Vec<Method> = match args.method.unwrap_or(MethodArg::All) {
-        MethodArg::All => vec![
-            Method::Simulation(classifier),
-            Method::Averaging(variant),
-            Method::Exact,
-        ],
-        m => vec![method_of(m, classifier, variant)],
+        m => m,
     };
-    let n = problem.x.len();
-    let bar = progress((n * methods.len()) as u64, "oscillation boundary");
-    let mut results: Vec<Boundary> = Vec::new();
-    for (i, m) in methods.iter().enumerate() {
-        let report = Report(|done: u64, _total: u64| bar.set_position((i * n) as u64 + done));
-        results.push(boundary(&problem, m, &search, &report)?);
+    let (kx, ky, plane) = (&s.kx, &s.ky, &s.plane);
+    let cells = plane.x.len().saturating_mul(ys.len());
+    if cells > MAX_CELLS {
+        return bad(format!(
+            "--grid: {} × {} = {cells} points; at most {MAX_CELLS} are classified",
+            plane.x.len(),
+            ys.len()
+        ));
     }
+    let method = method_of(m, s.classifier, s.variant);
+    let bar = progress(cells as u64, "oscillation grid");
+    let report = Report(|done: u64, _total: u64| bar.set_position(done));
+    let cells = classify_plane(plane, ys, &method, &report)?;
     bar.finish_and_clear();
-    let simulations: usize = results.iter().map(|b| b.simulations()).sum();
-    let text = match args.format {
+    if let Some(c) = cells.iter().find(|c| c.rate.is_nan()) {
+        return bad(format!(
+            "--method exact: the exact linearisation with the wall is known at λ = 1 only (at {kx} = {}, {ky} = {} λ = {}); use --barrier off, or simulation",
+            num(c.x),
+            num(c.y),
+            num(plane.at(c.x, c.y)?.lambda)
+        ));
+    }
+    let simulations = if matches!(method, Method::Simulation(_)) {
+        cells.len()
+    } else {
+        0
+    };
+    Ok(match args.format {
         SimFormat::Csv => {
-            header.push(format!(
-                "tolerance: simulated bracket y_hi − y_lo ≤ {} · y",
-                num(args.tolerance)
-            ));
-            header.push(format!(
-                "interval searched: {ky} ∈ [{}, {}]",
-                num(lo),
-                num(hi)
-            ));
-            header.push(format!("simulations: {simulations}"));
-            for b in &results {
-                for q in &b.points {
-                    if q.side != Side::Boundary {
-                        header.push(format!(
-                            "{}: at {kx} = {} {}",
-                            b.method,
-                            num(q.x),
-                            match q.side {
-                                Side::Oscillates =>
-                                    "no boundary in the interval: oscillates throughout",
-                                Side::Rests => "no boundary in the interval: rests throughout",
-                                _ => "not available (exact linearisation with the wall at λ < 1)",
-                            }
-                        ));
-                    }
-                }
-            }
-            let mut csv = Csv::new(&header, &["method", "x", "y", "y_lo", "y_hi"]);
-            for b in &results {
-                for q in b.points.iter().filter(|q| q.side == Side::Boundary) {
-                    csv.row([
-                        b.method.to_string(),
-                        num(q.x),
-                        num(q.y),
-                        num(q.y_lo),
-                        num(q.y_hi),
-                    ]);
-                }
+            s.header.push(format!("method: {}", method.name()));
+            s.header.push(format!("simulations: {simulations}"));
+            let mut csv = Csv::new(&s.header, &["x", "y", "oscillates"]);
+            for c in &cells {
+                csv.row([num(c.x), num(c.y), u8::from(c.oscillates).to_string()]);
             }
             csv.finish()?
         }
         SimFormat::Json => {
-            let opt = |v: f64, q_side: Side| {
-                if q_side == Side::Boundary {
-                    jnum(v)
-                } else {
-                    Value::Null
-                }
-            };
             let doc = json!({
-                "params": params_json(&base),
-                "barrier": if barrier == Barrier::On { "on" } else { "off" },
-                "variant": variant.name(),
+                "params": params_json(&s.base),
+                "barrier": args.barrier.name(),
+                "variant": s.variant.name(),
+                "method": method.name(),
                 "x_key": kx,
                 "y_key": ky,
+                "dt": jnum(args.dt),
+                "simulations": simulations,
+                "cells": cells.iter().map(|c| json!({
+                    "x": jnum(c.x), "y": jnum(c.y), "oscillates": c.oscillates, "rate": jnum(c.rate),
+                })).collect::<Vec<_>>(),
+            });
+            serde_json::to_string_pretty(&doc)? + "\n"
+        }
+    })
+}
+
+/// Boundary mode: the boundary along x by each method.
+fn boundaries(args: &OscillationArgs, s: Setup) -> Result<String> {
+    let methods: Vec<Method> = match args.method.unwrap_or(MethodArg::All) {
+        MethodArg::All => vec![
+            Method::Simulation(s.classifier),
+            Method::Averaging(s.variant),
+            Method::Exact,
+        ],
+        m => vec![method_of(m, s.classifier, s.variant)],
+    };
+    let search = Search {
+        tolerance: args.tolerance,
+        ..Default::default()
+    };
+    let n = s.plane.x.len();
+    let bar = progress((n * methods.len()) as u64, "oscillation boundary");
+    let mut results: Vec<Boundary> = Vec::new();
+    for (i, m) in methods.iter().enumerate() {
+        let report = Report(|done: u64, _total: u64| bar.set_position((i * n) as u64 + done));
+        results.push(boundary(&s.plane, m, &search, &report)?);
+    }
+    bar.finish_and_clear();
+    let simulations: usize = results.iter().map(|b| b.simulations()).sum();
+    let (lo, hi) = s.plane.y_range;
+    Ok(match args.format {
+        SimFormat::Csv => boundaries_csv(args, s, &results, simulations)?,
+        SimFormat::Json => {
+            let opt = |v: f64, side: Side| (side == Side::Boundary).then(|| jnum(v));
+            let doc = json!({
+                "params": params_json(&s.base),
+                "barrier": args.barrier.name(),
+                "variant": s.variant.name(),
+                "x_key": s.kx,
+                "y_key": s.ky,
                 "y_range": [jnum(lo), jnum(hi)],
                 "tolerance": jnum(args.tolerance),
                 "dt": jnum(args.dt),
@@ -354,6 +317,46 @@ pub fn oscillation(args: &OscillationArgs) -> Result<()> {
             });
             serde_json::to_string_pretty(&doc)? + "\n"
         }
-    };
-    crate::io::emit(args.out.as_deref(), &text)
+    })
+}
+
+/// The CSV of boundary mode: `method,x,y,y_lo,y_hi`, the abscissae without a boundary in the
+/// header.
+fn boundaries_csv(
+    args: &OscillationArgs,
+    mut s: Setup,
+    results: &[Boundary],
+    simulations: usize,
+) -> Result<String> {
+    let (lo, hi) = s.plane.y_range;
+    let (kx, ky) = (&s.kx, &s.ky);
+    s.header.push(format!(
+        "tolerance: simulated bracket y_hi − y_lo ≤ {} · y",
+        num(args.tolerance)
+    ));
+    s.header.push(format!(
+        "interval searched: {ky} ∈ [{}, {}]",
+        num(lo),
+        num(hi)
+    ));
+    s.header.push(format!("simulations: {simulations}"));
+    for b in results {
+        for q in b.points.iter().filter(|q| q.side != Side::Boundary) {
+            let why = match q.side {
+                Side::Oscillates => "no boundary in the interval: oscillates throughout",
+                Side::Rests => "no boundary in the interval: rests throughout",
+                _ => "not available (exact linearisation with the wall at λ < 1)",
+            };
+            s.header
+                .push(format!("{}: at {kx} = {} {why}", b.method, num(q.x)));
+        }
+    }
+    let mut csv = Csv::new(&s.header, &["method", "x", "y", "y_lo", "y_hi"]);
+    for b in results {
+        for q in b.points.iter().filter(|q| q.side == Side::Boundary) {
+            let cells = [q.x, q.y, q.y_lo, q.y_hi].map(num);
+            csv.row(std::iter::once(b.method.to_string()).chain(cells));
+        }
+    }
+    csv.finish()
 }
