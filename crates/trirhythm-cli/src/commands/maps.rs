@@ -3,15 +3,17 @@
 
 use crate::args::{parse_axis, Format, OutputArgs, ParamArgs};
 use crate::error::bad;
-use crate::io::{emit, jnum, num, params_json, progress, Csv, Stream, Temporary};
+use crate::io::files::check_destination;
+use crate::io::{emit, num, params_json, progress, Csv, Stream, Temporary};
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use serde_json::{json, Value};
+use serde::Serialize;
+use serde_json::Value;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use trirhythm::theory::bifurcation::{
     branches as trace_branches, classify, trace_folds, trace_printed_eq37, Axis, BranchDiagram,
-    FoldCurve, Folds, Map, Plane, What,
+    Folds, Map, Plane, What,
 };
 
 /// What a map counts.
@@ -62,42 +64,50 @@ pub struct MapArgs {
     pub output: OutputArgs,
 }
 
-fn end_name(e: trirhythm::theory::bifurcation::CurveEnd) -> &'static str {
-    e.name()
+/// An axis of a `map` document: the key and its values.
+#[derive(Serialize)]
+struct AxisValues {
+    key: String,
+    values: Vec<f64>,
 }
 
-/// Curves as JSON.
-pub fn folds_json(f: &Folds) -> Value {
-    json!({
-        "curves": f.curves.iter().map(curve_json).collect::<Vec<_>>(),
-        "cusps": f.cusps.iter().map(|p| json!({"x": jnum(p.x), "y": jnum(p.y), "amplitude": jnum(p.amplitude)})).collect::<Vec<_>>(),
-        "seeds": f.seeds,
-        "unlocated": f.unlocated,
-    })
+/// The `map` JSON document: the counts on the grid and the library's fold curves.
+#[derive(Serialize)]
+struct MapDocument<'a> {
+    params: Value,
+    variant: &'static str,
+    what: What,
+    x: AxisValues,
+    y: AxisValues,
+    counts: Vec<Vec<u8>>,
+    histogram: [usize; 5],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    folds: Option<&'a Folds>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    printed_eq37: Option<&'a Folds>,
 }
 
-fn curve_json(c: &FoldCurve) -> Value {
-    json!({
-        "system": c.system.name(),
-        "start": end_name(c.start),
-        "end": end_name(c.end),
-        "points": c.points.iter().map(|p| json!([jnum(p.x), jnum(p.y), jnum(p.amplitude)])).collect::<Vec<_>>(),
-    })
-}
-
-/// Rows `curve,system,x,y,amplitude` for every curve of `sets`, numbered on across them.
-pub fn folds_csv(csv: &mut Csv, prefix: &[String], sets: &[&Folds]) {
-    for row in trirhythm_paper::maps::fold_rows(prefix, sets) {
-        csv.row(row);
+/// Where the fold curves of a CSV map go, settled before the work starts: `--folds-out`, or
+/// `FILE-folds.csv` next to `--out` (none with JSON, where they are part of the document).
+fn folds_destination(args: &MapArgs) -> Result<Option<PathBuf>> {
+    if args.output.format == Format::Json || !(args.folds || args.printed_eq37) {
+        return Ok(None);
     }
-}
-
-/// Build and classify a plane with a progress bar.
-pub fn run_map(plane: &Plane, what: What, label: &str) -> Map {
-    let bar = progress(plane.y.count as u64, label);
-    let m = classify(plane, what, &|done, _| bar.set_position(done as u64));
-    bar.finish_and_clear();
-    m
+    let path = match (&args.folds_out, &args.output.out) {
+        (Some(p), _) => p.clone(),
+        (None, Some(out)) => {
+            let stem = out
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            out.with_file_name(format!("{stem}-folds.csv"))
+        }
+        (None, None) => return bad(
+            "--folds with CSV on standard output needs --folds-out FILE (or --out FILE, or --format json)",
+        ),
+    };
+    check_destination(&path, "--folds-out")?;
+    Ok(Some(path))
 }
 
 /// `map`: classification of a parameter plane, with fold curves on request.
@@ -113,33 +123,14 @@ pub fn map(args: &MapArgs) -> Result<()> {
         variant,
     )?;
     let what: What = args.what.into();
-    if what == What::Modes && base.noise_intensity <= 0.0 {
-        // D may be an axis; only a constant D = 0 is an error.
-        if kx != "D" && ky != "D" {
-            return bad("--what modes needs noise: set D > 0 (e.g. --param D=0.1)");
-        }
+    // D may be an axis; only a constant D = 0 is an error
+    if what == What::Modes && base.noise_intensity <= 0.0 && kx != "D" && ky != "D" {
+        return bad("--what modes needs noise: set D > 0 (e.g. --param D=0.1)");
     }
-    // where the fold curves go (CSV), settled before the work starts
-    let folds_path = match (args.output.format, args.folds || args.printed_eq37) {
-        (Format::Json, _) | (_, false) => None,
-        (_, true) => Some(match (&args.folds_out, &args.output.out) {
-            (Some(p), _) => p.clone(),
-            (None, Some(out)) => {
-                let stem = out
-                    .file_stem()
-                    .map(|s| s.to_string_lossy().into_owned())
-                    .unwrap_or_default();
-                out.with_file_name(format!("{stem}-folds.csv"))
-            }
-            (None, None) => return bad(
-                "--folds with CSV on standard output needs --folds-out FILE (or --out FILE, or --format json)",
-            ),
-        }),
-    };
-    if let Some(p) = &folds_path {
-        crate::io::files::check_destination(p, "--folds-out")?;
-    }
-    let m = run_map(&plane, what, "map");
+    let folds_path = folds_destination(args)?;
+    let bar = progress(plane.y.count as u64, "map");
+    let m = classify(&plane, what, &|done, _| bar.set_position(done as u64));
+    bar.finish_and_clear();
     let mut sets: Vec<Folds> = Vec::new();
     if args.folds || args.printed_eq37 {
         sets.push(trace_folds(&m));
@@ -147,26 +138,63 @@ pub fn map(args: &MapArgs) -> Result<()> {
     if args.printed_eq37 {
         sets.push(trace_printed_eq37(&m)?);
     }
+    if args.output.format == Format::Json {
+        let (nx, ny) = (plane.x.count, plane.y.count);
+        let doc = MapDocument {
+            params: params_json(&base),
+            variant: variant.name(),
+            what,
+            x: AxisValues {
+                key: kx,
+                values: plane.x.values(),
+            },
+            y: AxisValues {
+                key: ky,
+                values: plane.y.values(),
+            },
+            counts: (0..ny)
+                .map(|iy| (0..nx).map(|ix| m.count(ix, iy)).collect())
+                .collect(),
+            histogram: m.histogram(),
+            folds: sets.first(),
+            printed_eq37: sets.get(1),
+        };
+        return emit(
+            args.output.out.as_deref(),
+            &(serde_json::to_string(&doc)? + "\n"),
+        );
+    }
+    let header = map_header(&base, variant.name(), what, &kx, &ky, &m, &sets);
+    write_map_csv(args, &header, &plane, &m, &sets, folds_path.as_deref())
+}
+
+/// The `#` lines of a map's CSV files.
+fn map_header(
+    base: &trirhythm::Params,
+    variant: &str,
+    what: What,
+    kx: &str,
+    ky: &str,
+    m: &Map,
+    sets: &[Folds],
+) -> Vec<String> {
     let hist = m.histogram();
+    let counted = if what == What::Rhythmicity {
+        "limit cycles"
+    } else {
+        "maxima of P(A)"
+    };
     let mut header = vec![
         format!("params: {}", base.describe()),
-        format!("variant: {}", variant.name()),
-        format!(
-            "what: {} (count of stable {})",
-            what.name(),
-            if what == What::Rhythmicity {
-                "limit cycles"
-            } else {
-                "maxima of P(A)"
-            }
-        ),
+        format!("variant: {variant}"),
+        format!("what: {} (count of stable {counted})", what.name()),
         format!("x: {kx}, y: {ky}"),
         format!(
             "points with count 0, 1, 2, 3, >=4: {}, {}, {}, {}, {}",
             hist[0], hist[1], hist[2], hist[3], hist[4]
         ),
     ];
-    for f in &sets {
+    for f in sets {
         header.push(format!(
             "fold curves ({}): {} traced from {} seeds, {} cusps",
             f.curves.first().map(|c| c.system.name()).unwrap_or("-"),
@@ -175,62 +203,47 @@ pub fn map(args: &MapArgs) -> Result<()> {
             f.cusps.len()
         ));
     }
-    match args.output.format {
-        Format::Json => {
-            let (nx, ny) = (plane.x.count, plane.y.count);
-            let counts: Vec<Value> = (0..ny)
-                .map(|iy| Value::Array((0..nx).map(|ix| json!(m.count(ix, iy))).collect()))
-                .collect();
-            let mut doc = json!({
-                "params": params_json(&base),
-                "variant": variant.name(),
-                "what": what.name(),
-                "x": {"key": kx, "values": plane.x.values().into_iter().map(jnum).collect::<Vec<_>>()},
-                "y": {"key": ky, "values": plane.y.values().into_iter().map(jnum).collect::<Vec<_>>()},
-                "counts": counts,
-                "histogram": hist,
-            });
-            if !sets.is_empty() {
-                doc["folds"] = folds_json(&sets[0]);
-            }
-            if sets.len() > 1 {
-                doc["printed_eq37"] = folds_json(&sets[1]);
-            }
-            let mut s = serde_json::to_string(&doc)?;
-            s.push('\n');
-            emit(args.output.out.as_deref(), &s)
+    header
+}
+
+/// The map streamed to its output as `x,y,count`; the fold curves into a temporary that is
+/// renamed only after the map is complete, so a failing main output leaves no folds file.
+fn write_map_csv(
+    args: &MapArgs,
+    header: &[String],
+    plane: &Plane,
+    m: &Map,
+    sets: &[Folds],
+    folds_path: Option<&Path>,
+) -> Result<()> {
+    let mut stream = Stream::open(args.output.out.as_deref())?;
+    let w = stream.writer();
+    w.write_all(Csv::new(header, &["x", "y", "count"]).finish()?.as_bytes())?;
+    for iy in 0..plane.y.count {
+        let y = num(plane.y.value(iy));
+        for ix in 0..plane.x.count {
+            writeln!(w, "{},{y},{}", num(plane.x.value(ix)), m.count(ix, iy))?;
         }
-        Format::Csv | Format::Table => {
-            // the map streamed to its output; the fold curves into a temporary that is renamed
-            // only after the map is complete, so a failing main output leaves no folds file
-            let mut stream = Stream::open(args.output.out.as_deref())?;
-            let w = stream.writer();
-            w.write_all(Csv::new(&header, &["x", "y", "count"]).finish()?.as_bytes())?;
-            for iy in 0..plane.y.count {
-                let y = num(plane.y.value(iy));
-                for ix in 0..plane.x.count {
-                    writeln!(w, "{},{y},{}", num(plane.x.value(ix)), m.count(ix, iy))?;
-                }
+    }
+    let folds = match folds_path {
+        Some(path) if !sets.is_empty() => {
+            let mut fc = Csv::new(header, &["curve", "system", "x", "y", "amplitude"]);
+            let refs: Vec<&Folds> = sets.iter().collect();
+            for row in trirhythm_paper::maps::fold_rows(&[], &refs) {
+                fc.row(row);
             }
-            let folds = match &folds_path {
-                Some(path) if !sets.is_empty() => {
-                    let mut fc = Csv::new(&header, &["curve", "system", "x", "y", "amplitude"]);
-                    let refs: Vec<&Folds> = sets.iter().collect();
-                    folds_csv(&mut fc, &[], &refs);
-                    let (tmp, mut fw) = Temporary::create(path)?;
-                    fw.write_all(fc.finish()?.as_bytes())
-                        .and_then(|()| fw.flush())
-                        .with_context(|| format!("writing {}", tmp.path().display()))?;
-                    Some(tmp)
-                }
-                _ => None,
-            };
-            stream.finish()?;
-            match folds {
-                Some(tmp) => tmp.commit(),
-                None => Ok(()),
-            }
+            let (tmp, mut fw) = Temporary::create(path)?;
+            fw.write_all(fc.finish()?.as_bytes())
+                .and_then(|()| fw.flush())
+                .with_context(|| format!("writing {}", tmp.path().display()))?;
+            Some(tmp)
         }
+        _ => None,
+    };
+    stream.finish()?;
+    match folds {
+        Some(tmp) => tmp.commit(),
+        None => Ok(()),
     }
 }
 
@@ -252,17 +265,13 @@ pub struct BranchArgs {
     pub output: OutputArgs,
 }
 
-/// Compute a branch diagram.
-pub fn branch_diagram(
-    base: &trirhythm::Params,
-    variant: trirhythm::theory::averaging::Variant,
-    what: What,
-    key: &str,
-    start: f64,
-    stop: f64,
-    step: f64,
-) -> Result<BranchDiagram> {
-    Ok(trace_branches(base, variant, what, key, start, stop, step)?)
+/// The `branches` JSON document: the library's diagram with the parameters and variant.
+#[derive(Serialize)]
+struct BranchDocument<'a> {
+    params: Value,
+    variant: &'static str,
+    #[serde(flatten)]
+    diagram: &'a BranchDiagram,
 }
 
 /// `branches`: every branch of cycles vs one parameter, traced through its folds.
@@ -282,25 +291,15 @@ pub fn branches(args: &BranchArgs) -> Result<()> {
     if what == What::Modes && base.noise_intensity <= 0.0 && key != "D" {
         return bad("--what modes needs noise: set D > 0 (e.g. --param D=0.1)");
     }
-    let bd = branch_diagram(&base, variant, what, &key, g.start, g.stop, args.step)?;
-    match args.output.format {
+    let bd = trace_branches(&base, variant, what, &key, g.start, g.stop, args.step)?;
+    let text = match args.output.format {
         Format::Json => {
-            let doc = json!({
-                "params": params_json(&base),
-                "variant": variant.name(),
-                "what": what.name(),
-                "key": key,
-                "branches": bd.branches.iter().map(|b| json!({
-                    "start": end_name(b.start),
-                    "end": end_name(b.end),
-                    "points": b.points.iter().map(|p| json!({"param": jnum(p.param), "amplitude": jnum(p.amplitude), "stable": p.stable})).collect::<Vec<_>>(),
-                })).collect::<Vec<_>>(),
-                "folds": bd.folds.iter().map(|f| json!({"param": jnum(f.0), "amplitude": jnum(f.1)})).collect::<Vec<_>>(),
-                "hopf": bd.hopf.iter().map(|&h| jnum(h)).collect::<Vec<_>>(),
-            });
-            let mut s = serde_json::to_string(&doc)?;
-            s.push('\n');
-            emit(args.output.out.as_deref(), &s)
+            let doc = BranchDocument {
+                params: params_json(&base),
+                variant: variant.name(),
+                diagram: &bd,
+            };
+            serde_json::to_string(&doc)? + "\n"
         }
         Format::Csv | Format::Table => {
             let mut header = vec![
@@ -317,15 +316,12 @@ pub fn branches(args: &BranchArgs) -> Result<()> {
             let mut csv = Csv::new(&header, &["branch", "param", "amplitude", "stable"]);
             for (i, b) in bd.branches.iter().enumerate() {
                 for p in &b.points {
-                    csv.row([
-                        i.to_string(),
-                        num(p.param),
-                        num(p.amplitude),
-                        u8::from(p.stable).to_string(),
-                    ]);
+                    let stable = u8::from(p.stable).to_string();
+                    csv.row([i.to_string(), num(p.param), num(p.amplitude), stable]);
                 }
             }
-            emit(args.output.out.as_deref(), &csv.finish()?)
+            csv.finish()?
         }
-    }
+    };
+    emit(args.output.out.as_deref(), &text)
 }
