@@ -2,7 +2,7 @@
 
 use crate::args::{Format, Grid, OutputArgs, ParamArgs};
 use crate::error::bad;
-use crate::io::{emit, fixed, jlimit, jnum, num, params_json, table, Csv};
+use crate::io::{emit, fixed, jlimit, jnum, jvec, num, params_json, table, Csv};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
@@ -30,15 +30,13 @@ fn header(th: &Theory) -> Vec<String> {
     ]
 }
 
+/// What every theory document starts with: the parameters, the variant and the library's
+/// equivalents (Eq. 5).
 fn base_json(th: &Theory) -> serde_json::Map<String, Value> {
-    let e = th.equivalents();
     let mut m = serde_json::Map::new();
     m.insert("params".into(), params_json(th.params()));
     m.insert("variant".into(), json!(th.variant().name()));
-    m.insert(
-        "equivalents".into(),
-        json!({"mu1": jnum(e.mu1), "beta1": jnum(e.beta1), "omega1": jnum(e.omega1), "beta2": jnum(e.beta2)}),
-    );
+    m.insert("equivalents".into(), json!(th.equivalents()));
     m
 }
 
@@ -97,15 +95,7 @@ pub fn cycles(args: &TheoryArgs) -> Result<()> {
         Format::Json => {
             let mut m = base_json(&th);
             m.insert("kind".into(), json!(kind));
-            m.insert(
-                "cycles".into(),
-                Value::Array(
-                    cycles
-                        .iter()
-                        .map(|c| json!({"amplitude": jnum(c.amplitude), "stable": c.stable, "fold": c.fold}))
-                        .collect(),
-                ),
-            );
+            m.insert("cycles".into(), json!(cycles));
             m.insert("stable_count".into(), json!(rhythm.count()));
             m.insert("rhythmicity".into(), json!(rhythm.name()));
             m.insert(
@@ -271,14 +261,8 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
     let text = match args.output.format {
         Format::Json => {
             let mut m = base_json(&th);
-            m.insert(
-                "extrema".into(),
-                Value::Array(ex.iter().map(|e| json!({"amplitude": jnum(e.amplitude), "potential": jnum(e.potential), "kind": if e.minimum {"well"} else {"crest"}})).collect()),
-            );
-            m.insert(
-                "barriers".into(),
-                Value::Array(bs.iter().enumerate().map(|(i, b)| json!({"name": format!("dU{}", i + 1), "well": jnum(b.well), "crest": jnum(b.crest), "side": side(b.side), "height": jnum(b.height)})).collect()),
-            );
+            m.insert("extrema".into(), json!(ex));
+            m.insert("barriers".into(), json!(bs));
             pretty(Value::Object(m))
         }
         Format::Csv => {
@@ -365,164 +349,126 @@ fn support_grid(pdf: &AmplitudePdf) -> Vec<f64> {
 pub fn pdf(args: &PdfArgs) -> Result<()> {
     let th = args.theory.theory()?;
     let pdf = th.amplitude_pdf()?;
+    let text = match args.kind {
+        PdfKind::Amplitude | PdfKind::Energy => pdf_1d(args, &th, &pdf)?,
+        PdfKind::Joint => pdf_joint(args, &th, &pdf)?,
+    };
+    emit(args.theory.output.out.as_deref(), &text)
+}
+
+/// P(A) (Eq. 27) or P(H) (Eq. 29) on a grid.
+fn pdf_1d(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> {
+    let energy = args.kind == PdfKind::Energy;
     let w1 = th.equivalents().omega1;
-    let a_end = pdf.support_end;
-    let out = &args.theory.output;
-    match args.kind {
-        PdfKind::Amplitude | PdfKind::Energy => {
-            let energy = args.kind == PdfKind::Energy;
-            let xs = match args.grid.as_deref() {
-                Some(g) => amplitude_grid(g)?,
-                None => {
-                    let a = support_grid(&pdf);
-                    if energy {
-                        a.iter().map(|&a| 0.5 * w1 * w1 * a * a).collect()
-                    } else {
-                        a
-                    }
-                }
-            };
-            let logp: Vec<f64> = xs
-                .iter()
-                .map(|&x| {
-                    if energy {
-                        pdf.log_energy_density(x)
-                    } else {
-                        pdf.log_density(x)
-                    }
-                })
+    let xs = match args.grid.as_deref() {
+        Some(g) => amplitude_grid(g)?,
+        None if energy => support_grid(pdf)
+            .iter()
+            .map(|&a| 0.5 * w1 * w1 * a * a)
+            .collect(),
+        None => support_grid(pdf),
+    };
+    let logp: Vec<f64> = xs
+        .iter()
+        .map(|&x| {
+            if energy {
+                pdf.log_energy_density(x)
+            } else {
+                pdf.log_density(x)
+            }
+        })
+        .collect();
+    let p: Vec<f64> = logp.iter().map(|l| l.exp()).collect();
+    let xname = if energy { "H" } else { "A" };
+    Ok(match args.theory.output.format {
+        Format::Json => {
+            let mut m = base_json(th);
+            m.insert(
+                "kind".into(),
+                json!(if energy { "energy" } else { "amplitude" }),
+            );
+            m.insert("sigma1".into(), jnum(th.diffusion()));
+            m.insert("modes".into(), jvec(&pdf.modes));
+            m.insert("antimodes".into(), jvec(&pdf.antimodes));
+            m.insert("mean_amplitude".into(), jnum(pdf.mean_amplitude));
+            m.insert(xname.into(), jvec(&xs));
+            m.insert("p".into(), jvec(&p));
+            let log_p = logp.iter().map(|&v| jlimit(v)).collect();
+            m.insert("log_p".into(), Value::Array(log_p));
+            pretty(Value::Object(m))
+        }
+        Format::Csv => {
+            let mut h = header(th);
+            h.push(format!("modes: {:?}", pdf.modes));
+            h.push(format!("antimodes: {:?}", pdf.antimodes));
+            h.push(format!("mean_amplitude: {}", pdf.mean_amplitude));
+            let mut c = Csv::new(&h, &[xname, "p", "log_p"]).allow_infinity("log_p");
+            for i in 0..xs.len() {
+                c.row([num(xs[i]), num(p[i]), num(logp[i])]);
+            }
+            c.finish()?
+        }
+        Format::Table => {
+            let rows: Vec<Vec<String>> = (0..xs.len())
+                .map(|i| vec![fixed(xs[i], 6), format!("{:.6e}", p[i]), fixed(logp[i], 6)])
                 .collect();
-            let p: Vec<f64> = logp.iter().map(|l| l.exp()).collect();
-            let xname = if energy { "H" } else { "A" };
-            let n = xs.len();
-            let text = match out.format {
-                Format::Json => {
-                    let mut m = base_json(&th);
-                    m.insert(
-                        "kind".into(),
-                        json!(if energy { "energy" } else { "amplitude" }),
-                    );
-                    m.insert("sigma1".into(), jnum(th.diffusion()));
-                    m.insert(
-                        "modes".into(),
-                        Value::Array(pdf.modes.iter().map(|&v| jnum(v)).collect()),
-                    );
-                    m.insert(
-                        "antimodes".into(),
-                        Value::Array(pdf.antimodes.iter().map(|&v| jnum(v)).collect()),
-                    );
-                    m.insert("mean_amplitude".into(), jnum(pdf.mean_amplitude));
-                    m.insert(
-                        xname.into(),
-                        Value::Array(xs.iter().map(|&v| jnum(v)).collect()),
-                    );
-                    m.insert(
-                        "p".into(),
-                        Value::Array(p.iter().map(|&v| jnum(v)).collect()),
-                    );
-                    m.insert(
-                        "log_p".into(),
-                        Value::Array(logp.iter().map(|&v| jlimit(v)).collect()),
-                    );
-                    pretty(Value::Object(m))
-                }
-                Format::Csv => {
-                    let mut h = header(&th);
-                    h.push(format!("modes: {:?}", pdf.modes));
-                    h.push(format!("antimodes: {:?}", pdf.antimodes));
-                    h.push(format!("mean_amplitude: {}", pdf.mean_amplitude));
-                    let mut c = Csv::new(&h, &[xname, "p", "log_p"]).allow_infinity("log_p");
-                    for i in 0..n {
-                        c.row([num(xs[i]), num(p[i]), num(logp[i])]);
-                    }
-                    c.finish()?
-                }
-                Format::Table => {
-                    let rows: Vec<Vec<String>> = (0..n)
-                        .map(|i| vec![fixed(xs[i], 6), format!("{:.6e}", p[i]), fixed(logp[i], 6)])
-                        .collect();
-                    let mut t = table(&[xname, "p", "log_p"], &rows, &["log_p"])?;
-                    t.push_str(&format!(
-                        "modes {:?}, antimodes {:?}, mean amplitude {}\n",
-                        pdf.modes, pdf.antimodes, pdf.mean_amplitude
-                    ));
-                    t
-                }
-            };
-            emit(out.out.as_deref(), &text)
+            let mut t = table(&[xname, "p", "log_p"], &rows, &["log_p"])?;
+            t.push_str(&format!(
+                "modes {:?}, antimodes {:?}, mean amplitude {}\n",
+                pdf.modes, pdf.antimodes, pdf.mean_amplitude
+            ));
+            t
         }
-        PdfKind::Joint => {
-            let ug = Grid::parse(
-                args.grid.as_deref().unwrap_or(&format!("0:{a_end}:101")),
-                "--grid",
-            )?;
-            let vmax = w1 * a_end;
-            let vg = Grid::parse(
-                args.vgrid
-                    .as_deref()
-                    .unwrap_or(&format!("{}:{vmax}:101", -vmax)),
-                "--vgrid",
-            )?;
-            let (us, vs) = (ug.points(), vg.points());
-            let spacing = (ug.stop - ug.start) / (ug.count - 1) as f64;
-            if let Some((m, w)) = pdf
-                .modes
-                .iter()
-                .zip(&pdf.mode_widths)
-                .find(|(_, &w)| w < spacing)
-            {
-                eprintln!(
-                    "note: the peak at A = {m:.6} is {w:.3e} wide, narrower than the grid spacing \
-                     {spacing:.3e}: p may read 0 between grid points; refine --grid and --vgrid \
-                     around U² + V²/ω1² = A²"
-                );
-            }
-            let mut c = Csv::new(&header(&th), &["U", "V", "p", "log_p"]).allow_infinity("log_p");
-            let mut cells = Vec::with_capacity(us.len() * vs.len());
-            for &u in &us {
-                for &v in &vs {
-                    let l = pdf.log_joint_density(u, v);
-                    cells.push((u, v, l.exp(), l));
-                }
-            }
-            let text = match out.format {
-                Format::Json => {
-                    let mut m = base_json(&th);
-                    m.insert("kind".into(), json!("joint"));
-                    m.insert(
-                        "U".into(),
-                        Value::Array(us.iter().map(|&v| jnum(v)).collect()),
-                    );
-                    m.insert(
-                        "V".into(),
-                        Value::Array(vs.iter().map(|&v| jnum(v)).collect()),
-                    );
-                    m.insert(
-                        "p".into(),
-                        Value::Array(
-                            us.iter()
-                                .enumerate()
-                                .map(|(i, _)| {
-                                    Value::Array(
-                                        cells[i * vs.len()..(i + 1) * vs.len()]
-                                            .iter()
-                                            .map(|c| jnum(c.2))
-                                            .collect(),
-                                    )
-                                })
-                                .collect(),
-                        ),
-                    );
-                    pretty(Value::Object(m))
-                }
-                Format::Csv | Format::Table => {
-                    for (u, v, p, l) in cells {
-                        c.row([num(u), num(v), num(p), num(l)]);
-                    }
-                    c.finish()?
-                }
-            };
-            emit(out.out.as_deref(), &text)
-        }
+    })
+}
+
+/// P(U, U̇) on U ≥ 0 (Eq. 30–31) on a grid.
+fn pdf_joint(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> {
+    let a_end = pdf.support_end;
+    let vmax = th.equivalents().omega1 * a_end;
+    let u_default = format!("0:{a_end}:101");
+    let ug = Grid::parse(args.grid.as_deref().unwrap_or(&u_default), "--grid")?;
+    let v_default = format!("{}:{vmax}:101", -vmax);
+    let vg = Grid::parse(args.vgrid.as_deref().unwrap_or(&v_default), "--vgrid")?;
+    let (us, vs) = (ug.points(), vg.points());
+    let spacing = (ug.stop - ug.start) / (ug.count - 1) as f64;
+    if let Some((m, w)) = pdf
+        .modes
+        .iter()
+        .zip(&pdf.mode_widths)
+        .find(|(_, &w)| w < spacing)
+    {
+        eprintln!(
+            "note: the peak at A = {m:.6} is {w:.3e} wide, narrower than the grid spacing \
+             {spacing:.3e}: p may read 0 between grid points; refine --grid and --vgrid \
+             around U² + V²/ω1² = A²"
+        );
     }
+    let logp: Vec<Vec<f64>> = us
+        .iter()
+        .map(|&u| vs.iter().map(|&v| pdf.log_joint_density(u, v)).collect())
+        .collect();
+    Ok(match args.theory.output.format {
+        Format::Json => {
+            let mut m = base_json(th);
+            m.insert("kind".into(), json!("joint"));
+            m.insert("U".into(), jvec(&us));
+            m.insert("V".into(), jvec(&vs));
+            let p = logp
+                .iter()
+                .map(|row| jvec(&row.iter().map(|l| l.exp()).collect::<Vec<_>>()))
+                .collect();
+            m.insert("p".into(), Value::Array(p));
+            pretty(Value::Object(m))
+        }
+        Format::Csv | Format::Table => {
+            let mut c = Csv::new(&header(th), &["U", "V", "p", "log_p"]).allow_infinity("log_p");
+            for (&u, row) in us.iter().zip(&logp) {
+                for (&v, &l) in vs.iter().zip(row) {
+                    c.row([num(u), num(v), num(l.exp()), num(l)]);
+                }
+            }
+            c.finish()?
+        }
+    })
 }

@@ -56,3 +56,8 @@ pub fn params_json(p: &Params) -> serde_json::Value {
     }
     serde_json::Value::Object(m)
 }
+
+/// A list of JSON numbers ([`jnum`] each).
+pub fn jvec(v: &[f64]) -> serde_json::Value {
+    serde_json::Value::Array(v.iter().map(|&x| jnum(x)).collect())
+}
