@@ -262,7 +262,15 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
         Format::Json => {
             let mut m = base_json(&th);
             m.insert("extrema".into(), json!(ex));
-            m.insert("barriers".into(), json!(bs));
+            let named = bs.iter().enumerate();
+            let named: Vec<Value> = named
+                .map(|(i, b)| {
+                    let mut v = json!(b);
+                    v["name"] = json!(format!("dU{}", i + 1));
+                    v
+                })
+                .collect();
+            m.insert("barriers".into(), Value::Array(named));
             pretty(Value::Object(m))
         }
         Format::Csv => {
