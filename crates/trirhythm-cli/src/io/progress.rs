@@ -26,3 +26,26 @@ pub fn progress(len: u64, message: &str) -> indicatif::ProgressBar {
     bar.set_message(message.to_string());
     bar
 }
+
+/// The library's [`trirhythm::monitor::Monitor`] drawn as a progress bar on the terminal (hidden otherwise).
+pub struct Bar(indicatif::ProgressBar);
+
+impl Bar {
+    /// A bar labelled `message`, hidden until the first progress.
+    pub fn new(message: &str) -> Bar {
+        Bar(progress(0, message))
+    }
+}
+
+impl trirhythm::monitor::Monitor for Bar {
+    fn progress(&self, done: u64, total: u64) {
+        self.0.set_length(total);
+        self.0.set_position(done);
+    }
+}
+
+impl Drop for Bar {
+    fn drop(&mut self) {
+        self.0.finish_and_clear();
+    }
+}
