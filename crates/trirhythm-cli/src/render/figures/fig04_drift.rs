@@ -5,35 +5,19 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig04_drift`].
 
-use super::heading_of;
-use crate::render::plot::{
-    chart, framed, legend, padded_range, pe, ChartSize, Heading, Picture, FONT,
-};
+use crate::render::plot::{chart, framed, legend, padded_range, pe, ChartSize, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use trirhythm_paper::fig04_drift::{Fig04, Panel};
 
-impl Picture for Fig04 {
-    fn size(&self) -> (u32, u32) {
-        (1400, 1000)
+picture!(Fig04, |self, root| size (1400, 1000), draw {
+    let areas = root.split_evenly((2, 2));
+    for (area, p) in areas.iter().zip(&self.panels) {
+        draw_panel(area, p)?;
     }
-
-    fn heading(&self) -> Heading {
-        heading_of(&self.caption)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        let areas = root.split_evenly((2, 2));
-        for (area, p) in areas.iter().zip(&self.panels) {
-            draw_panel(area, p)?;
-        }
-        Ok(())
-    }
-}
+    Ok(())
+});
 
 /// The right end of a panel's chart: just beyond the outermost root of the r = 1 curve.
 fn x_end(p: &Panel) -> f64 {

@@ -2,10 +2,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig07_pseudo_potential`].
 
-use super::heading_of;
-use crate::render::plot::{
-    chart, framed, legend, padded_range, pe, ChartSize, Heading, Picture, PALETTE,
-};
+use crate::render::plot::{chart, framed, legend, padded_range, pe, ChartSize, PALETTE};
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -81,63 +78,50 @@ where
     Ok(())
 }
 
-impl Picture for Fig07 {
-    fn size(&self) -> (u32, u32) {
-        (1400, 620)
-    }
-
-    fn heading(&self) -> Heading {
-        heading_of(&self.caption)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
+picture!(Fig07, |self, root| size (1400, 620), draw {
+    let areas = root.split_evenly((1, 2));
+    for (
+        area,
+        Panel {
+            caption, curves, ..
+        },
+    ) in areas.iter().zip(&self.panels)
     {
-        let areas = root.split_evenly((1, 2));
-        for (
-            area,
-            Panel {
-                caption, curves, ..
-            },
-        ) in areas.iter().zip(&self.panels)
-        {
-            let (y, clipped) = frame(curves, 14.0);
-            let mut c = chart(area, caption, 0.0..14.0, y, "A0", "U_eff(A0)")?;
-            draw_curves(&mut c, &clipped, true)?;
-            legend(&mut c, SeriesLabelPosition::UpperMiddle)?;
-            // The inner well A01 is ~1e-3 deep against ~1 for the outer ones: an inset zooms
-            // on it, up to the first crest beyond it.
-            let zoom_end = curves
-                .iter()
-                .filter_map(|cv| {
-                    let well = cv.extrema.iter().find(|e| e.minimum && e.amplitude > 0.0)?;
-                    cv.extrema
-                        .iter()
-                        .find(|e| !e.minimum && e.amplitude > well.amplitude)
-                        .map(|e| e.amplitude)
-                })
-                .fold(0.0f64, f64::max)
-                * 1.15;
-            if zoom_end > 0.0 && zoom_end < 14.0 {
-                let (w, h) = area.dim_in_pixel();
-                // below the curves, where the main panel is empty
-                let inset = area.clone().shrink(
-                    (100, (0.5 * h as f64) as u32),
-                    ((0.45 * w as f64) as u32, (0.4 * h as f64) as u32),
-                );
-                inset.fill(&WHITE).map_err(pe)?;
-                let (yz, zoomed) = frame(curves, zoom_end);
-                let mut z = framed(
-                    &inset,
-                    &format!("zoom on the inner well: A0 ≤ {zoom_end:.1}"),
-                    (0.0..zoom_end, yz),
-                    ("", ""),
-                    ChartSize::Inset,
-                )?;
-                draw_curves(&mut z, &zoomed, false)?;
-            }
+        let (y, clipped) = frame(curves, 14.0);
+        let mut c = chart(area, caption, 0.0..14.0, y, "A0", "U_eff(A0)")?;
+        draw_curves(&mut c, &clipped, true)?;
+        legend(&mut c, SeriesLabelPosition::UpperMiddle)?;
+        // The inner well A01 is ~1e-3 deep against ~1 for the outer ones: an inset zooms
+        // on it, up to the first crest beyond it.
+        let zoom_end = curves
+            .iter()
+            .filter_map(|cv| {
+                let well = cv.extrema.iter().find(|e| e.minimum && e.amplitude > 0.0)?;
+                cv.extrema
+                    .iter()
+                    .find(|e| !e.minimum && e.amplitude > well.amplitude)
+                    .map(|e| e.amplitude)
+            })
+            .fold(0.0f64, f64::max)
+            * 1.15;
+        if zoom_end > 0.0 && zoom_end < 14.0 {
+            let (w, h) = area.dim_in_pixel();
+            // below the curves, where the main panel is empty
+            let inset = area.clone().shrink(
+                (100, (0.5 * h as f64) as u32),
+                ((0.45 * w as f64) as u32, (0.4 * h as f64) as u32),
+            );
+            inset.fill(&WHITE).map_err(pe)?;
+            let (yz, zoomed) = frame(curves, zoom_end);
+            let mut z = framed(
+                &inset,
+                &format!("zoom on the inner well: A0 ≤ {zoom_end:.1}"),
+                (0.0..zoom_end, yz),
+                ("", ""),
+                ChartSize::Inset,
+            )?;
+            draw_curves(&mut z, &zoomed, false)?;
         }
-        Ok(())
     }
-}
+    Ok(())
+});

@@ -3,8 +3,7 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig08_barriers`].
 
 use super::fig07_pseudo_potential::{draw_curves, frame};
-use super::heading_of;
-use crate::render::plot::{chart, pe, Heading, Picture, FONT};
+use crate::render::plot::{chart, pe, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
 use trirhythm::theory::averaging::Side;
@@ -76,27 +75,14 @@ where
     }
     Ok(())
 }
-impl Picture for Fig08 {
-    fn size(&self) -> (u32, u32) {
-        (1400, 620)
-    }
-
-    fn heading(&self) -> Heading {
-        heading_of(&self.caption)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        let areas = root.split_evenly((1, 2));
-        draw_panel(self, &areas[0], "(a) U_eff and its barriers ΔU_i", 14.0)?;
-        draw_panel(
-            self,
-            &areas[1],
-            "(b) zoom on the inner wells",
-            zoom_end(self),
-        )?;
-        Ok(())
-    }
-}
+picture!(Fig08, |self, root| size (1400, 620), draw {
+    let areas = root.split_evenly((1, 2));
+    draw_panel(self, &areas[0], "(a) U_eff and its barriers ΔU_i", 14.0)?;
+    draw_panel(
+        self,
+        &areas[1],
+        "(b) zoom on the inner wells",
+        zoom_end(self),
+    )?;
+    Ok(())
+});

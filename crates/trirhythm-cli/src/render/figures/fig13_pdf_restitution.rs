@@ -5,27 +5,9 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig13_pdf_restitution`].
 
-use super::heading_of;
 use super::montecarlo::{draw_amplitude_grid, two_rows_of_four, PANEL};
-use crate::render::plot::{Heading, Picture};
-use anyhow::Result;
-use plotters::coord::Shift;
-use plotters::prelude::*;
 use trirhythm_paper::fig13_pdf_restitution::Fig13;
 
-impl Picture for Fig13 {
-    fn size(&self) -> (u32, u32) {
-        two_rows_of_four(&self.panels)
-    }
-
-    fn heading(&self) -> Heading {
-        heading_of(&self.caption)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        draw_amplitude_grid(root, &self.panels, (2, 4), PANEL.1)
-    }
-}
+picture!(Fig13, |self, root| size two_rows_of_four(&self.panels), draw {
+    draw_amplitude_grid(root, &self.panels, (2, 4), PANEL.1)
+});

@@ -5,8 +5,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig14_joint_pdf`].
 
-use super::heading_of;
-use crate::render::plot::{chart, colour_bar, pe, viridis, Heading, Picture};
+use crate::render::plot::{chart, colour_bar, pe, viridis};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -46,63 +45,50 @@ where
     Ok(())
 }
 
-impl Picture for Fig14 {
-    fn size(&self) -> (u32, u32) {
-        (4 * PANEL.0, 2 * PANEL.1 + BAR)
-    }
-
-    fn heading(&self) -> Heading {
-        heading_of(&self.caption)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
+picture!(Fig14, |self, root| size (4 * PANEL.0, 2 * PANEL.1 + BAR), draw {
+    let columns = root.split_evenly((1, 4));
+    for (col, (p, label)) in columns
+        .iter()
+        .zip(self.panels.iter().zip(["a", "b", "c", "d"]))
     {
-        let columns = root.split_evenly((1, 4));
-        for (col, (p, label)) in columns
+        let (maps, bar) = col.split_vertically(2 * PANEL.1);
+        let (top_area, bottom_area) = maps.split_vertically(PANEL.1);
+        let top = p
+            .theory
             .iter()
-            .zip(self.panels.iter().zip(["a", "b", "c", "d"]))
-        {
-            let (maps, bar) = col.split_vertically(2 * PANEL.1);
-            let (top_area, bottom_area) = maps.split_vertically(PANEL.1);
-            let top = p
-                .theory
-                .iter()
-                .chain(&p.mc)
-                .flatten()
-                .copied()
-                .fold(0.0f64, f64::max)
-                .max(1e-300);
-            heat(
-                &top_area,
-                &format!("({label}) r = {}: theory (Eq. 31)", p.r),
-                p,
-                &p.theory,
-                top,
-            )?;
-            heat(
-                &bottom_area,
-                &format!(
-                    "MC of Eq. 1{}; H = {:.2}",
-                    if p.stationary {
-                        ""
-                    } else {
-                        " (not stationary)"
-                    },
-                    p.hellinger
-                ),
-                p,
-                &p.mc,
-                top,
-            )?;
-            colour_bar(
-                &bar,
-                "log10 P(U, dU/dt)",
-                top.log10() - DECADES,
-                top.log10(),
-            )?;
-        }
-        Ok(())
+            .chain(&p.mc)
+            .flatten()
+            .copied()
+            .fold(0.0f64, f64::max)
+            .max(1e-300);
+        heat(
+            &top_area,
+            &format!("({label}) r = {}: theory (Eq. 31)", p.r),
+            p,
+            &p.theory,
+            top,
+        )?;
+        heat(
+            &bottom_area,
+            &format!(
+                "MC of Eq. 1{}; H = {:.2}",
+                if p.stationary {
+                    ""
+                } else {
+                    " (not stationary)"
+                },
+                p.hellinger
+            ),
+            p,
+            &p.mc,
+            top,
+        )?;
+        colour_bar(
+            &bar,
+            "log10 P(U, dU/dt)",
+            top.log10() - DECADES,
+            top.log10(),
+        )?;
     }
-}
+    Ok(())
+});

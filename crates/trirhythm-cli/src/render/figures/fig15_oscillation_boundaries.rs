@@ -9,30 +9,12 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig15_oscillation_boundaries`].
 
 use super::boundary::draw_panel;
-use super::heading_of;
-use crate::render::plot::{Heading, Picture};
-use anyhow::Result;
-use plotters::coord::Shift;
-use plotters::prelude::*;
 use trirhythm_paper::fig15_oscillation_boundaries::Fig15;
 
-impl Picture for Fig15 {
-    fn size(&self) -> (u32, u32) {
-        (1400, 1500)
+picture!(Fig15, |self, root| size (1400, 1500), draw {
+    let areas = root.split_evenly((3, 2));
+    for (i, (area, panel)) in areas.iter().zip(&self.panels).enumerate() {
+        draw_panel(area, panel, i < 2)?;
     }
-
-    fn heading(&self) -> Heading {
-        heading_of(&self.caption)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        let areas = root.split_evenly((3, 2));
-        for (i, (area, panel)) in areas.iter().zip(&self.panels).enumerate() {
-            draw_panel(area, panel, i < 2)?;
-        }
-        Ok(())
-    }
-}
+    Ok(())
+});

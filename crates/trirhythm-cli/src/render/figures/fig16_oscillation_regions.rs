@@ -5,30 +5,12 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig16_oscillation_regions`].
 
 use super::boundary::draw_panel;
-use super::heading_of;
-use crate::render::plot::{Heading, Picture};
-use anyhow::Result;
-use plotters::coord::Shift;
-use plotters::prelude::*;
 use trirhythm_paper::fig16_oscillation_regions::Fig16;
 
-impl Picture for Fig16 {
-    fn size(&self) -> (u32, u32) {
-        (1400, 1100)
+picture!(Fig16, |self, root| size (1400, 1100), draw {
+    let areas = root.split_evenly((2, 2));
+    for (area, panel) in areas.iter().zip(&self.panels) {
+        draw_panel(area, panel, true)?;
     }
-
-    fn heading(&self) -> Heading {
-        heading_of(&self.caption)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        let areas = root.split_evenly((2, 2));
-        for (area, panel) in areas.iter().zip(&self.panels) {
-            draw_panel(area, panel, true)?;
-        }
-        Ok(())
-    }
-}
+    Ok(())
+});

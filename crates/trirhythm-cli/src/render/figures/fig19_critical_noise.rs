@@ -4,30 +4,12 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig19_critical_noise`].
 
-use super::heading_of;
 use super::lle::{draw_panel, panel_height, PANEL_WIDTH};
-use crate::render::plot::{Heading, Picture};
-use anyhow::Result;
-use plotters::coord::Shift;
-use plotters::prelude::*;
 use trirhythm_paper::fig19_critical_noise::Fig19;
 
-impl Picture for Fig19 {
-    fn size(&self) -> (u32, u32) {
-        (2 * PANEL_WIDTH, 2 * panel_height(&self.panels))
+picture!(Fig19, |self, root| size (2 * PANEL_WIDTH, 2 * panel_height(&self.panels)), draw {
+    for (area, panel) in root.split_evenly((2, 2)).iter().zip(&self.panels) {
+        draw_panel(area, panel)?;
     }
-
-    fn heading(&self) -> Heading {
-        heading_of(&self.caption)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        for (area, panel) in root.split_evenly((2, 2)).iter().zip(&self.panels) {
-            draw_panel(area, panel)?;
-        }
-        Ok(())
-    }
-}
+    Ok(())
+});

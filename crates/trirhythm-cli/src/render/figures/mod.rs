@@ -21,6 +21,30 @@
 //! through [`Bar`], the library's [`Monitor`].
 
 mod boundary;
+/// `impl Picture for $figure`, headed by its caption: `$size` pixels, drawn by the block
+/// `$draw`, which sees the figure as `self` and the drawing area as `$root`.
+macro_rules! picture {
+    ($figure:ty, |$self:tt, $root:ident| size $size:expr, draw $draw:block) => {
+        impl crate::render::plot::Picture for $figure {
+            fn size(&$self) -> (u32, u32) {
+                $size
+            }
+
+            fn heading(&$self) -> crate::render::plot::Heading {
+                super::heading_of(&$self.caption)
+            }
+
+            fn draw<DB: plotters::prelude::DrawingBackend>(
+                &$self,
+                $root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+            ) -> anyhow::Result<()>
+            where
+                DB::ErrorType: 'static,
+            $draw
+        }
+    };
+}
+
 /// `impl Picture for $figure`, a newtype of shared data drawn through the view `$view`
 /// (`$view(&self.0)` is a [`Picture`]): the map figures and the LLE-against-noise figures.
 macro_rules! picture_through {
