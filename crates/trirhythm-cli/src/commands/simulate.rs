@@ -7,7 +7,7 @@
 
 use crate::args::{ImpactMemoryArg, MemoryArg, Named, OnOff, ParamArgs, SimFormat, SystemArg};
 use crate::error::bad;
-use crate::io::{emit, jnum, num, params_json, progress, Report, Stream};
+use crate::io::{emit, jnum, jvec, num, params_json, progress, Report, Stream};
 use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::{json, Value};
@@ -18,6 +18,7 @@ use trirhythm::engine::{
     run, simulate_with, Flow, Observer, Options, PredictorCorrector, Problem, Stepper, Trajectory,
     TrajectoryRecorder,
 };
+use trirhythm::monitor::Monitor;
 
 /// Arguments of `simulate`.
 #[derive(Debug, Args)]
@@ -175,56 +176,72 @@ fn summary_line(tr: &Trajectory, wall: f64) -> String {
     )
 }
 
+/// Refuse a request for more rows than the format holds, before any work starts.
+fn check_rows(args: &SimulateArgs, steps: u64) -> Result<()> {
+    let rows = steps / args.every as u64 + 1;
+    let (most, what) = match args.format {
+        SimFormat::Json => (MAX_JSON_SAMPLES, "samples"),
+        SimFormat::Csv => (MAX_CSV_ROWS, "rows"),
+    };
+    if rows <= most {
+        return Ok(());
+    }
+    let every = steps / (most - 1) + 1;
+    bad(match args.format {
+        SimFormat::Json => format!(
+            "--every {}: {rows} {what} of {steps} steps; JSON holds at most {most} \
+             (raise --every to {every} or more, or use --format csv, which streams)",
+            args.every
+        ),
+        SimFormat::Csv => format!(
+            "--every {}: {rows} {what} of {steps} steps; at most {most} rows are written \
+             (raise --every to {every} or more)",
+            args.every
+        ),
+    })
+}
+
 /// Run `simulate`. CSV is streamed row by row (memory independent of the number of steps);
 /// JSON is one document held in memory, so it is bounded by [`MAX_JSON_SAMPLES`].
 pub fn simulate(args: &SimulateArgs) -> Result<()> {
     let s = args.setup()?;
     let steps = s.options.steps(s.method.dt)?;
-    let rows = steps / args.every as u64 + 1;
-    match args.format {
-        SimFormat::Json if rows > MAX_JSON_SAMPLES => {
-            return bad(format!(
-            "--every {}: {rows} samples of {steps} steps; JSON holds at most {MAX_JSON_SAMPLES} \
-                 (raise --every to {} or more, or use --format csv, which streams)",
-            args.every,
-            steps / (MAX_JSON_SAMPLES - 1) + 1
-        ))
-        }
-        SimFormat::Csv if rows > MAX_CSV_ROWS => {
-            return bad(format!(
-                "--every {}: {rows} rows of {steps} steps; at most {MAX_CSV_ROWS} rows are written \
-                 (raise --every to {} or more)",
-                args.every,
-                steps / (MAX_CSV_ROWS - 1) + 1
-            ))
-        }
-        _ => {}
-    }
+    check_rows(args, steps)?;
     let bar = progress(1000, "simulate");
     let report = Report(|done: u64, total: u64| {
         bar.set_position((done as f64 / total as f64 * 1000.0) as u64)
     });
-    let p = s.problem.params();
     let start = Instant::now();
     if args.format == SimFormat::Json {
         let tr = simulate_with(&s.problem, &s.method, &s.options, &report)?;
         let wall = start.elapsed().as_secs_f64();
         bar.finish_and_clear();
         let mut m = serde_json::Map::new();
-        m.insert("params".into(), params_json(p));
+        m.insert("params".into(), params_json(s.problem.params()));
         m.insert("method".into(), json!(method_line(args)));
         m.insert("summary".into(), summary_json(&tr, wall));
-        let col = |v: &[f64]| Value::Array(v.iter().map(|&x| jnum(x)).collect());
-        m.insert("t".into(), col(&tr.t));
-        m.insert("U".into(), col(&tr.u));
-        m.insert("V".into(), col(&tr.v));
+        m.insert("t".into(), jvec(&tr.t));
+        m.insert("U".into(), jvec(&tr.u));
+        m.insert("V".into(), jvec(&tr.v));
         if !tr.eta.is_empty() {
-            m.insert("eta".into(), col(&tr.eta));
+            m.insert("eta".into(), jvec(&tr.eta));
         }
-        let mut text = serde_json::to_string(&Value::Object(m))?;
-        text.push('\n');
+        let text = serde_json::to_string(&Value::Object(m))? + "\n";
         return emit(args.out.as_deref(), &text);
     }
+    let tr = stream_csv(args, &s, steps, &report, &bar)?;
+    eprintln!("{}", summary_line(&tr, start.elapsed().as_secs_f64()));
+    Ok(())
+}
+
+/// Stream the path as CSV `t,U,V[,eta]` to the output while keeping its summary.
+fn stream_csv(
+    args: &SimulateArgs,
+    s: &Setup,
+    steps: u64,
+    report: &dyn Monitor,
+    bar: &indicatif::ProgressBar,
+) -> Result<Trajectory> {
     let mut stepper = s.options.stepper(&s.problem, &s.method)?;
     let eta = !s.problem.oscillator().noise().is_none();
     let quiet = Options {
@@ -233,15 +250,10 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
     };
     let summary = TrajectoryRecorder::new(s.problem.oscillator(), &quiet, steps, s.method.dt)?;
     let mut stream = Stream::open(args.out.as_deref())?;
-    let header = [
-        format!("trirhythm simulate: {steps} steps"),
-        format!("params: {}", p.describe()),
-        method_line(args),
-    ];
     let w = stream.writer();
-    for h in &header {
-        writeln!(w, "# {h}")?;
-    }
+    writeln!(w, "# trirhythm simulate: {steps} steps")?;
+    writeln!(w, "# params: {}", s.problem.params().describe())?;
+    writeln!(w, "# {}", method_line(args))?;
     writeln!(w, "{}", if eta { "t,U,V,eta" } else { "t,U,V" })?;
     let mut rows = CsvRows {
         out: w,
@@ -250,7 +262,7 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
         summary,
         error: None,
     };
-    let result = run(&mut stepper, steps, &mut rows, &report);
+    let result = run(&mut stepper, steps, &mut rows, report);
     bar.finish_and_clear();
     if let Some(e) = rows.error {
         return Err(e).context("writing the path");
@@ -265,6 +277,5 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
     }
     let tr = rows.summary.finish(&stepper);
     stream.finish()?;
-    eprintln!("{}", summary_line(&tr, start.elapsed().as_secs_f64()));
-    Ok(())
+    Ok(tr)
 }
