@@ -285,10 +285,7 @@ fn sweep_lyapunov(
     spec: &LyapunovSpec,
 ) -> Result<()> {
     let (key, values) = parse_sweep(sweep)?;
-    let points: Vec<Params> = values
-        .iter()
-        .map(|&v| base.with(&key, v))
-        .collect::<trirhythm::Result<_>>()?;
+    let points = sweep_params(base, Some(&key), &values)?;
     let bar = progress(values.len() as u64, "lyapunov sweep");
     let mut rows = Vec::new();
     for (i, p) in points.iter().enumerate() {
@@ -382,6 +379,33 @@ struct Outcome<'a> {
     search: &'a CriticalNoise,
 }
 
+impl<'a> Outcome<'a> {
+    fn of(value: Option<f64>, search: &'a CriticalNoise) -> Self {
+        Outcome {
+            value,
+            sign_change: search.found(),
+            verdict: if search.found() {
+                "sign change".to_string()
+            } else {
+                format!("no sign change in range (LLE {})", Sign::of(search).words())
+            },
+            search,
+        }
+    }
+}
+
+/// The parameters at each value of the swept key (the base parameters alone without one).
+fn sweep_params(base: &Params, key: Option<&str>, values: &[f64]) -> Result<Vec<Params>> {
+    let at = |v: f64| match key {
+        Some(k) => base.with(k, v),
+        None => Ok(base.clone()),
+    };
+    Ok(values
+        .iter()
+        .map(|&v| at(v))
+        .collect::<trirhythm::Result<_>>()?)
+}
+
 /// Parse `LO:HI` for `--d-range` (the library checks 0 ≤ LO < HI).
 fn parse_range(s: &str) -> Result<(f64, f64)> {
     let Some((lo, hi)) = s.split_once(':') else {
@@ -419,13 +443,7 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
         }
         None => (None, vec![f64::NAN]),
     };
-    let points: Vec<Params> = values
-        .iter()
-        .map(|&v| match &key {
-            Some(k) => base.with(k, v),
-            None => Ok(base.clone()),
-        })
-        .collect::<trirhythm::Result<_>>()?;
+    let points = sweep_params(&base, key.as_deref(), &values)?;
     let per_point = args.grid.saturating_add(args.refinements) as u64;
     let bar = progress(
         per_point.saturating_mul(points.len() as u64),
@@ -476,16 +494,10 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
             "paths": spec.paths,
             "d_range": [d_lo, d_hi],
             "sweep": key,
-            "results": found.iter().map(|(v, c)| Outcome {
-                value: key.is_some().then_some(*v),
-                sign_change: c.found(),
-                verdict: if c.found() {
-                    "sign change".to_string()
-                } else {
-                    format!("no sign change in range (LLE {})", Sign::of(c).words())
-                },
-                search: c,
-            }).collect::<Vec<_>>(),
+            "results": found
+                .iter()
+                .map(|(v, c)| Outcome::of(key.is_some().then_some(*v), c))
+                .collect::<Vec<_>>(),
         }))?,
     };
     emit(args.out.as_deref(), &text)
