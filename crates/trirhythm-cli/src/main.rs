@@ -1,6 +1,17 @@
 //! `trirhythm`: the command-line front end. The library computes; this binary parses
 //! arguments, writes files, draws pictures and progress bars.
 //!
+//! Layers, dependencies pointing one way (`main → commands → {args, io, render}`,
+//! `render → io`, everyone → `error`):
+//! - [`args`]: clap arguments shared by the commands, each mapped to its library type once;
+//! - [`commands`]: one file per command or family (parse → library types → library call with a
+//!   progress-bar monitor → write); a command never imports another;
+//! - [`io`]: atomic files and the signal cleanup, CSV and tables, JSON, the progress bar;
+//! - [`render`]: plotting and each paper figure's picture;
+//! - [`error`]: bad input (exit 2) and library errors told in the flags the user typed.
+//!
+//! This file only dispatches.
+//!
 //! Exit status: 0 on success (and when the reader of standard output closes the pipe), 2 for
 //! bad input (a parameter out of range, an unknown name, a malformed flag, an output path that
 //! cannot receive a file), 1 for anything else (I/O, a full device, a computation that

@@ -1,5 +1,5 @@
 //! The drawing of each paper figure: `impl Picture for FigNN` from the data the paper crate
-//! computed (`trirhythm figure N` in [`crate::commands::figure`] computes, writes the tables and
+//! computed (the `figure` command computes the data, writes its tables and
 //! calls [`crate::render::plot::save`]).
 //!
 //! Each figure writes `figNN.csv` (its data, parameters and notes in `#` header lines) and
