@@ -7,7 +7,7 @@ use anyhow::Result;
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 use trirhythm::engine::{
-    Barrier, ImpactMemory, Memory, PredictorCorrector, System, DEFAULT_WINDOW,
+    Barrier, ImpactMemory, Memory, PredictorCorrector, Problem, System, DEFAULT_WINDOW,
 };
 use trirhythm::model::{preset, Params};
 use trirhythm::theory::averaging::Variant;
@@ -52,24 +52,6 @@ impl From<ImpactMemoryArg> for ImpactMemory {
             ImpactMemoryArg::Continuous => ImpactMemory::Continuous,
             ImpactMemoryArg::Restart => ImpactMemory::Restart,
         }
-    }
-}
-
-/// The predictor–corrector of the flags `--dt --memory --tolerance --impact-memory`.
-pub fn method(
-    dt: f64,
-    memory: MemoryArg,
-    tolerance: f64,
-    impact_memory: ImpactMemoryArg,
-) -> PredictorCorrector {
-    PredictorCorrector {
-        dt,
-        memory: match memory {
-            MemoryArg::Direct => Memory::Direct,
-            MemoryArg::Soe => Memory::SumOfExponentials { tolerance },
-        },
-        impact_memory: impact_memory.into(),
-        window: DEFAULT_WINDOW,
     }
 }
 
@@ -280,4 +262,46 @@ pub fn parse_axis(s: &str, flag: &str, with_count: bool) -> Result<(String, Grid
         return bad(format!("{flag} expects {form}, got `{s}`"));
     };
     Ok((k.trim().to_string(), Grid::parse(&rest, flag)?))
+}
+
+/// The equation, the wall and the memory, said once for every command that simulates:
+/// `--system`, `--barrier`, `--memory`, `--tolerance`.
+#[derive(Debug, Clone, Args)]
+pub struct ModelArgs {
+    /// Which equation.
+    #[arg(long, value_enum, default_value_t = SystemArg::Fractional)]
+    pub system: SystemArg,
+    /// The wall at U = 0.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub barrier: OnOff,
+    /// How the fractional memory is kept.
+    #[arg(long, value_enum, default_value_t = MemoryArg::Soe)]
+    pub memory: MemoryArg,
+    /// Relative tolerance of the sum-of-exponentials kernel (checked at start-up).
+    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
+    pub tolerance: f64,
+}
+
+impl ModelArgs {
+    /// The problem of `params` with this equation and wall (its start still to be set).
+    pub fn problem(&self, params: &Params) -> trirhythm::Result<Problem> {
+        Problem::from_params(params)?
+            .with_barrier(self.barrier.into())?
+            .with_system(self.system.into())
+    }
+
+    /// The predictor–corrector of `--dt`, this memory and `--impact-memory`.
+    pub fn method(&self, dt: f64, impact_memory: ImpactMemoryArg) -> PredictorCorrector {
+        PredictorCorrector {
+            dt,
+            memory: match self.memory {
+                MemoryArg::Direct => Memory::Direct,
+                MemoryArg::Soe => Memory::SumOfExponentials {
+                    tolerance: self.tolerance,
+                },
+            },
+            impact_memory: impact_memory.into(),
+            window: DEFAULT_WINDOW,
+        }
+    }
 }

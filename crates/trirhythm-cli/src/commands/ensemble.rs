@@ -7,7 +7,7 @@
 //! same command continues from them and gives a bit-identical result. Keys, columns and flags
 //! are a contract: keep them.
 
-use crate::args::{ImpactMemoryArg, MemoryArg, Named, OnOff, ParamArgs, SystemArg};
+use crate::args::{ImpactMemoryArg, ModelArgs, Named, ParamArgs};
 use crate::error::bad;
 use crate::io::{emit, num, params_json, progress};
 use anyhow::{Context, Result};
@@ -42,6 +42,8 @@ pub enum EnsembleFormat {
 pub struct EnsembleArgs {
     #[command(flatten)]
     pub params: ParamArgs,
+    #[command(flatten)]
+    pub model: ModelArgs,
     /// Number of paths (path i is noise stream i of the seed).
     #[arg(long, default_value_t = 8, allow_hyphen_values = true)]
     pub paths: usize,
@@ -61,23 +63,11 @@ pub struct EnsembleArgs {
     /// or its stable limit cycles at D = 0).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub u0: Vec<f64>,
-    /// Which equation.
-    #[arg(long, value_enum, default_value_t = SystemArg::Fractional)]
-    pub system: SystemArg,
     /// What the memory does at an impact. Ensembles default to `restart`: under `continuous`
     /// the noise-free cycle of Eq. 1 keeps drifting (no stationary state found up to t = 3e5),
     /// under `restart` it settles (README, "Ensembles").
     #[arg(long = "impact-memory", value_enum, default_value_t = ImpactMemoryArg::Restart)]
     pub impact_memory: ImpactMemoryArg,
-    /// The wall at U = 0.
-    #[arg(long, value_enum, default_value_t = OnOff::On)]
-    pub barrier: OnOff,
-    /// How the fractional memory is kept.
-    #[arg(long, value_enum, default_value_t = MemoryArg::Soe)]
-    pub memory: MemoryArg,
-    /// Relative tolerance of the sum-of-exponentials kernel.
-    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
-    pub tolerance: f64,
     /// Bins of the amplitude, turning-amplitude and energy histograms.
     #[arg(long, default_value_t = 100, allow_hyphen_values = true)]
     pub bins: usize,
@@ -115,7 +105,7 @@ impl EnsembleArgs {
     /// Validate and convert, filling the open choices from the theory.
     pub fn setup(&self) -> Result<EnsembleSetup> {
         let params = self.params.resolve()?;
-        let method = crate::args::method(self.dt, self.memory, self.tolerance, self.impact_memory);
+        let method = self.model.method(self.dt, self.impact_memory);
         let layout = theory_layout(&params, self.params.variant());
         let mut choices = Vec::new();
         let starts = if !self.u0.is_empty() {
@@ -172,10 +162,7 @@ impl EnsembleArgs {
             ..Default::default()
         };
         let starts: Vec<(f64, f64)> = starts.iter().map(|&u| (u, 0.0)).collect();
-        let problem = Problem::from_params(&params)?
-            .with_barrier(self.barrier.into())?
-            .with_system(self.system.into())?
-            .with_starts(&starts)?;
+        let problem = self.model.problem(&params)?.with_starts(&starts)?;
         Ok(EnsembleSetup {
             problem,
             params,
@@ -198,11 +185,11 @@ fn method_line(a: &EnsembleArgs) -> String {
         "method: predictor-corrector dt={} memory={} tolerance={} impact_memory={} barrier={} \
          system={} paths={} burn_in={} t_end={} seed={} sample_every={}",
         a.dt,
-        a.memory.name(),
-        a.tolerance,
+        a.model.memory.name(),
+        a.model.tolerance,
         a.impact_memory.name(),
-        a.barrier.name(),
-        a.system.name(),
+        a.model.barrier.name(),
+        a.model.system.name(),
         a.paths,
         a.burn_in,
         a.t_end,

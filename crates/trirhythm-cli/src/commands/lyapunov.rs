@@ -3,9 +3,7 @@
 //! critical-noise`: the noise D_c where it changes sign. Keys, columns and flags are a
 //! contract: keep them.
 
-use crate::args::{
-    parse_axis, ImpactMemoryArg, MemoryArg, Named, OnOff, ParamArgs, SimFormat, SystemArg,
-};
+use crate::args::{parse_axis, ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat};
 use crate::error::bad;
 use crate::io::{emit, num, params_json, progress, sig, Csv, Report};
 use anyhow::Result;
@@ -54,6 +52,8 @@ impl LyapunovMethod {
 pub struct LleArgs {
     #[command(flatten)]
     pub params: ParamArgs,
+    #[command(flatten)]
+    pub model: ModelArgs,
     /// Measured window after the transient (the finite-time exponent's T).
     #[arg(long = "t-end", default_value_t = 2000.0, allow_hyphen_values = true)]
     pub t_end: f64,
@@ -63,7 +63,7 @@ pub struct LleArgs {
     /// Step Δt, in [1e-4, 0.1].
     #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
     pub dt: f64,
-    /// Noise realisations (path i is noise stream i of the seed).
+    /// Noise realisations (path i is noise stream i of the seed), 1 to 100000.
     #[arg(long, default_value_t = 8, allow_hyphen_values = true)]
     pub paths: usize,
     /// Seed of the noise streams.
@@ -72,21 +72,9 @@ pub struct LleArgs {
     /// U(0) of the reference path.
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub u0: f64,
-    /// Which equation.
-    #[arg(long, value_enum, default_value_t = SystemArg::Fractional)]
-    pub system: SystemArg,
-    /// The wall at U = 0.
-    #[arg(long, value_enum, default_value_t = OnOff::On)]
-    pub barrier: OnOff,
     /// What the memory does at an impact (the ensembles' default, `restart`).
     #[arg(long = "impact-memory", value_enum, default_value_t = ImpactMemoryArg::Restart)]
     pub impact_memory: ImpactMemoryArg,
-    /// How the fractional memory is kept.
-    #[arg(long, value_enum, default_value_t = MemoryArg::Soe)]
-    pub memory: MemoryArg,
-    /// Relative tolerance of the sum-of-exponentials kernel.
-    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
-    pub tolerance: f64,
     /// How the exponent is computed: `two-trajectory` (a perturbed copy on the same noise,
     /// pulled back to --separation with its whole memory) or `tangent` (the variational
     /// equation with its own memory and the saltation of the impact map; --separation unused).
@@ -116,7 +104,7 @@ impl LleArgs {
                 num(self.dt)
             ));
         }
-        let method = crate::args::method(self.dt, self.memory, self.tolerance, self.impact_memory);
+        let method = self.model.method(self.dt, self.impact_memory);
         let spec = LyapunovSpec {
             paths: self.paths,
             seed: self.seed,
@@ -127,10 +115,7 @@ impl LleArgs {
             method: self.method.library(),
             ..Default::default()
         };
-        let problem = Problem::from_params(&params)?
-            .with_barrier(self.barrier.into())?
-            .with_system(self.system.into())?
-            .with_start(self.u0, 0.0)?;
+        let problem = self.model.problem(&params)?.with_start(self.u0, 0.0)?;
         Ok((params, problem, method, spec))
     }
 
@@ -154,10 +139,10 @@ impl LleArgs {
                 "simulation: predictor-corrector dt = {}, {} memory, {} impact memory, system {}, \
                  barrier {}, U(0) = {}",
                 num(self.dt),
-                self.memory.name(),
+                self.model.memory.name(),
                 self.impact_memory.name(),
-                self.system.name(),
-                self.barrier.name(),
+                self.model.system.name(),
+                self.model.barrier.name(),
                 num(self.u0)
             ),
             format!(
@@ -259,8 +244,8 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
         SimFormat::Json => pretty(&Run {
             params: params_json(&base),
             method: args.sim.method.name(),
-            system: args.sim.system.name(),
-            barrier: args.sim.barrier.name(),
+            system: args.sim.model.system.name(),
+            barrier: args.sim.model.barrier.name(),
             impact_memory: args.sim.impact_memory.name(),
             dt: args.sim.dt,
             transient: spec.transient,
@@ -355,7 +340,7 @@ pub struct CriticalNoiseArgs {
     /// Bisections of the first sign change, 0 to 60.
     #[arg(long, default_value_t = 3, allow_hyphen_values = true)]
     pub refinements: usize,
-    /// Standard errors that make an LLE significantly nonzero (for D_c_lo, D_c_hi), in [0, 10].
+    /// Standard errors that make an LLE significantly nonzero (for D_c_lo, D_c_hi), ≥ 0.
     #[arg(long, default_value_t = 2.0, allow_hyphen_values = true)]
     pub z: f64,
     /// D_c for each value of a parameter: KEY=START:STOP:COUNT.

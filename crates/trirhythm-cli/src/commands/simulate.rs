@@ -5,7 +5,7 @@
 //! header lines and the summary on standard error, or one JSON object with the summary and the
 //! columns. Flags, keys and column names are a contract: keep them.
 
-use crate::args::{ImpactMemoryArg, MemoryArg, Named, OnOff, ParamArgs, SimFormat, SystemArg};
+use crate::args::{ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat};
 use crate::error::bad;
 use crate::io::{emit, jnum, jvec, num, params_json, progress, Report, Stream};
 use anyhow::{Context, Result};
@@ -25,27 +25,17 @@ use trirhythm::monitor::Monitor;
 pub struct SimulateArgs {
     #[command(flatten)]
     pub params: ParamArgs,
+    #[command(flatten)]
+    pub model: ModelArgs,
     /// End time T.
     #[arg(long = "t-end", default_value_t = 200.0, allow_hyphen_values = true)]
     pub t_end: f64,
     /// Step Δt.
     #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
     pub dt: f64,
-    /// How the fractional memory is kept.
-    #[arg(long, value_enum, default_value_t = MemoryArg::Soe)]
-    pub memory: MemoryArg,
-    /// Relative tolerance of the sum-of-exponentials kernel (checked at start-up).
-    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
-    pub tolerance: f64,
     /// What the memory does at an impact.
     #[arg(long = "impact-memory", value_enum, default_value_t = ImpactMemoryArg::Continuous)]
     pub impact_memory: ImpactMemoryArg,
-    /// The wall at U = 0.
-    #[arg(long, value_enum, default_value_t = OnOff::On)]
-    pub barrier: OnOff,
-    /// Which equation.
-    #[arg(long, value_enum, default_value_t = SystemArg::Fractional)]
-    pub system: SystemArg,
     /// U(0).
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub u0: f64,
@@ -80,17 +70,14 @@ impl SimulateArgs {
         if self.every == 0 {
             return bad("invalid parameter every = 0: allowed range is 1 or more");
         }
-        let method = crate::args::method(self.dt, self.memory, self.tolerance, self.impact_memory);
+        let method = self.model.method(self.dt, self.impact_memory);
         let options = Options {
             t_end: self.t_end,
             seed: self.seed,
             record_every: self.every,
             ..Default::default()
         };
-        let problem = Problem::from_params(&p)?
-            .with_barrier(self.barrier.into())?
-            .with_system(self.system.into())?
-            .with_start(self.u0, self.v0)?;
+        let problem = self.model.problem(&p)?.with_start(self.u0, self.v0)?;
         Ok(Setup {
             problem,
             method,
@@ -104,11 +91,11 @@ fn method_line(a: &SimulateArgs) -> String {
         "method: predictor-corrector dt={} t_end={} memory={} tolerance={} impact_memory={} barrier={} system={} u0={} v0={} seed={} every={}",
         a.dt,
         a.t_end,
-        a.memory.name(),
-        a.tolerance,
+        a.model.memory.name(),
+        a.model.tolerance,
         a.impact_memory.name(),
-        a.barrier.name(),
-        a.system.name(),
+        a.model.barrier.name(),
+        a.model.system.name(),
         a.u0,
         a.v0,
         a.seed,
