@@ -290,6 +290,18 @@ impl ModelArgs {
             .with_system(self.system.into())
     }
 
+    /// `memory=… tolerance=… impact_memory=… barrier=… system=…`, for `method:` header lines.
+    pub fn line(&self, impact_memory: ImpactMemoryArg) -> String {
+        format!(
+            "memory={} tolerance={} impact_memory={} barrier={} system={}",
+            self.memory.name(),
+            self.tolerance,
+            impact_memory.name(),
+            self.barrier.name(),
+            self.system.name()
+        )
+    }
+
     /// The predictor–corrector of `--dt`, this memory and `--impact-memory`.
     pub fn method(&self, dt: f64, impact_memory: ImpactMemoryArg) -> PredictorCorrector {
         PredictorCorrector {

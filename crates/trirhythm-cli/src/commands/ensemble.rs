@@ -7,7 +7,7 @@
 //! same command continues from them and gives a bit-identical result. Keys, columns and flags
 //! are a contract: keep them.
 
-use crate::args::{ImpactMemoryArg, ModelArgs, Named, ParamArgs};
+use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs};
 use crate::error::bad;
 use crate::io::{emit, num, params_json, progress};
 use anyhow::{Context, Result};
@@ -182,14 +182,9 @@ fn list(v: &[f64]) -> String {
 
 fn method_line(a: &EnsembleArgs) -> String {
     format!(
-        "method: predictor-corrector dt={} memory={} tolerance={} impact_memory={} barrier={} \
-         system={} paths={} burn_in={} t_end={} seed={} sample_every={}",
+        "method: predictor-corrector dt={} {} paths={} burn_in={} t_end={} seed={} sample_every={}",
         a.dt,
-        a.model.memory.name(),
-        a.model.tolerance,
-        a.impact_memory.name(),
-        a.model.barrier.name(),
-        a.model.system.name(),
+        a.model.line(a.impact_memory),
         a.paths,
         a.burn_in,
         a.t_end,

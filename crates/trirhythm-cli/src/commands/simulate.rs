@@ -5,7 +5,7 @@
 //! header lines and the summary on standard error, or one JSON object with the summary and the
 //! columns. Flags, keys and column names are a contract: keep them.
 
-use crate::args::{ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat};
+use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs, SimFormat};
 use crate::error::bad;
 use crate::io::{emit, jnum, jvec, num, params_json, progress, Report, Stream};
 use anyhow::{Context, Result};
@@ -88,14 +88,10 @@ impl SimulateArgs {
 
 fn method_line(a: &SimulateArgs) -> String {
     format!(
-        "method: predictor-corrector dt={} t_end={} memory={} tolerance={} impact_memory={} barrier={} system={} u0={} v0={} seed={} every={}",
+        "method: predictor-corrector dt={} t_end={} {} u0={} v0={} seed={} every={}",
         a.dt,
         a.t_end,
-        a.model.memory.name(),
-        a.model.tolerance,
-        a.impact_memory.name(),
-        a.model.barrier.name(),
-        a.model.system.name(),
+        a.model.line(a.impact_memory),
         a.u0,
         a.v0,
         a.seed,
