@@ -81,7 +81,7 @@ pub struct LleArgs {
     /// They agree within their standard errors (README, "Lyapunov exponents").
     #[arg(long, value_enum, default_value_t = LyapunovMethod::TwoTrajectory)]
     pub method: LyapunovMethod,
-    /// Steps between renormalisations (at least two per window).
+    /// Steps between renormalisations, 1 to 1000000 (at least two per window).
     #[arg(
         long = "renormalise-every",
         default_value_t = 100,
@@ -102,6 +102,13 @@ impl LleArgs {
             return bad(format!(
                 "--dt = {}: allowed range is [1e-4, 0.1]",
                 num(self.dt)
+            ));
+        }
+        // the library's `2 × renormalise_every` overflows past 2⁶³: bounded here
+        if !(1..=1_000_000).contains(&self.renormalise_every) {
+            return bad(format!(
+                "--renormalise-every = {}: allowed range is 1 to 1000000 steps",
+                self.renormalise_every
             ));
         }
         let method = self.model.method(self.dt, self.impact_memory);
