@@ -88,7 +88,7 @@ pub struct LleArgs {
         allow_hyphen_values = true
     )]
     pub renormalise_every: u64,
-    /// Separation d₀ the perturbed copy is pulled back to, in (0, 1e-3].
+    /// Separation d₀ the perturbed copy is pulled back to, in [1e-12, 1e-4].
     #[arg(long, default_value_t = 1e-8, allow_hyphen_values = true)]
     pub separation: f64,
 }
@@ -102,6 +102,20 @@ impl LleArgs {
             return bad(format!(
                 "--dt = {}: allowed range is [1e-4, 0.1]",
                 num(self.dt)
+            ));
+        }
+        // narrower than the library's ranges (separation (0, 1e-3], tolerance (1e-15, 1)): a
+        // copy pulled back to below 1e-12 merges with its reference in rounding
+        if !(self.separation >= 1e-12 && self.separation <= 1e-4) {
+            return bad(format!(
+                "--separation = {}: allowed range is [1e-12, 1e-4]",
+                num(self.separation)
+            ));
+        }
+        if !(self.model.tolerance > 0.0 && self.model.tolerance < 1e-2) {
+            return bad(format!(
+                "--tolerance = {}: allowed range is (0, 1e-2)",
+                num(self.model.tolerance)
             ));
         }
         // the library's `2 × renormalise_every` overflows past 2⁶³: bounded here
@@ -347,7 +361,7 @@ pub struct CriticalNoiseArgs {
     /// Bisections of the first sign change, 0 to 60.
     #[arg(long, default_value_t = 3, allow_hyphen_values = true)]
     pub refinements: usize,
-    /// Standard errors that make an LLE significantly nonzero (for D_c_lo, D_c_hi), ≥ 0.
+    /// Standard errors that make an LLE significantly nonzero (for D_c_lo, D_c_hi), in [0, 10].
     #[arg(long, default_value_t = 2.0, allow_hyphen_values = true)]
     pub z: f64,
     /// D_c for each value of a parameter: KEY=START:STOP:COUNT.
@@ -418,6 +432,10 @@ fn parse_range(s: &str) -> Result<(f64, f64)> {
 pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
     let (base, problem, method, spec) = args.sim.setup()?;
     let (d_lo, d_hi) = parse_range(&args.d_range)?;
+    // narrower than the library's [0, ∞)
+    if !(args.z >= 0.0 && args.z <= 10.0) {
+        return bad(format!("--z = {}: allowed range is [0, 10]", num(args.z)));
+    }
     let search = CriticalSearch {
         d_lo,
         d_hi,
