@@ -1,26 +1,34 @@
 //! `trirhythm`: the command-line front end. The library computes; this binary parses
 //! arguments, writes files, draws pictures and progress bars.
 //!
+//! Layers, dependencies pointing one way (`main → commands → {args, io, render}`,
+//! `render → io`, everyone → `error`):
+//! - [`args`]: clap arguments shared by the commands, each mapped to its library type once;
+//! - [`commands`]: one file per command or family (parse → library types → library call with a
+//!   progress-bar monitor → write); a command never imports another;
+//! - [`io`]: atomic files and the signal cleanup, CSV and tables, JSON, the progress bar;
+//! - [`render`]: plotting and each paper figure's picture;
+//! - [`error`]: bad input (exit 2) and library errors told in the flags the user typed.
+//!
+//! This file only dispatches.
+//!
 //! Exit status: 0 on success (and when the reader of standard output closes the pipe), 2 for
 //! bad input (a parameter out of range, an unknown name, a malformed flag, an output path that
 //! cannot receive a file), 1 for anything else (I/O, a full device, a computation that
-//! overflowed), 130 when interrupted. No partial output file is ever left ([`output`]).
+//! overflowed), 130 when interrupted. No partial output file is ever left ([`io::files`]).
 
-mod common;
-mod ensemble;
-mod figures;
-mod lyapunov;
-mod maps;
-mod oscillation;
-mod output;
-mod plot;
-mod simulate;
-mod theory;
+mod args;
+mod commands;
+mod error;
+mod io;
+mod render;
+
+use commands::{ensemble, figure, lyapunov, maps, oscillation, simulate, theory};
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::ExitCode;
 
 #[derive(Debug, Parser)]
@@ -68,125 +76,9 @@ enum Command {
     /// KEY,D_c,D_c_lo,D_c_hi).
     CriticalNoise(lyapunov::CriticalNoiseArgs),
     /// Reproduce a figure of the paper: data (CSV, and JSON with --data) and picture (PNG + SVG).
-    Figure(FigureArgs),
+    Figure(figure::FigureArgs),
     /// List the parameter presets (one per figure panel) with their notes.
     Presets,
-}
-
-#[derive(Debug, clap::Args)]
-#[command(
-    after_help = "Files, in --out-dir: figNN.csv (the data, parameters and notes in `#` \
-    lines), figNN.png and figNN.svg; the map figures also figNN_folds.csv.\n\
-    With --data also figNN.json: {\"figure\", \"trirhythm\" (version), \"variant\", \"quick\", \
-    \"data\"}, the value the CSV and pictures are drawn from. `figure N --from-data DIR` draws \
-    them again from DIR/figNN.json without computing (byte-identical files)."
-)]
-struct FigureArgs {
-    /// Figure number, or `all`.
-    figure: String,
-    /// Coarser grids and shorter runs (for CI and previews).
-    #[arg(long)]
-    quick: bool,
-    /// Directory for the files.
-    #[arg(long, default_value = "out")]
-    out_dir: PathBuf,
-    /// Formula variant of the averaged theory.
-    #[arg(long, value_enum, default_value_t = common::VariantArg::Paper)]
-    variant: common::VariantArg,
-    /// Also write the figure's data as figNN.json (what the CSV and pictures are drawn from).
-    #[arg(long)]
-    data: bool,
-    /// Draw from DIR/figNN.json (written by --data) instead of computing; the variant and
-    /// quality are those of the file.
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["quick", "variant"])]
-    from_data: Option<PathBuf>,
-}
-
-/// The paper's figures that are not reproduced yet, with what they need.
-fn figure(args: &FigureArgs) -> Result<()> {
-    let registry = figures::registry();
-    let available = registry
-        .iter()
-        .map(|r| r.number.to_string())
-        .collect::<Vec<_>>()
-        .join(", ");
-    if args.out_dir.exists() && !args.out_dir.is_dir() {
-        return common::bad(format!(
-            "--out-dir {}: exists and is not a directory",
-            args.out_dir.display()
-        ));
-    }
-    let selected: Vec<_> = if args.figure == "all" {
-        registry.iter().collect()
-    } else {
-        let n: u32 = match args.figure.parse() {
-            Ok(n) => n,
-            Err(_) => {
-                return common::bad(format!(
-                    "figure: `{}` is not a figure number (the paper has figures 1 to 19; \
-                     available: {available}, or all)",
-                    args.figure
-                ))
-            }
-        };
-        match registry.iter().find(|r| r.number == n) {
-            Some(r) => vec![r],
-            None => {
-                return common::bad(format!(
-                    "figure {n}: no such figure (the paper has figures 1 to 19; available: \
-                     {available}, or all)"
-                ))
-            }
-        }
-    };
-    let ctx = figures::FigureContext {
-        out_dir: args.out_dir.clone(),
-        quick: args.quick,
-        variant: args.variant.into(),
-    };
-    let request = match &args.from_data {
-        None => figures::Request::Compute {
-            ctx: &ctx,
-            data: args.data,
-        },
-        Some(dir) => figures::Request::FromData {
-            dir,
-            out_dir: &args.out_dir,
-            data: args.data,
-        },
-    };
-    for entry in selected {
-        let start = std::time::Instant::now();
-        let files = (entry.make)(&request)?;
-        eprintln!(
-            "figure {} ({}): {:.1} s",
-            entry.number,
-            entry.title,
-            start.elapsed().as_secs_f64()
-        );
-        let mut text = String::new();
-        for f in files {
-            text.push_str(&format!("{}\n", f.display()));
-        }
-        output::stdout_write(text.as_bytes())?;
-    }
-    Ok(())
-}
-
-fn presets() -> Result<()> {
-    let mut text = String::new();
-    for p in trirhythm::model::presets() {
-        text.push_str(&format!(
-            "{:8} {}\n         {}\n",
-            p.name,
-            p.description,
-            p.params.describe()
-        ));
-        for n in p.notes {
-            text.push_str(&format!("         note: {n}\n"));
-        }
-    }
-    output::stdout_write(text.as_bytes())
 }
 
 impl Command {
@@ -213,11 +105,11 @@ impl Command {
 fn run(cli: Cli) -> Result<()> {
     // an output that cannot be written is refused before any work starts
     if let Some(out) = cli.command.out() {
-        output::check_destination(out, "--out")?;
+        io::files::check_destination(out, "--out")?;
     }
     if let Command::Map(a) = &cli.command {
         if let Some(f) = &a.folds_out {
-            output::check_destination(f, "--folds-out")?;
+            io::files::check_destination(f, "--folds-out")?;
         }
     }
     match &cli.command {
@@ -234,8 +126,8 @@ fn run(cli: Cli) -> Result<()> {
         Command::Oscillation(a) => oscillation::oscillation(a),
         Command::Lyapunov(a) => lyapunov::lyapunov(a),
         Command::CriticalNoise(a) => lyapunov::critical(a),
-        Command::Figure(a) => figure(a),
-        Command::Presets => presets(),
+        Command::Figure(a) => figure::figure(a),
+        Command::Presets => figure::presets(),
     }?;
     std::io::stdout()
         .flush()
@@ -243,15 +135,16 @@ fn run(cli: Cli) -> Result<()> {
 }
 
 fn main() -> ExitCode {
-    output::install_signal_cleanup();
+    io::files::install_signal_cleanup();
     let cli = Cli::parse();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         // the reader went away (`trirhythm simulate | head`): end quietly
-        Err(e) if output::is_broken_pipe(&e) => ExitCode::SUCCESS,
+        Err(e) if io::files::is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
+            let e = error::in_flags(e);
             eprintln!("error: {e:#}");
-            if common::is_bad_input(&e) {
+            if error::is_bad_input(&e) {
                 ExitCode::from(2)
             } else {
                 ExitCode::from(1)

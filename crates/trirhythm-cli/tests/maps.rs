@@ -122,9 +122,9 @@ fn fold_curves_in_json_end_at_the_analytic_cusp() {
         // cycles close to the curve's amplitude.
         let mid = &c["points"].as_array().unwrap()[c["points"].as_array().unwrap().len() / 2];
         let (a0, b0, amp) = (
-            mid[0].as_f64().unwrap(),
-            mid[1].as_f64().unwrap(),
-            mid[2].as_f64().unwrap(),
+            mid["x"].as_f64().unwrap(),
+            mid["y"].as_f64().unwrap(),
+            mid["amplitude"].as_f64().unwrap(),
         );
         let mut near = 0;
         for shift in [1.0 + 1e-7, 1.0 - 1e-7] {

@@ -16,7 +16,7 @@ use crate::model::Params;
 use std::f64::consts::PI;
 
 /// Harmonic-balance equivalents of the fractional term (Eq. 4–5).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Equivalents {
     /// μ1 = μ0 ω0^{1−λ} / sin(πλ/2).
     pub mu1: f64,

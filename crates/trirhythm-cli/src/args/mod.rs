@@ -1,0 +1,319 @@
+//! Command-line arguments shared by the commands: clap structs and value enums, each mapped
+//! to its library type once (`From`, or a method). Parses; never computes or writes. Depends on
+//! [`crate::error`] only.
+
+use crate::error::bad;
+use anyhow::Result;
+use clap::{Args, ValueEnum};
+use std::path::PathBuf;
+use trirhythm::engine::{
+    Barrier, ImpactMemory, Memory, PredictorCorrector, Problem, System, DEFAULT_WINDOW,
+};
+use trirhythm::model::{preset, Params};
+use trirhythm::theory::averaging::Variant;
+
+/// The name a value of a value enum has on the command line (`soe`, `restart`).
+pub trait Named {
+    /// The name as typed.
+    fn name(&self) -> String;
+}
+
+impl<T: ValueEnum> Named for T {
+    fn name(&self) -> String {
+        self.to_possible_value()
+            .map(|p| p.get_name().to_string())
+            .unwrap_or_default()
+    }
+}
+
+/// `soe` or `direct`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum MemoryArg {
+    /// Sum of exponentials beyond an 8-step exact window: O(1) work and memory per step.
+    #[default]
+    Soe,
+    /// Exact weights over the whole history: O(N) per step (reference; short runs only).
+    Direct,
+}
+
+/// `continuous` or `restart`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum ImpactMemoryArg {
+    /// The lower terminal stays at 0; jumps are constants in V's Volterra form.
+    #[default]
+    Continuous,
+    /// The memory restarts at each impact.
+    Restart,
+}
+
+impl From<ImpactMemoryArg> for ImpactMemory {
+    fn from(m: ImpactMemoryArg) -> Self {
+        match m {
+            ImpactMemoryArg::Continuous => ImpactMemory::Continuous,
+            ImpactMemoryArg::Restart => ImpactMemory::Restart,
+        }
+    }
+}
+
+/// `on` or `off`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum OnOff {
+    /// The wall at U = 0 with U̇₊ = −rU̇₋.
+    #[default]
+    On,
+    /// No wall: the same equation on the whole line.
+    Off,
+}
+
+impl From<OnOff> for Barrier {
+    fn from(b: OnOff) -> Self {
+        match b {
+            OnOff::On => Barrier::On,
+            OnOff::Off => Barrier::Off,
+        }
+    }
+}
+
+/// `fractional`, `equivalent` or `zhuravlev`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum SystemArg {
+    /// Eq. (1), the fractional system.
+    #[default]
+    Fractional,
+    /// Eq. (5), the harmonic-balance integer-order equivalent.
+    Equivalent,
+    /// Eq. (9), Eq. (5) after Zhuravlev's transformation (Z on the whole line).
+    Zhuravlev,
+}
+
+impl From<SystemArg> for System {
+    fn from(s: SystemArg) -> Self {
+        match s {
+            SystemArg::Fractional => System::Fractional,
+            SystemArg::Equivalent => System::Equivalent,
+            SystemArg::Zhuravlev => System::Zhuravlev,
+        }
+    }
+}
+
+/// `csv` or `json`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum SimFormat {
+    /// `t,U,V[,eta]` rows, `#` header lines; summary on standard error.
+    #[default]
+    Csv,
+    /// One JSON object: parameters, method, summary, columns.
+    Json,
+}
+
+/// `paper` or `consistent` (see the `averaging` module).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum VariantArg {
+    /// The paper's formulas as printed (Eq. 27's typo fixed).
+    #[default]
+    Paper,
+    /// The corrected formulas (exact impact loss, coloured noise through sgn Z).
+    Consistent,
+}
+
+impl From<VariantArg> for Variant {
+    fn from(v: VariantArg) -> Self {
+        match v {
+            VariantArg::Paper => Variant::Paper,
+            VariantArg::Consistent => Variant::Consistent,
+        }
+    }
+}
+
+/// Parameter selection: a preset, then `--param KEY=VALUE` overrides.
+#[derive(Debug, Clone, Args)]
+pub struct ParamArgs {
+    /// A figure's parameter set (e.g. fig4c); without it, Fig. 4(c)'s set with r = 1, D = 0, τ = 0.
+    #[arg(long)]
+    pub preset: Option<String>,
+    /// Override a parameter: KEY=VALUE with KEY in mu0 omega0 lambda r alpha0 beta0 gamma0
+    /// delta0 D tau, or `c<k>` for the coefficient of U^(2k) (repeatable).
+    #[arg(long = "param", value_name = "KEY=VALUE")]
+    pub params: Vec<String>,
+    /// Formula variant of the averaged theory.
+    #[arg(long, value_enum, default_value_t = VariantArg::Paper)]
+    pub variant: VariantArg,
+}
+
+impl ParamArgs {
+    /// The validated parameters.
+    pub fn resolve(&self) -> Result<Params> {
+        let mut p = match &self.preset {
+            Some(name) => preset(name)?.params,
+            None => Params::default(),
+        };
+        for kv in &self.params {
+            let Some((k, v)) = kv.split_once('=') else {
+                return bad(format!("--param expects KEY=VALUE, got `{kv}`"));
+            };
+            let value: f64 = match v.trim().parse() {
+                Ok(x) => x,
+                Err(_) => {
+                    return bad(format!(
+                        "invalid value for parameter {}: `{v}` is not a number",
+                        k.trim()
+                    ))
+                }
+            };
+            p.set(k.trim(), value)?;
+        }
+        p.validate()?;
+        Ok(p)
+    }
+
+    /// The variant as the library's type.
+    pub fn variant(&self) -> Variant {
+        self.variant.into()
+    }
+}
+
+/// Output format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum Format {
+    /// Aligned text for reading.
+    #[default]
+    Table,
+    /// JSON object.
+    Json,
+    /// Comma-separated values with a `#` header.
+    Csv,
+}
+
+/// Output selection.
+#[derive(Debug, Clone, Args)]
+pub struct OutputArgs {
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+    /// Write to this file (atomically) instead of standard output.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// A grid `START:STOP:COUNT` of `COUNT` equally spaced points.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grid {
+    /// First point.
+    pub start: f64,
+    /// Last point.
+    pub stop: f64,
+    /// Number of points (≥ 2).
+    pub count: usize,
+}
+
+impl Grid {
+    /// Parse `START:STOP:COUNT`; `what` names the flag in errors.
+    pub fn parse(s: &str, what: &str) -> Result<Grid> {
+        let parts: Vec<&str> = s.split(':').collect();
+        if parts.len() != 3 {
+            return bad(format!("{what} expects START:STOP:COUNT, got `{s}`"));
+        }
+        let num = |t: &str| -> Result<f64> {
+            match t.trim().parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => bad(format!("{what}: `{t}` is not a finite number (in `{s}`)")),
+            }
+        };
+        let (start, stop) = (num(parts[0])?, num(parts[1])?);
+        let count: usize = match parts[2].trim().parse() {
+            Ok(c) if (2..=10_000_000).contains(&c) => c,
+            _ => {
+                return bad(format!(
+                    "{what}: COUNT = `{}` must be an integer in [2, 10000000]",
+                    parts[2]
+                ))
+            }
+        };
+        if start >= stop {
+            return bad(format!(
+                "{what}: START = {start} must be below STOP = {stop}"
+            ));
+        }
+        Ok(Grid { start, stop, count })
+    }
+
+    /// The points.
+    pub fn points(&self) -> Vec<f64> {
+        let h = (self.stop - self.start) / (self.count - 1) as f64;
+        (0..self.count).map(|i| self.start + h * i as f64).collect()
+    }
+}
+
+/// Parse `KEY=START:STOP:COUNT` (or `KEY=START:STOP` when `with_count` is false) for `flag`.
+pub fn parse_axis(s: &str, flag: &str, with_count: bool) -> Result<(String, Grid)> {
+    let form = if with_count {
+        "KEY=START:STOP:COUNT"
+    } else {
+        "KEY=START:STOP"
+    };
+    let Some((k, rest)) = s.split_once('=') else {
+        return bad(format!("{flag} expects {form}, got `{s}`"));
+    };
+    let rest = if with_count {
+        rest.to_string()
+    } else if rest.split(':').count() == 2 {
+        format!("{rest}:2")
+    } else {
+        return bad(format!("{flag} expects {form}, got `{s}`"));
+    };
+    Ok((k.trim().to_string(), Grid::parse(&rest, flag)?))
+}
+
+/// The equation, the wall and the memory, said once for every command that simulates:
+/// `--system`, `--barrier`, `--memory`, `--tolerance`.
+#[derive(Debug, Clone, Args)]
+pub struct ModelArgs {
+    /// Which equation.
+    #[arg(long, value_enum, default_value_t = SystemArg::Fractional)]
+    pub system: SystemArg,
+    /// The wall at U = 0.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub barrier: OnOff,
+    /// How the fractional memory is kept.
+    #[arg(long, value_enum, default_value_t = MemoryArg::Soe)]
+    pub memory: MemoryArg,
+    /// Relative tolerance of the sum-of-exponentials kernel (checked at start-up).
+    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
+    pub tolerance: f64,
+}
+
+impl ModelArgs {
+    /// The problem of `params` with this equation and wall (its start still to be set).
+    pub fn problem(&self, params: &Params) -> trirhythm::Result<Problem> {
+        Problem::from_params(params)?
+            .with_barrier(self.barrier.into())?
+            .with_system(self.system.into())
+    }
+
+    /// `memory=… tolerance=… impact_memory=… barrier=… system=…`, for `method:` header lines.
+    pub fn line(&self, impact_memory: ImpactMemoryArg) -> String {
+        format!(
+            "memory={} tolerance={} impact_memory={} barrier={} system={}",
+            self.memory.name(),
+            self.tolerance,
+            impact_memory.name(),
+            self.barrier.name(),
+            self.system.name()
+        )
+    }
+
+    /// The predictor–corrector of `--dt`, this memory and `--impact-memory`.
+    pub fn method(&self, dt: f64, impact_memory: ImpactMemoryArg) -> PredictorCorrector {
+        PredictorCorrector {
+            dt,
+            memory: match self.memory {
+                MemoryArg::Direct => Memory::Direct,
+                MemoryArg::Soe => Memory::SumOfExponentials {
+                    tolerance: self.tolerance,
+                },
+            },
+            impact_memory: impact_memory.into(),
+            window: DEFAULT_WINDOW,
+        }
+    }
+}

@@ -1,0 +1,515 @@
+//! `trirhythm ensemble`: N paths, streamed stationary statistics with standard errors, the
+//! stationarity diagnosis, and the averaged theory (both variants) against the simulation.
+//!
+//! Output: one JSON object (`--format json`, the default) or the amplitude histogram as CSV
+//! `A_lo,A_hi,density,stderr` with the summary in `#` lines. A summary goes to standard error.
+//! With `--checkpoint DIR` every finished path's statistics are saved in DIR; a rerun of the
+//! same command continues from them and gives a bit-identical result. Keys, columns and flags
+//! are a contract: keep them.
+
+use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs};
+use crate::error::bad;
+use crate::io::{emit, num, params_json, progress};
+use anyhow::{Context, Result};
+use clap::{Args, ValueEnum};
+use serde::Serialize;
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use trirhythm::analysis::ensemble::{
+    merge, run_paths, EnsembleResult, EnsembleSpec, PathStats, Wells,
+};
+use trirhythm::analysis::versus::{theory_layout, TheoryComparison};
+use trirhythm::engine::{PredictorCorrector, Problem};
+use trirhythm::model::Params;
+use trirhythm::monitor::Monitor;
+use trirhythm::theory::averaging::Variant;
+use trirhythm_paper::montecarlo::comparisons;
+
+/// `json` or `csv`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum EnsembleFormat {
+    /// One JSON object with every statistic.
+    #[default]
+    Json,
+    /// The amplitude histogram `A_lo,A_hi,density,stderr`, the summary in `#` lines.
+    Csv,
+}
+
+/// Arguments of `ensemble`.
+#[derive(Debug, Args)]
+pub struct EnsembleArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// Number of paths (path i is noise stream i of the seed).
+    #[arg(long, default_value_t = 8, allow_hyphen_values = true)]
+    pub paths: usize,
+    /// Length of each path's recorded window, after the burn-in.
+    #[arg(long = "t-end", default_value_t = 1000.0, allow_hyphen_values = true)]
+    pub t_end: f64,
+    /// Time discarded at the start of each path.
+    #[arg(long = "burn-in", default_value_t = 100.0, allow_hyphen_values = true)]
+    pub burn_in: f64,
+    /// Step Δt.
+    #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
+    pub dt: f64,
+    /// Seed of the noise streams.
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
+    pub seed: u64,
+    /// Initial displacements, used in turn by the paths (default: the theory's modes of P(A),
+    /// or its stable limit cycles at D = 0).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub u0: Vec<f64>,
+    /// What the memory does at an impact. Ensembles default to `restart`: under `continuous`
+    /// the noise-free cycle of Eq. 1 keeps drifting (no stationary state found up to t = 3e5),
+    /// under `restart` it settles (README, "Ensembles").
+    #[arg(long = "impact-memory", value_enum, default_value_t = ImpactMemoryArg::Restart)]
+    pub impact_memory: ImpactMemoryArg,
+    /// Bins of the amplitude, turning-amplitude and energy histograms.
+    #[arg(long, default_value_t = 100, allow_hyphen_values = true)]
+    pub bins: usize,
+    /// Bins per axis of the joint (U, U̇) histogram.
+    #[arg(long = "joint-bins", default_value_t = 48, allow_hyphen_values = true)]
+    pub joint_bins: usize,
+    /// Upper end of the amplitude histogram (default: from the theory's densities).
+    #[arg(long = "amplitude-max", allow_hyphen_values = true)]
+    pub amplitude_max: Option<f64>,
+    /// Record every K-th step of the window.
+    #[arg(long = "sample-every", default_value_t = 1, allow_hyphen_values = true)]
+    pub sample_every: u64,
+    /// Save each finished path's statistics here; a rerun continues from them.
+    #[arg(long)]
+    pub checkpoint: Option<PathBuf>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = EnsembleFormat::Json)]
+    pub format: EnsembleFormat,
+    /// Write to this file (atomically) instead of standard output.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// An ensemble's inputs in library types, with the choices made for the user.
+pub struct EnsembleSetup {
+    pub params: Params,
+    pub problem: Problem,
+    pub method: PredictorCorrector,
+    pub spec: EnsembleSpec,
+    /// What was chosen where the user left a value open (printed with the result).
+    pub choices: Vec<String>,
+}
+
+impl EnsembleArgs {
+    /// Validate and convert, filling the open choices from the theory.
+    pub fn setup(&self) -> Result<EnsembleSetup> {
+        let params = self.params.resolve()?;
+        let method = self.model.method(self.dt, self.impact_memory);
+        let layout = theory_layout(&params, self.params.variant());
+        let mut choices = Vec::new();
+        let starts = if !self.u0.is_empty() {
+            self.u0.clone()
+        } else if let Some(l) = &layout {
+            choices.push(format!(
+                "u0 = {} (the theory's modes, {} variant)",
+                list(&l.starts),
+                self.params.variant().name()
+            ));
+            l.starts.clone()
+        } else {
+            return bad(
+                "--u0: the averaged theory offers no cycle to start from for these parameters; \
+                 give the initial displacements (--u0 A[,A…])",
+            );
+        };
+        let amplitude_max = match (self.amplitude_max, &layout) {
+            (Some(a), _) => a,
+            (None, Some(l)) => {
+                let a = l
+                    .amplitude_max
+                    .max(1.2 * starts.iter().fold(0.0f64, |m, x| m.max(x.abs())));
+                choices.push(format!(
+                    "amplitude-max = {a:.4} (1.2 × the theory's largest mode + 6 widths)"
+                ));
+                a
+            }
+            (None, None) => {
+                return bad(
+                    "--amplitude-max: no theory to choose the histogram range from; give it",
+                )
+            }
+        };
+        let wells: Option<Wells> = layout.and_then(|l| l.wells);
+        if let Some(w) = &wells {
+            choices.push(format!(
+                "wells: modes {} and antimodes {} of P(A) ({} variant)",
+                list(&w.modes),
+                list(&w.antimodes),
+                self.params.variant().name()
+            ));
+        }
+        let spec = EnsembleSpec {
+            paths: self.paths,
+            seed: self.seed,
+            burn_in: self.burn_in,
+            length: self.t_end,
+            sample_every: self.sample_every,
+            bins: self.bins,
+            joint_bins: self.joint_bins,
+            amplitude_max,
+            wells,
+            ..Default::default()
+        };
+        let starts: Vec<(f64, f64)> = starts.iter().map(|&u| (u, 0.0)).collect();
+        let problem = self.model.problem(&params)?.with_starts(&starts)?;
+        Ok(EnsembleSetup {
+            problem,
+            params,
+            method,
+            spec,
+            choices,
+        })
+    }
+}
+
+fn list(v: &[f64]) -> String {
+    v.iter()
+        .map(|x| format!("{x:.4}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn method_line(a: &EnsembleArgs) -> String {
+    format!(
+        "method: predictor-corrector dt={} {} paths={} burn_in={} t_end={} seed={} sample_every={}",
+        a.dt,
+        a.model.line(a.impact_memory),
+        a.paths,
+        a.burn_in,
+        a.t_end,
+        a.seed,
+        a.sample_every
+    )
+}
+
+/// The JSON document: the library's result, with what the command adds (the parameters, the
+/// method, the choices made for the user, the wall time and the theory against the result).
+#[derive(Serialize)]
+struct Document<'a> {
+    params: Value,
+    method: &'a str,
+    choices: &'a [String],
+    wall_time_s: f64,
+    #[serde(flatten)]
+    result: &'a EnsembleResult,
+    theory: BTreeMap<&'static str, TheoryEntry<'a>>,
+}
+
+/// One variant of the theory against the result, or why there is none.
+#[derive(Serialize)]
+#[serde(untagged)]
+enum TheoryEntry<'a> {
+    Comparison(&'a TheoryComparison),
+    Error { error: &'a str },
+}
+
+/// The whole result as the JSON document of the command's contract.
+fn result_json(
+    s: &EnsembleSetup,
+    method: &str,
+    r: &EnsembleResult,
+    theory: &[(Variant, std::result::Result<TheoryComparison, String>)],
+    wall: f64,
+) -> Result<String> {
+    let theory = theory
+        .iter()
+        .map(|(v, c)| {
+            let entry = match c {
+                Ok(c) => TheoryEntry::Comparison(c),
+                Err(e) => TheoryEntry::Error { error: e },
+            };
+            (v.name(), entry)
+        })
+        .collect();
+    let doc = Document {
+        params: params_json(&s.params),
+        method,
+        choices: &s.choices,
+        wall_time_s: wall,
+        result: r,
+        theory,
+    };
+    Ok(serde_json::to_string(&doc)? + "\n")
+}
+
+/// The checkpoint directory of a run: `run.txt` names the run, `path-<i>.json` hold finished
+/// paths.
+struct Checkpoint {
+    dir: PathBuf,
+}
+
+impl Checkpoint {
+    fn open(dir: &Path, fingerprint: &str, paths: usize) -> Result<(Checkpoint, Vec<PathStats>)> {
+        if dir.exists() && !dir.is_dir() {
+            return bad(format!(
+                "--checkpoint {}: exists and is not a directory",
+                dir.display()
+            ));
+        }
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("creating the checkpoint directory {}", dir.display()))?;
+        let tag = dir.join("run.txt");
+        let mut done = Vec::new();
+        match std::fs::read_to_string(&tag) {
+            Ok(text) if text == fingerprint => {
+                for i in 0..paths {
+                    let f = dir.join(format!("path-{i}.json"));
+                    if let Ok(t) = std::fs::read_to_string(&f) {
+                        let p: PathStats = serde_json::from_str(&t)
+                            .with_context(|| format!("reading the checkpoint {}", f.display()))?;
+                        done.push(p);
+                    }
+                }
+            }
+            Ok(_) => {
+                return bad(format!(
+                    "--checkpoint {}: holds another run (different parameters, method or \
+                     sizes); use an empty directory",
+                    dir.display()
+                ))
+            }
+            Err(_) => crate::io::write_atomic(&tag, fingerprint.as_bytes())?,
+        }
+        Ok((
+            Checkpoint {
+                dir: dir.to_path_buf(),
+            },
+            done,
+        ))
+    }
+
+    fn save(&self, p: &PathStats) -> Result<()> {
+        let text = serde_json::to_string(p)?;
+        crate::io::write_atomic(
+            &self.dir.join(format!("path-{}.json", p.path)),
+            text.as_bytes(),
+        )
+    }
+}
+
+/// How the command watches its run: the progress bar, and each finished path saved in the
+/// checkpoint directory.
+struct Watch<'a> {
+    bar: &'a indicatif::ProgressBar,
+    checkpoint: Option<&'a Checkpoint>,
+    save_error: std::sync::Mutex<Option<anyhow::Error>>,
+}
+
+impl Monitor<PathStats> for Watch<'_> {
+    fn progress(&self, done: u64, total: u64) {
+        let f = done as f64 / total as f64;
+        self.bar.set_position((f * 1000.0).min(1000.0) as u64);
+    }
+
+    fn finished(&self, p: &PathStats) -> trirhythm::Result<()> {
+        if let Some(c) = self.checkpoint {
+            if let Err(e) = c.save(p) {
+                *self.save_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
+                return Err(trirhythm::Error::Undefined {
+                    what: "checkpoint",
+                    why: "a path's statistics could not be saved".into(),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Run `ensemble`.
+pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
+    let s = args.setup()?;
+    let method = method_line(args);
+    let fingerprint = format!(
+        "trirhythm ensemble\nparams: {}\n{method}\nspec: {:?}\nstarts: {:?} system: {:?} barrier: {:?} \
+         blow_up: {:e}\n",
+        s.params.describe(),
+        s.spec,
+        s.problem.starts(),
+        s.problem.system(),
+        s.problem.barrier(),
+        s.problem.blow_up()
+    );
+    let (checkpoint, done) = match &args.checkpoint {
+        Some(dir) => {
+            let (c, d) = Checkpoint::open(dir, &fingerprint, args.paths)?;
+            if !d.is_empty() {
+                eprintln!(
+                    "checkpoint: {} of {} paths already done",
+                    d.len(),
+                    args.paths
+                );
+            }
+            (Some(c), d)
+        }
+        None => (None, vec![]),
+    };
+    for c in &s.choices {
+        eprintln!("chosen: {c}");
+    }
+    let bar = progress(1000, "ensemble");
+    let start = Instant::now();
+    let watch = Watch {
+        bar: &bar,
+        checkpoint: checkpoint.as_ref(),
+        save_error: std::sync::Mutex::new(None),
+    };
+    let todo: Vec<u64> = (0..args.paths as u64)
+        .filter(|i| !done.iter().any(|d| d.path == *i))
+        .collect();
+    let result = run_paths(&s.problem, &s.method, &s.spec, &todo, &watch);
+    bar.finish_and_clear();
+    if let Some(e) = watch
+        .save_error
+        .into_inner()
+        .unwrap_or_else(|e| e.into_inner())
+    {
+        return Err(e.context("saving a checkpoint"));
+    }
+    let fresh = result?;
+    let r = merge(
+        &s.problem,
+        &s.method,
+        &s.spec,
+        done.into_iter().chain(fresh).collect(),
+    )?;
+    let wall = start.elapsed().as_secs_f64();
+    let theory = comparisons(&s.params, &r, args.seed);
+    eprint!("{}", summary_text(&r, &theory, wall));
+    let text = match args.format {
+        EnsembleFormat::Json => result_json(&s, &method, &r, &theory, wall)?,
+        EnsembleFormat::Csv => csv_text(&s, &method, &r, &theory, wall),
+    };
+    emit(args.out.as_deref(), &text)
+}
+
+fn fmt_est(e: trirhythm::analysis::Estimate) -> String {
+    if e.stderr.is_finite() {
+        format!("{:.5} ± {:.5}", e.value, e.stderr)
+    } else {
+        format!("{:.5} (no standard error)", e.value)
+    }
+}
+
+/// The human summary (standard error, and the CSV's `#` lines).
+pub fn summary_text(
+    r: &EnsembleResult,
+    theory: &[(Variant, std::result::Result<TheoryComparison, String>)],
+    wall: f64,
+) -> String {
+    let st = &r.stationarity;
+    let mut t = format!(
+        "{} paths × {} steps in {wall:.1} s; ⟨A⟩ = {}; Var U = {}; Var U̇ = {}\n\
+         stationarity: {} (R̂ = {:.3}, ESS = {:.0}, drift {:.1} standard errors)\n",
+        r.paths,
+        r.steps_per_path,
+        fmt_est(r.mean_amplitude),
+        fmt_est(r.var_u),
+        fmt_est(r.var_v),
+        if st.stationary {
+            "passed"
+        } else {
+            "NOT STATIONARY"
+        },
+        st.r_hat,
+        st.ess,
+        st.drift_z
+    );
+    if !r.occupancy.is_empty() {
+        t.push_str(&format!(
+            "occupancy of the wells: {}\n",
+            r.occupancy
+                .iter()
+                .map(|&e| fmt_est(e))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    for (k, p) in r.passages.iter().enumerate() {
+        let theory_times: Vec<String> = theory
+            .iter()
+            .filter_map(|(v, c)| {
+                c.as_ref()
+                    .ok()
+                    .and_then(|c| c.escape_times.get(k))
+                    .map(|t| format!("{} {t:.4e}", v.name()))
+            })
+            .collect();
+        t.push_str(&format!(
+            "first passage {} → {}: {} ({} completed, {} censored); theory's escape time: {}\n",
+            p.from,
+            p.to,
+            if p.count > 0 {
+                fmt_est(p.mean_time)
+            } else {
+                "none completed".into()
+            },
+            p.count,
+            p.censored,
+            theory_times.join(", ")
+        ));
+    }
+    for (v, c) in theory {
+        match c {
+            Ok(c) => t.push_str(&format!(
+                "theory ({}): Hellinger {:.4} ± {:.4}, L1 {:.4}, KS {:.4}; modes {} (theory, \
+                 binned; {} exact) vs {} (simulation); occupancy {}\n",
+                v.name(),
+                c.hellinger.value,
+                c.hellinger.stderr,
+                c.l1.value,
+                c.ks.value,
+                c.modes_theory,
+                c.modes_theory_exact,
+                c.modes_mc,
+                list(&c.occupancy)
+            )),
+            Err(e) => t.push_str(&format!("theory ({}): {e}\n", v.name())),
+        }
+    }
+    for w in &r.warnings {
+        t.push_str(&format!("warning: {w}\n"));
+    }
+    t
+}
+
+fn csv_text(
+    s: &EnsembleSetup,
+    method: &str,
+    r: &EnsembleResult,
+    theory: &[(Variant, std::result::Result<TheoryComparison, String>)],
+    wall: f64,
+) -> String {
+    let mut t = format!(
+        "# trirhythm ensemble\n# params: {}\n# {method}\n",
+        s.params.describe()
+    );
+    for c in &s.choices {
+        t.push_str(&format!("# chosen: {c}\n"));
+    }
+    for line in summary_text(r, theory, wall).lines() {
+        t.push_str(&format!("# {line}\n"));
+    }
+    t.push_str("A_lo,A_hi,density,stderr\n");
+    let d = &r.amplitude;
+    for (i, w) in d.edges.windows(2).enumerate() {
+        t.push_str(&format!(
+            "{},{},{},{}\n",
+            num(w[0]),
+            num(w[1]),
+            num(d.density[i]),
+            num(d.stderr[i])
+        ));
+    }
+    t
+}

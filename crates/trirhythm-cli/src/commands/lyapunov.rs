@@ -1,0 +1,596 @@
+//! `trirhythm lyapunov`: the largest Lyapunov exponent with frozen noise (two trajectories or the tangent equation,
+//! whole-history renormalisation), optionally swept over a parameter; `trirhythm
+//! critical-noise`: the noise D_c where it changes sign. Keys, columns and flags are a
+//! contract: keep them.
+
+use crate::args::{parse_axis, ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat};
+use crate::error::bad;
+use crate::io::{emit, num, params_json, progress, sig, Csv, Report};
+use anyhow::Result;
+use clap::{Args, ValueEnum};
+use serde::Serialize;
+use serde_json::{json, Value};
+use std::path::PathBuf;
+use trirhythm::analysis::lyapunov::{
+    critical_noise, largest_lyapunov, CriticalNoise, CriticalSearch, LyapunovResult, LyapunovSpec,
+};
+use trirhythm::engine::{PredictorCorrector, Problem};
+use trirhythm::model::Params;
+use trirhythm::monitor::Silent;
+use trirhythm_paper::lle::{merged_points_text, Sign};
+
+/// How the exponent is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum LyapunovMethod {
+    /// The variational equation stepped with the path: its memory a second history of δg,
+    /// renormalised whole; at impacts the saltation of the impact map, the shift of the impact
+    /// time included (exact derivative of the step between impacts).
+    Tangent,
+    /// Two paths on the same noise, the copy pulled back to --separation with its whole memory
+    /// (Benettin).
+    #[default]
+    TwoTrajectory,
+}
+
+impl LyapunovMethod {
+    fn library(self) -> trirhythm::analysis::lyapunov::LyapunovMethod {
+        match self {
+            LyapunovMethod::Tangent => trirhythm::analysis::lyapunov::LyapunovMethod::Tangent,
+            LyapunovMethod::TwoTrajectory => {
+                trirhythm::analysis::lyapunov::LyapunovMethod::TwoTrajectory
+            }
+        }
+    }
+
+    fn name(self) -> &'static str {
+        self.library().name()
+    }
+}
+
+/// The simulation shared by `lyapunov` and `critical-noise`.
+#[derive(Debug, Args)]
+pub struct LleArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// Measured window after the transient (the finite-time exponent's T).
+    #[arg(long = "t-end", default_value_t = 2000.0, allow_hyphen_values = true)]
+    pub t_end: f64,
+    /// Time renormalised but not counted at the start of each path.
+    #[arg(long, default_value_t = 200.0, allow_hyphen_values = true)]
+    pub transient: f64,
+    /// Step Δt, in [1e-4, 0.1].
+    #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
+    pub dt: f64,
+    /// Noise realisations (path i is noise stream i of the seed), 1 to 100000.
+    #[arg(long, default_value_t = 8, allow_hyphen_values = true)]
+    pub paths: usize,
+    /// Seed of the noise streams.
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
+    pub seed: u64,
+    /// U(0) of the reference path.
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    pub u0: f64,
+    /// What the memory does at an impact (the ensembles' default, `restart`).
+    #[arg(long = "impact-memory", value_enum, default_value_t = ImpactMemoryArg::Restart)]
+    pub impact_memory: ImpactMemoryArg,
+    /// How the exponent is computed: `two-trajectory` (a perturbed copy on the same noise,
+    /// pulled back to --separation with its whole memory) or `tangent` (the variational
+    /// equation with its own memory and the saltation of the impact map; --separation unused).
+    /// They agree within their standard errors (README, "Lyapunov exponents").
+    #[arg(long, value_enum, default_value_t = LyapunovMethod::TwoTrajectory)]
+    pub method: LyapunovMethod,
+    /// Steps between renormalisations, 1 to 1000000 (at least two per window).
+    #[arg(
+        long = "renormalise-every",
+        default_value_t = 100,
+        allow_hyphen_values = true
+    )]
+    pub renormalise_every: u64,
+    /// Separation d₀ the perturbed copy is pulled back to, in [1e-12, 1e-4].
+    #[arg(long, default_value_t = 1e-8, allow_hyphen_values = true)]
+    pub separation: f64,
+}
+
+impl LleArgs {
+    fn setup(&self) -> Result<(Params, Problem, PredictorCorrector, LyapunovSpec)> {
+        let params = self.params.resolve()?;
+        // the library takes any dt that divides the window; this command's runs are tested
+        // in [1e-4, 0.1]
+        if !(self.dt >= 1e-4 && self.dt <= 0.1) {
+            return bad(format!(
+                "--dt = {}: allowed range is [1e-4, 0.1]",
+                num(self.dt)
+            ));
+        }
+        // narrower than the library's ranges (separation (0, 1e-3], tolerance (1e-15, 1)): a
+        // copy pulled back to below 1e-12 merges with its reference in rounding
+        if !(self.separation >= 1e-12 && self.separation <= 1e-4) {
+            return bad(format!(
+                "--separation = {}: allowed range is [1e-12, 1e-4]",
+                num(self.separation)
+            ));
+        }
+        if !(self.model.tolerance > 0.0 && self.model.tolerance < 1e-2) {
+            return bad(format!(
+                "--tolerance = {}: allowed range is (0, 1e-2)",
+                num(self.model.tolerance)
+            ));
+        }
+        // the library's `2 × renormalise_every` overflows past 2⁶³: bounded here
+        if !(1..=1_000_000).contains(&self.renormalise_every) {
+            return bad(format!(
+                "--renormalise-every = {}: allowed range is 1 to 1000000 steps",
+                self.renormalise_every
+            ));
+        }
+        let method = self.model.method(self.dt, self.impact_memory);
+        let spec = LyapunovSpec {
+            paths: self.paths,
+            seed: self.seed,
+            transient: self.transient,
+            length: self.t_end,
+            renormalise_every: self.renormalise_every,
+            separation: self.separation,
+            method: self.method.library(),
+            ..Default::default()
+        };
+        let problem = self.model.problem(&params)?.with_start(self.u0, 0.0)?;
+        Ok((params, problem, method, spec))
+    }
+
+    fn describe(&self) -> Vec<String> {
+        vec![
+            match self.method {
+                LyapunovMethod::TwoTrajectory => format!(
+                    "method: two trajectories on the same noise (frozen noise), the copy pulled \
+                     back to d0 = {} every {} steps with its whole memory",
+                    num(self.separation),
+                    self.renormalise_every
+                ),
+                LyapunovMethod::Tangent => format!(
+                    "method: tangent (variational) equation along the path (frozen noise), its \
+                     memory a second history of the perturbation, the saltation of the impact \
+                     map at impacts; the whole tangent state renormalised every {} steps",
+                    self.renormalise_every
+                ),
+            },
+            format!(
+                "simulation: predictor-corrector dt = {}, {} memory, {} impact memory, system {}, \
+                 barrier {}, U(0) = {}",
+                num(self.dt),
+                self.model.memory.name(),
+                self.impact_memory.name(),
+                self.model.system.name(),
+                self.model.barrier.name(),
+                num(self.u0)
+            ),
+            format!(
+                "window: finite-time exponent over t_end = {} after a transient of {}; {} \
+                 paths of seed {} (mean ± standard error over paths)",
+                num(self.t_end),
+                num(self.transient),
+                self.paths,
+                self.seed
+            ),
+        ]
+    }
+}
+
+/// Parse `KEY=START:STOP:COUNT` (COUNT 2 to 1000) for `--sweep`.
+fn parse_sweep(s: &str) -> Result<(String, Vec<f64>)> {
+    let (key, g) = parse_axis(s, "--sweep", true)?;
+    if g.count > 1000 {
+        return bad(format!(
+            "--sweep: COUNT = {}: allowed range is 2 to 1000",
+            g.count
+        ));
+    }
+    Ok((key, g.points()))
+}
+
+/// Arguments of `lyapunov`.
+#[derive(Debug, Args)]
+pub struct LyapunovArgs {
+    #[command(flatten)]
+    pub sim: LleArgs,
+    /// Sweep a parameter: KEY=START:STOP:COUNT (CSV `KEY,lle,stderr,merged,unmerged,unmerged_stderr`).
+    #[arg(long, value_name = "KEY=START:STOP:COUNT", allow_hyphen_values = true)]
+    pub sweep: Option<String>,
+    /// Output format (default: json; csv with --sweep).
+    #[arg(long, value_enum)]
+    pub format: Option<SimFormat>,
+    /// Write to this file (atomically) instead of standard output.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// The problem and method of a `lyapunov` document, beside the library's result.
+#[derive(Serialize)]
+struct Run<'a> {
+    params: Value,
+    method: &'static str,
+    system: String,
+    barrier: String,
+    impact_memory: String,
+    dt: f64,
+    transient: f64,
+    paths: usize,
+    seed: u64,
+    separation: f64,
+    renormalise_every: u64,
+    #[serde(flatten)]
+    result: &'a LyapunovResult,
+}
+
+/// One value of a `lyapunov --sweep` document.
+#[derive(Serialize)]
+struct SweepPoint<'a> {
+    value: f64,
+    #[serde(flatten)]
+    result: &'a LyapunovResult,
+}
+
+/// `lyapunov`.
+pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
+    let (base, problem, method, spec) = args.sim.setup()?;
+    let mut header = vec!["trirhythm lyapunov: largest Lyapunov exponent".to_string()];
+    header.push(format!("params: {}", base.describe()));
+    header.extend(args.sim.describe());
+    if let Some(sweep) = &args.sweep {
+        return sweep_lyapunov(args, sweep, header, &base, &problem, &method, &spec);
+    }
+    let bar = progress(1000, "lyapunov");
+    let report =
+        Report(|done: u64, all: u64| bar.set_position((done as f64 / all as f64 * 1000.0) as u64));
+    let r = largest_lyapunov(&problem, &method, &spec, &report)?;
+    bar.finish_and_clear();
+    eprintln!(
+        "LLE = {} (finite-time, window {}; {} paths)",
+        lle_text(&r),
+        num(spec.length),
+        spec.paths
+    );
+    let text = match args.format.unwrap_or(SimFormat::Json) {
+        SimFormat::Csv => {
+            header.push(format!("lle: {}", lle_text(&r)));
+            header.push("columns: running estimate (time since the transient, mean over paths, standard error)".into());
+            let mut csv = Csv::new(&header, &["t", "lle", "stderr"]).allow_infinity("lle");
+            for q in &r.running {
+                csv.row([num(q.t), num(q.value), opt_cell(q.stderr)]);
+            }
+            csv.finish()?
+        }
+        SimFormat::Json => pretty(&Run {
+            params: params_json(&base),
+            method: args.sim.method.name(),
+            system: args.sim.model.system.name(),
+            barrier: args.sim.model.barrier.name(),
+            impact_memory: args.sim.impact_memory.name(),
+            dt: args.sim.dt,
+            transient: spec.transient,
+            paths: spec.paths,
+            seed: spec.seed,
+            separation: spec.separation,
+            renormalise_every: spec.renormalise_every,
+            result: &r,
+        })?,
+    };
+    emit(args.out.as_deref(), &text)
+}
+
+/// `lyapunov --sweep KEY=START:STOP:COUNT`: the exponent at each value of a parameter.
+fn sweep_lyapunov(
+    args: &LyapunovArgs,
+    sweep: &str,
+    mut header: Vec<String>,
+    base: &Params,
+    problem: &Problem,
+    method: &PredictorCorrector,
+    spec: &LyapunovSpec,
+) -> Result<()> {
+    let (key, values) = parse_sweep(sweep)?;
+    let points = sweep_params(base, Some(&key), &values)?;
+    let bar = progress(values.len() as u64, "lyapunov sweep");
+    let mut rows = Vec::new();
+    for (i, p) in points.iter().enumerate() {
+        let r = largest_lyapunov(&problem.with_params(p)?, method, spec, &Silent)?;
+        rows.push((values[i], r));
+        bar.set_position(i as u64 + 1);
+    }
+    bar.finish_and_clear();
+    let text = match args.format.unwrap_or(SimFormat::Csv) {
+        SimFormat::Csv => {
+            header.push(
+                "merged: realisations whose copy merged with its reference (then lle = -inf); \
+                 unmerged: the mean over the others"
+                    .into(),
+            );
+            let columns = [
+                &key,
+                "lle",
+                "stderr",
+                "merged",
+                "unmerged",
+                "unmerged_stderr",
+            ];
+            let mut csv = Csv::new(&header, &columns).allow_infinity("lle");
+            for (v, r) in &rows {
+                csv.row([
+                    num(*v),
+                    num(r.lle.value),
+                    opt_cell(r.lle.stderr),
+                    r.merged.to_string(),
+                    opt_cell(r.unmerged.value),
+                    opt_cell(r.unmerged.stderr),
+                ]);
+            }
+            csv.finish()?
+        }
+        SimFormat::Json => pretty(&json!({
+            "params": params_json(base),
+            "method": args.sim.method.name(),
+            "sweep": key,
+            "window": spec.length,
+            "points": rows
+                .iter()
+                .map(|(value, result)| SweepPoint { value: *value, result })
+                .collect::<Vec<_>>(),
+        }))?,
+    };
+    emit(args.out.as_deref(), &text)
+}
+
+/// A document as indented JSON with a final newline.
+fn pretty<T: Serialize>(doc: &T) -> Result<String> {
+    Ok(serde_json::to_string_pretty(doc)? + "\n")
+}
+
+/// Arguments of `critical-noise`.
+#[derive(Debug, Args)]
+pub struct CriticalNoiseArgs {
+    #[command(flatten)]
+    pub sim: LleArgs,
+    /// The noise range searched: LO:HI with 0 ≤ LO < HI.
+    #[arg(long = "d-range", value_name = "LO:HI", allow_hyphen_values = true)]
+    pub d_range: String,
+    /// Equally spaced D values evaluated first (ends included), 2 to 1000.
+    #[arg(long, default_value_t = 5, allow_hyphen_values = true)]
+    pub grid: usize,
+    /// Bisections of the first sign change, 0 to 60.
+    #[arg(long, default_value_t = 3, allow_hyphen_values = true)]
+    pub refinements: usize,
+    /// Standard errors that make an LLE significantly nonzero (for D_c_lo, D_c_hi), in [0, 10].
+    #[arg(long, default_value_t = 2.0, allow_hyphen_values = true)]
+    pub z: f64,
+    /// D_c for each value of a parameter: KEY=START:STOP:COUNT.
+    #[arg(long, value_name = "KEY=START:STOP:COUNT", allow_hyphen_values = true)]
+    pub sweep: Option<String>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = SimFormat::Csv)]
+    pub format: SimFormat,
+    /// Write to this file (atomically) instead of standard output.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// One swept value of a `critical-noise` document: the library's outcome and its verdict.
+#[derive(Serialize)]
+struct Outcome<'a> {
+    value: Option<f64>,
+    sign_change: bool,
+    verdict: String,
+    #[serde(flatten)]
+    search: &'a CriticalNoise,
+}
+
+impl<'a> Outcome<'a> {
+    fn of(value: Option<f64>, search: &'a CriticalNoise) -> Self {
+        Outcome {
+            value,
+            sign_change: search.found(),
+            verdict: if search.found() {
+                "sign change".to_string()
+            } else {
+                format!("no sign change in range (LLE {})", Sign::of(search).words())
+            },
+            search,
+        }
+    }
+}
+
+/// The parameters at each value of the swept key (the base parameters alone without one).
+fn sweep_params(base: &Params, key: Option<&str>, values: &[f64]) -> Result<Vec<Params>> {
+    let at = |v: f64| match key {
+        Some(k) => base.with(k, v),
+        None => Ok(base.clone()),
+    };
+    Ok(values
+        .iter()
+        .map(|&v| at(v))
+        .collect::<trirhythm::Result<_>>()?)
+}
+
+/// Parse `LO:HI` for `--d-range` (the library checks 0 ≤ LO < HI).
+fn parse_range(s: &str) -> Result<(f64, f64)> {
+    let Some((lo, hi)) = s.split_once(':') else {
+        return bad(format!("--d-range expects LO:HI, got `{s}`"));
+    };
+    let parse = |t: &str| -> Result<f64> {
+        match t.trim().parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            _ => bad(format!(
+                "--d-range: `{t}` is not a finite number (in `{s}`)"
+            )),
+        }
+    };
+    Ok((parse(lo)?, parse(hi)?))
+}
+
+/// `critical-noise`.
+pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
+    let (base, problem, method, spec) = args.sim.setup()?;
+    let (d_lo, d_hi) = parse_range(&args.d_range)?;
+    // narrower than the library's [0, ∞)
+    if !(args.z >= 0.0 && args.z <= 10.0) {
+        return bad(format!("--z = {}: allowed range is [0, 10]", num(args.z)));
+    }
+    let search = CriticalSearch {
+        d_lo,
+        d_hi,
+        grid: args.grid,
+        refinements: args.refinements,
+        z: args.z,
+    };
+    let (key, values) = match &args.sweep {
+        Some(s) => {
+            let (k, v) = parse_sweep(s)?;
+            if k == "D" {
+                return bad("--sweep: D is what is searched; sweep another parameter");
+            }
+            (Some(k), v)
+        }
+        None => (None, vec![f64::NAN]),
+    };
+    let points = sweep_params(&base, key.as_deref(), &values)?;
+    let per_point = args.grid.saturating_add(args.refinements) as u64;
+    let bar = progress(
+        per_point.saturating_mul(points.len() as u64),
+        "critical noise",
+    );
+    let mut found: Vec<(f64, CriticalNoise)> = Vec::new();
+    for (i, p) in points.iter().enumerate() {
+        let offset = per_point.saturating_mul(i as u64);
+        let report = Report(|done: u64, _: u64| bar.set_position(offset + done));
+        let c = critical_noise(&problem.with_params(p)?, &method, &spec, &search, &report)?;
+        found.push((values[i], c));
+    }
+    bar.finish_and_clear();
+    let label = |v: f64| match &key {
+        Some(k) => format!("{k} = {}", num(v)),
+        None => "the parameters given".to_string(),
+    };
+    for (v, c) in found.iter().filter(|(_, c)| !c.found()) {
+        eprintln!(
+            "{}: no sign change in range D ∈ [{}, {}] (LLE {})",
+            label(*v),
+            num(d_lo),
+            num(d_hi),
+            Sign::of(c).words()
+        );
+    }
+    let text = match args.format {
+        SimFormat::Csv => {
+            let mut header =
+                vec!["trirhythm critical-noise: D_c where the LLE changes sign".to_string()];
+            header.push(format!("params: {}", base.describe()));
+            header.extend(args.sim.describe());
+            header.push(format!(
+                "search: D ∈ [{}, {}], {} grid points, {} bisections; D_c_lo/D_c_hi: the nearest \
+                 evaluated D on each side whose LLE is {} standard errors from 0",
+                num(d_lo),
+                num(d_hi),
+                args.grid,
+                args.refinements,
+                num(args.z)
+            ));
+            critical_csv(header, key.as_deref(), &found, label)?
+        }
+        SimFormat::Json => pretty(&json!({
+            "params": params_json(&base),
+            "method": args.sim.method.name(),
+            "window": spec.length,
+            "paths": spec.paths,
+            "d_range": [d_lo, d_hi],
+            "sweep": key,
+            "results": found
+                .iter()
+                .map(|(v, c)| Outcome::of(key.is_some().then_some(*v), c))
+                .collect::<Vec<_>>(),
+        }))?,
+    };
+    emit(args.out.as_deref(), &text)
+}
+
+/// The CSV of `critical-noise`: `[KEY,]D_c,D_c_lo,D_c_hi`, each swept value's outcome in the
+/// header.
+fn critical_csv(
+    mut header: Vec<String>,
+    key: Option<&str>,
+    found: &[(f64, CriticalNoise)],
+    label: impl Fn(f64) -> String,
+) -> Result<String> {
+    for (v, c) in found {
+        if !c.found() {
+            header.push(format!(
+                "{}: no sign change in range (LLE {})",
+                label(*v),
+                Sign::of(c).words()
+            ));
+        }
+        let merged = merged_points_text(c);
+        if !merged.is_empty() {
+            header.push(format!(
+                "{}: no sign at D = {} (realisations whose copy merged with its reference: LLE −∞)",
+                label(*v),
+                merged.join(", ")
+            ));
+        }
+    }
+    let mut columns: Vec<&str> = key.into_iter().collect();
+    columns.extend(["D_c", "D_c_lo", "D_c_hi"]);
+    let mut csv = Csv::new(&header, &columns);
+    for (v, c) in found.iter().filter(|(_, c)| c.found()) {
+        let lead = key.map(|_| num(*v));
+        csv.row(
+            lead.into_iter()
+                .chain([num(c.d_c), num(c.d_c_lo), num(c.d_c_hi)]),
+        );
+    }
+    csv.finish()
+}
+
+/// A CSV cell: the number, or empty when undefined.
+fn opt_cell(v: f64) -> String {
+    if v.is_finite() {
+        num(v)
+    } else {
+        String::new()
+    }
+}
+
+/// An exponent with its standard error in words: −∞ and a missing standard error are
+/// explained, never printed as bare `-inf ± nan`.
+fn lle_text(r: &LyapunovResult) -> String {
+    let (value, stderr) = (r.lle.value, r.lle.stderr);
+    if value == f64::NEG_INFINITY {
+        let others = r.per_path.len() - r.merged;
+        let rest = if others == 0 {
+            String::new()
+        } else {
+            format!(
+                "; the other {others}: {}",
+                estimate_text(r.unmerged.value, r.unmerged.stderr)
+            )
+        };
+        return format!(
+            "−∞: {} of {} realisations merged (the copy became identical to its reference, whole \
+             memory included: both stuck at the wall on the same step with the memory restarted; \
+             `per_path[].merged_at` in JSON){rest}",
+            r.merged,
+            r.per_path.len()
+        );
+    }
+    estimate_text(value, stderr)
+}
+
+/// A finite exponent with its standard error (4 and 2 significant digits: prose; the JSON has
+/// every digit), or without one (a single path).
+fn estimate_text(value: f64, stderr: f64) -> String {
+    if stderr.is_finite() {
+        format!("{} ± {}", sig(value, 4), sig(stderr, 2))
+    } else {
+        format!("{} (no standard error: one path)", sig(value, 4))
+    }
+}

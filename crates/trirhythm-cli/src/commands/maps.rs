@@ -1,0 +1,327 @@
+//! Commands of the bifurcation structure: `map` (two-parameter classification with exact fold
+//! curves) and `branches` (one-parameter branch diagrams by continuation).
+
+use crate::args::{parse_axis, Format, OutputArgs, ParamArgs};
+use crate::error::bad;
+use crate::io::files::check_destination;
+use crate::io::{emit, num, params_json, progress, Csv, Stream, Temporary};
+use anyhow::{Context, Result};
+use clap::{Args, ValueEnum};
+use serde::Serialize;
+use serde_json::Value;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use trirhythm::theory::bifurcation::{
+    branches as trace_branches, classify, trace_folds, trace_printed_eq37, Axis, BranchDiagram,
+    Folds, Map, Plane, What,
+};
+
+/// What a map counts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum WhatArg {
+    /// Stable limit cycles of the noise-free averaged system (roots of f, Eq. 18).
+    #[default]
+    Rhythmicity,
+    /// Maxima of the stationary amplitude PDF P(A) (roots of m1, Eq. 26; needs D > 0).
+    Modes,
+}
+
+impl From<WhatArg> for What {
+    fn from(w: WhatArg) -> Self {
+        match w {
+            WhatArg::Rhythmicity => What::Rhythmicity,
+            WhatArg::Modes => What::Modes,
+        }
+    }
+}
+
+/// Arguments of `map`.
+#[derive(Debug, Args)]
+pub struct MapArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    /// Horizontal axis: KEY=START:STOP:COUNT (KEY as for --param).
+    #[arg(long, value_name = "KEY=START:STOP:COUNT", allow_hyphen_values = true)]
+    pub x: String,
+    /// Vertical axis: KEY=START:STOP:COUNT.
+    #[arg(long, value_name = "KEY=START:STOP:COUNT", allow_hyphen_values = true)]
+    pub y: String,
+    /// What to count at each point.
+    #[arg(long, value_enum, default_value_t = WhatArg::Rhythmicity)]
+    pub what: WhatArg,
+    /// Trace the fold curves (f = ∂f/∂A = 0, or m1 = ∂m1/∂A = 0 for modes) exactly.
+    #[arg(long)]
+    pub folds: bool,
+    /// With --what modes and the paper variant: also trace the paper's printed Eq. 36–37
+    /// construction (implies --folds).
+    #[arg(long)]
+    pub printed_eq37: bool,
+    /// CSV file for the fold polylines (columns curve,system,x,y,amplitude); by default
+    /// FILE-folds.csv next to --out. In JSON the curves are part of the document.
+    #[arg(long, value_name = "FILE")]
+    pub folds_out: Option<PathBuf>,
+    #[command(flatten)]
+    pub output: OutputArgs,
+}
+
+/// An axis of a `map` document: the key and its values.
+#[derive(Serialize)]
+struct AxisValues {
+    key: String,
+    values: Vec<f64>,
+}
+
+/// The `map` JSON document: the counts on the grid and the library's fold curves.
+#[derive(Serialize)]
+struct MapDocument<'a> {
+    params: Value,
+    variant: &'static str,
+    what: What,
+    x: AxisValues,
+    y: AxisValues,
+    counts: Vec<Vec<u8>>,
+    histogram: [usize; 5],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    folds: Option<&'a Folds>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    printed_eq37: Option<&'a Folds>,
+}
+
+/// Where the fold curves of a CSV map go, settled before the work starts: `--folds-out`, or
+/// `FILE-folds.csv` next to `--out` (none with JSON, where they are part of the document).
+fn folds_destination(args: &MapArgs) -> Result<Option<PathBuf>> {
+    if args.output.format == Format::Json || !(args.folds || args.printed_eq37) {
+        return Ok(None);
+    }
+    let path = match (&args.folds_out, &args.output.out) {
+        (Some(p), _) => p.clone(),
+        (None, Some(out)) => {
+            let stem = out
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            out.with_file_name(format!("{stem}-folds.csv"))
+        }
+        (None, None) => return bad(
+            "--folds with CSV on standard output needs --folds-out FILE (or --out FILE, or --format json)",
+        ),
+    };
+    check_destination(&path, "--folds-out")?;
+    Ok(Some(path))
+}
+
+/// `map`: classification of a parameter plane, with fold curves on request.
+pub fn map(args: &MapArgs) -> Result<()> {
+    let base = args.params.resolve()?;
+    let variant = args.params.variant();
+    let (kx, gx) = parse_axis(&args.x, "--x", true)?;
+    let (ky, gy) = parse_axis(&args.y, "--y", true)?;
+    let plane = Plane::new(
+        &base,
+        Axis::new(&kx, gx.start, gx.stop, gx.count)?,
+        Axis::new(&ky, gy.start, gy.stop, gy.count)?,
+        variant,
+    )?;
+    let what: What = args.what.into();
+    // D may be an axis; only a constant D = 0 is an error
+    if what == What::Modes && base.noise_intensity <= 0.0 && kx != "D" && ky != "D" {
+        return bad("--what modes needs noise: set D > 0 (e.g. --param D=0.1)");
+    }
+    let folds_path = folds_destination(args)?;
+    let bar = progress(plane.y.count as u64, "map");
+    let m = classify(&plane, what, &|done, _| bar.set_position(done as u64));
+    bar.finish_and_clear();
+    let mut sets: Vec<Folds> = Vec::new();
+    if args.folds || args.printed_eq37 {
+        sets.push(trace_folds(&m));
+    }
+    if args.printed_eq37 {
+        sets.push(trace_printed_eq37(&m)?);
+    }
+    if args.output.format == Format::Json {
+        let (nx, ny) = (plane.x.count, plane.y.count);
+        let doc = MapDocument {
+            params: params_json(&base),
+            variant: variant.name(),
+            what,
+            x: AxisValues {
+                key: kx,
+                values: plane.x.values(),
+            },
+            y: AxisValues {
+                key: ky,
+                values: plane.y.values(),
+            },
+            counts: (0..ny)
+                .map(|iy| (0..nx).map(|ix| m.count(ix, iy)).collect())
+                .collect(),
+            histogram: m.histogram(),
+            folds: sets.first(),
+            printed_eq37: sets.get(1),
+        };
+        return emit(
+            args.output.out.as_deref(),
+            &(serde_json::to_string(&doc)? + "\n"),
+        );
+    }
+    let header = map_header(&base, variant.name(), what, &kx, &ky, &m, &sets);
+    write_map_csv(args, &header, &plane, &m, &sets, folds_path.as_deref())
+}
+
+/// The `#` lines of a map's CSV files.
+fn map_header(
+    base: &trirhythm::Params,
+    variant: &str,
+    what: What,
+    kx: &str,
+    ky: &str,
+    m: &Map,
+    sets: &[Folds],
+) -> Vec<String> {
+    let hist = m.histogram();
+    let counted = if what == What::Rhythmicity {
+        "limit cycles"
+    } else {
+        "maxima of P(A)"
+    };
+    let mut header = vec![
+        format!("params: {}", base.describe()),
+        format!("variant: {variant}"),
+        format!("what: {} (count of stable {counted})", what.name()),
+        format!("x: {kx}, y: {ky}"),
+        format!(
+            "points with count 0, 1, 2, 3, >=4: {}, {}, {}, {}, {}",
+            hist[0], hist[1], hist[2], hist[3], hist[4]
+        ),
+    ];
+    for f in sets {
+        header.push(format!(
+            "fold curves ({}): {} traced from {} seeds, {} cusps",
+            f.curves.first().map(|c| c.system.name()).unwrap_or("-"),
+            f.curves.len(),
+            f.seeds,
+            f.cusps.len()
+        ));
+    }
+    header
+}
+
+/// The map streamed to its output as `x,y,count`; the fold curves into a temporary that is
+/// renamed only after the map is complete, so a failing main output leaves no folds file.
+fn write_map_csv(
+    args: &MapArgs,
+    header: &[String],
+    plane: &Plane,
+    m: &Map,
+    sets: &[Folds],
+    folds_path: Option<&Path>,
+) -> Result<()> {
+    let mut stream = Stream::open(args.output.out.as_deref())?;
+    let w = stream.writer();
+    w.write_all(Csv::new(header, &["x", "y", "count"]).finish()?.as_bytes())?;
+    for iy in 0..plane.y.count {
+        let y = num(plane.y.value(iy));
+        for ix in 0..plane.x.count {
+            writeln!(w, "{},{y},{}", num(plane.x.value(ix)), m.count(ix, iy))?;
+        }
+    }
+    let folds = match folds_path {
+        Some(path) if !sets.is_empty() => {
+            let mut fc = Csv::new(header, &["curve", "system", "x", "y", "amplitude"]);
+            let refs: Vec<&Folds> = sets.iter().collect();
+            for row in trirhythm_paper::maps::fold_rows(&[], &refs) {
+                fc.row(row);
+            }
+            let (tmp, mut fw) = Temporary::create(path)?;
+            fw.write_all(fc.finish()?.as_bytes())
+                .and_then(|()| fw.flush())
+                .with_context(|| format!("writing {}", tmp.path().display()))?;
+            Some(tmp)
+        }
+        _ => None,
+    };
+    stream.finish()?;
+    match folds {
+        Some(tmp) => tmp.commit(),
+        None => Ok(()),
+    }
+}
+
+/// Arguments of `branches`.
+#[derive(Debug, Args)]
+pub struct BranchArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    /// The swept parameter: KEY=START:STOP.
+    #[arg(long, value_name = "KEY=START:STOP", allow_hyphen_values = true)]
+    pub x: String,
+    /// Cycles (roots of f) or extrema of P(A) (roots of m1).
+    #[arg(long, value_enum, default_value_t = WhatArg::Rhythmicity)]
+    pub what: WhatArg,
+    /// Largest continuation step, as a fraction of the interval (and of the largest A²).
+    #[arg(long, default_value_t = 0.004, allow_hyphen_values = true)]
+    pub step: f64,
+    #[command(flatten)]
+    pub output: OutputArgs,
+}
+
+/// The `branches` JSON document: the library's diagram with the parameters and variant.
+#[derive(Serialize)]
+struct BranchDocument<'a> {
+    params: Value,
+    variant: &'static str,
+    #[serde(flatten)]
+    diagram: &'a BranchDiagram,
+}
+
+/// `branches`: every branch of cycles vs one parameter, traced through its folds.
+pub fn branches(args: &BranchArgs) -> Result<()> {
+    let base = args.params.resolve()?;
+    let variant = args.params.variant();
+    let (key, g) = parse_axis(&args.x, "--x", false)?;
+    // the continuation takes at least 1/step steps: bound the work before it starts
+    if !(args.step >= 1e-6 && args.step <= 0.1) {
+        return bad(format!(
+            "--step = {}: allowed range is [1e-6, 0.1] (the fraction of the interval per \
+             continuation step)",
+            num(args.step)
+        ));
+    }
+    let what: What = args.what.into();
+    if what == What::Modes && base.noise_intensity <= 0.0 && key != "D" {
+        return bad("--what modes needs noise: set D > 0 (e.g. --param D=0.1)");
+    }
+    let bd = trace_branches(&base, variant, what, &key, g.start, g.stop, args.step)?;
+    let text = match args.output.format {
+        Format::Json => {
+            let doc = BranchDocument {
+                params: params_json(&base),
+                variant: variant.name(),
+                diagram: &bd,
+            };
+            serde_json::to_string(&doc)? + "\n"
+        }
+        Format::Csv | Format::Table => {
+            let mut header = vec![
+                format!("params: {}", base.describe()),
+                format!("variant: {}", variant.name()),
+                format!("what: {}, swept: {key}", what.name()),
+            ];
+            for f in &bd.folds {
+                header.push(format!("fold: {key} = {}, A = {}", num(f.0), num(f.1)));
+            }
+            for h in &bd.hopf {
+                header.push(format!("branch reaches A = 0 at {key} = {}", num(*h)));
+            }
+            let mut csv = Csv::new(&header, &["branch", "param", "amplitude", "stable"]);
+            for (i, b) in bd.branches.iter().enumerate() {
+                for p in &b.points {
+                    let stable = u8::from(p.stable).to_string();
+                    csv.row([i.to_string(), num(p.param), num(p.amplitude), stable]);
+                }
+            }
+            csv.finish()?
+        }
+    };
+    emit(args.output.out.as_deref(), &text)
+}

@@ -1,0 +1,482 @@
+//! Commands of the averaged theory: equivalents, cycles, drift, potential, barriers, pdf.
+
+use crate::args::{Format, Grid, OutputArgs, ParamArgs};
+use crate::error::bad;
+use crate::io::{emit, fixed, jlimit, jnum, jvec, num, params_json, table, Csv};
+use anyhow::Result;
+use clap::{Args, ValueEnum};
+use serde_json::{json, Value};
+use trirhythm::theory::averaging::{AmplitudePdf, Side, Theory};
+
+/// Arguments of every theory command.
+#[derive(Debug, Args)]
+pub struct TheoryArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    #[command(flatten)]
+    pub output: OutputArgs,
+}
+
+impl TheoryArgs {
+    fn theory(&self) -> Result<Theory> {
+        Ok(Theory::new(&self.params.resolve()?, self.params.variant())?)
+    }
+}
+
+fn header(th: &Theory) -> Vec<String> {
+    vec![
+        format!("params: {}", th.params().describe()),
+        format!("variant: {}", th.variant().name()),
+    ]
+}
+
+/// What every theory document starts with: the parameters, the variant and the library's
+/// equivalents (Eq. 5).
+fn base_json(th: &Theory) -> serde_json::Map<String, Value> {
+    let mut m = serde_json::Map::new();
+    m.insert("params".into(), params_json(th.params()));
+    m.insert("variant".into(), json!(th.variant().name()));
+    m.insert("equivalents".into(), json!(th.equivalents()));
+    m
+}
+
+fn pretty(v: Value) -> String {
+    let mut s = serde_json::to_string_pretty(&v).expect("serialisable");
+    s.push('\n');
+    s
+}
+
+/// `equivalents`: μ1, β1, ω1, β2 of Eq. 5, with σ1 and the impact loss rate.
+pub fn equivalents(args: &TheoryArgs) -> Result<()> {
+    let th = args.theory()?;
+    let e = th.equivalents();
+    let rows = [
+        ("mu1", e.mu1),
+        ("beta1", e.beta1),
+        ("omega1", e.omega1),
+        ("beta2", e.beta2),
+        ("sigma1", th.diffusion()),
+        ("loss_rate", th.loss_rate()),
+    ];
+    let text = match args.output.format {
+        Format::Json => {
+            let mut m = base_json(&th);
+            m.insert("sigma1".into(), jnum(th.diffusion()));
+            m.insert("loss_rate".into(), jnum(th.loss_rate()));
+            pretty(Value::Object(m))
+        }
+        Format::Csv => {
+            let mut c = Csv::new(&header(&th), &["name", "value"]);
+            for (k, v) in rows {
+                c.row([k.to_string(), num(v)]);
+            }
+            c.finish()?
+        }
+        Format::Table => table(
+            &["name", "value"],
+            &rows.map(|(k, v)| vec![k.to_string(), num(v)]),
+            &[],
+        )?,
+    };
+    emit(args.output.out.as_deref(), &text)
+}
+
+/// `cycles`: every positive root of f (D = 0) or m1 (D > 0) with its stability.
+pub fn cycles(args: &TheoryArgs) -> Result<()> {
+    let th = args.theory()?;
+    let cycles = th.cycles();
+    let rhythm = th.rhythmicity();
+    let kind = if th.diffusion() > 0.0 {
+        "pdf_extrema"
+    } else {
+        "limit_cycles"
+    };
+    let text = match args.output.format {
+        Format::Json => {
+            let mut m = base_json(&th);
+            m.insert("kind".into(), json!(kind));
+            m.insert("cycles".into(), json!(cycles));
+            m.insert("stable_count".into(), json!(rhythm.count()));
+            m.insert("rhythmicity".into(), json!(rhythm.name()));
+            m.insert(
+                "rest_state_stable".into(),
+                json!(th.rest_state_slope() < 0.0),
+            );
+            pretty(Value::Object(m))
+        }
+        Format::Csv => {
+            let mut h = header(&th);
+            h.push(format!(
+                "{kind}: {} stable ({})",
+                rhythm.count(),
+                rhythm.name()
+            ));
+            let mut c = Csv::new(&h, &["amplitude", "stable", "fold"]);
+            for cy in &cycles {
+                c.row([
+                    num(cy.amplitude),
+                    cy.stable.to_string(),
+                    cy.fold.to_string(),
+                ]);
+            }
+            c.finish()?
+        }
+        Format::Table => {
+            let rows: Vec<Vec<String>> = cycles
+                .iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    vec![
+                        format!("A0{}", i + 1),
+                        fixed(c.amplitude, 10),
+                        if c.fold {
+                            "fold"
+                        } else if c.stable {
+                            "stable"
+                        } else {
+                            "unstable"
+                        }
+                        .into(),
+                    ]
+                })
+                .collect();
+            let mut t = table(&["cycle", "amplitude", "stability"], &rows, &[])?;
+            t.push_str(&format!(
+                "{}: {} stable ({})\n",
+                kind,
+                rhythm.count(),
+                rhythm.name()
+            ));
+            t
+        }
+    };
+    emit(args.output.out.as_deref(), &text)
+}
+
+/// Arguments of `drift` and `potential`.
+#[derive(Debug, Args)]
+pub struct CurveArgs {
+    #[command(flatten)]
+    pub theory: TheoryArgs,
+    /// Amplitude grid START:STOP:COUNT (START ≥ 0).
+    #[arg(long, default_value = "0:15:301", allow_hyphen_values = true)]
+    pub grid: String,
+}
+
+fn amplitude_grid(s: &str) -> Result<Vec<f64>> {
+    let g = Grid::parse(s, "--grid")?;
+    if g.start < 0.0 {
+        return bad(format!("--grid: amplitude START = {} must be ≥ 0", g.start));
+    }
+    Ok(g.points())
+}
+
+/// Write named columns; ±∞ is allowed (as a limit) in the columns named in `infinite`.
+fn emit_columns(
+    args: &TheoryArgs,
+    th: &Theory,
+    names: &[&str],
+    cols: Vec<Vec<f64>>,
+    infinite: &[&str],
+) -> Result<()> {
+    let n = cols[0].len();
+    let text = match args.output.format {
+        Format::Json => {
+            let mut m = base_json(th);
+            for (name, col) in names.iter().zip(&cols) {
+                let limit = infinite.contains(name);
+                m.insert(
+                    name.to_string(),
+                    Value::Array(
+                        col.iter()
+                            .map(|&v| if limit { jlimit(v) } else { jnum(v) })
+                            .collect(),
+                    ),
+                );
+            }
+            pretty(Value::Object(m))
+        }
+        Format::Csv => {
+            let mut c = Csv::new(&header(th), names);
+            for col in infinite {
+                c = c.allow_infinity(col);
+            }
+            for i in 0..n {
+                c.row(cols.iter().map(|col| num(col[i])));
+            }
+            c.finish()?
+        }
+        Format::Table => {
+            let rows: Vec<Vec<String>> = (0..n)
+                .map(|i| {
+                    cols.iter()
+                        .map(|col| format!("{:.8e}", col[i] + 0.0))
+                        .collect()
+                })
+                .collect();
+            table(names, &rows, infinite)?
+        }
+    };
+    emit(args.output.out.as_deref(), &text)
+}
+
+/// `drift`: f(A) (Eq. 18), df/dA and the energy change per period (Eq. 20).
+pub fn drift(args: &CurveArgs) -> Result<()> {
+    let th = args.theory.theory()?;
+    let a = amplitude_grid(&args.grid)?;
+    let f = a.iter().map(|&x| th.drift(x)).collect();
+    let df = a.iter().map(|&x| th.drift_slope(x)).collect();
+    let de = a.iter().map(|&x| th.energy_change(x)).collect();
+    emit_columns(
+        &args.theory,
+        &th,
+        &["A", "f", "df_dA", "delta_E"],
+        vec![a, f, df, de],
+        &[],
+    )
+}
+
+/// `potential`: U_eff(A) (Eq. 23) and the FPK drift m1.
+pub fn potential(args: &CurveArgs) -> Result<()> {
+    let th = args.theory.theory()?;
+    let a = amplitude_grid(&args.grid)?;
+    let u = a.iter().map(|&x| th.potential(x)).collect();
+    let m1 = a.iter().map(|&x| th.fpk_drift(x)).collect();
+    // at A = 0 with D > 0: U_eff = +∞ and m1 = +∞ (the σ1 ln A and σ1/(2A) terms), the limits
+    emit_columns(
+        &args.theory,
+        &th,
+        &["A", "U_eff", "m1"],
+        vec![a, u, m1],
+        &["U_eff", "m1"],
+    )
+}
+
+/// `barriers`: the extrema of U_eff and the barriers ΔU_i between them.
+pub fn barriers(args: &TheoryArgs) -> Result<()> {
+    let th = args.theory()?;
+    let ex = th.extrema();
+    let bs = th.barriers();
+    let side = |s: Side| if s == Side::Left { "left" } else { "right" };
+    let text = match args.output.format {
+        Format::Json => {
+            let mut m = base_json(&th);
+            m.insert("extrema".into(), json!(ex));
+            let named = bs.iter().enumerate();
+            let named: Vec<Value> = named
+                .map(|(i, b)| {
+                    let mut v = json!(b);
+                    v["name"] = json!(format!("dU{}", i + 1));
+                    v
+                })
+                .collect();
+            m.insert("barriers".into(), Value::Array(named));
+            pretty(Value::Object(m))
+        }
+        Format::Csv => {
+            let mut c = Csv::new(&header(&th), &["name", "well", "crest", "side", "height"]);
+            for (i, b) in bs.iter().enumerate() {
+                c.row([
+                    format!("dU{}", i + 1),
+                    num(b.well),
+                    num(b.crest),
+                    side(b.side).into(),
+                    num(b.height),
+                ]);
+            }
+            c.finish()?
+        }
+        Format::Table => {
+            let rows: Vec<Vec<String>> = bs
+                .iter()
+                .enumerate()
+                .map(|(i, b)| {
+                    vec![
+                        format!("ΔU{}", i + 1),
+                        fixed(b.well, 6),
+                        fixed(b.crest, 6),
+                        side(b.side).into(),
+                        format!("{:.6e}", b.height),
+                    ]
+                })
+                .collect();
+            table(
+                &["barrier", "well A", "crest A", "side", "height"],
+                &rows,
+                &[],
+            )?
+        }
+    };
+    emit(args.output.out.as_deref(), &text)
+}
+
+/// Which stationary PDF.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PdfKind {
+    /// P(A), Eq. 27.
+    Amplitude,
+    /// P(H), Eq. 29.
+    Energy,
+    /// P(U, U̇) on U ≥ 0, Eq. 30–31.
+    Joint,
+}
+
+/// Arguments of `pdf`.
+#[derive(Debug, Args)]
+pub struct PdfArgs {
+    #[command(flatten)]
+    pub theory: TheoryArgs,
+    /// Which density.
+    #[arg(long, value_enum, default_value_t = PdfKind::Amplitude)]
+    pub kind: PdfKind,
+    /// Grid START:STOP:COUNT of A, H, or U (joint); default: 401 points over the density's
+    /// support plus 101 over ±6 widths around each mode (A and H).
+    #[arg(long, allow_hyphen_values = true)]
+    pub grid: Option<String>,
+    /// Velocity grid START:STOP:COUNT for the joint density; default: symmetric, 101 points.
+    #[arg(long, allow_hyphen_values = true)]
+    pub vgrid: Option<String>,
+}
+
+/// The default amplitude grid of `pdf`: 401 points over [0, support end] and 101 more over
+/// ±6 widths around each mode, so that a peak narrower than the uniform spacing (small D, large
+/// τ) is still drawn.
+fn support_grid(pdf: &AmplitudePdf) -> Vec<f64> {
+    let end = pdf.support_end;
+    let mut a: Vec<f64> = (0..401).map(|i| end * i as f64 / 400.0).collect();
+    for (&m, &w) in pdf.modes.iter().zip(&pdf.mode_widths) {
+        a.extend((0..=100).map(|i| m + w * (i as f64 / 50.0 - 1.0) * 6.0));
+    }
+    a.retain(|&x| (0.0..=end).contains(&x));
+    a.sort_by(f64::total_cmp);
+    a.dedup();
+    a
+}
+
+/// `pdf`: the stationary densities, normalised in log space.
+pub fn pdf(args: &PdfArgs) -> Result<()> {
+    let th = args.theory.theory()?;
+    let pdf = th.amplitude_pdf()?;
+    let text = match args.kind {
+        PdfKind::Amplitude | PdfKind::Energy => pdf_1d(args, &th, &pdf)?,
+        PdfKind::Joint => pdf_joint(args, &th, &pdf)?,
+    };
+    emit(args.theory.output.out.as_deref(), &text)
+}
+
+/// P(A) (Eq. 27) or P(H) (Eq. 29) on a grid.
+fn pdf_1d(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> {
+    let energy = args.kind == PdfKind::Energy;
+    let w1 = th.equivalents().omega1;
+    let xs = match args.grid.as_deref() {
+        Some(g) => amplitude_grid(g)?,
+        None if energy => support_grid(pdf)
+            .iter()
+            .map(|&a| 0.5 * w1 * w1 * a * a)
+            .collect(),
+        None => support_grid(pdf),
+    };
+    let logp: Vec<f64> = xs
+        .iter()
+        .map(|&x| {
+            if energy {
+                pdf.log_energy_density(x)
+            } else {
+                pdf.log_density(x)
+            }
+        })
+        .collect();
+    let p: Vec<f64> = logp.iter().map(|l| l.exp()).collect();
+    let xname = if energy { "H" } else { "A" };
+    Ok(match args.theory.output.format {
+        Format::Json => {
+            let mut m = base_json(th);
+            m.insert(
+                "kind".into(),
+                json!(if energy { "energy" } else { "amplitude" }),
+            );
+            m.insert("sigma1".into(), jnum(th.diffusion()));
+            m.insert("modes".into(), jvec(&pdf.modes));
+            m.insert("antimodes".into(), jvec(&pdf.antimodes));
+            m.insert("mean_amplitude".into(), jnum(pdf.mean_amplitude));
+            m.insert(xname.into(), jvec(&xs));
+            m.insert("p".into(), jvec(&p));
+            let log_p = logp.iter().map(|&v| jlimit(v)).collect();
+            m.insert("log_p".into(), Value::Array(log_p));
+            pretty(Value::Object(m))
+        }
+        Format::Csv => {
+            let mut h = header(th);
+            h.push(format!("modes: {:?}", pdf.modes));
+            h.push(format!("antimodes: {:?}", pdf.antimodes));
+            h.push(format!("mean_amplitude: {}", pdf.mean_amplitude));
+            let mut c = Csv::new(&h, &[xname, "p", "log_p"]).allow_infinity("log_p");
+            for i in 0..xs.len() {
+                c.row([num(xs[i]), num(p[i]), num(logp[i])]);
+            }
+            c.finish()?
+        }
+        Format::Table => {
+            let rows: Vec<Vec<String>> = (0..xs.len())
+                .map(|i| vec![fixed(xs[i], 6), format!("{:.6e}", p[i]), fixed(logp[i], 6)])
+                .collect();
+            let mut t = table(&[xname, "p", "log_p"], &rows, &["log_p"])?;
+            t.push_str(&format!(
+                "modes {:?}, antimodes {:?}, mean amplitude {}\n",
+                pdf.modes, pdf.antimodes, pdf.mean_amplitude
+            ));
+            t
+        }
+    })
+}
+
+/// P(U, U̇) on U ≥ 0 (Eq. 30–31) on a grid.
+fn pdf_joint(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> {
+    let a_end = pdf.support_end;
+    let vmax = th.equivalents().omega1 * a_end;
+    let u_default = format!("0:{a_end}:101");
+    let ug = Grid::parse(args.grid.as_deref().unwrap_or(&u_default), "--grid")?;
+    let v_default = format!("{}:{vmax}:101", -vmax);
+    let vg = Grid::parse(args.vgrid.as_deref().unwrap_or(&v_default), "--vgrid")?;
+    let (us, vs) = (ug.points(), vg.points());
+    let spacing = (ug.stop - ug.start) / (ug.count - 1) as f64;
+    if let Some((m, w)) = pdf
+        .modes
+        .iter()
+        .zip(&pdf.mode_widths)
+        .find(|(_, &w)| w < spacing)
+    {
+        eprintln!(
+            "note: the peak at A = {m:.6} is {w:.3e} wide, narrower than the grid spacing \
+             {spacing:.3e}: p may read 0 between grid points; refine --grid and --vgrid \
+             around U² + V²/ω1² = A²"
+        );
+    }
+    let logp: Vec<Vec<f64>> = us
+        .iter()
+        .map(|&u| vs.iter().map(|&v| pdf.log_joint_density(u, v)).collect())
+        .collect();
+    Ok(match args.theory.output.format {
+        Format::Json => {
+            let mut m = base_json(th);
+            m.insert("kind".into(), json!("joint"));
+            m.insert("U".into(), jvec(&us));
+            m.insert("V".into(), jvec(&vs));
+            let p = logp
+                .iter()
+                .map(|row| jvec(&row.iter().map(|l| l.exp()).collect::<Vec<_>>()))
+                .collect();
+            m.insert("p".into(), Value::Array(p));
+            pretty(Value::Object(m))
+        }
+        Format::Csv | Format::Table => {
+            let mut c = Csv::new(&header(th), &["U", "V", "p", "log_p"]).allow_infinity("log_p");
+            for (&u, row) in us.iter().zip(&logp) {
+                for (&v, &l) in vs.iter().zip(row) {
+                    c.row([num(u), num(v), num(l.exp()), num(l)]);
+                }
+            }
+            c.finish()?
+        }
+    })
+}

@@ -1,0 +1,236 @@
+//! Where output goes, and the promises kept on the way: a file appears whole or not at all.
+//!
+//! - Every file is written to a hidden temporary sibling (`.NAME.partial-PID.EXT`) and renamed
+//!   into place when complete. The temporary is removed when the write fails (disk full, a
+//!   closed device), when the command fails after creating it (the value is dropped
+//!   uncommitted), and on SIGINT, SIGTERM or SIGHUP ([`install_signal_cleanup`]).
+//! - Creating, committing and the signal cleanup take one lock, so a signal never races a
+//!   temporary into existence after the cleanup: the cleanup holds the lock until the process
+//!   has exited.
+//! - A destination that is a directory, an existing non-regular file (a device, a pipe), or
+//!   whose directory does not exist, is bad input, refused before any work starts
+//!   ([`check_destination`]).
+//! - Standard output: a closed pipe ends the command quietly (exit 0); any other write error
+//!   (a full device) is an error (exit 1). `main` flushes standard output itself so that the
+//!   error is seen.
+//!
+//! Tests: `tests/hostile.rs` (output onto a directory, into a missing directory, onto
+//! /dev/full, SIGINT and SIGTERM during long runs leave no temporary).
+
+use crate::error::bad;
+use anyhow::{Context, Result};
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// The temporaries that exist now.
+static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// On SIGINT, SIGTERM or SIGHUP: remove every temporary and exit with 130.
+pub fn install_signal_cleanup() {
+    // failure to install (a handler already set) leaves the default behaviour: no cleanup, but
+    // no other harm either
+    let _ = ctrlc::set_handler(|| {
+        // keep the lock until exit: no temporary can be created or renamed after this
+        let list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+        for p in list.iter() {
+            let _ = std::fs::remove_file(p);
+        }
+        eprintln!("interrupted: no output written");
+        std::process::exit(130);
+    });
+}
+
+/// Refuse a destination that cannot receive a file: a directory, or a path in a directory that
+/// does not exist. Call before any work starts.
+pub fn check_destination(path: &Path, flag: &str) -> Result<()> {
+    if path.as_os_str().is_empty() {
+        return bad(format!("{flag}: the file name is empty"));
+    }
+    if path.is_dir() {
+        return bad(format!(
+            "{flag} {}: is a directory; give a file name",
+            path.display()
+        ));
+    }
+    if path.file_name().is_none() {
+        return bad(format!("{flag} {}: not a file name", path.display()));
+    }
+    // a device, pipe or socket would be replaced by the rename: refuse it (standard output is
+    // the way to write to a pipe)
+    if let Ok(meta) = std::fs::metadata(path) {
+        if !meta.is_file() {
+            return bad(format!(
+                "{flag} {}: exists and is not a regular file; give a file name, or leave {flag} \
+                 out to write to standard output",
+                path.display()
+            ));
+        }
+    }
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !parent.is_dir() {
+        return bad(format!(
+            "{flag} {}: directory {} does not exist",
+            path.display(),
+            parent.display()
+        ));
+    }
+    Ok(())
+}
+
+/// `dir/.name.partial-PID.ext`: a hidden sibling keeping the extension (image encoders pick the
+/// format from it).
+fn temporary_sibling(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let ext = path
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.partial-{}{ext}", std::process::id()))
+}
+
+/// A file being written: a registered temporary that becomes `target` on [`Temporary::commit`]
+/// and is removed if dropped before.
+pub struct Temporary {
+    path: PathBuf,
+    target: PathBuf,
+    committed: bool,
+}
+
+impl Temporary {
+    /// Register the temporary of `target` (without creating it: encoders that write by path
+    /// create it themselves).
+    pub fn reserve(target: &Path) -> Result<Temporary> {
+        check_destination(target, "output")?;
+        let path = temporary_sibling(target);
+        TEMPORARIES
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(path.clone());
+        Ok(Temporary {
+            path,
+            target: target.to_path_buf(),
+            committed: false,
+        })
+    }
+
+    /// Register and create the temporary of `target`, returning it with a buffered writer.
+    pub fn create(target: &Path) -> Result<(Temporary, BufWriter<File>)> {
+        check_destination(target, "output")?;
+        let path = temporary_sibling(target);
+        let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+        list.push(path.clone());
+        let file = File::create(&path);
+        drop(list);
+        let tmp = Temporary {
+            path,
+            target: target.to_path_buf(),
+            committed: false,
+        };
+        let file = file.with_context(|| format!("creating {}", tmp.path.display()))?;
+        Ok((tmp, BufWriter::with_capacity(1 << 16, file)))
+    }
+
+    /// The temporary's path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Rename the complete temporary onto its target.
+    pub fn commit(mut self) -> Result<()> {
+        let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+        let renamed = std::fs::rename(&self.path, &self.target)
+            .with_context(|| format!("renaming to {}", self.target.display()));
+        list.retain(|p| p != &self.path);
+        drop(list);
+        if renamed.is_ok() {
+            self.committed = true;
+        }
+        renamed
+    }
+}
+
+impl Drop for Temporary {
+    fn drop(&mut self) {
+        if !self.committed {
+            let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+            let _ = std::fs::remove_file(&self.path);
+            list.retain(|p| p != &self.path);
+        }
+    }
+}
+
+/// Write a whole file atomically: complete under its name, or nothing.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let (tmp, mut w) = Temporary::create(path)?;
+    w.write_all(bytes)
+        .and_then(|()| w.flush())
+        .with_context(|| format!("writing {}", tmp.path().display()))?;
+    drop(w);
+    tmp.commit()
+}
+
+/// Write `bytes` to standard output (buffered; `main` flushes).
+pub fn stdout_write(bytes: &[u8]) -> Result<()> {
+    std::io::stdout()
+        .lock()
+        .write_all(bytes)
+        .context("writing to standard output")
+}
+
+/// Whether an error chain is a closed pipe on the other end of standard output.
+pub fn is_broken_pipe(err: &anyhow::Error) -> bool {
+    err.chain().any(|e| {
+        e.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
+}
+
+/// A destination opened for streaming: standard output or an atomic file.
+pub enum Stream {
+    /// Standard output (buffered).
+    Stdout(BufWriter<std::io::Stdout>),
+    /// A temporary to be committed.
+    File(Temporary, BufWriter<File>),
+}
+
+impl Stream {
+    /// Open `out` (a file) or standard output.
+    pub fn open(out: Option<&Path>) -> Result<Stream> {
+        Ok(match out {
+            Some(p) => {
+                let (t, w) = Temporary::create(p)?;
+                Stream::File(t, w)
+            }
+            None => Stream::Stdout(BufWriter::with_capacity(1 << 16, std::io::stdout())),
+        })
+    }
+
+    /// The writer.
+    pub fn writer(&mut self) -> &mut dyn Write {
+        match self {
+            Stream::Stdout(w) => w,
+            Stream::File(_, w) => w,
+        }
+    }
+
+    /// Flush and, for a file, rename it into place.
+    pub fn finish(self) -> Result<()> {
+        match self {
+            Stream::Stdout(mut w) => w.flush().context("writing to standard output"),
+            Stream::File(t, mut w) => {
+                w.flush()
+                    .with_context(|| format!("writing {}", t.path().display()))?;
+                drop(w);
+                t.commit()
+            }
+        }
+    }
+}

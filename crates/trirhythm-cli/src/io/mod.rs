@@ -1,0 +1,13 @@
+//! Input and output: atomic files and the signal cleanup ([`files`]), CSV and tables
+//! ([`table`]), JSON ([`json`]), the progress bar ([`progress`]). Depends on
+//! [`crate::error`] only; every command writes through it.
+
+pub mod files;
+pub mod json;
+pub mod progress;
+pub mod table;
+
+pub use files::{stdout_write, write_atomic, Stream, Temporary};
+pub use json::{emit, jlimit, jnum, jvec, params_json};
+pub use progress::{progress, Report};
+pub use table::{fixed, num, sig, table, Csv};

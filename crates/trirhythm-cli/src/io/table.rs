@@ -1,0 +1,153 @@
+//! Text documents: CSV with `#` header lines ([`Csv`]), aligned tables ([`table`]) and the
+//! numbers in their cells; a non-finite cell is refused with its place named.
+
+use anyhow::Result;
+
+/// The first non-finite cell of a table or CSV document, and how many there are.
+#[derive(Default)]
+struct NonFinite {
+    first: Option<(String, usize, String, String)>,
+    count: usize,
+    /// Columns where ±∞ is a value (a limit: log p where p = 0, U_eff at A = 0).
+    infinity_ok: Vec<String>,
+}
+
+impl NonFinite {
+    /// Look at one row of cells (formatted by [`num`]).
+    fn scan(&mut self, columns: &[String], row: usize, cells: &[String]) {
+        for (i, c) in cells.iter().enumerate() {
+            let ok = (c == "-inf" || c == "inf")
+                && columns
+                    .get(i)
+                    .is_some_and(|name| self.infinity_ok.contains(name));
+            if !ok && matches!(c.as_str(), "nan" | "inf" | "-inf" | "NaN") {
+                self.count += 1;
+                if self.first.is_none() {
+                    let col = columns.get(i).cloned().unwrap_or_default();
+                    let lead = format!(
+                        "{} = {}",
+                        columns.first().cloned().unwrap_or_default(),
+                        cells.first().cloned().unwrap_or_default()
+                    );
+                    self.first = Some((col, row, lead, c.clone()));
+                }
+            }
+        }
+    }
+
+    /// An error naming where, if any.
+    fn check(&self) -> Result<()> {
+        match &self.first {
+            None => Ok(()),
+            Some((col, row, lead, v)) => anyhow::bail!(
+                "the computation produced a non-finite value: column {col} = {v} at row {row} \
+                 ({lead}), {} such value(s) in all (overflow or an undefined quantity); nothing \
+                 written",
+                self.count
+            ),
+        }
+    }
+}
+
+/// A CSV document: `#` comment lines, a header row, rows of numbers.
+pub struct Csv {
+    text: String,
+    columns: Vec<String>,
+    rows: usize,
+    nonfinite: NonFinite,
+}
+
+impl Csv {
+    /// Start with comment lines (each prefixed by `# `) and the column names.
+    pub fn new(comments: &[String], columns: &[&str]) -> Csv {
+        let mut text = String::new();
+        for c in comments {
+            for line in c.lines() {
+                text.push_str("# ");
+                text.push_str(line);
+                text.push('\n');
+            }
+        }
+        text.push_str(&columns.join(","));
+        text.push('\n');
+        Csv {
+            text,
+            columns: columns.iter().map(|c| c.to_string()).collect(),
+            rows: 0,
+            nonfinite: NonFinite::default(),
+        }
+    }
+
+    /// Let `column` hold ±∞ where that is the value (a limit such as log 0): written as
+    /// `inf`/`-inf`, not refused; NaN still is.
+    pub fn allow_infinity(mut self, column: &str) -> Csv {
+        self.nonfinite.infinity_ok.push(column.to_string());
+        self
+    }
+
+    /// Append a row of cells (already formatted).
+    pub fn row<I: IntoIterator<Item = String>>(&mut self, cells: I) {
+        let cells: Vec<String> = cells.into_iter().collect();
+        self.rows += 1;
+        self.nonfinite.scan(&self.columns, self.rows, &cells);
+        self.text.push_str(&cells.join(","));
+        self.text.push('\n');
+    }
+
+    /// The document, or an error naming the first non-finite cell.
+    pub fn finish(self) -> Result<String> {
+        self.nonfinite.check()?;
+        Ok(self.text)
+    }
+}
+
+/// Numbers for CSV cells (round-trip) and prose (significant digits): the paper crate's.
+pub use trirhythm_paper::notes::{num, sig};
+
+/// A table cell with `digits` decimals, in exponent notation outside [1e-4, 1e9) so that no
+/// cell runs to hundreds of digits or rounds a small value to 0.
+pub fn fixed(v: f64, digits: usize) -> String {
+    let v = v + 0.0;
+    let a = v.abs();
+    if !v.is_finite() {
+        num(v)
+    } else if v == 0.0 || (1e-4..1e9).contains(&a) {
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.digits$e}")
+    }
+}
+
+/// An aligned text table, or an error naming its first non-finite cell (±∞ is allowed in the
+/// columns named in `infinite`, where it is the value).
+pub fn table(columns: &[&str], rows: &[Vec<String>], infinite: &[&str]) -> Result<String> {
+    let mut nonfinite = NonFinite {
+        infinity_ok: infinite.iter().map(|c| c.to_string()).collect(),
+        ..Default::default()
+    };
+    let names: Vec<String> = columns.iter().map(|c| c.to_string()).collect();
+    for (i, r) in rows.iter().enumerate() {
+        nonfinite.scan(&names, i + 1, r);
+    }
+    nonfinite.check()?;
+    let mut widths: Vec<usize> = columns.iter().map(|c| c.chars().count()).collect();
+    for r in rows {
+        for (i, cell) in r.iter().enumerate() {
+            widths[i] = widths[i].max(cell.chars().count());
+        }
+    }
+    let fmt_row = |cells: &mut dyn Iterator<Item = &str>| -> String {
+        let mut line = cells
+            .enumerate()
+            .map(|(i, c)| format!("{:>w$}", c, w = widths[i]))
+            .collect::<Vec<_>>()
+            .join("  ");
+        line.push('\n');
+        line
+    };
+    let mut out = fmt_row(&mut columns.iter().copied());
+    for r in rows {
+        out.push_str(&fmt_row(&mut r.iter().map(|s| s.as_str())));
+    }
+    Ok(out)
+}

@@ -1,0 +1,201 @@
+//! Fig. 4: the averaged drift f(A0) (Eq. 18) for four parameter sets, its zones and roots.
+//!
+//! f > 0 means the amplitude grows (energy uptake); f < 0 that it decays. The paper labels
+//! f > 0 "dissipation"; the figure labels by the physics and says so in its notes.
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig04_drift`].
+
+use crate::render::plot::{chart, framed, legend, padded_range, pe, ChartSize, FONT};
+use anyhow::Result;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use trirhythm_paper::fig04_drift::{Fig04, Panel};
+
+picture!(Fig04, |self, root| size (1400, 1000), draw {
+    let areas = root.split_evenly((2, 2));
+    for (area, p) in areas.iter().zip(&self.panels) {
+        draw_panel(area, p)?;
+    }
+    Ok(())
+});
+
+/// The right end of a panel's chart: just beyond the outermost root of the r = 1 curve.
+fn x_end(p: &Panel) -> f64 {
+    (p.outermost_at_r1 * 1.06).min(14.0)
+}
+
+/// One panel: f(A0) with its zones, the r = 1 reference, the cycles, a zoom on the inner roots.
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    p: &Panel,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let x_end = x_end(p);
+    let x = 0.0..x_end;
+    // The range shows the roots' neighbourhood; the steep fall beyond is cut at four
+    // times the largest |f| met before the outermost root.
+    let shown_vals = p
+        .curve
+        .iter()
+        .chain(p.reference.iter().flatten())
+        .filter(|c| c.0 <= x_end);
+    let inner = shown_vals
+        .clone()
+        .filter(|c| c.0 <= x_end / 1.06)
+        .fold(0.0f64, |m, c| m.max(c.1.abs()));
+    let y = padded_range(shown_vals.map(|c| c.1.max(-4.0 * inner)));
+    let [a0, b0, g0, d0] = p.cp;
+    let caption = format!(
+        "({}) r = {}, (α0,β0,γ0,δ0) = ({a0}, {b0}, {g0:e}, {d0:e})",
+        p.label, p.r
+    );
+    let shown = |pts: &[(f64, f64)]| -> Vec<(f64, f64)> {
+        pts.iter()
+            .copied()
+            .filter(|c| c.0 <= x_end && c.1 >= y.start)
+            .collect()
+    };
+    let mut c = chart(area, &caption, x, y.clone(), "A0", "f(A0)")?;
+    let up = RGBColor(250, 200, 200);
+    let down = RGBColor(200, 215, 250);
+    c.draw_series(AreaSeries::new(
+        shown(&p.curve).into_iter().map(|(a, f)| (a, f.max(0.0))),
+        0.0,
+        up.mix(0.8),
+    ))
+    .map_err(pe)?
+    .label("f > 0: amplitude grows (energy uptake)")
+    .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 15, y + 5)], up.filled()));
+    c.draw_series(AreaSeries::new(
+        shown(&p.curve).into_iter().map(|(a, f)| (a, f.min(0.0))),
+        0.0,
+        down.mix(0.8),
+    ))
+    .map_err(pe)?
+    .label("f < 0: amplitude decays (dissipation)")
+    .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 15, y + 5)], down.filled()));
+    {
+        let clipped: Vec<(f64, f64)> = shown(p.reference.as_deref().unwrap_or(&[]))
+            .into_iter()
+            .filter(|&(_, f)| f >= y.start && f <= y.end)
+            .collect();
+        c.draw_series(DashedLineSeries::new(
+            clipped,
+            6,
+            4,
+            RGBColor(120, 120, 120).stroke_width(1),
+        ))
+        .map_err(pe)?
+        .label("same control parameters, r = 1")
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 15, y)], RGBColor(120, 120, 120)));
+    }
+    c.draw_series(LineSeries::new(shown(&p.curve), BLACK.stroke_width(2)))
+        .map_err(pe)?
+        .label("f(A0) at the panel's r")
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 15, y)], BLACK.stroke_width(2)));
+    c.draw_series(LineSeries::new(
+        [(0.0, 0.0), (x_end, 0.0)],
+        BLACK.stroke_width(1),
+    ))
+    .map_err(pe)?;
+    let marks = |stable: bool| {
+        p.cycles
+            .iter()
+            .filter(move |cy| cy.stable == stable)
+            .map(move |cy| {
+                let fill = if stable {
+                    BLACK.filled()
+                } else {
+                    WHITE.filled()
+                };
+                EmptyElement::at((cy.amplitude, 0.0))
+                    + Circle::new((0, 0), 6, fill)
+                    + Circle::new((0, 0), 6, BLACK.stroke_width(2))
+            })
+    };
+    c.draw_series(marks(true))
+        .map_err(pe)?
+        .label("stable cycle (df/dA0 < 0)")
+        .legend(|(x, y)| Circle::new((x + 7, y), 5, BLACK.filled()));
+    c.draw_series(marks(false))
+        .map_err(pe)?
+        .label("unstable cycle")
+        .legend(|(x, y)| Circle::new((x + 7, y), 5, BLACK.stroke_width(2)));
+    let label_font = (FONT, 14)
+        .into_font()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Center, VPos::Bottom));
+    c.draw_series(p.cycles.iter().enumerate().map(|(i, cy)| {
+        EmptyElement::at((cy.amplitude, 0.0))
+            + Text::new(format!("A0{}", i + 1), (0, -9), label_font.clone())
+    }))
+    .map_err(pe)?;
+    // panel (d) has room below its curve; the legend holds for every panel
+    if p.label == "d" {
+        legend(&mut c, SeriesLabelPosition::LowerLeft)?;
+    }
+    draw_zoom(area, p, &y, x_end)
+}
+
+/// Where the small-amplitude part is flattened by the scale of the steep fall (the panel's
+/// range `y`), an inset shows it at its own scale (roots there, or their absence, visible).
+fn draw_zoom<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    p: &Panel,
+    y: &std::ops::Range<f64>,
+    x_end: f64,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let span = y.end - y.start;
+    let zoom_end = p
+        .curve
+        .iter()
+        .find(|c| c.1.abs() > 0.1 * span)
+        .map_or(x_end, |c| c.0);
+    if zoom_end > 0.4 * x_end && zoom_end < x_end {
+        let (w, h) = area.dim_in_pixel();
+        let inset = area.clone().shrink(
+            (90, (0.48 * h as f64) as u32),
+            ((0.5 * w as f64) as u32, (0.4 * h as f64) as u32),
+        );
+        inset.fill(&WHITE).map_err(pe)?;
+        let pts: Vec<(f64, f64)> = p
+            .curve
+            .iter()
+            .copied()
+            .filter(|c| c.0 <= zoom_end)
+            .collect();
+        let yz = padded_range(pts.iter().map(|c| c.1).chain([0.0]));
+        let mut z = framed(
+            &inset,
+            &format!("zoom: A0 ≤ {zoom_end:.1}"),
+            (0.0..zoom_end, yz),
+            ("", ""),
+            ChartSize::Inset,
+        )?;
+        z.draw_series(LineSeries::new(
+            [(0.0, 0.0), (zoom_end, 0.0)],
+            BLACK.stroke_width(1),
+        ))
+        .map_err(pe)?;
+        z.draw_series(LineSeries::new(pts, BLACK.stroke_width(2)))
+            .map_err(pe)?;
+        z.draw_series(
+            p.cycles
+                .iter()
+                .filter(|cy| cy.amplitude <= zoom_end)
+                .map(|cy| {
+                    let fill = if cy.stable { BLACK } else { WHITE };
+                    EmptyElement::at((cy.amplitude, 0.0))
+                        + Circle::new((0, 0), 5, fill.filled())
+                        + Circle::new((0, 0), 5, BLACK.stroke_width(2))
+                }),
+        )
+        .map_err(pe)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,127 @@
+//! Fig. 7: the pseudo-potential U_eff(A0) (Eq. 23) for several r (a) and several λ (b).
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig07_pseudo_potential`].
+
+use crate::render::plot::{chart, framed, legend, padded_range, pe, ChartSize, PALETTE};
+use anyhow::Result;
+use plotters::coord::types::RangedCoordf64;
+use plotters::prelude::*;
+use trirhythm::theory::averaging::Extremum;
+use trirhythm_paper::fig07_pseudo_potential::{Curve, Fig07, Panel};
+
+/// A y-range framing the extrema of `curves` that lie below `x_end` (the walls of U_eff at
+/// A → 0 and A → ∞ would otherwise flatten everything), and the curves' points inside it.
+pub(super) fn frame(curves: &[Curve], x_end: f64) -> (std::ops::Range<f64>, Vec<Curve>) {
+    let levels = curves
+        .iter()
+        .flat_map(|c| c.extrema.iter())
+        .filter(|e| e.amplitude <= x_end)
+        .map(|e| e.potential);
+    let (lo, hi) = levels.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(v), b.max(v))
+    });
+    let span = (hi - lo).max(1e-9);
+    let y = padded_range([lo - 0.3 * span, hi + 0.6 * span]);
+    let clipped = curves
+        .iter()
+        .map(|c| Curve {
+            label: c.label.clone(),
+            points: c
+                .points
+                .iter()
+                .copied()
+                .filter(|p| p.0 <= x_end && y.contains(&p.1))
+                .collect(),
+            extrema: c.extrema.clone(),
+        })
+        .collect();
+    (y, clipped)
+}
+
+/// Draw curves with their wells (filled) and crests (open) marked.
+pub(super) fn draw_curves<'a, DB: DrawingBackend + 'a>(
+    c: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    curves: &[Curve],
+    with_legend: bool,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let y = c.y_range();
+    let x = c.x_range();
+    for (i, cv) in curves.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
+        let s = c
+            .draw_series(LineSeries::new(
+                cv.points.iter().copied(),
+                color.stroke_width(2),
+            ))
+            .map_err(pe)?;
+        if with_legend {
+            s.label(cv.label.clone()).legend(move |(x, y)| {
+                PathElement::new([(x, y), (x + 15, y)], color.stroke_width(2))
+            });
+        }
+        let inside = |e: &&Extremum| x.contains(&e.amplitude) && y.contains(&e.potential);
+        c.draw_series(cv.extrema.iter().filter(inside).map(|e| {
+            let fill = if e.minimum {
+                color.filled()
+            } else {
+                WHITE.filled()
+            };
+            EmptyElement::at((e.amplitude, e.potential))
+                + Circle::new((0, 0), 5, fill)
+                + Circle::new((0, 0), 5, color.stroke_width(2))
+        }))
+        .map_err(pe)?;
+    }
+    Ok(())
+}
+
+picture!(Fig07, |self, root| size (1400, 620), draw {
+    let areas = root.split_evenly((1, 2));
+    for (
+        area,
+        Panel {
+            caption, curves, ..
+        },
+    ) in areas.iter().zip(&self.panels)
+    {
+        let (y, clipped) = frame(curves, 14.0);
+        let mut c = chart(area, caption, 0.0..14.0, y, "A0", "U_eff(A0)")?;
+        draw_curves(&mut c, &clipped, true)?;
+        legend(&mut c, SeriesLabelPosition::UpperMiddle)?;
+        // The inner well A01 is ~1e-3 deep against ~1 for the outer ones: an inset zooms
+        // on it, up to the first crest beyond it.
+        let zoom_end = curves
+            .iter()
+            .filter_map(|cv| {
+                let well = cv.extrema.iter().find(|e| e.minimum && e.amplitude > 0.0)?;
+                cv.extrema
+                    .iter()
+                    .find(|e| !e.minimum && e.amplitude > well.amplitude)
+                    .map(|e| e.amplitude)
+            })
+            .fold(0.0f64, f64::max)
+            * 1.15;
+        if zoom_end > 0.0 && zoom_end < 14.0 {
+            let (w, h) = area.dim_in_pixel();
+            // below the curves, where the main panel is empty
+            let inset = area.clone().shrink(
+                (100, (0.5 * h as f64) as u32),
+                ((0.45 * w as f64) as u32, (0.4 * h as f64) as u32),
+            );
+            inset.fill(&WHITE).map_err(pe)?;
+            let (yz, zoomed) = frame(curves, zoom_end);
+            let mut z = framed(
+                &inset,
+                &format!("zoom on the inner well: A0 ≤ {zoom_end:.1}"),
+                (0.0..zoom_end, yz),
+                ("", ""),
+                ChartSize::Inset,
+            )?;
+            draw_curves(&mut z, &zoomed, false)?;
+        }
+    }
+    Ok(())
+});

@@ -1,0 +1,88 @@
+//! Fig. 8: the energy barriers ΔU_i between the wells and crests of U_eff (Eq. 23), D > 0.
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig08_barriers`].
+
+use super::fig07_pseudo_potential::{draw_curves, frame};
+use crate::render::plot::{chart, pe, FONT};
+use anyhow::Result;
+use plotters::prelude::*;
+use trirhythm::theory::averaging::Side;
+use trirhythm_paper::fig08_barriers::Fig08;
+
+/// The inner wells' right end: the first crest beyond the first well, with margin.
+fn zoom_end(fig: &Fig08) -> f64 {
+    let crest = fig
+        .barriers
+        .iter()
+        .filter(|b| b.side == Side::Right)
+        .map(|b| b.crest)
+        .next()
+        .unwrap_or(14.0);
+    (crest * 1.4).min(14.0)
+}
+
+/// One panel: U_eff up to `x_end` with the barriers that fit.
+fn draw_panel<DB: DrawingBackend>(
+    fig: &Fig08,
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    x_end: f64,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let (y, clipped) = frame(std::slice::from_ref(&fig.curve), x_end);
+    let mut c = chart(area, caption, 0.0..x_end, y, "A0", "U_eff(A0)")?;
+    let clipped = &clipped[0];
+    draw_curves(&mut c, std::slice::from_ref(clipped), false)?;
+    for (i, b) in fig.barriers.iter().enumerate() {
+        if b.well > x_end || b.crest > x_end {
+            continue;
+        }
+        let u_well = clipped
+            .extrema
+            .iter()
+            .find(|e| e.amplitude == b.well)
+            .map(|e| e.potential)
+            .unwrap_or(0.0);
+        let u_crest = u_well + b.height;
+        let xa =
+            b.well + if b.side == Side::Left { -0.12 } else { 0.12 } * (b.well - b.crest).abs();
+        let color = RGBColor(200, 30, 30);
+        c.draw_series(DashedLineSeries::new(
+            [(b.crest, u_crest), (xa, u_crest)],
+            4,
+            3,
+            color.stroke_width(1),
+        ))
+        .map_err(pe)?;
+        c.draw_series(LineSeries::new(
+            [(xa, u_well), (xa, u_crest)],
+            color.stroke_width(2),
+        ))
+        .map_err(pe)?;
+        for yv in [u_well, u_crest] {
+            c.draw_series([EmptyElement::at((xa, yv)) + Circle::new((0, 0), 3, color.filled())])
+                .map_err(pe)?;
+        }
+        c.draw_series([EmptyElement::at((xa, 0.5 * (u_well + u_crest)))
+            + Text::new(
+                format!("ΔU{}", i + 1),
+                (6, -8),
+                (FONT, 16).into_font().color(&color),
+            )])
+        .map_err(pe)?;
+    }
+    Ok(())
+}
+picture!(Fig08, |self, root| size (1400, 620), draw {
+    let areas = root.split_evenly((1, 2));
+    draw_panel(self, &areas[0], "(a) U_eff and its barriers ΔU_i", 14.0)?;
+    draw_panel(
+        self,
+        &areas[1],
+        "(b) zoom on the inner wells",
+        zoom_end(self),
+    )?;
+    Ok(())
+});

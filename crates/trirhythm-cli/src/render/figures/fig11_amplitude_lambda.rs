@@ -1,0 +1,73 @@
+//! Fig. 11: (a) limit-cycle amplitude against λ — the averaging's branches (f = 0, Eq. 18, at
+//! D = 0) against long noise-free simulations of Eq. (1) from several initial amplitudes;
+//! (b) the stationary P(A) for four λ — theory (both variants) against Monte Carlo of Eq. (1)
+//! and Eq. (5), with error bars, distances and stationarity verdicts.
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig11_amplitude_lambda`].
+
+use super::fig05_branches::runs;
+use super::montecarlo::{amplitude_legend, draw_amplitude_panel, two_rows_of_four, PANEL};
+use crate::render::plot::{chart, pe, PALETTE};
+use plotters::prelude::*;
+use trirhythm_paper::fig11_amplitude_lambda::Fig11;
+
+picture!(Fig11, |self, root| size two_rows_of_four(&self.panels), draw {
+    let (top, rest) = root.split_vertically(PANEL.1);
+    let (bottom, strip) = rest.split_vertically(PANEL.1);
+    let (a_area, _) = top.split_horizontally(3 * PANEL.0);
+    let amax = self
+        .branches
+        .branches
+        .iter()
+        .flat_map(|b| b.points.iter().map(|q| q.amplitude))
+        .chain(self.settled.iter().map(|s| s.amplitude))
+        .fold(1.0f64, f64::max);
+    let mut c = chart(
+        &a_area,
+        "(a) limit-cycle amplitude against λ (D = 0)",
+        self.branches.start..self.branches.stop,
+        0.0..amax * 1.08,
+        "λ",
+        "A",
+    )?;
+    for b in &self.branches.branches {
+        for (stable, pts) in runs(&b.points) {
+            if stable {
+                c.draw_series(LineSeries::new(pts, PALETTE[0].stroke_width(2)))
+                    .map_err(pe)?;
+            } else {
+                c.draw_series(DashedLineSeries::new(pts, 6, 4, PALETTE[1].stroke_width(2)))
+                    .map_err(pe)?;
+            }
+        }
+    }
+    c.draw_series(
+        self.settled
+            .iter()
+            .map(|s| Circle::new((s.lambda, s.amplitude), 6, PALETTE[2].stroke_width(2))),
+    )
+    .map_err(pe)?;
+    // panel (a)'s key, beside it
+    let (_, key) = top.split_horizontally(3 * PANEL.0);
+    crate::render::plot::LegendStrip {
+        entries: vec![
+            (
+                crate::render::plot::Symbol::Line(PALETTE[0]),
+                "stable branch".into(),
+            ),
+            (
+                crate::render::plot::Symbol::Dashed(PALETTE[1]),
+                "unstable branch".into(),
+            ),
+            (
+                crate::render::plot::Symbol::Ring(PALETTE[2]),
+                "simulation of Eq. 1".into(),
+            ),
+        ],
+    }
+    .draw(&key.margin(60, 0, 0, 0))?;
+    for (area, p) in bottom.split_evenly((1, 4)).iter().zip(&self.panels) {
+        draw_amplitude_panel(area, p)?;
+    }
+    amplitude_legend(&self.panels).draw(&strip)
+});

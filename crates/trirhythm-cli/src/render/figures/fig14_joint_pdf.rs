@@ -1,0 +1,94 @@
+//! Fig. 14: the joint density P(U, U̇) for four restitution coefficients — the averaged
+//! theory's Eq. (30–31) (top row) against the Monte Carlo histogram of Eq. (1) (bottom row),
+//! as heat maps with one colour scale per r, the Hellinger distance between them and the
+//! stationarity verdict of each ensemble.
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig14_joint_pdf`].
+
+use crate::render::plot::{chart, colour_bar, pe, viridis};
+use anyhow::Result;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use trirhythm_paper::fig14_joint_pdf::{Fig14, JointPanel};
+
+const PANEL: (u32, u32) = (460, 400);
+/// Decades of the logarithmic colour scale.
+const DECADES: f64 = 3.0;
+const BAR: u32 = 70;
+
+fn heat<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    caption: &str,
+    p: &JointPanel,
+    values: &[Vec<f64>],
+    top: f64,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let (u0, u1) = (p.u_edges[0], *p.u_edges.last().unwrap_or(&1.0));
+    let (v0, v1) = (p.v_edges[0], *p.v_edges.last().unwrap_or(&1.0));
+    let mut c = chart(area, caption, u0..u1, v0..v1, "U", "dU/dt")?;
+    let cells = p.u_edges.windows(2).enumerate().flat_map(|(i, u)| {
+        p.v_edges.windows(2).enumerate().filter_map(move |(k, v)| {
+            let x = values[i][k];
+            // three decades below the panel's top, logarithmic: rings and creeping phases alike
+            (x > top * 1e-3).then(|| {
+                Rectangle::new(
+                    [(u[0], v[0]), (u[1], v[1])],
+                    viridis(((x / top).log10() + DECADES) / DECADES).filled(),
+                )
+            })
+        })
+    });
+    c.draw_series(cells).map_err(pe)?;
+    Ok(())
+}
+
+picture!(Fig14, |self, root| size (4 * PANEL.0, 2 * PANEL.1 + BAR), draw {
+    let columns = root.split_evenly((1, 4));
+    for (col, (p, label)) in columns
+        .iter()
+        .zip(self.panels.iter().zip(["a", "b", "c", "d"]))
+    {
+        let (maps, bar) = col.split_vertically(2 * PANEL.1);
+        let (top_area, bottom_area) = maps.split_vertically(PANEL.1);
+        let top = p
+            .theory
+            .iter()
+            .chain(&p.mc)
+            .flatten()
+            .copied()
+            .fold(0.0f64, f64::max)
+            .max(1e-300);
+        heat(
+            &top_area,
+            &format!("({label}) r = {}: theory (Eq. 31)", p.r),
+            p,
+            &p.theory,
+            top,
+        )?;
+        heat(
+            &bottom_area,
+            &format!(
+                "MC of Eq. 1{}; H = {:.2}",
+                if p.stationary {
+                    ""
+                } else {
+                    " (not stationary)"
+                },
+                p.hellinger
+            ),
+            p,
+            &p.mc,
+            top,
+        )?;
+        colour_bar(
+            &bar,
+            "log10 P(U, dU/dt)",
+            top.log10() - DECADES,
+            top.log10(),
+        )?;
+    }
+    Ok(())
+});

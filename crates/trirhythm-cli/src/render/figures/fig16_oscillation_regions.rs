@@ -1,0 +1,16 @@
+//! Fig. 16: oscillation and rest regions at D = 0 — (a) the (μ0, λ) plane at r = 0.99,
+//! (b) the effect of r on it, (c) the (μ0, r) plane at λ = 0.999, (d) the effect of λ on it —
+//! each boundary by simulation, by averaging and (where exact) by the linearisation at U = 0.
+//!
+//! Rendering only: the data and its computation are [`trirhythm_paper::fig16_oscillation_regions`].
+
+use super::boundary::draw_panel;
+use trirhythm_paper::fig16_oscillation_regions::Fig16;
+
+picture!(Fig16, |self, root| size (1400, 1100), draw {
+    let areas = root.split_evenly((2, 2));
+    for (area, panel) in areas.iter().zip(&self.panels) {
+        draw_panel(area, panel, true)?;
+    }
+    Ok(())
+});

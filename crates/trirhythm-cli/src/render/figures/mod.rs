@@ -1,0 +1,106 @@
+//! The drawing of each paper figure: `impl Picture for FigNN` from the data the paper crate
+//! computed (the `figure` command computes the data, writes its tables and
+//! calls [`crate::render::plot::save`]).
+//!
+//! Each figure writes `figNN.csv` (its data, parameters and notes in `#` header lines) and
+//! `figNN.png` + `figNN.svg` into the output directory; with `--data` also `figNN.json`, the
+//! value everything else is rendered from. `--quick` trades resolution for speed (used by CI);
+//! the default is paper quality. `--from-data DIR` renders from `DIR/figNN.json` without
+//! computing anything.
+//!
+//! # Data first, pictures second
+//!
+//! A figure's data and its computation live in the library crate `trirhythm-paper`
+//! ([`trirhythm_paper::Figure`]: number, title, `compute(options, monitor)`, and its data as
+//! tables); this module only writes it: each table as a CSV file, and the picture (PNG + SVG)
+//! drawn from the data value alone, deterministically, so that rendering the data read back
+//! from `figNN.json` gives the same bytes. To add figure NN: its data type, computation and
+//! tables in `trirhythm-paper` (`figNN_what.rs` there), then here `figNN_what.rs` with
+//! `impl Picture for FigNN` (the drawing, [`crate::render::plot::save`] writes it), and
+//! `entry::<FigNN>()` in [`registry`]. Progress of a computation goes to a bar on the terminal
+//! through [`Bar`], the library's [`Monitor`].
+
+mod boundary;
+/// `impl Picture for $figure`, headed by its caption: `$size` pixels, drawn by the block
+/// `$draw`, which sees the figure as `self` and the drawing area as `$root`.
+macro_rules! picture {
+    ($figure:ty, |$self:tt, $root:ident| size $size:expr, draw $draw:block) => {
+        impl crate::render::plot::Picture for $figure {
+            fn size(&$self) -> (u32, u32) {
+                $size
+            }
+
+            fn heading(&$self) -> crate::render::plot::Heading {
+                super::heading_of(&$self.caption)
+            }
+
+            fn draw<DB: plotters::prelude::DrawingBackend>(
+                &$self,
+                $root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+            ) -> anyhow::Result<()>
+            where
+                DB::ErrorType: 'static,
+            $draw
+        }
+    };
+}
+
+/// `impl Picture for $figure`, a newtype of shared data drawn through the view `$view`
+/// (`$view(&self.0)` is a [`Picture`]): the map figures and the LLE-against-noise figures.
+macro_rules! picture_through {
+    ($figure:ty, $view:ident) => {
+        impl crate::render::plot::Picture for $figure {
+            fn size(&self) -> (u32, u32) {
+                $view(&self.0).size()
+            }
+
+            fn heading(&self) -> crate::render::plot::Heading {
+                $view(&self.0).heading()
+            }
+
+            fn draw<DB: plotters::prelude::DrawingBackend>(
+                &self,
+                root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+            ) -> anyhow::Result<()>
+            where
+                DB::ErrorType: 'static,
+            {
+                $view(&self.0).draw(root)
+            }
+        }
+    };
+}
+
+mod fig01_phase_recurrence;
+mod fig02_rhythmicity_planes;
+mod fig03_restitution_planes;
+mod fig04_drift;
+mod fig05_branches;
+mod fig06_fractional_planes;
+mod fig07_pseudo_potential;
+mod fig08_barriers;
+mod fig09_barrier_surfaces;
+mod fig10_pbif_lambda_tau;
+mod fig11_amplitude_lambda;
+mod fig12_pbif_maps;
+mod fig13_pdf_restitution;
+mod fig14_joint_pdf;
+mod fig15_oscillation_boundaries;
+mod fig16_oscillation_regions;
+mod fig17_lle_noise;
+mod fig18_lle_noise_fractional;
+mod fig19_critical_noise;
+mod lle;
+mod mapfig;
+mod montecarlo;
+
+use crate::render::plot::Heading;
+use trirhythm_paper::notes::Caption;
+
+/// A caption drawn as a picture's heading.
+pub fn heading_of(caption: &Caption) -> Heading {
+    Heading {
+        title: caption.title.clone(),
+        lines: caption.lines.clone(),
+    }
+}

@@ -1,0 +1,6 @@
+//! Pictures: the plotting toolkit ([`plot`]) and each paper figure's drawing ([`figures`]),
+//! from data the paper crate computed. Depends on [`crate::io`] (atomic files) only; never on
+//! the commands or the arguments.
+
+pub mod figures;
+pub mod plot;
