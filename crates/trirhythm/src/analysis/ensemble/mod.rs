@@ -245,6 +245,8 @@ pub fn run_ensemble(
     spec: &EnsembleSpec,
     monitor: &dyn Monitor<PathStats>,
 ) -> Result<EnsembleResult> {
+    // the spec first: its paths are counted out below
+    spec.sizes(method)?;
     let all: Vec<u64> = (0..spec.paths as u64).collect();
     let stats = run_paths(problem, method, spec, &all, monitor)?;
     merge(problem, method, spec, stats)

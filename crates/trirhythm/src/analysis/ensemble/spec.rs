@@ -50,18 +50,31 @@ impl Wells {
                 format!("1 to {MAX_WELLS} modes"),
             ));
         }
-        let ok = antimodes.len() + 1 == modes.len()
-            && modes
-                .iter()
-                .chain(antimodes)
-                .all(|x| x.is_finite() && *x >= 0.0)
-            && (0..antimodes.len()).all(|i| modes[i] < antimodes[i] && antimodes[i] < modes[i + 1]);
-        if !ok {
+        if antimodes.len() + 1 != modes.len() {
             return Err(Error::invalid(
                 "wells",
-                modes.len() as f64,
-                "modes and antimodes alternating and ascending (one antimode between two modes)",
+                antimodes.len() as f64,
+                format!("{} antimodes (one between two modes)", modes.len() - 1),
             ));
+        }
+        // modes and antimodes interleaved: m0 < a0 < m1 < a1 < …, all finite and ≥ 0
+        let interleaved = (0..2 * modes.len() - 1).map(|k| {
+            if k % 2 == 0 {
+                modes[k / 2]
+            } else {
+                antimodes[k / 2]
+            }
+        });
+        let mut previous = -0.0f64;
+        for (k, x) in interleaved.enumerate() {
+            if !(x.is_finite() && x >= 0.0 && (k == 0 || x > previous)) {
+                return Err(Error::invalid(
+                    "wells",
+                    x,
+                    "modes and antimodes finite, ≥ 0, alternating and ascending",
+                ));
+            }
+            previous = x;
         }
         Ok(())
     }

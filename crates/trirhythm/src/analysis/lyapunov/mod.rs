@@ -232,7 +232,11 @@ impl LyapunovSpec {
         }
         let (lo, hi) = SEPARATION_RANGE;
         if !(self.separation >= lo && self.separation <= hi) {
-            return Err(Error::invalid("separation", self.separation, "[1e-12, 1e-4]"));
+            return Err(Error::invalid(
+                "separation",
+                self.separation,
+                "[1e-12, 1e-4]",
+            ));
         }
         if !(1..=MAX_RENORMALISE_EVERY).contains(&self.renormalise_every) {
             return Err(Error::invalid(
@@ -273,11 +277,11 @@ impl LyapunovSpec {
     /// steps: whole numbers of steps, at most [`crate::engine::MAX_STEPS`] in all, at least two
     /// renormalisation intervals measured.
     pub(crate) fn sizes(&self, method: &PredictorCorrector) -> Result<(u64, u64)> {
-        method.validate()?;
         let dt = method.dt;
         if !(dt >= DT_RANGE.0 && dt <= DT_RANGE.1) {
             return Err(Error::invalid("dt", dt, "[1e-4, 0.1]"));
         }
+        method.validate()?;
         self.validate()?;
         let transient = whole_steps("transient", self.transient, dt, true)?;
         let window = whole_steps("t_end", self.length, dt, false)?;
@@ -401,6 +405,8 @@ pub fn largest_lyapunov(
     spec: &LyapunovSpec,
     monitor: &dyn Monitor<PathRun>,
 ) -> Result<LyapunovResult> {
+    // the spec first: its paths are counted out below
+    spec.sizes(method)?;
     let all: Vec<u64> = (0..spec.paths as u64).collect();
     let runs = run_paths(problem, method, spec, &all, monitor)?;
     merge(spec, runs)

@@ -101,11 +101,11 @@ impl Classifier {
     /// `settle_periods` in [0, 1000], `min_periods` in [1, 1000], `max_periods` in
     /// [settle_periods + min_periods, 10000], `clarity` in (0, 1e6], `agreement` in (0, 1].
     pub fn validate(&self) -> Result<()> {
-        self.method.validate()?;
         let dt = self.method.dt;
         if !(dt >= 1e-4 && dt <= 0.1) {
             return Err(Error::invalid("dt", dt, "[1e-4, 0.1]"));
         }
+        self.method.validate()?;
         if !(self.amplitude > 0.0 && self.amplitude <= 1e-3) {
             return Err(Error::invalid("amplitude", self.amplitude, "(0, 1e-3]"));
         }
