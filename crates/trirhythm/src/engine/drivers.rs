@@ -189,6 +189,7 @@ impl Options {
 
     /// A stepper for these options' path of `problem`, its memory certified up to T.
     pub fn stepper(&self, problem: &Problem, method: &PredictorCorrector) -> Result<Stepper> {
+        method.validate()?;
         let steps = self.steps(method.dt)?;
         Stepper::new(
             problem,
