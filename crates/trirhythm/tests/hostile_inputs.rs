@@ -19,7 +19,9 @@ use std::panic::catch_unwind;
 use std::sync::mpsc;
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
-use trirhythm::analysis::ensemble::{self, run_ensemble, EnsembleSpec, PathStats, Wells};
+use trirhythm::analysis::ensemble::{
+    self, run_ensemble, EnsembleResult, EnsembleSpec, PathStats, Wells,
+};
 use trirhythm::analysis::lyapunov::{
     self, critical_noise, largest_lyapunov, CriticalSearch, LyapunovSpec, PathRun,
 };
@@ -28,7 +30,7 @@ use trirhythm::analysis::oscillation::{
     Plane as OscillationPlane, Search,
 };
 use trirhythm::analysis::recurrence::{RecurrenceMatrix, RecurrenceThreshold};
-use trirhythm::analysis::versus::{escape_time, theory_layout};
+use trirhythm::analysis::versus::{compare, escape_time, theory_layout};
 use trirhythm::engine::kernel::{interval_weights, SoeKernel};
 use trirhythm::engine::{
     probe_memory, run as run_path, simulate, simulate_ensemble, simulate_with, solve_scalar,
@@ -218,6 +220,16 @@ fn ensemble_stats() -> Vec<PathStats> {
     STATS
         .get_or_init(|| {
             ensemble::run_paths(&problem(), &method(), &ensemble_spec(), &[0, 1], &Silent).unwrap()
+        })
+        .clone()
+}
+
+/// The result of [`ensemble_spec`] (for the comparison's rows).
+fn ensemble_result() -> EnsembleResult {
+    static RESULT: OnceLock<EnsembleResult> = OnceLock::new();
+    RESULT
+        .get_or_init(|| {
+            ensemble::merge(&problem(), &method(), &ensemble_spec(), ensemble_stats()).unwrap()
         })
         .clone()
 }
@@ -1531,6 +1543,19 @@ fn rows() -> Vec<Row> {
                 )
             }
         ),
+        // a last edge far out (1e300) is allowed: an empty last bin
+        row!(
+            "compare (EnsembleResult)",
+            "last edge",
+            "edges",
+            Real,
+            |v| v.is_finite() && v > 7.5,
+            |v| {
+                let mut result = ensemble_result();
+                *result.amplitude.edges.last_mut().unwrap() = v;
+                compare(&result, &Theory::new(&noisy(), Variant::Paper)?, 1).map(|_| ())
+            }
+        ),
         row!("escape_time", "sigma1", "", Total, anything, |v| total(
             escape_time(pdf(), v, 1.0, 3.0)
         )),
@@ -1654,6 +1679,7 @@ fn valid_calls_of_the_table_succeed() {
         ("growth_rate (Classifier)", "settle_periods", 1.0),
         ("boundary (Search)", "tolerance", 0.01),
         ("classify_plane", "y", 0.7),
+        ("compare (EnsembleResult)", "last edge", 10.0),
     ];
     let table = rows();
     for &(entry, arg, v) in typical {
