@@ -32,6 +32,7 @@ use trirhythm::analysis::oscillation::{
 use trirhythm::analysis::recurrence::{RecurrenceMatrix, RecurrenceThreshold};
 use trirhythm::analysis::versus::{compare, escape_time, theory_layout};
 use trirhythm::engine::kernel::{interval_weights, SoeKernel};
+use trirhythm::engine::noise::{Noise, NoiseStream};
 use trirhythm::engine::{
     probe_memory, run as run_path, simulate, simulate_ensemble, simulate_with, solve_scalar,
     Barrier, Flow, Memory, Options, Oscillator, PredictorCorrector, Problem, Stepper,
@@ -999,6 +1000,40 @@ fn rows() -> Vec<Row> {
             |v| v > 0.0 && v <= 1e3,
             |v| TrajectoryRecorder::new(problem().oscillator(), &Options::default(), 20, v)
                 .map(|_| ())
+        ),
+        // a contraction by any factor returns promptly: a non-finite or negative one is refused
+        // (false), never applied
+        row!("Stepper::contract_toward", "c", "", Total, anything, |v| {
+            let a = Stepper::new(&problem(), &method(), (1, 0), 1.0)?;
+            let mut b = a.clone();
+            total(b.contract_toward(&a, v))
+        }),
+        // ---- engine::noise: the streams take any finite step, intensity and correlation time
+        row!("NoiseStream::new", "dt", "dt", Real, positive, |v| {
+            NoiseStream::new(Noise::White { intensity: 0.1 }, v, 1, 0).map(|_| ())
+        }),
+        // D = 0 is allowed: no forcing
+        row!(
+            "NoiseStream::new (white)",
+            "intensity",
+            "D",
+            Real,
+            |v| v >= 0.0 && v.is_finite(),
+            |v| NoiseStream::new(Noise::White { intensity: v }, 0.01, 1, 0).map(|_| ())
+        ),
+        row!(
+            "NoiseStream::new (coloured)",
+            "correlation_time",
+            "tau",
+            Real,
+            positive,
+            |v| {
+                let kind = Noise::Colored {
+                    intensity: 0.1,
+                    correlation_time: v,
+                };
+                NoiseStream::new(kind, 0.01, 1, 0).map(|_| ())
+            }
         ),
         // ---- analysis::ensemble: every field of the spec, the pieces, the merge
         row!(
