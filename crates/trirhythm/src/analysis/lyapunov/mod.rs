@@ -231,7 +231,7 @@ impl LyapunovSpec {
             ));
         }
         let (lo, hi) = SEPARATION_RANGE;
-        if !(self.separation >= lo && self.separation <= hi) {
+        if !(lo..=hi).contains(&self.separation) {
             return Err(Error::invalid(
                 "separation",
                 self.separation,
@@ -278,7 +278,7 @@ impl LyapunovSpec {
     /// renormalisation intervals measured.
     pub(crate) fn sizes(&self, method: &PredictorCorrector) -> Result<(u64, u64)> {
         let dt = method.dt;
-        if !(dt >= DT_RANGE.0 && dt <= DT_RANGE.1) {
+        if !(DT_RANGE.0..=DT_RANGE.1).contains(&dt) {
             return Err(Error::invalid("dt", dt, "[1e-4, 0.1]"));
         }
         method.validate()?;

@@ -102,7 +102,7 @@ impl Classifier {
     /// [settle_periods + min_periods, 10000], `clarity` in (0, 1e6], `agreement` in (0, 1].
     pub fn validate(&self) -> Result<()> {
         let dt = self.method.dt;
-        if !(dt >= 1e-4 && dt <= 0.1) {
+        if !(1e-4..=0.1).contains(&dt) {
             return Err(Error::invalid("dt", dt, "[1e-4, 0.1]"));
         }
         self.method.validate()?;
