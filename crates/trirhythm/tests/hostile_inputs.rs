@@ -1,7 +1,8 @@
 //! Hostile inputs: every public entry point of the model, the theory, the special functions,
-//! the memory kernels and the recurrence analysis, called with each numeric argument in turn
-//! replaced by NaN, ±∞, 0, a negative value and a huge one (1e300; 10¹² and `usize::MAX` for
-//! counts) while the others stay valid.
+//! the engine (problem, method, options, stepper, drivers), the ensembles, the Lyapunov
+//! exponents, the oscillation boundaries and the recurrence analysis, called with each numeric
+//! argument in turn replaced by NaN, ±∞, 0, a negative value and a huge one (1e300; 10¹² and
+//! `usize::MAX` for counts) while the others stay valid.
 //!
 //! The claim (issue "every check in the library"): within one second, without a panic, the call
 //! returns an `Err` that names the argument, or — where the value is legitimately in range, as
@@ -9,20 +10,37 @@
 //! a plain number (evaluations such as P(A) at a point, Γ(x), a quadrature) are total: they are
 //! only required to return promptly without panicking (`Kind::Total`).
 //!
-//! The table is one `Row` per (entry point, argument); other drivers (simulation, ensembles,
-//! Lyapunov exponents) extend it by adding rows.
+//! The table is one `Row` per (entry point, argument). The valid arguments of the drivers'
+//! rows are tiny (a few paths of 20 steps, three periods of a growth rate), so that a value
+//! legitimately accepted runs in milliseconds; every refused value is refused before any work.
 
 use proptest::prelude::*;
 use std::panic::catch_unwind;
 use std::sync::mpsc;
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
+use trirhythm::analysis::ensemble::{
+    self, run_ensemble, EnsembleResult, EnsembleSpec, PathStats, Wells,
+};
+use trirhythm::analysis::lyapunov::{
+    self, critical_noise, largest_lyapunov, CriticalSearch, LyapunovSpec, PathRun,
+};
+use trirhythm::analysis::oscillation::{
+    averaging_mu0, boundary, classify_plane, exact_mu0, growth_rate, margin, Classifier, Method,
+    Plane as OscillationPlane, Search,
+};
 use trirhythm::analysis::recurrence::{RecurrenceMatrix, RecurrenceThreshold};
-use trirhythm::analysis::versus::{escape_time, theory_layout};
+use trirhythm::analysis::versus::{compare, escape_time, theory_layout};
 use trirhythm::engine::kernel::{interval_weights, SoeKernel};
-use trirhythm::engine::{probe_memory, solve_scalar, Memory};
+use trirhythm::engine::noise::{Noise, NoiseStream};
+use trirhythm::engine::{
+    probe_memory, run as run_path, simulate, simulate_ensemble, simulate_with, solve_scalar,
+    Barrier, Flow, Memory, Options, Oscillator, PredictorCorrector, Problem, Stepper,
+    TrajectoryRecorder,
+};
 use trirhythm::model::preset;
 use trirhythm::model::Equivalents;
+use trirhythm::monitor::Silent;
 use trirhythm::special::{gamma, ln_gamma, mittag_leffler};
 use trirhythm::theory::averaging::{
     phase_average_weight, sgn_harmonic_sum, AmplitudePdf, Theory, Variant,
@@ -133,6 +151,162 @@ fn total<T>(x: T) -> Result<(), Error> {
 
 fn count(v: f64) -> usize {
     v as usize
+}
+
+// ---- the drivers' valid arguments: tiny, so that an accepted value runs in milliseconds
+
+/// Fig. 1's parameters with noise D = 0.05, the wall on, from U = 1.
+fn problem() -> Problem {
+    static PROBLEM: OnceLock<Problem> = OnceLock::new();
+    PROBLEM
+        .get_or_init(|| {
+            Problem::from_params(&preset("fig1").unwrap().params.with("D", 0.05).unwrap()).unwrap()
+        })
+        .clone()
+}
+
+/// Δt = 0.05 with the direct memory (no kernel to build).
+fn method() -> PredictorCorrector {
+    PredictorCorrector {
+        dt: 0.05,
+        memory: Memory::Direct,
+        ..Default::default()
+    }
+}
+
+/// `simulate` to T = 1 (20 steps) with the method and options changed by `f`.
+fn sim(f: impl FnOnce(&mut PredictorCorrector, &mut Options)) -> Result<(), Error> {
+    let (mut m, mut o) = (
+        method(),
+        Options {
+            t_end: 1.0,
+            seed: 1,
+            ..Default::default()
+        },
+    );
+    f(&mut m, &mut o);
+    simulate(&problem(), &m, &o).map(|_| ())
+}
+
+fn soe(tolerance: f64) -> Memory {
+    Memory::SumOfExponentials { tolerance }
+}
+
+/// Two paths of 10 + 20 steps, 4 bins, 4 batches.
+fn ensemble_spec() -> EnsembleSpec {
+    EnsembleSpec {
+        paths: 2,
+        seed: 3,
+        burn_in: 0.5,
+        length: 1.0,
+        sample_every: 1,
+        bins: 4,
+        joint_bins: 2,
+        amplitude_max: 10.0,
+        batches: 4,
+        wells: None,
+    }
+}
+
+/// `run_ensemble` with the spec changed by `f`.
+fn ens(f: impl FnOnce(&mut EnsembleSpec)) -> Result<(), Error> {
+    let mut spec = ensemble_spec();
+    f(&mut spec);
+    run_ensemble(&problem(), &method(), &spec, &Silent).map(|_| ())
+}
+
+/// The two paths' statistics of [`ensemble_spec`] (for the merge's rows).
+fn ensemble_stats() -> Vec<PathStats> {
+    static STATS: OnceLock<Vec<PathStats>> = OnceLock::new();
+    STATS
+        .get_or_init(|| {
+            ensemble::run_paths(&problem(), &method(), &ensemble_spec(), &[0, 1], &Silent).unwrap()
+        })
+        .clone()
+}
+
+/// The result of [`ensemble_spec`] (for the comparison's rows).
+fn ensemble_result() -> EnsembleResult {
+    static RESULT: OnceLock<EnsembleResult> = OnceLock::new();
+    RESULT
+        .get_or_init(|| {
+            ensemble::merge(&problem(), &method(), &ensemble_spec(), ensemble_stats()).unwrap()
+        })
+        .clone()
+}
+
+/// Two realisations of 10 + 20 steps, renormalised every 5 steps.
+fn lyapunov_spec() -> LyapunovSpec {
+    LyapunovSpec {
+        paths: 2,
+        seed: 3,
+        transient: 0.5,
+        length: 1.0,
+        renormalise_every: 5,
+        separation: 1e-8,
+        running_points: 2,
+        ..Default::default()
+    }
+}
+
+/// `largest_lyapunov` with the spec and the method changed by `f`.
+fn lle(f: impl FnOnce(&mut LyapunovSpec, &mut PredictorCorrector)) -> Result<(), Error> {
+    let (mut spec, mut m) = (lyapunov_spec(), method());
+    f(&mut spec, &mut m);
+    largest_lyapunov(&problem(), &m, &spec, &Silent).map(|_| ())
+}
+
+/// The two realisations of [`lyapunov_spec`] (for the merge's rows).
+fn lyapunov_runs() -> Vec<PathRun> {
+    static RUNS: OnceLock<Vec<PathRun>> = OnceLock::new();
+    RUNS.get_or_init(|| {
+        lyapunov::run_paths(&problem(), &method(), &lyapunov_spec(), &[0, 1], &Silent).unwrap()
+    })
+    .clone()
+}
+
+/// `critical_noise` over D ∈ [0, 0.1], two grid points, no bisection, with `f`'s changes.
+fn critical(f: impl FnOnce(&mut CriticalSearch)) -> Result<(), Error> {
+    let mut search = CriticalSearch {
+        d_lo: 0.0,
+        d_hi: 0.1,
+        grid: 2,
+        refinements: 0,
+        z: 2.0,
+    };
+    f(&mut search);
+    critical_noise(&problem(), &method(), &lyapunov_spec(), &search, &Silent).map(|_| ())
+}
+
+/// The default parameters (D = 0) with the wall: an oscillation-boundary template.
+fn template() -> Problem {
+    Problem::from_params(&Params::default()).unwrap()
+}
+
+/// A classifier of three periods at Δt = 0.05.
+fn classifier() -> Classifier {
+    Classifier {
+        method: PredictorCorrector {
+            dt: 0.05,
+            ..Default::default()
+        },
+        settle_periods: 1.0,
+        min_periods: 1.0,
+        max_periods: 3.0,
+        ..Default::default()
+    }
+}
+
+/// `growth_rate` of the template with the classifier changed by `f`.
+fn growth(f: impl FnOnce(&mut Classifier)) -> Result<(), Error> {
+    let mut c = classifier();
+    f(&mut c);
+    growth_rate(&template(), &c).map(|_| ())
+}
+
+/// The plane ω0 ∈ {1} × r ∈ [0.5, 1].
+fn oscillation_plane() -> OscillationPlane {
+    OscillationPlane::new(&template(), ("omega0", vec![1.0]), ("r", 0.5, 1.0)).unwrap()
 }
 
 /// Every row. Where a hostile value is legitimately allowed the row's `accepts` says so and the
@@ -631,6 +805,754 @@ fn rows() -> Vec<Row> {
         row!("probe_memory", "steps", "steps", Count, |v| v <= 1e8, |v| {
             probe_memory(0.9, 0.01, count(v)).map(|_| ())
         }),
+        // ---- engine::Problem and Oscillator (the wall is on: U(0) ≥ 0)
+        // U(0) = 0 is allowed (at the wall)
+        row!(
+            "Problem::with_start",
+            "u0",
+            "u0",
+            Real,
+            |v| (0.0..1e8).contains(&v),
+            |v| problem().with_start(v, 0.0).map(|_| ())
+        ),
+        // U̇(0) = 0 and negative U̇(0) are allowed
+        row!(
+            "Problem::with_start",
+            "v0",
+            "v0",
+            Real,
+            |v| v.abs() < 1e8,
+            |v| problem().with_start(1.0, v).map(|_| ())
+        ),
+        // an infinite bound (never a blow-up) and a huge one are allowed
+        row!(
+            "Problem::with_blow_up",
+            "blow_up",
+            "blow_up",
+            Real,
+            |v| v > 1.0,
+            |v| problem().with_blow_up(v).map(|_| ())
+        ),
+        row!("Oscillator::new", "lambda", "lambda", Real, unit, |v| {
+            let mut p = noisy();
+            p.set("lambda", v)?;
+            Oscillator::new(&p).map(|_| ())
+        }),
+        row!(
+            "Problem::with_params",
+            "mu0",
+            "mu0",
+            Real,
+            |v| v > 0.0 && v <= 1e3,
+            |v| {
+                let mut p = noisy();
+                p.set("mu0", v)?;
+                problem().with_params(&p).map(|_| ())
+            }
+        ),
+        // ---- engine: the method, the options, the stepper, the drivers
+        row!(
+            "simulate (PredictorCorrector)",
+            "dt",
+            "dt",
+            Real,
+            |v| v > 0.0 && v <= 1e3,
+            |v| sim(|m, _| m.dt = v)
+        ),
+        row!(
+            "simulate (Memory::SumOfExponentials)",
+            "tolerance",
+            "tolerance",
+            Real,
+            |v| v > 1e-15 && v < 1e-2,
+            |v| sim(|m, _| m.memory = soe(v))
+        ),
+        row!(
+            "simulate (PredictorCorrector)",
+            "window",
+            "window",
+            Count,
+            |v| (2.0..=4096.0).contains(&v),
+            |v| sim(|m, _| m.window = count(v))
+        ),
+        row!(
+            "simulate (Options)",
+            "t_end",
+            "t_end",
+            Real,
+            |v| v == 1.0,
+            |v| { sim(|_, o| o.t_end = v) }
+        ),
+        // any k ≥ 1 is allowed (a huge k records the start only)
+        row!(
+            "simulate (Options)",
+            "record_every",
+            "every",
+            Count,
+            |v| v >= 1.0,
+            |v| sim(|_, o| o.record_every = count(v))
+        ),
+        // 0 periods is allowed: the amplitude of the last node
+        row!(
+            "simulate (Options)",
+            "amplitude_periods",
+            "amplitude_periods",
+            Real,
+            |v| (0.0..=1e6).contains(&v),
+            |v| sim(|_, o| o.amplitude_periods = v)
+        ),
+        row!(
+            "simulate_with",
+            "dt",
+            "dt",
+            Real,
+            |v| v > 0.0 && v <= 1e3,
+            |v| {
+                let m = PredictorCorrector { dt: v, ..method() };
+                let o = Options {
+                    t_end: 1.0,
+                    ..Default::default()
+                };
+                simulate_with(&problem(), &m, &o, &Silent).map(|_| ())
+            }
+        ),
+        // no paths is an empty ensemble
+        row!(
+            "simulate_ensemble",
+            "paths",
+            "paths",
+            Count,
+            |v| v <= 1e6,
+            |v| {
+                let o = Options {
+                    t_end: 1.0,
+                    ..Default::default()
+                };
+                simulate_ensemble(&problem(), &method(), &o, count(v)).map(|_| ())
+            }
+        ),
+        row!(
+            "simulate_ensemble",
+            "tolerance",
+            "tolerance",
+            Real,
+            |v| v > 1e-15 && v < 1e-2,
+            |v| {
+                let m = PredictorCorrector {
+                    memory: soe(v),
+                    ..method()
+                };
+                let o = Options {
+                    t_end: 1.0,
+                    ..Default::default()
+                };
+                simulate_ensemble(&problem(), &m, &o, 2).map(|_| ())
+            }
+        ),
+        // a horizon of 0 is allowed (a stepper to look at its start)
+        row!(
+            "Stepper::new",
+            "horizon",
+            "horizon",
+            Real,
+            |v| v >= 0.0 && v / 0.05 <= 1e7,
+            |v| Stepper::new(&problem(), &method(), (1, 0), v).map(|_| ())
+        ),
+        row!(
+            "Stepper::new",
+            "dt",
+            "dt",
+            Real,
+            |v| v > 0.0 && v <= 1e3,
+            |v| {
+                let m = PredictorCorrector { dt: v, ..method() };
+                Stepper::new(&problem(), &m, (1, 0), 1.0).map(|_| ())
+            }
+        ),
+        // no steps is allowed
+        row!("run", "steps", "steps", Count, |v| v <= 1e11, |v| {
+            let mut s = Stepper::new(&problem(), &method(), (1, 0), 1.0)?;
+            run_path(
+                &mut s,
+                count(v) as u64,
+                &mut |_: &Stepper| Flow::Continue,
+                &Silent,
+            )
+            .map(|_| ())
+        }),
+        row!(
+            "TrajectoryRecorder::new",
+            "steps",
+            "steps",
+            Count,
+            |v| v < 1e8,
+            |v| {
+                let o = Options::default();
+                TrajectoryRecorder::new(problem().oscillator(), &o, count(v) as u64, 0.05)
+                    .map(|_| ())
+            }
+        ),
+        row!(
+            "TrajectoryRecorder::new",
+            "dt",
+            "dt",
+            Real,
+            |v| v > 0.0 && v <= 1e3,
+            |v| TrajectoryRecorder::new(problem().oscillator(), &Options::default(), 20, v)
+                .map(|_| ())
+        ),
+        // a contraction by any factor returns promptly: a non-finite or negative one is refused
+        // (false), never applied
+        row!("Stepper::contract_toward", "c", "", Total, anything, |v| {
+            let a = Stepper::new(&problem(), &method(), (1, 0), 1.0)?;
+            let mut b = a.clone();
+            total(b.contract_toward(&a, v))
+        }),
+        // ---- engine::noise: the streams take any finite step, intensity and correlation time
+        row!("NoiseStream::new", "dt", "dt", Real, positive, |v| {
+            NoiseStream::new(Noise::White { intensity: 0.1 }, v, 1, 0).map(|_| ())
+        }),
+        // D = 0 is allowed: no forcing
+        row!(
+            "NoiseStream::new (white)",
+            "intensity",
+            "D",
+            Real,
+            |v| v >= 0.0 && v.is_finite(),
+            |v| NoiseStream::new(Noise::White { intensity: v }, 0.01, 1, 0).map(|_| ())
+        ),
+        row!(
+            "NoiseStream::new (coloured)",
+            "correlation_time",
+            "tau",
+            Real,
+            positive,
+            |v| {
+                let kind = Noise::Colored {
+                    intensity: 0.1,
+                    correlation_time: v,
+                };
+                NoiseStream::new(kind, 0.01, 1, 0).map(|_| ())
+            }
+        ),
+        // ---- analysis::ensemble: every field of the spec, the pieces, the merge
+        row!(
+            "run_ensemble (EnsembleSpec)",
+            "paths",
+            "paths",
+            Count,
+            |v| (1.0..=1e6).contains(&v),
+            |v| ens(|s| s.paths = count(v))
+        ),
+        // no burn-in is allowed
+        row!(
+            "run_ensemble (EnsembleSpec)",
+            "burn_in",
+            "burn_in",
+            Real,
+            |v| v == 0.0,
+            |v| ens(|s| s.burn_in = v)
+        ),
+        row!(
+            "run_ensemble (EnsembleSpec)",
+            "length",
+            "t_end",
+            Real,
+            |v| v == 1.0,
+            |v| ens(|s| s.length = v)
+        ),
+        row!(
+            "run_ensemble (EnsembleSpec)",
+            "sample_every",
+            "sample_every",
+            Count,
+            |v| v == 1.0,
+            |v| ens(|s| s.sample_every = count(v) as u64)
+        ),
+        row!(
+            "run_ensemble (EnsembleSpec)",
+            "bins",
+            "bins",
+            Count,
+            |v| (2.0..=1e4).contains(&v),
+            |v| ens(|s| s.bins = count(v))
+        ),
+        row!(
+            "run_ensemble (EnsembleSpec)",
+            "joint_bins",
+            "joint_bins",
+            Count,
+            |v| (2.0..=1e3).contains(&v),
+            |v| ens(|s| s.joint_bins = count(v))
+        ),
+        row!(
+            "run_ensemble (EnsembleSpec)",
+            "amplitude_max",
+            "amplitude_max",
+            Real,
+            |v| v > 0.0 && v <= 1e6,
+            |v| ens(|s| s.amplitude_max = v)
+        ),
+        row!(
+            "run_ensemble (EnsembleSpec)",
+            "batches",
+            "batches",
+            Count,
+            |v| v == 4.0,
+            |v| ens(|s| s.batches = count(v))
+        ),
+        // a last mode far out (1e300) is allowed: a well nobody reaches
+        row!(
+            "run_ensemble (EnsembleSpec::wells)",
+            "mode",
+            "wells",
+            Real,
+            |v| v.is_finite() && v > 2.0,
+            |v| ens(|s| s.wells = Some(Wells {
+                modes: vec![1.0, v],
+                antimodes: vec![2.0],
+            }))
+        ),
+        row!(
+            "run_ensemble (PredictorCorrector)",
+            "dt",
+            "dt",
+            Real,
+            |v| v > 0.0 && v <= 1e3,
+            |v| {
+                let m = PredictorCorrector { dt: v, ..method() };
+                run_ensemble(&problem(), &m, &ensemble_spec(), &Silent).map(|_| ())
+            }
+        ),
+        // index 0 of two paths is allowed
+        row!(
+            "ensemble::run_paths",
+            "index",
+            "paths",
+            Count,
+            |v| v < 2.0,
+            |v| ensemble::run_paths(
+                &problem(),
+                &method(),
+                &ensemble_spec(),
+                &[count(v) as u64],
+                &Silent
+            )
+            .map(|_| ())
+        ),
+        row!(
+            "ensemble::run_paths",
+            "index (after path 0)",
+            "paths",
+            Count,
+            |v| v == 1.0,
+            |v| ensemble::run_paths(
+                &problem(),
+                &method(),
+                &ensemble_spec(),
+                &[0, count(v) as u64],
+                &Silent
+            )
+            .map(|_| ())
+        ),
+        row!(
+            "ensemble::merge",
+            "path index",
+            "paths",
+            Count,
+            |v| v == 1.0,
+            |v| {
+                let mut stats = ensemble_stats();
+                stats[1].path = count(v) as u64;
+                ensemble::merge(&problem(), &method(), &ensemble_spec(), stats).map(|_| ())
+            }
+        ),
+        row!(
+            "ensemble::merge",
+            "amplitude_max",
+            "amplitude_max",
+            Real,
+            |v| v == 10.0,
+            |v| {
+                let spec = EnsembleSpec {
+                    amplitude_max: v,
+                    ..ensemble_spec()
+                };
+                ensemble::merge(&problem(), &method(), &spec, ensemble_stats()).map(|_| ())
+            }
+        ),
+        // ---- analysis::lyapunov: every field of the spec, Δt, the pieces, the critical noise
+        row!(
+            "largest_lyapunov (LyapunovSpec)",
+            "paths",
+            "paths",
+            Count,
+            |v| (1.0..=1e5).contains(&v),
+            |v| lle(|s, _| s.paths = count(v))
+        ),
+        // no transient is allowed
+        row!(
+            "largest_lyapunov (LyapunovSpec)",
+            "transient",
+            "transient",
+            Real,
+            |v| v == 0.0,
+            |v| lle(|s, _| s.transient = v)
+        ),
+        row!(
+            "largest_lyapunov (LyapunovSpec)",
+            "length",
+            "t_end",
+            Real,
+            |v| v == 1.0,
+            |v| lle(|s, _| s.length = v)
+        ),
+        row!(
+            "largest_lyapunov (LyapunovSpec)",
+            "renormalise_every",
+            "renormalise_every",
+            Count,
+            |v| (1.0..=10.0).contains(&v),
+            |v| lle(|s, _| s.renormalise_every = count(v) as u64)
+        ),
+        row!(
+            "largest_lyapunov (LyapunovSpec)",
+            "separation",
+            "separation",
+            Real,
+            |v| (1e-12..=1e-4).contains(&v),
+            |v| lle(|s, _| s.separation = v)
+        ),
+        row!(
+            "largest_lyapunov (LyapunovSpec)",
+            "running_points",
+            "running_points",
+            Count,
+            |v| (1.0..=1e5).contains(&v),
+            |v| lle(|s, _| s.running_points = count(v))
+        ),
+        row!(
+            "largest_lyapunov (PredictorCorrector)",
+            "dt",
+            "dt",
+            Real,
+            |v| (1e-4..=0.1).contains(&v),
+            |v| lle(|_, m| m.dt = v)
+        ),
+        row!(
+            "largest_lyapunov (Memory::SumOfExponentials)",
+            "tolerance",
+            "tolerance",
+            Real,
+            |v| v > 1e-15 && v < 1e-2,
+            |v| lle(|_, m| m.memory = soe(v))
+        ),
+        row!(
+            "lyapunov::run_paths",
+            "index",
+            "paths",
+            Count,
+            |v| v < 2.0,
+            |v| lyapunov::run_paths(
+                &problem(),
+                &method(),
+                &lyapunov_spec(),
+                &[count(v) as u64],
+                &Silent
+            )
+            .map(|_| ())
+        ),
+        row!(
+            "lyapunov::run_paths",
+            "index (after path 0)",
+            "paths",
+            Count,
+            |v| v == 1.0,
+            |v| lyapunov::run_paths(
+                &problem(),
+                &method(),
+                &lyapunov_spec(),
+                &[0, count(v) as u64],
+                &Silent
+            )
+            .map(|_| ())
+        ),
+        row!(
+            "lyapunov::merge",
+            "path index",
+            "paths",
+            Count,
+            |v| v == 1.0,
+            |v| {
+                let mut runs = lyapunov_runs();
+                runs[1].exponent.path = count(v) as u64;
+                lyapunov::merge(&lyapunov_spec(), runs).map(|_| ())
+            }
+        ),
+        row!(
+            "lyapunov::merge",
+            "separation",
+            "separation",
+            Real,
+            |v| (1e-12..=1e-4).contains(&v),
+            |v| {
+                let spec = LyapunovSpec {
+                    separation: v,
+                    ..lyapunov_spec()
+                };
+                lyapunov::merge(&spec, lyapunov_runs()).map(|_| ())
+            }
+        ),
+        // D_lo = 0 (no noise) is allowed
+        row!(
+            "critical_noise (CriticalSearch)",
+            "d_lo",
+            "d_lo",
+            Real,
+            |v| (0.0..0.1).contains(&v),
+            |v| critical(|s| s.d_lo = v)
+        ),
+        row!(
+            "critical_noise (CriticalSearch)",
+            "d_hi",
+            "d_hi",
+            Real,
+            |v| v > 0.0 && v <= 1e6,
+            |v| critical(|s| s.d_hi = v)
+        ),
+        row!(
+            "critical_noise (CriticalSearch)",
+            "grid",
+            "grid",
+            Count,
+            |v| (2.0..=1e3).contains(&v),
+            |v| critical(|s| s.grid = count(v))
+        ),
+        // no bisection is allowed
+        row!(
+            "critical_noise (CriticalSearch)",
+            "refinements",
+            "refinements",
+            Count,
+            |v| v <= 60.0,
+            |v| critical(|s| s.refinements = count(v))
+        ),
+        // z = 0 is allowed (every nonzero LLE is significant)
+        row!(
+            "critical_noise (CriticalSearch)",
+            "z",
+            "z",
+            Real,
+            |v| (0.0..=10.0).contains(&v),
+            |v| critical(|s| s.z = v)
+        ),
+        row!(
+            "critical_noise (LyapunovSpec)",
+            "separation",
+            "separation",
+            Real,
+            |v| (1e-12..=1e-4).contains(&v),
+            |v| {
+                let spec = LyapunovSpec {
+                    separation: v,
+                    ..lyapunov_spec()
+                };
+                let search = CriticalSearch {
+                    grid: 2,
+                    refinements: 0,
+                    ..Default::default()
+                };
+                critical_noise(&problem(), &method(), &spec, &search, &Silent).map(|_| ())
+            }
+        ),
+        // ---- analysis::oscillation: the plane, the classifier, the search, the drivers
+        row!(
+            "oscillation::Plane::new",
+            "abscissa",
+            "omega0",
+            Real,
+            |v| (1e-6..=1e3).contains(&v),
+            |v| OscillationPlane::new(&template(), ("omega0", vec![v]), ("r", 0.5, 1.0))
+                .map(|_| ())
+        ),
+        // r = 0 is allowed: a perfectly plastic wall
+        row!(
+            "oscillation::Plane::new",
+            "y lo",
+            "r",
+            Real,
+            |v| (0.0..1.0).contains(&v),
+            |v| OscillationPlane::new(&template(), ("omega0", vec![1.0]), ("r", v, 1.0))
+                .map(|_| ())
+        ),
+        row!(
+            "oscillation::Plane::new",
+            "y hi",
+            "r",
+            Real,
+            |v| v > 0.5 && v <= 1.0,
+            |v| OscillationPlane::new(&template(), ("omega0", vec![1.0]), ("r", 0.5, v))
+                .map(|_| ())
+        ),
+        row!(
+            "growth_rate (Classifier)",
+            "dt",
+            "dt",
+            Real,
+            |v| (1e-4..=0.1).contains(&v),
+            |v| growth(|c| c.method.dt = v)
+        ),
+        row!(
+            "growth_rate (Classifier)",
+            "tolerance",
+            "tolerance",
+            Real,
+            |v| v > 1e-15 && v < 1e-2,
+            |v| growth(|c| c.method.memory = soe(v))
+        ),
+        row!(
+            "growth_rate (Classifier)",
+            "amplitude",
+            "amplitude",
+            Real,
+            |v| v > 0.0 && v <= 1e-3,
+            |v| growth(|c| c.amplitude = v)
+        ),
+        // no settling is allowed
+        row!(
+            "growth_rate (Classifier)",
+            "settle_periods",
+            "settle_periods",
+            Real,
+            |v| (0.0..=2.0).contains(&v),
+            |v| growth(|c| c.settle_periods = v)
+        ),
+        row!(
+            "growth_rate (Classifier)",
+            "min_periods",
+            "min_periods",
+            Real,
+            |v| (1.0..=2.0).contains(&v),
+            |v| growth(|c| c.min_periods = v)
+        ),
+        row!(
+            "growth_rate (Classifier)",
+            "max_periods",
+            "max_periods",
+            Real,
+            |v| (2.0..=1e4).contains(&v),
+            |v| growth(|c| c.max_periods = v)
+        ),
+        row!(
+            "growth_rate (Classifier)",
+            "clarity",
+            "clarity",
+            Real,
+            |v| v > 0.0 && v <= 1e6,
+            |v| growth(|c| c.clarity = v)
+        ),
+        row!(
+            "growth_rate (Classifier)",
+            "agreement",
+            "agreement",
+            Real,
+            unit,
+            |v| growth(|c| c.agreement = v)
+        ),
+        // only the noise-free system has an oscillation boundary: D = 0 only
+        row!("growth_rate", "D", "D", Real, |v| v == 0.0, |v| {
+            let p = Params::default().with("D", v)?;
+            growth_rate(&Problem::from_params(&p)?, &classifier()).map(|_| ())
+        }),
+        row!(
+            "boundary (Search)",
+            "tolerance",
+            "tolerance",
+            Real,
+            |v| v > 0.0 && v <= 0.1,
+            |v| {
+                let search = Search {
+                    tolerance: v,
+                    ..Default::default()
+                };
+                boundary(&oscillation_plane(), &Method::Exact, &search, &Silent).map(|_| ())
+            }
+        ),
+        row!(
+            "boundary (Method::Simulation)",
+            "amplitude",
+            "amplitude",
+            Real,
+            |v| v > 0.0 && v <= 1e-3,
+            |v| {
+                let c = Classifier {
+                    amplitude: v,
+                    ..classifier()
+                };
+                let m = Method::Simulation(c);
+                boundary(&oscillation_plane(), &m, &Search::default(), &Silent).map(|_| ())
+            }
+        ),
+        row!(
+            "boundary (Plane::y_range)",
+            "y lo",
+            "r",
+            Real,
+            |v| (0.0..1.0).contains(&v),
+            |v| {
+                let mut plane = oscillation_plane();
+                plane.y_range.0 = v;
+                boundary(&plane, &Method::Exact, &Search::default(), &Silent).map(|_| ())
+            }
+        ),
+        // r = 0 is allowed: a perfectly plastic wall
+        row!(
+            "classify_plane",
+            "y",
+            "r",
+            Real,
+            |v| (0.0..=1.0).contains(&v),
+            |v| classify_plane(
+                &oscillation_plane(),
+                &[0.9, v],
+                &Method::Averaging(Variant::Paper),
+                &Silent
+            )
+            .map(|_| ())
+        ),
+        row!(
+            "classify_plane (Method::Simulation)",
+            "dt",
+            "dt",
+            Real,
+            |v| (1e-4..=0.1).contains(&v),
+            |v| {
+                let mut c = classifier();
+                c.method.dt = v;
+                classify_plane(
+                    &oscillation_plane(),
+                    &[0.9],
+                    &Method::Simulation(c),
+                    &Silent,
+                )
+                .map(|_| ())
+            }
+        ),
+        row!("margin", "mu0", "mu0", Real, |v| v > 0.0 && v <= 1e3, |v| {
+            let mut p = Params::default();
+            p.set("mu0", v)?;
+            margin(&p, Barrier::Off, &Method::Exact).map(|_| ())
+        }),
+        row!("averaging_mu0", "lambda", "", Total, anything, |v| {
+            let mut p = Params::default();
+            p.set("lambda", v)?;
+            total(averaging_mu0(&p, Barrier::On, Variant::Paper))
+        }),
+        row!("exact_mu0", "lambda", "", Total, anything, |v| {
+            let mut p = Params::default();
+            p.set("lambda", v)?;
+            total(exact_mu0(&p, Barrier::Off))
+        }),
         // ---- analysis::recurrence and versus
         row!(
             "RecurrenceMatrix::new",
@@ -654,6 +1576,19 @@ fn rows() -> Vec<Row> {
                 total(
                     RecurrenceMatrix::new(&x, &x, RecurrenceThreshold(0.1))?.determinism(count(v)),
                 )
+            }
+        ),
+        // a last edge far out (1e300) is allowed: an empty last bin
+        row!(
+            "compare (EnsembleResult)",
+            "last edge",
+            "edges",
+            Real,
+            |v| v.is_finite() && v > 7.5,
+            |v| {
+                let mut result = ensemble_result();
+                *result.amplitude.edges.last_mut().unwrap() = v;
+                compare(&result, &Theory::new(&noisy(), Variant::Paper)?, 1).map(|_| ())
             }
         ),
         row!("escape_time", "sigma1", "", Total, anything, |v| total(
@@ -708,6 +1643,9 @@ fn judge(row: &Row, v: f64) -> Option<String> {
     };
     let (outcome, took) = run(row.call, v);
     let at = format!("{}({} = {v:e})", row.entry, row.arg);
+    if std::env::var_os("HOSTILE_VERBOSE").is_some() {
+        eprintln!("{at} [{took:?}]: {outcome:?}");
+    }
     match outcome {
         Outcome::Panicked => Some(format!("{at} panicked")),
         Outcome::Hung => Some(format!("{at} took more than {LIMIT:?}")),
@@ -747,6 +1685,7 @@ fn every_argument_refuses_hostile_values_by_name_promptly() {
             failures.extend(judge(row, v));
         }
     }
+    eprintln!("{} rows, {calls} calls", table.len());
     assert!(
         failures.is_empty(),
         "{} of {calls} calls misbehaved:\n{}",
@@ -766,6 +1705,16 @@ fn valid_calls_of_the_table_succeed() {
         ("SoeKernel::new", "tolerance", 1e-8),
         ("mittag_leffler", "z", -2.0),
         ("RecurrenceMatrix::new", "epsilon", 0.2),
+        ("simulate (PredictorCorrector)", "dt", 0.05),
+        ("simulate_ensemble", "paths", 2.0),
+        ("run", "steps", 10.0),
+        ("run_ensemble (EnsembleSpec)", "burn_in", 0.5),
+        ("largest_lyapunov (LyapunovSpec)", "transient", 0.5),
+        ("critical_noise (CriticalSearch)", "z", 2.0),
+        ("growth_rate (Classifier)", "settle_periods", 1.0),
+        ("boundary (Search)", "tolerance", 0.01),
+        ("classify_plane", "y", 0.7),
+        ("compare (EnsembleResult)", "last edge", 10.0),
     ];
     let table = rows();
     for &(entry, arg, v) in typical {
@@ -786,6 +1735,39 @@ fn the_recurrence_matrix_refuses_more_points_than_it_can_hold() {
     let x = vec![0.0; n];
     let e = RecurrenceMatrix::new(&x, &x, RecurrenceThreshold(0.1)).unwrap_err();
     assert!(e.to_string().contains("points"), "{e}");
+}
+
+#[test]
+fn sizes_that_cannot_be_built_in_a_row_are_refused_too() {
+    // more abscissae than a plane holds: refused by count before any is checked
+    let x = vec![1.0; trirhythm::analysis::oscillation::MAX_ABSCISSAE + 1];
+    let e = OscillationPlane::new(&template(), ("omega0", x), ("r", 0.5, 1.0)).unwrap_err();
+    assert!(e.to_string().contains("omega0"), "{e}");
+    // more cells than a classification holds
+    let ys = vec![0.9; trirhythm::analysis::oscillation::MAX_CELLS + 1];
+    let e = classify_plane(&oscillation_plane(), &ys, &Method::Exact, &Silent).unwrap_err();
+    assert!(e.to_string().contains("points"), "{e}");
+    // a direct memory longer than it can hold
+    let o = Options {
+        t_end: 1e6,
+        ..Default::default()
+    };
+    let e = simulate(&problem(), &method(), &o).unwrap_err();
+    assert!(e.to_string().contains("direct memory"), "{e}");
+    // more wells than the statistics hold
+    let n = ensemble::MAX_WELLS + 1;
+    let modes: Vec<f64> = (0..n).map(|i| 2.0 * i as f64).collect();
+    let antimodes: Vec<f64> = (1..n).map(|i| 2.0 * i as f64 - 1.0).collect();
+    let e = Wells::new(modes, antimodes).unwrap_err();
+    assert!(e.to_string().contains("wells"), "{e}");
+    // statistics of all paths beyond the bound
+    let spec = EnsembleSpec {
+        paths: 1_000_000,
+        joint_bins: 1000,
+        ..ensemble_spec()
+    };
+    let e = run_ensemble(&problem(), &method(), &spec, &Silent).unwrap_err();
+    assert!(e.to_string().contains("paths"), "{e}");
 }
 
 proptest! {

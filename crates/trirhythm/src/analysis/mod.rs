@@ -16,8 +16,8 @@ pub use lyapunov::{
     critical_noise, largest_lyapunov, CriticalNoise, CriticalSearch, LyapunovResult, LyapunovSpec,
 };
 pub use oscillation::{
-    boundary, classify_plane, growth_rate, Boundary, BoundaryPoint, Classifier, Growth, Plane,
-    Search,
+    boundary, classify_plane, growth_rate, Boundary, BoundaryPoint, Classifier, Growth, Method,
+    Plane, Search,
 };
 pub use recurrence::{RecurrenceMatrix, RecurrenceThreshold};
 pub use versus::{compare, escape_time, theory_layout, TheoryComparison, TheoryLayout};

@@ -34,6 +34,7 @@
 //! rule counts and rejects modes as stated.
 
 use super::ensemble::{EnsembleResult, Estimate, Wells};
+use crate::error::Error;
 use crate::theory::averaging::{AmplitudePdf, Theory};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -198,12 +199,60 @@ fn probabilities(counts: &[u64]) -> Vec<f64> {
         .collect()
 }
 
+/// Whether `result` has the shape of an ensemble's result (its fields are public): amplitude
+/// edges finite, ≥ 0 and ascending, one count per bin and beyond in every unit, valid wells and
+/// passages between them.
+fn check_result(result: &EnsembleResult) -> crate::Result<()> {
+    let edges = &result.amplitude.edges;
+    let nb = edges.len().saturating_sub(1);
+    if !(1..=super::ensemble::MAX_BINS).contains(&nb) {
+        return Err(Error::invalid(
+            "edges",
+            edges.len() as f64,
+            "2 to 10001 amplitude edges",
+        ));
+    }
+    if let Some(k) = (0..edges.len()).find(|&k| {
+        !(edges[k].is_finite() && edges[k] >= 0.0 && (k == 0 || edges[k] > edges[k - 1]))
+    }) {
+        return Err(Error::invalid(
+            "edges",
+            edges[k],
+            "amplitude edges finite, ≥ 0 and ascending",
+        ));
+    }
+    if let Some(u) = result.per_path_amplitude.iter().find(|u| u.len() != nb + 1) {
+        return Err(Error::invalid(
+            "per_path_amplitude",
+            u.len() as f64,
+            format!("{} counts per unit (the bins and the count beyond)", nb + 1),
+        ));
+    }
+    if let Some(w) = &result.wells {
+        w.validate()?;
+        if let Some(p) = result
+            .passages
+            .iter()
+            .find(|p| p.from >= w.len() || p.to >= w.len())
+        {
+            return Err(Error::invalid(
+                "passages",
+                p.from.max(p.to) as f64,
+                format!("wells 0..{}", w.len()),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Compare `result` with the theory (its PDF computed here); `seed` drives the bootstrap.
+/// `result` is checked first (edges, units, wells: its fields are public).
 pub fn compare(
     result: &EnsembleResult,
     theory: &Theory,
     seed: u64,
 ) -> crate::Result<TheoryComparison> {
+    check_result(result)?;
     let pdf = theory.amplitude_pdf()?;
     let edges = &result.amplitude.edges;
     let nb = edges.len() - 1;

@@ -33,7 +33,9 @@
 //! # Ok::<(), trirhythm::Error>(())
 //! ```
 
-use super::problem::{Options, Oscillator, PredictorCorrector, Problem};
+use super::problem::{
+    Options, Oscillator, PredictorCorrector, Problem, MAX_AMPLITUDE_PERIODS, MAX_DT,
+};
 use super::stepper::{fresh_history, Impact, Stepper};
 use crate::error::{Error, Result};
 use crate::monitor::{Monitor, Silent};
@@ -63,13 +65,20 @@ impl<F: FnMut(&Stepper) -> Flow> Observer for F {
 /// Step `path` up to `steps` times, showing the start and every step to `observer`; returns
 /// the number of steps taken (fewer when the observer stopped the path). `monitor` hears the
 /// steps done about a thousand times, and is asked as often whether to stop
-/// ([`Error::Cancelled`]).
+/// ([`Error::Cancelled`]). `steps` is at most [`MAX_STEPS`].
 pub fn run(
     path: &mut Stepper,
     steps: u64,
     observer: &mut impl Observer,
     monitor: &dyn Monitor,
 ) -> Result<u64> {
+    if steps > MAX_STEPS {
+        return Err(Error::invalid(
+            "steps",
+            steps as f64,
+            format!("0 to {MAX_STEPS:e}"),
+        ));
+    }
     if observer.observe(path) == Flow::Stop {
         return Ok(0);
     }
@@ -136,8 +145,51 @@ impl Options {
         whole_steps("t_end", self.t_end, dt, false)
     }
 
+    /// Check the options for `method` (validated too) and return the number of steps: T a
+    /// whole number of steps ([`Options::steps`]), `record_every` ≥ 1 keeping at most
+    /// [`MAX_KEPT_SAMPLES`] nodes, `amplitude_periods` in [0, [`MAX_AMPLITUDE_PERIODS`]].
+    pub fn validate(&self, method: &PredictorCorrector) -> Result<u64> {
+        method.validate()?;
+        let steps = self.steps(method.dt)?;
+        self.check_recording(steps)?;
+        Ok(steps)
+    }
+
+    /// The recording options for a path of `steps` steps.
+    fn check_recording(&self, steps: u64) -> Result<()> {
+        if self.record_every == 0 {
+            return Err(Error::invalid("every", 0.0, "1 or more"));
+        }
+        let every = self.record_every as u64;
+        if steps / every + 1 > MAX_KEPT_SAMPLES {
+            return Err(Error::invalid(
+                "every",
+                every as f64,
+                format!(
+                    "{} or more for {steps} steps (at most {MAX_KEPT_SAMPLES:e} samples are kept)",
+                    steps / (MAX_KEPT_SAMPLES - 1) + 1
+                ),
+            ));
+        }
+        let periods = self.amplitude_periods;
+        if !(0.0..=MAX_AMPLITUDE_PERIODS).contains(&periods) {
+            return Err(Error::invalid(
+                "amplitude_periods",
+                periods,
+                "[0, 1e6] periods",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Nodes a trajectory of `steps` steps keeps.
+    fn kept(&self, steps: u64) -> u64 {
+        steps / self.record_every.max(1) as u64 + 1
+    }
+
     /// A stepper for these options' path of `problem`, its memory certified up to T.
     pub fn stepper(&self, problem: &Problem, method: &PredictorCorrector) -> Result<Stepper> {
+        method.validate()?;
         let steps = self.steps(method.dt)?;
         Stepper::new(
             problem,
@@ -156,8 +208,11 @@ fn tidy(x: f64) -> crate::error::Exact {
 
 /// Most steps of one path (at 10⁷ steps/s, three hours).
 pub const MAX_STEPS: u64 = 100_000_000_000;
-/// Most nodes a [`TrajectoryRecorder`] keeps in memory (four columns: 3.2 GB).
+/// Most nodes a [`TrajectoryRecorder`] keeps in memory (four columns: 3.2 GB), and most
+/// nodes of all the trajectories of one [`simulate_ensemble`].
 pub const MAX_KEPT_SAMPLES: u64 = 100_000_000;
+/// Most paths of one ensemble ([`simulate_ensemble`] and the ensembles of the analysis).
+pub const MAX_PATHS: usize = 1_000_000;
 
 /// Records a [`Trajectory`]: every `record_every`-th node, the impacts when asked for, and
 /// the mean amplitude over the last periods.
@@ -177,24 +232,23 @@ pub struct TrajectoryRecorder {
 }
 
 impl TrajectoryRecorder {
-    /// A recorder for `options` on `oscillator` (capacity for `steps` steps).
+    /// A recorder for `options` on `oscillator` (capacity for `steps` steps of Δt = `dt`, at
+    /// most [`MAX_STEPS`] steps, Δt in (0, [`MAX_DT`]]); the recording options are checked
+    /// as by [`Options::validate`].
     pub fn new(oscillator: &Oscillator, options: &Options, steps: u64, dt: f64) -> Result<Self> {
-        if options.record_every == 0 {
-            return Err(Error::invalid("every", 0.0, "1 or more"));
+        if !(dt > 0.0 && dt <= MAX_DT) {
+            return Err(Error::invalid("dt", dt, "(0, 1e3]"));
         }
-        let every = options.record_every as u64;
-        let kept = steps / every + 1;
-        if kept > MAX_KEPT_SAMPLES {
+        if steps > MAX_STEPS {
             return Err(Error::invalid(
-                "every",
-                every as f64,
-                format!(
-                    "{} or more for {steps} steps (at most {MAX_KEPT_SAMPLES:e} samples are kept)",
-                    steps / (MAX_KEPT_SAMPLES - 1) + 1
-                ),
+                "steps",
+                steps as f64,
+                format!("0 to {MAX_STEPS:e}"),
             ));
         }
-        let cap = (kept + 1) as usize;
+        options.check_recording(steps)?;
+        let every = options.record_every as u64;
+        let cap = (options.kept(steps) + 1) as usize;
         let has_noise = !oscillator.noise().is_none();
         let omega1 = oscillator.equivalents().omega1;
         let t_end = steps as f64 * dt;
@@ -289,7 +343,7 @@ pub fn simulate_with(
     options: &Options,
     monitor: &dyn Monitor,
 ) -> Result<Trajectory> {
-    let steps = options.steps(method.dt)?;
+    let steps = options.validate(method)?;
     let mut recorder = TrajectoryRecorder::new(problem.oscillator(), options, steps, method.dt)?;
     let mut stepper = options.stepper(problem, method)?;
     run(&mut stepper, steps, &mut recorder, monitor)?;
@@ -298,19 +352,33 @@ pub fn simulate_with(
 
 /// Simulate paths 0..`paths` of `options.seed` in parallel (`options.path` is not used). Path
 /// i depends only on (seed, i), so the result is bit-identical whatever the number of threads.
+/// `paths` is at most [`MAX_PATHS`], and all the trajectories together keep at most
+/// [`MAX_KEPT_SAMPLES`] nodes; no paths is an empty ensemble.
 pub fn simulate_ensemble(
     problem: &Problem,
     method: &PredictorCorrector,
     options: &Options,
     paths: usize,
 ) -> Result<Vec<Trajectory>> {
+    let steps = options.validate(method)?;
+    let kept = options.kept(steps) as f64 * paths as f64;
+    if paths > MAX_PATHS || kept > MAX_KEPT_SAMPLES as f64 {
+        return Err(Error::invalid(
+            "paths",
+            paths as f64,
+            format!(
+                "0 to {} (at most {MAX_PATHS} paths keeping {MAX_KEPT_SAMPLES:e} nodes in all; \
+                 {} each here)",
+                MAX_PATHS.min((MAX_KEPT_SAMPLES / options.kept(steps)) as usize),
+                options.kept(steps)
+            ),
+        ));
+    }
     if paths == 0 {
         return Ok(vec![]);
     }
-    let steps = options.steps(method.dt)?;
     let osc = problem.oscillator();
-    // validate once, and build (and verify) the SOE kernel once for all paths
-    TrajectoryRecorder::new(osc, options, 0, method.dt)?;
+    // build (and verify) the SOE kernel once for all paths
     let history = fresh_history(problem, method, steps as f64 * method.dt)?;
     (0..paths as u64)
         .into_par_iter()

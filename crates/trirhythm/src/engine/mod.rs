@@ -26,12 +26,15 @@ mod stepper;
 pub(crate) use drivers::whole_steps;
 pub use drivers::{
     run, simulate, simulate_ensemble, simulate_with, Flow, Observer, Trajectory,
-    TrajectoryRecorder, MAX_KEPT_SAMPLES, MAX_STEPS,
+    TrajectoryRecorder, MAX_KEPT_SAMPLES, MAX_PATHS, MAX_STEPS,
 };
 pub(crate) use memory::History;
-pub use memory::{probe_memory, solve_scalar, Memory, DEFAULT_WINDOW};
+pub use memory::{
+    probe_memory, solve_scalar, Memory, DEFAULT_WINDOW, MAX_TOLERANCE, MIN_TOLERANCE,
+};
 pub use problem::{
-    Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, Problem, System, MAX_STARTS,
+    Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, Problem, System,
+    MAX_AMPLITUDE_PERIODS, MAX_DT, MAX_STARTS, MAX_WINDOW,
 };
 pub(crate) use stepper::{fresh_history, Tangent};
-pub use stepper::{Impact, StepEvents, Stepper};
+pub use stepper::{Impact, StepEvents, Stepper, MAX_DIRECT_STEPS};

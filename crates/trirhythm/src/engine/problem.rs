@@ -55,6 +55,31 @@ pub struct PredictorCorrector {
     pub window: usize,
 }
 
+/// Largest step Δt of a [`PredictorCorrector`]: larger steps are refused as a slip, not taken.
+pub const MAX_DT: f64 = 1e3;
+/// Most steps of the exact local window of a [`PredictorCorrector`] (the window's work and
+/// memory grow with it; the default is [`DEFAULT_WINDOW`]).
+pub const MAX_WINDOW: usize = 4096;
+
+impl PredictorCorrector {
+    /// Check the method: Δt in (0, [`MAX_DT`]], the memory's tolerance ([`Memory::validate`]),
+    /// the window in [2, [`MAX_WINDOW`]] steps. Every driver calls it before any work.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.dt > 0.0 && self.dt <= MAX_DT) {
+            return Err(Error::invalid("dt", self.dt, "(0, 1e3]"));
+        }
+        self.memory.validate()?;
+        if !(2..=MAX_WINDOW).contains(&self.window) {
+            return Err(Error::invalid(
+                "window",
+                self.window as f64,
+                format!("2 to {MAX_WINDOW} steps"),
+            ));
+        }
+        Ok(())
+    }
+}
+
 impl Default for PredictorCorrector {
     fn default() -> Self {
         PredictorCorrector {
@@ -79,9 +104,13 @@ pub struct Options {
     pub record_every: usize,
     /// Keep the list of impacts (time, V₋, V₊).
     pub record_impacts: bool,
-    /// The summary amplitude is averaged over this many periods 2π/ω1 before T.
+    /// The summary amplitude is averaged over this many periods 2π/ω1 before T, in
+    /// [0, [`MAX_AMPLITUDE_PERIODS`]] (0: the last node only).
     pub amplitude_periods: f64,
 }
+
+/// Most periods [`Options::amplitude_periods`] of the summary amplitude's average.
+pub const MAX_AMPLITUDE_PERIODS: f64 = 1e6;
 
 impl Default for Options {
     fn default() -> Self {

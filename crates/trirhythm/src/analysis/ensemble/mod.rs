@@ -93,7 +93,8 @@ pub use diagnostics::Stationarity;
 pub use merging::{Density, EnsembleResult, Estimate, JointDensity, Passage};
 pub use recording::{BatchSums, PassageSums, PathStats};
 pub use spec::{
-    EnsembleSpec, Wells, MAX_AMPLITUDE, MAX_BINS, MAX_JOINT_BINS, MAX_PATHS, MAX_STATISTICS_BYTES,
+    EnsembleSpec, Wells, MAX_AMPLITUDE, MAX_BATCHES, MAX_BINS, MAX_JOINT_BINS, MAX_PATHS,
+    MAX_STATISTICS_BYTES, MAX_WELLS,
 };
 
 use crate::engine::{fresh_history, run, Flow, Observer, PredictorCorrector, Problem, Stepper};
@@ -118,7 +119,7 @@ pub fn run_paths(
     paths: &[u64],
     monitor: &dyn Monitor<PathStats>,
 ) -> Result<Vec<PathStats>> {
-    let sizes = spec.sizes(method.dt)?;
+    let sizes = spec.sizes(method)?;
     super::check_indices(paths, spec.paths)?;
     monitor.check()?;
     if paths.is_empty() {
@@ -172,7 +173,7 @@ pub fn merge(
     spec: &EnsembleSpec,
     mut stats: Vec<PathStats>,
 ) -> Result<EnsembleResult> {
-    let sizes = spec.sizes(method.dt)?;
+    let sizes = spec.sizes(method)?;
     let layout = Layout::new(spec, problem, sizes.samples);
     stats.sort_by_key(|p| p.path);
     if let Some(p) = stats.iter().find(|p| p.path >= spec.paths as u64) {
@@ -244,6 +245,8 @@ pub fn run_ensemble(
     spec: &EnsembleSpec,
     monitor: &dyn Monitor<PathStats>,
 ) -> Result<EnsembleResult> {
+    // the spec first: its paths are counted out below
+    spec.sizes(method)?;
     let all: Vec<u64> = (0..spec.paths as u64).collect();
     let stats = run_paths(problem, method, spec, &all, monitor)?;
     merge(problem, method, spec, stats)

@@ -1,12 +1,16 @@
 //! What an ensemble runs: its spec (paths, seed, window, sampling, histograms, batches) with the
 //! checked sizes of a run, and the wells of the amplitude from the theory.
 
-use crate::engine::whole_steps;
+use crate::engine::{whole_steps, PredictorCorrector};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// Most paths of one ensemble.
-pub const MAX_PATHS: usize = 1_000_000;
+pub use crate::engine::MAX_PATHS;
+/// Most wells of an ensemble's [`Wells`].
+pub const MAX_WELLS: usize = 100;
+/// Most batches per path.
+pub const MAX_BATCHES: usize = 1000;
 /// Most bins of a one-dimensional histogram.
 pub const MAX_BINS: usize = 10_000;
 /// Most bins per axis of the joint (U, U̇) histogram.
@@ -30,21 +34,49 @@ pub struct Wells {
 impl Wells {
     /// Validated wells.
     pub fn new(modes: Vec<f64>, antimodes: Vec<f64>) -> Result<Self> {
-        let ok = !modes.is_empty()
-            && antimodes.len() + 1 == modes.len()
-            && modes
-                .iter()
-                .chain(&antimodes)
-                .all(|x| x.is_finite() && *x >= 0.0)
-            && (0..antimodes.len()).all(|i| modes[i] < antimodes[i] && antimodes[i] < modes[i + 1]);
-        if !ok {
+        let wells = Wells { modes, antimodes };
+        wells.validate()?;
+        Ok(wells)
+    }
+
+    /// Check the wells: 1 to [`MAX_WELLS`] modes, finite and ≥ 0, with one antimode between
+    /// two consecutive modes, all ascending.
+    pub fn validate(&self) -> Result<()> {
+        let (modes, antimodes) = (&self.modes, &self.antimodes);
+        if modes.is_empty() || modes.len() > MAX_WELLS {
             return Err(Error::invalid(
                 "wells",
                 modes.len() as f64,
-                "modes and antimodes alternating and ascending (one antimode between two modes)",
+                format!("1 to {MAX_WELLS} modes"),
             ));
         }
-        Ok(Wells { modes, antimodes })
+        if antimodes.len() + 1 != modes.len() {
+            return Err(Error::invalid(
+                "wells",
+                antimodes.len() as f64,
+                format!("{} antimodes (one between two modes)", modes.len() - 1),
+            ));
+        }
+        // modes and antimodes interleaved: m0 < a0 < m1 < a1 < …, all finite and ≥ 0
+        let interleaved = (0..2 * modes.len() - 1).map(|k| {
+            if k % 2 == 0 {
+                modes[k / 2]
+            } else {
+                antimodes[k / 2]
+            }
+        });
+        let mut previous = -0.0f64;
+        for (k, x) in interleaved.enumerate() {
+            if !(x.is_finite() && x >= 0.0 && (k == 0 || x > previous)) {
+                return Err(Error::invalid(
+                    "wells",
+                    x,
+                    "modes and antimodes finite, ≥ 0, alternating and ascending",
+                ));
+            }
+            previous = x;
+        }
+        Ok(())
     }
 
     /// The well of amplitude `a` (by the antimodes).
@@ -141,8 +173,13 @@ pub(super) struct Sizes {
 }
 
 impl EnsembleSpec {
-    /// The checked steps of the burn-in and the window, and the samples per path.
-    pub(super) fn sizes(&self, dt: f64) -> Result<Sizes> {
+    /// Check the spec, before any work, by every driver that takes it: `paths` 1 to
+    /// [`MAX_PATHS`], `bins` 2 to [`MAX_BINS`], `joint_bins` 2 to [`MAX_JOINT_BINS`], `batches`
+    /// 4 to [`MAX_BATCHES`], `amplitude_max` in (0, [`MAX_AMPLITUDE`]], the wells
+    /// ([`Wells::validate`]), the statistics of all paths at most [`MAX_STATISTICS_BYTES`],
+    /// `sample_every` ≥ 1, `burn_in` ≥ 0 and `length` > 0 finite. The steps are checked against
+    /// the method's Δt by the drivers.
+    pub fn validate(&self) -> Result<()> {
         if self.paths == 0 || self.paths > MAX_PATHS {
             return Err(Error::invalid(
                 "paths",
@@ -164,8 +201,12 @@ impl EnsembleSpec {
                 format!("2 to {MAX_JOINT_BINS}"),
             ));
         }
-        if !(4..=1000).contains(&self.batches) {
-            return Err(Error::invalid("batches", self.batches as f64, "4 to 1000"));
+        if !(4..=MAX_BATCHES).contains(&self.batches) {
+            return Err(Error::invalid(
+                "batches",
+                self.batches as f64,
+                format!("4 to {MAX_BATCHES}"),
+            ));
         }
         if !(self.amplitude_max > 0.0 && self.amplitude_max <= MAX_AMPLITUDE) {
             return Err(Error::invalid(
@@ -173,6 +214,9 @@ impl EnsembleSpec {
                 self.amplitude_max,
                 format!("(0, {MAX_AMPLITUDE:e}] (beyond it the energy's range overflows)"),
             ));
+        }
+        if let Some(w) = &self.wells {
+            w.validate()?;
         }
         // every path's statistics are held until the merge: bound them before any work
         let wells = self.wells.as_ref().map_or(0, Wells::len);
@@ -195,6 +239,23 @@ impl EnsembleSpec {
         if self.sample_every == 0 {
             return Err(Error::invalid("sample_every", 0.0, "1 or more"));
         }
+        if !(self.burn_in >= 0.0 && self.burn_in.is_finite()) {
+            return Err(Error::invalid("burn_in", self.burn_in, "[0, ∞), finite"));
+        }
+        if !(self.length > 0.0 && self.length.is_finite()) {
+            return Err(Error::invalid("t_end", self.length, "(0, ∞), finite"));
+        }
+        Ok(())
+    }
+
+    /// The spec and `method` checked ([`EnsembleSpec::validate`],
+    /// [`PredictorCorrector::validate`]), and the steps of the burn-in and the window and the
+    /// samples per path: whole numbers of steps, at most [`crate::engine::MAX_STEPS`] in all, at
+    /// least four samples per batch.
+    pub(super) fn sizes(&self, method: &PredictorCorrector) -> Result<Sizes> {
+        method.validate()?;
+        self.validate()?;
+        let dt = method.dt;
         let burn = whole_steps("burn_in", self.burn_in, dt, true)?;
         let window = whole_steps("t_end", self.length, dt, false)?;
         if burn + window > crate::engine::MAX_STEPS {
@@ -207,15 +268,22 @@ impl EnsembleSpec {
                 ),
             ));
         }
-        let samples = window / self.sample_every;
-        if samples < 4 * self.batches as u64 {
+        let least = 4 * self.batches as u64;
+        if window < least {
             return Err(Error::invalid(
                 "t_end",
                 self.length,
+                format!("long enough for {least} samples (4 per batch): {least} steps of dt = {dt} or more"),
+            ));
+        }
+        let samples = window / self.sample_every;
+        if samples < least {
+            return Err(Error::invalid(
+                "sample_every",
+                self.sample_every as f64,
                 format!(
-                    "long enough for {} samples (4 per batch; {samples} with sample_every = {})",
-                    4 * self.batches,
-                    self.sample_every
+                    "1 to {} (4 samples per batch from {window} steps)",
+                    window / least
                 ),
             ));
         }

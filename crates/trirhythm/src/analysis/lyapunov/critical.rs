@@ -5,23 +5,66 @@
 use super::{largest_lyapunov, LyapunovSpec};
 use crate::analysis::ensemble::Estimate;
 use crate::engine::{PredictorCorrector, Problem};
-use crate::error::{Error, Result};
+use crate::error::{Error, Exact, Result};
+use crate::model::MAX_NOISE;
 use crate::monitor::{Monitor, OnlyCancel};
 use serde::{Deserialize, Serialize};
 
 /// How [`critical_noise`] searches D.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CriticalSearch {
-    /// Lower end of the D range (≥ 0).
+    /// Lower end of the D range, in [0, 1e6) (the parameter D's range).
     pub d_lo: f64,
-    /// Upper end of the D range.
+    /// Upper end of the D range, in (d_lo, 1e6].
     pub d_hi: f64,
-    /// Equally spaced D values evaluated first, ends included (≥ 2).
+    /// Equally spaced D values evaluated first, ends included, 2 to [`MAX_GRID`].
     pub grid: usize,
-    /// Bisections of the first bracketing pair.
+    /// Bisections of the first bracketing pair, 0 to [`MAX_REFINEMENTS`].
     pub refinements: usize,
-    /// Standard errors an LLE must be away from 0 to count as significant.
+    /// Standard errors an LLE must be away from 0 to count as significant, in [0, 10].
     pub z: f64,
+}
+
+/// Most D values of a [`CriticalSearch`]'s grid.
+pub const MAX_GRID: usize = 1000;
+/// Most bisections of a [`CriticalSearch`].
+pub const MAX_REFINEMENTS: usize = 60;
+/// Largest [`CriticalSearch::z`].
+pub const MAX_Z: f64 = 10.0;
+
+impl CriticalSearch {
+    /// Check the search: 0 ≤ `d_lo` < `d_hi` ≤ 1e6 ([`MAX_NOISE`], the parameter D's range),
+    /// `grid` 2 to [`MAX_GRID`], `refinements` 0 to [`MAX_REFINEMENTS`], `z` in [0, 10].
+    pub fn validate(&self) -> Result<()> {
+        if !(self.d_lo >= 0.0 && self.d_lo < MAX_NOISE) {
+            return Err(Error::invalid("d_lo", self.d_lo, "[0, 1e6)"));
+        }
+        if !(self.d_hi > self.d_lo && self.d_hi <= MAX_NOISE) {
+            return Err(Error::invalid(
+                "d_hi",
+                self.d_hi,
+                format!("(D_lo = {}, 1e6]", Exact(self.d_lo)),
+            ));
+        }
+        if !(2..=MAX_GRID).contains(&self.grid) {
+            return Err(Error::invalid(
+                "grid",
+                self.grid as f64,
+                format!("2 to {MAX_GRID}"),
+            ));
+        }
+        if self.refinements > MAX_REFINEMENTS {
+            return Err(Error::invalid(
+                "refinements",
+                self.refinements as f64,
+                format!("0 to {MAX_REFINEMENTS}"),
+            ));
+        }
+        if !(self.z >= 0.0 && self.z <= MAX_Z) {
+            return Err(Error::invalid("z", self.z, "[0, 10]"));
+        }
+        Ok(())
+    }
 }
 
 impl Default for CriticalSearch {
@@ -103,28 +146,11 @@ pub fn critical_noise(
     search: &CriticalSearch,
     monitor: &dyn Monitor<NoisePoint>,
 ) -> Result<CriticalNoise> {
-    if !(search.d_lo >= 0.0 && search.d_lo.is_finite()) {
-        return Err(Error::invalid("d_lo", search.d_lo, "[0, ∞), finite"));
-    }
-    if !(search.d_hi > search.d_lo && search.d_hi.is_finite()) {
-        return Err(Error::invalid(
-            "d_hi",
-            search.d_hi,
-            format!("above D_lo = {}, finite", search.d_lo),
-        ));
-    }
-    if !(2..=1000).contains(&search.grid) {
-        return Err(Error::invalid("grid", search.grid as f64, "2 to 1000"));
-    }
-    if search.refinements > 60 {
-        return Err(Error::invalid(
-            "refinements",
-            search.refinements as f64,
-            "0 to 60",
-        ));
-    }
-    if !(search.z >= 0.0 && search.z.is_finite()) {
-        return Err(Error::invalid("z", search.z, "[0, ∞), finite"));
+    search.validate()?;
+    spec.sizes(method)?;
+    // both ends of the range are valid problems before any work
+    for d in [search.d_lo, search.d_hi] {
+        problem.with_params(&problem.params().with("D", d)?)?;
     }
     let planned = search.grid + search.refinements;
     let mut done = 0;

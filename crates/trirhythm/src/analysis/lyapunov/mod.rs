@@ -129,7 +129,9 @@
 mod critical;
 mod perturbation;
 
-pub use critical::{critical_noise, CriticalNoise, CriticalSearch, NoisePoint};
+pub use critical::{
+    critical_noise, CriticalNoise, CriticalSearch, NoisePoint, MAX_GRID, MAX_REFINEMENTS, MAX_Z,
+};
 
 use super::ensemble::Estimate;
 use crate::engine::{fresh_history, whole_steps, PredictorCorrector, Problem, Stepper, Tangent};
@@ -142,6 +144,17 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Most paths of one estimate.
 pub const MAX_PATHS: usize = 100_000;
+/// Most steps between two renormalisations.
+pub const MAX_RENORMALISE_EVERY: u64 = 1_000_000;
+/// Most points of the running estimate.
+pub const MAX_RUNNING_POINTS: usize = 100_000;
+/// Most bytes of the running estimates of all paths (paths × points × 8).
+pub const MAX_RUNNING_BYTES: usize = 4_000_000_000;
+/// The range [`LyapunovSpec::separation`] d₀ is allowed in: far above the rounding of O(1)
+/// states, far below the size of the attractor.
+pub const SEPARATION_RANGE: (f64, f64) = (1e-12, 1e-4);
+/// The range of Δt of a Lyapunov estimate.
+pub const DT_RANGE: (f64, f64) = (1e-4, 0.1);
 
 /// What a Lyapunov estimate runs beyond its [`Problem`] and integrator: paths, seed, windows,
 /// renormalisation and the method that follows the perturbation.
@@ -155,11 +168,12 @@ pub struct LyapunovSpec {
     pub transient: f64,
     /// Measured time after the transient (the finite-time window).
     pub length: f64,
-    /// Steps between renormalisations (tried again at each later step when refused).
+    /// Steps between renormalisations (tried again at each later step when refused), 1 to
+    /// [`MAX_RENORMALISE_EVERY`].
     pub renormalise_every: u64,
-    /// The separation d₀ the copy is pulled back to.
+    /// The separation d₀ the copy is pulled back to, in [1e-12, 1e-4] ([`SEPARATION_RANGE`]).
     pub separation: f64,
-    /// Points of the running estimate.
+    /// Points of the running estimate, 1 to [`MAX_RUNNING_POINTS`].
     pub running_points: usize,
     /// Tangent (variational) equation or two trajectories.
     pub method: LyapunovMethod,
@@ -203,8 +217,12 @@ impl Default for LyapunovSpec {
 }
 
 impl LyapunovSpec {
-    /// Checked (transient, measured) steps.
-    pub(crate) fn sizes(&self, dt: f64) -> Result<(u64, u64)> {
+    /// Check the spec, before any work, by every driver that takes it: `paths` 1 to
+    /// [`MAX_PATHS`], `separation` in [1e-12, 1e-4], `renormalise_every` 1 to
+    /// [`MAX_RENORMALISE_EVERY`], `running_points` 1 to [`MAX_RUNNING_POINTS`] (and at most
+    /// [`MAX_RUNNING_BYTES`] of running estimates in all), `transient` ≥ 0 and `length` > 0
+    /// finite. The steps are checked against the method's Δt by the drivers.
+    pub fn validate(&self) -> Result<()> {
         if self.paths == 0 || self.paths > MAX_PATHS {
             return Err(Error::invalid(
                 "paths",
@@ -212,19 +230,59 @@ impl LyapunovSpec {
                 format!("1 to {MAX_PATHS}"),
             ));
         }
-        if !(self.separation > 0.0 && self.separation <= 1e-3) {
-            return Err(Error::invalid("separation", self.separation, "(0, 1e-3]"));
+        let (lo, hi) = SEPARATION_RANGE;
+        if !(lo..=hi).contains(&self.separation) {
+            return Err(Error::invalid(
+                "separation",
+                self.separation,
+                "[1e-12, 1e-4]",
+            ));
         }
-        if self.renormalise_every == 0 {
-            return Err(Error::invalid("renormalise_every", 0.0, "1 or more steps"));
+        if !(1..=MAX_RENORMALISE_EVERY).contains(&self.renormalise_every) {
+            return Err(Error::invalid(
+                "renormalise_every",
+                self.renormalise_every as f64,
+                format!("1 to {MAX_RENORMALISE_EVERY} steps"),
+            ));
         }
-        if !(1..=100_000).contains(&self.running_points) {
+        let bytes = 8.0 * self.running_points as f64 * self.paths as f64;
+        if !(1..=MAX_RUNNING_POINTS).contains(&self.running_points)
+            || bytes > MAX_RUNNING_BYTES as f64
+        {
             return Err(Error::invalid(
                 "running_points",
                 self.running_points as f64,
-                "1 to 100000",
+                format!(
+                    "1 to {} ({} paths; at most {MAX_RUNNING_BYTES:e} bytes of running estimates)",
+                    MAX_RUNNING_POINTS.min(MAX_RUNNING_BYTES / (8 * self.paths)),
+                    self.paths
+                ),
             ));
         }
+        if !(self.transient >= 0.0 && self.transient.is_finite()) {
+            return Err(Error::invalid(
+                "transient",
+                self.transient,
+                "[0, ∞), finite",
+            ));
+        }
+        if !(self.length > 0.0 && self.length.is_finite()) {
+            return Err(Error::invalid("t_end", self.length, "(0, ∞), finite"));
+        }
+        Ok(())
+    }
+
+    /// The spec and `method` checked ([`LyapunovSpec::validate`],
+    /// [`PredictorCorrector::validate`], Δt in [1e-4, 0.1]), and the (transient, measured)
+    /// steps: whole numbers of steps, at most [`crate::engine::MAX_STEPS`] in all, at least two
+    /// renormalisation intervals measured.
+    pub(crate) fn sizes(&self, method: &PredictorCorrector) -> Result<(u64, u64)> {
+        let dt = method.dt;
+        if !(DT_RANGE.0..=DT_RANGE.1).contains(&dt) {
+            return Err(Error::invalid("dt", dt, "[1e-4, 0.1]"));
+        }
+        method.validate()?;
+        self.validate()?;
         let transient = whole_steps("transient", self.transient, dt, true)?;
         let window = whole_steps("t_end", self.length, dt, false)?;
         if window < 2 * self.renormalise_every {
@@ -347,6 +405,8 @@ pub fn largest_lyapunov(
     spec: &LyapunovSpec,
     monitor: &dyn Monitor<PathRun>,
 ) -> Result<LyapunovResult> {
+    // the spec first: its paths are counted out below
+    spec.sizes(method)?;
     let all: Vec<u64> = (0..spec.paths as u64).collect();
     let runs = run_paths(problem, method, spec, &all, monitor)?;
     merge(spec, runs)
@@ -362,7 +422,7 @@ pub fn run_paths(
     paths: &[u64],
     monitor: &dyn Monitor<PathRun>,
 ) -> Result<Vec<PathRun>> {
-    let (transient, window) = spec.sizes(method.dt)?;
+    let (transient, window) = spec.sizes(method)?;
     super::check_indices(paths, spec.paths)?;
     monitor.check()?;
     if paths.is_empty() {
@@ -423,6 +483,7 @@ pub fn run_paths(
 /// estimate, bit-identical to one whole run. Refuses a path given twice, a missing path and a
 /// path out of range.
 pub fn merge(spec: &LyapunovSpec, mut runs: Vec<PathRun>) -> Result<LyapunovResult> {
+    spec.validate()?;
     runs.sort_by_key(|r| r.exponent.path);
     if let Some(r) = runs.iter().find(|r| r.exponent.path >= spec.paths as u64) {
         return Err(Error::invalid(
@@ -497,12 +558,13 @@ mod tests {
             length: 0.5,
             ..Default::default()
         };
-        assert!(spec.sizes(0.01).is_err());
+        let method = PredictorCorrector::default();
+        assert!(spec.sizes(&method).is_err());
         let spec = LyapunovSpec {
             paths: 0,
             ..Default::default()
         };
-        assert!(spec.sizes(0.01).is_err());
-        assert!(LyapunovSpec::default().sizes(0.01).is_ok());
+        assert!(spec.sizes(&method).is_err());
+        assert!(LyapunovSpec::default().sizes(&method).is_ok());
     }
 }

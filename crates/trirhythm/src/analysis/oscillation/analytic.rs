@@ -9,9 +9,10 @@ use crate::model::Params;
 use crate::theory::averaging::{Theory, Variant};
 use std::f64::consts::PI;
 
-/// The analytic margin at `p`: positive where the small oscillation grows; `None` where the
-/// method does not apply.
+/// The analytic margin at `p` (validated): positive where the small oscillation grows; `None`
+/// where the method does not apply.
 pub fn margin(p: &Params, barrier: Barrier, method: &Method) -> Result<Option<f64>> {
+    p.validate()?;
     match method {
         Method::Averaging(v) => {
             let q = match barrier {

@@ -96,12 +96,16 @@ fn horizon(params: &Params, c: &Classifier) -> Result<f64> {
 }
 
 impl Classifier {
-    /// Check the settings; the error names the field and its range.
+    /// Check the settings; the error names the field and its range: the method
+    /// ([`PredictorCorrector::validate`]) with Δt in [1e-4, 0.1], `amplitude` in (0, 1e-3],
+    /// `settle_periods` in [0, 1000], `min_periods` in [1, 1000], `max_periods` in
+    /// [settle_periods + min_periods, 10000], `clarity` in (0, 1e6], `agreement` in (0, 1].
     pub fn validate(&self) -> Result<()> {
         let dt = self.method.dt;
-        if !(dt > 0.0 && dt <= 0.1) {
-            return Err(Error::invalid("dt", dt, "(0, 0.1]"));
+        if !(1e-4..=0.1).contains(&dt) {
+            return Err(Error::invalid("dt", dt, "[1e-4, 0.1]"));
         }
+        self.method.validate()?;
         if !(self.amplitude > 0.0 && self.amplitude <= 1e-3) {
             return Err(Error::invalid("amplitude", self.amplitude, "(0, 1e-3]"));
         }
@@ -123,8 +127,8 @@ impl Classifier {
                 "[settle_periods + min_periods, 10000]",
             ));
         }
-        if !(self.clarity > 0.0 && self.clarity.is_finite()) {
-            return Err(Error::invalid("clarity", self.clarity, "(0, ∞)"));
+        if !(self.clarity > 0.0 && self.clarity <= 1e6) {
+            return Err(Error::invalid("clarity", self.clarity, "(0, 1e6]"));
         }
         if !(self.agreement > 0.0 && self.agreement <= 1.0) {
             return Err(Error::invalid("agreement", self.agreement, "(0, 1]"));

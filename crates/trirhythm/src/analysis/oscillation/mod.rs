@@ -117,11 +117,36 @@ pub enum Refinement {
 /// Accuracy of the simulated boundary.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Search {
-    /// Bracket width relative to |y| at which the search stops.
+    /// Bracket width relative to |y| at which the search stops, in (0, 0.1].
     pub tolerance: f64,
     /// How the bracket is narrowed.
     pub refinement: Refinement,
 }
+
+impl Search {
+    /// Check the search: `tolerance` in (0, 0.1].
+    pub fn validate(&self) -> Result<()> {
+        if !(self.tolerance > 0.0 && self.tolerance <= 0.1) {
+            return Err(Error::invalid("tolerance", self.tolerance, "(0, 0.1]"));
+        }
+        Ok(())
+    }
+}
+
+impl Method {
+    /// Check the method: a simulation's [`Classifier`] ([`Classifier::validate`]).
+    pub fn validate(&self) -> Result<()> {
+        match self {
+            Method::Simulation(c) => c.validate(),
+            Method::Averaging(_) | Method::Exact => Ok(()),
+        }
+    }
+}
+
+/// Most abscissae of a [`Plane`].
+pub const MAX_ABSCISSAE: usize = 100_000;
+/// Most points (x, y) one [`classify_plane`] classifies.
+pub const MAX_CELLS: usize = 1_000_000;
 
 impl Default for Search {
     fn default() -> Self {
@@ -150,15 +175,30 @@ pub struct Plane {
 }
 
 impl Plane {
-    /// Validate: D = 0, Eq. (1), two different known keys, lo < hi, and every abscissa valid
-    /// with both ends of the interval.
+    /// Validate: D = 0, Eq. (1), two different known keys, lo < hi, 1 to [`MAX_ABSCISSAE`]
+    /// abscissae, and every abscissa valid with both ends of the interval.
     pub fn new(
         template: &Problem,
         (x_key, x): (&str, Vec<f64>),
         (y_key, lo, hi): (&str, f64, f64),
     ) -> Result<Plane> {
-        growth::check_problem(template)?;
-        let base = template.params();
+        let plane = Plane {
+            template: template.clone(),
+            x_key: x_key.to_string(),
+            x,
+            y_key: y_key.to_string(),
+            y_range: (lo, hi),
+        };
+        plane.validate()?;
+        Ok(plane)
+    }
+
+    /// Check the plane as [`Plane::new`] does (its fields are public): every driver taking a
+    /// plane calls it before any work.
+    pub fn validate(&self) -> Result<()> {
+        let (x_key, y_key, (lo, hi)) = (self.x_key.as_str(), self.y_key.as_str(), self.y_range);
+        growth::check_problem(&self.template)?;
+        let base = self.template.params();
         base.get(x_key)?;
         base.get(y_key)?;
         if x_key == y_key {
@@ -182,21 +222,18 @@ impl Plane {
                 format!("an interval start below its end {}", Exact(hi)),
             ));
         }
-        if x.is_empty() {
-            return Err(Error::invalid(x_key, f64::NAN, "at least one abscissa"));
+        if self.x.is_empty() || self.x.len() > MAX_ABSCISSAE {
+            return Err(Error::invalid(
+                x_key,
+                self.x.len() as f64,
+                format!("1 to {MAX_ABSCISSAE} abscissae"),
+            ));
         }
-        let plane = Plane {
-            template: template.clone(),
-            x_key: x_key.to_string(),
-            x,
-            y_key: y_key.to_string(),
-            y_range: (lo, hi),
-        };
-        for &xv in &plane.x {
-            plane.at(xv, lo)?;
-            plane.at(xv, hi)?;
+        for &xv in &self.x {
+            self.at(xv, lo)?;
+            self.at(xv, hi)?;
         }
-        Ok(plane)
+        Ok(())
     }
 
     /// The parameters at (x, y), validated.
@@ -288,12 +325,9 @@ pub fn boundary(
     search: &Search,
     monitor: &dyn Monitor<BoundaryPoint>,
 ) -> Result<Boundary> {
-    if !(search.tolerance > 0.0 && search.tolerance <= 0.5) {
-        return Err(Error::invalid("tolerance", search.tolerance, "(0, 0.5]"));
-    }
-    if let Method::Simulation(c) = method {
-        c.validate()?;
-    }
+    search.validate()?;
+    method.validate()?;
+    plane.validate()?;
     let done = AtomicU64::new(0);
     let total = plane.x.len() as u64;
     let points = plane
@@ -333,16 +367,32 @@ pub struct Cell {
 }
 
 /// Classify every (x, y) of `plane.x` × `ys` by `method` (rows over x in parallel;
-/// deterministic). The interval `plane.y_range` is not used. `monitor` hears the cells done
-/// and receives each cell as it is finished.
+/// deterministic). The interval `plane.y_range` is not used. At most [`MAX_CELLS`] points,
+/// each a valid parameter set (checked before any work). `monitor` hears the cells done and
+/// receives each cell as it is finished.
 pub fn classify_plane(
     plane: &Plane,
     ys: &[f64],
     method: &Method,
     monitor: &dyn Monitor<Cell>,
 ) -> Result<Vec<Cell>> {
-    if let Method::Simulation(c) = method {
-        c.validate()?;
+    method.validate()?;
+    plane.validate()?;
+    let cells = plane.x.len() as f64 * ys.len() as f64;
+    if cells > MAX_CELLS as f64 {
+        return Err(Error::invalid(
+            &plane.y_key,
+            ys.len() as f64,
+            format!(
+                "at most {MAX_CELLS} points in all ({} abscissae here)",
+                plane.x.len()
+            ),
+        ));
+    }
+    for &x in &plane.x {
+        for &y in ys {
+            plane.at(x, y)?;
+        }
     }
     let done = AtomicU64::new(0);
     let total = (plane.x.len() * ys.len()) as u64;

@@ -81,6 +81,7 @@ mod tests;
 mod window;
 
 use super::kernel::IntervalWeights;
+use crate::error::{Error, Result};
 
 pub(crate) use history::History;
 pub use probe::probe_memory;
@@ -97,6 +98,30 @@ pub enum Memory {
         /// Relative tolerance of the kernel approximation on [window·Δt, T] (e.g. 1e-10).
         tolerance: f64,
     },
+}
+
+/// Smallest tolerance of [`Memory::SumOfExponentials`] (exclusive): the kernel's quadrature
+/// cannot certify less in double precision.
+pub const MIN_TOLERANCE: f64 = 1e-15;
+/// Largest tolerance of [`Memory::SumOfExponentials`] (exclusive): a looser kernel is no
+/// longer the fractional memory.
+pub const MAX_TOLERANCE: f64 = 1e-2;
+
+impl Memory {
+    /// Check the memory: a sum of exponentials needs a tolerance in
+    /// ([`MIN_TOLERANCE`], [`MAX_TOLERANCE`]).
+    pub fn validate(&self) -> Result<()> {
+        match *self {
+            Memory::Direct => Ok(()),
+            Memory::SumOfExponentials { tolerance } => {
+                if tolerance > MIN_TOLERANCE && tolerance < MAX_TOLERANCE {
+                    Ok(())
+                } else {
+                    Err(Error::invalid("tolerance", tolerance, "(1e-15, 1e-2)"))
+                }
+            }
+        }
+    }
 }
 
 impl Default for Memory {

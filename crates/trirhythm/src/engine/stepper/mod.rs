@@ -98,7 +98,8 @@
 //! smooth and impact steps), the unit tests of `impact` (the crossing by Newton equals
 //! bisection).
 
-use super::memory::{History, Piece, Split};
+use super::drivers::MAX_STEPS;
+use super::memory::{History, Memory, Piece, Split};
 use super::noise::NoiseStream;
 use super::problem::{ImpactMemory, Oscillator, PredictorCorrector, Problem, System};
 use crate::error::{Error, Exact, Result};
@@ -400,7 +401,9 @@ pub struct Stepper {
 
 impl Stepper {
     /// Path `path` of `problem` (its start `problem.start(path)`, noise stream `path` of
-    /// `seed`) with the given method, its memory certified up to `horizon` (the SOE kernel's T).
+    /// `seed`) with the given method, its memory certified up to `horizon` (the SOE kernel's T):
+    /// the method is validated ([`PredictorCorrector::validate`]) and `horizon` must lie in
+    /// [0, [`MAX_STEPS`]·Δt] (with [`Memory::Direct`], at most [`MAX_DIRECT_STEPS`] steps).
     pub fn new(
         problem: &Problem,
         method: &PredictorCorrector,
@@ -642,12 +645,40 @@ impl Stepper {
     }
 }
 
-/// The empty memory of a path (with its verified SOE kernel), built once per ensemble.
+/// Most steps of a path with [`Memory::Direct`] (O(N) work and memory per step: 10⁷ steps
+/// hold about half a gigabyte of history and take hours).
+pub const MAX_DIRECT_STEPS: u64 = 10_000_000;
+
+/// The empty memory of a path (with its verified SOE kernel), built once per ensemble: every
+/// driver comes here before any work, so the method and the horizon are checked here (Δt, the
+/// memory, the window; the horizon in [0, [`MAX_STEPS`] steps], with the direct memory at most
+/// [`MAX_DIRECT_STEPS`]).
 pub(crate) fn fresh_history(
     problem: &Problem,
     method: &PredictorCorrector,
     horizon: f64,
 ) -> Result<History> {
+    method.validate()?;
+    let dt = method.dt;
+    let steps = horizon / dt;
+    if !(horizon >= 0.0 && steps <= MAX_STEPS as f64) {
+        return Err(Error::invalid(
+            "horizon",
+            horizon,
+            format!("[0, {MAX_STEPS:e} steps of dt = {}]", Exact(dt)),
+        ));
+    }
+    if method.memory == Memory::Direct && steps.round() > MAX_DIRECT_STEPS as f64 {
+        return Err(Error::invalid(
+            "t_end",
+            horizon,
+            format!(
+                "at most {MAX_DIRECT_STEPS:e} steps of dt = {} with the direct memory (O(N) work \
+                 per step; the sum-of-exponentials memory has no such bound)",
+                Exact(dt)
+            ),
+        ));
+    }
     let lambda = Rhs::new(problem.oscillator(), problem.system()).lambda;
     History::new(lambda, method.dt, horizon, method.memory, method.window)
 }

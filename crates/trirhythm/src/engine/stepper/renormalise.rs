@@ -21,8 +21,12 @@ impl Stepper {
     /// number now: not at the same step, on different sides (Eq. 9) or in different sticking
     /// states, or an impact still inside the exact window of either (its split falls at a
     /// different fraction in each path; with `Memory::Direct` this holds after the first
-    /// impact for good). A driver then tries again at a later step.
+    /// impact for good). A driver then tries again at a later step. A factor `c` that is not
+    /// finite and ≥ 0 is refused the same way (it would poison the whole state).
     pub fn contract_toward(&mut self, reference: &Stepper, c: f64) -> bool {
+        if !(c >= 0.0 && c.is_finite()) {
+            return false;
+        }
         if self.steps != reference.steps
             || self.side != reference.side
             || self.stuck != reference.stuck
