@@ -45,7 +45,7 @@ fn trend_of_exact_values_confirms_refutes_and_sees_no_change() {
         ],
     );
     assert_eq!(
-        tag(&trend(&[falling.clone()], Direction::Decreases)),
+        tag(&trend(std::slice::from_ref(&falling), Direction::Decreases)),
         "confirmed"
     );
     // the same numbers against a claimed increase: refuted
@@ -94,7 +94,7 @@ fn trend_with_standard_errors_needs_significance() {
             (0.8, Measured::with_se(0.03, 0.01)),
         ],
     );
-    let d = trend(&[weak.clone()], Direction::Increases);
+    let d = trend(std::slice::from_ref(&weak), Direction::Increases);
     assert!(
         matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("not significant"))
     );

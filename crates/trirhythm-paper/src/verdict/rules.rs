@@ -55,8 +55,8 @@ pub struct Series {
 enum Pair {
     /// Deterministic: the relative change and the outcome.
     Exact(f64, Outcome),
-    /// Bracketed: the outcome of the overlap test.
-    Bracket(Outcome),
+    /// Bracketed: the gap between the brackets (> 0: apart) and the outcome.
+    Bracket(f64, Outcome),
     /// Stochastic: z (signed in the claim's favour).
     Z(f64),
     /// Undefined.
@@ -106,10 +106,11 @@ fn compare(a: &Measured, b: &Measured, direction: Direction) -> (f64, Measured, 
                 (_, true) => Outcome::Against,
                 _ => Outcome::Neither,
             };
+            let gap = (blo - ahi).max(alo - bhi);
             (
                 diff,
                 Measured::bracket(diff, blo - ahi, bhi - alo),
-                Pair::Bracket(outcome),
+                Pair::Bracket(gap, outcome),
             )
         }
         _ => {
@@ -196,9 +197,9 @@ pub fn trend(series: &[Series], direction: Direction) -> Decision {
                 outcome[i] = o;
                 stat[i] = ("relative change".into(), rel, EXACT_REL_TOL);
             }
-            Pair::Bracket(o) => {
+            Pair::Bracket(gap, o) => {
                 outcome[i] = o;
-                stat[i] = ("bracket overlap".into(), f64::NAN, 0.0);
+                stat[i] = ("gap between the brackets".into(), gap, 0.0);
             }
             Pair::Undefined => stat[i] = ("undefined".into(), f64::NAN, f64::NAN),
             Pair::Z(_) => {}
@@ -565,7 +566,7 @@ pub struct Comparison {
 impl Comparison {
     /// The finite-sample floor: the expected Hellinger distance between a histogram of `ess`
     /// independent samples in `bins` bins and the density it samples, √(bins/(8·ESS)) (from
-    /// E[H²] ≈ (bins − 1)/(8n) for multinomial counts, the mass beyond the last edge as one
+    /// E\[H²\] ≈ (bins − 1)/(8n) for multinomial counts, the mass beyond the last edge as one
     /// more bin).
     pub fn floor(&self) -> f64 {
         (self.bins as f64 / (8.0 * self.ess)).sqrt()
