@@ -212,7 +212,12 @@ fn curve(label: &str, pts: &[(f64, f64, f64)]) -> LleCurve {
         label: label.into(),
         points: pts
             .iter()
-            .map(|&(d, lle, se)| LlePoint { d, lle, se })
+            .map(|&(d, lle, se)| LlePoint {
+                d,
+                lle,
+                se,
+                dof: None,
+            })
             .collect(),
     }
 }
@@ -289,6 +294,51 @@ fn one_point_at_2_03_sigma_among_36_tests_is_not_significant() {
         strong.push(curve(label, &pts));
     }
     assert_eq!(sign_change(&strong).checks[0].outcome, Outcome::For);
+}
+
+#[test]
+fn few_realisations_test_with_students_t() {
+    // −0.05 ± 0.01 then +0.05 ± 0.01: z = ∓5, significant with the normal distribution…
+    let pts = |dof: Option<f64>| LleCurve {
+        label: "r = 0.9".into(),
+        points: vec![
+            LlePoint {
+                d: 0.05,
+                lle: -0.05,
+                se: 0.01,
+                dof,
+            },
+            LlePoint {
+                d: 1.0,
+                lle: 0.05,
+                se: 0.01,
+                dof,
+            },
+        ],
+    };
+    assert_eq!(tag(&sign_change(&[pts(None)])), "confirmed");
+    assert_eq!(tag(&sign_change(&[pts(Some(7.0))])), "confirmed");
+    // …but not from two realisations (t with 1 degree of freedom: |t| > 25.45 at α/2 = 0.025)
+    let d = sign_change(&[pts(Some(1.0))]);
+    assert!(matches!(d.verdict, Verdict::Undetermined { .. }));
+    assert!(
+        (d.checks[0].threshold - 25.45).abs() < 0.01,
+        "{}",
+        d.checks[0].threshold
+    );
+    assert!(d.checks[0].statistic.starts_with('t'));
+    // a trend with few degrees of freedom: the smaller of the two is used
+    let s = series(
+        "LLE",
+        &[
+            (0.998, Measured::with_se_dof(0.02, 0.01, Some(1.0))),
+            (0.8, Measured::with_se_dof(0.12, 0.01, Some(7.0))),
+        ],
+    );
+    assert!(matches!(
+        trend(&[s], Direction::Increases).verdict,
+        Verdict::Undetermined { .. }
+    ));
 }
 
 // ---- agreement ----

@@ -80,6 +80,10 @@ pub enum Uncertainty {
         /// The standard error (non-finite or ≤ 0: none could be estimated).
         #[serde(with = "trirhythm::non_finite")]
         se: f64,
+        /// Its degrees of freedom (realisations − 1) where few: tests then use Student's t;
+        /// `None`: many, the normal distribution.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        dof: Option<f64>,
     },
     /// A bracket known to hold the value (a boundary found by bisection).
     Bracket {
@@ -111,11 +115,19 @@ impl Measured {
         }
     }
 
-    /// A value with a standard error.
+    /// A value with a standard error from many realisations (normal tests).
     pub fn with_se(value: f64, se: f64) -> Measured {
         Measured {
             value,
-            uncertainty: Uncertainty::StdErr { se },
+            uncertainty: Uncertainty::StdErr { se, dof: None },
+        }
+    }
+
+    /// A value with a standard error of `dof` degrees of freedom (Student's t tests).
+    pub fn with_se_dof(value: f64, se: f64, dof: Option<f64>) -> Measured {
+        Measured {
+            value,
+            uncertainty: Uncertainty::StdErr { se, dof },
         }
     }
 
@@ -133,7 +145,7 @@ impl Measured {
         match self.uncertainty {
             Uncertainty::Exact => (self.value, self.value),
             Uncertainty::Bracket { lo, hi } => (lo, hi),
-            Uncertainty::StdErr { se } => (self.value - z * se, self.value + z * se),
+            Uncertainty::StdErr { se, .. } => (self.value - z * se, self.value + z * se),
         }
     }
 }

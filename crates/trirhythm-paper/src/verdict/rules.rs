@@ -6,7 +6,7 @@
 //! that confirm, refute and are undetermined, including the multiplicity effect (one 2.03σ
 //! point among 36 tests is not significant).
 
-use super::stats::{holm, two_sided_p, z_for_two_sided};
+use super::stats::{holm, t_for_two_sided, t_two_sided_p};
 use super::{Check, Decision, Measured, Outcome, Uncertainty, Verdict};
 use serde::{Deserialize, Serialize};
 
@@ -57,10 +57,19 @@ enum Pair {
     Exact(f64, Outcome),
     /// Bracketed: the gap between the brackets (> 0: apart) and the outcome.
     Bracket(f64, Outcome),
-    /// Stochastic: z (signed in the claim's favour).
-    Z(f64),
+    /// Stochastic: z or t (signed in the claim's favour) and the degrees of freedom (∞: z).
+    Z(f64, f64),
     /// Undefined.
     Undefined,
+}
+
+/// `z`, or `t (ν = …)` for a statistic with few degrees of freedom.
+fn stat_name(dof: f64) -> String {
+    if dof.is_finite() {
+        format!("t (ν = {})", crate::notes::num(dof))
+    } else {
+        "z".into()
+    }
 }
 
 fn sign_for(direction: Direction) -> f64 {
@@ -115,14 +124,18 @@ fn compare(a: &Measured, b: &Measured, direction: Direction) -> (f64, Measured, 
         }
         _ => {
             let se_of = |m: &Measured| match m.uncertainty {
-                Uncertainty::StdErr { se } => se,
-                _ => 0.0,
+                Uncertainty::StdErr { se, dof } => (se, dof.unwrap_or(f64::INFINITY)),
+                _ => (0.0, f64::INFINITY),
             };
-            let se = se_of(a).hypot(se_of(b));
+            let ((sa, da), (sb, db)) = (se_of(a), se_of(b));
+            let se = sa.hypot(sb);
+            // the smaller of the two degrees of freedom: conservative against Welch's
+            let dof = da.min(db);
+            let m = Measured::with_se_dof(diff, se, dof.is_finite().then_some(dof));
             if !(se.is_finite() && se > 0.0) {
-                return (diff, Measured::with_se(diff, se), Pair::Undefined);
+                return (diff, m, Pair::Undefined);
             }
-            (diff, Measured::with_se(diff, se), Pair::Z(s * diff / se))
+            (diff, m, Pair::Z(s * diff / se, dof))
         }
     }
 }
@@ -171,25 +184,28 @@ pub fn trend(series: &[Series], direction: Direction) -> Decision {
             ));
         }
     }
-    let zs: Vec<(usize, f64)> = raw
+    let zs: Vec<(usize, f64, f64)> = raw
         .iter()
         .enumerate()
         .filter_map(|(i, r)| match r.3 {
-            Pair::Z(z) => Some((i, z)),
+            Pair::Z(z, dof) => Some((i, z, dof)),
             _ => None,
         })
         .collect();
-    let ps: Vec<f64> = zs.iter().map(|&(_, z)| two_sided_p(z)).collect();
+    let ps: Vec<f64> = zs
+        .iter()
+        .map(|&(_, z, dof)| t_two_sided_p(z, dof))
+        .collect();
     let (reject, thresholds) = holm(&ps, ALPHA);
     let mut outcome = vec![Outcome::Undefined; raw.len()];
     let mut stat = vec![(String::new(), f64::NAN, f64::NAN); raw.len()];
-    for (k, &(i, z)) in zs.iter().enumerate() {
+    for (k, &(i, z, dof)) in zs.iter().enumerate() {
         outcome[i] = match (reject[k], z > 0.0) {
             (true, true) => Outcome::For,
             (true, false) => Outcome::Against,
             _ => Outcome::Neither,
         };
-        stat[i] = ("z".into(), z, z_for_two_sided(thresholds[k]));
+        stat[i] = (stat_name(dof), z, t_for_two_sided(thresholds[k], dof));
     }
     for (i, r) in raw.iter().enumerate() {
         match r.3 {
@@ -202,7 +218,7 @@ pub fn trend(series: &[Series], direction: Direction) -> Decision {
                 stat[i] = ("gap between the brackets".into(), gap, 0.0);
             }
             Pair::Undefined => stat[i] = ("undefined".into(), f64::NAN, f64::NAN),
-            Pair::Z(_) => {}
+            Pair::Z(..) => {}
         }
     }
     let against = outcome.contains(&Outcome::Against);
@@ -261,7 +277,7 @@ pub fn trend(series: &[Series], direction: Direction) -> Decision {
         verdict,
         "trend",
         format!(
-            "{} along each series: steps and the change across the range; z = change/√(se₁²+se₂²) two-sided at α = {ALPHA} with Holm–Bonferroni over the {} stochastic tests; exact values up to a relative tolerance {EXACT_REL_TOL:e}; brackets by overlap",
+            "{} along each series: steps and the change across the range; z = change/√(se₁²+se₂²) (Student's t with the smaller degrees of freedom where given) two-sided at α = {ALPHA} with Holm–Bonferroni over the {} stochastic tests; exact values up to a relative tolerance {EXACT_REL_TOL:e}; brackets by overlap",
             match direction {
                 Direction::Increases => "increase",
                 Direction::Decreases => "decrease",
@@ -371,6 +387,8 @@ pub struct LlePoint {
     pub lle: f64,
     /// Its standard error over realisations.
     pub se: f64,
+    /// Degrees of freedom of the standard error (realisations − 1); `None`: normal tests.
+    pub dof: Option<f64>,
 }
 
 /// One curve of exponents against D, ascending in D.
@@ -397,15 +415,18 @@ pub struct LleCurve {
 /// no significant negative, no significant positive, with the untestable points named. The
 /// claim: refuted when a curve is, confirmed when every curve is, else undetermined.
 pub fn sign_change(curves: &[LleCurve]) -> Decision {
-    let mut idx = Vec::new(); // (curve, point, z)
+    let mut idx = Vec::new(); // (curve, point, z, dof)
     for (c, curve) in curves.iter().enumerate() {
         for (k, q) in curve.points.iter().enumerate() {
             if q.lle.is_finite() && q.se.is_finite() && q.se > 0.0 {
-                idx.push((c, k, q.lle / q.se));
+                idx.push((c, k, q.lle / q.se, q.dof.unwrap_or(f64::INFINITY)));
             }
         }
     }
-    let ps: Vec<f64> = idx.iter().map(|&(_, _, z)| two_sided_p(z)).collect();
+    let ps: Vec<f64> = idx
+        .iter()
+        .map(|&(_, _, z, dof)| t_two_sided_p(z, dof))
+        .collect();
     let (reject, thresholds) = holm(&ps, ALPHA);
     let mut checks = Vec::new();
     let mut parts: Vec<(bool, bool, Option<String>)> = Vec::new(); // (confirmed, refuted, why)
@@ -417,14 +438,14 @@ pub fn sign_change(curves: &[LleCurve]) -> Decision {
         for (k, q) in curve.points.iter().enumerate() {
             let found = idx
                 .iter()
-                .position(|&(ci, ki, _)| ci == c && ki == k)
-                .map(|j| (idx[j].2, reject[j], thresholds[j]));
+                .position(|&(ci, ki, _, _)| ci == c && ki == k)
+                .map(|j| (idx[j].2, reject[j], thresholds[j], idx[j].3));
             let (outcome, z, thr) = match found {
                 None => {
                     untestable.push(q.d);
                     (Outcome::Undefined, f64::NAN, f64::NAN)
                 }
-                Some((z, sig, t)) => {
+                Some((z, sig, t, dof)) => {
                     let o = if sig {
                         if z > 0.0 {
                             pos.push(q.d);
@@ -435,13 +456,13 @@ pub fn sign_change(curves: &[LleCurve]) -> Decision {
                     } else {
                         Outcome::Neither
                     };
-                    (o, z, z_for_two_sided(t))
+                    (o, z, t_for_two_sided(t, dof))
                 }
             };
             checks.push(Check {
                 what: format!("{}, D = {}", curve.label, crate::notes::num(q.d)),
-                value: Measured::with_se(q.lle, q.se),
-                statistic: "z".into(),
+                value: Measured::with_se_dof(q.lle, q.se, q.dof),
+                statistic: stat_name(q.dof.unwrap_or(f64::INFINITY)),
                 statistic_value: z,
                 threshold: thr,
                 outcome,
@@ -535,7 +556,7 @@ pub fn sign_change(curves: &[LleCurve]) -> Decision {
         verdict,
         "sign_change",
         format!(
-            "z = LLE/se at each point, two-sided at α = {ALPHA} with Holm–Bonferroni over the {} testable points of the claim; a curve needs significant values of both signs, every negative below every positive",
+            "z = LLE/se at each point (Student's t with realisations − 1 degrees of freedom where given), two-sided at α = {ALPHA} with Holm–Bonferroni over the {} testable points of the claim; a curve needs significant values of both signs, every negative below every positive",
             idx.len()
         ),
         idx.len(),
@@ -653,7 +674,7 @@ pub fn closeness(pairs: &[(String, Measured, Measured)], tol: f64) -> Decision {
         let scale = a.value.abs().max(b.value.abs());
         let diff = (a.value - b.value).abs();
         let se_of = |m: &Measured| match m.uncertainty {
-            Uncertainty::StdErr { se } => se,
+            Uncertainty::StdErr { se, .. } => se,
             Uncertainty::Bracket { lo, hi } => (hi - lo) / 2.0,
             Uncertainty::Exact => 0.0,
         };

@@ -54,6 +54,62 @@ pub fn z_for_two_sided(p: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
+/// Two-sided p-value of Student's t with `nu` degrees of freedom, P(|T| > |t|), by the closed
+/// forms of Abramowitz & Stegun 26.7.3–4 for integer ν (a fractional ν is rounded down, which
+/// is conservative); the normal tail for ν ≥ 1000 or ν not finite.
+pub fn t_two_sided_p(t: f64, nu: f64) -> f64 {
+    if !nu.is_finite() || nu >= 1000.0 {
+        return two_sided_p(t);
+    }
+    let n = nu.floor().max(1.0) as u32;
+    let theta = (t.abs() / (n as f64).sqrt()).atan();
+    let (s, c) = theta.sin_cos();
+    let a = if n % 2 == 1 {
+        // odd ν: (2/π)(θ + sinθ Σ), Σ = cosθ + (2/3)cos³θ + …, to cos^(ν−2)θ
+        let mut sum = 0.0;
+        if n > 1 {
+            let mut term = c;
+            sum = term;
+            let mut k = 3;
+            while k < n {
+                term *= c * c * (k - 1) as f64 / k as f64;
+                sum += term;
+                k += 2;
+            }
+        }
+        2.0 / std::f64::consts::PI * (theta + s * sum)
+    } else {
+        // even ν: sinθ Σ, Σ = 1 + (1/2)cos²θ + (1·3)/(2·4)cos⁴θ + …, to cos^(ν−2)θ
+        let mut term = 1.0;
+        let mut sum = 1.0;
+        let mut k = 2;
+        while k < n {
+            term *= c * c * (k - 1) as f64 / k as f64;
+            sum += term;
+            k += 2;
+        }
+        s * sum
+    };
+    (1.0 - a).clamp(0.0, 1.0)
+}
+
+/// The |t| whose two-sided p-value with `nu` degrees of freedom is `p` (bisection).
+pub fn t_for_two_sided(p: f64, nu: f64) -> f64 {
+    if p >= 1.0 {
+        return 0.0;
+    }
+    let (mut lo, mut hi) = (0.0f64, 1e6f64);
+    for _ in 0..300 {
+        let mid = 0.5 * (lo + hi);
+        if t_two_sided_p(mid, nu) > p {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
 /// Holm–Bonferroni at family-wise level `alpha` over two-sided p-values: which are rejected
 /// (significant), and the per-test p threshold each was held against (α/(m − k) for the k-th
 /// smallest, k from 0; tests after the first acceptance keep the threshold they would have had).
@@ -88,6 +144,23 @@ mod tests {
         assert!((z_for_two_sided(0.05) - 1.959_964).abs() < 1e-5);
         // Bonferroni over 36 tests: |z| > 3.20
         assert!((z_for_two_sided(0.05 / 36.0) - 3.197).abs() < 2e-3);
+    }
+
+    #[test]
+    fn student_t_at_known_quantiles() {
+        // two-sided 5 % points: ν = 1, 2, 7, 30
+        for (nu, q) in [
+            (1.0, 12.706_2),
+            (2.0, 4.302_7),
+            (7.0, 2.364_6),
+            (30.0, 2.042_3),
+        ] {
+            assert!((t_two_sided_p(q, nu) - 0.05).abs() < 2e-5, "ν = {nu}");
+            assert!((t_for_two_sided(0.05, nu) - q).abs() < 1e-3, "ν = {nu}");
+        }
+        // ν = 7, two-sided 0.1 %: 5.408
+        assert!((t_for_two_sided(0.001, 7.0) - 5.408).abs() < 2e-3);
+        assert!((t_two_sided_p(1.959_964, f64::INFINITY) - 0.05).abs() < 1e-6);
     }
 
     #[test]

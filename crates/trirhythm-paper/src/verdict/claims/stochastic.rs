@@ -55,7 +55,7 @@ pub(super) fn fig13_peaks(f: &Fig13) -> Decision {
     count(&items)
 }
 
-fn lle_curves(p: &LlePanel) -> Vec<LleCurve> {
+fn lle_curves(p: &LlePanel, dof: Option<f64>) -> Vec<LleCurve> {
     p.curves
         .iter()
         .map(|c| LleCurve {
@@ -67,19 +67,20 @@ fn lle_curves(p: &LlePanel) -> Vec<LleCurve> {
                     d: q.x,
                     lle: q.y,
                     se: (q.hi - q.lo) / 2.0,
+                    dof,
                 })
                 .collect(),
         })
         .collect()
 }
 
-pub(super) fn lle_sign_change(p: &LlePanel) -> Decision {
-    sign_change(&lle_curves(p))
+pub(super) fn lle_sign_change(p: &LlePanel, dof: Option<f64>) -> Decision {
+    sign_change(&lle_curves(p, dof))
 }
 
-pub(super) fn fig18_impact_loss(p: &LlePanel) -> Decision {
+pub(super) fn fig18_impact_loss(p: &LlePanel, dof: Option<f64>) -> Decision {
     // curves are r = 0.998, 0.95, 0.9, 0.8: the claim's order (more loss); one series per D
-    let curves = lle_curves(p);
+    let curves = lle_curves(p, dof);
     let r_of = |label: &str| {
         label
             .rsplit("= ")
@@ -96,7 +97,7 @@ pub(super) fn fig18_impact_loss(p: &LlePanel) -> Decision {
                 .iter()
                 .map(|c| {
                     let q = c.points[k];
-                    (r_of(&c.label), Measured::with_se(q.lle, q.se))
+                    (r_of(&c.label), Measured::with_se_dof(q.lle, q.se, q.dof))
                 })
                 .collect(),
         })
