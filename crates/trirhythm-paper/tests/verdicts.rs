@@ -515,3 +515,47 @@ fn every_claim_in_quick_mode() {
     let (c, r, u) = v.counts();
     assert_eq!(c + r + u, v.claims.len());
 }
+
+/// Saved figure data (`figNN.json` as `trirhythm figure N --data` writes it: the figure's data
+/// under `data`, with `quick` and `variant`) in the folder named by `TRIRHYTHM_VERDICT_DATA`,
+/// judged and printed: the verdicts of full-quality runs without recomputing them.
+#[test]
+#[ignore = "extended: needs saved figure data (TRIRHYTHM_VERDICT_DATA=folder)"]
+fn verdicts_of_saved_figure_data() {
+    use serde::de::DeserializeOwned;
+    let Ok(dir) = std::env::var("TRIRHYTHM_VERDICT_DATA") else {
+        return;
+    };
+    let mut quick = None;
+    fn load<F: DeserializeOwned>(dir: &str, n: u32, quick: &mut Option<bool>) -> Option<F> {
+        let text = std::fs::read_to_string(format!("{dir}/fig{n:02}.json")).ok()?;
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let q = v["quick"].as_bool().unwrap_or(false);
+        assert!(quick.is_none_or(|x| x == q), "quick and full data mixed");
+        *quick = Some(q);
+        Some(serde_json::from_value(v["data"].clone()).unwrap())
+    }
+    let q = &mut quick;
+    let mut figs = Figures {
+        fig01: load(&dir, 1, q),
+        fig02: load(&dir, 2, q),
+        fig03: load(&dir, 3, q),
+        fig04: load(&dir, 4, q),
+        fig05: load(&dir, 5, q),
+        fig06: load(&dir, 6, q),
+        fig07: load(&dir, 7, q),
+        fig08: load(&dir, 8, q),
+        fig09: load(&dir, 9, q),
+        fig10: load(&dir, 10, q),
+        fig11: load(&dir, 11, q),
+        fig12: load(&dir, 12, q),
+        fig13: load(&dir, 13, q),
+        fig17: load(&dir, 17, q),
+        fig18: load(&dir, 18, q),
+        fig19: load(&dir, 19, q),
+        ..Default::default()
+    };
+    figs.options.quick = quick.unwrap_or(false);
+    let v = judge(&figs);
+    println!("{}", serde_json::to_string_pretty(&v.claims).unwrap());
+}
