@@ -167,6 +167,15 @@ fn trend_of_brackets_decides_by_overlap_and_undefined_values_stop_it() {
     );
     let d = trend(&[missing], Direction::Increases);
     assert!(matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("undefined")));
+    // a half-open bracket (rest over the whole searched interval: the boundary is above it)
+    let above = series(
+        "boundary",
+        &[
+            (1.0, Measured::bracket(0.03, 0.029, 0.031)),
+            (0.95, Measured::bracket(f64::NAN, 0.09, f64::INFINITY)),
+        ],
+    );
+    assert_eq!(tag(&trend(&[above], Direction::Increases)), "confirmed");
 }
 
 // ---- count ----
@@ -550,6 +559,7 @@ fn verdicts_of_saved_figure_data() {
         fig11: load(&dir, 11, q),
         fig12: load(&dir, 12, q),
         fig13: load(&dir, 13, q),
+        fig16: load(&dir, 16, q),
         fig17: load(&dir, 17, q),
         fig18: load(&dir, 18, q),
         fig19: load(&dir, 19, q),

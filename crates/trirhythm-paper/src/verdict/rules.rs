@@ -82,10 +82,16 @@ fn sign_for(direction: Direction) -> f64 {
 fn compare(a: &Measured, b: &Measured, direction: Direction) -> (f64, Measured, Pair) {
     let s = sign_for(direction);
     let diff = b.value - a.value;
-    if !a.value.is_finite() || !b.value.is_finite() {
+    let bracketed = |m: &Measured| matches!(m.uncertainty, Uncertainty::Bracket { .. });
+    // a bracket may be half-open (a boundary above the searched range: [top, ∞)) and then
+    // has no point value; anything else needs a finite value
+    let defined = |m: &Measured| match m.uncertainty {
+        Uncertainty::Bracket { lo, hi } => !(lo.is_nan() || hi.is_nan()),
+        _ => m.value.is_finite(),
+    };
+    if !defined(a) || !defined(b) {
         return (diff, Measured::exact(f64::NAN), Pair::Undefined);
     }
-    let bracketed = |m: &Measured| matches!(m.uncertainty, Uncertainty::Bracket { .. });
     match (a.uncertainty, b.uncertainty) {
         (Uncertainty::Exact, Uncertainty::Exact) => {
             let scale = a.value.abs().max(b.value.abs());
@@ -103,7 +109,7 @@ fn compare(a: &Measured, b: &Measured, direction: Direction) -> (f64, Measured, 
             // a standard error beside a bracket counts as a ±2 s.e. interval
             let (alo, ahi) = a.interval(2.0);
             let (blo, bhi) = b.interval(2.0);
-            if !(alo.is_finite() && ahi.is_finite() && blo.is_finite() && bhi.is_finite()) {
+            if [alo, ahi, blo, bhi].iter().any(|v| v.is_nan()) {
                 return (diff, Measured::exact(f64::NAN), Pair::Undefined);
             }
             let up = blo > ahi;

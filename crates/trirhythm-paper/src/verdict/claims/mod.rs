@@ -28,6 +28,7 @@ use crate::fig10_pbif_lambda_tau::{Fig10, D_VALUES as FIG10_D};
 use crate::fig11_amplitude_lambda::Fig11;
 use crate::fig12_pbif_maps::Fig12;
 use crate::fig13_pdf_restitution::Fig13;
+use crate::fig16_oscillation_regions::Fig16;
 use crate::fig17_lle_noise::Fig17;
 use crate::fig18_lle_noise_fractional::Fig18;
 use crate::fig19_critical_noise::Fig19;
@@ -58,13 +59,14 @@ pub struct Figures {
     pub fig11: Option<Fig11>,
     pub fig12: Option<Fig12>,
     pub fig13: Option<Fig13>,
+    pub fig16: Option<Fig16>,
     pub fig17: Option<Fig17>,
     pub fig18: Option<Fig18>,
     pub fig19: Option<Fig19>,
 }
 
-/// The figures that claims are computed from (Figs 14–16 carry none yet).
-pub const JUDGED_FIGURES: [u32; 16] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 17, 18, 19];
+/// The figures that claims are computed from (Figs 14 and 15 carry none yet).
+pub const JUDGED_FIGURES: [u32; 17] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 16, 17, 18, 19];
 
 /// The theory figures, cheap and deterministic (seconds in quick mode).
 pub const THEORY_FIGURES: [u32; 11] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12];
@@ -104,6 +106,7 @@ impl Figures {
             fig11: get(numbers, o, m)?,
             fig12: get(numbers, o, m)?,
             fig13: get(numbers, o, m)?,
+            fig16: get(numbers, o, m)?,
             fig17: get(numbers, o, m)?,
             fig18: get(numbers, o, m)?,
             fig19: get(numbers, o, m)?,
@@ -379,6 +382,24 @@ fn specs() -> Vec<Spec> {
             judge: |f| f.fig13.as_ref().map(fig13_peaks),
         },
         Spec {
+            id: "fig16-rest-grows",
+            figure: 16,
+            place: "Fig. 16(b, d), Sec. 5",
+            words: "the rest (no-oscillation) region grows as r and λ decrease (\"This emphasizes the impact of λ and r on these domains\"; paraphrase of the figure)",
+            rule: "trend",
+            judge: |f| {
+                f.fig16.as_ref().map(|x| {
+                    let parts = x
+                        .panels
+                        .iter()
+                        .filter(|p| p.curves.iter().any(|c| c.member.is_some()))
+                        .map(|p| (format!("panel {}", p.label), fig16_family(p)))
+                        .collect();
+                    all_of("trend", parts)
+                })
+            },
+        },
+        Spec {
             id: "fig17a-lle-sign-change",
             figure: 17,
             place: "Fig. 17(a), Sec. 5",
@@ -494,8 +515,6 @@ pub fn not_computable() -> Vec<NotComputable> {
           "a stated effect size for \"changes significantly\"; the simulated boundaries and their brackets are in the data"),
         n("fig15-16-averaged-boundary", "Figs 15–16", "the averaged oscillation boundary",
           "the closeness rule over the simulated brackets against the averaged curve at each abscissa (data present; not wired yet)"),
-        n("fig16-rest-grows", "Fig. 16", "the rest region grows as r and λ decrease",
-          "the trend rule over the simulated boundary brackets per family member (data present; not wired yet)"),
         n("eq26-28-misprints", "Eq. 26–28, theory", "Eq. 26–28 as printed (coloured noise, impact term)",
           "not figure data: a derivation (σ1 for coloured noise, the (1+τ²) factor); decided in docs/theory.md"),
     ]

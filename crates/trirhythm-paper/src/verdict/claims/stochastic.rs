@@ -1,16 +1,18 @@
-//! The Monte Carlo and Lyapunov claims (Figs 11, 13, 17–19): numbers with standard errors or
-//! brackets and the stationarity of their ensembles, decided by the agreement, count,
-//! sign-change and trend rules.
+//! The simulated claims (Figs 11, 13, 16–19): Monte Carlo and Lyapunov numbers with standard
+//! errors and the stationarity of their ensembles, boundaries with brackets, decided by the
+//! agreement, count, sign-change and trend rules.
 
 use super::super::rules::{
     agreement, count, sign_change, trend, Comparison, Count, CountSource, Direction, LleCurve,
     LlePoint, Series,
 };
 use super::super::{Decision, Measured, Verdict};
+use crate::boundary::Panel as BoundaryPanel;
 use crate::fig13_pdf_restitution::Fig13;
 use crate::fig19_critical_noise::{Fig19, PANELS as FIG19_PANELS};
 use crate::lle::Panel as LlePanel;
 use crate::montecarlo::AmplitudePanel;
+use trirhythm::analysis::oscillation::Side;
 
 pub(super) fn agreement_of(panels: &[AmplitudePanel], system: &str, variant: &str) -> Decision {
     let mut items = Vec::new();
@@ -149,4 +151,53 @@ pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
             ..d
         }
     }
+}
+
+/// The simulated oscillation boundary of each member of a family panel of Fig. 16, one series
+/// per abscissa over the members in the panel's order: a boundary inside the searched μ0
+/// interval is its bracket; rest over the whole interval, [top, ∞); oscillation, [0, bottom].
+pub(super) fn fig16_family(p: &BoundaryPanel) -> Decision {
+    let sims: Vec<(&str, &[trirhythm::analysis::oscillation::BoundaryPoint])> = p
+        .curves
+        .iter()
+        .filter(|c| c.method == "simulation" && c.member.is_some())
+        .map(|c| (c.label.as_str(), c.points.as_slice()))
+        .collect();
+    let (bottom, top) = p.y_range;
+    let n = sims.iter().map(|s| s.1.len()).min().unwrap_or(0);
+    let value = |label: &str| {
+        label
+            .rsplit("= ")
+            .next()
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(f64::NAN)
+    };
+    let series: Vec<Series> = (0..n)
+        .map(|k| Series {
+            label: format!(
+                "simulated boundary μ0 at {} = {}",
+                p.x_desc,
+                crate::notes::num(sims[0].1[k].x)
+            ),
+            x_name: sims
+                .first()
+                .and_then(|s| s.0.split(" =").next())
+                .unwrap_or("member")
+                .to_string(),
+            points: sims
+                .iter()
+                .map(|(label, pts)| {
+                    let q = pts[k];
+                    let m = match q.side {
+                        Side::Boundary => Measured::bracket(q.y, q.y_lo, q.y_hi),
+                        Side::Rests => Measured::bracket(f64::NAN, top, f64::INFINITY),
+                        Side::Oscillates => Measured::bracket(f64::NAN, 0.0, bottom),
+                        Side::Unavailable => Measured::bracket(f64::NAN, f64::NAN, f64::NAN),
+                    };
+                    (value(label), m)
+                })
+                .collect(),
+        })
+        .collect();
+    trend(&series, Direction::Increases)
 }
