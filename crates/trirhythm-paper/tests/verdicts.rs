@@ -451,6 +451,31 @@ fn theory_claims_in_quick_mode_with_their_numbers() {
         .collect();
     assert_eq!(computed, vec![3.0, 2.0, 2.0, 0.0]);
     assert_eq!(roots.decision.checks[3].outcome, Outcome::For);
+    // Fig. 1: the mean amplitudes differ by more than the 5 % of "align closely"
+    let align = v.get("fig01-align").unwrap();
+    assert_eq!(align.decision.verdict, Verdict::Refuted);
+    assert!(align.decision.checks[0].statistic_value > 0.1);
+    // the region trends of the maps: Figs 3, 6, 10 as claimed, Fig. 12 (μ0, r) against
+    for id in [
+        "fig03-tri-shrinks",
+        "fig06-mono-grows",
+        "fig10-trimodal-shrinks",
+        "fig12-omega-lambda-r",
+    ] {
+        assert_eq!(
+            v.get(id).unwrap().decision.verdict,
+            Verdict::Confirmed,
+            "{id}"
+        );
+    }
+    assert_eq!(
+        v.get("fig12-omega-mu0-r").unwrap().decision.verdict,
+        Verdict::Refuted
+    );
+    // Fig. 7: the A01 well deepens as r falls (every step against the claim)
+    let inner = v.get("fig07-inner-well").unwrap();
+    assert_eq!(inner.decision.verdict, Verdict::Refuted);
+    assert_eq!(inner.decision.tally[0], 0);
     // Fig. 8: τ is not printed, whatever the count
     assert!(matches!(
         v.get("fig08-four-barriers").unwrap().decision.verdict,
