@@ -63,6 +63,18 @@ enum Pair {
     Undefined,
 }
 
+/// A number with its uncertainty in words: `v`, `v ± se`, `v in [lo, hi]`.
+fn shown(m: &Measured) -> String {
+    use crate::notes::sig;
+    match m.uncertainty {
+        Uncertainty::Exact => sig(m.value, 4),
+        Uncertainty::StdErr { se, .. } => format!("{} ± {}", sig(m.value, 3), sig(se, 2)),
+        Uncertainty::Bracket { lo, hi } => {
+            format!("{} in [{}, {}]", sig(m.value, 4), sig(lo, 4), sig(hi, 4))
+        }
+    }
+}
+
 /// `z`, or `t (ν = …)` for a statistic with few degrees of freedom.
 fn stat_name(dof: f64) -> String {
     if dof.is_finite() {
@@ -166,10 +178,18 @@ pub fn trend(series: &[Series], direction: Direction) -> Decision {
     for s in series {
         let n = s.points.len();
         let name = |i: usize| format!("{} = {}", s.x_name, crate::notes::num(s.points[i].0));
+        let values =
+            |i: usize, j: usize| format!("{} → {}", shown(&s.points[i].1), shown(&s.points[j].1));
         for i in 1..n {
             let (_, m, p) = compare(&s.points[i - 1].1, &s.points[i].1, direction);
             raw.push((
-                format!("{}, {} → {}", s.label, name(i - 1), name(i)),
+                format!(
+                    "{}, {} → {}: {}",
+                    s.label,
+                    name(i - 1),
+                    name(i),
+                    values(i - 1, i)
+                ),
                 n == 2,
                 m,
                 p,
@@ -179,10 +199,11 @@ pub fn trend(series: &[Series], direction: Direction) -> Decision {
             let (_, m, p) = compare(&s.points[0].1, &s.points[n - 1].1, direction);
             raw.push((
                 format!(
-                    "{}, across the range {} → {}",
+                    "{}, across the range {} → {}: {}",
                     s.label,
                     name(0),
-                    name(n - 1)
+                    name(n - 1),
+                    values(0, n - 1)
                 ),
                 true,
                 m,
@@ -344,7 +365,7 @@ pub fn count(items: &[Count]) -> Decision {
                     open.push(format!(
                         "{}: not stationary (R̂ = {})",
                         c.what,
-                        crate::notes::num(r_hat)
+                        crate::notes::sig(r_hat, 3)
                     ));
                 }
                 stationary
@@ -618,7 +639,7 @@ pub fn agreement(items: &[Comparison]) -> Decision {
             open.push(format!(
                 "{}: not stationary (R̂ = {})",
                 c.what,
-                crate::notes::num(c.r_hat)
+                crate::notes::sig(c.r_hat, 3)
             ));
             Outcome::Undefined
         } else if !usable {
@@ -636,9 +657,9 @@ pub fn agreement(items: &[Comparison]) -> Decision {
             what: format!(
                 "{} (floor √(bins/(8·ESS)) = {}, bins {}, ESS {})",
                 c.what,
-                crate::notes::num(floor),
+                crate::notes::sig(floor, 3),
                 c.bins,
-                crate::notes::num(c.ess)
+                crate::notes::sig(c.ess, 3)
             ),
             value: Measured::with_se(c.hellinger, c.se),
             statistic: "H".into(),
