@@ -692,8 +692,9 @@ pub fn agreement(items: &[Comparison]) -> Decision {
 /// closely" and "change very slightly").
 ///
 /// Exact values: confirmed when the relative difference is ≤ tol, refuted otherwise. With
-/// standard errors (combined se of a − b): confirmed when (|a − b| + 2·se)/scale ≤ tol,
-/// refuted when (|a − b| − 2·se)/scale > tol, else undetermined. Several pairs: refuted when
+/// uncertainties, the margin m = 2·se (combined se of a − b) + the half-widths of brackets:
+/// confirmed when (|a − b| + m)/scale ≤ tol, refuted when (|a − b| − m)/scale > tol, else
+/// undetermined. Several pairs: refuted when
 /// one is, confirmed when all are.
 pub fn closeness(pairs: &[(String, Measured, Measured)], tol: f64) -> Decision {
     let mut checks = Vec::new();
@@ -702,16 +703,22 @@ pub fn closeness(pairs: &[(String, Measured, Measured)], tol: f64) -> Decision {
         let diff = (a.value - b.value).abs();
         let se_of = |m: &Measured| match m.uncertainty {
             Uncertainty::StdErr { se, .. } => se,
+            _ => 0.0,
+        };
+        let half_width = |m: &Measured| match m.uncertainty {
             Uncertainty::Bracket { lo, hi } => (hi - lo) / 2.0,
-            Uncertainty::Exact => 0.0,
+            _ => 0.0,
         };
         let se = se_of(a).hypot(se_of(b));
+        // how far the difference may be off: 2 s.e., plus the half-widths of brackets (a
+        // bracket is certain, its midpoint is off by at most half its width)
+        let margin = 2.0 * se + half_width(a) + half_width(b);
         let rel = if scale > 0.0 { diff / scale } else { 0.0 };
-        let outcome = if !(rel.is_finite() && se.is_finite()) {
+        let outcome = if !(rel.is_finite() && margin.is_finite()) {
             Outcome::Undefined
-        } else if (diff + 2.0 * se) <= tol * scale || scale == 0.0 {
+        } else if (diff + margin) <= tol * scale || scale == 0.0 {
             Outcome::For
-        } else if (diff - 2.0 * se) > tol * scale {
+        } else if (diff - margin) > tol * scale {
             Outcome::Against
         } else {
             Outcome::Neither

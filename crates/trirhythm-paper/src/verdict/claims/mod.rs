@@ -13,7 +13,7 @@ mod theory;
 pub use stochastic::FIG13_CLAIMED_PEAKS;
 pub use theory::FIG04_CLAIMED_ROOTS;
 
-use super::rules::Direction;
+use super::rules::{closeness, Direction, CLOSENESS_REL_TOL};
 use super::{all_of, Decision};
 use crate::fig01_phase_recurrence::Fig01;
 use crate::fig02_rhythmicity_planes::Fig02;
@@ -400,6 +400,24 @@ fn specs() -> Vec<Spec> {
             },
         },
         Spec {
+            id: "fig16-averaged-boundary",
+            figure: 16,
+            place: "Figs 15–16 (Fig. 16(a, c)), Sec. 5",
+            words: "the averaged amplitude equation gives the boundary between oscillation and rest (paraphrase: the Hopf boundary f′(0) = 0 of Eq. 18 drawn as the demarcation)",
+            rule: "closeness",
+            judge: |f| {
+                f.fig16.as_ref().map(|x| {
+                    let pairs: Vec<_> = x
+                        .panels
+                        .iter()
+                        .filter(|p| p.curves.iter().all(|c| c.member.is_none()))
+                        .flat_map(fig16_averaged)
+                        .collect();
+                    closeness(&pairs, CLOSENESS_REL_TOL)
+                })
+            },
+        },
+        Spec {
             id: "fig17a-lle-sign-change",
             figure: 17,
             place: "Fig. 17(a), Sec. 5",
@@ -513,8 +531,6 @@ pub fn not_computable() -> Vec<NotComputable> {
           "a peak count of the 2-D joint densities (theory and Monte Carlo) with a prominence rule, and the Monte Carlo standard errors per cell; the data holds the densities, the Hellinger distance without its standard error, and R̂"),
         n("fig15-omega", "Fig. 15", "the oscillation boundary changes significantly with ω0",
           "a stated effect size for \"changes significantly\"; the simulated boundaries and their brackets are in the data"),
-        n("fig15-16-averaged-boundary", "Figs 15–16", "the averaged oscillation boundary",
-          "the closeness rule over the simulated brackets against the averaged curve at each abscissa (data present; not wired yet)"),
         n("eq26-28-misprints", "Eq. 26–28, theory", "Eq. 26–28 as printed (coloured noise, impact term)",
           "not figure data: a derivation (σ1 for coloured noise, the (1+τ²) factor); decided in docs/theory.md"),
     ]

@@ -201,3 +201,38 @@ pub(super) fn fig16_family(p: &BoundaryPanel) -> Decision {
         .collect();
     trend(&series, Direction::Increases)
 }
+
+/// The averaged boundary (f′(0) = 0 of Eq. 18) against the simulated one (its bracket, the
+/// secant root as value) at every abscissa of a panel of methods of Fig. 16 where both are
+/// inside the searched interval; the abscissae where only one is are named.
+pub(super) fn fig16_averaged(p: &BoundaryPanel) -> Vec<(String, Measured, Measured)> {
+    let find = |m: &str| {
+        p.curves
+            .iter()
+            .find(|c| c.member.is_none() && c.method == m)
+    };
+    let (Some(sim), Some(avg)) = (find("simulation"), find("averaging")) else {
+        return Vec::new();
+    };
+    sim.points
+        .iter()
+        .zip(&avg.points)
+        .map(|(s, a)| {
+            let what = format!(
+                "panel {}, {} = {}: simulated against averaged boundary μ0",
+                p.label,
+                p.x_desc,
+                crate::notes::num(s.x)
+            );
+            let sm = match s.side {
+                Side::Boundary => Measured::bracket(s.y, s.y_lo, s.y_hi),
+                _ => Measured::bracket(f64::NAN, f64::NAN, f64::NAN),
+            };
+            let am = match a.side {
+                Side::Boundary => Measured::exact(a.y),
+                _ => Measured::exact(f64::NAN),
+            };
+            (what, sm, am)
+        })
+        .collect()
+}
