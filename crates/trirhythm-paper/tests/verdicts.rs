@@ -404,6 +404,23 @@ fn closeness_below_the_stated_tolerance() {
     let d = closeness(&pair(7.887, 6.780), CLOSENESS_REL_TOL);
     assert_eq!(tag(&d), "refuted");
     assert!((d.checks[0].statistic_value - (7.887 - 6.780) / 7.887).abs() < 1e-12);
+    // a bracket's half-width is part of the margin: 0.100 in [0.09, 0.11] against 0.1
+    // (exact) is within 5 % only if the bracket is narrow enough
+    let bracketed = |lo: f64, hi: f64| {
+        vec![(
+            "boundary".to_string(),
+            Measured::bracket(0.1, lo, hi),
+            Measured::exact(0.1),
+        )]
+    };
+    assert_eq!(
+        tag(&closeness(&bracketed(0.099, 0.101), CLOSENESS_REL_TOL)),
+        "confirmed"
+    );
+    assert!(matches!(
+        closeness(&bracketed(0.09, 0.11), CLOSENESS_REL_TOL).verdict,
+        Verdict::Undetermined { .. }
+    ));
     // within 2 s.e. of the tolerance: undetermined
     let noisy = vec![(
         "amplitude".to_string(),

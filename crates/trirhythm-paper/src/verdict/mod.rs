@@ -20,8 +20,9 @@
 //!   exact count or a count from a stationary ensemble; undetermined when a count comes from
 //!   a non-stationary ensemble.
 //! - [`rules::sign_change`]: the largest Lyapunov exponent turns from negative to positive as
-//!   D grows: significant values of both signs (Holm–Bonferroni over all points of the claim),
-//!   every significant negative below every significant positive.
+//!   D grows: significant values of both signs (Student's t with realisations − 1 degrees of
+//!   freedom, Holm–Bonferroni over all points of the claim), every significant negative below
+//!   every significant positive.
 //! - [`rules::agreement`]: theory against Monte Carlo: the Hellinger distance within the
 //!   finite-sample floor √(bins/(8·ESS)) plus k = 2 standard errors, stationary ensembles only.
 //! - [`rules::closeness`]: a relative difference below a stated tolerance (5 %).
