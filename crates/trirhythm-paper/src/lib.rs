@@ -49,6 +49,7 @@ pub mod maps;
 pub mod montecarlo;
 pub mod notes;
 pub mod table;
+pub mod verdict;
 
 pub mod fig01_phase_recurrence;
 pub mod fig02_rhythmicity_planes;

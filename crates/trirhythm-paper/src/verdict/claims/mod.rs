@@ -1,0 +1,557 @@
+//! The paper's checkable claims, each with its words, its place, the rule that decides it and
+//! the function computing its [`Decision`] from the figures' data.
+//!
+//! [`registry`] lists the claims with stable ids (`fig04-roots`, …); [`judge`] decides every
+//! claim whose figure is in a [`Figures`] value and returns [`Verdicts`] (serde): the claims,
+//! their verdicts and numbers, and the claims that the figure data cannot decide yet
+//! ([`not_computable`]). Nothing here is typed text about the outcome: change a figure's data
+//! and the verdict follows (tested in `tests/verdicts.rs`).
+
+mod stochastic;
+mod theory;
+
+pub use stochastic::FIG13_CLAIMED_PEAKS;
+pub use theory::FIG04_CLAIMED_ROOTS;
+
+use super::rules::{closeness, Direction, CLOSENESS_REL_TOL};
+use super::{all_of, Decision};
+use crate::fig01_phase_recurrence::Fig01;
+use crate::fig02_rhythmicity_planes::Fig02;
+use crate::fig03_restitution_planes::{Fig03, R_VALUES as FIG03_R};
+use crate::fig04_drift::Fig04;
+use crate::fig05_branches::Fig05;
+use crate::fig06_fractional_planes::{Fig06, LAMBDA_VALUES as FIG06_LAMBDA};
+use crate::fig07_pseudo_potential::Fig07;
+use crate::fig08_barriers::Fig08;
+use crate::fig09_barrier_surfaces::Fig09;
+use crate::fig10_pbif_lambda_tau::{Fig10, D_VALUES as FIG10_D};
+use crate::fig11_amplitude_lambda::Fig11;
+use crate::fig12_pbif_maps::Fig12;
+use crate::fig13_pdf_restitution::Fig13;
+use crate::fig16_oscillation_regions::Fig16;
+use crate::fig17_lle_noise::Fig17;
+use crate::fig18_lle_noise_fractional::Fig18;
+use crate::fig19_critical_noise::Fig19;
+use crate::{Figure, FigureOptions, Monitor};
+use serde::{Deserialize, Serialize};
+use stochastic::*;
+use theory::*;
+use trirhythm::Result;
+
+/// The figures' data a set of verdicts is computed from; a claim whose figure is absent is
+/// not judged.
+#[derive(Default)]
+#[allow(missing_docs)]
+pub struct Figures {
+    /// The options the figures were computed with: their run sizes give the degrees of
+    /// freedom of the Lyapunov standard errors (realisations − 1).
+    pub options: FigureOptions,
+    pub fig01: Option<Fig01>,
+    pub fig02: Option<Fig02>,
+    pub fig03: Option<Fig03>,
+    pub fig04: Option<Fig04>,
+    pub fig05: Option<Fig05>,
+    pub fig06: Option<Fig06>,
+    pub fig07: Option<Fig07>,
+    pub fig08: Option<Fig08>,
+    pub fig09: Option<Fig09>,
+    pub fig10: Option<Fig10>,
+    pub fig11: Option<Fig11>,
+    pub fig12: Option<Fig12>,
+    pub fig13: Option<Fig13>,
+    pub fig16: Option<Fig16>,
+    pub fig17: Option<Fig17>,
+    pub fig18: Option<Fig18>,
+    pub fig19: Option<Fig19>,
+}
+
+/// The figures that claims are computed from (Figs 14 and 15 carry none yet).
+pub const JUDGED_FIGURES: [u32; 17] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 16, 17, 18, 19];
+
+/// The theory figures, cheap and deterministic (seconds in quick mode).
+pub const THEORY_FIGURES: [u32; 11] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12];
+
+impl Figures {
+    /// Compute the figures numbered `numbers` (those of [`JUDGED_FIGURES`]; others are
+    /// ignored).
+    pub fn compute(
+        options: &FigureOptions,
+        monitor: &dyn Monitor,
+        numbers: &[u32],
+    ) -> Result<Figures> {
+        fn get<F: Figure>(
+            numbers: &[u32],
+            o: &FigureOptions,
+            m: &dyn Monitor,
+        ) -> Result<Option<F>> {
+            if numbers.contains(&F::NUMBER) {
+                F::compute(o, m).map(Some)
+            } else {
+                Ok(None)
+            }
+        }
+        let (o, m) = (options, monitor);
+        Ok(Figures {
+            options: *options,
+            fig01: get(numbers, o, m)?,
+            fig02: get(numbers, o, m)?,
+            fig03: get(numbers, o, m)?,
+            fig04: get(numbers, o, m)?,
+            fig05: get(numbers, o, m)?,
+            fig06: get(numbers, o, m)?,
+            fig07: get(numbers, o, m)?,
+            fig08: get(numbers, o, m)?,
+            fig09: get(numbers, o, m)?,
+            fig10: get(numbers, o, m)?,
+            fig11: get(numbers, o, m)?,
+            fig12: get(numbers, o, m)?,
+            fig13: get(numbers, o, m)?,
+            fig16: get(numbers, o, m)?,
+            fig17: get(numbers, o, m)?,
+            fig18: get(numbers, o, m)?,
+            fig19: get(numbers, o, m)?,
+        })
+    }
+}
+
+/// A claim of the paper: its id, words, place and rule.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Claim {
+    /// Stable id (`fig04-roots`).
+    pub id: String,
+    /// The figure it rests on.
+    pub figure: u32,
+    /// Where the paper makes it (figure, section, equation).
+    pub place: String,
+    /// The paper's words (a short quote or a close paraphrase, marked as such).
+    pub words: String,
+    /// The rule that decides it (`trend`, `count`, `sign_change`, `agreement`, `closeness`).
+    pub rule: String,
+}
+
+/// A claim with its decision.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ClaimVerdict {
+    /// The claim.
+    pub claim: Claim,
+    /// The verdict and its numbers.
+    pub decision: Decision,
+}
+
+/// A claim the figure data cannot decide yet, and what it needs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NotComputable {
+    /// Id.
+    pub id: String,
+    /// Where the paper makes it.
+    pub place: String,
+    /// The claim in words.
+    pub words: String,
+    /// What the figure data lacks.
+    pub needs: String,
+}
+
+/// The verdicts on every claim judged.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Verdicts {
+    /// Claims judged, in registry order.
+    pub claims: Vec<ClaimVerdict>,
+    /// Claims of the registry whose figure was not in the data.
+    pub not_judged: Vec<String>,
+    /// Claims the figure data cannot decide yet.
+    pub not_computable: Vec<NotComputable>,
+}
+
+impl Verdicts {
+    /// (confirmed, refuted, undetermined) among the judged claims.
+    pub fn counts(&self) -> (usize, usize, usize) {
+        let n = |t: &str| {
+            self.claims
+                .iter()
+                .filter(|c| c.decision.verdict.tag() == t)
+                .count()
+        };
+        (n("confirmed"), n("refuted"), n("undetermined"))
+    }
+
+    /// The verdict on claim `id`.
+    pub fn get(&self, id: &str) -> Option<&ClaimVerdict> {
+        self.claims.iter().find(|c| c.claim.id == id)
+    }
+}
+
+type Judge = fn(&Figures) -> Option<Decision>;
+
+struct Spec {
+    id: &'static str,
+    figure: u32,
+    place: &'static str,
+    words: &'static str,
+    rule: &'static str,
+    judge: Judge,
+}
+
+fn specs() -> Vec<Spec> {
+    vec![
+        Spec {
+            id: "fig01-align",
+            figure: 1,
+            place: "Fig. 1, Sec. 2",
+            words: "\"The approximative solution seems to align closely with the results of the numerical predictor-corrector simulations\"",
+            rule: "closeness",
+            judge: |f| f.fig01.as_ref().map(fig01_align),
+        },
+        Spec {
+            id: "fig02-regions",
+            figure: 2,
+            place: "Fig. 2(ii), Sec. 3",
+            words: "mono-, bi- and trirhythmic regions in the (γ0, δ0) plane (paraphrase: \"displaying trirhythmicity depicted in Fig.2(ii)\")",
+            rule: "count",
+            judge: |f| f.fig02.as_ref().map(|x| fig02_regions(&x.0.panels)),
+        },
+        Spec {
+            id: "fig03-tri-shrinks",
+            figure: 3,
+            place: "Fig. 3, Sec. 3",
+            words: "\"a decreasing value of r reduces the trirhythmic zone\"",
+            rule: "trend",
+            judge: |f| {
+                f.fig03
+                    .as_ref()
+                    .map(|x| share_trend(&x.0.panels, &FIG03_R, "r", 3, Direction::Decreases))
+            },
+        },
+        Spec {
+            id: "fig04-roots",
+            figure: 4,
+            place: "Fig. 4, Sec. 3",
+            words: "\"we detect five roots\" (r ≈ 1); \"the roots are still five\" (r = 0.98); \"three roots\" (r = 0.96); \"the number of roots is zero\" (r = 0.90)",
+            rule: "count",
+            judge: |f| f.fig04.as_ref().map(fig04_roots),
+        },
+        Spec {
+            id: "fig05-tri-all-r",
+            figure: 5,
+            place: "Fig. 5, Sec. 3",
+            words: "trirhythmic for all r at μ0 = 0.7 (paraphrase of the text on Fig. 5(e))",
+            rule: "count",
+            judge: |f| f.fig05.as_ref().map(fig05_tri_all_r),
+        },
+        Spec {
+            id: "fig06-mono-grows",
+            figure: 6,
+            place: "Fig. 6, Sec. 3",
+            words: "\"the monorhythmic zone expands when λ drops\"",
+            rule: "trend",
+            judge: |f| {
+                f.fig06.as_ref().map(|x| {
+                    share_trend(&x.0.panels, &FIG06_LAMBDA, "λ", 1, Direction::Increases)
+                })
+            },
+        },
+        Spec {
+            id: "fig06-bi-tri-shrink",
+            figure: 6,
+            place: "Fig. 6, Sec. 3",
+            words: "\"whereas the birhythmic and trirhythmic zones reduce\"",
+            rule: "trend",
+            judge: |f| {
+                f.fig06.as_ref().map(|x| {
+                    all_of(
+                        "trend",
+                        vec![
+                            (
+                                "birhythmic".into(),
+                                share_trend(&x.0.panels, &FIG06_LAMBDA, "λ", 2, Direction::Decreases),
+                            ),
+                            (
+                                "trirhythmic".into(),
+                                share_trend(&x.0.panels, &FIG06_LAMBDA, "λ", 3, Direction::Decreases),
+                            ),
+                        ],
+                    )
+                })
+            },
+        },
+        Spec {
+            id: "fig07-inner-well",
+            figure: 7,
+            place: "Fig. 7, Sec. 3",
+            words: "\"when r decreases, the potential well in A01 tends to disappear … the quasi-same phenomena is observed with the variation of λ\"",
+            rule: "trend",
+            judge: |f| f.fig07.as_ref().map(|x| fig07_depths(x, true)),
+        },
+        Spec {
+            id: "fig07-outer-well",
+            figure: 7,
+            place: "Fig. 7, Sec. 3",
+            words: "\"that one in A05 increases in depth\" (as r, and λ, decrease)",
+            rule: "trend",
+            judge: |f| f.fig07.as_ref().map(|x| fig07_depths(x, false)),
+        },
+        Spec {
+            id: "fig07-wells-move",
+            figure: 7,
+            place: "Fig. 7, Sec. 3",
+            words: "\"the amplitudes A01, A03 and A05 change very slightly when r or λ increases\"",
+            rule: "closeness",
+            judge: |f| f.fig07.as_ref().map(fig07_wells_move),
+        },
+        Spec {
+            id: "fig08-four-barriers",
+            figure: 8,
+            place: "Fig. 8, Sec. 3",
+            words: "four energy barriers ΔU1–ΔU4 of U_eff at D = 0.24 (Fig. 8)",
+            rule: "count",
+            judge: |f| f.fig08.as_ref().map(fig08_barriers),
+        },
+        Spec {
+            id: "fig09-lambda",
+            figure: 9,
+            place: "Fig. 9, Sec. 3",
+            words: "\"for the increasing value of λ, ΔU1, ΔU3, ΔU4 are increasing while ΔU2 is decreasing. This is found for all values of correlation time\"",
+            rule: "trend",
+            judge: |f| f.fig09.as_ref().map(fig09_lambda),
+        },
+        Spec {
+            id: "fig09-r",
+            figure: 9,
+            place: "Fig. 9, Sec. 3",
+            words: "\"excluding ΔU3, the energy is lowered when r falls\"",
+            rule: "trend",
+            judge: |f| f.fig09.as_ref().map(fig09_r),
+        },
+        Spec {
+            id: "fig10-trimodal-shrinks",
+            figure: 10,
+            place: "Fig. 10, Sec. 4",
+            words: "\"The trirhythmic region in the parameters (λ, τ)-plane decreases with increasing correlated noise\"",
+            rule: "trend",
+            judge: |f| {
+                f.fig10
+                    .as_ref()
+                    .map(|x| share_trend(&x.0.panels, &FIG10_D, "D", 3, Direction::Decreases))
+            },
+        },
+        Spec {
+            id: "fig11b-agreement",
+            figure: 11,
+            place: "Fig. 11(b), Sec. 4",
+            words: "the averaged theory's P(A) (Eq. 27, as printed) agrees with Monte Carlo of Eq. 1 as λ varies",
+            rule: "agreement",
+            judge: |f| f.fig11.as_ref().map(|x| agreement_of(&x.panels, "Eq. 1", "paper")),
+        },
+        Spec {
+            id: "fig12-omega-mu0-r",
+            figure: 12,
+            place: "Fig. 12(a, b), Sec. 4",
+            words: "\"decreasing ω0 decreases the trirhythmic section in the variable plane (μ0, r)\"",
+            rule: "trend",
+            judge: |f| f.fig12.as_ref().map(|x| fig12_omega(&x.0.panels, ["b", "a"], Direction::Decreases)),
+        },
+        Spec {
+            id: "fig12-omega-lambda-r",
+            figure: 12,
+            place: "Fig. 12(c, d), Sec. 4",
+            words: "\"and increases the trirhythmic portion in the parameter plane (λ, r)\"",
+            rule: "trend",
+            judge: |f| f.fig12.as_ref().map(|x| fig12_omega(&x.0.panels, ["d", "c"], Direction::Increases)),
+        },
+        Spec {
+            id: "fig13a-agreement",
+            figure: 13,
+            place: "Fig. 13(a), Sec. 4, Eq. 26–27",
+            words: "the theory's P(A) (as printed) agrees with Monte Carlo of Eq. 1 at μ0 = 0.005, r = 0.99, 0.97, 0.96, 0.84",
+            rule: "agreement",
+            judge: |f| f.fig13.as_ref().map(|x| agreement_of(&x.panels[..4.min(x.panels.len())], "Eq. 1", "paper")),
+        },
+        Spec {
+            id: "fig13b-agreement",
+            figure: 13,
+            place: "Fig. 13(b), Sec. 4",
+            words: "the same at μ0 = 0.2, r between 0.7 and 0.999",
+            rule: "agreement",
+            judge: |f| f.fig13.as_ref().map(|x| agreement_of(x.panels.get(4..).unwrap_or(&[]), "Eq. 1", "paper")),
+        },
+        Spec {
+            id: "fig13a-peaks",
+            figure: 13,
+            place: "Fig. 13(a), Sec. 4",
+            words: "\"P_r(A) exhibits three peaks at r = 0.99 … when r = 0.97 or 0.96, we notice two peaks … when r = 0.84 … only one peak\"",
+            rule: "count",
+            judge: |f| f.fig13.as_ref().map(fig13_peaks),
+        },
+        Spec {
+            id: "fig16-rest-grows",
+            figure: 16,
+            place: "Fig. 16(b, d), Sec. 5",
+            words: "the rest (no-oscillation) region grows as r and λ decrease (\"This emphasizes the impact of λ and r on these domains\"; paraphrase of the figure)",
+            rule: "trend",
+            judge: |f| {
+                f.fig16.as_ref().map(|x| {
+                    let parts = x
+                        .panels
+                        .iter()
+                        .filter(|p| p.curves.iter().any(|c| c.member.is_some()))
+                        .map(|p| (format!("panel {}", p.label), fig16_family(p)))
+                        .collect();
+                    all_of("trend", parts)
+                })
+            },
+        },
+        Spec {
+            id: "fig16-averaged-boundary",
+            figure: 16,
+            place: "Figs 15–16 (Fig. 16(a, c)), Sec. 5",
+            words: "the averaged amplitude equation gives the boundary between oscillation and rest (paraphrase: the Hopf boundary f′(0) = 0 of Eq. 18 drawn as the demarcation)",
+            rule: "closeness",
+            judge: |f| {
+                f.fig16.as_ref().map(|x| {
+                    let pairs: Vec<_> = x
+                        .panels
+                        .iter()
+                        .filter(|p| p.curves.iter().all(|c| c.member.is_none()))
+                        .flat_map(fig16_averaged)
+                        .collect();
+                    closeness(&pairs, CLOSENESS_REL_TOL)
+                })
+            },
+        },
+        Spec {
+            id: "fig17a-lle-sign-change",
+            figure: 17,
+            place: "Fig. 17(a), Sec. 5",
+            words: "\"When the noise level reaches the critical value D_c, the maximum Lyapunov exponent turns positive\" (μ0 varied)",
+            rule: "sign_change",
+            judge: |f| f.fig17.as_ref().and_then(|x| x.0.panels.first().map(|p| lle_sign_change(p, lle_dof(f)))),
+        },
+        Spec {
+            id: "fig17b-lle-sign-change",
+            figure: 17,
+            place: "Fig. 17(b), Sec. 5",
+            words: "the same, τ varied",
+            rule: "sign_change",
+            judge: |f| f.fig17.as_ref().and_then(|x| x.0.panels.get(1).map(|p| lle_sign_change(p, lle_dof(f)))),
+        },
+        Spec {
+            id: "fig18a-lle-sign-change",
+            figure: 18,
+            place: "Fig. 18(a), Sec. 5",
+            words: "the same, λ varied",
+            rule: "sign_change",
+            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.first().map(|p| lle_sign_change(p, lle_dof(f)))),
+        },
+        Spec {
+            id: "fig18b-lle-sign-change",
+            figure: 18,
+            place: "Fig. 18(b), Sec. 5",
+            words: "the same, r varied",
+            rule: "sign_change",
+            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(|p| lle_sign_change(p, lle_dof(f)))),
+        },
+        Spec {
+            id: "fig18b-impact-loss",
+            figure: 18,
+            place: "Fig. 18(b), Sec. 5",
+            words: "more impact loss (smaller r) makes chaos likelier: the LLE grows as r falls (paraphrase)",
+            rule: "trend",
+            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(|p| fig18_impact_loss(p, lle_dof(f)))),
+        },
+        Spec {
+            id: "fig19a-dc-mu0",
+            figure: 19,
+            place: "Fig. 19(a), Sec. 5",
+            words: "\"the critical value decreases with higher nonlinear parameter\"",
+            rule: "trend",
+            judge: |f| f.fig19.as_ref().map(|x| fig19_trend(x, 0)),
+        },
+        Spec {
+            id: "fig19b-dc-tau",
+            figure: 19,
+            place: "Fig. 19(b), Sec. 5",
+            words: "\"and increases with rising correlation time\"",
+            rule: "trend",
+            judge: |f| f.fig19.as_ref().map(|x| fig19_trend(x, 1)),
+        },
+        Spec {
+            id: "fig19c-dc-lambda",
+            figure: 19,
+            place: "Fig. 19(c), Sec. 5",
+            words: "\"fractional-order\" (D_c increases with λ)",
+            rule: "trend",
+            judge: |f| f.fig19.as_ref().map(|x| fig19_trend(x, 2)),
+        },
+        Spec {
+            id: "fig19d-dc-r",
+            figure: 19,
+            place: "Fig. 19(d), Sec. 5",
+            words: "D_c increases with r (the same sentence)",
+            rule: "trend",
+            judge: |f| f.fig19.as_ref().map(|x| fig19_trend(x, 3)),
+        },
+    ]
+}
+
+/// Degrees of freedom of the Lyapunov figures' standard errors: realisations − 1 at the run
+/// sizes of `figures.options` (a point with merged realisations has no value and no test).
+fn lle_dof(figures: &Figures) -> Option<f64> {
+    let paths = crate::lle::Sizes::of(figures.options.quick).spec.paths;
+    Some(paths.saturating_sub(1).max(1) as f64)
+}
+
+/// Every claim the figure data decides, in order.
+pub fn registry() -> Vec<Claim> {
+    specs().iter().map(claim_of).collect()
+}
+
+fn claim_of(s: &Spec) -> Claim {
+    Claim {
+        id: s.id.into(),
+        figure: s.figure,
+        place: s.place.into(),
+        words: s.words.into(),
+        rule: s.rule.into(),
+    }
+}
+
+/// The claims of the paper that the figure data cannot decide yet, with what each needs.
+pub fn not_computable() -> Vec<NotComputable> {
+    let n = |id: &str, place: &str, words: &str, needs: &str| NotComputable {
+        id: id.into(),
+        place: place.into(),
+        words: words.into(),
+        needs: needs.into(),
+    };
+    vec![
+        n("fig05-interval-mu0", "Fig. 5", "the trirhythmic interval in r depends on μ0",
+          "a stated statistic for \"depends on\" (e.g. the trirhythmic r-interval per panel with the fold positions as exact numbers); the fold points are in the data, the rule is not"),
+        n("fig10-eq37-misprint", "Figs 10, 12, Eq. 36–37", "Eq. 36–37 give the P-bifurcation set",
+          "a distance between the printed Eq. 36–37 curves and the exact fold curves (both are in the map data as polylines; a curve-distance rule with a tolerance is not written yet)"),
+        n("fig14-crater", "Fig. 14", "the joint PDF turns from a crater into four separate peaks",
+          "a peak count of the 2-D joint densities (theory and Monte Carlo) with a prominence rule, and the Monte Carlo standard errors per cell; the data holds the densities, the Hellinger distance without its standard error, and R̂"),
+        n("fig15-omega", "Fig. 15", "the oscillation boundary changes significantly with ω0",
+          "a stated effect size for \"changes significantly\"; the simulated boundaries and their brackets are in the data"),
+        n("eq26-28-misprints", "Eq. 26–28, theory", "Eq. 26–28 as printed (coloured noise, impact term)",
+          "not figure data: a derivation (σ1 for coloured noise, the (1+τ²) factor); decided in docs/theory.md"),
+    ]
+}
+
+/// Decide every registry claim whose figure is in `figures`.
+pub fn judge(figures: &Figures) -> Verdicts {
+    let mut claims = Vec::new();
+    let mut not_judged = Vec::new();
+    for s in specs() {
+        match (s.judge)(figures) {
+            Some(decision) => claims.push(ClaimVerdict {
+                claim: claim_of(&s),
+                decision,
+            }),
+            None => not_judged.push(s.id.to_string()),
+        }
+    }
+    Verdicts {
+        claims,
+        not_judged,
+        not_computable: not_computable(),
+    }
+}

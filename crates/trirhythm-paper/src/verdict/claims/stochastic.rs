@@ -1,0 +1,238 @@
+//! The simulated claims (Figs 11, 13, 16–19): Monte Carlo and Lyapunov numbers with standard
+//! errors and the stationarity of their ensembles, boundaries with brackets, decided by the
+//! agreement, count, sign-change and trend rules.
+
+use super::super::rules::{
+    agreement, count, sign_change, trend, Comparison, Count, CountSource, Direction, LleCurve,
+    LlePoint, Series,
+};
+use super::super::{Decision, Measured, Verdict};
+use crate::boundary::Panel as BoundaryPanel;
+use crate::fig13_pdf_restitution::Fig13;
+use crate::fig19_critical_noise::{Fig19, PANELS as FIG19_PANELS};
+use crate::lle::Panel as LlePanel;
+use crate::montecarlo::AmplitudePanel;
+use trirhythm::analysis::oscillation::Side;
+
+pub(super) fn agreement_of(panels: &[AmplitudePanel], system: &str, variant: &str) -> Decision {
+    let mut items = Vec::new();
+    for p in panels {
+        for r in p.runs.iter().filter(|r| r.system == system) {
+            if let Some(d) = r.distances.iter().find(|d| d.variant == variant) {
+                items.push(Comparison {
+                    what: format!("{}, MC of {}, {} formulas", p.caption, r.system, variant),
+                    hellinger: d.hellinger,
+                    se: d.hellinger_stderr,
+                    bins: r.edges.len().saturating_sub(1),
+                    ess: r.ess,
+                    stationary: r.stationary,
+                    r_hat: r.r_hat,
+                });
+            }
+        }
+    }
+    agreement(&items)
+}
+
+/// The peak counts the paper's text gives for Fig. 13 (a1)–(a4).
+pub const FIG13_CLAIMED_PEAKS: [u32; 4] = [3, 2, 2, 1];
+
+pub(super) fn fig13_peaks(f: &Fig13) -> Decision {
+    let mut items = Vec::new();
+    for (p, claimed) in f.panels.iter().zip(FIG13_CLAIMED_PEAKS) {
+        if let Some(r) = p.runs.iter().find(|r| r.system == "Eq. 1") {
+            if let Some(d) = r.distances.first() {
+                items.push(Count {
+                    what: format!("peaks of the Monte Carlo P(A) of Eq. 1, {}", p.caption),
+                    claimed,
+                    computed: d.modes_mc as u32,
+                    source: CountSource::Ensemble {
+                        stationary: r.stationary,
+                        r_hat: r.r_hat,
+                    },
+                });
+            }
+        }
+    }
+    count(&items)
+}
+
+fn lle_curves(p: &LlePanel, dof: Option<f64>) -> Vec<LleCurve> {
+    p.curves
+        .iter()
+        .map(|c| LleCurve {
+            label: c.label.clone(),
+            points: c
+                .points
+                .iter()
+                .map(|q| LlePoint {
+                    d: q.x,
+                    lle: q.y,
+                    se: (q.hi - q.lo) / 2.0,
+                    dof,
+                })
+                .collect(),
+        })
+        .collect()
+}
+
+pub(super) fn lle_sign_change(p: &LlePanel, dof: Option<f64>) -> Decision {
+    sign_change(&lle_curves(p, dof))
+}
+
+pub(super) fn fig18_impact_loss(p: &LlePanel, dof: Option<f64>) -> Decision {
+    // curves are r = 0.998, 0.95, 0.9, 0.8: the claim's order (more loss); one series per D
+    let curves = lle_curves(p, dof);
+    let r_of = |label: &str| {
+        label
+            .rsplit("= ")
+            .next()
+            .and_then(|s| s.parse::<f64>().ok())
+            .unwrap_or(f64::NAN)
+    };
+    let n = curves.iter().map(|c| c.points.len()).min().unwrap_or(0);
+    let series: Vec<Series> = (0..n)
+        .map(|k| Series {
+            label: format!("LLE at D = {}", crate::notes::num(curves[0].points[k].d)),
+            x_name: "r".into(),
+            points: curves
+                .iter()
+                .map(|c| {
+                    let q = c.points[k];
+                    (r_of(&c.label), Measured::with_se_dof(q.lle, q.se, q.dof))
+                })
+                .collect(),
+        })
+        .collect();
+    trend(&series, Direction::Increases)
+}
+
+pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
+    let Some(p) = f.panels.get(panel) else {
+        return trend(&[], Direction::Increases);
+    };
+    let direction = if FIG19_PANELS[panel].3 == "decreases" {
+        Direction::Decreases
+    } else {
+        Direction::Increases
+    };
+    let points: Vec<(f64, Measured)> = p
+        .curves
+        .first()
+        .map(|c| {
+            c.points
+                .iter()
+                .map(|q| (q.x, Measured::bracket(q.y, q.lo, q.hi)))
+                .collect()
+        })
+        .unwrap_or_default();
+    let missing: Vec<String> = points
+        .iter()
+        .filter(|q| !q.1.value.is_finite())
+        .map(|q| crate::notes::num(q.0))
+        .collect();
+    let d = trend(
+        &[Series {
+            label: "D_c".into(),
+            x_name: p.x_key.clone(),
+            points,
+        }],
+        direction,
+    );
+    if missing.is_empty() || d.verdict == Verdict::Refuted {
+        d
+    } else {
+        Decision {
+            verdict: Verdict::undetermined(format!(
+                "no negative → positive sign change of the LLE in range (no D_c) at {} = {}",
+                p.x_key,
+                missing.join(", ")
+            )),
+            ..d
+        }
+    }
+}
+
+/// The simulated oscillation boundary of each member of a family panel of Fig. 16, one series
+/// per abscissa over the members in the panel's order: a boundary inside the searched μ0
+/// interval is its bracket; rest over the whole interval, [top, ∞); oscillation, [0, bottom].
+pub(super) fn fig16_family(p: &BoundaryPanel) -> Decision {
+    let sims: Vec<(&str, &[trirhythm::analysis::oscillation::BoundaryPoint])> = p
+        .curves
+        .iter()
+        .filter(|c| c.method == "simulation" && c.member.is_some())
+        .map(|c| (c.label.as_str(), c.points.as_slice()))
+        .collect();
+    let (bottom, top) = p.y_range;
+    let n = sims.iter().map(|s| s.1.len()).min().unwrap_or(0);
+    let value = |label: &str| {
+        label
+            .rsplit("= ")
+            .next()
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(f64::NAN)
+    };
+    let series: Vec<Series> = (0..n)
+        .map(|k| Series {
+            label: format!(
+                "simulated boundary μ0 at {} = {}",
+                p.x_desc,
+                crate::notes::num(sims[0].1[k].x)
+            ),
+            x_name: sims
+                .first()
+                .and_then(|s| s.0.split(" =").next())
+                .unwrap_or("member")
+                .to_string(),
+            points: sims
+                .iter()
+                .map(|(label, pts)| {
+                    let q = pts[k];
+                    let m = match q.side {
+                        Side::Boundary => Measured::bracket(q.y, q.y_lo, q.y_hi),
+                        Side::Rests => Measured::bracket(f64::NAN, top, f64::INFINITY),
+                        Side::Oscillates => Measured::bracket(f64::NAN, 0.0, bottom),
+                        Side::Unavailable => Measured::bracket(f64::NAN, f64::NAN, f64::NAN),
+                    };
+                    (value(label), m)
+                })
+                .collect(),
+        })
+        .collect();
+    trend(&series, Direction::Increases)
+}
+
+/// The averaged boundary (f′(0) = 0 of Eq. 18) against the simulated one (its bracket, the
+/// secant root as value) at every abscissa of a panel of methods of Fig. 16 where both are
+/// inside the searched interval; the abscissae where only one is are named.
+pub(super) fn fig16_averaged(p: &BoundaryPanel) -> Vec<(String, Measured, Measured)> {
+    let find = |m: &str| {
+        p.curves
+            .iter()
+            .find(|c| c.member.is_none() && c.method == m)
+    };
+    let (Some(sim), Some(avg)) = (find("simulation"), find("averaging")) else {
+        return Vec::new();
+    };
+    sim.points
+        .iter()
+        .zip(&avg.points)
+        .map(|(s, a)| {
+            let what = format!(
+                "panel {}, {} = {}: simulated against averaged boundary μ0",
+                p.label,
+                p.x_desc,
+                crate::notes::num(s.x)
+            );
+            let sm = match s.side {
+                Side::Boundary => Measured::bracket(s.y, s.y_lo, s.y_hi),
+                _ => Measured::bracket(f64::NAN, f64::NAN, f64::NAN),
+            };
+            let am = match a.side {
+                Side::Boundary => Measured::exact(a.y),
+                _ => Measured::exact(f64::NAN),
+            };
+            (what, sm, am)
+        })
+        .collect()
+}

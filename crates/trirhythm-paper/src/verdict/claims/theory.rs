@@ -1,0 +1,340 @@
+//! The theory claims (Figs 1–10, 12): deterministic numbers from the averaged theory and
+//! from noise-free simulations, decided by the count, trend and closeness rules.
+
+use super::super::rules::{
+    closeness, count, trend, Count, CountSource, Direction, Series, CLOSENESS_REL_TOL,
+};
+use super::super::{all_of, Decision, Measured};
+use crate::fig01_phase_recurrence::Fig01;
+use crate::fig04_drift::Fig04;
+use crate::fig05_branches::Fig05;
+use crate::fig07_pseudo_potential::{Curve as UeffCurve, Fig07};
+use crate::fig08_barriers::Fig08;
+use crate::fig09_barrier_surfaces::Fig09;
+use crate::maps::MapPanel;
+use trirhythm::theory::bifurcation::BranchDiagram;
+
+pub(super) fn fig01_align(f: &Fig01) -> Decision {
+    let pairs: Vec<(String, Measured, Measured)> = match (f.panels.first(), f.panels.get(1)) {
+        (Some(a), Some(b)) => vec![(
+            "mean amplitude, Eq. 1 against Eq. 5".into(),
+            Measured::exact(a.amplitude),
+            Measured::exact(b.amplitude),
+        )],
+        _ => Vec::new(),
+    };
+    closeness(&pairs, CLOSENESS_REL_TOL)
+}
+
+/// Share (per cent of the grid) of grid points with count `k`.
+pub(super) fn share(p: &MapPanel, k: usize) -> f64 {
+    let h = p.histogram();
+    let total: usize = h.iter().sum();
+    100.0 * h[k.min(4)] as f64 / total.max(1) as f64
+}
+
+pub(super) fn fig02_regions(panels: &[MapPanel]) -> Decision {
+    let Some(p) = panels.iter().find(|p| p.label == "ii").or(panels.get(1)) else {
+        return count(&[]);
+    };
+    let items: Vec<Count> = [(1, "monorhythmic"), (2, "birhythmic"), (3, "trirhythmic")]
+        .into_iter()
+        .map(|(k, name)| Count {
+            what: format!(
+                "{name} region present in panel {} ({:.1} % of the grid)",
+                p.label,
+                share(p, k)
+            ),
+            claimed: 1,
+            computed: u32::from(share(p, k) > 0.0),
+            source: CountSource::Exact,
+        })
+        .collect();
+    count(&items).undetermined_because(
+        "λ and r are not printed for Fig. 2; λ = 1, r = 1 chosen, and a monorhythmic region appears for λ < 1 or r < 1 (Figs 3, 6)",
+    )
+}
+
+pub(super) fn share_trend(
+    panels: &[MapPanel],
+    xs: &[f64],
+    x_name: &str,
+    k: usize,
+    direction: Direction,
+) -> Decision {
+    let label = ["zero", "one", "two", "three"][k.min(3)];
+    let series = Series {
+        label: format!("share of grid points with count {label} (%)"),
+        x_name: x_name.into(),
+        points: panels
+            .iter()
+            .zip(xs)
+            .map(|(p, &x)| (x, Measured::exact(share(p, k))))
+            .collect(),
+    };
+    trend(&[series], direction)
+}
+
+/// The root counts the paper's text gives for Fig. 4 (a)–(d).
+pub const FIG04_CLAIMED_ROOTS: [u32; 4] = [5, 5, 3, 0];
+
+pub(super) fn fig04_roots(f: &Fig04) -> Decision {
+    let items: Vec<Count> = f
+        .panels
+        .iter()
+        .zip(FIG04_CLAIMED_ROOTS)
+        .map(|(p, claimed)| Count {
+            what: format!("positive roots of f, panel {} (r = {})", p.label, p.r),
+            claimed,
+            computed: p.cycles.len() as u32,
+            source: CountSource::Exact,
+        })
+        .collect();
+    count(&items)
+}
+
+/// Stable branches of a branch diagram crossing parameter value `x`.
+fn stable_at(bd: &BranchDiagram, x: f64) -> u32 {
+    let mut n = 0;
+    for b in &bd.branches {
+        for w in b.points.windows(2) {
+            let (lo, hi) = if w[0].param <= w[1].param {
+                (w[0].param, w[1].param)
+            } else {
+                (w[1].param, w[0].param)
+            };
+            if lo <= x && x < hi && w[0].stable && w[1].stable {
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
+pub(super) fn fig05_tri_all_r(f: &Fig05) -> Decision {
+    let Some((label, mu0, bd)) = f.panels.iter().find(|p| (p.1 - 0.7).abs() < 1e-12) else {
+        return count(&[]);
+    };
+    let n = 20;
+    let items: Vec<Count> = (0..n)
+        .map(|j| {
+            let r = bd.start + (bd.stop - bd.start) * (j as f64 + 0.5) / n as f64;
+            Count {
+                what: format!(
+                    "stable cycles at r = {}, panel {label} (μ0 = {mu0})",
+                    crate::notes::num(r)
+                ),
+                claimed: 3,
+                computed: stable_at(bd, r),
+                source: CountSource::Exact,
+            }
+        })
+        .collect();
+    count(&items)
+}
+
+/// (inner A01 well depth, outer well depth, well amplitudes) of a U_eff curve: the depth to
+/// the crest beside the well; the inner depth is 0 where U_eff has fewer than three wells
+/// (the A01 well has disappeared).
+fn wells(cv: &UeffCurve) -> (f64, Option<f64>, Vec<f64>) {
+    let ex: Vec<_> = cv.extrema.iter().filter(|e| e.amplitude > 0.0).collect();
+    let minima: Vec<f64> = ex
+        .iter()
+        .filter(|e| e.minimum)
+        .map(|e| e.amplitude)
+        .collect();
+    let depth = |i: usize, j: Option<usize>| {
+        j.and_then(|j| ex.get(j))
+            .filter(|c| !c.minimum)
+            .map(|c| c.potential - ex[i].potential)
+    };
+    let first = ex.iter().position(|e| e.minimum);
+    let last = ex.iter().rposition(|e| e.minimum);
+    let inner = first
+        .filter(|_| minima.len() >= 3)
+        .and_then(|i| depth(i, Some(i + 1)))
+        .unwrap_or(0.0);
+    let outer = last.and_then(|i| depth(i, i.checked_sub(1)));
+    (inner, outer, minima)
+}
+
+pub(super) fn fig07_depths(f: &Fig07, inner: bool) -> Decision {
+    // curves are listed from the largest r (λ) down: the claim's order
+    let series: Vec<Series> = f
+        .panels
+        .iter()
+        .map(|p| {
+            // panel a varies r, panel b λ: (r, λ) = params of each curve
+            let by_r = p.id == "a";
+            let x_name = if by_r { "r" } else { "λ" };
+            let pick = |q: &(f64, f64)| if by_r { q.0 } else { q.1 };
+            Series {
+                label: format!(
+                    "panel {}: depth of the {} well",
+                    p.id,
+                    if inner { "inner (A01)" } else { "outer" }
+                ),
+                x_name: x_name.into(),
+                points: p
+                    .curves
+                    .iter()
+                    .zip(&p.params)
+                    .map(|(cv, q)| {
+                        let (i, o, _) = wells(cv);
+                        let v = if inner { i } else { o.unwrap_or(f64::NAN) };
+                        (pick(q), Measured::exact(v))
+                    })
+                    .collect(),
+            }
+        })
+        .collect();
+    trend(
+        &series,
+        if inner {
+            Direction::Decreases
+        } else {
+            Direction::Increases
+        },
+    )
+}
+
+pub(super) fn fig07_wells_move(f: &Fig07) -> Decision {
+    let mut pairs = Vec::new();
+    for p in &f.panels {
+        let all: Vec<Vec<f64>> = p.curves.iter().map(|c| wells(c).2).collect();
+        let Some(first) = all.first() else { continue };
+        for (cv, w) in p.curves.iter().zip(&all).skip(1) {
+            if w.len() != first.len() {
+                continue;
+            }
+            for (k, (a, b)) in first.iter().zip(w).enumerate() {
+                pairs.push((
+                    format!("panel {}, well {} at {}", p.id, k + 1, cv.label),
+                    Measured::exact(*b),
+                    Measured::exact(*a),
+                ));
+            }
+        }
+    }
+    closeness(&pairs, CLOSENESS_REL_TOL)
+}
+
+pub(super) fn fig08_barriers(f: &Fig08) -> Decision {
+    count(&[Count {
+        what: "energy barriers of U_eff".into(),
+        claimed: 4,
+        computed: f.barriers.len() as u32,
+        source: CountSource::Exact,
+    }])
+    .undetermined_because(
+        "τ is not printed in the paper; τ = 5 chosen, and the inner well exists only for τ ≳ 3",
+    )
+}
+
+pub(super) fn fig09_lambda(f: &Fig09) -> Decision {
+    let mut up = Vec::new();
+    let mut down = Vec::new();
+    for s in &f.surfaces {
+        for i in 0..4 {
+            for ix in 0..s.x.count {
+                // runs of grid points with three wells along λ (ascending)
+                let mut run: Vec<(f64, Measured)> = Vec::new();
+                let mut flush = |run: &mut Vec<(f64, Measured)>| {
+                    if run.len() >= 2 {
+                        let series = Series {
+                            label: format!(
+                                "ΔU{} at r = {}, τ = {}",
+                                i + 1,
+                                s.r,
+                                crate::notes::num(s.x.value(ix))
+                            ),
+                            x_name: "λ".into(),
+                            points: std::mem::take(run),
+                        };
+                        if i == 1 {
+                            down.push(series);
+                        } else {
+                            up.push(series);
+                        }
+                    }
+                    run.clear();
+                };
+                for iy in 0..s.y.count {
+                    match s.heights[iy * s.x.count + ix][i] {
+                        Some(h) => run.push((s.y.value(iy), Measured::exact(h))),
+                        None => flush(&mut run),
+                    }
+                }
+                flush(&mut run);
+            }
+        }
+    }
+    all_of(
+        "trend",
+        vec![
+            (
+                "ΔU1, ΔU3, ΔU4 increase with λ".into(),
+                trend(&up, Direction::Increases),
+            ),
+            (
+                "ΔU2 decreases with λ".into(),
+                trend(&down, Direction::Decreases),
+            ),
+        ],
+    )
+}
+
+pub(super) fn fig09_r(f: &Fig09) -> Decision {
+    let (Some(hi), Some(lo)) = (
+        f.surfaces.iter().find(|s| (s.r - 0.998).abs() < 1e-9),
+        f.surfaces.iter().find(|s| (s.r - 0.990).abs() < 1e-9),
+    ) else {
+        return trend(&[], Direction::Decreases);
+    };
+    let mut parts = Vec::new();
+    for i in [0usize, 1, 3] {
+        let mut series = Vec::new();
+        for (k, (a, b)) in hi.heights.iter().zip(&lo.heights).enumerate() {
+            if let (Some(a), Some(b)) = (a[i], b[i]) {
+                let (ix, iy) = (k % hi.x.count, k / hi.x.count);
+                series.push(Series {
+                    label: format!(
+                        "τ = {}, λ = {}",
+                        crate::notes::num(hi.x.value(ix)),
+                        crate::notes::num(hi.y.value(iy))
+                    ),
+                    x_name: "r".into(),
+                    points: vec![(hi.r, Measured::exact(a)), (lo.r, Measured::exact(b))],
+                });
+            }
+        }
+        parts.push((
+            format!("ΔU{} falls as r falls", i + 1),
+            trend(&series, Direction::Decreases),
+        ));
+    }
+    all_of("trend", parts)
+}
+
+pub(super) fn fig12_omega(panels: &[MapPanel], order: [&str; 2], direction: Direction) -> Decision {
+    let pick: Vec<&MapPanel> = order
+        .iter()
+        .filter_map(|l| panels.iter().find(|p| p.label == *l))
+        .collect();
+    let omega = |p: &MapPanel| {
+        if p.label == "a" || p.label == "c" {
+            0.9
+        } else {
+            1.0
+        }
+    };
+    let series = Series {
+        label: format!("trimodal share (%) of panels {} → {}", order[0], order[1]),
+        x_name: "ω0".into(),
+        points: pick
+            .iter()
+            .map(|p| (omega(p), Measured::exact(share(p, 3))))
+            .collect(),
+    };
+    trend(&[series], direction)
+}

@@ -1,0 +1,180 @@
+//! The agreement and closeness rules: theory against Monte Carlo by the Hellinger distance,
+//! and two numbers within a relative tolerance.
+//!
+//! Agreement: H within the finite-sample floor √(bins/(8·ESS)) plus k standard errors,
+//! stationary ensembles only. Closeness: the relative difference, widened by 2 s.e. and the
+//! half-widths of brackets, against the tolerance. Reference: docs/verdicts.md, "Agreement of
+//! theory and Monte Carlo" and "Closeness". Tested by `tests/verdicts.rs`.
+
+use super::super::{Check, Decision, Measured, Outcome, Uncertainty, Verdict};
+use super::AGREEMENT_K;
+
+/// One theory-against-Monte-Carlo comparison.
+#[derive(Debug, Clone)]
+pub struct Comparison {
+    /// Which ensemble ("(a3) r = 0.96, MC of Eq. 1, paper formulas").
+    pub what: String,
+    /// Hellinger distance H = √(1 − Σ√(p q)) between the binned theory and the histogram.
+    pub hellinger: f64,
+    /// Its bootstrap standard error.
+    pub se: f64,
+    /// Bins of the histogram.
+    pub bins: usize,
+    /// Effective sample size of the ensemble.
+    pub ess: f64,
+    /// Whether the ensemble passed the stationarity check.
+    pub stationary: bool,
+    /// Its R̂.
+    pub r_hat: f64,
+}
+
+impl Comparison {
+    /// The finite-sample floor: the expected Hellinger distance between a histogram of `ess`
+    /// independent samples in `bins` bins and the density it samples, √(bins/(8·ESS)) (from
+    /// E\[H²\] ≈ (bins − 1)/(8n) for multinomial counts, the mass beyond the last edge as one
+    /// more bin).
+    pub fn floor(&self) -> f64 {
+        (self.bins as f64 / (8.0 * self.ess)).sqrt()
+    }
+}
+
+/// **Agreement of theory and Monte Carlo**: H ≤ floor + k·se with k = [`AGREEMENT_K`], on
+/// stationary ensembles only.
+///
+/// Per comparison: undetermined when the ensemble is not stationary (R̂ given) or H, its
+/// standard error or the ESS is not finite; confirmed when H ≤ √(bins/(8·ESS)) + k·se; refuted
+/// otherwise. The claim: refuted when a comparison is, confirmed when every one is, else
+/// undetermined.
+pub fn agreement(items: &[Comparison]) -> Decision {
+    let mut checks = Vec::new();
+    let mut open = Vec::new();
+    for c in items {
+        let floor = c.floor();
+        let threshold = floor + AGREEMENT_K * c.se;
+        let usable = c.hellinger.is_finite() && c.se.is_finite() && floor.is_finite();
+        let outcome = if !c.stationary {
+            open.push(format!(
+                "{}: not stationary (R̂ = {})",
+                c.what,
+                crate::notes::sig(c.r_hat, 3)
+            ));
+            Outcome::Undefined
+        } else if !usable {
+            open.push(format!(
+                "{}: no standard error or effective sample size",
+                c.what
+            ));
+            Outcome::Undefined
+        } else if c.hellinger <= threshold {
+            Outcome::For
+        } else {
+            Outcome::Against
+        };
+        checks.push(Check {
+            what: format!(
+                "{} (floor √(bins/(8·ESS)) = {}, bins {}, ESS {})",
+                c.what,
+                crate::notes::sig(floor, 3),
+                c.bins,
+                crate::notes::sig(c.ess, 3)
+            ),
+            value: Measured::with_se(c.hellinger, c.se),
+            statistic: "H".into(),
+            statistic_value: c.hellinger,
+            threshold,
+            outcome,
+        });
+    }
+    let outcomes: Vec<Outcome> = checks.iter().map(|c| c.outcome).collect();
+    let verdict = if outcomes.contains(&Outcome::Against) {
+        Verdict::Refuted
+    } else if !open.is_empty() {
+        Verdict::undetermined(open.join("; "))
+    } else if items.is_empty() {
+        Verdict::undetermined("no ensembles")
+    } else {
+        Verdict::Confirmed
+    };
+    Decision::new(
+        verdict,
+        "agreement",
+        format!("Hellinger H ≤ √(bins/(8·ESS)) + {AGREEMENT_K}·se(H), stationary ensembles only"),
+        0,
+        None,
+        checks,
+    )
+}
+
+/// **Closeness**: |a − b| / max(|a|, |b|) below `tol` ([`CLOSENESS_REL_TOL`] for "align
+/// closely" and "change very slightly").
+///
+/// Exact values: confirmed when the relative difference is ≤ tol, refuted otherwise. With
+/// uncertainties, the margin m = 2·se (combined se of a − b) + the half-widths of brackets:
+/// confirmed when (|a − b| + m)/scale ≤ tol, refuted when (|a − b| − m)/scale > tol, else
+/// undetermined. Several pairs: refuted when
+/// one is, confirmed when all are.
+///
+/// [`CLOSENESS_REL_TOL`]: super::CLOSENESS_REL_TOL
+pub fn closeness(pairs: &[(String, Measured, Measured)], tol: f64) -> Decision {
+    let mut checks = Vec::new();
+    for (what, a, b) in pairs {
+        let scale = a.value.abs().max(b.value.abs());
+        let diff = (a.value - b.value).abs();
+        let se_of = |m: &Measured| match m.uncertainty {
+            Uncertainty::StdErr { se, .. } => se,
+            _ => 0.0,
+        };
+        let half_width = |m: &Measured| match m.uncertainty {
+            Uncertainty::Bracket { lo, hi } => (hi - lo) / 2.0,
+            _ => 0.0,
+        };
+        let se = se_of(a).hypot(se_of(b));
+        // how far the difference may be off: 2 s.e., plus the half-widths of brackets (a
+        // bracket is certain, its midpoint is off by at most half its width)
+        let margin = 2.0 * se + half_width(a) + half_width(b);
+        let rel = if scale > 0.0 { diff / scale } else { 0.0 };
+        let outcome = if !(rel.is_finite() && margin.is_finite()) {
+            Outcome::Undefined
+        } else if (diff + margin) <= tol * scale || scale == 0.0 {
+            Outcome::For
+        } else if (diff - margin) > tol * scale {
+            Outcome::Against
+        } else {
+            Outcome::Neither
+        };
+        checks.push(Check {
+            what: format!(
+                "{what}: {} against {}",
+                crate::notes::num(a.value),
+                crate::notes::num(b.value)
+            ),
+            value: if se > 0.0 {
+                Measured::with_se(a.value - b.value, se)
+            } else {
+                Measured::exact(a.value - b.value)
+            },
+            statistic: "relative difference".into(),
+            statistic_value: rel,
+            threshold: tol,
+            outcome,
+        });
+    }
+    let outcomes: Vec<Outcome> = checks.iter().map(|c| c.outcome).collect();
+    let verdict = if outcomes.contains(&Outcome::Against) {
+        Verdict::Refuted
+    } else if outcomes.contains(&Outcome::Undefined) {
+        Verdict::undetermined("an undefined value")
+    } else if outcomes.contains(&Outcome::Neither) || outcomes.is_empty() {
+        Verdict::undetermined("not significant: the difference is within 2 s.e. of the tolerance")
+    } else {
+        Verdict::Confirmed
+    };
+    Decision::new(
+        verdict,
+        "closeness",
+        format!("relative difference |a − b|/max(|a|, |b|) ≤ {tol} (±2 s.e. where stochastic)"),
+        0,
+        None,
+        checks,
+    )
+}
