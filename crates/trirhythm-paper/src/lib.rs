@@ -18,7 +18,7 @@
 //! Shared machinery: [`montecarlo`] (ensembles against the theory, Figs 11, 13, 14), [`lle`]
 //! (the largest Lyapunov exponent against the noise, Figs 17, 18), [`maps`] (classified
 //! parameter planes with fold curves, Figs 2, 3, 6, 10, 12), [`boundary`] (oscillation
-//! boundaries, Figs 15, 16), [`notes`] (captions and number formats) and [`table`] (a
+//! boundaries, Figs 15, 16), [`notes`] (captions and number formats), [`views`] (library results as sentences and tables) and [`table`] (a
 //! figure's data as rows, what its CSV files hold).
 //!
 //! # Example
@@ -49,6 +49,7 @@ pub mod maps;
 pub mod montecarlo;
 pub mod notes;
 pub mod table;
+pub mod views;
 
 pub mod fig01_phase_recurrence;
 pub mod fig02_rhythmicity_planes;

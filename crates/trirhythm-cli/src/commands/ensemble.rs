@@ -24,8 +24,8 @@ use trirhythm::analysis::versus::{theory_layout, TheoryComparison};
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
 use trirhythm::monitor::Monitor;
-use trirhythm::theory::averaging::Variant;
 use trirhythm_paper::montecarlo::comparisons;
+use trirhythm_paper::views::{self, Comparisons};
 
 /// `json` or `csv`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -113,7 +113,7 @@ impl EnsembleArgs {
         } else if let Some(l) = &layout {
             choices.push(format!(
                 "u0 = {} (the theory's modes, {} variant)",
-                list(&l.starts),
+                views::list(&l.starts),
                 self.params.variant().name()
             ));
             l.starts.clone()
@@ -144,8 +144,8 @@ impl EnsembleArgs {
         if let Some(w) = &wells {
             choices.push(format!(
                 "wells: modes {} and antimodes {} of P(A) ({} variant)",
-                list(&w.modes),
-                list(&w.antimodes),
+                views::list(&w.modes),
+                views::list(&w.antimodes),
                 self.params.variant().name()
             ));
         }
@@ -171,13 +171,6 @@ impl EnsembleArgs {
             choices,
         })
     }
-}
-
-fn list(v: &[f64]) -> String {
-    v.iter()
-        .map(|x| format!("{x:.4}"))
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 fn method_line(a: &EnsembleArgs) -> String {
@@ -219,7 +212,7 @@ fn result_json(
     s: &EnsembleSetup,
     method: &str,
     r: &EnsembleResult,
-    theory: &[(Variant, std::result::Result<TheoryComparison, String>)],
+    theory: &Comparisons,
     wall: f64,
 ) -> Result<String> {
     let theory = theory
@@ -385,7 +378,7 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     )?;
     let wall = start.elapsed().as_secs_f64();
     let theory = comparisons(&s.params, &r, args.seed);
-    eprint!("{}", summary_text(&r, &theory, wall));
+    eprint!("{}", views::ensemble(&r, &theory, wall));
     let text = match args.format {
         EnsembleFormat::Json => result_json(&s, &method, &r, &theory, wall)?,
         EnsembleFormat::Csv => csv_text(&s, &method, &r, &theory, wall),
@@ -393,101 +386,11 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     emit(args.out.as_deref(), &text)
 }
 
-fn fmt_est(e: trirhythm::analysis::Estimate) -> String {
-    if e.stderr.is_finite() {
-        format!("{:.5} ± {:.5}", e.value, e.stderr)
-    } else {
-        format!("{:.5} (no standard error)", e.value)
-    }
-}
-
-/// The human summary (standard error, and the CSV's `#` lines).
-pub fn summary_text(
-    r: &EnsembleResult,
-    theory: &[(Variant, std::result::Result<TheoryComparison, String>)],
-    wall: f64,
-) -> String {
-    let st = &r.stationarity;
-    let mut t = format!(
-        "{} paths × {} steps in {wall:.1} s; ⟨A⟩ = {}; Var U = {}; Var U̇ = {}\n\
-         stationarity: {} (R̂ = {:.3}, ESS = {:.0}, drift {:.1} standard errors)\n",
-        r.paths,
-        r.steps_per_path,
-        fmt_est(r.mean_amplitude),
-        fmt_est(r.var_u),
-        fmt_est(r.var_v),
-        if st.stationary {
-            "passed"
-        } else {
-            "NOT STATIONARY"
-        },
-        st.r_hat,
-        st.ess,
-        st.drift_z
-    );
-    if !r.occupancy.is_empty() {
-        t.push_str(&format!(
-            "occupancy of the wells: {}\n",
-            r.occupancy
-                .iter()
-                .map(|&e| fmt_est(e))
-                .collect::<Vec<_>>()
-                .join(", ")
-        ));
-    }
-    for (k, p) in r.passages.iter().enumerate() {
-        let theory_times: Vec<String> = theory
-            .iter()
-            .filter_map(|(v, c)| {
-                c.as_ref()
-                    .ok()
-                    .and_then(|c| c.escape_times.get(k))
-                    .map(|t| format!("{} {t:.4e}", v.name()))
-            })
-            .collect();
-        t.push_str(&format!(
-            "first passage {} → {}: {} ({} completed, {} censored); theory's escape time: {}\n",
-            p.from,
-            p.to,
-            if p.count > 0 {
-                fmt_est(p.mean_time)
-            } else {
-                "none completed".into()
-            },
-            p.count,
-            p.censored,
-            theory_times.join(", ")
-        ));
-    }
-    for (v, c) in theory {
-        match c {
-            Ok(c) => t.push_str(&format!(
-                "theory ({}): Hellinger {:.4} ± {:.4}, L1 {:.4}, KS {:.4}; modes {} (theory, \
-                 binned; {} exact) vs {} (simulation); occupancy {}\n",
-                v.name(),
-                c.hellinger.value,
-                c.hellinger.stderr,
-                c.l1.value,
-                c.ks.value,
-                c.modes_theory,
-                c.modes_theory_exact,
-                c.modes_mc,
-                list(&c.occupancy)
-            )),
-            Err(e) => t.push_str(&format!("theory ({}): {e}\n", v.name())),
-        }
-    }
-    for w in &r.warnings {
-        t.push_str(&format!("warning: {w}\n"));
-    }
-    t
-}
-
 fn csv_text(
     s: &EnsembleSetup,
     method: &str,
     r: &EnsembleResult,
-    theory: &[(Variant, std::result::Result<TheoryComparison, String>)],
+    theory: &Comparisons,
     wall: f64,
 ) -> String {
     let mut t = format!(
@@ -497,7 +400,7 @@ fn csv_text(
     for c in &s.choices {
         t.push_str(&format!("# chosen: {c}\n"));
     }
-    for line in summary_text(r, theory, wall).lines() {
+    for line in views::ensemble(r, theory, wall).lines() {
         t.push_str(&format!("# {line}\n"));
     }
     t.push_str("A_lo,A_hi,density,stderr\n");

@@ -267,17 +267,9 @@ fn make<F: Figure + Picture>(request: &Request) -> Result<Vec<PathBuf>> {
 /// Write one of a figure's tables as `stem{suffix}.csv` (notes as `#` lines); refuses a table
 /// with NaN, or ±∞ outside the columns that allow it. Returns the path written.
 fn write_table(stem: &Path, table: &Table) -> Result<PathBuf> {
-    let columns: Vec<&str> = table.columns.iter().map(String::as_str).collect();
-    let mut csv = Csv::new(&table.notes, &columns);
-    for column in &table.infinite {
-        csv = csv.allow_infinity(column);
-    }
-    for row in &table.rows {
-        csv.row(row.iter().cloned());
-    }
     let name = stem.file_name().unwrap_or_default().to_string_lossy();
     let path = stem.with_file_name(format!("{name}{}.csv", table.suffix));
-    write_atomic(&path, csv.finish()?.as_bytes())?;
+    write_atomic(&path, Csv::of(table)?.as_bytes())?;
     Ok(path)
 }
 

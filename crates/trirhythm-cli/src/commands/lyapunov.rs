@@ -5,7 +5,7 @@
 
 use crate::args::{parse_axis, ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat};
 use crate::error::bad;
-use crate::io::{emit, num, params_json, progress, sig, Csv, Report};
+use crate::io::{emit, num, params_json, progress, Csv, Report};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
@@ -17,7 +17,8 @@ use trirhythm::analysis::lyapunov::{
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
 use trirhythm::monitor::Silent;
-use trirhythm_paper::lle::{merged_points_text, Sign};
+use trirhythm_paper::lle::Sign;
+use trirhythm_paper::views;
 
 /// How the exponent is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -248,20 +249,12 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
     bar.finish_and_clear();
     eprintln!(
         "LLE = {} (finite-time, window {}; {} paths)",
-        lle_text(&r),
+        views::lle(&r),
         num(spec.length),
         spec.paths
     );
     let text = match args.format.unwrap_or(SimFormat::Json) {
-        SimFormat::Csv => {
-            header.push(format!("lle: {}", lle_text(&r)));
-            header.push("columns: running estimate (time since the transient, mean over paths, standard error)".into());
-            let mut csv = Csv::new(&header, &["t", "lle", "stderr"]).allow_infinity("lle");
-            for q in &r.running {
-                csv.row([num(q.t), num(q.value), opt_cell(q.stderr)]);
-            }
-            csv.finish()?
-        }
+        SimFormat::Csv => Csv::of(&views::lle_table(&header, &r))?,
         SimFormat::Json => pretty(&Run {
             params: params_json(&base),
             method: args.sim.method.name(),
@@ -284,7 +277,7 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
 fn sweep_lyapunov(
     args: &LyapunovArgs,
     sweep: &str,
-    mut header: Vec<String>,
+    header: Vec<String>,
     base: &Params,
     problem: &Problem,
     method: &PredictorCorrector,
@@ -301,33 +294,7 @@ fn sweep_lyapunov(
     }
     bar.finish_and_clear();
     let text = match args.format.unwrap_or(SimFormat::Csv) {
-        SimFormat::Csv => {
-            header.push(
-                "merged: realisations whose copy merged with its reference (then lle = -inf); \
-                 unmerged: the mean over the others"
-                    .into(),
-            );
-            let columns = [
-                &key,
-                "lle",
-                "stderr",
-                "merged",
-                "unmerged",
-                "unmerged_stderr",
-            ];
-            let mut csv = Csv::new(&header, &columns).allow_infinity("lle");
-            for (v, r) in &rows {
-                csv.row([
-                    num(*v),
-                    num(r.lle.value),
-                    opt_cell(r.lle.stderr),
-                    r.merged.to_string(),
-                    opt_cell(r.unmerged.value),
-                    opt_cell(r.unmerged.stderr),
-                ]);
-            }
-            csv.finish()?
-        }
+        SimFormat::Csv => Csv::of(&views::lle_sweep_table(&header, &key, &rows))?,
         SimFormat::Json => pretty(&json!({
             "params": params_json(base),
             "method": args.sim.method.name(),
@@ -390,11 +357,7 @@ impl<'a> Outcome<'a> {
         Outcome {
             value,
             sign_change: search.found(),
-            verdict: if search.found() {
-                "sign change".to_string()
-            } else {
-                format!("no sign change in range (LLE {})", Sign::of(search).words())
-            },
+            verdict: views::critical_verdict(search),
             search,
         }
     }
@@ -467,14 +430,10 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
         found.push((values[i], c));
     }
     bar.finish_and_clear();
-    let label = |v: f64| match &key {
-        Some(k) => format!("{k} = {}", num(v)),
-        None => "the parameters given".to_string(),
-    };
     for (v, c) in found.iter().filter(|(_, c)| !c.found()) {
         eprintln!(
             "{}: no sign change in range D ∈ [{}, {}] (LLE {})",
-            label(*v),
+            views::point_label(key.as_deref(), *v),
             num(d_lo),
             num(d_hi),
             Sign::of(c).words()
@@ -495,7 +454,7 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
                 args.refinements,
                 num(args.z)
             ));
-            critical_csv(header, key.as_deref(), &found, label)?
+            Csv::of(&views::critical_table(&header, key.as_deref(), &found))?
         }
         SimFormat::Json => pretty(&json!({
             "params": params_json(&base),
@@ -511,86 +470,4 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
         }))?,
     };
     emit(args.out.as_deref(), &text)
-}
-
-/// The CSV of `critical-noise`: `[KEY,]D_c,D_c_lo,D_c_hi`, each swept value's outcome in the
-/// header.
-fn critical_csv(
-    mut header: Vec<String>,
-    key: Option<&str>,
-    found: &[(f64, CriticalNoise)],
-    label: impl Fn(f64) -> String,
-) -> Result<String> {
-    for (v, c) in found {
-        if !c.found() {
-            header.push(format!(
-                "{}: no sign change in range (LLE {})",
-                label(*v),
-                Sign::of(c).words()
-            ));
-        }
-        let merged = merged_points_text(c);
-        if !merged.is_empty() {
-            header.push(format!(
-                "{}: no sign at D = {} (realisations whose copy merged with its reference: LLE −∞)",
-                label(*v),
-                merged.join(", ")
-            ));
-        }
-    }
-    let mut columns: Vec<&str> = key.into_iter().collect();
-    columns.extend(["D_c", "D_c_lo", "D_c_hi"]);
-    let mut csv = Csv::new(&header, &columns);
-    for (v, c) in found.iter().filter(|(_, c)| c.found()) {
-        let lead = key.map(|_| num(*v));
-        csv.row(
-            lead.into_iter()
-                .chain([num(c.d_c), num(c.d_c_lo), num(c.d_c_hi)]),
-        );
-    }
-    csv.finish()
-}
-
-/// A CSV cell: the number, or empty when undefined.
-fn opt_cell(v: f64) -> String {
-    if v.is_finite() {
-        num(v)
-    } else {
-        String::new()
-    }
-}
-
-/// An exponent with its standard error in words: −∞ and a missing standard error are
-/// explained, never printed as bare `-inf ± nan`.
-fn lle_text(r: &LyapunovResult) -> String {
-    let (value, stderr) = (r.lle.value, r.lle.stderr);
-    if value == f64::NEG_INFINITY {
-        let others = r.per_path.len() - r.merged;
-        let rest = if others == 0 {
-            String::new()
-        } else {
-            format!(
-                "; the other {others}: {}",
-                estimate_text(r.unmerged.value, r.unmerged.stderr)
-            )
-        };
-        return format!(
-            "−∞: {} of {} realisations merged (the copy became identical to its reference, whole \
-             memory included: both stuck at the wall on the same step with the memory restarted; \
-             `per_path[].merged_at` in JSON){rest}",
-            r.merged,
-            r.per_path.len()
-        );
-    }
-    estimate_text(value, stderr)
-}
-
-/// A finite exponent with its standard error (4 and 2 significant digits: prose; the JSON has
-/// every digit), or without one (a single path).
-fn estimate_text(value: f64, stderr: f64) -> String {
-    if stderr.is_finite() {
-        format!("{} ± {}", sig(value, 4), sig(stderr, 2))
-    } else {
-        format!("{} (no standard error: one path)", sig(value, 4))
-    }
 }

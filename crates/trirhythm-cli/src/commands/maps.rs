@@ -15,6 +15,7 @@ use trirhythm::theory::bifurcation::{
     branches as trace_branches, classify, trace_folds, trace_printed_eq37, Axis, BranchDiagram,
     Folds, Map, Plane, What,
 };
+use trirhythm_paper::views;
 
 /// What a map counts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -302,25 +303,12 @@ pub fn branches(args: &BranchArgs) -> Result<()> {
             serde_json::to_string(&doc)? + "\n"
         }
         Format::Csv | Format::Table => {
-            let mut header = vec![
+            let header = vec![
                 format!("params: {}", base.describe()),
                 format!("variant: {}", variant.name()),
                 format!("what: {}, swept: {key}", what.name()),
             ];
-            for f in &bd.folds {
-                header.push(format!("fold: {key} = {}, A = {}", num(f.0), num(f.1)));
-            }
-            for h in &bd.hopf {
-                header.push(format!("branch reaches A = 0 at {key} = {}", num(*h)));
-            }
-            let mut csv = Csv::new(&header, &["branch", "param", "amplitude", "stable"]);
-            for (i, b) in bd.branches.iter().enumerate() {
-                for p in &b.points {
-                    let stable = u8::from(p.stable).to_string();
-                    csv.row([i.to_string(), num(p.param), num(p.amplitude), stable]);
-                }
-            }
-            csv.finish()?
+            Csv::of(&views::branches_table(&header, &bd))?
         }
     };
     emit(args.output.out.as_deref(), &text)

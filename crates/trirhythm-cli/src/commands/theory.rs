@@ -6,7 +6,8 @@ use crate::io::{emit, fixed, jlimit, jnum, jvec, num, params_json, table, Csv};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
-use trirhythm::theory::averaging::{AmplitudePdf, Side, Theory};
+use trirhythm::theory::averaging::{AmplitudePdf, Theory};
+use trirhythm_paper::views;
 
 /// Arguments of every theory command.
 #[derive(Debug, Args)]
@@ -21,13 +22,6 @@ impl TheoryArgs {
     fn theory(&self) -> Result<Theory> {
         Ok(Theory::new(&self.params.resolve()?, self.params.variant())?)
     }
-}
-
-fn header(th: &Theory) -> Vec<String> {
-    vec![
-        format!("params: {}", th.params().describe()),
-        format!("variant: {}", th.variant().name()),
-    ]
 }
 
 /// What every theory document starts with: the parameters, the variant and the library's
@@ -66,7 +60,7 @@ pub fn equivalents(args: &TheoryArgs) -> Result<()> {
             pretty(Value::Object(m))
         }
         Format::Csv => {
-            let mut c = Csv::new(&header(&th), &["name", "value"]);
+            let mut c = Csv::new(&views::theory_notes(&th), &["name", "value"]);
             for (k, v) in rows {
                 c.row([k.to_string(), num(v)]);
             }
@@ -86,11 +80,7 @@ pub fn cycles(args: &TheoryArgs) -> Result<()> {
     let th = args.theory()?;
     let cycles = th.cycles();
     let rhythm = th.rhythmicity();
-    let kind = if th.diffusion() > 0.0 {
-        "pdf_extrema"
-    } else {
-        "limit_cycles"
-    };
+    let kind = views::cycles_kind(&th);
     let text = match args.output.format {
         Format::Json => {
             let mut m = base_json(&th);
@@ -104,23 +94,7 @@ pub fn cycles(args: &TheoryArgs) -> Result<()> {
             );
             pretty(Value::Object(m))
         }
-        Format::Csv => {
-            let mut h = header(&th);
-            h.push(format!(
-                "{kind}: {} stable ({})",
-                rhythm.count(),
-                rhythm.name()
-            ));
-            let mut c = Csv::new(&h, &["amplitude", "stable", "fold"]);
-            for cy in &cycles {
-                c.row([
-                    num(cy.amplitude),
-                    cy.stable.to_string(),
-                    cy.fold.to_string(),
-                ]);
-            }
-            c.finish()?
-        }
+        Format::Csv => Csv::of(&views::cycles_table(&th))?,
         Format::Table => {
             let rows: Vec<Vec<String>> = cycles
                 .iter()
@@ -196,16 +170,12 @@ fn emit_columns(
             }
             pretty(Value::Object(m))
         }
-        Format::Csv => {
-            let mut c = Csv::new(&header(th), names);
-            for col in infinite {
-                c = c.allow_infinity(col);
-            }
-            for i in 0..n {
-                c.row(cols.iter().map(|col| num(col[i])));
-            }
-            c.finish()?
-        }
+        Format::Csv => Csv::of(&views::columns_table(
+            &views::theory_notes(th),
+            names,
+            &cols,
+            infinite,
+        ))?,
         Format::Table => {
             let rows: Vec<Vec<String>> = (0..n)
                 .map(|i| {
@@ -257,7 +227,6 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
     let th = args.theory()?;
     let ex = th.extrema();
     let bs = th.barriers();
-    let side = |s: Side| if s == Side::Left { "left" } else { "right" };
     let text = match args.output.format {
         Format::Json => {
             let mut m = base_json(&th);
@@ -273,19 +242,7 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
             m.insert("barriers".into(), Value::Array(named));
             pretty(Value::Object(m))
         }
-        Format::Csv => {
-            let mut c = Csv::new(&header(&th), &["name", "well", "crest", "side", "height"]);
-            for (i, b) in bs.iter().enumerate() {
-                c.row([
-                    format!("dU{}", i + 1),
-                    num(b.well),
-                    num(b.crest),
-                    side(b.side).into(),
-                    num(b.height),
-                ]);
-            }
-            c.finish()?
-        }
+        Format::Csv => Csv::of(&views::barriers_table(&th))?,
         Format::Table => {
             let rows: Vec<Vec<String>> = bs
                 .iter()
@@ -295,7 +252,7 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
                         format!("ΔU{}", i + 1),
                         fixed(b.well, 6),
                         fixed(b.crest, 6),
-                        side(b.side).into(),
+                        b.side.name().into(),
                         format!("{:.6e}", b.height),
                     ]
                 })
@@ -406,7 +363,7 @@ fn pdf_1d(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> {
             pretty(Value::Object(m))
         }
         Format::Csv => {
-            let mut h = header(th);
+            let mut h = views::theory_notes(th);
             h.push(format!("modes: {:?}", pdf.modes));
             h.push(format!("antimodes: {:?}", pdf.antimodes));
             h.push(format!("mean_amplitude: {}", pdf.mean_amplitude));
@@ -470,7 +427,8 @@ fn pdf_joint(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> 
             pretty(Value::Object(m))
         }
         Format::Csv | Format::Table => {
-            let mut c = Csv::new(&header(th), &["U", "V", "p", "log_p"]).allow_infinity("log_p");
+            let mut c = Csv::new(&views::theory_notes(th), &["U", "V", "p", "log_p"])
+                .allow_infinity("log_p");
             for (&u, row) in us.iter().zip(&logp) {
                 for (&v, &l) in vs.iter().zip(row) {
                     c.row([num(u), num(v), num(l.exp()), num(l)]);

@@ -2,6 +2,7 @@
 //! numbers in their cells; a non-finite cell is refused with its place named.
 
 use anyhow::Result;
+use trirhythm_paper::table::Table;
 
 /// The first non-finite cell of a table or CSV document, and how many there are.
 #[derive(Default)]
@@ -99,10 +100,23 @@ impl Csv {
         self.nonfinite.check()?;
         Ok(self.text)
     }
+
+    /// A library [`Table`] as a document: its notes as `#` lines, refused like any other.
+    pub fn of(table: &Table) -> Result<String> {
+        let columns: Vec<&str> = table.columns.iter().map(String::as_str).collect();
+        let mut csv = Csv::new(&table.notes, &columns);
+        for column in &table.infinite {
+            csv = csv.allow_infinity(column);
+        }
+        for row in &table.rows {
+            csv.row(row.iter().cloned());
+        }
+        csv.finish()
+    }
 }
 
-/// Numbers for CSV cells (round-trip) and prose (significant digits): the paper crate's.
-pub use trirhythm_paper::notes::{num, sig};
+/// Numbers for CSV cells (round-trip): the paper crate's.
+pub use trirhythm_paper::notes::num;
 
 /// A table cell with `digits` decimals, in exponent notation outside [1e-4, 1e9) so that no
 /// cell runs to hundreds of digits or rounds a small value to 0.

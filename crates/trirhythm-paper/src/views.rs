@@ -1,0 +1,365 @@
+//! Library results as people read them: the sentences the CLI prints (standard error, `#`
+//! lines) and the tables its CSV files hold, written once so that a report or a binding shows
+//! the same.
+
+use crate::lle::{merged_points_text, Sign};
+use crate::notes::{num, sig};
+use crate::table::Table;
+use trirhythm::analysis::ensemble::EnsembleResult;
+use trirhythm::analysis::lyapunov::{CriticalNoise, LyapunovResult};
+use trirhythm::analysis::oscillation::{Boundary, Side};
+use trirhythm::analysis::versus::TheoryComparison;
+use trirhythm::analysis::Estimate;
+use trirhythm::theory::averaging::{Theory, Variant};
+use trirhythm::theory::bifurcation::BranchDiagram;
+
+/// The theory of each variant against an ensemble, or why there is none
+/// ([`crate::montecarlo::comparisons`]).
+pub type Comparisons = [(Variant, std::result::Result<TheoryComparison, String>)];
+
+/// An estimate with five decimals: "value ± stderr", or "(no standard error)".
+pub fn estimate(e: Estimate) -> String {
+    if e.stderr.is_finite() {
+        format!("{:.5} ± {:.5}", e.value, e.stderr)
+    } else {
+        format!("{:.5} (no standard error)", e.value)
+    }
+}
+
+/// Numbers with four decimals, comma-separated.
+pub fn list(v: &[f64]) -> String {
+    v.iter()
+        .map(|x| format!("{x:.4}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// An ensemble in words: size and wall time, the moments, the stationarity diagnosis, the
+/// wells' occupancy, the first passages and the theory against the simulation; one line each.
+pub fn ensemble(r: &EnsembleResult, theory: &Comparisons, wall: f64) -> String {
+    let st = &r.stationarity;
+    let mut t = format!(
+        "{} paths × {} steps in {wall:.1} s; ⟨A⟩ = {}; Var U = {}; Var U̇ = {}\n\
+         stationarity: {} (R̂ = {:.3}, ESS = {:.0}, drift {:.1} standard errors)\n",
+        r.paths,
+        r.steps_per_path,
+        estimate(r.mean_amplitude),
+        estimate(r.var_u),
+        estimate(r.var_v),
+        if st.stationary {
+            "passed"
+        } else {
+            "NOT STATIONARY"
+        },
+        st.r_hat,
+        st.ess,
+        st.drift_z
+    );
+    if !r.occupancy.is_empty() {
+        let occupancy: Vec<String> = r.occupancy.iter().map(|&e| estimate(e)).collect();
+        t.push_str(&format!(
+            "occupancy of the wells: {}\n",
+            occupancy.join(", ")
+        ));
+    }
+    for (k, p) in r.passages.iter().enumerate() {
+        let theory_times: Vec<String> = theory
+            .iter()
+            .filter_map(|(v, c)| {
+                c.as_ref()
+                    .ok()
+                    .and_then(|c| c.escape_times.get(k))
+                    .map(|t| format!("{} {t:.4e}", v.name()))
+            })
+            .collect();
+        t.push_str(&format!(
+            "first passage {} → {}: {} ({} completed, {} censored); theory's escape time: {}\n",
+            p.from,
+            p.to,
+            if p.count > 0 {
+                estimate(p.mean_time)
+            } else {
+                "none completed".into()
+            },
+            p.count,
+            p.censored,
+            theory_times.join(", ")
+        ));
+    }
+    for (v, c) in theory {
+        match c {
+            Ok(c) => t.push_str(&format!(
+                "theory ({}): Hellinger {:.4} ± {:.4}, L1 {:.4}, KS {:.4}; modes {} (theory, \
+                 binned; {} exact) vs {} (simulation); occupancy {}\n",
+                v.name(),
+                c.hellinger.value,
+                c.hellinger.stderr,
+                c.l1.value,
+                c.ks.value,
+                c.modes_theory,
+                c.modes_theory_exact,
+                c.modes_mc,
+                list(&c.occupancy)
+            )),
+            Err(e) => t.push_str(&format!("theory ({}): {e}\n", v.name())),
+        }
+    }
+    for w in &r.warnings {
+        t.push_str(&format!("warning: {w}\n"));
+    }
+    t
+}
+
+/// A Lyapunov exponent with its standard error in words: −∞ and a missing standard error are
+/// explained, never printed as bare `-inf ± nan`.
+pub fn lle(r: &LyapunovResult) -> String {
+    if r.lle.value == f64::NEG_INFINITY {
+        let others = r.per_path.len() - r.merged;
+        let rest = if others == 0 {
+            String::new()
+        } else {
+            format!(
+                "; the other {others}: {}",
+                lle_estimate(r.unmerged.value, r.unmerged.stderr)
+            )
+        };
+        return format!(
+            "−∞: {} of {} realisations merged (the copy became identical to its reference, whole \
+             memory included: both stuck at the wall on the same step with the memory restarted; \
+             `per_path[].merged_at` in JSON){rest}",
+            r.merged,
+            r.per_path.len()
+        );
+    }
+    lle_estimate(r.lle.value, r.lle.stderr)
+}
+
+/// A finite exponent with its standard error (4 and 2 significant digits: prose; the JSON has
+/// every digit), or without one (a single path).
+pub fn lle_estimate(value: f64, stderr: f64) -> String {
+    if stderr.is_finite() {
+        format!("{} ± {}", sig(value, 4), sig(stderr, 2))
+    } else {
+        format!("{} (no standard error: one path)", sig(value, 4))
+    }
+}
+
+/// A critical-noise search's verdict: "sign change", or why there is none.
+pub fn critical_verdict(c: &CriticalNoise) -> String {
+    if c.found() {
+        "sign change".to_string()
+    } else {
+        format!("no sign change in range (LLE {})", Sign::of(c).words())
+    }
+}
+
+/// A CSV cell: the number, or empty when undefined.
+pub fn cell(v: f64) -> String {
+    if v.is_finite() {
+        num(v)
+    } else {
+        String::new()
+    }
+}
+
+/// A Lyapunov run's running estimate `t,lle,stderr`, the exponent in the notes.
+pub fn lle_table(notes: &[String], r: &LyapunovResult) -> Table {
+    let mut notes = notes.to_vec();
+    notes.push(format!("lle: {}", lle(r)));
+    notes.push(
+        "columns: running estimate (time since the transient, mean over paths, standard error)"
+            .into(),
+    );
+    let mut t = Table::new(&notes, &["t", "lle", "stderr"]).allow_infinity("lle");
+    for q in &r.running {
+        t.row([num(q.t), num(q.value), cell(q.stderr)]);
+    }
+    t
+}
+
+/// The exponent at each value of `key`: `KEY,lle,stderr,merged,unmerged,unmerged_stderr`.
+pub fn lle_sweep_table(notes: &[String], key: &str, rows: &[(f64, LyapunovResult)]) -> Table {
+    let mut notes = notes.to_vec();
+    notes.push(
+        "merged: realisations whose copy merged with its reference (then lle = -inf); \
+         unmerged: the mean over the others"
+            .into(),
+    );
+    let columns = [
+        key,
+        "lle",
+        "stderr",
+        "merged",
+        "unmerged",
+        "unmerged_stderr",
+    ];
+    let mut t = Table::new(&notes, &columns).allow_infinity("lle");
+    for (v, r) in rows {
+        t.row([
+            num(*v),
+            num(r.lle.value),
+            cell(r.lle.stderr),
+            r.merged.to_string(),
+            cell(r.unmerged.value),
+            cell(r.unmerged.stderr),
+        ]);
+    }
+    t
+}
+
+/// Where a critical-noise search ran: "KEY = value", or "the parameters given" without a sweep.
+pub fn point_label(key: Option<&str>, v: f64) -> String {
+    match key {
+        Some(k) => format!("{k} = {}", num(v)),
+        None => "the parameters given".to_string(),
+    }
+}
+
+/// Critical-noise searches `[KEY,]D_c,D_c_lo,D_c_hi`, the searches without a sign change and
+/// the merged points in the notes.
+pub fn critical_table(
+    notes: &[String],
+    key: Option<&str>,
+    found: &[(f64, CriticalNoise)],
+) -> Table {
+    let mut notes = notes.to_vec();
+    for (v, c) in found {
+        if !c.found() {
+            notes.push(format!(
+                "{}: no sign change in range (LLE {})",
+                point_label(key, *v),
+                Sign::of(c).words()
+            ));
+        }
+        let merged = merged_points_text(c);
+        if !merged.is_empty() {
+            notes.push(format!(
+                "{}: no sign at D = {} (realisations whose copy merged with its reference: LLE −∞)",
+                point_label(key, *v),
+                merged.join(", ")
+            ));
+        }
+    }
+    let mut columns: Vec<&str> = key.into_iter().collect();
+    columns.extend(["D_c", "D_c_lo", "D_c_hi"]);
+    let mut t = Table::new(&notes, &columns);
+    for (v, c) in found.iter().filter(|(_, c)| c.found()) {
+        let lead = key.map(|_| num(*v));
+        t.row(
+            lead.into_iter()
+                .chain([num(c.d_c), num(c.d_c_lo), num(c.d_c_hi)]),
+        );
+    }
+    t
+}
+
+/// Oscillation boundaries along `x_key`: `method,x,y,y_lo,y_hi`, the abscissae without a
+/// boundary in the interval named in the notes.
+pub fn boundaries_table(notes: &[String], x_key: &str, results: &[Boundary]) -> Table {
+    let mut notes = notes.to_vec();
+    for b in results {
+        for q in b.points.iter().filter(|q| q.side != Side::Boundary) {
+            let why = match q.side {
+                Side::Oscillates => "no boundary in the interval: oscillates throughout",
+                Side::Rests => "no boundary in the interval: rests throughout",
+                _ => "not available (exact linearisation with the wall at λ < 1)",
+            };
+            notes.push(format!("{}: at {x_key} = {} {why}", b.method, num(q.x)));
+        }
+    }
+    let mut t = Table::new(&notes, &["method", "x", "y", "y_lo", "y_hi"]);
+    for b in results {
+        for q in b.points.iter().filter(|q| q.side == Side::Boundary) {
+            let cells = [q.x, q.y, q.y_lo, q.y_hi].map(num);
+            t.row(std::iter::once(b.method.to_string()).chain(cells));
+        }
+    }
+    t
+}
+
+/// A branch diagram `branch,param,amplitude,stable`, its folds and Hopf points in the notes.
+pub fn branches_table(notes: &[String], bd: &BranchDiagram) -> Table {
+    let mut notes = notes.to_vec();
+    let key = &bd.key;
+    for f in &bd.folds {
+        notes.push(format!("fold: {key} = {}, A = {}", num(f.0), num(f.1)));
+    }
+    for h in &bd.hopf {
+        notes.push(format!("branch reaches A = 0 at {key} = {}", num(*h)));
+    }
+    let mut t = Table::new(&notes, &["branch", "param", "amplitude", "stable"]);
+    for (i, b) in bd.branches.iter().enumerate() {
+        for p in &b.points {
+            let stable = u8::from(p.stable).to_string();
+            t.row([i.to_string(), num(p.param), num(p.amplitude), stable]);
+        }
+    }
+    t
+}
+
+/// The notes every table of the averaged theory starts with: the parameters and the variant.
+pub fn theory_notes(th: &Theory) -> Vec<String> {
+    vec![
+        format!("params: {}", th.params().describe()),
+        format!("variant: {}", th.variant().name()),
+    ]
+}
+
+/// What the roots of the theory are: `pdf_extrema` (roots of m1, D > 0) or `limit_cycles`.
+pub fn cycles_kind(th: &Theory) -> &'static str {
+    if th.diffusion() > 0.0 {
+        "pdf_extrema"
+    } else {
+        "limit_cycles"
+    }
+}
+
+/// The theory's cycles `amplitude,stable,fold`, their count and rhythmicity in the notes.
+pub fn cycles_table(th: &Theory) -> Table {
+    let rhythm = th.rhythmicity();
+    let mut notes = theory_notes(th);
+    notes.push(format!(
+        "{}: {} stable ({})",
+        cycles_kind(th),
+        rhythm.count(),
+        rhythm.name()
+    ));
+    let mut t = Table::new(&notes, &["amplitude", "stable", "fold"]);
+    for c in th.cycles() {
+        t.row([num(c.amplitude), c.stable.to_string(), c.fold.to_string()]);
+    }
+    t
+}
+
+/// The barriers of U_eff `name,well,crest,side,height` (`dU1`, `dU2`, …).
+pub fn barriers_table(th: &Theory) -> Table {
+    let columns = ["name", "well", "crest", "side", "height"];
+    let mut t = Table::new(&theory_notes(th), &columns);
+    for (i, b) in th.barriers().iter().enumerate() {
+        t.row([
+            format!("dU{}", i + 1),
+            num(b.well),
+            num(b.crest),
+            b.side.name().into(),
+            num(b.height),
+        ]);
+    }
+    t
+}
+
+/// Named columns of equal length as a table; ±∞ allowed in the columns named in `infinite`.
+pub fn columns_table(
+    notes: &[String],
+    names: &[&str],
+    cols: &[Vec<f64>],
+    infinite: &[&str],
+) -> Table {
+    let mut t = Table::new(notes, names);
+    for column in infinite {
+        t = t.allow_infinity(column);
+    }
+    for i in 0..cols.first().map_or(0, Vec::len) {
+        t.row(cols.iter().map(|col| num(col[i])));
+    }
+    t
+}
