@@ -6,7 +6,7 @@ use crate::lle::{merged_points_text, Sign};
 use crate::notes::{num, sig};
 use crate::table::Table;
 use trirhythm::analysis::ensemble::EnsembleResult;
-use trirhythm::analysis::lyapunov::{CriticalNoise, LyapunovResult};
+use trirhythm::analysis::lyapunov::{CriticalNoise, LyapunovMethod, LyapunovResult, LyapunovSpec};
 use trirhythm::analysis::oscillation::{Boundary, Side};
 use trirhythm::analysis::versus::TheoryComparison;
 use trirhythm::analysis::Estimate;
@@ -362,4 +362,32 @@ pub fn columns_table(
         t.row(cols.iter().map(|col| num(col[i])));
     }
     t
+}
+
+/// A Lyapunov run's method and window in words (two lines of a table's notes).
+pub fn lyapunov_spec(spec: &LyapunovSpec) -> [String; 2] {
+    [
+        match spec.method {
+            LyapunovMethod::TwoTrajectory => format!(
+                "method: two trajectories on the same noise (frozen noise), the copy pulled \
+                 back to d0 = {} every {} steps with its whole memory",
+                num(spec.separation),
+                spec.renormalise_every
+            ),
+            LyapunovMethod::Tangent => format!(
+                "method: tangent (variational) equation along the path (frozen noise), its \
+                 memory a second history of the perturbation, the saltation of the impact \
+                 map at impacts; the whole tangent state renormalised every {} steps",
+                spec.renormalise_every
+            ),
+        },
+        format!(
+            "window: finite-time exponent over t_end = {} after a transient of {}; {} \
+             paths of seed {} (mean ± standard error over paths)",
+            num(spec.length),
+            num(spec.transient),
+            spec.paths,
+            spec.seed
+        ),
+    ]
 }

@@ -141,41 +141,20 @@ impl LleArgs {
         Ok((params, problem, method, spec))
     }
 
-    fn describe(&self) -> Vec<String> {
-        vec![
-            match self.method {
-                LyapunovMethod::TwoTrajectory => format!(
-                    "method: two trajectories on the same noise (frozen noise), the copy pulled \
-                     back to d0 = {} every {} steps with its whole memory",
-                    num(self.separation),
-                    self.renormalise_every
-                ),
-                LyapunovMethod::Tangent => format!(
-                    "method: tangent (variational) equation along the path (frozen noise), its \
-                     memory a second history of the perturbation, the saltation of the impact \
-                     map at impacts; the whole tangent state renormalised every {} steps",
-                    self.renormalise_every
-                ),
-            },
-            format!(
-                "simulation: predictor-corrector dt = {}, {} memory, {} impact memory, system {}, \
-                 barrier {}, U(0) = {}",
-                num(self.dt),
-                self.model.memory.name(),
-                self.impact_memory.name(),
-                self.model.system.name(),
-                self.model.barrier.name(),
-                num(self.u0)
-            ),
-            format!(
-                "window: finite-time exponent over t_end = {} after a transient of {}; {} \
-                 paths of seed {} (mean ± standard error over paths)",
-                num(self.t_end),
-                num(self.transient),
-                self.paths,
-                self.seed
-            ),
-        ]
+    /// The notes on the method: the library's spec in words, the simulation between.
+    fn describe(&self, spec: &LyapunovSpec) -> Vec<String> {
+        let [method, window] = views::lyapunov_spec(spec);
+        let simulation = format!(
+            "simulation: predictor-corrector dt = {}, {} memory, {} impact memory, system {}, \
+             barrier {}, U(0) = {}",
+            num(self.dt),
+            self.model.memory.name(),
+            self.impact_memory.name(),
+            self.model.system.name(),
+            self.model.barrier.name(),
+            num(self.u0)
+        );
+        vec![method, simulation, window]
     }
 }
 
@@ -238,7 +217,7 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
     let (base, problem, method, spec) = args.sim.setup()?;
     let mut header = vec!["trirhythm lyapunov: largest Lyapunov exponent".to_string()];
     header.push(format!("params: {}", base.describe()));
-    header.extend(args.sim.describe());
+    header.extend(args.sim.describe(&spec));
     if let Some(sweep) = &args.sweep {
         return sweep_lyapunov(args, sweep, header, &base, &problem, &method, &spec);
     }
@@ -444,7 +423,7 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
             let mut header =
                 vec!["trirhythm critical-noise: D_c where the LLE changes sign".to_string()];
             header.push(format!("params: {}", base.describe()));
-            header.extend(args.sim.describe());
+            header.extend(args.sim.describe(&spec));
             header.push(format!(
                 "search: D ∈ [{}, {}], {} grid points, {} bisections; D_c_lo/D_c_hi: the nearest \
                  evaluated D on each side whose LLE is {} standard errors from 0",
