@@ -5,6 +5,8 @@
 use crate::lle::{merged_points_text, Sign};
 use crate::notes::{num, sig};
 use crate::table::Table;
+use serde::Serialize;
+use std::collections::BTreeMap;
 use trirhythm::analysis::ensemble::EnsembleResult;
 use trirhythm::analysis::lyapunov::{CriticalNoise, LyapunovMethod, LyapunovResult, LyapunovSpec};
 use trirhythm::analysis::oscillation::{Boundary, Side};
@@ -16,6 +18,33 @@ use trirhythm::theory::bifurcation::BranchDiagram;
 /// The theory of each variant against an ensemble, or why there is none
 /// ([`crate::montecarlo::comparisons`]).
 pub type Comparisons = [(Variant, std::result::Result<TheoryComparison, String>)];
+
+/// One variant of the theory against an ensemble in JSON: the comparison, or why there is none.
+#[derive(Serialize)]
+#[serde(untagged)]
+pub enum TheoryEntry<'a> {
+    /// The theory's P(A) against the simulation.
+    Comparison(&'a TheoryComparison),
+    /// Why the theory has no P(A) here.
+    Error {
+        /// The reason, in words.
+        error: &'a str,
+    },
+}
+
+/// The comparisons by variant name (`consistent`, `paper`), for a JSON document.
+pub fn theory_entries(theory: &Comparisons) -> BTreeMap<&'static str, TheoryEntry<'_>> {
+    theory
+        .iter()
+        .map(|(v, c)| {
+            let entry = match c {
+                Ok(c) => TheoryEntry::Comparison(c),
+                Err(e) => TheoryEntry::Error { error: e },
+            };
+            (v.name(), entry)
+        })
+        .collect()
+}
 
 /// An estimate with five decimals: "value ± stderr", or "(no standard error)".
 pub fn estimate(e: Estimate) -> String {

@@ -20,12 +20,12 @@ use std::time::Instant;
 use trirhythm::analysis::ensemble::{
     merge, run_paths, EnsembleResult, EnsembleSpec, PathStats, Wells,
 };
-use trirhythm::analysis::versus::{theory_layout, TheoryComparison};
+use trirhythm::analysis::versus::theory_layout;
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
 use trirhythm::monitor::Monitor;
 use trirhythm_paper::montecarlo::comparisons;
-use trirhythm_paper::views::{self, Comparisons};
+use trirhythm_paper::views::{self, Comparisons, TheoryEntry};
 
 /// `json` or `csv`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -199,14 +199,6 @@ struct Document<'a> {
     theory: BTreeMap<&'static str, TheoryEntry<'a>>,
 }
 
-/// One variant of the theory against the result, or why there is none.
-#[derive(Serialize)]
-#[serde(untagged)]
-enum TheoryEntry<'a> {
-    Comparison(&'a TheoryComparison),
-    Error { error: &'a str },
-}
-
 /// The whole result as the JSON document of the command's contract.
 fn result_json(
     s: &EnsembleSetup,
@@ -215,23 +207,13 @@ fn result_json(
     theory: &Comparisons,
     wall: f64,
 ) -> Result<String> {
-    let theory = theory
-        .iter()
-        .map(|(v, c)| {
-            let entry = match c {
-                Ok(c) => TheoryEntry::Comparison(c),
-                Err(e) => TheoryEntry::Error { error: e },
-            };
-            (v.name(), entry)
-        })
-        .collect();
     let doc = Document {
         params: params_json(&s.params),
         method,
         choices: &s.choices,
         wall_time_s: wall,
         result: r,
-        theory,
+        theory: views::theory_entries(theory),
     };
     Ok(serde_json::to_string(&doc)? + "\n")
 }
