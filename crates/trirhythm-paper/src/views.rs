@@ -12,8 +12,9 @@ use trirhythm::analysis::lyapunov::{CriticalNoise, LyapunovMethod, LyapunovResul
 use trirhythm::analysis::oscillation::{Boundary, Side};
 use trirhythm::analysis::versus::TheoryComparison;
 use trirhythm::analysis::Estimate;
+use trirhythm::model::Params;
 use trirhythm::theory::averaging::{Theory, Variant};
-use trirhythm::theory::bifurcation::BranchDiagram;
+use trirhythm::theory::bifurcation::{BranchDiagram, Folds, Map, What};
 
 /// The theory of each variant against an ensemble, or why there is none
 /// ([`crate::montecarlo::comparisons`]).
@@ -173,12 +174,35 @@ pub fn lle_estimate(value: f64, stderr: f64) -> String {
     }
 }
 
-/// A critical-noise search's verdict: "sign change", or why there is none.
-pub fn critical_verdict(c: &CriticalNoise) -> String {
-    if c.found() {
-        "sign change".to_string()
-    } else {
-        format!("no sign change in range (LLE {})", Sign::of(c).words())
+/// A critical-noise search in JSON: the library's result with its verdict in words, at the
+/// swept value (`None` without a sweep).
+#[derive(Serialize)]
+pub struct CriticalOutcome<'a> {
+    /// The swept parameter's value.
+    pub value: Option<f64>,
+    /// Whether the LLE changes sign in the range.
+    pub sign_change: bool,
+    /// "sign change", or why there is none.
+    pub verdict: String,
+    /// The search.
+    #[serde(flatten)]
+    pub search: &'a CriticalNoise,
+}
+
+impl<'a> CriticalOutcome<'a> {
+    /// The outcome of `search` at `value`.
+    pub fn of(value: Option<f64>, search: &'a CriticalNoise) -> Self {
+        let verdict = if search.found() {
+            "sign change".to_string()
+        } else {
+            format!("no sign change in range (LLE {})", Sign::of(search).words())
+        };
+        CriticalOutcome {
+            value,
+            sign_change: search.found(),
+            verdict,
+            search,
+        }
     }
 }
 
@@ -419,4 +443,42 @@ pub fn lyapunov_spec(spec: &LyapunovSpec) -> [String; 2] {
             spec.seed
         ),
     ]
+}
+
+/// The notes of a map's CSV files: parameters, variant, what is counted, the axes, the count
+/// histogram and the fold curves traced.
+pub fn map_notes(
+    params: &Params,
+    variant: Variant,
+    what: What,
+    (kx, ky): (&str, &str),
+    m: &Map,
+    sets: &[Folds],
+) -> Vec<String> {
+    let hist = m.histogram();
+    let counted = if what == What::Rhythmicity {
+        "limit cycles"
+    } else {
+        "maxima of P(A)"
+    };
+    let mut notes = vec![
+        format!("params: {}", params.describe()),
+        format!("variant: {}", variant.name()),
+        format!("what: {} (count of stable {counted})", what.name()),
+        format!("x: {kx}, y: {ky}"),
+        format!(
+            "points with count 0, 1, 2, 3, >=4: {}, {}, {}, {}, {}",
+            hist[0], hist[1], hist[2], hist[3], hist[4]
+        ),
+    ];
+    for f in sets {
+        notes.push(format!(
+            "fold curves ({}): {} traced from {} seeds, {} cusps",
+            f.curves.first().map(|c| c.system.name()).unwrap_or("-"),
+            f.curves.len(),
+            f.seeds,
+            f.cusps.len()
+        ));
+    }
+    notes
 }

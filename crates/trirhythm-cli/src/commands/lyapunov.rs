@@ -18,7 +18,7 @@ use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
 use trirhythm::monitor::Silent;
 use trirhythm_paper::lle::Sign;
-use trirhythm_paper::views;
+use trirhythm_paper::views::{self, CriticalOutcome};
 
 /// How the exponent is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -321,27 +321,6 @@ pub struct CriticalNoiseArgs {
     pub out: Option<PathBuf>,
 }
 
-/// One swept value of a `critical-noise` document: the library's outcome and its verdict.
-#[derive(Serialize)]
-struct Outcome<'a> {
-    value: Option<f64>,
-    sign_change: bool,
-    verdict: String,
-    #[serde(flatten)]
-    search: &'a CriticalNoise,
-}
-
-impl<'a> Outcome<'a> {
-    fn of(value: Option<f64>, search: &'a CriticalNoise) -> Self {
-        Outcome {
-            value,
-            sign_change: search.found(),
-            verdict: views::critical_verdict(search),
-            search,
-        }
-    }
-}
-
 /// The parameters at each value of the swept key (the base parameters alone without one).
 fn sweep_params(base: &Params, key: Option<&str>, values: &[f64]) -> Result<Vec<Params>> {
     let at = |v: f64| match key {
@@ -444,7 +423,7 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
             "sweep": key,
             "results": found
                 .iter()
-                .map(|(v, c)| Outcome::of(key.is_some().then_some(*v), c))
+                .map(|(v, c)| CriticalOutcome::of(key.is_some().then_some(*v), c))
                 .collect::<Vec<_>>(),
         }))?,
     };

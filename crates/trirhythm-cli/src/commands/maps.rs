@@ -165,46 +165,8 @@ pub fn map(args: &MapArgs) -> Result<()> {
             &(serde_json::to_string(&doc)? + "\n"),
         );
     }
-    let header = map_header(&base, variant.name(), what, &kx, &ky, &m, &sets);
+    let header = views::map_notes(&base, variant, what, (&kx, &ky), &m, &sets);
     write_map_csv(args, &header, &plane, &m, &sets, folds_path.as_deref())
-}
-
-/// The `#` lines of a map's CSV files.
-fn map_header(
-    base: &trirhythm::Params,
-    variant: &str,
-    what: What,
-    kx: &str,
-    ky: &str,
-    m: &Map,
-    sets: &[Folds],
-) -> Vec<String> {
-    let hist = m.histogram();
-    let counted = if what == What::Rhythmicity {
-        "limit cycles"
-    } else {
-        "maxima of P(A)"
-    };
-    let mut header = vec![
-        format!("params: {}", base.describe()),
-        format!("variant: {variant}"),
-        format!("what: {} (count of stable {counted})", what.name()),
-        format!("x: {kx}, y: {ky}"),
-        format!(
-            "points with count 0, 1, 2, 3, >=4: {}, {}, {}, {}, {}",
-            hist[0], hist[1], hist[2], hist[3], hist[4]
-        ),
-    ];
-    for f in sets {
-        header.push(format!(
-            "fold curves ({}): {} traced from {} seeds, {} cusps",
-            f.curves.first().map(|c| c.system.name()).unwrap_or("-"),
-            f.curves.len(),
-            f.seeds,
-            f.cusps.len()
-        ));
-    }
-    header
 }
 
 /// The map streamed to its output as `x,y,count`; the fold curves into a temporary that is
