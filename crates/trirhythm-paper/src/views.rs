@@ -12,6 +12,7 @@ use trirhythm::analysis::lyapunov::{CriticalNoise, LyapunovMethod, LyapunovResul
 use trirhythm::analysis::oscillation::{Boundary, Side};
 use trirhythm::analysis::versus::TheoryComparison;
 use trirhythm::analysis::Estimate;
+use trirhythm::engine::Trajectory;
 use trirhythm::model::Params;
 use trirhythm::theory::averaging::{Theory, Variant};
 use trirhythm::theory::bifurcation::{BranchDiagram, Folds, Map, What};
@@ -481,4 +482,59 @@ pub fn map_notes(
         ));
     }
     notes
+}
+
+/// A path's summary: the `summary` object of `simulate`'s JSON, and [`PathSummary::line`].
+#[derive(Debug, Clone, Serialize)]
+pub struct PathSummary {
+    /// Steps taken.
+    pub steps: usize,
+    /// Impacts.
+    pub impacts: usize,
+    /// Steps that ended clamped at the wall.
+    pub sticking_steps: usize,
+    /// Mean amplitude over the last periods.
+    pub final_amplitude: f64,
+    /// Wall time of the run, seconds.
+    pub wall_time_s: f64,
+    /// Steps per second of wall time.
+    pub steps_per_second: f64,
+    /// Exponentials of the SOE memory.
+    pub exponentials: usize,
+    /// The SOE kernel's maximal relative error.
+    pub soe_max_relative_error: f64,
+    /// Bytes of memory state at the end.
+    pub memory_state_bytes: usize,
+}
+
+impl PathSummary {
+    /// The summary of `tr`, run in `wall` seconds.
+    pub fn of(tr: &Trajectory, wall: f64) -> PathSummary {
+        PathSummary {
+            steps: tr.steps,
+            impacts: tr.impacts,
+            sticking_steps: tr.sticking_steps,
+            final_amplitude: tr.final_amplitude,
+            wall_time_s: wall,
+            steps_per_second: tr.steps as f64 / wall.max(1e-12),
+            exponentials: tr.exponentials,
+            soe_max_relative_error: tr.soe_error,
+            memory_state_bytes: tr.memory_bytes,
+        }
+    }
+
+    /// In one line.
+    pub fn line(&self) -> String {
+        format!(
+            "steps {}  impacts {}  sticking steps {}  final amplitude {:.6}  wall time {:.3} s  \
+             ({:.3e} steps/s, {} exponentials)",
+            self.steps,
+            self.impacts,
+            self.sticking_steps,
+            self.final_amplitude,
+            self.wall_time_s,
+            self.steps_per_second,
+            self.exponentials
+        )
+    }
 }
