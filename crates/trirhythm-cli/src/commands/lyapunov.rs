@@ -5,6 +5,7 @@
 
 use crate::args::{parse_axis, ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat};
 use crate::error::bad;
+use crate::io::progress::Bar;
 use crate::io::{emit, num, params_json, progress, Csv, Report};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
@@ -221,11 +222,7 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
     if let Some(sweep) = &args.sweep {
         return sweep_lyapunov(args, sweep, header, &base, &problem, &method, &spec);
     }
-    let bar = progress(1000, "lyapunov");
-    let report =
-        Report(|done: u64, all: u64| bar.set_position((done as f64 / all as f64 * 1000.0) as u64));
-    let r = largest_lyapunov(&problem, &method, &spec, &report)?;
-    bar.finish_and_clear();
+    let r = largest_lyapunov(&problem, &method, &spec, &Bar::new("lyapunov"))?;
     eprintln!(
         "LLE = {} (finite-time, window {}; {} paths)",
         views::lle(&r),

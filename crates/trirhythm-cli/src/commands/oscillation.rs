@@ -4,6 +4,7 @@
 
 use crate::args::{parse_axis, ImpactMemoryArg, Named, OnOff, ParamArgs, SimFormat};
 use crate::error::bad;
+use crate::io::progress::Bar;
 use crate::io::{emit, jnum, num, params_json, progress, Csv, Report};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
@@ -217,10 +218,7 @@ fn classify(args: &OscillationArgs, mut s: Setup, ys: &[f64]) -> Result<String> 
         ));
     }
     let method = method_of(m, s.classifier, s.variant);
-    let bar = progress(cells as u64, "oscillation grid");
-    let report = Report(|done: u64, _total: u64| bar.set_position(done));
-    let cells = classify_plane(plane, ys, &method, &report)?;
-    bar.finish_and_clear();
+    let cells = classify_plane(plane, ys, &method, &Bar::new("oscillation grid"))?;
     if let Some(c) = cells.iter().find(|c| c.rate.is_nan()) {
         return bad(format!(
             "--method exact: the exact linearisation with the wall is known at λ = 1 only (at {kx} = {}, {ky} = {} λ = {}); use --barrier off, or simulation",
