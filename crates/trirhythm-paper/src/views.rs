@@ -405,14 +405,14 @@ pub fn barriers_table(th: &Theory) -> Table {
 pub fn columns_table(
     notes: &[String],
     names: &[&str],
-    cols: &[Vec<f64>],
+    cols: &[&[f64]],
     infinite: &[&str],
 ) -> Table {
     let mut t = Table::new(notes, names);
     for column in infinite {
         t = t.allow_infinity(column);
     }
-    for i in 0..cols.first().map_or(0, Vec::len) {
+    for i in 0..cols.first().map_or(0, |c| c.len()) {
         t.row(cols.iter().map(|col| num(col[i])));
     }
     t
@@ -537,4 +537,15 @@ impl PathSummary {
             self.exponentials
         )
     }
+}
+
+/// The joint density P(U, U̇) on a grid `U,V,p,log_p` (`log_p[i][j]` at `us[i]`, `vs[j]`).
+pub fn joint_pdf_table(notes: &[String], us: &[f64], vs: &[f64], log_p: &[Vec<f64>]) -> Table {
+    let mut t = Table::new(notes, &["U", "V", "p", "log_p"]).allow_infinity("log_p");
+    for (&u, row) in us.iter().zip(log_p) {
+        for (&v, &l) in vs.iter().zip(row) {
+            t.row([num(u), num(v), num(l.exp()), num(l)]);
+        }
+    }
+    t
 }

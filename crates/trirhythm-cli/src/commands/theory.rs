@@ -170,12 +170,11 @@ fn emit_columns(
             }
             pretty(Value::Object(m))
         }
-        Format::Csv => Csv::of(&views::columns_table(
-            &views::theory_notes(th),
-            names,
-            &cols,
-            infinite,
-        ))?,
+        Format::Csv => {
+            let cols: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
+            let notes = views::theory_notes(th);
+            Csv::of(&views::columns_table(&notes, names, &cols, infinite))?
+        }
         Format::Table => {
             let rows: Vec<Vec<String>> = (0..n)
                 .map(|i| {
@@ -367,11 +366,13 @@ fn pdf_1d(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> {
             h.push(format!("modes: {:?}", pdf.modes));
             h.push(format!("antimodes: {:?}", pdf.antimodes));
             h.push(format!("mean_amplitude: {}", pdf.mean_amplitude));
-            let mut c = Csv::new(&h, &[xname, "p", "log_p"]).allow_infinity("log_p");
-            for i in 0..xs.len() {
-                c.row([num(xs[i]), num(p[i]), num(logp[i])]);
-            }
-            c.finish()?
+            let columns = [xname, "p", "log_p"];
+            Csv::of(&views::columns_table(
+                &h,
+                &columns,
+                &[&xs, &p, &logp],
+                &["log_p"],
+            ))?
         }
         Format::Table => {
             let rows: Vec<Vec<String>> = (0..xs.len())
@@ -426,15 +427,11 @@ fn pdf_joint(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> 
             m.insert("p".into(), Value::Array(p));
             pretty(Value::Object(m))
         }
-        Format::Csv | Format::Table => {
-            let mut c = Csv::new(&views::theory_notes(th), &["U", "V", "p", "log_p"])
-                .allow_infinity("log_p");
-            for (&u, row) in us.iter().zip(&logp) {
-                for (&v, &l) in vs.iter().zip(row) {
-                    c.row([num(u), num(v), num(l.exp()), num(l)]);
-                }
-            }
-            c.finish()?
-        }
+        Format::Csv | Format::Table => Csv::of(&views::joint_pdf_table(
+            &views::theory_notes(th),
+            &us,
+            &vs,
+            &logp,
+        ))?,
     })
 }
