@@ -17,14 +17,11 @@ use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use trirhythm::analysis::ensemble::{
-    merge, run_paths, EnsembleResult, EnsembleSpec, PathStats, Wells,
-};
-use trirhythm::analysis::versus::theory_layout;
+use trirhythm::analysis::ensemble::{merge, run_paths, EnsembleResult, EnsembleSpec, PathStats};
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
 use trirhythm::monitor::Monitor;
-use trirhythm_paper::montecarlo::comparisons;
+use trirhythm_paper::montecarlo::{self, comparisons};
 use trirhythm_paper::views::{self, Comparisons, TheoryEntry};
 
 /// `json` or `csv`.
@@ -106,49 +103,17 @@ impl EnsembleArgs {
     pub fn setup(&self) -> Result<EnsembleSetup> {
         let params = self.params.resolve()?;
         let method = self.model.method(self.dt, self.impact_memory);
-        let layout = theory_layout(&params, self.params.variant());
-        let mut choices = Vec::new();
-        let starts = if !self.u0.is_empty() {
-            self.u0.clone()
-        } else if let Some(l) = &layout {
-            choices.push(format!(
-                "u0 = {} (the theory's modes, {} variant)",
-                views::list(&l.starts),
-                self.params.variant().name()
-            ));
-            l.starts.clone()
-        } else {
+        let chosen =
+            montecarlo::choices(&params, self.params.variant(), &self.u0, self.amplitude_max);
+        let Some(starts) = chosen.starts else {
             return bad(
                 "--u0: the averaged theory offers no cycle to start from for these parameters; \
                  give the initial displacements (--u0 A[,A…])",
             );
         };
-        let amplitude_max = match (self.amplitude_max, &layout) {
-            (Some(a), _) => a,
-            (None, Some(l)) => {
-                let a = l
-                    .amplitude_max
-                    .max(1.2 * starts.iter().fold(0.0f64, |m, x| m.max(x.abs())));
-                choices.push(format!(
-                    "amplitude-max = {a:.4} (1.2 × the theory's largest mode + 6 widths)"
-                ));
-                a
-            }
-            (None, None) => {
-                return bad(
-                    "--amplitude-max: no theory to choose the histogram range from; give it",
-                )
-            }
+        let Some(amplitude_max) = chosen.amplitude_max else {
+            return bad("--amplitude-max: no theory to choose the histogram range from; give it");
         };
-        let wells: Option<Wells> = layout.and_then(|l| l.wells);
-        if let Some(w) = &wells {
-            choices.push(format!(
-                "wells: modes {} and antimodes {} of P(A) ({} variant)",
-                views::list(&w.modes),
-                views::list(&w.antimodes),
-                self.params.variant().name()
-            ));
-        }
         let spec = EnsembleSpec {
             paths: self.paths,
             seed: self.seed,
@@ -158,7 +123,7 @@ impl EnsembleArgs {
             bins: self.bins,
             joint_bins: self.joint_bins,
             amplitude_max,
-            wells,
+            wells: chosen.wells,
             ..Default::default()
         };
         let starts: Vec<(f64, f64)> = starts.iter().map(|&u| (u, 0.0)).collect();
@@ -168,7 +133,7 @@ impl EnsembleArgs {
             params,
             method,
             spec,
-            choices,
+            choices: chosen.said,
         })
     }
 }
