@@ -8,7 +8,9 @@ use crate::table::Table;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use trirhythm::analysis::ensemble::EnsembleResult;
-use trirhythm::analysis::lyapunov::{CriticalNoise, LyapunovMethod, LyapunovResult, LyapunovSpec};
+use trirhythm::analysis::lyapunov::{
+    CriticalNoise, CriticalSearch, LyapunovMethod, LyapunovResult, LyapunovSpec,
+};
 use trirhythm::analysis::oscillation::{Boundary, Side};
 use trirhythm::analysis::versus::TheoryComparison;
 use trirhythm::analysis::Estimate;
@@ -269,14 +271,24 @@ pub fn point_label(key: Option<&str>, v: f64) -> String {
     }
 }
 
-/// Critical-noise searches `[KEY,]D_c,D_c_lo,D_c_hi`, the searches without a sign change and
-/// the merged points in the notes.
+/// Critical-noise searches `[KEY,]D_c,D_c_lo,D_c_hi`: the search, the searches without a
+/// sign change and the merged points in the notes.
 pub fn critical_table(
     notes: &[String],
+    search: &CriticalSearch,
     key: Option<&str>,
     found: &[(f64, CriticalNoise)],
 ) -> Table {
     let mut notes = notes.to_vec();
+    notes.push(format!(
+        "search: D ∈ [{}, {}], {} grid points, {} bisections; D_c_lo/D_c_hi: the nearest \
+         evaluated D on each side whose LLE is {} standard errors from 0",
+        num(search.d_lo),
+        num(search.d_hi),
+        search.grid,
+        search.refinements,
+        num(search.z)
+    ));
     for (v, c) in found {
         if !c.found() {
             notes.push(format!(
@@ -548,4 +560,63 @@ pub fn joint_pdf_table(notes: &[String], us: &[f64], vs: &[f64], log_p: &[Vec<f6
         }
     }
     t
+}
+
+/// An axis of a [`MapView`]: the key and its values.
+#[derive(Serialize)]
+pub struct AxisValues {
+    /// The parameter.
+    pub key: String,
+    /// Its values on the grid.
+    pub values: Vec<f64>,
+}
+
+/// A classified plane in JSON: the axes, the counts (one row per y), the count histogram and
+/// the fold curves traced (the exact ones, then Eq. 37 as printed).
+#[derive(Serialize)]
+pub struct MapView<'a> {
+    /// The parameters (a JSON object, key by key).
+    pub params: serde_json::Value,
+    /// The formula variant.
+    pub variant: &'static str,
+    /// What is counted.
+    pub what: What,
+    /// The horizontal axis.
+    pub x: AxisValues,
+    /// The vertical axis.
+    pub y: AxisValues,
+    /// `counts[iy][ix]`.
+    pub counts: Vec<Vec<u8>>,
+    /// Points with count 0, 1, 2, 3, ≥ 4.
+    pub histogram: [usize; 5],
+    /// The fold curves.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub folds: Option<&'a Folds>,
+    /// The fold curves of Eq. 37 as printed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub printed_eq37: Option<&'a Folds>,
+}
+
+impl<'a> MapView<'a> {
+    /// The view of `m` with the fold curves `sets` and the parameters as `params`.
+    pub fn of(params: serde_json::Value, m: &Map, sets: &'a [Folds]) -> MapView<'a> {
+        let p = &m.plane;
+        let axis = |a: &trirhythm::theory::bifurcation::Axis| AxisValues {
+            key: a.key.clone(),
+            values: a.values(),
+        };
+        MapView {
+            params,
+            variant: p.variant.name(),
+            what: m.what,
+            x: axis(&p.x),
+            y: axis(&p.y),
+            counts: (0..p.y.count)
+                .map(|iy| (0..p.x.count).map(|ix| m.count(ix, iy)).collect())
+                .collect(),
+            histogram: m.histogram(),
+            folds: sets.first(),
+            printed_eq37: sets.get(1),
+        }
+    }
 }

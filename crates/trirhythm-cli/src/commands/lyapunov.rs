@@ -400,16 +400,12 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
                 vec!["trirhythm critical-noise: D_c where the LLE changes sign".to_string()];
             header.push(format!("params: {}", base.describe()));
             header.extend(args.sim.describe(&spec));
-            header.push(format!(
-                "search: D ∈ [{}, {}], {} grid points, {} bisections; D_c_lo/D_c_hi: the nearest \
-                 evaluated D on each side whose LLE is {} standard errors from 0",
-                num(d_lo),
-                num(d_hi),
-                args.grid,
-                args.refinements,
-                num(args.z)
-            ));
-            Csv::of(&views::critical_table(&header, key.as_deref(), &found))?
+            Csv::of(&views::critical_table(
+                &header,
+                &search,
+                key.as_deref(),
+                &found,
+            ))?
         }
         SimFormat::Json => pretty(&json!({
             "params": params_json(&base),

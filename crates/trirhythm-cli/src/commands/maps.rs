@@ -65,29 +65,6 @@ pub struct MapArgs {
     pub output: OutputArgs,
 }
 
-/// An axis of a `map` document: the key and its values.
-#[derive(Serialize)]
-struct AxisValues {
-    key: String,
-    values: Vec<f64>,
-}
-
-/// The `map` JSON document: the counts on the grid and the library's fold curves.
-#[derive(Serialize)]
-struct MapDocument<'a> {
-    params: Value,
-    variant: &'static str,
-    what: What,
-    x: AxisValues,
-    y: AxisValues,
-    counts: Vec<Vec<u8>>,
-    histogram: [usize; 5],
-    #[serde(skip_serializing_if = "Option::is_none")]
-    folds: Option<&'a Folds>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    printed_eq37: Option<&'a Folds>,
-}
-
 /// Where the fold curves of a CSV map go, settled before the work starts: `--folds-out`, or
 /// `FILE-folds.csv` next to `--out` (none with JSON, where they are part of the document).
 fn folds_destination(args: &MapArgs) -> Result<Option<PathBuf>> {
@@ -140,26 +117,7 @@ pub fn map(args: &MapArgs) -> Result<()> {
         sets.push(trace_printed_eq37(&m)?);
     }
     if args.output.format == Format::Json {
-        let (nx, ny) = (plane.x.count, plane.y.count);
-        let doc = MapDocument {
-            params: params_json(&base),
-            variant: variant.name(),
-            what,
-            x: AxisValues {
-                key: kx,
-                values: plane.x.values(),
-            },
-            y: AxisValues {
-                key: ky,
-                values: plane.y.values(),
-            },
-            counts: (0..ny)
-                .map(|iy| (0..nx).map(|ix| m.count(ix, iy)).collect())
-                .collect(),
-            histogram: m.histogram(),
-            folds: sets.first(),
-            printed_eq37: sets.get(1),
-        };
+        let doc = views::MapView::of(params_json(&base), &m, &sets);
         return emit(
             args.output.out.as_deref(),
             &(serde_json::to_string(&doc)? + "\n"),
