@@ -7,7 +7,7 @@ use crate::notes::{num, sig};
 use crate::table::Table;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use trirhythm::analysis::ensemble::EnsembleResult;
+use trirhythm::analysis::ensemble::{Density, EnsembleResult};
 use trirhythm::analysis::lyapunov::{
     CriticalNoise, CriticalSearch, LyapunovMethod, LyapunovResult, LyapunovSpec,
 };
@@ -619,4 +619,13 @@ impl<'a> MapView<'a> {
             printed_eq37: sets.get(1),
         }
     }
+}
+
+/// A histogram density `A_lo,A_hi,density,stderr`, one row per bin.
+pub fn density_table(notes: &[String], d: &Density) -> Table {
+    let mut t = Table::new(notes, &["A_lo", "A_hi", "density", "stderr"]);
+    for (i, w) in d.edges.windows(2).enumerate() {
+        t.row([w[0], w[1], d.density[i], d.stderr[i]].map(num));
+    }
+    t
 }

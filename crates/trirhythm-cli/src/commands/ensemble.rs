@@ -9,7 +9,7 @@
 
 use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs};
 use crate::error::bad;
-use crate::io::{emit, num, params_json, progress};
+use crate::io::{emit, params_json, progress, Csv};
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use serde::Serialize;
@@ -328,38 +328,25 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     eprint!("{}", views::ensemble(&r, &theory, wall));
     let text = match args.format {
         EnsembleFormat::Json => result_json(&s, &method, &r, &theory, wall)?,
-        EnsembleFormat::Csv => csv_text(&s, &method, &r, &theory, wall),
+        EnsembleFormat::Csv => csv_text(&s, &method, &r, &theory, wall)?,
     };
     emit(args.out.as_deref(), &text)
 }
 
+/// The CSV document: the amplitude density, the run and its summary in the notes.
 fn csv_text(
     s: &EnsembleSetup,
     method: &str,
     r: &EnsembleResult,
     theory: &Comparisons,
     wall: f64,
-) -> String {
-    let mut t = format!(
-        "# trirhythm ensemble\n# params: {}\n# {method}\n",
-        s.params.describe()
-    );
-    for c in &s.choices {
-        t.push_str(&format!("# chosen: {c}\n"));
-    }
-    for line in views::ensemble(r, theory, wall).lines() {
-        t.push_str(&format!("# {line}\n"));
-    }
-    t.push_str("A_lo,A_hi,density,stderr\n");
-    let d = &r.amplitude;
-    for (i, w) in d.edges.windows(2).enumerate() {
-        t.push_str(&format!(
-            "{},{},{},{}\n",
-            num(w[0]),
-            num(w[1]),
-            num(d.density[i]),
-            num(d.stderr[i])
-        ));
-    }
-    t
+) -> Result<String> {
+    let mut notes = vec![
+        "trirhythm ensemble".to_string(),
+        format!("params: {}", s.params.describe()),
+        method.to_string(),
+    ];
+    notes.extend(s.choices.iter().map(|c| format!("chosen: {c}")));
+    notes.push(views::ensemble(r, theory, wall));
+    Csv::of(&views::density_table(&notes, &r.amplitude))
 }
