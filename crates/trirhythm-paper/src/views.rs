@@ -16,7 +16,7 @@ use trirhythm::analysis::versus::TheoryComparison;
 use trirhythm::analysis::Estimate;
 use trirhythm::engine::Trajectory;
 use trirhythm::model::Params;
-use trirhythm::theory::averaging::{Theory, Variant};
+use trirhythm::theory::averaging::{AmplitudePdf, Theory, Variant};
 use trirhythm::theory::bifurcation::{BranchDiagram, Folds, Map, What};
 
 /// The theory of each variant against an ensemble, or why there is none
@@ -626,6 +626,96 @@ pub fn density_table(notes: &[String], d: &Density) -> Table {
     let mut t = Table::new(notes, &["A_lo", "A_hi", "density", "stderr"]);
     for (i, w) in d.edges.windows(2).enumerate() {
         t.row([w[0], w[1], d.density[i], d.stderr[i]].map(num));
+    }
+    t
+}
+
+/// A cell of a table for reading with `digits` decimals, in exponent notation outside
+/// [1e-4, 1e9) so that no cell runs to hundreds of digits or rounds a small value to 0.
+pub fn fixed(v: f64, digits: usize) -> String {
+    let v = v + 0.0;
+    let a = v.abs();
+    if !v.is_finite() {
+        num(v)
+    } else if v == 0.0 || (1e-4..1e9).contains(&a) {
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.digits$e}")
+    }
+}
+
+/// The theory's cycles for reading: `cycle,amplitude,stability` (`A01`, …; stable, unstable
+/// or fold), the count and rhythmicity as the closing note.
+pub fn cycles_reading(th: &Theory) -> Table {
+    let rhythm = th.rhythmicity();
+    let note = format!(
+        "{}: {} stable ({})",
+        cycles_kind(th),
+        rhythm.count(),
+        rhythm.name()
+    );
+    let mut t = Table::new(&[note], &["cycle", "amplitude", "stability"]);
+    for (i, c) in th.cycles().iter().enumerate() {
+        let stability = if c.fold {
+            "fold"
+        } else if c.stable {
+            "stable"
+        } else {
+            "unstable"
+        };
+        t.row([
+            format!("A0{}", i + 1),
+            fixed(c.amplitude, 10),
+            stability.into(),
+        ]);
+    }
+    t
+}
+
+/// The barriers of U_eff for reading: `barrier,well A,crest A,side,height` (`ΔU1`, …).
+pub fn barriers_reading(th: &Theory) -> Table {
+    let columns = ["barrier", "well A", "crest A", "side", "height"];
+    let mut t = Table::new(&[], &columns);
+    for (i, b) in th.barriers().iter().enumerate() {
+        t.row([
+            format!("ΔU{}", i + 1),
+            fixed(b.well, 6),
+            fixed(b.crest, 6),
+            b.side.name().into(),
+            format!("{:.6e}", b.height),
+        ]);
+    }
+    t
+}
+
+/// Named columns for reading (8 significant decimals in exponent notation).
+pub fn columns_reading(names: &[&str], cols: &[&[f64]], infinite: &[&str]) -> Table {
+    let mut t = columns_table(&[], names, cols, infinite);
+    for (i, row) in t.rows.iter_mut().enumerate() {
+        *row = cols
+            .iter()
+            .map(|col| format!("{:.8e}", col[i] + 0.0))
+            .collect();
+    }
+    t
+}
+
+/// A one-dimensional density for reading: `x,p,log_p`, the modes, antimodes and mean
+/// amplitude of `pdf` as the closing note.
+pub fn pdf_reading(
+    x_name: &str,
+    xs: &[f64],
+    p: &[f64],
+    log_p: &[f64],
+    pdf: &AmplitudePdf,
+) -> Table {
+    let note = format!(
+        "modes {:?}, antimodes {:?}, mean amplitude {}",
+        pdf.modes, pdf.antimodes, pdf.mean_amplitude
+    );
+    let mut t = Table::new(&[note], &[x_name, "p", "log_p"]).allow_infinity("log_p");
+    for ((&x, &p), &l) in xs.iter().zip(p).zip(log_p) {
+        t.row([fixed(x, 6), format!("{p:.6e}"), fixed(l, 6)]);
     }
     t
 }

@@ -2,7 +2,7 @@
 
 use crate::args::{Format, Grid, OutputArgs, ParamArgs};
 use crate::error::bad;
-use crate::io::{emit, fixed, jlimit, jnum, jvec, num, params_json, table, Csv};
+use crate::io::{emit, jlimit, jnum, jvec, num, params_json, reading, table, Csv};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
@@ -95,34 +95,7 @@ pub fn cycles(args: &TheoryArgs) -> Result<()> {
             pretty(Value::Object(m))
         }
         Format::Csv => Csv::of(&views::cycles_table(&th))?,
-        Format::Table => {
-            let rows: Vec<Vec<String>> = cycles
-                .iter()
-                .enumerate()
-                .map(|(i, c)| {
-                    vec![
-                        format!("A0{}", i + 1),
-                        fixed(c.amplitude, 10),
-                        if c.fold {
-                            "fold"
-                        } else if c.stable {
-                            "stable"
-                        } else {
-                            "unstable"
-                        }
-                        .into(),
-                    ]
-                })
-                .collect();
-            let mut t = table(&["cycle", "amplitude", "stability"], &rows, &[])?;
-            t.push_str(&format!(
-                "{}: {} stable ({})\n",
-                kind,
-                rhythm.count(),
-                rhythm.name()
-            ));
-            t
-        }
+        Format::Table => reading(&views::cycles_reading(&th))?,
     };
     emit(args.output.out.as_deref(), &text)
 }
@@ -153,7 +126,6 @@ fn emit_columns(
     cols: Vec<Vec<f64>>,
     infinite: &[&str],
 ) -> Result<()> {
-    let n = cols[0].len();
     let text = match args.output.format {
         Format::Json => {
             let mut m = base_json(th);
@@ -176,14 +148,8 @@ fn emit_columns(
             Csv::of(&views::columns_table(&notes, names, &cols, infinite))?
         }
         Format::Table => {
-            let rows: Vec<Vec<String>> = (0..n)
-                .map(|i| {
-                    cols.iter()
-                        .map(|col| format!("{:.8e}", col[i] + 0.0))
-                        .collect()
-                })
-                .collect();
-            table(names, &rows, infinite)?
+            let cols: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
+            reading(&views::columns_reading(names, &cols, infinite))?
         }
     };
     emit(args.output.out.as_deref(), &text)
@@ -242,26 +208,7 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
             pretty(Value::Object(m))
         }
         Format::Csv => Csv::of(&views::barriers_table(&th))?,
-        Format::Table => {
-            let rows: Vec<Vec<String>> = bs
-                .iter()
-                .enumerate()
-                .map(|(i, b)| {
-                    vec![
-                        format!("ΔU{}", i + 1),
-                        fixed(b.well, 6),
-                        fixed(b.crest, 6),
-                        b.side.name().into(),
-                        format!("{:.6e}", b.height),
-                    ]
-                })
-                .collect();
-            table(
-                &["barrier", "well A", "crest A", "side", "height"],
-                &rows,
-                &[],
-            )?
-        }
+        Format::Table => reading(&views::barriers_reading(&th))?,
     };
     emit(args.output.out.as_deref(), &text)
 }
@@ -374,17 +321,7 @@ fn pdf_1d(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> {
                 &["log_p"],
             ))?
         }
-        Format::Table => {
-            let rows: Vec<Vec<String>> = (0..xs.len())
-                .map(|i| vec![fixed(xs[i], 6), format!("{:.6e}", p[i]), fixed(logp[i], 6)])
-                .collect();
-            let mut t = table(&[xname, "p", "log_p"], &rows, &["log_p"])?;
-            t.push_str(&format!(
-                "modes {:?}, antimodes {:?}, mean amplitude {}\n",
-                pdf.modes, pdf.antimodes, pdf.mean_amplitude
-            ));
-            t
-        }
+        Format::Table => reading(&views::pdf_reading(xname, &xs, &p, &logp, pdf))?,
     })
 }
 
