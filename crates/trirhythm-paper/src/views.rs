@@ -719,3 +719,20 @@ pub fn pdf_reading(
     }
     t
 }
+
+/// The harmonic-balance equivalents (Eq. 5), σ1 and the impact loss rate: `name,value`.
+pub fn equivalents_table(th: &Theory) -> Table {
+    let e = th.equivalents();
+    let mut t = Table::new(&theory_notes(th), &["name", "value"]);
+    for (name, v) in [
+        ("mu1", e.mu1),
+        ("beta1", e.beta1),
+        ("omega1", e.omega1),
+        ("beta2", e.beta2),
+        ("sigma1", th.diffusion()),
+        ("loss_rate", th.loss_rate()),
+    ] {
+        t.row([name.to_string(), num(v)]);
+    }
+    t
+}

@@ -2,11 +2,12 @@
 
 use crate::args::{Format, Grid, OutputArgs, ParamArgs};
 use crate::error::bad;
-use crate::io::{emit, jlimit, jnum, jvec, num, params_json, reading, table, Csv};
+use crate::io::{emit, jlimit, jnum, jvec, params_json, reading, Csv};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
 use trirhythm::theory::averaging::{AmplitudePdf, Theory};
+use trirhythm_paper::table::Table;
 use trirhythm_paper::views;
 
 /// Arguments of every theory command.
@@ -43,15 +44,6 @@ fn pretty(v: Value) -> String {
 /// `equivalents`: μ1, β1, ω1, β2 of Eq. 5, with σ1 and the impact loss rate.
 pub fn equivalents(args: &TheoryArgs) -> Result<()> {
     let th = args.theory()?;
-    let e = th.equivalents();
-    let rows = [
-        ("mu1", e.mu1),
-        ("beta1", e.beta1),
-        ("omega1", e.omega1),
-        ("beta2", e.beta2),
-        ("sigma1", th.diffusion()),
-        ("loss_rate", th.loss_rate()),
-    ];
     let text = match args.output.format {
         Format::Json => {
             let mut m = base_json(&th);
@@ -59,18 +51,11 @@ pub fn equivalents(args: &TheoryArgs) -> Result<()> {
             m.insert("loss_rate".into(), jnum(th.loss_rate()));
             pretty(Value::Object(m))
         }
-        Format::Csv => {
-            let mut c = Csv::new(&views::theory_notes(&th), &["name", "value"]);
-            for (k, v) in rows {
-                c.row([k.to_string(), num(v)]);
-            }
-            c.finish()?
-        }
-        Format::Table => table(
-            &["name", "value"],
-            &rows.map(|(k, v)| vec![k.to_string(), num(v)]),
-            &[],
-        )?,
+        Format::Csv => Csv::of(&views::equivalents_table(&th))?,
+        Format::Table => reading(&Table {
+            notes: vec![],
+            ..views::equivalents_table(&th)
+        })?,
     };
     emit(args.output.out.as_deref(), &text)
 }

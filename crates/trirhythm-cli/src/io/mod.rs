@@ -10,4 +10,4 @@ pub mod table;
 pub use files::{stdout_write, write_atomic, Stream, Temporary};
 pub use json::{emit, jlimit, jnum, jvec, params_json};
 pub use progress::{progress, Report};
-pub use table::{num, reading, table, Csv};
+pub use table::{num, reading, Csv};

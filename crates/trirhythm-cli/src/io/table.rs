@@ -1,4 +1,4 @@
-//! Text documents: CSV with `#` header lines ([`Csv`]), aligned tables ([`table`]) and the
+//! Text documents: CSV with `#` header lines ([`Csv`]), aligned tables ([`reading`]) and the
 //! numbers in their cells; a non-finite cell is refused with its place named.
 
 use anyhow::Result;
@@ -120,7 +120,7 @@ pub use trirhythm_paper::notes::num;
 
 /// An aligned text table, or an error naming its first non-finite cell (±∞ is allowed in the
 /// columns named in `infinite`, where it is the value).
-pub fn table(columns: &[&str], rows: &[Vec<String>], infinite: &[&str]) -> Result<String> {
+fn table(columns: &[&str], rows: &[Vec<String>], infinite: &[&str]) -> Result<String> {
     let mut nonfinite = NonFinite {
         infinity_ok: infinite.iter().map(|c| c.to_string()).collect(),
         ..Default::default()
