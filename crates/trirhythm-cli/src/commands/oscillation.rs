@@ -167,14 +167,7 @@ impl OscillationArgs {
             format!("params: {}", base.describe()),
             format!("barrier: {}", self.barrier.name()),
             format!("averaging variant: {}", variant.name()),
-            format!(
-                "simulation: predictor–corrector from U(0) = {}, dt = {}, {} impact memory; growth rate of ln(amplitude) after {} periods 2π/ω0, early stop once its sign is clear (at most {} periods)",
-                num(classifier.amplitude),
-                num(classifier.method.dt),
-                self.impact_memory.name(),
-                num(classifier.settle_periods),
-                num(classifier.max_periods)
-            ),
+            views::classifier_note(&classifier),
         ];
         Ok(Setup {
             base,

@@ -3,7 +3,8 @@
 use crate::notes::num;
 use crate::table::Table;
 use serde::Serialize;
-use trirhythm::analysis::oscillation::{Boundary, Side};
+use trirhythm::analysis::oscillation::{Boundary, Classifier, Side};
+use trirhythm::engine::ImpactMemory;
 use trirhythm::model::Params;
 use trirhythm::theory::averaging::Variant;
 use trirhythm::theory::bifurcation::{BranchDiagram, Folds, Map, What};
@@ -147,4 +148,21 @@ impl<'a> MapView<'a> {
             printed_eq37: sets.get(1),
         }
     }
+}
+
+/// How an oscillation boundary is found by simulation, in words (a note of its table).
+pub fn classifier_note(c: &Classifier) -> String {
+    let impact_memory = match c.method.impact_memory {
+        ImpactMemory::Continuous => "continuous",
+        ImpactMemory::Restart => "restart",
+    };
+    format!(
+        "simulation: predictor–corrector from U(0) = {}, dt = {}, {impact_memory} impact memory; \
+         growth rate of ln(amplitude) after {} periods 2π/ω0, early stop once its sign is clear \
+         (at most {} periods)",
+        num(c.amplitude),
+        num(c.method.dt),
+        num(c.settle_periods),
+        num(c.max_periods)
+    )
 }
