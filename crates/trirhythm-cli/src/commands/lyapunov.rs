@@ -6,7 +6,7 @@
 use crate::args::{parse_axis, ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat};
 use crate::error::bad;
 use crate::io::progress::Bar;
-use crate::io::{emit, num, params_json, progress, Csv, Report};
+use crate::io::{emit, num, params_json, pretty, progress, Csv, Report};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
@@ -283,11 +283,6 @@ fn sweep_lyapunov(
         }))?,
     };
     emit(args.out.as_deref(), &text)
-}
-
-/// A document as indented JSON with a final newline.
-fn pretty<T: Serialize>(doc: &T) -> Result<String> {
-    Ok(serde_json::to_string_pretty(doc)? + "\n")
 }
 
 /// Arguments of `critical-noise`.

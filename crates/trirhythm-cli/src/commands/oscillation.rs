@@ -5,7 +5,7 @@
 use crate::args::{parse_axis, ImpactMemoryArg, Named, OnOff, ParamArgs, SimFormat};
 use crate::error::bad;
 use crate::io::progress::Bar;
-use crate::io::{emit, jnum, num, params_json, progress, Csv, Report};
+use crate::io::{emit, jnum, num, params_json, pretty, progress, Csv, Report};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::json;
@@ -247,7 +247,7 @@ fn classify(args: &OscillationArgs, mut s: Setup, ys: &[f64]) -> Result<String> 
                 "simulations": simulations,
                 "cells": cells,
             });
-            serde_json::to_string_pretty(&doc)? + "\n"
+            pretty(&doc)?
         }
     })
 }
@@ -295,7 +295,7 @@ fn boundaries(args: &OscillationArgs, s: Setup) -> Result<String> {
                     "points": b.points,
                 })).collect::<Vec<_>>(),
             });
-            serde_json::to_string_pretty(&doc)? + "\n"
+            pretty(&doc)?
         }
     })
 }

@@ -2,7 +2,7 @@
 
 use crate::args::{Format, Grid, OutputArgs, ParamArgs};
 use crate::error::bad;
-use crate::io::{emit, jlimit, jnum, jvec, params_json, reading, Csv};
+use crate::io::{emit, jlimit, jnum, jvec, params_json, pretty, reading, Csv};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
@@ -35,12 +35,6 @@ fn base_json(th: &Theory) -> serde_json::Map<String, Value> {
     m
 }
 
-fn pretty(v: Value) -> String {
-    let mut s = serde_json::to_string_pretty(&v).expect("serialisable");
-    s.push('\n');
-    s
-}
-
 /// `equivalents`: μ1, β1, ω1, β2 of Eq. 5, with σ1 and the impact loss rate.
 pub fn equivalents(args: &TheoryArgs) -> Result<()> {
     let th = args.theory()?;
@@ -49,7 +43,7 @@ pub fn equivalents(args: &TheoryArgs) -> Result<()> {
             let mut m = base_json(&th);
             m.insert("sigma1".into(), jnum(th.diffusion()));
             m.insert("loss_rate".into(), jnum(th.loss_rate()));
-            pretty(Value::Object(m))
+            pretty(&m)?
         }
         Format::Csv => Csv::of(&views::equivalents_table(&th))?,
         Format::Table => reading(&Table {
@@ -77,7 +71,7 @@ pub fn cycles(args: &TheoryArgs) -> Result<()> {
                 "rest_state_stable".into(),
                 json!(th.rest_state_slope() < 0.0),
             );
-            pretty(Value::Object(m))
+            pretty(&m)?
         }
         Format::Csv => Csv::of(&views::cycles_table(&th))?,
         Format::Table => reading(&views::cycles_reading(&th))?,
@@ -125,7 +119,7 @@ fn emit_columns(
                     ),
                 );
             }
-            pretty(Value::Object(m))
+            pretty(&m)?
         }
         Format::Csv => {
             let cols: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
@@ -190,7 +184,7 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
                 })
                 .collect();
             m.insert("barriers".into(), Value::Array(named));
-            pretty(Value::Object(m))
+            pretty(&m)?
         }
         Format::Csv => Csv::of(&views::barriers_table(&th))?,
         Format::Table => reading(&views::barriers_reading(&th))?,
@@ -291,7 +285,7 @@ fn pdf_1d(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> {
             m.insert("p".into(), jvec(&p));
             let log_p = logp.iter().map(|&v| jlimit(v)).collect();
             m.insert("log_p".into(), Value::Array(log_p));
-            pretty(Value::Object(m))
+            pretty(&m)?
         }
         Format::Csv => {
             let mut h = views::theory_notes(th);
@@ -347,7 +341,7 @@ fn pdf_joint(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> 
                 .map(|row| jvec(&row.iter().map(|l| l.exp()).collect::<Vec<_>>()))
                 .collect();
             m.insert("p".into(), Value::Array(p));
-            pretty(Value::Object(m))
+            pretty(&m)?
         }
         Format::Csv | Format::Table => Csv::of(&views::joint_pdf_table(
             &views::theory_notes(th),
