@@ -19,7 +19,7 @@ use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
 use trirhythm::monitor::Silent;
 use trirhythm_paper::lle::Sign;
-use trirhythm_paper::views::{self, CriticalOutcome};
+use trirhythm_paper::views::{self, CriticalOutcome, SweepPoint};
 
 /// How the exponent is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -201,14 +201,6 @@ struct Run<'a> {
     seed: u64,
     separation: f64,
     renormalise_every: u64,
-    #[serde(flatten)]
-    result: &'a LyapunovResult,
-}
-
-/// One value of a `lyapunov --sweep` document.
-#[derive(Serialize)]
-struct SweepPoint<'a> {
-    value: f64,
     #[serde(flatten)]
     result: &'a LyapunovResult,
 }

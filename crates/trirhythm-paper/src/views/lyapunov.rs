@@ -43,6 +43,16 @@ pub fn lle_estimate(value: f64, stderr: f64) -> String {
     }
 }
 
+/// One value of a Lyapunov sweep in JSON: the swept value beside the library's result.
+#[derive(Serialize)]
+pub struct SweepPoint<'a> {
+    /// The swept parameter's value.
+    pub value: f64,
+    /// The exponent there.
+    #[serde(flatten)]
+    pub result: &'a LyapunovResult,
+}
+
 /// A critical-noise search in JSON: the library's result with its verdict in words, at the
 /// swept value (`None` without a sweep).
 #[derive(Serialize)]
