@@ -21,6 +21,10 @@
 //! boundaries, Figs 15, 16), [`notes`] (captions and number formats) and [`table`] (a
 //! figure's data as rows, what its CSV files hold).
 //!
+//! Beyond the figures: [`verdict`] (the paper's claims decided from the figures' data by stated
+//! rules) and [`views`] (the library's results as sentences and tables, what the command line
+//! prints and writes).
+//!
 //! # Example
 //! ```
 //! use trirhythm::monitor::Silent;
@@ -50,6 +54,7 @@ pub mod montecarlo;
 pub mod notes;
 pub mod table;
 pub mod verdict;
+pub mod views;
 
 pub mod fig01_phase_recurrence;
 pub mod fig02_rhythmicity_planes;

@@ -12,7 +12,7 @@ use crate::notes::num;
 use crate::table::Table;
 use crate::Monitor;
 use serde::{Deserialize, Serialize};
-use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, PathStats};
+use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, PathStats, Wells};
 use trirhythm::analysis::versus::{compare, theory_layout, TheoryComparison};
 use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem, System};
 use trirhythm::model::Params;
@@ -326,4 +326,72 @@ pub fn amplitude_table(notes: &[String], panels: &[AmplitudePanel]) -> Table {
         }
     }
     csv
+}
+
+/// An ensemble's values left open by the user, filled from the averaged theory
+/// ([`theory_layout`]), with each choice made said in words. `None` where the user gave
+/// nothing and the theory offers nothing.
+#[derive(Debug, Clone, Default)]
+pub struct Choices {
+    /// Initial displacements: the user's, or the theory's modes (stable cycles at D = 0).
+    pub starts: Option<Vec<f64>>,
+    /// Upper end of the amplitude histogram: the user's, or 1.2 × the theory's largest mode
+    /// (+ 6 widths) and at least 1.2 × the largest start.
+    pub amplitude_max: Option<f64>,
+    /// The wells of P(A), when the theory has them.
+    pub wells: Option<Wells>,
+    /// The choices made, in words.
+    pub said: Vec<String>,
+}
+
+/// Fill an ensemble's open choices (`u0` empty, `amplitude_max` `None`) from the theory of
+/// `params` in `variant`.
+pub fn choices(
+    params: &Params,
+    variant: Variant,
+    u0: &[f64],
+    amplitude_max: Option<f64>,
+) -> Choices {
+    let layout = theory_layout(params, variant);
+    let mut said = Vec::new();
+    let starts = if !u0.is_empty() {
+        Some(u0.to_vec())
+    } else {
+        layout.as_ref().map(|l| {
+            said.push(format!(
+                "u0 = {} (the theory's modes, {} variant)",
+                crate::views::list(&l.starts),
+                variant.name()
+            ));
+            l.starts.clone()
+        })
+    };
+    let amplitude_max = match (amplitude_max, &layout, &starts) {
+        (Some(a), _, _) => Some(a),
+        (None, Some(l), Some(starts)) => {
+            let a = l
+                .amplitude_max
+                .max(1.2 * starts.iter().fold(0.0f64, |m, x| m.max(x.abs())));
+            said.push(format!(
+                "amplitude-max = {a:.4} (1.2 × the theory's largest mode + 6 widths)"
+            ));
+            Some(a)
+        }
+        _ => None,
+    };
+    let wells = layout.and_then(|l| l.wells);
+    if let Some(w) = &wells {
+        said.push(format!(
+            "wells: modes {} and antimodes {} of P(A) ({} variant)",
+            crate::views::list(&w.modes),
+            crate::views::list(&w.antimodes),
+            variant.name()
+        ));
+    }
+    Choices {
+        starts,
+        amplitude_max,
+        wells,
+        said,
+    }
 }

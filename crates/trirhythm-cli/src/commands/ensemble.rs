@@ -9,7 +9,7 @@
 
 use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs};
 use crate::error::bad;
-use crate::io::{emit, num, params_json, progress};
+use crate::io::{emit, params_json, progress, Csv};
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use serde::Serialize;
@@ -17,15 +17,12 @@ use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use trirhythm::analysis::ensemble::{
-    merge, run_paths, EnsembleResult, EnsembleSpec, PathStats, Wells,
-};
-use trirhythm::analysis::versus::{theory_layout, TheoryComparison};
+use trirhythm::analysis::ensemble::{merge, run_paths, EnsembleResult, EnsembleSpec, PathStats};
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
 use trirhythm::monitor::Monitor;
-use trirhythm::theory::averaging::Variant;
-use trirhythm_paper::montecarlo::comparisons;
+use trirhythm_paper::montecarlo::{self, comparisons};
+use trirhythm_paper::views::{self, Comparisons, TheoryEntry};
 
 /// `json` or `csv`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -106,49 +103,17 @@ impl EnsembleArgs {
     pub fn setup(&self) -> Result<EnsembleSetup> {
         let params = self.params.resolve()?;
         let method = self.model.method(self.dt, self.impact_memory);
-        let layout = theory_layout(&params, self.params.variant());
-        let mut choices = Vec::new();
-        let starts = if !self.u0.is_empty() {
-            self.u0.clone()
-        } else if let Some(l) = &layout {
-            choices.push(format!(
-                "u0 = {} (the theory's modes, {} variant)",
-                list(&l.starts),
-                self.params.variant().name()
-            ));
-            l.starts.clone()
-        } else {
+        let chosen =
+            montecarlo::choices(&params, self.params.variant(), &self.u0, self.amplitude_max);
+        let Some(starts) = chosen.starts else {
             return bad(
                 "--u0: the averaged theory offers no cycle to start from for these parameters; \
                  give the initial displacements (--u0 A[,A…])",
             );
         };
-        let amplitude_max = match (self.amplitude_max, &layout) {
-            (Some(a), _) => a,
-            (None, Some(l)) => {
-                let a = l
-                    .amplitude_max
-                    .max(1.2 * starts.iter().fold(0.0f64, |m, x| m.max(x.abs())));
-                choices.push(format!(
-                    "amplitude-max = {a:.4} (1.2 × the theory's largest mode + 6 widths)"
-                ));
-                a
-            }
-            (None, None) => {
-                return bad(
-                    "--amplitude-max: no theory to choose the histogram range from; give it",
-                )
-            }
+        let Some(amplitude_max) = chosen.amplitude_max else {
+            return bad("--amplitude-max: no theory to choose the histogram range from; give it");
         };
-        let wells: Option<Wells> = layout.and_then(|l| l.wells);
-        if let Some(w) = &wells {
-            choices.push(format!(
-                "wells: modes {} and antimodes {} of P(A) ({} variant)",
-                list(&w.modes),
-                list(&w.antimodes),
-                self.params.variant().name()
-            ));
-        }
         let spec = EnsembleSpec {
             paths: self.paths,
             seed: self.seed,
@@ -158,7 +123,7 @@ impl EnsembleArgs {
             bins: self.bins,
             joint_bins: self.joint_bins,
             amplitude_max,
-            wells,
+            wells: chosen.wells,
             ..Default::default()
         };
         let starts: Vec<(f64, f64)> = starts.iter().map(|&u| (u, 0.0)).collect();
@@ -168,16 +133,9 @@ impl EnsembleArgs {
             params,
             method,
             spec,
-            choices,
+            choices: chosen.said,
         })
     }
-}
-
-fn list(v: &[f64]) -> String {
-    v.iter()
-        .map(|x| format!("{x:.4}"))
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 fn method_line(a: &EnsembleArgs) -> String {
@@ -206,39 +164,21 @@ struct Document<'a> {
     theory: BTreeMap<&'static str, TheoryEntry<'a>>,
 }
 
-/// One variant of the theory against the result, or why there is none.
-#[derive(Serialize)]
-#[serde(untagged)]
-enum TheoryEntry<'a> {
-    Comparison(&'a TheoryComparison),
-    Error { error: &'a str },
-}
-
 /// The whole result as the JSON document of the command's contract.
 fn result_json(
     s: &EnsembleSetup,
     method: &str,
     r: &EnsembleResult,
-    theory: &[(Variant, std::result::Result<TheoryComparison, String>)],
+    theory: &Comparisons,
     wall: f64,
 ) -> Result<String> {
-    let theory = theory
-        .iter()
-        .map(|(v, c)| {
-            let entry = match c {
-                Ok(c) => TheoryEntry::Comparison(c),
-                Err(e) => TheoryEntry::Error { error: e },
-            };
-            (v.name(), entry)
-        })
-        .collect();
     let doc = Document {
         params: params_json(&s.params),
         method,
         choices: &s.choices,
         wall_time_s: wall,
         result: r,
-        theory,
+        theory: views::theory_entries(theory),
     };
     Ok(serde_json::to_string(&doc)? + "\n")
 }
@@ -385,131 +325,28 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     )?;
     let wall = start.elapsed().as_secs_f64();
     let theory = comparisons(&s.params, &r, args.seed);
-    eprint!("{}", summary_text(&r, &theory, wall));
+    eprint!("{}", views::ensemble(&r, &theory, wall));
     let text = match args.format {
         EnsembleFormat::Json => result_json(&s, &method, &r, &theory, wall)?,
-        EnsembleFormat::Csv => csv_text(&s, &method, &r, &theory, wall),
+        EnsembleFormat::Csv => csv_text(&s, &method, &r, &theory, wall)?,
     };
     emit(args.out.as_deref(), &text)
 }
 
-fn fmt_est(e: trirhythm::analysis::Estimate) -> String {
-    if e.stderr.is_finite() {
-        format!("{:.5} ± {:.5}", e.value, e.stderr)
-    } else {
-        format!("{:.5} (no standard error)", e.value)
-    }
-}
-
-/// The human summary (standard error, and the CSV's `#` lines).
-pub fn summary_text(
-    r: &EnsembleResult,
-    theory: &[(Variant, std::result::Result<TheoryComparison, String>)],
-    wall: f64,
-) -> String {
-    let st = &r.stationarity;
-    let mut t = format!(
-        "{} paths × {} steps in {wall:.1} s; ⟨A⟩ = {}; Var U = {}; Var U̇ = {}\n\
-         stationarity: {} (R̂ = {:.3}, ESS = {:.0}, drift {:.1} standard errors)\n",
-        r.paths,
-        r.steps_per_path,
-        fmt_est(r.mean_amplitude),
-        fmt_est(r.var_u),
-        fmt_est(r.var_v),
-        if st.stationary {
-            "passed"
-        } else {
-            "NOT STATIONARY"
-        },
-        st.r_hat,
-        st.ess,
-        st.drift_z
-    );
-    if !r.occupancy.is_empty() {
-        t.push_str(&format!(
-            "occupancy of the wells: {}\n",
-            r.occupancy
-                .iter()
-                .map(|&e| fmt_est(e))
-                .collect::<Vec<_>>()
-                .join(", ")
-        ));
-    }
-    for (k, p) in r.passages.iter().enumerate() {
-        let theory_times: Vec<String> = theory
-            .iter()
-            .filter_map(|(v, c)| {
-                c.as_ref()
-                    .ok()
-                    .and_then(|c| c.escape_times.get(k))
-                    .map(|t| format!("{} {t:.4e}", v.name()))
-            })
-            .collect();
-        t.push_str(&format!(
-            "first passage {} → {}: {} ({} completed, {} censored); theory's escape time: {}\n",
-            p.from,
-            p.to,
-            if p.count > 0 {
-                fmt_est(p.mean_time)
-            } else {
-                "none completed".into()
-            },
-            p.count,
-            p.censored,
-            theory_times.join(", ")
-        ));
-    }
-    for (v, c) in theory {
-        match c {
-            Ok(c) => t.push_str(&format!(
-                "theory ({}): Hellinger {:.4} ± {:.4}, L1 {:.4}, KS {:.4}; modes {} (theory, \
-                 binned; {} exact) vs {} (simulation); occupancy {}\n",
-                v.name(),
-                c.hellinger.value,
-                c.hellinger.stderr,
-                c.l1.value,
-                c.ks.value,
-                c.modes_theory,
-                c.modes_theory_exact,
-                c.modes_mc,
-                list(&c.occupancy)
-            )),
-            Err(e) => t.push_str(&format!("theory ({}): {e}\n", v.name())),
-        }
-    }
-    for w in &r.warnings {
-        t.push_str(&format!("warning: {w}\n"));
-    }
-    t
-}
-
+/// The CSV document: the amplitude density, the run and its summary in the notes.
 fn csv_text(
     s: &EnsembleSetup,
     method: &str,
     r: &EnsembleResult,
-    theory: &[(Variant, std::result::Result<TheoryComparison, String>)],
+    theory: &Comparisons,
     wall: f64,
-) -> String {
-    let mut t = format!(
-        "# trirhythm ensemble\n# params: {}\n# {method}\n",
-        s.params.describe()
-    );
-    for c in &s.choices {
-        t.push_str(&format!("# chosen: {c}\n"));
-    }
-    for line in summary_text(r, theory, wall).lines() {
-        t.push_str(&format!("# {line}\n"));
-    }
-    t.push_str("A_lo,A_hi,density,stderr\n");
-    let d = &r.amplitude;
-    for (i, w) in d.edges.windows(2).enumerate() {
-        t.push_str(&format!(
-            "{},{},{},{}\n",
-            num(w[0]),
-            num(w[1]),
-            num(d.density[i]),
-            num(d.stderr[i])
-        ));
-    }
-    t
+) -> Result<String> {
+    let mut notes = vec![
+        "trirhythm ensemble".to_string(),
+        format!("params: {}", s.params.describe()),
+        method.to_string(),
+    ];
+    notes.extend(s.choices.iter().map(|c| format!("chosen: {c}")));
+    notes.push(views::ensemble(r, theory, wall));
+    Csv::of(&views::density_table(&notes, &r.amplitude))
 }

@@ -79,25 +79,16 @@ pub fn figure(args: &FigureArgs) -> Result<()> {
             }
         }
     };
-    let ctx = FigureContext {
-        out_dir: args.out_dir.clone(),
-        quick: args.quick,
-        variant: args.variant.into(),
-    };
     let request = match &args.from_data {
-        None => Request::Compute {
-            ctx: &ctx,
-            data: args.data,
-        },
-        Some(dir) => Request::FromData {
-            dir,
-            out_dir: &args.out_dir,
-            data: args.data,
-        },
+        None => Request::Compute(FigureOptions {
+            quick: args.quick,
+            variant: args.variant.into(),
+        }),
+        Some(dir) => Request::FromData(dir),
     };
     for entry in selected {
         let start = std::time::Instant::now();
-        let files = (entry.make)(&request)?;
+        let files = (entry.make)(&request, &args.out_dir, args.data)?;
         eprintln!(
             "figure {} ({}): {:.1} s",
             entry.number,
@@ -130,26 +121,6 @@ pub fn presets() -> Result<()> {
     stdout_write(text.as_bytes())
 }
 
-/// What every figure gets.
-struct FigureContext {
-    /// Output directory (created if missing).
-    pub out_dir: PathBuf,
-    /// Coarser grids, shorter runs.
-    pub quick: bool,
-    /// Formula variant of the averaged theory.
-    pub variant: Variant,
-}
-
-impl FigureContext {
-    /// What the library's computation needs.
-    fn options(&self) -> FigureOptions {
-        FigureOptions {
-            quick: self.quick,
-            variant: self.variant,
-        }
-    }
-}
-
 /// `dir/figNN` (without extension).
 fn stem(dir: &Path, n: u32) -> PathBuf {
     dir.join(format!("fig{n:02}"))
@@ -170,17 +141,13 @@ struct DataFile<F> {
     data: F,
 }
 
-/// What `figure` does with each selected figure.
+/// Where each selected figure's data comes from (the files go to `--out-dir`, with
+/// `figNN.json` when `--data` is set).
 enum Request<'a> {
-    /// Compute the data and render it; write `figNN.json` too when `data` is set.
-    Compute { ctx: &'a FigureContext, data: bool },
-    /// Read `figNN.json` from `dir` and render it into `out_dir` (and write the JSON there
-    /// again when `data` is set).
-    FromData {
-        dir: &'a Path,
-        out_dir: &'a Path,
-        data: bool,
-    },
+    /// Computed with these options.
+    Compute(FigureOptions),
+    /// Read from `DIR/figNN.json`.
+    FromData(&'a Path),
 }
 
 /// One figure of the registry: its number, title and how to make it.
@@ -190,7 +157,7 @@ struct Entry {
     /// What it shows.
     pub title: &'static str,
     /// Make the figure's files; returns the paths written.
-    pub make: fn(&Request) -> Result<Vec<PathBuf>>,
+    pub make: fn(&Request, &Path, bool) -> Result<Vec<PathBuf>>,
 }
 
 fn entry<F: Figure + Picture>() -> Entry {
@@ -226,19 +193,20 @@ fn registry() -> Vec<Entry> {
     ]
 }
 
-fn make<F: Figure + Picture>(request: &Request) -> Result<Vec<PathBuf>> {
-    let (file, out_dir, data) = match request {
-        Request::Compute { ctx, data } => {
-            let file = DataFile {
-                figure: F::NUMBER,
-                trirhythm: env!("CARGO_PKG_VERSION").to_string(),
-                variant: ctx.variant,
-                quick: ctx.quick,
-                data: F::compute(&ctx.options(), &Bar::new(&format!("figure {}", F::NUMBER)))?,
-            };
-            (file, ctx.out_dir.as_path(), *data)
-        }
-        Request::FromData { dir, out_dir, data } => (read_data::<F>(dir)?, *out_dir, *data),
+fn make<F: Figure + Picture>(
+    request: &Request,
+    out_dir: &Path,
+    data: bool,
+) -> Result<Vec<PathBuf>> {
+    let file = match request {
+        Request::Compute(options) => DataFile {
+            figure: F::NUMBER,
+            trirhythm: env!("CARGO_PKG_VERSION").to_string(),
+            variant: options.variant,
+            quick: options.quick,
+            data: F::compute(options, &Bar::new(&format!("figure {}", F::NUMBER)))?,
+        },
+        Request::FromData(dir) => read_data::<F>(dir)?,
     };
     std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
     let stem = stem(out_dir, F::NUMBER);
@@ -267,17 +235,9 @@ fn make<F: Figure + Picture>(request: &Request) -> Result<Vec<PathBuf>> {
 /// Write one of a figure's tables as `stem{suffix}.csv` (notes as `#` lines); refuses a table
 /// with NaN, or ±∞ outside the columns that allow it. Returns the path written.
 fn write_table(stem: &Path, table: &Table) -> Result<PathBuf> {
-    let columns: Vec<&str> = table.columns.iter().map(String::as_str).collect();
-    let mut csv = Csv::new(&table.notes, &columns);
-    for column in &table.infinite {
-        csv = csv.allow_infinity(column);
-    }
-    for row in &table.rows {
-        csv.row(row.iter().cloned());
-    }
     let name = stem.file_name().unwrap_or_default().to_string_lossy();
     let path = stem.with_file_name(format!("{name}{}.csv", table.suffix));
-    write_atomic(&path, csv.finish()?.as_bytes())?;
+    write_atomic(&path, Csv::of(table)?.as_bytes())?;
     Ok(path)
 }
 

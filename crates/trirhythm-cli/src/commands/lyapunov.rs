@@ -5,7 +5,8 @@
 
 use crate::args::{parse_axis, ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat};
 use crate::error::bad;
-use crate::io::{emit, num, params_json, progress, sig, Csv, Report};
+use crate::io::progress::Bar;
+use crate::io::{emit, num, params_json, pretty, progress, Csv, Report};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
@@ -17,7 +18,8 @@ use trirhythm::analysis::lyapunov::{
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
 use trirhythm::monitor::Silent;
-use trirhythm_paper::lle::{merged_points_text, Sign};
+use trirhythm_paper::lle::Sign;
+use trirhythm_paper::views::{self, CriticalOutcome, SweepPoint};
 
 /// How the exponent is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -140,41 +142,20 @@ impl LleArgs {
         Ok((params, problem, method, spec))
     }
 
-    fn describe(&self) -> Vec<String> {
-        vec![
-            match self.method {
-                LyapunovMethod::TwoTrajectory => format!(
-                    "method: two trajectories on the same noise (frozen noise), the copy pulled \
-                     back to d0 = {} every {} steps with its whole memory",
-                    num(self.separation),
-                    self.renormalise_every
-                ),
-                LyapunovMethod::Tangent => format!(
-                    "method: tangent (variational) equation along the path (frozen noise), its \
-                     memory a second history of the perturbation, the saltation of the impact \
-                     map at impacts; the whole tangent state renormalised every {} steps",
-                    self.renormalise_every
-                ),
-            },
-            format!(
-                "simulation: predictor-corrector dt = {}, {} memory, {} impact memory, system {}, \
-                 barrier {}, U(0) = {}",
-                num(self.dt),
-                self.model.memory.name(),
-                self.impact_memory.name(),
-                self.model.system.name(),
-                self.model.barrier.name(),
-                num(self.u0)
-            ),
-            format!(
-                "window: finite-time exponent over t_end = {} after a transient of {}; {} \
-                 paths of seed {} (mean ± standard error over paths)",
-                num(self.t_end),
-                num(self.transient),
-                self.paths,
-                self.seed
-            ),
-        ]
+    /// The notes on the method: the library's spec in words, the simulation between.
+    fn describe(&self, spec: &LyapunovSpec) -> Vec<String> {
+        let [method, window] = views::lyapunov_spec(spec);
+        let simulation = format!(
+            "simulation: predictor-corrector dt = {}, {} memory, {} impact memory, system {}, \
+             barrier {}, U(0) = {}",
+            num(self.dt),
+            self.model.memory.name(),
+            self.impact_memory.name(),
+            self.model.system.name(),
+            self.model.barrier.name(),
+            num(self.u0)
+        );
+        vec![method, simulation, window]
     }
 }
 
@@ -224,44 +205,24 @@ struct Run<'a> {
     result: &'a LyapunovResult,
 }
 
-/// One value of a `lyapunov --sweep` document.
-#[derive(Serialize)]
-struct SweepPoint<'a> {
-    value: f64,
-    #[serde(flatten)]
-    result: &'a LyapunovResult,
-}
-
 /// `lyapunov`.
 pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
     let (base, problem, method, spec) = args.sim.setup()?;
     let mut header = vec!["trirhythm lyapunov: largest Lyapunov exponent".to_string()];
     header.push(format!("params: {}", base.describe()));
-    header.extend(args.sim.describe());
+    header.extend(args.sim.describe(&spec));
     if let Some(sweep) = &args.sweep {
         return sweep_lyapunov(args, sweep, header, &base, &problem, &method, &spec);
     }
-    let bar = progress(1000, "lyapunov");
-    let report =
-        Report(|done: u64, all: u64| bar.set_position((done as f64 / all as f64 * 1000.0) as u64));
-    let r = largest_lyapunov(&problem, &method, &spec, &report)?;
-    bar.finish_and_clear();
+    let r = largest_lyapunov(&problem, &method, &spec, &Bar::new("lyapunov"))?;
     eprintln!(
         "LLE = {} (finite-time, window {}; {} paths)",
-        lle_text(&r),
+        views::lle(&r),
         num(spec.length),
         spec.paths
     );
     let text = match args.format.unwrap_or(SimFormat::Json) {
-        SimFormat::Csv => {
-            header.push(format!("lle: {}", lle_text(&r)));
-            header.push("columns: running estimate (time since the transient, mean over paths, standard error)".into());
-            let mut csv = Csv::new(&header, &["t", "lle", "stderr"]).allow_infinity("lle");
-            for q in &r.running {
-                csv.row([num(q.t), num(q.value), opt_cell(q.stderr)]);
-            }
-            csv.finish()?
-        }
+        SimFormat::Csv => Csv::of(&views::lle_table(&header, &r))?,
         SimFormat::Json => pretty(&Run {
             params: params_json(&base),
             method: args.sim.method.name(),
@@ -284,7 +245,7 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
 fn sweep_lyapunov(
     args: &LyapunovArgs,
     sweep: &str,
-    mut header: Vec<String>,
+    header: Vec<String>,
     base: &Params,
     problem: &Problem,
     method: &PredictorCorrector,
@@ -301,33 +262,7 @@ fn sweep_lyapunov(
     }
     bar.finish_and_clear();
     let text = match args.format.unwrap_or(SimFormat::Csv) {
-        SimFormat::Csv => {
-            header.push(
-                "merged: realisations whose copy merged with its reference (then lle = -inf); \
-                 unmerged: the mean over the others"
-                    .into(),
-            );
-            let columns = [
-                &key,
-                "lle",
-                "stderr",
-                "merged",
-                "unmerged",
-                "unmerged_stderr",
-            ];
-            let mut csv = Csv::new(&header, &columns).allow_infinity("lle");
-            for (v, r) in &rows {
-                csv.row([
-                    num(*v),
-                    num(r.lle.value),
-                    opt_cell(r.lle.stderr),
-                    r.merged.to_string(),
-                    opt_cell(r.unmerged.value),
-                    opt_cell(r.unmerged.stderr),
-                ]);
-            }
-            csv.finish()?
-        }
+        SimFormat::Csv => Csv::of(&views::lle_sweep_table(&header, &key, &rows))?,
         SimFormat::Json => pretty(&json!({
             "params": params_json(base),
             "method": args.sim.method.name(),
@@ -340,11 +275,6 @@ fn sweep_lyapunov(
         }))?,
     };
     emit(args.out.as_deref(), &text)
-}
-
-/// A document as indented JSON with a final newline.
-fn pretty<T: Serialize>(doc: &T) -> Result<String> {
-    Ok(serde_json::to_string_pretty(doc)? + "\n")
 }
 
 /// Arguments of `critical-noise`.
@@ -373,31 +303,6 @@ pub struct CriticalNoiseArgs {
     /// Write to this file (atomically) instead of standard output.
     #[arg(long)]
     pub out: Option<PathBuf>,
-}
-
-/// One swept value of a `critical-noise` document: the library's outcome and its verdict.
-#[derive(Serialize)]
-struct Outcome<'a> {
-    value: Option<f64>,
-    sign_change: bool,
-    verdict: String,
-    #[serde(flatten)]
-    search: &'a CriticalNoise,
-}
-
-impl<'a> Outcome<'a> {
-    fn of(value: Option<f64>, search: &'a CriticalNoise) -> Self {
-        Outcome {
-            value,
-            sign_change: search.found(),
-            verdict: if search.found() {
-                "sign change".to_string()
-            } else {
-                format!("no sign change in range (LLE {})", Sign::of(search).words())
-            },
-            search,
-        }
-    }
 }
 
 /// The parameters at each value of the swept key (the base parameters alone without one).
@@ -467,14 +372,10 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
         found.push((values[i], c));
     }
     bar.finish_and_clear();
-    let label = |v: f64| match &key {
-        Some(k) => format!("{k} = {}", num(v)),
-        None => "the parameters given".to_string(),
-    };
     for (v, c) in found.iter().filter(|(_, c)| !c.found()) {
         eprintln!(
             "{}: no sign change in range D ∈ [{}, {}] (LLE {})",
-            label(*v),
+            views::point_label(key.as_deref(), *v),
             num(d_lo),
             num(d_hi),
             Sign::of(c).words()
@@ -485,17 +386,13 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
             let mut header =
                 vec!["trirhythm critical-noise: D_c where the LLE changes sign".to_string()];
             header.push(format!("params: {}", base.describe()));
-            header.extend(args.sim.describe());
-            header.push(format!(
-                "search: D ∈ [{}, {}], {} grid points, {} bisections; D_c_lo/D_c_hi: the nearest \
-                 evaluated D on each side whose LLE is {} standard errors from 0",
-                num(d_lo),
-                num(d_hi),
-                args.grid,
-                args.refinements,
-                num(args.z)
-            ));
-            critical_csv(header, key.as_deref(), &found, label)?
+            header.extend(args.sim.describe(&spec));
+            Csv::of(&views::critical_table(
+                &header,
+                &search,
+                key.as_deref(),
+                &found,
+            ))?
         }
         SimFormat::Json => pretty(&json!({
             "params": params_json(&base),
@@ -506,91 +403,9 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
             "sweep": key,
             "results": found
                 .iter()
-                .map(|(v, c)| Outcome::of(key.is_some().then_some(*v), c))
+                .map(|(v, c)| CriticalOutcome::of(key.is_some().then_some(*v), c))
                 .collect::<Vec<_>>(),
         }))?,
     };
     emit(args.out.as_deref(), &text)
-}
-
-/// The CSV of `critical-noise`: `[KEY,]D_c,D_c_lo,D_c_hi`, each swept value's outcome in the
-/// header.
-fn critical_csv(
-    mut header: Vec<String>,
-    key: Option<&str>,
-    found: &[(f64, CriticalNoise)],
-    label: impl Fn(f64) -> String,
-) -> Result<String> {
-    for (v, c) in found {
-        if !c.found() {
-            header.push(format!(
-                "{}: no sign change in range (LLE {})",
-                label(*v),
-                Sign::of(c).words()
-            ));
-        }
-        let merged = merged_points_text(c);
-        if !merged.is_empty() {
-            header.push(format!(
-                "{}: no sign at D = {} (realisations whose copy merged with its reference: LLE −∞)",
-                label(*v),
-                merged.join(", ")
-            ));
-        }
-    }
-    let mut columns: Vec<&str> = key.into_iter().collect();
-    columns.extend(["D_c", "D_c_lo", "D_c_hi"]);
-    let mut csv = Csv::new(&header, &columns);
-    for (v, c) in found.iter().filter(|(_, c)| c.found()) {
-        let lead = key.map(|_| num(*v));
-        csv.row(
-            lead.into_iter()
-                .chain([num(c.d_c), num(c.d_c_lo), num(c.d_c_hi)]),
-        );
-    }
-    csv.finish()
-}
-
-/// A CSV cell: the number, or empty when undefined.
-fn opt_cell(v: f64) -> String {
-    if v.is_finite() {
-        num(v)
-    } else {
-        String::new()
-    }
-}
-
-/// An exponent with its standard error in words: −∞ and a missing standard error are
-/// explained, never printed as bare `-inf ± nan`.
-fn lle_text(r: &LyapunovResult) -> String {
-    let (value, stderr) = (r.lle.value, r.lle.stderr);
-    if value == f64::NEG_INFINITY {
-        let others = r.per_path.len() - r.merged;
-        let rest = if others == 0 {
-            String::new()
-        } else {
-            format!(
-                "; the other {others}: {}",
-                estimate_text(r.unmerged.value, r.unmerged.stderr)
-            )
-        };
-        return format!(
-            "−∞: {} of {} realisations merged (the copy became identical to its reference, whole \
-             memory included: both stuck at the wall on the same step with the memory restarted; \
-             `per_path[].merged_at` in JSON){rest}",
-            r.merged,
-            r.per_path.len()
-        );
-    }
-    estimate_text(value, stderr)
-}
-
-/// A finite exponent with its standard error (4 and 2 significant digits: prose; the JSON has
-/// every digit), or without one (a single path).
-fn estimate_text(value: f64, stderr: f64) -> String {
-    if stderr.is_finite() {
-        format!("{} ± {}", sig(value, 4), sig(stderr, 2))
-    } else {
-        format!("{} (no standard error: one path)", sig(value, 4))
-    }
 }

@@ -15,6 +15,7 @@ use trirhythm::theory::bifurcation::{
     branches as trace_branches, classify, trace_folds, trace_printed_eq37, Axis, BranchDiagram,
     Folds, Map, Plane, What,
 };
+use trirhythm_paper::views;
 
 /// What a map counts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -62,29 +63,6 @@ pub struct MapArgs {
     pub folds_out: Option<PathBuf>,
     #[command(flatten)]
     pub output: OutputArgs,
-}
-
-/// An axis of a `map` document: the key and its values.
-#[derive(Serialize)]
-struct AxisValues {
-    key: String,
-    values: Vec<f64>,
-}
-
-/// The `map` JSON document: the counts on the grid and the library's fold curves.
-#[derive(Serialize)]
-struct MapDocument<'a> {
-    params: Value,
-    variant: &'static str,
-    what: What,
-    x: AxisValues,
-    y: AxisValues,
-    counts: Vec<Vec<u8>>,
-    histogram: [usize; 5],
-    #[serde(skip_serializing_if = "Option::is_none")]
-    folds: Option<&'a Folds>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    printed_eq37: Option<&'a Folds>,
 }
 
 /// Where the fold curves of a CSV map go, settled before the work starts: `--folds-out`, or
@@ -139,71 +117,14 @@ pub fn map(args: &MapArgs) -> Result<()> {
         sets.push(trace_printed_eq37(&m)?);
     }
     if args.output.format == Format::Json {
-        let (nx, ny) = (plane.x.count, plane.y.count);
-        let doc = MapDocument {
-            params: params_json(&base),
-            variant: variant.name(),
-            what,
-            x: AxisValues {
-                key: kx,
-                values: plane.x.values(),
-            },
-            y: AxisValues {
-                key: ky,
-                values: plane.y.values(),
-            },
-            counts: (0..ny)
-                .map(|iy| (0..nx).map(|ix| m.count(ix, iy)).collect())
-                .collect(),
-            histogram: m.histogram(),
-            folds: sets.first(),
-            printed_eq37: sets.get(1),
-        };
+        let doc = views::MapView::of(params_json(&base), &m, &sets);
         return emit(
             args.output.out.as_deref(),
             &(serde_json::to_string(&doc)? + "\n"),
         );
     }
-    let header = map_header(&base, variant.name(), what, &kx, &ky, &m, &sets);
+    let header = views::map_notes(&base, variant, what, (&kx, &ky), &m, &sets);
     write_map_csv(args, &header, &plane, &m, &sets, folds_path.as_deref())
-}
-
-/// The `#` lines of a map's CSV files.
-fn map_header(
-    base: &trirhythm::Params,
-    variant: &str,
-    what: What,
-    kx: &str,
-    ky: &str,
-    m: &Map,
-    sets: &[Folds],
-) -> Vec<String> {
-    let hist = m.histogram();
-    let counted = if what == What::Rhythmicity {
-        "limit cycles"
-    } else {
-        "maxima of P(A)"
-    };
-    let mut header = vec![
-        format!("params: {}", base.describe()),
-        format!("variant: {variant}"),
-        format!("what: {} (count of stable {counted})", what.name()),
-        format!("x: {kx}, y: {ky}"),
-        format!(
-            "points with count 0, 1, 2, 3, >=4: {}, {}, {}, {}, {}",
-            hist[0], hist[1], hist[2], hist[3], hist[4]
-        ),
-    ];
-    for f in sets {
-        header.push(format!(
-            "fold curves ({}): {} traced from {} seeds, {} cusps",
-            f.curves.first().map(|c| c.system.name()).unwrap_or("-"),
-            f.curves.len(),
-            f.seeds,
-            f.cusps.len()
-        ));
-    }
-    header
 }
 
 /// The map streamed to its output as `x,y,count`; the fold curves into a temporary that is
@@ -302,25 +223,12 @@ pub fn branches(args: &BranchArgs) -> Result<()> {
             serde_json::to_string(&doc)? + "\n"
         }
         Format::Csv | Format::Table => {
-            let mut header = vec![
+            let header = vec![
                 format!("params: {}", base.describe()),
                 format!("variant: {}", variant.name()),
                 format!("what: {}, swept: {key}", what.name()),
             ];
-            for f in &bd.folds {
-                header.push(format!("fold: {key} = {}, A = {}", num(f.0), num(f.1)));
-            }
-            for h in &bd.hopf {
-                header.push(format!("branch reaches A = 0 at {key} = {}", num(*h)));
-            }
-            let mut csv = Csv::new(&header, &["branch", "param", "amplitude", "stable"]);
-            for (i, b) in bd.branches.iter().enumerate() {
-                for p in &b.points {
-                    let stable = u8::from(p.stable).to_string();
-                    csv.row([i.to_string(), num(p.param), num(p.amplitude), stable]);
-                }
-            }
-            csv.finish()?
+            Csv::of(&views::branches_table(&header, &bd))?
         }
     };
     emit(args.output.out.as_deref(), &text)

@@ -4,17 +4,19 @@
 
 use crate::args::{parse_axis, ImpactMemoryArg, Named, OnOff, ParamArgs, SimFormat};
 use crate::error::bad;
-use crate::io::{emit, jnum, num, params_json, progress, Csv, Report};
+use crate::io::progress::Bar;
+use crate::io::{emit, jnum, num, params_json, pretty, progress, Csv, Report};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::json;
 use std::path::PathBuf;
 use trirhythm::analysis::oscillation::{
-    boundary, classify_plane, Boundary, Classifier, Method, Plane, Search, Side,
+    boundary, classify_plane, Boundary, Classifier, Method, Plane, Search,
 };
 use trirhythm::engine::Problem;
 use trirhythm::model::Params;
 use trirhythm::theory::averaging::Variant;
+use trirhythm_paper::views;
 
 /// Which boundary.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -165,14 +167,7 @@ impl OscillationArgs {
             format!("params: {}", base.describe()),
             format!("barrier: {}", self.barrier.name()),
             format!("averaging variant: {}", variant.name()),
-            format!(
-                "simulation: predictor–corrector from U(0) = {}, dt = {}, {} impact memory; growth rate of ln(amplitude) after {} periods 2π/ω0, early stop once its sign is clear (at most {} periods)",
-                num(classifier.amplitude),
-                num(classifier.method.dt),
-                self.impact_memory.name(),
-                num(classifier.settle_periods),
-                num(classifier.max_periods)
-            ),
+            views::classifier_note(&classifier),
         ];
         Ok(Setup {
             base,
@@ -216,10 +211,7 @@ fn classify(args: &OscillationArgs, mut s: Setup, ys: &[f64]) -> Result<String> 
         ));
     }
     let method = method_of(m, s.classifier, s.variant);
-    let bar = progress(cells as u64, "oscillation grid");
-    let report = Report(|done: u64, _total: u64| bar.set_position(done));
-    let cells = classify_plane(plane, ys, &method, &report)?;
-    bar.finish_and_clear();
+    let cells = classify_plane(plane, ys, &method, &Bar::new("oscillation grid"))?;
     if let Some(c) = cells.iter().find(|c| c.rate.is_nan()) {
         return bad(format!(
             "--method exact: the exact linearisation with the wall is known at λ = 1 only (at {kx} = {}, {ky} = {} λ = {}); use --barrier off, or simulation",
@@ -253,11 +245,9 @@ fn classify(args: &OscillationArgs, mut s: Setup, ys: &[f64]) -> Result<String> 
                 "y_key": ky,
                 "dt": jnum(args.dt),
                 "simulations": simulations,
-                "cells": cells.iter().map(|c| json!({
-                    "x": jnum(c.x), "y": jnum(c.y), "oscillates": c.oscillates, "rate": jnum(c.rate),
-                })).collect::<Vec<_>>(),
+                "cells": cells,
             });
-            serde_json::to_string_pretty(&doc)? + "\n"
+            pretty(&doc)?
         }
     })
 }
@@ -289,7 +279,6 @@ fn boundaries(args: &OscillationArgs, s: Setup) -> Result<String> {
     Ok(match args.format {
         SimFormat::Csv => boundaries_csv(args, s, &results, simulations)?,
         SimFormat::Json => {
-            let opt = |v: f64, side: Side| (side == Side::Boundary).then(|| jnum(v));
             let doc = json!({
                 "params": params_json(&s.base),
                 "barrier": args.barrier.name(),
@@ -303,19 +292,10 @@ fn boundaries(args: &OscillationArgs, s: Setup) -> Result<String> {
                 "boundaries": results.iter().map(|b| json!({
                     "method": b.method,
                     "simulations": b.simulations(),
-                    "points": b.points.iter().map(|q| json!({
-                        "x": jnum(q.x),
-                        "side": q.side.name(),
-                        "y": opt(q.y, q.side),
-                        "y_lo": opt(q.y_lo, q.side),
-                        "y_hi": opt(q.y_hi, q.side),
-                        "oscillates_above": (q.side == Side::Boundary).then_some(q.oscillates_above),
-                        "simulations": q.simulations,
-                        "unclear": q.unclear,
-                    })).collect::<Vec<_>>(),
+                    "points": b.points,
                 })).collect::<Vec<_>>(),
             });
-            serde_json::to_string_pretty(&doc)? + "\n"
+            pretty(&doc)?
         }
     })
 }
@@ -329,34 +309,16 @@ fn boundaries_csv(
     simulations: usize,
 ) -> Result<String> {
     let (lo, hi) = s.plane.y_range;
-    let (kx, ky) = (&s.kx, &s.ky);
     s.header.push(format!(
         "tolerance: simulated bracket y_hi − y_lo ≤ {} · y",
         num(args.tolerance)
     ));
     s.header.push(format!(
-        "interval searched: {ky} ∈ [{}, {}]",
+        "interval searched: {} ∈ [{}, {}]",
+        s.ky,
         num(lo),
         num(hi)
     ));
     s.header.push(format!("simulations: {simulations}"));
-    for b in results {
-        for q in b.points.iter().filter(|q| q.side != Side::Boundary) {
-            let why = match q.side {
-                Side::Oscillates => "no boundary in the interval: oscillates throughout",
-                Side::Rests => "no boundary in the interval: rests throughout",
-                _ => "not available (exact linearisation with the wall at λ < 1)",
-            };
-            s.header
-                .push(format!("{}: at {kx} = {} {why}", b.method, num(q.x)));
-        }
-    }
-    let mut csv = Csv::new(&s.header, &["method", "x", "y", "y_lo", "y_hi"]);
-    for b in results {
-        for q in b.points.iter().filter(|q| q.side == Side::Boundary) {
-            let cells = [q.x, q.y, q.y_lo, q.y_hi].map(num);
-            csv.row(std::iter::once(b.method.to_string()).chain(cells));
-        }
-    }
-    csv.finish()
+    Csv::of(&views::boundaries_table(&s.header, &s.kx, results))
 }

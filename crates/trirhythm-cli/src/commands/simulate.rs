@@ -7,7 +7,7 @@
 
 use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs, SimFormat};
 use crate::error::bad;
-use crate::io::{emit, jnum, jvec, num, params_json, progress, Report, Stream};
+use crate::io::{emit, jvec, num, params_json, progress, Report, Stream};
 use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::{json, Value};
@@ -19,6 +19,7 @@ use trirhythm::engine::{
     TrajectoryRecorder,
 };
 use trirhythm::monitor::Monitor;
+use trirhythm_paper::views::PathSummary;
 
 /// Arguments of `simulate`.
 #[derive(Debug, Args)]
@@ -99,20 +100,6 @@ fn method_line(a: &SimulateArgs) -> String {
     )
 }
 
-fn summary_json(tr: &Trajectory, wall: f64) -> Value {
-    json!({
-        "steps": tr.steps,
-        "impacts": tr.impacts,
-        "sticking_steps": tr.sticking_steps,
-        "final_amplitude": jnum(tr.final_amplitude),
-        "wall_time_s": jnum(wall),
-        "steps_per_second": jnum(tr.steps as f64 / wall.max(1e-12)),
-        "exponentials": tr.exponentials,
-        "soe_max_relative_error": jnum(tr.soe_error),
-        "memory_state_bytes": tr.memory_bytes,
-    })
-}
-
 /// Most rows `simulate` writes as CSV (streamed; ~5 GB).
 pub const MAX_CSV_ROWS: u64 = 100_000_000;
 /// Most samples `simulate` holds for a JSON document.
@@ -144,19 +131,6 @@ impl Observer for CsvRows<'_> {
         }
         Flow::Continue
     }
-}
-
-fn summary_line(tr: &Trajectory, wall: f64) -> String {
-    format!(
-        "steps {}  impacts {}  sticking steps {}  final amplitude {:.6}  wall time {:.3} s  ({:.3e} steps/s, {} exponentials)",
-        tr.steps,
-        tr.impacts,
-        tr.sticking_steps,
-        tr.final_amplitude,
-        wall,
-        tr.steps as f64 / wall.max(1e-12),
-        tr.exponentials
-    )
 }
 
 /// Refuse a request for more rows than the format holds, before any work starts.
@@ -202,7 +176,7 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
         let mut m = serde_json::Map::new();
         m.insert("params".into(), params_json(s.problem.params()));
         m.insert("method".into(), json!(method_line(args)));
-        m.insert("summary".into(), summary_json(&tr, wall));
+        m.insert("summary".into(), json!(PathSummary::of(&tr, wall)));
         m.insert("t".into(), jvec(&tr.t));
         m.insert("U".into(), jvec(&tr.u));
         m.insert("V".into(), jvec(&tr.v));
@@ -213,7 +187,10 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
         return emit(args.out.as_deref(), &text);
     }
     let tr = stream_csv(args, &s, steps, &report, &bar)?;
-    eprintln!("{}", summary_line(&tr, start.elapsed().as_secs_f64()));
+    eprintln!(
+        "{}",
+        PathSummary::of(&tr, start.elapsed().as_secs_f64()).line()
+    );
     Ok(())
 }
 

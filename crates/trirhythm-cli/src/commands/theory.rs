@@ -2,11 +2,13 @@
 
 use crate::args::{Format, Grid, OutputArgs, ParamArgs};
 use crate::error::bad;
-use crate::io::{emit, fixed, jlimit, jnum, jvec, num, params_json, table, Csv};
+use crate::io::{emit, jlimit, jnum, jvec, params_json, pretty, reading, Csv};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
-use trirhythm::theory::averaging::{AmplitudePdf, Side, Theory};
+use trirhythm::theory::averaging::{AmplitudePdf, Theory};
+use trirhythm_paper::table::Table;
+use trirhythm_paper::views;
 
 /// Arguments of every theory command.
 #[derive(Debug, Args)]
@@ -23,13 +25,6 @@ impl TheoryArgs {
     }
 }
 
-fn header(th: &Theory) -> Vec<String> {
-    vec![
-        format!("params: {}", th.params().describe()),
-        format!("variant: {}", th.variant().name()),
-    ]
-}
-
 /// What every theory document starts with: the parameters, the variant and the library's
 /// equivalents (Eq. 5).
 fn base_json(th: &Theory) -> serde_json::Map<String, Value> {
@@ -40,43 +35,21 @@ fn base_json(th: &Theory) -> serde_json::Map<String, Value> {
     m
 }
 
-fn pretty(v: Value) -> String {
-    let mut s = serde_json::to_string_pretty(&v).expect("serialisable");
-    s.push('\n');
-    s
-}
-
 /// `equivalents`: μ1, β1, ω1, β2 of Eq. 5, with σ1 and the impact loss rate.
 pub fn equivalents(args: &TheoryArgs) -> Result<()> {
     let th = args.theory()?;
-    let e = th.equivalents();
-    let rows = [
-        ("mu1", e.mu1),
-        ("beta1", e.beta1),
-        ("omega1", e.omega1),
-        ("beta2", e.beta2),
-        ("sigma1", th.diffusion()),
-        ("loss_rate", th.loss_rate()),
-    ];
     let text = match args.output.format {
         Format::Json => {
             let mut m = base_json(&th);
             m.insert("sigma1".into(), jnum(th.diffusion()));
             m.insert("loss_rate".into(), jnum(th.loss_rate()));
-            pretty(Value::Object(m))
+            pretty(&m)?
         }
-        Format::Csv => {
-            let mut c = Csv::new(&header(&th), &["name", "value"]);
-            for (k, v) in rows {
-                c.row([k.to_string(), num(v)]);
-            }
-            c.finish()?
-        }
-        Format::Table => table(
-            &["name", "value"],
-            &rows.map(|(k, v)| vec![k.to_string(), num(v)]),
-            &[],
-        )?,
+        Format::Csv => Csv::of(&views::equivalents_table(&th))?,
+        Format::Table => reading(&Table {
+            notes: vec![],
+            ..views::equivalents_table(&th)
+        })?,
     };
     emit(args.output.out.as_deref(), &text)
 }
@@ -86,11 +59,7 @@ pub fn cycles(args: &TheoryArgs) -> Result<()> {
     let th = args.theory()?;
     let cycles = th.cycles();
     let rhythm = th.rhythmicity();
-    let kind = if th.diffusion() > 0.0 {
-        "pdf_extrema"
-    } else {
-        "limit_cycles"
-    };
+    let kind = views::cycles_kind(&th);
     let text = match args.output.format {
         Format::Json => {
             let mut m = base_json(&th);
@@ -102,53 +71,10 @@ pub fn cycles(args: &TheoryArgs) -> Result<()> {
                 "rest_state_stable".into(),
                 json!(th.rest_state_slope() < 0.0),
             );
-            pretty(Value::Object(m))
+            pretty(&m)?
         }
-        Format::Csv => {
-            let mut h = header(&th);
-            h.push(format!(
-                "{kind}: {} stable ({})",
-                rhythm.count(),
-                rhythm.name()
-            ));
-            let mut c = Csv::new(&h, &["amplitude", "stable", "fold"]);
-            for cy in &cycles {
-                c.row([
-                    num(cy.amplitude),
-                    cy.stable.to_string(),
-                    cy.fold.to_string(),
-                ]);
-            }
-            c.finish()?
-        }
-        Format::Table => {
-            let rows: Vec<Vec<String>> = cycles
-                .iter()
-                .enumerate()
-                .map(|(i, c)| {
-                    vec![
-                        format!("A0{}", i + 1),
-                        fixed(c.amplitude, 10),
-                        if c.fold {
-                            "fold"
-                        } else if c.stable {
-                            "stable"
-                        } else {
-                            "unstable"
-                        }
-                        .into(),
-                    ]
-                })
-                .collect();
-            let mut t = table(&["cycle", "amplitude", "stability"], &rows, &[])?;
-            t.push_str(&format!(
-                "{}: {} stable ({})\n",
-                kind,
-                rhythm.count(),
-                rhythm.name()
-            ));
-            t
-        }
+        Format::Csv => Csv::of(&views::cycles_table(&th))?,
+        Format::Table => reading(&views::cycles_reading(&th))?,
     };
     emit(args.output.out.as_deref(), &text)
 }
@@ -179,7 +105,6 @@ fn emit_columns(
     cols: Vec<Vec<f64>>,
     infinite: &[&str],
 ) -> Result<()> {
-    let n = cols[0].len();
     let text = match args.output.format {
         Format::Json => {
             let mut m = base_json(th);
@@ -194,27 +119,16 @@ fn emit_columns(
                     ),
                 );
             }
-            pretty(Value::Object(m))
+            pretty(&m)?
         }
         Format::Csv => {
-            let mut c = Csv::new(&header(th), names);
-            for col in infinite {
-                c = c.allow_infinity(col);
-            }
-            for i in 0..n {
-                c.row(cols.iter().map(|col| num(col[i])));
-            }
-            c.finish()?
+            let cols: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
+            let notes = views::theory_notes(th);
+            Csv::of(&views::columns_table(&notes, names, &cols, infinite))?
         }
         Format::Table => {
-            let rows: Vec<Vec<String>> = (0..n)
-                .map(|i| {
-                    cols.iter()
-                        .map(|col| format!("{:.8e}", col[i] + 0.0))
-                        .collect()
-                })
-                .collect();
-            table(names, &rows, infinite)?
+            let cols: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
+            reading(&views::columns_reading(names, &cols, infinite))?
         }
     };
     emit(args.output.out.as_deref(), &text)
@@ -257,7 +171,6 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
     let th = args.theory()?;
     let ex = th.extrema();
     let bs = th.barriers();
-    let side = |s: Side| if s == Side::Left { "left" } else { "right" };
     let text = match args.output.format {
         Format::Json => {
             let mut m = base_json(&th);
@@ -271,41 +184,10 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
                 })
                 .collect();
             m.insert("barriers".into(), Value::Array(named));
-            pretty(Value::Object(m))
+            pretty(&m)?
         }
-        Format::Csv => {
-            let mut c = Csv::new(&header(&th), &["name", "well", "crest", "side", "height"]);
-            for (i, b) in bs.iter().enumerate() {
-                c.row([
-                    format!("dU{}", i + 1),
-                    num(b.well),
-                    num(b.crest),
-                    side(b.side).into(),
-                    num(b.height),
-                ]);
-            }
-            c.finish()?
-        }
-        Format::Table => {
-            let rows: Vec<Vec<String>> = bs
-                .iter()
-                .enumerate()
-                .map(|(i, b)| {
-                    vec![
-                        format!("ΔU{}", i + 1),
-                        fixed(b.well, 6),
-                        fixed(b.crest, 6),
-                        side(b.side).into(),
-                        format!("{:.6e}", b.height),
-                    ]
-                })
-                .collect();
-            table(
-                &["barrier", "well A", "crest A", "side", "height"],
-                &rows,
-                &[],
-            )?
-        }
+        Format::Csv => Csv::of(&views::barriers_table(&th))?,
+        Format::Table => reading(&views::barriers_reading(&th))?,
     };
     emit(args.output.out.as_deref(), &text)
 }
@@ -403,30 +285,22 @@ fn pdf_1d(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> {
             m.insert("p".into(), jvec(&p));
             let log_p = logp.iter().map(|&v| jlimit(v)).collect();
             m.insert("log_p".into(), Value::Array(log_p));
-            pretty(Value::Object(m))
+            pretty(&m)?
         }
         Format::Csv => {
-            let mut h = header(th);
+            let mut h = views::theory_notes(th);
             h.push(format!("modes: {:?}", pdf.modes));
             h.push(format!("antimodes: {:?}", pdf.antimodes));
             h.push(format!("mean_amplitude: {}", pdf.mean_amplitude));
-            let mut c = Csv::new(&h, &[xname, "p", "log_p"]).allow_infinity("log_p");
-            for i in 0..xs.len() {
-                c.row([num(xs[i]), num(p[i]), num(logp[i])]);
-            }
-            c.finish()?
+            let columns = [xname, "p", "log_p"];
+            Csv::of(&views::columns_table(
+                &h,
+                &columns,
+                &[&xs, &p, &logp],
+                &["log_p"],
+            ))?
         }
-        Format::Table => {
-            let rows: Vec<Vec<String>> = (0..xs.len())
-                .map(|i| vec![fixed(xs[i], 6), format!("{:.6e}", p[i]), fixed(logp[i], 6)])
-                .collect();
-            let mut t = table(&[xname, "p", "log_p"], &rows, &["log_p"])?;
-            t.push_str(&format!(
-                "modes {:?}, antimodes {:?}, mean amplitude {}\n",
-                pdf.modes, pdf.antimodes, pdf.mean_amplitude
-            ));
-            t
-        }
+        Format::Table => reading(&views::pdf_reading(xname, &xs, &p, &logp, pdf))?,
     })
 }
 
@@ -467,16 +341,13 @@ fn pdf_joint(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> 
                 .map(|row| jvec(&row.iter().map(|l| l.exp()).collect::<Vec<_>>()))
                 .collect();
             m.insert("p".into(), Value::Array(p));
-            pretty(Value::Object(m))
+            pretty(&m)?
         }
-        Format::Csv | Format::Table => {
-            let mut c = Csv::new(&header(th), &["U", "V", "p", "log_p"]).allow_infinity("log_p");
-            for (&u, row) in us.iter().zip(&logp) {
-                for (&v, &l) in vs.iter().zip(row) {
-                    c.row([num(u), num(v), num(l.exp()), num(l)]);
-                }
-            }
-            c.finish()?
-        }
+        Format::Csv | Format::Table => Csv::of(&views::joint_pdf_table(
+            &views::theory_notes(th),
+            &us,
+            &vs,
+            &logp,
+        ))?,
     })
 }

@@ -61,3 +61,8 @@ pub fn params_json(p: &Params) -> serde_json::Value {
 pub fn jvec(v: &[f64]) -> serde_json::Value {
     serde_json::Value::Array(v.iter().map(|&x| jnum(x)).collect())
 }
+
+/// A document as indented JSON with a final newline.
+pub fn pretty<T: serde::Serialize>(doc: &T) -> Result<String> {
+    Ok(serde_json::to_string_pretty(doc)? + "\n")
+}

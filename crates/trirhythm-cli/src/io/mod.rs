@@ -8,6 +8,6 @@ pub mod progress;
 pub mod table;
 
 pub use files::{stdout_write, write_atomic, Stream, Temporary};
-pub use json::{emit, jlimit, jnum, jvec, params_json};
+pub use json::{emit, jlimit, jnum, jvec, params_json, pretty};
 pub use progress::{progress, Report};
-pub use table::{fixed, num, sig, table, Csv};
+pub use table::{num, reading, Csv};

@@ -37,7 +37,7 @@ impl Bar {
     }
 }
 
-impl trirhythm::monitor::Monitor for Bar {
+impl<T: ?Sized> trirhythm::monitor::Monitor<T> for Bar {
     fn progress(&self, done: u64, total: u64) {
         self.0.set_length(total);
         self.0.set_position(done);

@@ -1,7 +1,8 @@
-//! Text documents: CSV with `#` header lines ([`Csv`]), aligned tables ([`table`]) and the
+//! Text documents: CSV with `#` header lines ([`Csv`]), aligned tables ([`reading`]) and the
 //! numbers in their cells; a non-finite cell is refused with its place named.
 
 use anyhow::Result;
+use trirhythm_paper::table::Table;
 
 /// The first non-finite cell of a table or CSV document, and how many there are.
 #[derive(Default)]
@@ -99,28 +100,27 @@ impl Csv {
         self.nonfinite.check()?;
         Ok(self.text)
     }
-}
 
-/// Numbers for CSV cells (round-trip) and prose (significant digits): the paper crate's.
-pub use trirhythm_paper::notes::{num, sig};
-
-/// A table cell with `digits` decimals, in exponent notation outside [1e-4, 1e9) so that no
-/// cell runs to hundreds of digits or rounds a small value to 0.
-pub fn fixed(v: f64, digits: usize) -> String {
-    let v = v + 0.0;
-    let a = v.abs();
-    if !v.is_finite() {
-        num(v)
-    } else if v == 0.0 || (1e-4..1e9).contains(&a) {
-        format!("{v:.digits$}")
-    } else {
-        format!("{v:.digits$e}")
+    /// A library [`Table`] as a document: its notes as `#` lines, refused like any other.
+    pub fn of(table: &Table) -> Result<String> {
+        let columns: Vec<&str> = table.columns.iter().map(String::as_str).collect();
+        let mut csv = Csv::new(&table.notes, &columns);
+        for column in &table.infinite {
+            csv = csv.allow_infinity(column);
+        }
+        for row in &table.rows {
+            csv.row(row.iter().cloned());
+        }
+        csv.finish()
     }
 }
 
+/// Numbers for CSV cells (round-trip): the paper crate's.
+pub use trirhythm_paper::notes::num;
+
 /// An aligned text table, or an error naming its first non-finite cell (±∞ is allowed in the
 /// columns named in `infinite`, where it is the value).
-pub fn table(columns: &[&str], rows: &[Vec<String>], infinite: &[&str]) -> Result<String> {
+fn table(columns: &[&str], rows: &[Vec<String>], infinite: &[&str]) -> Result<String> {
     let mut nonfinite = NonFinite {
         infinity_ok: infinite.iter().map(|c| c.to_string()).collect(),
         ..Default::default()
@@ -150,4 +150,16 @@ pub fn table(columns: &[&str], rows: &[Vec<String>], infinite: &[&str]) -> Resul
         out.push_str(&fmt_row(&mut r.iter().map(|s| s.as_str())));
     }
     Ok(out)
+}
+
+/// A library [`Table`] for reading: aligned, its notes as closing lines.
+pub fn reading(t: &Table) -> Result<String> {
+    let columns: Vec<&str> = t.columns.iter().map(String::as_str).collect();
+    let infinite: Vec<&str> = t.infinite.iter().map(String::as_str).collect();
+    let mut text = table(&columns, &t.rows, &infinite)?;
+    for note in &t.notes {
+        text.push_str(note);
+        text.push('\n');
+    }
+    Ok(text)
 }

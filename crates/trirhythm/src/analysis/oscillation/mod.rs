@@ -252,15 +252,21 @@ impl Plane {
 }
 
 /// Where the boundary is at one abscissa.
+/// Serialised by [`Side::name`]; the capitalised names of earlier data files are read too.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Side {
     /// Inside the interval.
+    #[serde(alias = "Boundary")]
     Boundary,
     /// The system oscillates over the whole interval.
+    #[serde(alias = "Oscillates")]
     Oscillates,
     /// The system rests over the whole interval.
+    #[serde(alias = "Rests")]
     Rests,
     /// The method does not apply here (exact linearisation with the wall at λ < 1).
+    #[serde(alias = "Unavailable")]
     Unavailable,
 }
 
@@ -302,7 +308,7 @@ pub struct BoundaryPoint {
 }
 
 /// The boundary along the abscissae.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Boundary {
     /// `simulation`, `averaging` or `exact`.
     pub method: &'static str,
@@ -354,7 +360,7 @@ pub fn boundary(
 }
 
 /// One classified point of a plane.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Cell {
     /// Abscissa.
     pub x: f64,
@@ -363,6 +369,7 @@ pub struct Cell {
     /// Whether a small oscillation grows here.
     pub oscillates: bool,
     /// The growth rate (simulation) or the margin (analytic methods; NaN where unavailable).
+    #[serde(with = "crate::non_finite")]
     pub rate: f64,
 }
 

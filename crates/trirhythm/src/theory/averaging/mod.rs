@@ -127,6 +127,16 @@ pub enum Side {
     Right,
 }
 
+impl Side {
+    /// `left` or `right`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Left => "left",
+            Side::Right => "right",
+        }
+    }
+}
+
 /// An energy barrier ΔU = U_eff(crest) − U_eff(well) between neighbouring extrema.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Barrier {
