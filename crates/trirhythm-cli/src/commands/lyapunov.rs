@@ -4,7 +4,7 @@
 //! contract: keep them.
 
 use crate::args::{parse_axis, ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat};
-use crate::error::bad;
+use crate::error::{allowed, bad};
 use crate::io::progress::Bar;
 use crate::io::{emit, num, params_json, pretty, progress, Csv, Report};
 use anyhow::Result;
@@ -100,33 +100,35 @@ impl LleArgs {
         let params = self.params.resolve()?;
         // the library takes any dt that divides the window; this command's runs are tested
         // in [1e-4, 0.1]
-        if !(self.dt >= 1e-4 && self.dt <= 0.1) {
-            return bad(format!(
-                "--dt = {}: allowed range is [1e-4, 0.1]",
-                num(self.dt)
-            ));
-        }
+        allowed(
+            (1e-4..=0.1).contains(&self.dt),
+            "--dt",
+            num(self.dt),
+            "[1e-4, 0.1]",
+        )?;
         // narrower than the library's ranges (separation (0, 1e-3], tolerance (1e-15, 1)): a
         // copy pulled back to below 1e-12 merges with its reference in rounding
-        if !(self.separation >= 1e-12 && self.separation <= 1e-4) {
-            return bad(format!(
-                "--separation = {}: allowed range is [1e-12, 1e-4]",
-                num(self.separation)
-            ));
-        }
-        if !(self.model.tolerance > 0.0 && self.model.tolerance < 1e-2) {
-            return bad(format!(
-                "--tolerance = {}: allowed range is (0, 1e-2)",
-                num(self.model.tolerance)
-            ));
-        }
+        let d0 = self.separation;
+        allowed(
+            (1e-12..=1e-4).contains(&d0),
+            "--separation",
+            num(d0),
+            "[1e-12, 1e-4]",
+        )?;
+        let tol = self.model.tolerance;
+        allowed(
+            tol > 0.0 && tol < 1e-2,
+            "--tolerance",
+            num(tol),
+            "(0, 1e-2)",
+        )?;
         // the library's `2 × renormalise_every` overflows past 2⁶³: bounded here
-        if !(1..=1_000_000).contains(&self.renormalise_every) {
-            return bad(format!(
-                "--renormalise-every = {}: allowed range is 1 to 1000000 steps",
-                self.renormalise_every
-            ));
-        }
+        allowed(
+            (1..=1_000_000).contains(&self.renormalise_every),
+            "--renormalise-every",
+            self.renormalise_every,
+            "1 to 1000000 steps",
+        )?;
         let method = self.model.method(self.dt, self.impact_memory);
         let spec = LyapunovSpec {
             paths: self.paths,
@@ -162,12 +164,7 @@ impl LleArgs {
 /// Parse `KEY=START:STOP:COUNT` (COUNT 2 to 1000) for `--sweep`.
 fn parse_sweep(s: &str) -> Result<(String, Vec<f64>)> {
     let (key, g) = parse_axis(s, "--sweep", true)?;
-    if g.count > 1000 {
-        return bad(format!(
-            "--sweep: COUNT = {}: allowed range is 2 to 1000",
-            g.count
-        ));
-    }
+    allowed(g.count <= 1000, "--sweep: COUNT", g.count, "2 to 1000")?;
     Ok((key, g.points()))
 }
 

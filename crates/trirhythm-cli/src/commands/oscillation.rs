@@ -3,7 +3,7 @@
 //! exact linearisation; or, with `--grid`, a whole plane classified.
 
 use crate::args::{parse_axis, ImpactMemoryArg, Named, OnOff, ParamArgs, SimFormat};
-use crate::error::bad;
+use crate::error::{allowed, bad};
 use crate::io::progress::Bar;
 use crate::io::{emit, jnum, num, params_json, pretty, progress, Csv, Report};
 use anyhow::Result;
@@ -95,12 +95,12 @@ fn parse_abscissae(s: &str) -> Result<(String, Vec<f64>)> {
         return Ok((key.to_string(), vec![a]));
     }
     let (key, g) = parse_axis(s, "--x", true)?;
-    if g.count > MAX_ABSCISSAE {
-        return bad(format!(
-            "--x: COUNT = {}: allowed range is 1 to {MAX_ABSCISSAE}",
-            g.count
-        ));
-    }
+    allowed(
+        g.count <= MAX_ABSCISSAE,
+        "--x: COUNT",
+        g.count,
+        &format!("1 to {MAX_ABSCISSAE}"),
+    )?;
     Ok((key, g.points()))
 }
 
@@ -129,18 +129,18 @@ impl OscillationArgs {
     fn setup(&self) -> Result<Setup> {
         let base = self.params.resolve()?;
         let variant = self.params.variant();
-        if !(self.tolerance > 0.0 && self.tolerance <= 0.1) {
-            return bad(format!(
-                "--tolerance = {}: allowed range is (0, 0.1]",
-                num(self.tolerance)
-            ));
-        }
-        if !(self.dt >= 1e-4 && self.dt <= 0.1) {
-            return bad(format!(
-                "--dt = {}: allowed range is [1e-4, 0.1]",
-                num(self.dt)
-            ));
-        }
+        allowed(
+            self.tolerance > 0.0 && self.tolerance <= 0.1,
+            "--tolerance",
+            num(self.tolerance),
+            "(0, 0.1]",
+        )?;
+        allowed(
+            self.dt >= 1e-4 && self.dt <= 0.1,
+            "--dt",
+            num(self.dt),
+            "[1e-4, 0.1]",
+        )?;
         if base.noise_intensity != 0.0 {
             return bad(format!(
                 "--param D = {}: the oscillation boundary is that of the noise-free system; allowed: D = 0",
