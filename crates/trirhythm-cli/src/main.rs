@@ -17,6 +17,7 @@
 //! cannot receive a file), 1 for anything else (I/O, a full device, a computation that
 //! overflowed), 130 when interrupted. No partial output file is ever left ([`io::files`]).
 
+#[macro_use]
 mod args;
 mod commands;
 mod error;

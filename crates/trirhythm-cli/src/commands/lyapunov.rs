@@ -12,6 +12,7 @@ use clap::{Args, ValueEnum};
 use serde::Serialize;
 use serde_json::{json, Value};
 use std::path::PathBuf;
+use trirhythm::analysis::lyapunov::LyapunovMethod as Lib;
 use trirhythm::analysis::lyapunov::{
     critical_noise, largest_lyapunov, CriticalNoise, CriticalSearch, LyapunovResult, LyapunovSpec,
 };
@@ -24,28 +25,18 @@ use trirhythm_paper::views::{self, CriticalOutcome, SweepPoint};
 /// How the exponent is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
 pub enum LyapunovMethod {
-    /// The variational equation stepped with the path: its memory a second history of δg,
-    /// renormalised whole; at impacts the saltation of the impact map, the shift of the impact
-    /// time included (exact derivative of the step between impacts).
+    /// The variational equation with its own memory and the impact map's saltation.
     Tangent,
-    /// Two paths on the same noise, the copy pulled back to --separation with its whole memory
-    /// (Benettin).
+    /// Two paths on the same noise, the copy pulled back to --separation (Benettin).
     #[default]
     TwoTrajectory,
 }
 
-impl LyapunovMethod {
-    fn library(self) -> trirhythm::analysis::lyapunov::LyapunovMethod {
-        match self {
-            LyapunovMethod::Tangent => trirhythm::analysis::lyapunov::LyapunovMethod::Tangent,
-            LyapunovMethod::TwoTrajectory => {
-                trirhythm::analysis::lyapunov::LyapunovMethod::TwoTrajectory
-            }
-        }
-    }
+same_variants!(LyapunovMethod => Lib: Tangent, TwoTrajectory);
 
+impl LyapunovMethod {
     fn name(self) -> &'static str {
-        self.library().name()
+        Lib::from(self).name()
     }
 }
 
@@ -77,10 +68,7 @@ pub struct LleArgs {
     /// What the memory does at an impact (the ensembles' default, `restart`).
     #[arg(long = "impact-memory", value_enum, default_value_t = ImpactMemoryArg::Restart)]
     pub impact_memory: ImpactMemoryArg,
-    /// How the exponent is computed: `two-trajectory` (a perturbed copy on the same noise,
-    /// pulled back to --separation with its whole memory) or `tangent` (the variational
-    /// equation with its own memory and the saltation of the impact map; --separation unused).
-    /// They agree within their standard errors (README, "Lyapunov exponents").
+    /// How the exponent is computed (`tangent` ignores --separation; README, "Lyapunov exponents").
     #[arg(long, value_enum, default_value_t = LyapunovMethod::TwoTrajectory)]
     pub method: LyapunovMethod,
     /// Steps between renormalisations, 1 to 1000000 (at least two per window).
@@ -137,7 +125,7 @@ impl LleArgs {
             length: self.t_end,
             renormalise_every: self.renormalise_every,
             separation: self.separation,
-            method: self.method.library(),
+            method: self.method.into(),
             ..Default::default()
         };
         let problem = self.model.problem(&params)?.with_start(self.u0, 0.0)?;
