@@ -235,8 +235,7 @@ fn classify(args: &OscillationArgs, mut s: Setup, ys: &[f64]) -> Result<String> 
             }
             csv.finish()?
         }
-        SimFormat::Json => {
-            let doc = json!({
+        SimFormat::Json => pretty(&json!({
                 "params": params_json(&s.base),
                 "barrier": args.barrier.name(),
                 "variant": s.variant.name(),
@@ -246,9 +245,7 @@ fn classify(args: &OscillationArgs, mut s: Setup, ys: &[f64]) -> Result<String> 
                 "dt": jnum(args.dt),
                 "simulations": simulations,
                 "cells": cells,
-            });
-            pretty(&doc)?
-        }
+        }))?,
     })
 }
 
@@ -278,8 +275,7 @@ fn boundaries(args: &OscillationArgs, s: Setup) -> Result<String> {
     let (lo, hi) = s.plane.y_range;
     Ok(match args.format {
         SimFormat::Csv => boundaries_csv(args, s, &results, simulations)?,
-        SimFormat::Json => {
-            let doc = json!({
+        SimFormat::Json => pretty(&json!({
                 "params": params_json(&s.base),
                 "barrier": args.barrier.name(),
                 "variant": s.variant.name(),
@@ -294,9 +290,7 @@ fn boundaries(args: &OscillationArgs, s: Setup) -> Result<String> {
                     "simulations": b.simulations(),
                     "points": b.points,
                 })).collect::<Vec<_>>(),
-            });
-            pretty(&doc)?
-        }
+        }))?,
     })
 }
 
@@ -309,16 +303,11 @@ fn boundaries_csv(
     simulations: usize,
 ) -> Result<String> {
     let (lo, hi) = s.plane.y_range;
-    s.header.push(format!(
-        "tolerance: simulated bracket y_hi − y_lo ≤ {} · y",
-        num(args.tolerance)
-    ));
-    s.header.push(format!(
-        "interval searched: {} ∈ [{}, {}]",
-        s.ky,
-        num(lo),
-        num(hi)
-    ));
-    s.header.push(format!("simulations: {simulations}"));
+    let tol = num(args.tolerance);
+    s.header.extend([
+        format!("tolerance: simulated bracket y_hi − y_lo ≤ {tol} · y"),
+        format!("interval searched: {} ∈ [{}, {}]", s.ky, num(lo), num(hi)),
+        format!("simulations: {simulations}"),
+    ]);
     Csv::of(&views::boundaries_table(&s.header, &s.kx, results))
 }
