@@ -73,20 +73,21 @@ where
     let stationary = p.runs.iter().all(|r| r.stationary);
     let mut c = chart(area, &p.caption, 0.0..x_max, 0.0..y_max * 1.08, "A", "P(A)")?;
     // the verdicts, inside the panel at its upper right
-    let mut status = Vec::new();
-    if !stationary {
-        status.push((
-            "Monte Carlo NOT stationary".to_string(),
-            RGBColor(200, 0, 0),
-        ));
-    }
-    if cut {
-        status.push((
-            format!("theory peak {theory_max:.1}, cut"),
-            RGBColor(90, 90, 90),
-        ));
-    }
-    for (k, (text, colour)) in status.into_iter().enumerate() {
+    let status = [
+        (!stationary).then(|| {
+            (
+                "Monte Carlo NOT stationary".to_string(),
+                RGBColor(200, 0, 0),
+            )
+        }),
+        cut.then(|| {
+            (
+                format!("theory peak {theory_max:.1}, cut"),
+                RGBColor(90, 90, 90),
+            )
+        }),
+    ];
+    for (k, (text, colour)) in status.into_iter().flatten().enumerate() {
         let style = (crate::render::plot::FONT, 14)
             .into_font()
             .color(&colour)
