@@ -4,7 +4,7 @@
 //!
 //! Drawing only: the runs and verdicts are [`trirhythm_paper::lle`].
 
-use crate::render::plot::{chart, padded_range, pe, LegendStrip, Symbol, PALETTE};
+use crate::render::plot::{chart, padded_range, pe, Backend, LegendStrip, Symbol, PALETTE};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -38,10 +38,7 @@ pub fn panel_height(panels: &[Panel]) -> u32 {
 }
 
 /// Draw one panel: chart, error bars, zero line, verdicts, legend strip below.
-pub fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> Result<()> {
     let (top, bottom) = area.split_vertically(CHART_HEIGHT);
     let xs = panel
         .curves

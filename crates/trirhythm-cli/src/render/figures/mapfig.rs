@@ -4,7 +4,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::maps`].
 
-use crate::render::plot::{chart, pe, LegendStrip, Symbol, FONT};
+use crate::render::plot::{chart, pe, Backend, LegendStrip, Symbol, FONT};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -112,10 +112,7 @@ const MARK: RGBColor = RGBColor(255, 0, 255);
 
 /// Draw one map panel: merged row runs of equal count, fold curves (named where known),
 /// cusps, the marked point. The legend is the figure's, outside the panels.
-fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Result<()> {
     let (gx, gy) = (&p.x.grid, &p.y.grid);
     let (sx, sy) = (p.x.scale, p.y.scale);
     let xr = (gx.start / sx)..(gx.stop / sx);

@@ -37,12 +37,10 @@ macro_rules! picture {
                 super::heading_of(&$caption)
             }
 
-            fn draw<DB: plotters::prelude::DrawingBackend>(
+            fn draw<DB: crate::render::plot::Backend>(
                 &$self,
                 $root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
             ) -> anyhow::Result<()>
-            where
-                DB::ErrorType: 'static,
             $draw
         }
     };
