@@ -20,6 +20,14 @@ pub fn bad<T>(msg: impl Into<String>) -> Result<T> {
     Err(BadInput(msg.into()).into())
 }
 
+/// Unless `ok`, a [`BadInput`] `FLAG = VALUE: allowed range is RANGE`.
+pub fn allowed(ok: bool, flag: &str, value: impl std::fmt::Display, range: &str) -> Result<()> {
+    if ok {
+        return Ok(());
+    }
+    bad(format!("{flag} = {value}: allowed range is {range}"))
+}
+
 /// Whether an error chain is the user's fault (bad parameter, unknown name, undefined quantity).
 pub fn is_bad_input(err: &anyhow::Error) -> bool {
     err.chain().any(|e| {

@@ -17,6 +17,7 @@
 //! cannot receive a file), 1 for anything else (I/O, a full device, a computation that
 //! overflowed), 130 when interrupted. No partial output file is ever left ([`io::files`]).
 
+#[macro_use]
 mod args;
 mod commands;
 mod error;
@@ -58,22 +59,17 @@ enum Command {
     Pdf(theory::PdfArgs),
     /// Simulate one path of Eq. 1 (or Eq. 5 / Eq. 9) with the fractional predictor–corrector.
     Simulate(simulate::SimulateArgs),
-    /// Ensemble of N paths: streamed stationary statistics with standard errors, the
-    /// stationarity diagnosis (R̂, ESS, drift), and the averaged theory against the simulation.
+    /// Ensemble of N paths: stationary statistics, stationarity (R̂, ESS, drift), theory against them.
     Ensemble(ensemble::EnsembleArgs),
-    /// Two-parameter map: stable-cycle or P(A)-mode count on a grid (CSV x,y,count), with the
-    /// fold curves traced exactly (--folds).
+    /// Two-parameter map: cycle or P(A)-mode count (CSV x,y,count), exact fold curves (--folds).
     Map(maps::MapArgs),
     /// One-parameter branch diagram: every cycle branch traced through its folds.
     Branches(maps::BranchArgs),
-    /// Oscillation (Hopf) boundary along one parameter by simulation, averaging and exact
-    /// linearisation (CSV method,x,y,y_lo,y_hi), or a plane classified (--grid).
+    /// Oscillation (Hopf) boundary by simulation, averaging, exact linearisation, or a plane (--grid).
     Oscillation(oscillation::OscillationArgs),
-    /// Largest Lyapunov exponent with frozen noise (two trajectories, whole-memory
-    /// renormalisation): JSON lle, per_path, running; with --sweep CSV KEY,lle,stderr,merged,unmerged,unmerged_stderr.
+    /// Largest Lyapunov exponent with frozen noise (JSON; with --sweep CSV per parameter value).
     Lyapunov(lyapunov::LyapunovArgs),
-    /// Critical noise D_c where the largest Lyapunov exponent changes sign (CSV
-    /// KEY,D_c,D_c_lo,D_c_hi).
+    /// Critical noise D_c where the largest Lyapunov exponent changes sign (CSV KEY,D_c,D_c_lo,D_c_hi).
     CriticalNoise(lyapunov::CriticalNoiseArgs),
     /// Reproduce a figure of the paper: data (CSV, and JSON with --data) and picture (PNG + SVG).
     Figure(figure::FigureArgs),

@@ -26,6 +26,19 @@ impl<T: ValueEnum> Named for T {
     }
 }
 
+/// `From<$arg> for $lib` where both enums have the same variants.
+macro_rules! same_variants {
+    ($arg:ident => $lib:ident: $($v:ident),+) => {
+        impl From<$arg> for $lib {
+            fn from(a: $arg) -> Self {
+                match a {
+                    $($arg::$v => $lib::$v,)+
+                }
+            }
+        }
+    };
+}
+
 /// `soe` or `direct`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
 pub enum MemoryArg {
@@ -46,14 +59,7 @@ pub enum ImpactMemoryArg {
     Restart,
 }
 
-impl From<ImpactMemoryArg> for ImpactMemory {
-    fn from(m: ImpactMemoryArg) -> Self {
-        match m {
-            ImpactMemoryArg::Continuous => ImpactMemory::Continuous,
-            ImpactMemoryArg::Restart => ImpactMemory::Restart,
-        }
-    }
-}
+same_variants!(ImpactMemoryArg => ImpactMemory: Continuous, Restart);
 
 /// `on` or `off`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -65,14 +71,7 @@ pub enum OnOff {
     Off,
 }
 
-impl From<OnOff> for Barrier {
-    fn from(b: OnOff) -> Self {
-        match b {
-            OnOff::On => Barrier::On,
-            OnOff::Off => Barrier::Off,
-        }
-    }
-}
+same_variants!(OnOff => Barrier: On, Off);
 
 /// `fractional`, `equivalent` or `zhuravlev`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -86,15 +85,7 @@ pub enum SystemArg {
     Zhuravlev,
 }
 
-impl From<SystemArg> for System {
-    fn from(s: SystemArg) -> Self {
-        match s {
-            SystemArg::Fractional => System::Fractional,
-            SystemArg::Equivalent => System::Equivalent,
-            SystemArg::Zhuravlev => System::Zhuravlev,
-        }
-    }
-}
+same_variants!(SystemArg => System: Fractional, Equivalent, Zhuravlev);
 
 /// `csv` or `json`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -116,14 +107,7 @@ pub enum VariantArg {
     Consistent,
 }
 
-impl From<VariantArg> for Variant {
-    fn from(v: VariantArg) -> Self {
-        match v {
-            VariantArg::Paper => Variant::Paper,
-            VariantArg::Consistent => Variant::Consistent,
-        }
-    }
-}
+same_variants!(VariantArg => Variant: Paper, Consistent);
 
 /// Parameter selection: a preset, then `--param KEY=VALUE` overrides.
 #[derive(Debug, Clone, Args)]
@@ -131,8 +115,7 @@ pub struct ParamArgs {
     /// A figure's parameter set (e.g. fig4c); without it, Fig. 4(c)'s set with r = 1, D = 0, τ = 0.
     #[arg(long)]
     pub preset: Option<String>,
-    /// Override a parameter: KEY=VALUE with KEY in mu0 omega0 lambda r alpha0 beta0 gamma0
-    /// delta0 D tau, or `c<k>` for the coefficient of U^(2k) (repeatable).
+    /// KEY=VALUE override (repeatable); KEY: mu0 omega0 lambda r alpha0 beta0 gamma0 delta0 D tau c<k>.
     #[arg(long = "param", value_name = "KEY=VALUE")]
     pub params: Vec<String>,
     /// Formula variant of the averaged theory.
@@ -151,14 +134,11 @@ impl ParamArgs {
             let Some((k, v)) = kv.split_once('=') else {
                 return bad(format!("--param expects KEY=VALUE, got `{kv}`"));
             };
-            let value: f64 = match v.trim().parse() {
-                Ok(x) => x,
-                Err(_) => {
-                    return bad(format!(
-                        "invalid value for parameter {}: `{v}` is not a number",
-                        k.trim()
-                    ))
-                }
+            let Ok(value) = v.trim().parse() else {
+                return bad(format!(
+                    "invalid value for parameter {}: `{v}` is not a number",
+                    k.trim()
+                ));
             };
             p.set(k.trim(), value)?;
         }
@@ -264,8 +244,7 @@ pub fn parse_axis(s: &str, flag: &str, with_count: bool) -> Result<(String, Grid
     Ok((k.trim().to_string(), Grid::parse(&rest, flag)?))
 }
 
-/// The equation, the wall and the memory, said once for every command that simulates:
-/// `--system`, `--barrier`, `--memory`, `--tolerance`.
+/// `--system`, `--barrier`, `--memory`, `--tolerance`: said once for every command that simulates.
 #[derive(Debug, Clone, Args)]
 pub struct ModelArgs {
     /// Which equation.

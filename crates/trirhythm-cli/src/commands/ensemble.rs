@@ -164,85 +164,53 @@ struct Document<'a> {
     theory: BTreeMap<&'static str, TheoryEntry<'a>>,
 }
 
-/// The whole result as the JSON document of the command's contract.
-fn result_json(
-    s: &EnsembleSetup,
-    method: &str,
-    r: &EnsembleResult,
-    theory: &Comparisons,
-    wall: f64,
-) -> Result<String> {
-    let doc = Document {
-        params: params_json(&s.params),
-        method,
-        choices: &s.choices,
-        wall_time_s: wall,
-        result: r,
-        theory: views::theory_entries(theory),
-    };
-    Ok(serde_json::to_string(&doc)? + "\n")
-}
-
-/// The checkpoint directory of a run: `run.txt` names the run, `path-<i>.json` hold finished
-/// paths.
-struct Checkpoint {
-    dir: PathBuf,
-}
-
-impl Checkpoint {
-    fn open(dir: &Path, fingerprint: &str, paths: usize) -> Result<(Checkpoint, Vec<PathStats>)> {
-        if dir.exists() && !dir.is_dir() {
-            return bad(format!(
-                "--checkpoint {}: exists and is not a directory",
-                dir.display()
-            ));
-        }
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("creating the checkpoint directory {}", dir.display()))?;
-        let tag = dir.join("run.txt");
-        let mut done = Vec::new();
-        match std::fs::read_to_string(&tag) {
-            Ok(text) if text == fingerprint => {
-                for i in 0..paths {
-                    let f = dir.join(format!("path-{i}.json"));
-                    if let Ok(t) = std::fs::read_to_string(&f) {
-                        let p: PathStats = serde_json::from_str(&t)
-                            .with_context(|| format!("reading the checkpoint {}", f.display()))?;
-                        done.push(p);
-                    }
+/// Open the checkpoint directory of a run (`run.txt` names the run, `path-<i>.json` hold
+/// finished paths): the paths already done.
+fn resume(dir: &Path, fingerprint: &str, paths: usize) -> Result<Vec<PathStats>> {
+    if dir.exists() && !dir.is_dir() {
+        return bad(format!(
+            "--checkpoint {}: exists and is not a directory",
+            dir.display()
+        ));
+    }
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("creating the checkpoint directory {}", dir.display()))?;
+    let tag = dir.join("run.txt");
+    let mut done = Vec::new();
+    match std::fs::read_to_string(&tag) {
+        Ok(text) if text == fingerprint => {
+            for i in 0..paths {
+                let f = dir.join(format!("path-{i}.json"));
+                if let Ok(t) = std::fs::read_to_string(&f) {
+                    let p: PathStats = serde_json::from_str(&t)
+                        .with_context(|| format!("reading the checkpoint {}", f.display()))?;
+                    done.push(p);
                 }
             }
-            Ok(_) => {
-                return bad(format!(
-                    "--checkpoint {}: holds another run (different parameters, method or \
-                     sizes); use an empty directory",
-                    dir.display()
-                ))
-            }
-            Err(_) => crate::io::write_atomic(&tag, fingerprint.as_bytes())?,
         }
-        Ok((
-            Checkpoint {
-                dir: dir.to_path_buf(),
-            },
-            done,
-        ))
+        Ok(_) => {
+            return bad(format!(
+                "--checkpoint {}: holds another run (different parameters, method or \
+                     sizes); use an empty directory",
+                dir.display()
+            ))
+        }
+        Err(_) => crate::io::write_atomic(&tag, fingerprint.as_bytes())?,
     }
+    Ok(done)
+}
 
-    fn save(&self, p: &PathStats) -> Result<()> {
-        let text = serde_json::to_string(p)?;
-        crate::io::write_atomic(
-            &self.dir.join(format!("path-{}.json", p.path)),
-            text.as_bytes(),
-        )
-    }
+/// Save a finished path in the checkpoint directory.
+fn save(dir: &Path, p: &PathStats) -> Result<()> {
+    let text = serde_json::to_string(p)?;
+    crate::io::write_atomic(&dir.join(format!("path-{}.json", p.path)), text.as_bytes())
 }
 
 /// How the command watches its run: the progress bar, and each finished path saved in the
 /// checkpoint directory.
 struct Watch<'a> {
     bar: &'a indicatif::ProgressBar,
-    checkpoint: Option<&'a Checkpoint>,
+    checkpoint: Option<&'a Path>,
     save_error: std::sync::Mutex<Option<anyhow::Error>>,
 }
 
@@ -254,7 +222,7 @@ impl Monitor<PathStats> for Watch<'_> {
 
     fn finished(&self, p: &PathStats) -> trirhythm::Result<()> {
         if let Some(c) = self.checkpoint {
-            if let Err(e) = c.save(p) {
+            if let Err(e) = save(c, p) {
                 *self.save_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
                 return Err(trirhythm::Error::Undefined {
                     what: "checkpoint",
@@ -280,20 +248,17 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
         s.problem.barrier(),
         s.problem.blow_up()
     );
-    let (checkpoint, done) = match &args.checkpoint {
-        Some(dir) => {
-            let (c, d) = Checkpoint::open(dir, &fingerprint, args.paths)?;
-            if !d.is_empty() {
-                eprintln!(
-                    "checkpoint: {} of {} paths already done",
-                    d.len(),
-                    args.paths
-                );
-            }
-            (Some(c), d)
-        }
-        None => (None, vec![]),
+    let done = match &args.checkpoint {
+        Some(dir) => resume(dir, &fingerprint, args.paths)?,
+        None => vec![],
     };
+    if !done.is_empty() {
+        eprintln!(
+            "checkpoint: {} of {} paths already done",
+            done.len(),
+            args.paths
+        );
+    }
     for c in &s.choices {
         eprintln!("chosen: {c}");
     }
@@ -301,7 +266,7 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     let start = Instant::now();
     let watch = Watch {
         bar: &bar,
-        checkpoint: checkpoint.as_ref(),
+        checkpoint: args.checkpoint.as_deref(),
         save_error: std::sync::Mutex::new(None),
     };
     let todo: Vec<u64> = (0..args.paths as u64)
@@ -327,7 +292,17 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     let theory = comparisons(&s.params, &r, args.seed);
     eprint!("{}", views::ensemble(&r, &theory, wall));
     let text = match args.format {
-        EnsembleFormat::Json => result_json(&s, &method, &r, &theory, wall)?,
+        EnsembleFormat::Json => {
+            let doc = Document {
+                params: params_json(&s.params),
+                method: &method,
+                choices: &s.choices,
+                wall_time_s: wall,
+                result: &r,
+                theory: views::theory_entries(&theory),
+            };
+            serde_json::to_string(&doc)? + "\n"
+        }
         EnsembleFormat::Csv => csv_text(&s, &method, &r, &theory, wall)?,
     };
     emit(args.out.as_deref(), &text)

@@ -59,25 +59,20 @@ pub fn figure(args: &FigureArgs) -> Result<()> {
     let selected: Vec<_> = if args.figure == "all" {
         registry.iter().collect()
     } else {
-        let n: u32 = match args.figure.parse() {
-            Ok(n) => n,
-            Err(_) => {
-                return bad(format!(
-                    "figure: `{}` is not a figure number (the paper has figures 1 to 19; \
-                     available: {available}, or all)",
-                    args.figure
-                ))
-            }
+        let Ok(n) = args.figure.parse::<u32>() else {
+            return bad(format!(
+                "figure: `{}` is not a figure number (the paper has figures 1 to 19; \
+                 available: {available}, or all)",
+                args.figure
+            ));
         };
-        match registry.iter().find(|r| r.number == n) {
-            Some(r) => vec![r],
-            None => {
-                return bad(format!(
-                    "figure {n}: no such figure (the paper has figures 1 to 19; available: \
-                     {available}, or all)"
-                ))
-            }
-        }
+        let Some(r) = registry.iter().find(|r| r.number == n) else {
+            return bad(format!(
+                "figure {n}: no such figure (the paper has figures 1 to 19; available: \
+                 {available}, or all)"
+            ));
+        };
+        vec![r]
     };
     let request = match &args.from_data {
         None => Request::Compute(FigureOptions {
@@ -95,10 +90,7 @@ pub fn figure(args: &FigureArgs) -> Result<()> {
             entry.title,
             start.elapsed().as_secs_f64()
         );
-        let mut text = String::new();
-        for f in files {
-            text.push_str(&format!("{}\n", f.display()));
-        }
+        let text: String = files.iter().map(|f| format!("{}\n", f.display())).collect();
         stdout_write(text.as_bytes())?;
     }
     Ok(())
@@ -245,17 +237,14 @@ fn write_table(stem: &Path, table: &Table) -> Result<PathBuf> {
 /// figure).
 fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
     let path = stem(dir, F::NUMBER).with_extension("json");
-    let text = match std::fs::read_to_string(&path) {
-        Ok(t) => t,
-        Err(e) => {
-            return bad(format!(
-                "--from-data {}: cannot read {} ({e}); write it with `figure {} --data`",
-                dir.display(),
-                path.display(),
-                F::NUMBER
-            ))
-        }
-    };
+    let text = std::fs::read_to_string(&path).or_else(|e| {
+        bad(format!(
+            "--from-data {}: cannot read {} ({e}); write it with `figure {} --data`",
+            dir.display(),
+            path.display(),
+            F::NUMBER
+        ))
+    })?;
     #[derive(Deserialize)]
     struct Number {
         figure: u32,
@@ -277,12 +266,11 @@ fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
             ))
         }
     }
-    match serde_json::from_str(&text) {
-        Ok(file) => Ok(file),
-        Err(e) => bad(format!(
+    serde_json::from_str(&text).or_else(|e| {
+        bad(format!(
             "--from-data: {} is not the data of figure {} as this version writes it ({e})",
             path.display(),
             F::NUMBER
-        )),
-    }
+        ))
+    })
 }

@@ -4,7 +4,7 @@
 //! contract: keep them.
 
 use crate::args::{parse_axis, ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat};
-use crate::error::bad;
+use crate::error::{allowed, bad};
 use crate::io::progress::Bar;
 use crate::io::{emit, num, params_json, pretty, progress, Csv, Report};
 use anyhow::Result;
@@ -12,6 +12,7 @@ use clap::{Args, ValueEnum};
 use serde::Serialize;
 use serde_json::{json, Value};
 use std::path::PathBuf;
+use trirhythm::analysis::lyapunov::LyapunovMethod as Lib;
 use trirhythm::analysis::lyapunov::{
     critical_noise, largest_lyapunov, CriticalNoise, CriticalSearch, LyapunovResult, LyapunovSpec,
 };
@@ -24,28 +25,18 @@ use trirhythm_paper::views::{self, CriticalOutcome, SweepPoint};
 /// How the exponent is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
 pub enum LyapunovMethod {
-    /// The variational equation stepped with the path: its memory a second history of δg,
-    /// renormalised whole; at impacts the saltation of the impact map, the shift of the impact
-    /// time included (exact derivative of the step between impacts).
+    /// The variational equation with its own memory and the impact map's saltation.
     Tangent,
-    /// Two paths on the same noise, the copy pulled back to --separation with its whole memory
-    /// (Benettin).
+    /// Two paths on the same noise, the copy pulled back to --separation (Benettin).
     #[default]
     TwoTrajectory,
 }
 
-impl LyapunovMethod {
-    fn library(self) -> trirhythm::analysis::lyapunov::LyapunovMethod {
-        match self {
-            LyapunovMethod::Tangent => trirhythm::analysis::lyapunov::LyapunovMethod::Tangent,
-            LyapunovMethod::TwoTrajectory => {
-                trirhythm::analysis::lyapunov::LyapunovMethod::TwoTrajectory
-            }
-        }
-    }
+same_variants!(LyapunovMethod => Lib: Tangent, TwoTrajectory);
 
+impl LyapunovMethod {
     fn name(self) -> &'static str {
-        self.library().name()
+        Lib::from(self).name()
     }
 }
 
@@ -77,10 +68,7 @@ pub struct LleArgs {
     /// What the memory does at an impact (the ensembles' default, `restart`).
     #[arg(long = "impact-memory", value_enum, default_value_t = ImpactMemoryArg::Restart)]
     pub impact_memory: ImpactMemoryArg,
-    /// How the exponent is computed: `two-trajectory` (a perturbed copy on the same noise,
-    /// pulled back to --separation with its whole memory) or `tangent` (the variational
-    /// equation with its own memory and the saltation of the impact map; --separation unused).
-    /// They agree within their standard errors (README, "Lyapunov exponents").
+    /// How the exponent is computed (`tangent` ignores --separation; README, "Lyapunov exponents").
     #[arg(long, value_enum, default_value_t = LyapunovMethod::TwoTrajectory)]
     pub method: LyapunovMethod,
     /// Steps between renormalisations, 1 to 1000000 (at least two per window).
@@ -100,33 +88,35 @@ impl LleArgs {
         let params = self.params.resolve()?;
         // the library takes any dt that divides the window; this command's runs are tested
         // in [1e-4, 0.1]
-        if !(self.dt >= 1e-4 && self.dt <= 0.1) {
-            return bad(format!(
-                "--dt = {}: allowed range is [1e-4, 0.1]",
-                num(self.dt)
-            ));
-        }
+        allowed(
+            (1e-4..=0.1).contains(&self.dt),
+            "--dt",
+            num(self.dt),
+            "[1e-4, 0.1]",
+        )?;
         // narrower than the library's ranges (separation (0, 1e-3], tolerance (1e-15, 1)): a
         // copy pulled back to below 1e-12 merges with its reference in rounding
-        if !(self.separation >= 1e-12 && self.separation <= 1e-4) {
-            return bad(format!(
-                "--separation = {}: allowed range is [1e-12, 1e-4]",
-                num(self.separation)
-            ));
-        }
-        if !(self.model.tolerance > 0.0 && self.model.tolerance < 1e-2) {
-            return bad(format!(
-                "--tolerance = {}: allowed range is (0, 1e-2)",
-                num(self.model.tolerance)
-            ));
-        }
+        let d0 = self.separation;
+        allowed(
+            (1e-12..=1e-4).contains(&d0),
+            "--separation",
+            num(d0),
+            "[1e-12, 1e-4]",
+        )?;
+        let tol = self.model.tolerance;
+        allowed(
+            tol > 0.0 && tol < 1e-2,
+            "--tolerance",
+            num(tol),
+            "(0, 1e-2)",
+        )?;
         // the library's `2 × renormalise_every` overflows past 2⁶³: bounded here
-        if !(1..=1_000_000).contains(&self.renormalise_every) {
-            return bad(format!(
-                "--renormalise-every = {}: allowed range is 1 to 1000000 steps",
-                self.renormalise_every
-            ));
-        }
+        allowed(
+            (1..=1_000_000).contains(&self.renormalise_every),
+            "--renormalise-every",
+            self.renormalise_every,
+            "1 to 1000000 steps",
+        )?;
         let method = self.model.method(self.dt, self.impact_memory);
         let spec = LyapunovSpec {
             paths: self.paths,
@@ -135,7 +125,7 @@ impl LleArgs {
             length: self.t_end,
             renormalise_every: self.renormalise_every,
             separation: self.separation,
-            method: self.method.library(),
+            method: self.method.into(),
             ..Default::default()
         };
         let problem = self.model.problem(&params)?.with_start(self.u0, 0.0)?;
@@ -162,12 +152,7 @@ impl LleArgs {
 /// Parse `KEY=START:STOP:COUNT` (COUNT 2 to 1000) for `--sweep`.
 fn parse_sweep(s: &str) -> Result<(String, Vec<f64>)> {
     let (key, g) = parse_axis(s, "--sweep", true)?;
-    if g.count > 1000 {
-        return bad(format!(
-            "--sweep: COUNT = {}: allowed range is 2 to 1000",
-            g.count
-        ));
-    }
+    allowed(g.count <= 1000, "--sweep: COUNT", g.count, "2 to 1000")?;
     Ok((key, g.points()))
 }
 

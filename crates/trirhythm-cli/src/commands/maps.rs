@@ -27,14 +27,7 @@ pub enum WhatArg {
     Modes,
 }
 
-impl From<WhatArg> for What {
-    fn from(w: WhatArg) -> Self {
-        match w {
-            WhatArg::Rhythmicity => What::Rhythmicity,
-            WhatArg::Modes => What::Modes,
-        }
-    }
-}
+same_variants!(WhatArg => What: Rhythmicity, Modes);
 
 /// Arguments of `map`.
 #[derive(Debug, Args)]
@@ -53,12 +46,10 @@ pub struct MapArgs {
     /// Trace the fold curves (f = ∂f/∂A = 0, or m1 = ∂m1/∂A = 0 for modes) exactly.
     #[arg(long)]
     pub folds: bool,
-    /// With --what modes and the paper variant: also trace the paper's printed Eq. 36–37
-    /// construction (implies --folds).
+    /// With --what modes, paper variant: also trace the printed Eq. 36–37 (implies --folds).
     #[arg(long)]
     pub printed_eq37: bool,
-    /// CSV file for the fold polylines (columns curve,system,x,y,amplitude); by default
-    /// FILE-folds.csv next to --out. In JSON the curves are part of the document.
+    /// CSV of the fold polylines `curve,system,x,y,amplitude` (default: FILE-folds.csv by --out).
     #[arg(long, value_name = "FILE")]
     pub folds_out: Option<PathBuf>,
     #[command(flatten)]
@@ -162,10 +153,7 @@ fn write_map_csv(
         _ => None,
     };
     stream.finish()?;
-    match folds {
-        Some(tmp) => tmp.commit(),
-        None => Ok(()),
-    }
+    folds.map_or(Ok(()), Temporary::commit)
 }
 
 /// Arguments of `branches`.

@@ -3,7 +3,7 @@
 //! exact linearisation; or, with `--grid`, a whole plane classified.
 
 use crate::args::{parse_axis, ImpactMemoryArg, Named, OnOff, ParamArgs, SimFormat};
-use crate::error::bad;
+use crate::error::{allowed, bad};
 use crate::io::progress::Bar;
 use crate::io::{emit, jnum, num, params_json, pretty, progress, Csv, Report};
 use anyhow::Result;
@@ -95,12 +95,12 @@ fn parse_abscissae(s: &str) -> Result<(String, Vec<f64>)> {
         return Ok((key.to_string(), vec![a]));
     }
     let (key, g) = parse_axis(s, "--x", true)?;
-    if g.count > MAX_ABSCISSAE {
-        return bad(format!(
-            "--x: COUNT = {}: allowed range is 1 to {MAX_ABSCISSAE}",
-            g.count
-        ));
-    }
+    allowed(
+        g.count <= MAX_ABSCISSAE,
+        "--x: COUNT",
+        g.count,
+        &format!("1 to {MAX_ABSCISSAE}"),
+    )?;
     Ok((key, g.points()))
 }
 
@@ -129,18 +129,18 @@ impl OscillationArgs {
     fn setup(&self) -> Result<Setup> {
         let base = self.params.resolve()?;
         let variant = self.params.variant();
-        if !(self.tolerance > 0.0 && self.tolerance <= 0.1) {
-            return bad(format!(
-                "--tolerance = {}: allowed range is (0, 0.1]",
-                num(self.tolerance)
-            ));
-        }
-        if !(self.dt >= 1e-4 && self.dt <= 0.1) {
-            return bad(format!(
-                "--dt = {}: allowed range is [1e-4, 0.1]",
-                num(self.dt)
-            ));
-        }
+        allowed(
+            self.tolerance > 0.0 && self.tolerance <= 0.1,
+            "--tolerance",
+            num(self.tolerance),
+            "(0, 0.1]",
+        )?;
+        allowed(
+            self.dt >= 1e-4 && self.dt <= 0.1,
+            "--dt",
+            num(self.dt),
+            "[1e-4, 0.1]",
+        )?;
         if base.noise_intensity != 0.0 {
             return bad(format!(
                 "--param D = {}: the oscillation boundary is that of the noise-free system; allowed: D = 0",
@@ -235,8 +235,7 @@ fn classify(args: &OscillationArgs, mut s: Setup, ys: &[f64]) -> Result<String> 
             }
             csv.finish()?
         }
-        SimFormat::Json => {
-            let doc = json!({
+        SimFormat::Json => pretty(&json!({
                 "params": params_json(&s.base),
                 "barrier": args.barrier.name(),
                 "variant": s.variant.name(),
@@ -246,9 +245,7 @@ fn classify(args: &OscillationArgs, mut s: Setup, ys: &[f64]) -> Result<String> 
                 "dt": jnum(args.dt),
                 "simulations": simulations,
                 "cells": cells,
-            });
-            pretty(&doc)?
-        }
+        }))?,
     })
 }
 
@@ -278,8 +275,7 @@ fn boundaries(args: &OscillationArgs, s: Setup) -> Result<String> {
     let (lo, hi) = s.plane.y_range;
     Ok(match args.format {
         SimFormat::Csv => boundaries_csv(args, s, &results, simulations)?,
-        SimFormat::Json => {
-            let doc = json!({
+        SimFormat::Json => pretty(&json!({
                 "params": params_json(&s.base),
                 "barrier": args.barrier.name(),
                 "variant": s.variant.name(),
@@ -294,9 +290,7 @@ fn boundaries(args: &OscillationArgs, s: Setup) -> Result<String> {
                     "simulations": b.simulations(),
                     "points": b.points,
                 })).collect::<Vec<_>>(),
-            });
-            pretty(&doc)?
-        }
+        }))?,
     })
 }
 
@@ -309,16 +303,11 @@ fn boundaries_csv(
     simulations: usize,
 ) -> Result<String> {
     let (lo, hi) = s.plane.y_range;
-    s.header.push(format!(
-        "tolerance: simulated bracket y_hi − y_lo ≤ {} · y",
-        num(args.tolerance)
-    ));
-    s.header.push(format!(
-        "interval searched: {} ∈ [{}, {}]",
-        s.ky,
-        num(lo),
-        num(hi)
-    ));
-    s.header.push(format!("simulations: {simulations}"));
+    let tol = num(args.tolerance);
+    s.header.extend([
+        format!("tolerance: simulated bracket y_hi − y_lo ≤ {tol} · y"),
+        format!("interval searched: {} ∈ [{}, {}]", s.ky, num(lo), num(hi)),
+        format!("simulations: {simulations}"),
+    ]);
     Csv::of(&views::boundaries_table(&s.header, &s.kx, results))
 }

@@ -143,19 +143,17 @@ fn check_rows(args: &SimulateArgs, steps: u64) -> Result<()> {
     if rows <= most {
         return Ok(());
     }
-    let every = steps / (most - 1) + 1;
-    bad(match args.format {
-        SimFormat::Json => format!(
-            "--every {}: {rows} {what} of {steps} steps; JSON holds at most {most} \
-             (raise --every to {every} or more, or use --format csv, which streams)",
-            args.every
-        ),
-        SimFormat::Csv => format!(
-            "--every {}: {rows} {what} of {steps} steps; at most {most} rows are written \
-             (raise --every to {every} or more)",
-            args.every
-        ),
-    })
+    let raise = format!("raise --every to {} or more", steps / (most - 1) + 1);
+    let limit = match args.format {
+        SimFormat::Json => {
+            format!("JSON holds at most {most} ({raise}, or use --format csv, which streams)")
+        }
+        SimFormat::Csv => format!("at most {most} rows are written ({raise})"),
+    };
+    bad(format!(
+        "--every {}: {rows} {what} of {steps} steps; {limit}",
+        args.every
+    ))
 }
 
 /// Run `simulate`. CSV is streamed row by row (memory independent of the number of steps);

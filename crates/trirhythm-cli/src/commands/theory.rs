@@ -25,26 +25,27 @@ impl TheoryArgs {
     }
 }
 
-/// What every theory document starts with: the parameters, the variant and the library's
-/// equivalents (Eq. 5).
-fn base_json(th: &Theory) -> serde_json::Map<String, Value> {
+/// A theory document: the parameters, the variant, the equivalents (Eq. 5), then `rest`.
+fn doc<'a>(th: &Theory, rest: impl IntoIterator<Item = (&'a str, Value)>) -> Result<String> {
     let mut m = serde_json::Map::new();
     m.insert("params".into(), params_json(th.params()));
     m.insert("variant".into(), json!(th.variant().name()));
     m.insert("equivalents".into(), json!(th.equivalents()));
-    m
+    m.extend(rest.into_iter().map(|(k, v)| (k.to_string(), v)));
+    pretty(&m)
 }
 
 /// `equivalents`: μ1, β1, ω1, β2 of Eq. 5, with σ1 and the impact loss rate.
 pub fn equivalents(args: &TheoryArgs) -> Result<()> {
     let th = args.theory()?;
     let text = match args.output.format {
-        Format::Json => {
-            let mut m = base_json(&th);
-            m.insert("sigma1".into(), jnum(th.diffusion()));
-            m.insert("loss_rate".into(), jnum(th.loss_rate()));
-            pretty(&m)?
-        }
+        Format::Json => doc(
+            &th,
+            [
+                ("sigma1", jnum(th.diffusion())),
+                ("loss_rate", jnum(th.loss_rate())),
+            ],
+        )?,
         Format::Csv => Csv::of(&views::equivalents_table(&th))?,
         Format::Table => reading(&Table {
             notes: vec![],
@@ -61,18 +62,16 @@ pub fn cycles(args: &TheoryArgs) -> Result<()> {
     let rhythm = th.rhythmicity();
     let kind = views::cycles_kind(&th);
     let text = match args.output.format {
-        Format::Json => {
-            let mut m = base_json(&th);
-            m.insert("kind".into(), json!(kind));
-            m.insert("cycles".into(), json!(cycles));
-            m.insert("stable_count".into(), json!(rhythm.count()));
-            m.insert("rhythmicity".into(), json!(rhythm.name()));
-            m.insert(
-                "rest_state_stable".into(),
-                json!(th.rest_state_slope() < 0.0),
-            );
-            pretty(&m)?
-        }
+        Format::Json => doc(
+            &th,
+            [
+                ("kind", json!(kind)),
+                ("cycles", json!(cycles)),
+                ("stable_count", json!(rhythm.count())),
+                ("rhythmicity", json!(rhythm.name())),
+                ("rest_state_stable", json!(th.rest_state_slope() < 0.0)),
+            ],
+        )?,
         Format::Csv => Csv::of(&views::cycles_table(&th))?,
         Format::Table => reading(&views::cycles_reading(&th))?,
     };
@@ -106,21 +105,14 @@ fn emit_columns(
     infinite: &[&str],
 ) -> Result<()> {
     let text = match args.output.format {
-        Format::Json => {
-            let mut m = base_json(th);
-            for (name, col) in names.iter().zip(&cols) {
-                let limit = infinite.contains(name);
-                m.insert(
-                    name.to_string(),
-                    Value::Array(
-                        col.iter()
-                            .map(|&v| if limit { jlimit(v) } else { jnum(v) })
-                            .collect(),
-                    ),
-                );
-            }
-            pretty(&m)?
-        }
+        Format::Json => doc(
+            th,
+            names.iter().zip(&cols).map(|(&name, col)| {
+                let limit = infinite.contains(&name);
+                let v = col.iter().map(|&v| if limit { jlimit(v) } else { jnum(v) });
+                (name, Value::Array(v.collect()))
+            }),
+        )?,
         Format::Csv => {
             let cols: Vec<&[f64]> = cols.iter().map(Vec::as_slice).collect();
             let notes = views::theory_notes(th);
@@ -173,18 +165,13 @@ pub fn barriers(args: &TheoryArgs) -> Result<()> {
     let bs = th.barriers();
     let text = match args.output.format {
         Format::Json => {
-            let mut m = base_json(&th);
-            m.insert("extrema".into(), json!(ex));
-            let named = bs.iter().enumerate();
-            let named: Vec<Value> = named
-                .map(|(i, b)| {
-                    let mut v = json!(b);
-                    v["name"] = json!(format!("dU{}", i + 1));
-                    v
-                })
-                .collect();
-            m.insert("barriers".into(), Value::Array(named));
-            pretty(&m)?
+            let named = bs.iter().enumerate().map(|(i, b)| {
+                let mut v = json!(b);
+                v["name"] = json!(format!("dU{}", i + 1));
+                v
+            });
+            let named = Value::Array(named.collect());
+            doc(&th, [("extrema", json!(ex)), ("barriers", named)])?
         }
         Format::Csv => Csv::of(&views::barriers_table(&th))?,
         Format::Table => reading(&views::barriers_reading(&th))?,
@@ -271,22 +258,19 @@ fn pdf_1d(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> {
     let p: Vec<f64> = logp.iter().map(|l| l.exp()).collect();
     let xname = if energy { "H" } else { "A" };
     Ok(match args.theory.output.format {
-        Format::Json => {
-            let mut m = base_json(th);
-            m.insert(
-                "kind".into(),
-                json!(if energy { "energy" } else { "amplitude" }),
-            );
-            m.insert("sigma1".into(), jnum(th.diffusion()));
-            m.insert("modes".into(), jvec(&pdf.modes));
-            m.insert("antimodes".into(), jvec(&pdf.antimodes));
-            m.insert("mean_amplitude".into(), jnum(pdf.mean_amplitude));
-            m.insert(xname.into(), jvec(&xs));
-            m.insert("p".into(), jvec(&p));
-            let log_p = logp.iter().map(|&v| jlimit(v)).collect();
-            m.insert("log_p".into(), Value::Array(log_p));
-            pretty(&m)?
-        }
+        Format::Json => doc(
+            th,
+            [
+                ("kind", json!(if energy { "energy" } else { "amplitude" })),
+                ("sigma1", jnum(th.diffusion())),
+                ("modes", jvec(&pdf.modes)),
+                ("antimodes", jvec(&pdf.antimodes)),
+                ("mean_amplitude", jnum(pdf.mean_amplitude)),
+                (xname, jvec(&xs)),
+                ("p", jvec(&p)),
+                ("log_p", logp.iter().map(|&v| jlimit(v)).collect()),
+            ],
+        )?,
         Format::Csv => {
             let mut h = views::theory_notes(th);
             h.push(format!("modes: {:?}", pdf.modes));
@@ -332,16 +316,10 @@ fn pdf_joint(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> 
         .collect();
     Ok(match args.theory.output.format {
         Format::Json => {
-            let mut m = base_json(th);
-            m.insert("kind".into(), json!("joint"));
-            m.insert("U".into(), jvec(&us));
-            m.insert("V".into(), jvec(&vs));
-            let p = logp
-                .iter()
-                .map(|row| jvec(&row.iter().map(|l| l.exp()).collect::<Vec<_>>()))
-                .collect();
-            m.insert("p".into(), Value::Array(p));
-            pretty(&m)?
+            let p = logp.iter().map(|row| row.iter().map(|l| l.exp()).collect());
+            let p = p.map(|row: Vec<f64>| jvec(&row)).collect();
+            let (u, v) = (jvec(&us), jvec(&vs));
+            doc(th, [("kind", json!("joint")), ("U", u), ("V", v), ("p", p)])?
         }
         Format::Csv | Format::Table => Csv::of(&views::joint_pdf_table(
             &views::theory_notes(th),

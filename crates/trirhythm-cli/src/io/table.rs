@@ -61,14 +61,11 @@ pub struct Csv {
 impl Csv {
     /// Start with comment lines (each prefixed by `# `) and the column names.
     pub fn new(comments: &[String], columns: &[&str]) -> Csv {
-        let mut text = String::new();
-        for c in comments {
-            for line in c.lines() {
-                text.push_str("# ");
-                text.push_str(line);
-                text.push('\n');
-            }
-        }
+        let mut text: String = comments
+            .iter()
+            .flat_map(|c| c.lines())
+            .map(|l| format!("# {l}\n"))
+            .collect();
         text.push_str(&columns.join(","));
         text.push('\n');
         Csv {
@@ -137,13 +134,11 @@ fn table(columns: &[&str], rows: &[Vec<String>], infinite: &[&str]) -> Result<St
         }
     }
     let fmt_row = |cells: &mut dyn Iterator<Item = &str>| -> String {
-        let mut line = cells
+        let cells: Vec<String> = cells
             .enumerate()
-            .map(|(i, c)| format!("{:>w$}", c, w = widths[i]))
-            .collect::<Vec<_>>()
-            .join("  ");
-        line.push('\n');
-        line
+            .map(|(i, c)| format!("{c:>0$}", widths[i]))
+            .collect();
+        cells.join("  ") + "\n"
     };
     let mut out = fmt_row(&mut columns.iter().copied());
     for r in rows {
@@ -156,10 +151,6 @@ fn table(columns: &[&str], rows: &[Vec<String>], infinite: &[&str]) -> Result<St
 pub fn reading(t: &Table) -> Result<String> {
     let columns: Vec<&str> = t.columns.iter().map(String::as_str).collect();
     let infinite: Vec<&str> = t.infinite.iter().map(String::as_str).collect();
-    let mut text = table(&columns, &t.rows, &infinite)?;
-    for note in &t.notes {
-        text.push_str(note);
-        text.push('\n');
-    }
-    Ok(text)
+    let text = table(&columns, &t.rows, &infinite)?;
+    Ok(text + &t.notes.iter().map(|n| format!("{n}\n")).collect::<String>())
 }

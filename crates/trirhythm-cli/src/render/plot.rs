@@ -81,10 +81,7 @@ impl Heading {
         14 + TITLE_SIZE + 8 + LINE_HEIGHT * self.wrapped(width).len() as u32
     }
 
-    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
+    fn draw<DB: Backend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
         let width = area.dim_in_pixel().0;
         area.draw(&Text::new(
             self.title.clone(),
@@ -105,6 +102,11 @@ impl Heading {
     }
 }
 
+/// A plotters backend whose errors `anyhow` can carry (every backend drawn on here).
+pub trait Backend: DrawingBackend<ErrorType: 'static> {}
+
+impl<B: DrawingBackend<ErrorType: 'static>> Backend for B {}
+
 /// A drawing that can be rendered on any plotters backend.
 pub trait Picture {
     /// Size in pixels of the drawing (the heading is added above it).
@@ -112,9 +114,7 @@ pub trait Picture {
     /// What the picture shows, drawn above it.
     fn heading(&self) -> Heading;
     /// Draw on `root` (already filled white).
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static;
+    fn draw<DB: Backend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>;
 }
 
 /// Render `picture` with its heading to `stem.png` and `stem.svg`; returns the paths written.
@@ -124,15 +124,12 @@ pub fn save(picture: &impl Picture, stem: &Path) -> Result<Vec<PathBuf>> {
     let heading = picture.heading();
     let hh = heading.height(w);
     let size = (w, h + hh);
-    fn render<DB: DrawingBackend>(
+    fn render<DB: Backend>(
         root: DrawingArea<DB, Shift>,
         heading: &Heading,
         hh: u32,
         picture: &impl Picture,
-    ) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
+    ) -> Result<()> {
         root.fill(&WHITE).map_err(pe)?;
         let (top, body) = root.split_vertically(hh);
         heading.draw(&top)?;
@@ -237,17 +234,14 @@ pub fn tick_formatter(range: &Range<f64>, ticks: usize) -> impl Fn(&f64) -> Stri
 }
 
 /// A chart in `area` with a caption, axis ranges and axis descriptions, mesh drawn.
-pub fn chart<'a, DB: DrawingBackend>(
+pub fn chart<'a, DB: Backend>(
     area: &'a DrawingArea<DB, Shift>,
     caption: &str,
     x: Range<f64>,
     y: Range<f64>,
     x_desc: &str,
     y_desc: &str,
-) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>> {
     framed(area, caption, (x, y), (x_desc, y_desc), ChartSize::Panel)
 }
 
@@ -261,16 +255,13 @@ pub enum ChartSize {
 }
 
 /// [`chart`] at a given size.
-pub fn framed<'a, DB: DrawingBackend>(
+pub fn framed<'a, DB: Backend>(
     area: &'a DrawingArea<DB, Shift>,
     caption: &str,
     (x, y): (Range<f64>, Range<f64>),
     (x_desc, y_desc): (&str, &str),
     size: ChartSize,
-) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>> {
     let inset = size == ChartSize::Inset;
     let mut c = ChartBuilder::on(area)
         .caption(caption, (FONT, if inset { 16 } else { 20 }))
@@ -299,13 +290,10 @@ where
 }
 
 /// Draw the legend of a chart whose series carry labels.
-pub fn legend<'a, DB: DrawingBackend + 'a>(
+pub fn legend<'a, DB: Backend + 'a>(
     chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     position: SeriesLabelPosition,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<()> {
     chart
         .configure_series_labels()
         .position(position)
@@ -388,10 +376,7 @@ impl LegendStrip {
     }
 
     /// Draw the entries, framed, centred in `area`.
-    pub fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
+    pub fn draw<DB: Backend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
         let (width, _) = area.dim_in_pixel();
         let rows = self.rows(width);
         let row_width = |row: &Vec<usize>| -> u32 {
@@ -511,15 +496,12 @@ pub fn viridis(t: f64) -> RGBColor {
 }
 
 /// A horizontal colour bar for values in [lo, hi] with its ticks.
-pub fn colour_bar<DB: DrawingBackend>(
+pub fn colour_bar<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
     label: &str,
     lo: f64,
     hi: f64,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<()> {
     let fx = tick_formatter(&(lo..hi), 5);
     let mut c = ChartBuilder::on(area)
         .margin_left(70)

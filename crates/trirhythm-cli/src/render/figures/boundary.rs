@@ -4,7 +4,7 @@
 //!
 //! Drawing only: the boundaries and their distances are [`trirhythm_paper::boundary`].
 
-use crate::render::plot::{chart, legend, pe, PALETTE};
+use crate::render::plot::{chart, legend, pe, Backend, PALETTE};
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -37,14 +37,11 @@ fn colour(curve: &Curve) -> RGBColor {
 /// Draw one panel: the shaded rest region under the simulated boundary, then every curve
 /// (simulation solid with its bracket as tick marks, averaging dashed, exact dotted or as
 /// markers where it has a single point).
-pub fn draw_panel<DB: DrawingBackend>(
+pub fn draw_panel<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
     panel: &Panel,
     with_legend: bool,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<()> {
     let top = panel
         .curves
         .iter()
@@ -110,13 +107,10 @@ where
 
 /// One curve in its method's style: simulation solid with markers, averaging dashed, exact
 /// dotted with rings, a single point as a marked cross; keyed in the legend when labelled.
-fn draw_curve<'a, DB: DrawingBackend + 'a>(
+fn draw_curve<'a, DB: Backend + 'a>(
     c: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     curve: &Curve,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<()> {
     let pts: Vec<(f64, f64)> = curve
         .points
         .iter()

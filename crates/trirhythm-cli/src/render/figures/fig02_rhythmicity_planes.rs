@@ -4,7 +4,6 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig02_rhythmicity_planes`].
 
-use super::mapfig::Map;
 use trirhythm_paper::fig02_rhythmicity_planes::Fig02;
 
-picture_through!(Fig02, Map);
+picture_through!(Fig02);

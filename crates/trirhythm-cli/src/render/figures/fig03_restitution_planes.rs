@@ -3,7 +3,6 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig03_restitution_planes`].
 
-use super::mapfig::Map;
 use trirhythm_paper::fig03_restitution_planes::Fig03;
 
-picture_through!(Fig03, Map);
+picture_through!(Fig03);

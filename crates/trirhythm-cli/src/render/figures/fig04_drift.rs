@@ -5,7 +5,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig04_drift`].
 
-use crate::render::plot::{chart, framed, legend, padded_range, pe, ChartSize, FONT};
+use crate::render::plot::{chart, framed, legend, padded_range, pe, Backend, ChartSize, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -25,13 +25,10 @@ fn x_end(p: &Panel) -> f64 {
 }
 
 /// One panel: f(A0) with its zones, the r = 1 reference, the cycles, a zoom on the inner roots.
-fn draw_panel<DB: DrawingBackend>(
+fn draw_panel<DB: Backend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     p: &Panel,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<()> {
     let x_end = x_end(p);
     let x = 0.0..x_end;
     // The range shows the roots' neighbourhood; the steep fall beyond is cut at four
@@ -141,15 +138,12 @@ where
 
 /// Where the small-amplitude part is flattened by the scale of the steep fall (the panel's
 /// range `y`), an inset shows it at its own scale (roots there, or their absence, visible).
-fn draw_zoom<DB: DrawingBackend>(
+fn draw_zoom<DB: Backend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     p: &Panel,
     y: &std::ops::Range<f64>,
     x_end: f64,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<()> {
     let span = y.end - y.start;
     let zoom_end = p
         .curve

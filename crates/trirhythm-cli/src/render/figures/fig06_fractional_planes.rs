@@ -3,7 +3,6 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig06_fractional_planes`].
 
-use super::mapfig::Map;
 use trirhythm_paper::fig06_fractional_planes::Fig06;
 
-picture_through!(Fig06, Map);
+picture_through!(Fig06);

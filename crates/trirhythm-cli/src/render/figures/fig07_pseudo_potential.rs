@@ -2,7 +2,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig07_pseudo_potential`].
 
-use crate::render::plot::{chart, framed, legend, padded_range, pe, ChartSize, PALETTE};
+use crate::render::plot::{chart, framed, legend, padded_range, pe, Backend, ChartSize, PALETTE};
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -39,14 +39,11 @@ pub(super) fn frame(curves: &[Curve], x_end: f64) -> (std::ops::Range<f64>, Vec<
 }
 
 /// Draw curves with their wells (filled) and crests (open) marked.
-pub(super) fn draw_curves<'a, DB: DrawingBackend + 'a>(
+pub(super) fn draw_curves<'a, DB: Backend + 'a>(
     c: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     curves: &[Curve],
     with_legend: bool,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<()> {
     let y = c.y_range();
     let x = c.x_range();
     for (i, cv) in curves.iter().enumerate() {

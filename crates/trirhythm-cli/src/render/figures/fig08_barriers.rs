@@ -3,7 +3,7 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig08_barriers`].
 
 use super::fig07_pseudo_potential::{draw_curves, frame};
-use crate::render::plot::{chart, pe, FONT};
+use crate::render::plot::{chart, pe, Backend, FONT};
 use anyhow::Result;
 use plotters::prelude::*;
 use trirhythm::theory::averaging::Side;
@@ -22,15 +22,12 @@ fn zoom_end(fig: &Fig08) -> f64 {
 }
 
 /// One panel: U_eff up to `x_end` with the barriers that fit.
-fn draw_panel<DB: DrawingBackend>(
+fn draw_panel<DB: Backend>(
     fig: &Fig08,
     area: &DrawingArea<DB, plotters::coord::Shift>,
     caption: &str,
     x_end: f64,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<()> {
     let (y, clipped) = frame(std::slice::from_ref(&fig.curve), x_end);
     let mut c = chart(area, caption, 0.0..x_end, y, "A0", "U_eff(A0)")?;
     let clipped = &clipped[0];

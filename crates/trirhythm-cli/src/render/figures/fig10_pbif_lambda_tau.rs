@@ -5,7 +5,6 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig10_pbif_lambda_tau`].
 
-use super::mapfig::Map;
 use trirhythm_paper::fig10_pbif_lambda_tau::Fig10;
 
-picture_through!(Fig10, Map);
+picture_through!(Fig10);

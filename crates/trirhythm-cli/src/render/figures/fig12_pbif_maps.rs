@@ -3,7 +3,6 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig12_pbif_maps`].
 
-use super::mapfig::Map;
 use trirhythm_paper::fig12_pbif_maps::Fig12;
 
-picture_through!(Fig12, Map);
+picture_through!(Fig12);

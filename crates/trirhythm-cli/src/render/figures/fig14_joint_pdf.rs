@@ -5,7 +5,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig14_joint_pdf`].
 
-use crate::render::plot::{chart, colour_bar, pe, viridis};
+use crate::render::plot::{chart, colour_bar, pe, viridis, Backend};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -16,16 +16,13 @@ const PANEL: (u32, u32) = (460, 400);
 const DECADES: f64 = 3.0;
 const BAR: u32 = 70;
 
-fn heat<DB: DrawingBackend>(
+fn heat<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
     caption: &str,
     p: &JointPanel,
     values: &[Vec<f64>],
     top: f64,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<()> {
     let (u0, u1) = (p.u_edges[0], *p.u_edges.last().unwrap_or(&1.0));
     let (v0, v1) = (p.v_edges[0], *p.v_edges.last().unwrap_or(&1.0));
     let mut c = chart(area, caption, u0..u1, v0..v1, "U", "dU/dt")?;

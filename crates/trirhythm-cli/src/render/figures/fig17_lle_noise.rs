@@ -5,7 +5,6 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig17_lle_noise`] (one
 //! LLE-against-noise computation shared with Fig. 18).
 
-use super::lle::Lle;
 use trirhythm_paper::fig17_lle_noise::Fig17;
 
-picture_through!(Fig17, Lle);
+picture_through!(Fig17);

@@ -6,7 +6,6 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig18_lle_noise_fractional`] (one
 //! LLE-against-noise computation shared with Fig. 17).
 
-use super::lle::Lle;
 use trirhythm_paper::fig18_lle_noise_fractional::Fig18;
 
-picture_through!(Fig18, Lle);
+picture_through!(Fig18);

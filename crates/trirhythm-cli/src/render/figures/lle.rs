@@ -4,8 +4,7 @@
 //!
 //! Drawing only: the runs and verdicts are [`trirhythm_paper::lle`].
 
-use crate::render::plot::{chart, padded_range, pe, LegendStrip, Symbol, PALETTE};
-use crate::render::plot::{Heading, Picture};
+use crate::render::plot::{chart, padded_range, pe, Backend, LegendStrip, Symbol, PALETTE};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -39,10 +38,7 @@ pub fn panel_height(panels: &[Panel]) -> u32 {
 }
 
 /// Draw one panel: chart, error bars, zero line, verdicts, legend strip below.
-pub fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> Result<()> {
     let (top, bottom) = area.split_vertically(CHART_HEIGHT);
     let xs = panel
         .curves
@@ -125,39 +121,13 @@ where
     strip(panel).draw(&bottom)
 }
 
-/// Two panels side by side (Figs 17 and 18).
-pub fn draw_side_by_side<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    panels: &[Panel],
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
-    for (area, panel) in root.split_evenly((1, 2)).iter().zip(panels) {
+// An LLE-against-noise figure (Figs 17, 18): the two panels side by side.
+picture!(LleAgainstNoise, |self, root| size (2 * PANEL_WIDTH, panel_height(&self.panels)), draw {
+    for (area, panel) in root.split_evenly((1, 2)).iter().zip(&self.panels) {
         draw_panel(area, panel)?;
     }
     Ok(())
-}
-
-/// An LLE-against-noise figure (Figs 17, 18) as a picture: the two panels side by side.
-pub struct Lle<'a>(pub &'a LleAgainstNoise);
-
-impl Picture for Lle<'_> {
-    fn size(&self) -> (u32, u32) {
-        (2 * PANEL_WIDTH, panel_height(&self.0.panels))
-    }
-
-    fn heading(&self) -> Heading {
-        super::heading_of(&self.0.caption)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        draw_side_by_side(root, &self.0.panels)
-    }
-}
+});
 
 /// Whether a panel draws the line y = 0: a Lyapunov exponent's sign is the point.
 fn shows_zero(panel: &Panel) -> bool {

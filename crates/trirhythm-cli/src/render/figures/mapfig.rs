@@ -4,8 +4,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::maps`].
 
-use super::heading_of;
-use crate::render::plot::{chart, pe, Heading, LegendStrip, Picture, Symbol, FONT};
+use crate::render::plot::{chart, pe, Backend, LegendStrip, Symbol, FONT};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -95,45 +94,25 @@ fn layout(fig: &MapFigure) -> (usize, usize) {
     }
 }
 
-/// A map figure as a picture (one legend strip for all panels below them).
-pub struct Map<'a>(pub &'a MapFigure);
-
-impl Picture for Map<'_> {
-    fn size(&self) -> (u32, u32) {
-        let (r, c) = layout(self.0);
-        let w = PANEL.0 * c as u32;
-        (w, PANEL.1 * r as u32 + legend(self.0).height(w))
+// A map figure: its panels, one legend strip for all of them below.
+picture!(MapFigure, |self, root| size {
+    let (r, c) = layout(self);
+    let w = PANEL.0 * c as u32;
+    (w, PANEL.1 * r as u32 + legend(self).height(w))
+}, draw {
+    let (panels, strip) = root.split_vertically(PANEL.1 * layout(self).0 as u32);
+    for (area, p) in panels.split_evenly(layout(self)).iter().zip(&self.panels) {
+        draw_panel(area, p)?;
     }
-
-    fn heading(&self) -> Heading {
-        heading_of(&self.0.caption)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        let (panels, strip) = root.split_vertically(PANEL.1 * layout(self.0).0 as u32);
-        for (area, p) in panels
-            .split_evenly(layout(self.0))
-            .iter()
-            .zip(&self.0.panels)
-        {
-            draw_panel(area, p)?;
-        }
-        legend(self.0).draw(&strip)
-    }
-}
+    legend(self).draw(&strip)
+});
 
 /// Colour of the marked parameter point.
 const MARK: RGBColor = RGBColor(255, 0, 255);
 
 /// Draw one map panel: merged row runs of equal count, fold curves (named where known),
 /// cusps, the marked point. The legend is the figure's, outside the panels.
-fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Result<()> {
     let (gx, gy) = (&p.x.grid, &p.y.grid);
     let (sx, sy) = (p.x.scale, p.y.scale);
     let xr = (gx.start / sx)..(gx.stop / sx);

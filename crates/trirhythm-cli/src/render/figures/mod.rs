@@ -21,53 +21,38 @@
 //! through [`Bar`], the library's [`Monitor`].
 
 mod boundary;
-/// `impl Picture for $figure`, headed by its caption: `$size` pixels, drawn by the block
-/// `$draw`, which sees the figure as `self` and the drawing area as `$root`.
+/// `impl Picture for $figure`, headed by its caption (`$self.caption` unless given): `$size`
+/// pixels, drawn by the block `$draw`, which sees the figure as `self` and the area as `$root`.
 macro_rules! picture {
     ($figure:ty, |$self:tt, $root:ident| size $size:expr, draw $draw:block) => {
+        picture!($figure, |$self, $root| caption $self.caption, size $size, draw $draw);
+    };
+    ($figure:ty, |$self:tt, $root:ident| caption $caption:expr, size $size:expr, draw $draw:block) => {
         impl crate::render::plot::Picture for $figure {
             fn size(&$self) -> (u32, u32) {
                 $size
             }
 
             fn heading(&$self) -> crate::render::plot::Heading {
-                super::heading_of(&$self.caption)
+                super::heading_of(&$caption)
             }
 
-            fn draw<DB: plotters::prelude::DrawingBackend>(
+            fn draw<DB: crate::render::plot::Backend>(
                 &$self,
                 $root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
             ) -> anyhow::Result<()>
-            where
-                DB::ErrorType: 'static,
             $draw
         }
     };
 }
 
-/// `impl Picture for $figure`, a newtype of shared data drawn through the view `$view`
-/// (`$view(&self.0)` is a [`Picture`]): the map figures and the LLE-against-noise figures.
+/// `impl Picture for $figure`, a newtype of shared data that is itself a [`Picture`]: the map
+/// figures and the LLE-against-noise figures.
 macro_rules! picture_through {
-    ($figure:ty, $view:ident) => {
-        impl crate::render::plot::Picture for $figure {
-            fn size(&self) -> (u32, u32) {
-                $view(&self.0).size()
-            }
-
-            fn heading(&self) -> crate::render::plot::Heading {
-                $view(&self.0).heading()
-            }
-
-            fn draw<DB: plotters::prelude::DrawingBackend>(
-                &self,
-                root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
-            ) -> anyhow::Result<()>
-            where
-                DB::ErrorType: 'static,
-            {
-                $view(&self.0).draw(root)
-            }
-        }
+    ($figure:ty) => {
+        picture!($figure, |self, root| caption self.0.caption, size self.0.size(), draw {
+            self.0.draw(root)
+        });
     };
 }
 

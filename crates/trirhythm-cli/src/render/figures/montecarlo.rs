@@ -4,7 +4,7 @@
 //!
 //! Drawing only: the ensembles and their comparison with the theory are [`trirhythm_paper::montecarlo`].
 
-use crate::render::plot::{chart, pe, Symbol, PALETTE};
+use crate::render::plot::{chart, pe, Backend, Symbol, PALETTE};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -39,13 +39,10 @@ fn mc_colour(i: usize) -> RGBColor {
 }
 
 /// Draw one amplitude panel.
-pub fn draw_amplitude_panel<DB: DrawingBackend>(
+pub fn draw_amplitude_panel<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
     p: &AmplitudePanel,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<()> {
     let x_max = p
         .runs
         .iter()
@@ -73,20 +70,21 @@ where
     let stationary = p.runs.iter().all(|r| r.stationary);
     let mut c = chart(area, &p.caption, 0.0..x_max, 0.0..y_max * 1.08, "A", "P(A)")?;
     // the verdicts, inside the panel at its upper right
-    let mut status = Vec::new();
-    if !stationary {
-        status.push((
-            "Monte Carlo NOT stationary".to_string(),
-            RGBColor(200, 0, 0),
-        ));
-    }
-    if cut {
-        status.push((
-            format!("theory peak {theory_max:.1}, cut"),
-            RGBColor(90, 90, 90),
-        ));
-    }
-    for (k, (text, colour)) in status.into_iter().enumerate() {
+    let status = [
+        (!stationary).then(|| {
+            (
+                "Monte Carlo NOT stationary".to_string(),
+                RGBColor(200, 0, 0),
+            )
+        }),
+        cut.then(|| {
+            (
+                format!("theory peak {theory_max:.1}, cut"),
+                RGBColor(90, 90, 90),
+            )
+        }),
+    ];
+    for (k, (text, colour)) in status.into_iter().flatten().enumerate() {
         let style = (crate::render::plot::FONT, 14)
             .into_font()
             .color(&colour)
@@ -138,15 +136,12 @@ where
 }
 
 /// A grid of amplitude panels with one legend strip below them.
-pub fn draw_amplitude_grid<DB: DrawingBackend>(
+pub fn draw_amplitude_grid<DB: Backend>(
     root: &DrawingArea<DB, Shift>,
     panels: &[AmplitudePanel],
     layout: (usize, usize),
     panel_height: u32,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Result<()> {
     let (area, strip) = root.split_vertically(panel_height * layout.0 as u32);
     for (a, p) in area.split_evenly(layout).iter().zip(panels) {
         draw_amplitude_panel(a, p)?;
