@@ -165,8 +165,13 @@ struct Document<'a> {
 }
 
 /// Open the checkpoint directory of a run (`run.txt` names the run, `path-<i>.json` hold
-/// finished paths): the paths already done.
-fn resume(dir: &Path, fingerprint: &str, paths: usize) -> Result<Vec<PathStats>> {
+/// finished paths, `lock` claims the directory while a run owns it): the claim and the paths
+/// already done. Every path file must carry this run's fingerprint and its own index.
+fn resume(
+    dir: &Path,
+    fingerprint: &str,
+    s: &EnsembleSetup,
+) -> Result<(crate::io::DirLock, Vec<PathStats>)> {
     if dir.exists() && !dir.is_dir() {
         return bad(format!(
             "--checkpoint {}: exists and is not a directory",
@@ -175,34 +180,127 @@ fn resume(dir: &Path, fingerprint: &str, paths: usize) -> Result<Vec<PathStats>>
     }
     std::fs::create_dir_all(dir)
         .with_context(|| format!("creating the checkpoint directory {}", dir.display()))?;
+    let lock = crate::io::DirLock::claim(dir, fingerprint)?;
     let tag = dir.join("run.txt");
     let mut done = Vec::new();
     match std::fs::read_to_string(&tag) {
         Ok(text) if text == fingerprint => {
-            for i in 0..paths {
+            for i in 0..s.spec.paths {
                 let f = dir.join(format!("path-{i}.json"));
                 if let Ok(t) = std::fs::read_to_string(&f) {
-                    let p: PathStats = serde_json::from_str(&t)
-                        .with_context(|| format!("reading the checkpoint {}", f.display()))?;
-                    done.push(p);
+                    done.push(read_path(&f, &t, fingerprint, i as u64, s)?);
                 }
             }
         }
         Ok(_) => {
             return bad(format!(
-                "--checkpoint {}: holds another run (different parameters, method or \
-                     sizes); use an empty directory",
+                "--checkpoint {}: holds another run (different parameters, method, sizes or \
+                 trirhythm version); use an empty directory",
                 dir.display()
             ))
         }
-        Err(_) => crate::io::write_atomic(&tag, fingerprint.as_bytes())?,
+        Err(_) => {
+            if let Some(f) = path_files(dir)?.first() {
+                return bad(format!(
+                    "--checkpoint {}: holds path files ({}) but no run.txt naming their run; \
+                     use an empty directory",
+                    dir.display(),
+                    f.display()
+                ));
+            }
+            crate::io::write_atomic(&tag, fingerprint.as_bytes())?
+        }
     }
-    Ok(done)
+    Ok((lock, done))
 }
 
-/// Save a finished path in the checkpoint directory.
-fn save(dir: &Path, p: &PathStats) -> Result<()> {
-    let text = serde_json::to_string(p)?;
+/// The `path-*.json` files in `dir`.
+fn path_files(dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir)
+        .with_context(|| format!("reading the checkpoint directory {}", dir.display()))?
+    {
+        let e = e.with_context(|| format!("reading the checkpoint directory {}", dir.display()))?;
+        let n = e.file_name();
+        let n = n.to_string_lossy();
+        if n.starts_with("path-") && n.ends_with(".json") {
+            out.push(e.path());
+        }
+    }
+    out.sort();
+    Ok(out)
+}
+
+/// A saved path, verified: this run's fingerprint and the index `i` of its file name.
+fn read_path(
+    f: &Path,
+    text: &str,
+    fingerprint: &str,
+    i: u64,
+    s: &EnsembleSetup,
+) -> Result<PathStats> {
+    let refuse = |why: &str| -> Result<PathStats> {
+        bad(format!(
+            "checkpoint {}: {why}; it cannot be used for this run (remove it, or use an empty \
+             directory)",
+            f.display()
+        ))
+    };
+    let mut v: Value = match serde_json::from_str(text) {
+        Ok(v) => v,
+        Err(e) => return refuse(&format!("not a path file ({e})")),
+    };
+    let Some(obj) = v.as_object_mut() else {
+        return refuse("not a path file (not a JSON object)");
+    };
+    match obj.remove("fingerprint") {
+        Some(Value::String(s)) if s == fingerprint => {}
+        Some(Value::String(_)) => {
+            return refuse("written by another run (its fingerprint differs)")
+        }
+        _ => return refuse("carries no run fingerprint"),
+    }
+    let p: PathStats = match serde_json::from_value(v) {
+        Ok(p) => p,
+        Err(e) => return refuse(&format!("not a path file ({e})")),
+    };
+    if p.path != i {
+        return refuse(&format!("holds path {} but its name says path {i}", p.path));
+    }
+    if !shaped(&p, s) {
+        return refuse(
+            "its statistics have another shape than this run's (bins, batches, wells or start)",
+        );
+    }
+    Ok(p)
+}
+
+/// Whether `p` has this run's shapes: the checks of the library's `merge` (which repeats them
+/// at the end), made here so that a bad file is refused before any work and by its name.
+fn shaped(p: &PathStats, s: &EnsembleSetup) -> bool {
+    let spec = &s.spec;
+    let nw = spec.wells.as_ref().map_or(0, |w| w.len());
+    let quarters = p.amplitude.len();
+    let hist =
+        |q: &Vec<Vec<u64>>, n: usize| q.len() == quarters && q.iter().all(|h| h.len() == n + 1);
+    quarters > 0
+        && p.u0.to_bits() == s.problem.start(p.path).0.to_bits()
+        && p.batches.len() == spec.batches
+        && p.batches.iter().all(|b| b.wells.len() == nw)
+        && hist(&p.amplitude, spec.bins)
+        && hist(&p.energy, spec.bins)
+        && hist(&p.turning, spec.bins)
+        && hist(&p.joint, spec.joint_bins * spec.joint_bins)
+        && p.passages.len() == nw * nw
+}
+
+/// Save a finished path in the checkpoint directory, with the run's fingerprint.
+fn save(dir: &Path, fingerprint: &str, p: &PathStats) -> Result<()> {
+    let mut v = serde_json::to_value(p)?;
+    if let Value::Object(m) = &mut v {
+        m.insert("fingerprint".into(), Value::String(fingerprint.into()));
+    }
+    let text = serde_json::to_string(&v)?;
     crate::io::write_atomic(&dir.join(format!("path-{}.json", p.path)), text.as_bytes())
 }
 
@@ -211,6 +309,7 @@ fn save(dir: &Path, p: &PathStats) -> Result<()> {
 struct Watch<'a> {
     bar: &'a indicatif::ProgressBar,
     checkpoint: Option<&'a Path>,
+    fingerprint: &'a str,
     save_error: std::sync::Mutex<Option<anyhow::Error>>,
 }
 
@@ -222,7 +321,7 @@ impl Monitor<PathStats> for Watch<'_> {
 
     fn finished(&self, p: &PathStats) -> trirhythm::Result<()> {
         if let Some(c) = self.checkpoint {
-            if let Err(e) = save(c, p) {
+            if let Err(e) = save(c, self.fingerprint, p) {
                 *self.save_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
                 return Err(trirhythm::Error::Undefined {
                     what: "checkpoint",
@@ -239,8 +338,9 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     let s = args.setup()?;
     let method = method_line(args);
     let fingerprint = format!(
-        "trirhythm ensemble\nparams: {}\n{method}\nspec: {:?}\nstarts: {:?} system: {:?} barrier: {:?} \
+        "trirhythm ensemble {}\nparams: {}\n{method}\nspec: {:?}\nstarts: {:?} system: {:?} barrier: {:?} \
          blow_up: {:e}\n",
+        env!("CARGO_PKG_VERSION"),
         s.params.describe(),
         s.spec,
         s.problem.starts(),
@@ -248,9 +348,13 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
         s.problem.barrier(),
         s.problem.blow_up()
     );
-    let done = match &args.checkpoint {
-        Some(dir) => resume(dir, &fingerprint, args.paths)?,
-        None => vec![],
+    // the claim lives until the command returns (or a signal removes it)
+    let (_lock, done) = match &args.checkpoint {
+        Some(dir) => {
+            let (l, d) = resume(dir, &fingerprint, &s)?;
+            (Some(l), d)
+        }
+        None => (None, vec![]),
     };
     if !done.is_empty() {
         eprintln!(
@@ -267,6 +371,7 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     let watch = Watch {
         bar: &bar,
         checkpoint: args.checkpoint.as_deref(),
+        fingerprint: &fingerprint,
         save_error: std::sync::Mutex::new(None),
     };
     let todo: Vec<u64> = (0..args.paths as u64)

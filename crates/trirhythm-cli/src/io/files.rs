@@ -10,6 +10,8 @@
 //! - A destination that is a directory, an existing non-regular file (a device, a pipe), or
 //!   whose directory does not exist, is bad input, refused before any work starts
 //!   ([`check_destination`]).
+//! - A directory claimed by a run ([`DirLock`], `dir/lock` created with `create_new`) is
+//!   released like a temporary: when dropped and on SIGINT, SIGTERM or SIGHUP.
 //! - Standard output: a closed pipe ends the command quietly (exit 0); any other write error
 //!   (a full device) is an error (exit 1). `main` flushes standard output itself so that the
 //!   error is seen.
@@ -232,5 +234,79 @@ impl Stream {
                 t.commit()
             }
         }
+    }
+}
+
+/// An exclusive claim on a directory (`dir/lock`, created with `create_new`, holding the
+/// process id and what the run is): removed when dropped and, like a temporary, on SIGINT,
+/// SIGTERM or SIGHUP. A lock left by a killed run (SIGKILL, a crash) stays and is removed by
+/// hand; the refusal says so, and on Linux says whether its process still runs.
+pub struct DirLock {
+    path: PathBuf,
+}
+
+impl DirLock {
+    /// Claim `dir` for a run described by `what`; refused (bad input) while another holds it.
+    pub fn claim(dir: &Path, what: &str) -> Result<DirLock> {
+        let path = dir.join("lock");
+        // registered under the cleanup's lock before it exists: a signal never leaves it behind
+        let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+        let created = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&path);
+        match created {
+            Ok(mut f) => {
+                list.push(path.clone());
+                drop(list);
+                let lock = DirLock { path };
+                f.write_all(format!("pid {}\n{what}", std::process::id()).as_bytes())
+                    .and_then(|()| f.flush())
+                    .with_context(|| format!("writing {}", lock.path.display()))?;
+                Ok(lock)
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                drop(list);
+                let owner = std::fs::read_to_string(&path).ok().and_then(|t| {
+                    t.lines()
+                        .next()
+                        .and_then(|l| l.strip_prefix("pid "))
+                        .and_then(|p| p.trim().parse::<u32>().ok())
+                });
+                let who = match owner {
+                    Some(pid) => {
+                        let gone = Path::new("/proc/self").exists()
+                            && !Path::new(&format!("/proc/{pid}")).exists();
+                        if gone {
+                            format!(
+                                "process {pid}, which no longer runs (a killed run left the \
+                                 lock)"
+                            )
+                        } else {
+                            format!("process {pid}")
+                        }
+                    }
+                    None => "an unknown process".to_string(),
+                };
+                bad(format!(
+                    "--checkpoint {}: in use by {who}; wait for it to finish, or if no run \
+                     owns it any more, remove {} by hand",
+                    dir.display(),
+                    path.display()
+                ))
+            }
+            Err(e) => {
+                drop(list);
+                Err(e).with_context(|| format!("creating {}", path.display()))
+            }
+        }
+    }
+}
+
+impl Drop for DirLock {
+    fn drop(&mut self) {
+        let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+        let _ = std::fs::remove_file(&self.path);
+        list.retain(|p| p != &self.path);
     }
 }
