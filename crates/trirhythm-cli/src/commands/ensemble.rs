@@ -17,7 +17,9 @@ use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use trirhythm::analysis::ensemble::{merge, run_paths, EnsembleResult, EnsembleSpec, PathStats};
+use trirhythm::analysis::ensemble::{
+    fits, merge, run_paths, EnsembleResult, EnsembleSpec, PathStats,
+};
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
 use trirhythm::monitor::Monitor;
@@ -267,31 +269,12 @@ fn read_path(
     if p.path != i {
         return refuse(&format!("holds path {} but its name says path {i}", p.path));
     }
-    if !shaped(&p, s) {
+    if !fits(&p, &s.spec, &s.problem) {
         return refuse(
             "its statistics have another shape than this run's (bins, batches, wells or start)",
         );
     }
     Ok(p)
-}
-
-/// Whether `p` has this run's shapes: the checks of the library's `merge` (which repeats them
-/// at the end), made here so that a bad file is refused before any work and by its name.
-fn shaped(p: &PathStats, s: &EnsembleSetup) -> bool {
-    let spec = &s.spec;
-    let nw = spec.wells.as_ref().map_or(0, |w| w.len());
-    let quarters = p.amplitude.len();
-    let hist =
-        |q: &Vec<Vec<u64>>, n: usize| q.len() == quarters && q.iter().all(|h| h.len() == n + 1);
-    quarters > 0
-        && p.u0.to_bits() == s.problem.start(p.path).0.to_bits()
-        && p.batches.len() == spec.batches
-        && p.batches.iter().all(|b| b.wells.len() == nw)
-        && hist(&p.amplitude, spec.bins)
-        && hist(&p.energy, spec.bins)
-        && hist(&p.turning, spec.bins)
-        && hist(&p.joint, spec.joint_bins * spec.joint_bins)
-        && p.passages.len() == nw * nw
 }
 
 /// Save a finished path in the checkpoint directory, with the run's fingerprint.

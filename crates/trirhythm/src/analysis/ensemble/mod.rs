@@ -223,8 +223,10 @@ pub fn merge(
     Ok(merging::assemble(spec, &layout, &sizes, omega1, &stats))
 }
 
-/// Whether `p` has the shape of this spec's statistics and this problem's start.
-fn fits(p: &PathStats, spec: &EnsembleSpec, problem: &Problem) -> bool {
+/// Whether `p` has the shape of this spec's statistics and this problem's start: what
+/// [`merge`] checks of every piece, for a caller that reads pieces back (a checkpoint) and
+/// wants to refuse a foreign one by its name before any work.
+pub fn fits(p: &PathStats, spec: &EnsembleSpec, problem: &Problem) -> bool {
     let nw = spec.wells.as_ref().map_or(0, Wells::len);
     let quarters =
         |q: &Vec<Vec<u64>>, n: usize| q.len() == QUARTERS && q.iter().all(|h| h.len() == n + 1);
