@@ -18,7 +18,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use trirhythm::analysis::ensemble::{
-    fits, merge, run_paths, EnsembleResult, EnsembleSpec, PathStats,
+    fingerprint, merge, run_paths, EnsembleResult, EnsembleSpec, PathStats, Piece,
 };
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
@@ -233,7 +233,8 @@ fn path_files(dir: &Path) -> Result<Vec<PathBuf>> {
     Ok(out)
 }
 
-/// A saved path, verified: this run's fingerprint and the index `i` of its file name.
+/// A saved path, verified ([`Piece::verify`]): this run's fingerprint, the index `i` of its
+/// file name and this run's shapes.
 fn read_path(
     f: &Path,
     text: &str,
@@ -248,42 +249,24 @@ fn read_path(
             f.display()
         ))
     };
-    let mut v: Value = match serde_json::from_str(text) {
-        Ok(v) => v,
-        Err(e) => return refuse(&format!("not a path file ({e})")),
-    };
-    let Some(obj) = v.as_object_mut() else {
-        return refuse("not a path file (not a JSON object)");
-    };
-    match obj.remove("fingerprint") {
-        Some(Value::String(s)) if s == fingerprint => {}
-        Some(Value::String(_)) => {
-            return refuse("written by another run (its fingerprint differs)")
-        }
-        _ => return refuse("carries no run fingerprint"),
-    }
-    let p: PathStats = match serde_json::from_value(v) {
+    let piece: Piece = match serde_json::from_str(text) {
         Ok(p) => p,
-        Err(e) => return refuse(&format!("not a path file ({e})")),
+        Err(e) => return refuse(&format!("not a path file of this version ({e})")),
     };
-    if p.path != i {
-        return refuse(&format!("holds path {} but its name says path {i}", p.path));
+    match piece.verify(fingerprint, i, &s.problem, &s.spec) {
+        Ok(p) => Ok(p),
+        Err(trirhythm::Error::Undefined { why, .. }) => refuse(&why),
+        Err(e) => Err(e.into()),
     }
-    if !fits(&p, &s.spec, &s.problem) {
-        return refuse(
-            "its statistics have another shape than this run's (bins, batches, wells or start)",
-        );
-    }
-    Ok(p)
 }
 
 /// Save a finished path in the checkpoint directory, with the run's fingerprint.
 fn save(dir: &Path, fingerprint: &str, p: &PathStats) -> Result<()> {
-    let mut v = serde_json::to_value(p)?;
-    if let Value::Object(m) = &mut v {
-        m.insert("fingerprint".into(), Value::String(fingerprint.into()));
-    }
-    let text = serde_json::to_string(&v)?;
+    let piece = Piece {
+        fingerprint: fingerprint.into(),
+        stats: p.clone(),
+    };
+    let text = serde_json::to_string(&piece)?;
     crate::io::write_atomic(&dir.join(format!("path-{}.json", p.path)), text.as_bytes())
 }
 
@@ -320,17 +303,7 @@ impl Monitor<PathStats> for Watch<'_> {
 pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     let s = args.setup()?;
     let method = method_line(args);
-    let fingerprint = format!(
-        "trirhythm ensemble {}\nparams: {}\n{method}\nspec: {:?}\nstarts: {:?} system: {:?} barrier: {:?} \
-         blow_up: {:e}\n",
-        env!("CARGO_PKG_VERSION"),
-        s.params.describe(),
-        s.spec,
-        s.problem.starts(),
-        s.problem.system(),
-        s.problem.barrier(),
-        s.problem.blow_up()
-    );
+    let fingerprint = fingerprint(&s.problem, &s.method, &s.spec);
     // the claim lives until the command returns (or a signal removes it)
     let (_lock, done) = match &args.checkpoint {
         Some(dir) => {

@@ -86,11 +86,13 @@
 
 mod diagnostics;
 mod merging;
+mod piece;
 mod recording;
 mod spec;
 
 pub use diagnostics::Stationarity;
 pub use merging::{Density, EnsembleResult, Estimate, JointDensity, Passage};
+pub use piece::{fingerprint, Piece};
 pub use recording::{BatchSums, PassageSums, PathStats};
 pub use spec::{
     EnsembleSpec, Wells, MAX_AMPLITUDE, MAX_BATCHES, MAX_BINS, MAX_JOINT_BINS, MAX_PATHS,
