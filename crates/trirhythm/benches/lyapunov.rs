@@ -1,4 +1,4 @@
-//! The largest Lyapunov exponent against a plain path of the same length (the bound:
+//! The largest Lyapunov exponent against a plain path of the same length (the target:
 //! ≤ 2×), by two trajectories (the copy being a second path) and by the tangent method (a
 //! second memory, no second noise stream), side by side in one run; and 8 realisations of
 //! T = 2000 on one thread against two (≥ 1.8× on 2 cores). Fig. 17(a)'s parameters (λ = 0.995,

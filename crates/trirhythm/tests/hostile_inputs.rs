@@ -4,7 +4,7 @@
 //! argument in turn replaced by NaN, ±∞, 0, a negative value and a huge one (1e300; 10¹² and
 //! `usize::MAX` for counts) while the others stay valid.
 //!
-//! The claim (issue "every check in the library"): within one second, without a panic, the call
+//! The claim (every check is in the library): within one second, without a panic, the call
 //! returns an `Err` that names the argument, or — where the value is legitimately in range, as
 //! each row's `accepts` states — anything but an invalid-parameter error. Functions that return
 //! a plain number (evaluations such as P(A) at a point, Γ(x), a quadrature) are total: they are

@@ -86,7 +86,7 @@ fn simulated_boundary_without_the_wall_brackets_the_exact_one() {
         total += b.simulations();
         points += 1;
     }
-    // the target: a point to 1e-3 relative in at most 15 simulations on average
+    // the target: a point to 1e-3 relative in at most 15 simulations on average
     assert!(
         total <= 15 * points,
         "{total} simulations for {points} points"

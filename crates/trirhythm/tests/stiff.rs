@@ -89,7 +89,7 @@ fn fig13b_from_u13_settles_on_the_outer_cycle_and_converges_in_dt() {
     assert!(runs[0].1 > 2.0, "stiffness {}", runs[0].1);
     // on the outer cycle (the other stable cycles are at 2.6 and 8.4)
     assert!((a1 - outer).abs() < 0.02 * outer, "{a1} vs {outer}");
-    // the criterion: halving Δt = 0.01 moves the amplitude by less than 10⁻³
+    // the criterion: halving Δt = 0.01 moves the amplitude by less than 10⁻³
     assert!(d12 < 1e-3, "{d12:e}");
     // and it converges at least at second order (the Hermite-corrected U and the second pass
     // of stiff steps make the pre-asymptotic rate higher, ≈ 3)

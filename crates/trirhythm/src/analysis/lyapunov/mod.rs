@@ -65,7 +65,7 @@
 //! tangent costs the same (a second memory update replaces the second path; measured 0.99× the
 //! two-trajectory time, both ≈ 1.65× a plain path) and needs no d₀ and no waiting. The two agree
 //! within their standard errors on every case tested (below), path by path to < 1e-6 without
-//! impacts; the tangent is offered as the cross-check the issue asks for.
+//! impacts; the tangent is offered as an independent cross-check.
 //!
 //! # What the number means for λ < 1
 //! A linear fractional system decays algebraically in the long run (Mittag-Leffler tails,
