@@ -12,7 +12,7 @@ use crate::notes::num;
 use crate::table::Table;
 use crate::Monitor;
 use serde::{Deserialize, Serialize};
-use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, PathStats, Wells};
+use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, Wells};
 use trirhythm::analysis::versus::{compare, theory_layout, TheoryComparison};
 use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem, System};
 use trirhythm::model::Params;
@@ -158,21 +158,12 @@ pub fn ensemble(
         ..Default::default()
     };
     monitor.check()?;
-    run_ensemble(&problem, &method, &spec, &Forward(monitor))
-}
-
-/// The figure's monitor watching one ensemble: its progress and its cancellation (the
-/// per-path statistics are not the figure's to keep).
-struct Forward<'a>(&'a dyn Monitor);
-
-impl Monitor<PathStats> for Forward<'_> {
-    fn progress(&self, done: u64, total: u64) {
-        self.0.progress(done, total);
-    }
-
-    fn cancelled(&self) -> bool {
-        self.0.cancelled()
-    }
+    run_ensemble(
+        &problem,
+        &method,
+        &spec,
+        &trirhythm::monitor::Relay(monitor),
+    )
 }
 
 /// A P(A) panel: the theory of both variants and ensembles of each of `systems`.

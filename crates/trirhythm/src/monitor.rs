@@ -16,7 +16,8 @@
 //!
 //! [`Silent`] watches nothing; [`CancelFlag`] stops a run from another thread (a signal
 //! handler, a Python `KeyboardInterrupt`, a Dask cancellation); [`OnlyCancel`] hands a
-//! monitor's cancellation, and nothing else, to an inner call that reports other pieces.
+//! monitor's cancellation, and nothing else, to an inner call that reports other pieces, and
+//! [`Relay`] its cancellation and progress.
 //!
 //! # Example
 //! ```
@@ -90,6 +91,22 @@ impl<T: ?Sized> Monitor<T> for CancelFlag {
 pub struct OnlyCancel<'a, T: ?Sized>(pub &'a dyn Monitor<T>);
 
 impl<T: ?Sized, U: ?Sized> Monitor<U> for OnlyCancel<'_, T> {
+    fn cancelled(&self) -> bool {
+        self.0.cancelled()
+    }
+}
+
+/// Forwards the progress and the cancellation of a monitor of other pieces, keeping the inner
+/// call's pieces inside: what a caller hands to one long inner call whose progress is its own
+/// (one ensemble of a figure).
+#[derive(Clone, Copy)]
+pub struct Relay<'a, T: ?Sized>(pub &'a dyn Monitor<T>);
+
+impl<T: ?Sized, U: ?Sized> Monitor<U> for Relay<'_, T> {
+    fn progress(&self, done: u64, total: u64) {
+        self.0.progress(done, total);
+    }
+
     fn cancelled(&self) -> bool {
         self.0.cancelled()
     }
