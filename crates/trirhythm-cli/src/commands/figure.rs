@@ -5,12 +5,13 @@ use crate::args::VariantArg;
 use crate::error::bad;
 use crate::io::progress::Bar;
 use crate::io::{stdout_write, write_atomic, Csv};
-use crate::render::plot::{save, Picture};
+use crate::render::plot::{save, Picture, VerdictLine};
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use trirhythm::theory::averaging::Variant;
 use trirhythm_paper::table::Table;
+use trirhythm_paper::verdict::claims::{judge_figure, ClaimVerdict, Slot};
 use trirhythm_paper::{Figure, FigureOptions};
 
 #[derive(Debug, clap::Args)]
@@ -152,7 +153,7 @@ struct Entry {
     pub make: fn(&Request, &Path, bool) -> Result<Vec<PathBuf>>,
 }
 
-fn entry<F: Figure + Picture>() -> Entry {
+fn entry<F: Slot + Picture>() -> Entry {
     Entry {
         number: F::NUMBER,
         title: F::TITLE,
@@ -185,11 +186,7 @@ fn registry() -> Vec<Entry> {
     ]
 }
 
-fn make<F: Figure + Picture>(
-    request: &Request,
-    out_dir: &Path,
-    data: bool,
-) -> Result<Vec<PathBuf>> {
+fn make<F: Slot + Picture>(request: &Request, out_dir: &Path, data: bool) -> Result<Vec<PathBuf>> {
     let file = match request {
         Request::Compute(options) => DataFile {
             figure: F::NUMBER,
@@ -220,8 +217,25 @@ fn make<F: Figure + Picture>(
     for table in file.data.tables() {
         files.push(write_table(&stem, &table)?);
     }
-    files.extend(save(&file.data, &stem)?);
+    let options = FigureOptions {
+        quick: file.quick,
+        variant: file.variant,
+    };
+    let (data, verdicts) = judge_figure(file.data, &options);
+    files.extend(save(&data, verdict_lines(&verdicts), &stem)?);
     Ok(files)
+}
+
+/// The verdicts on a figure's claims as lines for its picture: the claim's id, the verdict
+/// and its two deciding numbers.
+pub fn verdict_lines(verdicts: &[ClaimVerdict]) -> Vec<VerdictLine> {
+    verdicts
+        .iter()
+        .map(|v| VerdictLine {
+            tag: v.decision.verdict.tag().to_string(),
+            text: format!("{}: {}", v.claim.id, v.summary(2)),
+        })
+        .collect()
 }
 
 /// Write one of a figure's tables as `stem{suffix}.csv` (notes as `#` lines); refuses a table

@@ -49,6 +49,29 @@ pub struct Heading {
     pub title: String,
     /// Parameters, variant, choices (wrapped to the picture's width).
     pub lines: Vec<String>,
+    /// The verdicts on the paper's claims that rest on the figure, drawn below the lines in
+    /// the verdict's colour.
+    pub verdicts: Vec<VerdictLine>,
+}
+
+/// One verdict on a claim, as drawn on a picture.
+#[derive(Clone, Serialize, Deserialize)]
+pub struct VerdictLine {
+    /// `confirmed`, `refuted` or `undetermined` (sets the colour).
+    pub tag: String,
+    /// The line: the claim, the verdict, the deciding numbers.
+    pub text: String,
+}
+
+impl VerdictLine {
+    /// The colour of a verdict (Okabe–Ito: blue, vermillion, and a dark grey).
+    fn colour(&self) -> RGBColor {
+        match self.tag.as_str() {
+            "confirmed" => RGBColor(0, 114, 178),
+            "refuted" => RGBColor(213, 94, 0),
+            _ => RGBColor(90, 90, 90),
+        }
+    }
 }
 
 const TITLE_SIZE: u32 = 20;
@@ -56,25 +79,17 @@ const LINE_SIZE: u32 = 14;
 const LINE_HEIGHT: u32 = 19;
 
 impl Heading {
-    /// The lines wrapped at word boundaries to `width` pixels.
-    fn wrapped(&self, width: u32) -> Vec<String> {
-        // DejaVu Sans averages ~0.55 em per character
-        let max = ((width as f64 - 24.0) / (0.56 * LINE_SIZE as f64)).max(20.0) as usize;
-        let mut out = Vec::new();
-        for line in &self.lines {
-            let mut cur = String::new();
-            for word in line.split(' ') {
-                if !cur.is_empty() && cur.chars().count() + 1 + word.chars().count() > max {
-                    out.push(std::mem::take(&mut cur));
-                    cur.push_str("    ");
-                } else if !cur.is_empty() {
-                    cur.push(' ');
-                }
-                cur.push_str(word);
-            }
-            out.push(cur);
-        }
-        out
+    /// The lines, then the verdicts, wrapped at word boundaries to `width` pixels, each
+    /// with its colour.
+    fn wrapped(&self, width: u32) -> Vec<(String, RGBColor)> {
+        let plain = RGBColor(40, 40, 40);
+        let all = self.lines.iter().map(|l| (l.clone(), plain)).chain(
+            self.verdicts
+                .iter()
+                .map(|v| (format!("Verdict {}", v.text), v.colour())),
+        );
+        all.flat_map(|(line, colour)| wrap(&line, width).into_iter().map(move |l| (l, colour)))
+            .collect()
     }
 
     fn height(&self, width: u32) -> u32 {
@@ -89,17 +104,36 @@ impl Heading {
             (FONT, TITLE_SIZE).into_font().color(&BLACK),
         ))
         .map_err(pe)?;
-        for (i, line) in self.wrapped(width).into_iter().enumerate() {
+        for (i, (line, colour)) in self.wrapped(width).into_iter().enumerate() {
             let y = (14 + TITLE_SIZE + LINE_HEIGHT * i as u32) as i32;
             area.draw(&Text::new(
                 line,
                 (12, y),
-                (FONT, LINE_SIZE).into_font().color(&RGBColor(40, 40, 40)),
+                (FONT, LINE_SIZE).into_font().color(&colour),
             ))
             .map_err(pe)?;
         }
         Ok(())
     }
+}
+
+/// `line` wrapped at word boundaries to `width` pixels (continuations indented).
+fn wrap(line: &str, width: u32) -> Vec<String> {
+    // DejaVu Sans averages ~0.55 em per character
+    let max = ((width as f64 - 24.0) / (0.56 * LINE_SIZE as f64)).max(20.0) as usize;
+    let mut out = Vec::new();
+    let mut cur = String::new();
+    for word in line.split(' ') {
+        if !cur.is_empty() && cur.chars().count() + 1 + word.chars().count() > max {
+            out.push(std::mem::take(&mut cur));
+            cur.push_str("    ");
+        } else if !cur.is_empty() {
+            cur.push(' ');
+        }
+        cur.push_str(word);
+    }
+    out.push(cur);
+    out
 }
 
 /// A plotters backend whose errors `anyhow` can carry (every backend drawn on here).
@@ -117,11 +151,17 @@ pub trait Picture {
     fn draw<DB: Backend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>;
 }
 
-/// Render `picture` with its heading to `stem.png` and `stem.svg`; returns the paths written.
-pub fn save(picture: &impl Picture, stem: &Path) -> Result<Vec<PathBuf>> {
+/// Render `picture` with its heading and `verdicts` (on the claims resting on it) to
+/// `stem.png` and `stem.svg`; returns the paths written.
+pub fn save(
+    picture: &impl Picture,
+    verdicts: Vec<VerdictLine>,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
     init_fonts();
     let (w, h) = picture.size();
-    let heading = picture.heading();
+    let mut heading = picture.heading();
+    heading.verdicts = verdicts;
     let hh = heading.height(w);
     let size = (w, h + hh);
     fn render<DB: Backend>(

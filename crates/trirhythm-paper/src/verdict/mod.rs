@@ -186,6 +186,35 @@ pub struct Check {
     pub outcome: Outcome,
 }
 
+impl Check {
+    /// The check in words: what, the value with its uncertainty, the statistic against its
+    /// threshold ("r = 1 → 0.99: Δ = −0.0081 (exact), relative change = −0.25, threshold 1e-9").
+    pub fn describe(&self) -> String {
+        use crate::notes::sig;
+        let value = match self.value.uncertainty {
+            Uncertainty::Exact => format!("{} (exact)", sig(self.value.value, 3)),
+            Uncertainty::StdErr { se, .. } => {
+                format!("{} ± {}", sig(self.value.value, 3), sig(se, 3))
+            }
+            Uncertainty::Bracket { lo, hi } => {
+                format!(
+                    "{} in [{}, {}]",
+                    sig(self.value.value, 3),
+                    sig(lo, 3),
+                    sig(hi, 3)
+                )
+            }
+        };
+        format!(
+            "{}: {value}, {} = {} against {}",
+            self.what,
+            self.statistic,
+            sig(self.statistic_value, 3),
+            sig(self.threshold, 3)
+        )
+    }
+}
+
 /// A rule's decision: the verdict and the numbers behind it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Decision {
@@ -227,6 +256,27 @@ impl Decision {
             checks,
             tally,
         }
+    }
+
+    /// At most `n` checks that decided the verdict: those against the claim when refuted,
+    /// for it when confirmed, else the undefined and not significant ones (the first checks
+    /// when none is of that kind).
+    pub fn deciding(&self, n: usize) -> Vec<&Check> {
+        let wanted: &[Outcome] = match self.verdict {
+            Verdict::Refuted => &[Outcome::Against],
+            Verdict::Confirmed => &[Outcome::For],
+            Verdict::Undetermined { .. } => &[Outcome::Undefined, Outcome::Neither],
+        };
+        let mut picked: Vec<&Check> = self
+            .checks
+            .iter()
+            .filter(|c| wanted.contains(&c.outcome))
+            .take(n)
+            .collect();
+        if picked.is_empty() {
+            picked = self.checks.iter().take(n).collect();
+        }
+        picked
     }
 
     /// The same numbers, undetermined for `why` (e.g. a parameter the paper does not print):

@@ -87,5 +87,6 @@ pub fn heading_of(caption: &Caption) -> Heading {
     Heading {
         title: caption.title.clone(),
         lines: caption.lines.clone(),
+        verdicts: Vec::new(),
     }
 }

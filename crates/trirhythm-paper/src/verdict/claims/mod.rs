@@ -28,6 +28,8 @@ use crate::fig10_pbif_lambda_tau::{Fig10, D_VALUES as FIG10_D};
 use crate::fig11_amplitude_lambda::Fig11;
 use crate::fig12_pbif_maps::Fig12;
 use crate::fig13_pdf_restitution::Fig13;
+use crate::fig14_joint_pdf::Fig14;
+use crate::fig15_oscillation_boundaries::Fig15;
 use crate::fig16_oscillation_regions::Fig16;
 use crate::fig17_lle_noise::Fig17;
 use crate::fig18_lle_noise_fractional::Fig18;
@@ -59,6 +61,8 @@ pub struct Figures {
     pub fig11: Option<Fig11>,
     pub fig12: Option<Fig12>,
     pub fig13: Option<Fig13>,
+    pub fig14: Option<Fig14>,
+    pub fig15: Option<Fig15>,
     pub fig16: Option<Fig16>,
     pub fig17: Option<Fig17>,
     pub fig18: Option<Fig18>,
@@ -72,8 +76,7 @@ pub const JUDGED_FIGURES: [u32; 17] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13
 pub const THEORY_FIGURES: [u32; 11] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12];
 
 impl Figures {
-    /// Compute the figures numbered `numbers` (those of [`JUDGED_FIGURES`]; others are
-    /// ignored).
+    /// Compute the figures numbered `numbers` (1 to 19; others are ignored).
     pub fn compute(
         options: &FigureOptions,
         monitor: &dyn Monitor,
@@ -106,12 +109,57 @@ impl Figures {
             fig11: get(numbers, o, m)?,
             fig12: get(numbers, o, m)?,
             fig13: get(numbers, o, m)?,
+            fig14: get(numbers, o, m)?,
+            fig15: get(numbers, o, m)?,
             fig16: get(numbers, o, m)?,
             fig17: get(numbers, o, m)?,
             fig18: get(numbers, o, m)?,
             fig19: get(numbers, o, m)?,
         })
     }
+}
+
+/// A figure's place in [`Figures`]: how one figure's data is judged on its own
+/// ([`judge_figure`]).
+pub trait Slot: Figure {
+    /// The figure's field of `figures`.
+    fn slot(figures: &mut Figures) -> &mut Option<Self>;
+}
+
+macro_rules! slots {
+    ($($figure:ty => $field:ident),* $(,)?) => {
+        $(impl Slot for $figure {
+            fn slot(figures: &mut Figures) -> &mut Option<Self> {
+                &mut figures.$field
+            }
+        })*
+    };
+}
+
+slots!(
+    Fig01 => fig01, Fig02 => fig02, Fig03 => fig03, Fig04 => fig04, Fig05 => fig05,
+    Fig06 => fig06, Fig07 => fig07, Fig08 => fig08, Fig09 => fig09, Fig10 => fig10,
+    Fig11 => fig11, Fig12 => fig12, Fig13 => fig13, Fig14 => fig14, Fig15 => fig15,
+    Fig16 => fig16, Fig17 => fig17, Fig18 => fig18, Fig19 => fig19,
+);
+
+/// The verdicts on the claims that rest on one figure, from its data alone (computed with
+/// `options`); the data is handed back. Empty for a figure that carries no claim.
+pub fn judge_figure<F: Slot>(data: F, options: &FigureOptions) -> (F, Vec<ClaimVerdict>) {
+    let mut figures = Figures {
+        options: *options,
+        ..Default::default()
+    };
+    *F::slot(&mut figures) = Some(data);
+    let verdicts = judge(&figures)
+        .claims
+        .into_iter()
+        .filter(|c| c.claim.figure == F::NUMBER)
+        .collect();
+    let data = F::slot(&mut figures)
+        .take()
+        .expect("the slot was filled above");
+    (data, verdicts)
 }
 
 /// A claim of the paper: its id, words, place and rule.
@@ -136,6 +184,30 @@ pub struct ClaimVerdict {
     pub claim: Claim,
     /// The verdict and its numbers.
     pub decision: Decision,
+}
+
+impl ClaimVerdict {
+    /// One line: the verdict, why when undetermined, and the deciding numbers (at most
+    /// `numbers` of the checks that decided it), e.g. for a picture or a table row.
+    pub fn summary(&self, numbers: usize) -> String {
+        let d = &self.decision;
+        let mut line = d.verdict.tag().to_string();
+        if let super::Verdict::Undetermined { why } = &d.verdict {
+            line.push_str(&format!(" ({why})"));
+        }
+        let shown = d.deciding(numbers);
+        if !shown.is_empty() {
+            line.push_str(": ");
+            line.push_str(
+                &shown
+                    .iter()
+                    .map(|c| c.describe())
+                    .collect::<Vec<_>>()
+                    .join("; "),
+            );
+        }
+        line
+    }
 }
 
 /// A claim the figure data cannot decide yet, and what it needs.
