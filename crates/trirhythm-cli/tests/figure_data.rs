@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{ok_output, run, scratch_dir};
+use common::{csv_rows, ok_output, run, scratch_dir};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -46,6 +46,20 @@ fn figures_render_identically_from_their_data_read_back() {
     for n in [2, 3, 6, 10, 12] {
         assert!(a.contains_key(&format!("fig{n:02}_folds.csv")));
     }
+    // every CSV of every figure parses with a CSV parser, every record with the header's
+    // column count (panel names holding commas are quoted)
+    let mut tables = 0;
+    for (name, bytes) in a.iter().filter(|(n, _)| n.ends_with(".csv")) {
+        let rows = csv_rows(std::str::from_utf8(bytes).unwrap());
+        assert!(rows.len() > 1, "{name}: no rows");
+        let width = rows[0].len();
+        assert!(
+            rows.iter().all(|r| r.len() == width),
+            "{name}: a record's field count differs from the header's ({width})"
+        );
+        tables += 1;
+    }
+    assert!(tables >= 19, "{tables} CSV files");
     assert_eq!(
         a.keys().collect::<Vec<_>>(),
         b.keys().collect::<Vec<_>>(),

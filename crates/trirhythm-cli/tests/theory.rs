@@ -200,3 +200,20 @@ fn figures_4_7_8_write_csv_png_svg() {
     }
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+#[test]
+fn json_writes_a_limit_as_the_library_does() {
+    // U_eff(0) = +∞ with noise: the string "inf", as in every JSON document the tool writes
+    // (figure data included), never `null`
+    let v = ok_json(&[
+        "potential",
+        "--grid",
+        "0:1:3",
+        "--param",
+        "D=0.1",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(v["U_eff"][0], "inf");
+    assert!(v["U_eff"][1].as_f64().unwrap().is_finite());
+}

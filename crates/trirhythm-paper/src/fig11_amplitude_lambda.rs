@@ -8,7 +8,7 @@
 //! (b) [`crate::montecarlo`]. Checked by `tests/figures.rs`.
 
 use crate::montecarlo::{
-    amplitude_panel, amplitude_table, stationary_count, AmplitudePanel, Sizes,
+    amplitude_panel, amplitude_table, beyond_line, stationary_count, AmplitudePanel, Sizes,
 };
 use crate::notes::num;
 use crate::notes::{caption, table_notes, Caption};
@@ -181,6 +181,7 @@ impl Figure for Fig11 {
             vec![
                 format!("(a) D = 0: averaging's branches (solid stable, dashed unstable) and simulations of Eq. 1 ({t_settle} time units from U(0) = {STARTS_A:?})"),
                 format!("(b) Monte Carlo: {}; {verdict}", sz.describe()),
+                beyond_line(&panels),
             ],
         );
         Ok(Fig11 {

@@ -7,7 +7,7 @@
 //! Checked by `tests/figures.rs` (computes, reads back, stops when cancelled).
 
 use crate::montecarlo::{
-    amplitude_panel, amplitude_table, stationary_count, AmplitudePanel, Sizes,
+    amplitude_panel, amplitude_table, beyond_line, stationary_count, AmplitudePanel, Sizes,
 };
 use crate::notes::{caption, table_notes, Caption};
 use crate::table::Table;
@@ -85,7 +85,11 @@ impl Figure for Fig13 {
             ctx,
             &base,
             &["mu0", "r"],
-            vec![format!("Monte Carlo: {}", sz.describe()), verdict],
+            vec![
+                format!("Monte Carlo: {}", sz.describe()),
+                verdict,
+                beyond_line(&panels),
+            ],
         );
         Ok(Fig13 {
             caption,

@@ -22,7 +22,11 @@ use trirhythm::Result;
 /// The paper's r of panels (a)–(d).
 pub const RS: [f64; 4] = [0.999, 0.96, 0.92, 0.86];
 
-/// One r: the grid, both densities (row-major, U index then U̇ index), the verdict.
+/// How many times finer than the Monte Carlo grid the theory's drawn grid is, per axis.
+pub const FINE: usize = 4;
+
+/// One r: the grid, both densities (row-major, U index then U̇ index), the mass each leaves
+/// outside the window, the verdict.
 #[derive(Serialize, Deserialize)]
 pub struct JointPanel {
     /// Restitution coefficient.
@@ -33,6 +37,14 @@ pub struct JointPanel {
     pub v_edges: Vec<f64>,
     /// Eq. 31 averaged over each cell.
     pub theory: Vec<Vec<f64>>,
+    /// Eq. 31 averaged over the cells of a grid [`FINE`] times finer on the same window (what
+    /// the picture draws: the theory's thin rings stay smooth).
+    pub theory_fine: Vec<Vec<f64>>,
+    /// Fraction of the theory's mass outside the window.
+    pub theory_outside: f64,
+    /// Fraction of the Monte Carlo samples outside the window (the fast returns of the
+    /// relaxation oscillation reach velocities beyond ±ω1·A_max).
+    pub mc_outside: f64,
     /// The Monte Carlo histogram.
     pub mc: Vec<Vec<f64>>,
     /// Hellinger distance between them over the cells.
@@ -79,6 +91,12 @@ impl Figure for Fig14 {
             let j = &res.joint;
             let (du, dv) = (j.u_edges[1] - j.u_edges[0], j.v_edges[1] - j.v_edges[0]);
             let theory = cell_averages(&pdf, res.omega1, &j.u_edges, &j.v_edges);
+            let theory_fine = cell_averages(
+                &pdf,
+                res.omega1,
+                &refine(&j.u_edges, FINE),
+                &refine(&j.v_edges, FINE),
+            );
             // Hellinger over the cells (each side's mass outside the grid as one more cell)
             let cell = du * dv;
             let q_in: f64 = theory.iter().flatten().sum::<f64>() * cell;
@@ -100,16 +118,21 @@ impl Figure for Fig14 {
                 ));
             }
             notes.push(format!(
-                "r = {r}: Hellinger distance theory–MC over the cells {hellinger:.3}; MC {} (R̂ = {:.3}, ESS = {:.0}); theory's mass on the grid {q_in:.4}, MC's {p_in:.4}",
+                "r = {r}: Hellinger distance theory–MC over the cells {hellinger:.3}; MC {} (R̂ = {:.3}, ESS = {:.0}); mass outside the window: theory {:.2} %, MC {:.2} %",
                 if st.stationary { "stationarity check passed" } else { "NOT STATIONARY" },
                 st.r_hat,
-                st.ess
+                st.ess,
+                100.0 * (1.0 - q_in).max(0.0),
+                100.0 * j.outside
             ));
             panels.push(JointPanel {
                 r,
                 u_edges: j.u_edges.clone(),
                 v_edges: j.v_edges.clone(),
                 theory,
+                theory_fine,
+                theory_outside: (1.0 - q_in).max(0.0),
+                mc_outside: j.outside,
                 mc: j.density.clone(),
                 hellinger,
                 stationary: st.stationary,
@@ -118,6 +141,18 @@ impl Figure for Fig14 {
         }
         notes.push("the paper's claims (a crater at r = 0.92 turning into four separate peaks at r = 0.999; the trimodal P(A) matching a three- or four-peak joint PDF) are checked against these maps: the joint density of Eq. 31 is a function of A alone, so its peaks are rings, never separate peaks".into());
         let passed = panels.iter().filter(|p| p.stationary).count();
+        let outside = |f: fn(&JointPanel) -> f64| {
+            panels
+                .iter()
+                .map(|p| format!("{:.1} %", 100.0 * f(p)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let window = format!(
+            "mass outside the window U ∈ [0, A_max], dU/dt ∈ ±ω1·A_max, per r: Monte Carlo {}; theory {} (not drawn, counted as one more cell in H)",
+            outside(|p| p.mc_outside),
+            outside(|p| p.theory_outside)
+        );
         let caption = caption(
             14,
             "joint density P(U, dU/dt) for four r: theory (top) against Monte Carlo of Eq. 1 (bottom)",
@@ -127,6 +162,8 @@ impl Figure for Fig14 {
             vec![
                 format!("Monte Carlo: {}; one logarithmic colour scale per r (three decades; white below)", sz.describe()),
                 format!("stationarity check passed by {passed} of {} ensembles", panels.len()),
+                window,
+                format!("theory drawn on a grid {FINE} times finer per axis than the Monte Carlo cells (its rings are thin); H compares both on the Monte Carlo cells"),
             ],
         );
         Ok(Fig14 {
@@ -151,8 +188,32 @@ impl Figure for Fig14 {
                 }
             }
         }
-        vec![csv]
+        let mut fine = Table::new(&self.notes, &["r", "U", "V", "theory"]).named("_theory");
+        for p in &self.panels {
+            let (u, v) = (refine(&p.u_edges, FINE), refine(&p.v_edges, FINE));
+            for (i, u) in u.windows(2).enumerate() {
+                for (k, v) in v.windows(2).enumerate() {
+                    fine.row([
+                        num(p.r),
+                        num(0.5 * (u[0] + u[1])),
+                        num(0.5 * (v[0] + v[1])),
+                        num(p.theory_fine[i][k]),
+                    ]);
+                }
+            }
+        }
+        vec![csv, fine]
     }
+}
+
+/// Edges `k` times finer: each interval of `edges` split evenly into `k`.
+pub fn refine(edges: &[f64], k: usize) -> Vec<f64> {
+    let mut out: Vec<f64> = edges
+        .windows(2)
+        .flat_map(|w| (0..k).map(move |j| w[0] + (w[1] - w[0]) * j as f64 / k as f64))
+        .collect();
+    out.extend(edges.last());
+    out
 }
 
 /// The theory's density averaged over each cell of the grid: P(U, U̇)dU dU̇ = P(A)dA dφ/π on

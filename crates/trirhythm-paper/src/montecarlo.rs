@@ -94,6 +94,9 @@ pub struct McRun {
     pub density: Vec<f64>,
     /// Standard error per bin.
     pub stderr: Vec<f64>,
+    /// Fraction of the samples with A beyond the last edge (not in the histogram: the
+    /// densities integrate to 1 minus this).
+    pub beyond: f64,
     /// Passed the stationarity check.
     pub stationary: bool,
     /// R̂ and ESS.
@@ -198,7 +201,7 @@ pub fn amplitude_panel(
         }
         let st = &r.stationarity;
         notes.push(format!(
-            "{caption}, MC of {}: {}; R̂ = {:.3}, ESS = {:.0}, drift {:.1} s.e.; {}",
+            "{caption}, MC of {}: {}; R̂ = {:.3}, ESS = {:.0}, drift {:.1} s.e.; mass beyond A = {} (not in the histogram) {:.2} %; {}",
             system_name(system),
             if st.stationary {
                 "stationarity check passed"
@@ -208,6 +211,8 @@ pub fn amplitude_panel(
             st.r_hat,
             st.ess,
             st.drift_z,
+            num(*r.amplitude.edges.last().unwrap_or(&0.0)),
+            100.0 * r.amplitude.beyond,
             distances
                 .iter()
                 .map(|d| format!(
@@ -228,6 +233,7 @@ pub fn amplitude_panel(
             edges: r.amplitude.edges.clone(),
             density: r.amplitude.density.clone(),
             stderr: r.amplitude.stderr.clone(),
+            beyond: r.amplitude.beyond,
             stationary: st.stationary,
             r_hat: st.r_hat,
             ess: st.ess,
@@ -254,6 +260,26 @@ pub fn amplitude_panel(
         },
         notes,
     ))
+}
+
+/// The Monte Carlo mass left out of the histograms (A beyond the last edge), in one line: the
+/// largest fraction over `panels` and where.
+pub fn beyond_line(panels: &[AmplitudePanel]) -> String {
+    let largest = panels
+        .iter()
+        .flat_map(|p| {
+            p.runs
+                .iter()
+                .map(move |r| (r.beyond, &p.caption, &r.system))
+        })
+        .max_by(|a, b| a.0.total_cmp(&b.0));
+    match largest {
+        Some((b, caption, system)) => format!(
+            "Monte Carlo mass beyond each histogram's A_max (not drawn; the densities integrate to 1 minus it): at most {:.2} % ({caption}, {system}); each ensemble's in the CSV notes",
+            100.0 * b
+        ),
+        None => "no Monte Carlo ensemble".into(),
+    }
 }
 
 /// (ensembles that passed the stationarity check, ensembles) over `panels`.

@@ -38,13 +38,15 @@ pub fn jnum(v: f64) -> serde_json::Value {
     }
 }
 
-/// A JSON number that may be ±∞ as a limit (log p where p = 0, U_eff at A = 0): `null` there
-/// (documented, not an error); NaN is still counted by [`jnum`].
+/// A JSON number that may be ±∞ as a limit (log p where p = 0, U_eff at A = 0): the string
+/// `"inf"` or `"-inf"` there, as the library's serde writes every non-finite number
+/// (`trirhythm::non_finite`), so that one rule holds in every JSON document; NaN is still
+/// counted by [`jnum`].
 pub fn jlimit(v: f64) -> serde_json::Value {
-    if v.is_infinite() {
-        serde_json::Value::Null
-    } else {
-        jnum(v)
+    match v {
+        f64::INFINITY => serde_json::Value::String("inf".into()),
+        f64::NEG_INFINITY => serde_json::Value::String("-inf".into()),
+        _ => jnum(v),
     }
 }
 

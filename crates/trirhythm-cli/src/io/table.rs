@@ -66,8 +66,7 @@ impl Csv {
             .flat_map(|c| c.lines())
             .map(|l| format!("# {l}\n"))
             .collect();
-        text.push_str(&columns.join(","));
-        text.push('\n');
+        text.push_str(&record(columns.iter().copied()));
         Csv {
             text,
             columns: columns.iter().map(|c| c.to_string()).collect(),
@@ -88,8 +87,8 @@ impl Csv {
         let cells: Vec<String> = cells.into_iter().collect();
         self.rows += 1;
         self.nonfinite.scan(&self.columns, self.rows, &cells);
-        self.text.push_str(&cells.join(","));
-        self.text.push('\n');
+        self.text
+            .push_str(&record(cells.iter().map(String::as_str)));
     }
 
     /// The document, or an error naming the first non-finite cell.
@@ -112,8 +111,40 @@ impl Csv {
     }
 }
 
+/// One CSV record with its line end (RFC 4180): a field holding a comma, a double quote or a
+/// line break is quoted, its quotes doubled (the panel names of several figures hold commas).
+fn record<'a>(fields: impl Iterator<Item = &'a str>) -> String {
+    let mut line = fields
+        .map(|f| {
+            if f.contains([',', '"', '\n', '\r']) {
+                format!("\"{}\"", f.replace('"', "\"\""))
+            } else {
+                f.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(",");
+    line.push('\n');
+    line
+}
+
 /// Numbers for CSV cells (round-trip): the paper crate's.
 pub use trirhythm_paper::notes::num;
+
+#[cfg(test)]
+mod tests {
+    use super::record;
+
+    #[test]
+    fn fields_with_commas_quotes_or_line_breaks_are_quoted() {
+        assert_eq!(record(["1", "2.5", "-inf"].into_iter()), "1,2.5,-inf\n");
+        assert_eq!(
+            record(["(a) μ0 = 0.005, r = 0.99", "say \"hi\"", "x"].into_iter()),
+            "\"(a) μ0 = 0.005, r = 0.99\",\"say \"\"hi\"\"\",x\n"
+        );
+        assert_eq!(record(["a\nb"].into_iter()), "\"a\nb\"\n");
+    }
+}
 
 /// An aligned text table, or an error naming its first non-finite cell (±∞ is allowed in the
 /// columns named in `infinite`, where it is the value).

@@ -37,9 +37,19 @@ pub fn ok_json(args: &[&str]) -> Value {
 
 /// Rows of a CSV document (`#` comment lines skipped), header first.
 pub fn csv_rows(text: &str) -> Vec<Vec<String>> {
-    text.lines()
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| l.split(',').map(str::to_string).collect())
+    // a real CSV parser (quoted fields, `#` comment lines), which refuses a record whose field
+    // count differs from the header's
+    csv::ReaderBuilder::new()
+        .has_headers(false)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes())
+        .records()
+        .map(|r| {
+            r.unwrap_or_else(|e| panic!("not CSV: {e}"))
+                .iter()
+                .map(str::to_string)
+                .collect()
+        })
         .collect()
 }
 

@@ -9,25 +9,26 @@ use crate::render::plot::{chart, colour_bar, pe, viridis, Backend};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use trirhythm_paper::fig14_joint_pdf::{Fig14, JointPanel};
+use trirhythm_paper::fig14_joint_pdf::{refine, Fig14, FINE};
 
 const PANEL: (u32, u32) = (460, 400);
 /// Decades of the logarithmic colour scale.
 const DECADES: f64 = 3.0;
 const BAR: u32 = 70;
 
+/// A heat map of `values` on the cells of (`u_edges`, `v_edges`).
 fn heat<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
     caption: &str,
-    p: &JointPanel,
+    (u_edges, v_edges): (&[f64], &[f64]),
     values: &[Vec<f64>],
     top: f64,
 ) -> Result<()> {
-    let (u0, u1) = (p.u_edges[0], *p.u_edges.last().unwrap_or(&1.0));
-    let (v0, v1) = (p.v_edges[0], *p.v_edges.last().unwrap_or(&1.0));
+    let (u0, u1) = (u_edges[0], *u_edges.last().unwrap_or(&1.0));
+    let (v0, v1) = (v_edges[0], *v_edges.last().unwrap_or(&1.0));
     let mut c = chart(area, caption, u0..u1, v0..v1, "U", "dU/dt")?;
-    let cells = p.u_edges.windows(2).enumerate().flat_map(|(i, u)| {
-        p.v_edges.windows(2).enumerate().filter_map(move |(k, v)| {
+    let cells = u_edges.windows(2).enumerate().flat_map(|(i, u)| {
+        v_edges.windows(2).enumerate().filter_map(move |(k, v)| {
             let x = values[i][k];
             // three decades below the panel's top, logarithmic: rings and creeping phases alike
             (x > top * 1e-3).then(|| {
@@ -58,25 +59,27 @@ picture!(Fig14, |self, root| size (4 * PANEL.0, 2 * PANEL.1 + BAR), draw {
             .copied()
             .fold(0.0f64, f64::max)
             .max(1e-300);
+        let fine = (refine(&p.u_edges, FINE), refine(&p.v_edges, FINE));
         heat(
             &top_area,
-            &format!("({label}) r = {}: theory (Eq. 31)", p.r),
-            p,
-            &p.theory,
+            &format!(
+                "({label}) r = {}, theory: {:.1} % out",
+                p.r,
+                100.0 * p.theory_outside
+            ),
+            (&fine.0, &fine.1),
+            &p.theory_fine,
             top,
         )?;
         heat(
             &bottom_area,
             &format!(
-                "MC of Eq. 1{}; H = {:.2}",
-                if p.stationary {
-                    ""
-                } else {
-                    " (not stationary)"
-                },
-                p.hellinger
+                "MC: H = {:.2}, {:.1} % out{}",
+                p.hellinger,
+                100.0 * p.mc_outside,
+                if p.stationary { "" } else { ", not stationary" }
             ),
-            p,
+            (&p.u_edges, &p.v_edges),
             &p.mc,
             top,
         )?;
