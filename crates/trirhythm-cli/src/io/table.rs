@@ -131,21 +131,6 @@ fn record<'a>(fields: impl Iterator<Item = &'a str>) -> String {
 /// Numbers for CSV cells (round-trip): the paper crate's.
 pub use trirhythm_paper::notes::num;
 
-#[cfg(test)]
-mod tests {
-    use super::record;
-
-    #[test]
-    fn fields_with_commas_quotes_or_line_breaks_are_quoted() {
-        assert_eq!(record(["1", "2.5", "-inf"].into_iter()), "1,2.5,-inf\n");
-        assert_eq!(
-            record(["(a) μ0 = 0.005, r = 0.99", "say \"hi\"", "x"].into_iter()),
-            "\"(a) μ0 = 0.005, r = 0.99\",\"say \"\"hi\"\"\",x\n"
-        );
-        assert_eq!(record(["a\nb"].into_iter()), "\"a\nb\"\n");
-    }
-}
-
 /// An aligned text table, or an error naming its first non-finite cell (±∞ is allowed in the
 /// columns named in `infinite`, where it is the value).
 fn table(columns: &[&str], rows: &[Vec<String>], infinite: &[&str]) -> Result<String> {
@@ -184,4 +169,19 @@ pub fn reading(t: &Table) -> Result<String> {
     let infinite: Vec<&str> = t.infinite.iter().map(String::as_str).collect();
     let text = table(&columns, &t.rows, &infinite)?;
     Ok(text + &t.notes.iter().map(|n| format!("{n}\n")).collect::<String>())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::record;
+
+    #[test]
+    fn fields_with_commas_quotes_or_line_breaks_are_quoted() {
+        assert_eq!(record(["1", "2.5", "-inf"].into_iter()), "1,2.5,-inf\n");
+        assert_eq!(
+            record(["(a) μ0 = 0.005, r = 0.99", "say \"hi\"", "x"].into_iter()),
+            "\"(a) μ0 = 0.005, r = 0.99\",\"say \"\"hi\"\"\",x\n"
+        );
+        assert_eq!(record(["a\nb"].into_iter()), "\"a\nb\"\n");
+    }
 }
