@@ -5,6 +5,15 @@
 //! states on itself what it shows: [`save`] draws its [`Heading`] (title, parameters, formula
 //! variant, the values chosen where the paper is silent) above it.
 //!
+//! Print size: [`save`] sets a scale from the canvas width ([`ScaleGuard`], [`scale_for`]) so
+//! that, printed 7 in (504 pt) wide, the smallest text ([`TICK`]) is 7 pt: an em (plotters'
+//! size / 1.24, the SVG `font-size`) of at least width / 72 px. Font sizes ([`font_px`]) and
+//! text-dependent layout ([`px`]) are designed at scale 1 and drawn at the scale. Rich text
+//! ([`rich_text`]) draws subscripts (`U_eff`, `ΔU_1`, `A_{01}`) as smaller, lowered runs.
+//! Series: [`series`] gives the i-th curve an Okabe–Ito colour, a dash and a marker
+//! ([`draw_line`], [`draw_markers`]). Tests: unit tests below; the CLI's `pictures` test parses
+//! every SVG's font sizes.
+//!
 //! Text: every font size is even. The bitmap text renderer places a glyph at
 //! `(size/2 + top) as i32`, which truncates toward zero; with an odd size the half pixel
 //! rounds digits down and a decimal point up, so "0.04" printed as "0·04".
