@@ -64,3 +64,81 @@ fn every_picture_states_what_it_shows() {
     assert_eq!(seen, 19, "pictures written");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The `width` attribute of an SVG's root element.
+fn svg_width(svg: &str) -> f64 {
+    let open = &svg[svg.find("<svg").unwrap()..];
+    let open = &open[..open.find('>').unwrap()];
+    let w = &open[open.find("width=\"").unwrap() + 7..];
+    w[..w.find('"').unwrap()].parse().unwrap()
+}
+
+/// Every `font-size` attribute of an SVG.
+fn svg_font_sizes(svg: &str) -> Vec<f64> {
+    svg.split("font-size=\"")
+        .skip(1)
+        .map(|t| t[..t.find('"').unwrap()].parse().unwrap())
+        .collect()
+}
+
+/// Printed 7 in (504 pt) wide, no text is smaller than 7 pt: every font size is at least
+/// a 72nd of the canvas width, in every figure drawn at the scale of its canvas.
+#[test]
+fn text_prints_at_seven_points_or_more() {
+    // Figs 17–19 still draw one label of fixed size (their shared drawing, lle.rs)
+    const FIXED_SIZE_LABEL: [u32; 3] = [17, 18, 19];
+    let dir = scratch_dir("print_size");
+    let d = dir.to_str().unwrap();
+    ok_output(&["figure", "all", "--quick", "--out-dir", d]);
+    let mut checked = 0;
+    for n in 1..=19u32 {
+        let path = dir.join(format!("fig{n:02}.svg"));
+        let svg = std::fs::read_to_string(&path).unwrap();
+        let width = svg_width(&svg);
+        let sizes = svg_font_sizes(&svg);
+        assert!(
+            sizes.len() > 10,
+            "fig{n:02}: too few texts ({})",
+            sizes.len()
+        );
+        let min = sizes.iter().copied().fold(f64::INFINITY, f64::min);
+        if FIXED_SIZE_LABEL.contains(&n) {
+            continue;
+        }
+        assert!(
+            min >= width / 72.0,
+            "fig{n:02}: font-size {min} < width {width} / 72 = {}",
+            width / 72.0
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 16);
+}
+
+/// Subscripts are drawn as their own, smaller text runs: U_eff's "eff", ΔU_1's "1", D_c's "c".
+#[test]
+fn subscripts_are_drawn_lowered_and_smaller() {
+    let dir = scratch_dir("subscripts");
+    let d = dir.to_str().unwrap();
+    ok_output(&["figure", "8", "--quick", "--out-dir", d]);
+    let svg = std::fs::read_to_string(dir.join("fig08.svg")).unwrap();
+    assert!(
+        !svg_texts(&svg).iter().any(|t| t.contains("U_eff")),
+        "a raw U_eff"
+    );
+    // the run "eff" follows a run ending in "U", at a smaller size
+    let runs: Vec<(f64, String)> = svg
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| {
+            let size = t.split("font-size=\"").nth(1)?;
+            let size: f64 = size[..size.find('"')?].parse().ok()?;
+            let body = &t[t.find('>')? + 1..];
+            Some((size, body[..body.find("</text>")?].trim().to_string()))
+        })
+        .collect();
+    let found = runs
+        .windows(2)
+        .any(|w| w[0].1.ends_with('U') && w[1].1 == "eff" && w[1].0 < w[0].0);
+    assert!(found, "no U followed by a smaller \"eff\"");
+}

@@ -2,7 +2,7 @@
 //! its harmonic-balance equivalent (Eq. 5), side by side, with their recurrence plots
 //! (Eq. 6–7, ε = 0.1, Euclidean norm) and the recurrence rate and determinism of each.
 //!
-//! Both start at the turning point U = A02, U̇ = 0 of the smallest stable cycle of the averaged
+//! Both start at the turning point U = A01, U̇ = 0 of the smallest stable cycle of the averaged
 //! theory (Eq. 18), as the paper's text says ("around the attractor's minimum amplitude").
 //!
 //! Method: [`simulate`] with the predictor–corrector for both systems, the last 15 time units
@@ -141,7 +141,7 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig01> {
         .map(|c| c.amplitude)
     else {
         return Err(Error::Undefined {
-            what: "figure 1's start A02",
+            what: "figure 1's start A01",
             why: "the averaged theory has no stable cycle for these parameters".into(),
         });
     };
@@ -246,7 +246,7 @@ fn texts(
     };
     let notes = vec![
         format!(
-            "start: U(0) = A02 = {a02:.6} (smallest stable cycle of Eq. 18, {} variant), U'(0) = 0; barrier on, r = 1, D = 0",
+            "start: U(0) = A_01 = {a02:.6} (smallest stable cycle of Eq. 18, {} variant), U'(0) = 0; barrier on, r = 1, D = 0",
             ctx.variant.name()
         ),
         format!(
@@ -273,7 +273,7 @@ fn texts(
     ];
     let heading_lines = vec![
         format!(
-            "start U(0) = A02 = {a02:.4}, dU/dt(0) = 0 (smallest stable cycle of Eq. 18); predictor–corrector Δt = {dt}, T = {t_end}; last {window} time units shown"
+            "start U(0) = A_01 = {a02:.4}, dU/dt(0) = 0 (smallest stable cycle of Eq. 18); predictor–corrector Δt = {dt}, T = {t_end}; last {window} time units shown"
         ),
         format!(
             "(a) impact memory: continuous (lower terminal kept at t = 0), amplitude {:.3}; the restart convention gives {:.3}, Eq. (5) {:.3}",

@@ -132,3 +132,84 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig04> {
         panels,
     })
 }
+
+/// The names of a panel's roots `cycles` (ascending amplitude), in the paper's convention:
+/// the roots at r = 1 (`reference`, ascending) are A_01, A_02, … by amplitude (stable odd,
+/// unstable even where the smallest root is stable), and a root of another panel continues
+/// the same-named root of the r = 1 panel: its k-th stable root counted from the largest
+/// amplitude takes the name of the k-th stable root of the reference counted from the
+/// largest, and likewise for the unstable ones. A root beyond the reference's takes the
+/// next number above all used, odd if stable, even if not. Names are written `A_{0k}`
+/// (drawn with a subscript).
+pub fn cycle_names(reference: &[Cycle], cycles: &[Cycle]) -> Vec<String> {
+    let mut names = vec![String::new(); cycles.len()];
+    let mut top = reference.len();
+    for stable in [true, false] {
+        // the reference's numbers of this kind, from the largest amplitude
+        let numbers: Vec<usize> = reference
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.stable == stable)
+            .map(|(i, _)| i + 1)
+            .rev()
+            .collect();
+        let own = cycles
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.stable == stable)
+            .map(|(i, _)| i)
+            .rev();
+        for (k, i) in own.enumerate() {
+            let n = match numbers.get(k) {
+                Some(&n) => n,
+                None => {
+                    top += 1;
+                    if (top % 2 == 1) != stable {
+                        top += 1;
+                    }
+                    top
+                }
+            };
+            names[i] = format!("A_{{0{n}}}");
+        }
+    }
+    names
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn roots(kinds: &str, amplitudes: &[f64]) -> Vec<Cycle> {
+        kinds
+            .chars()
+            .zip(amplitudes)
+            .map(|(k, &a)| Cycle {
+                amplitude: a,
+                stable: k == 's',
+                fold: false,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn roots_are_named_by_amplitude_at_r1_and_continued_elsewhere() {
+        let r1 = roots("sus", &[1.9, 4.2, 7.7]);
+        assert_eq!(cycle_names(&r1, &r1), ["A_{01}", "A_{02}", "A_{03}"]);
+        // the inner stable root gone: the outer pair keeps its names
+        let b = roots("us", &[5.6, 7.0]);
+        assert_eq!(cycle_names(&r1, &b), ["A_{02}", "A_{03}"]);
+        // the paper's five roots, the inner two gone
+        let five = roots("susus", &[1.0, 2.0, 3.0, 4.0, 5.0]);
+        assert_eq!(
+            cycle_names(&five, &roots("sus", &[3.1, 4.1, 5.2])),
+            ["A_{03}", "A_{04}", "A_{05}"]
+        );
+        // more roots than at r = 1: new numbers above, odd for stable, even for unstable
+        assert_eq!(
+            cycle_names(&r1, &roots("susus", &[1.0, 2.0, 3.0, 4.0, 5.0])),
+            ["A_{05}", "A_{06}", "A_{01}", "A_{02}", "A_{03}"]
+        );
+        assert!(cycle_names(&[], &b).iter().all(|n| !n.is_empty()));
+    }
+}

@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use trirhythm::theory::averaging::Variant;
 use trirhythm_paper::table::Table;
 use trirhythm_paper::verdict::claims::{judge_figure, ClaimVerdict, Slot};
+use trirhythm_paper::verdict::Verdict;
 use trirhythm_paper::{Figure, FigureOptions};
 
 #[derive(Debug, clap::Args)]
@@ -226,16 +227,57 @@ fn make<F: Slot + Picture>(request: &Request, out_dir: &Path, data: bool) -> Res
     Ok(files)
 }
 
-/// The verdicts on a figure's claims as lines for its picture: the claim's id, the verdict
-/// and its two deciding numbers.
+/// The verdicts on a figure's claims as short lines for its picture: the claim's id, the
+/// verdict, and for up to three deciding checks what was measured, its statistic and the
+/// threshold or the paper's value it was held against (all from the decision); an
+/// undetermined verdict's reason is cut to its first clause.
 pub fn verdict_lines(verdicts: &[ClaimVerdict]) -> Vec<VerdictLine> {
+    use trirhythm_paper::notes::sig;
     verdicts
         .iter()
-        .map(|v| VerdictLine {
-            tag: v.decision.verdict.tag().to_string(),
-            text: format!("{}: {}", v.claim.id, v.summary(2)),
+        .map(|v| {
+            let d = &v.decision;
+            let mut text = format!("{} — {}", v.claim.id, d.verdict.tag());
+            if let Verdict::Undetermined { why } = &d.verdict {
+                text.push_str(&format!(" ({})", first_clause(why)));
+            }
+            let checks: Vec<String> = d
+                .deciding(3)
+                .iter()
+                .map(|c| {
+                    format!(
+                        "{}: {} {} vs {}",
+                        first_clause(&c.what),
+                        c.statistic,
+                        sig(c.statistic_value, 3),
+                        sig(c.threshold, 3)
+                    )
+                })
+                .collect();
+            if !checks.is_empty() {
+                text.push_str(": ");
+                text.push_str(&checks.join("; "));
+            }
+            VerdictLine {
+                tag: d.verdict.tag().to_string(),
+                text,
+            }
         })
         .collect()
+}
+
+/// `text` up to its first `;` or ` (` (with "…" when cut), at most 90 characters.
+fn first_clause(text: &str) -> String {
+    let cut = [text.find("; "), text.find(" (")]
+        .into_iter()
+        .flatten()
+        .min()
+        .unwrap_or(text.len());
+    let mut out: String = text[..cut].chars().take(90).collect();
+    if out.len() < text.len() {
+        out.push('…');
+    }
+    out
 }
 
 /// Write one of a figure's tables as `stem{suffix}.csv` (notes as `#` lines); refuses a table

@@ -5,6 +5,15 @@
 //! states on itself what it shows: [`save`] draws its [`Heading`] (title, parameters, formula
 //! variant, the values chosen where the paper is silent) above it.
 //!
+//! Print size: [`save`] sets a scale from the canvas width ([`ScaleGuard`], [`scale_for`]) so
+//! that, printed 7 in (504 pt) wide, the smallest text ([`TICK`]) is 7 pt: an em (plotters'
+//! size / 1.24, the SVG `font-size`) of at least width / 72 px. Font sizes ([`font_px`]) and
+//! text-dependent layout ([`px`]) are designed at scale 1 and drawn at the scale. Rich text
+//! ([`rich_text`]) draws subscripts (`U_eff`, `ΔU_1`, `A_{01}`) as smaller, lowered runs.
+//! Series: [`series`] gives the i-th curve an Okabe–Ito colour, a dash and a marker
+//! ([`draw_line`], [`draw_markers`]). Tests: unit tests below; the CLI's `pictures` test parses
+//! every SVG's font sizes.
+//!
 //! Text: every font size is even. The bitmap text renderer places a glyph at
 //! `(size/2 + top) as i32`, which truncates toward zero; with an odd size the half pixel
 //! rounds digits down and a decimal point up, so "0.04" printed as "0·04".
@@ -74,10 +83,6 @@ impl VerdictLine {
     }
 }
 
-const TITLE_SIZE: u32 = 20;
-const LINE_SIZE: u32 = 14;
-const LINE_HEIGHT: u32 = 19;
-
 impl Heading {
     /// The lines, then the verdicts, wrapped at word boundaries to `width` pixels, each
     /// with its colour.
@@ -88,52 +93,287 @@ impl Heading {
                 .iter()
                 .map(|v| (format!("Verdict {}", v.text), v.colour())),
         );
-        all.flat_map(|(line, colour)| wrap(&line, width).into_iter().map(move |l| (l, colour)))
-            .collect()
+        let room = width.saturating_sub(2 * px(12));
+        all.flat_map(|(line, colour)| {
+            wrap(&line, room, HEADING_LINE)
+                .into_iter()
+                .map(move |l| (l, colour))
+        })
+        .collect()
+    }
+
+    fn line_height() -> u32 {
+        font_px(HEADING_LINE) * 5 / 4
     }
 
     fn height(&self, width: u32) -> u32 {
-        14 + TITLE_SIZE + 8 + LINE_HEIGHT * self.wrapped(width).len() as u32
+        px(14)
+            + font_px(HEADING_TITLE) * 5 / 4
+            + Self::line_height() * self.wrapped(width).len() as u32
+            + px(6)
     }
 
     fn draw<DB: Backend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
         let width = area.dim_in_pixel().0;
-        area.draw(&Text::new(
-            self.title.clone(),
-            (12, 8),
-            (FONT, TITLE_SIZE).into_font().color(&BLACK),
-        ))
-        .map_err(pe)?;
+        let left = px(12) as i32;
+        let title_h = font_px(HEADING_TITLE) * 5 / 4;
+        rich_text(
+            area,
+            &self.title,
+            (left, (px(8) + title_h / 2) as i32),
+            Pos::new(HPos::Left, VPos::Center),
+            HEADING_TITLE,
+            BLACK,
+            false,
+        )?;
+        let top = px(14) + title_h;
         for (i, (line, colour)) in self.wrapped(width).into_iter().enumerate() {
-            let y = (14 + TITLE_SIZE + LINE_HEIGHT * i as u32) as i32;
-            area.draw(&Text::new(
-                line,
-                (12, y),
-                (FONT, LINE_SIZE).into_font().color(&colour),
-            ))
-            .map_err(pe)?;
+            let y = top + Self::line_height() * i as u32 + Self::line_height() / 2;
+            rich_text(
+                area,
+                &line,
+                (left, y as i32),
+                Pos::new(HPos::Left, VPos::Center),
+                HEADING_LINE,
+                colour,
+                false,
+            )?;
         }
         Ok(())
     }
 }
 
-/// `line` wrapped at word boundaries to `width` pixels (continuations indented).
-fn wrap(line: &str, width: u32) -> Vec<String> {
-    // DejaVu Sans averages ~0.55 em per character
-    let max = ((width as f64 - 24.0) / (0.56 * LINE_SIZE as f64)).max(20.0) as usize;
+/// `line` wrapped at word boundaries to `width` pixels at font size `base` (continuations
+/// indented), measured with the embedded font.
+fn wrap(line: &str, width: u32, base: u32) -> Vec<String> {
     let mut out = Vec::new();
     let mut cur = String::new();
     for word in line.split(' ') {
-        if !cur.is_empty() && cur.chars().count() + 1 + word.chars().count() > max {
+        let candidate = if cur.is_empty() {
+            word.to_string()
+        } else {
+            format!("{cur} {word}")
+        };
+        if !cur.trim().is_empty() && rich_width(&candidate, base) > width {
             out.push(std::mem::take(&mut cur));
             cur.push_str("    ");
-        } else if !cur.is_empty() {
-            cur.push(' ');
+            cur.push_str(word);
+        } else {
+            cur = candidate;
         }
-        cur.push_str(word);
     }
     out.push(cur);
     out
+}
+
+// ---------------------------------------------------------------------------------------
+// Scale: text sized for print
+
+/// Base sizes (pixels at scale 1) of the text: the heading's title and lines, a panel's
+/// caption, axis descriptions, tick labels, legend entries, in-panel labels.
+const HEADING_TITLE: u32 = 20;
+const HEADING_LINE: u32 = 14;
+/// A panel's caption.
+pub const CAPTION: u32 = 16;
+/// Axis descriptions.
+pub const AXIS_DESC: u32 = 16;
+/// Tick labels: the smallest text, the one the scale is set by.
+pub const TICK: u32 = 14;
+/// Legend entries and in-panel labels.
+pub const LABEL: u32 = 14;
+
+/// Printed width of a figure, in points (7 in), and the smallest printed text size.
+const PRINT_WIDTH_PT: f64 = 504.0;
+const PRINT_MIN_PT: f64 = 7.0;
+/// plotters' font size is the line height: the em (SVG `font-size`) is `size / 1.24`.
+const EM_PER_SIZE: f64 = 1.0 / 1.24;
+
+thread_local! {
+    static SCALE: std::cell::Cell<f64> = const { std::cell::Cell::new(1.0) };
+}
+
+/// The scale for a canvas `width` pixels wide: the one at which the smallest text
+/// ([`TICK`]) prints at 7 pt when the canvas is printed 7 in wide, i.e. an em of at least
+/// `width / 72` pixels.
+pub fn scale_for(width: u32) -> f64 {
+    let min_em = width as f64 * PRINT_MIN_PT / PRINT_WIDTH_PT;
+    (min_em / EM_PER_SIZE / TICK as f64).max(1.0)
+}
+
+/// The scale text and text-dependent layout are drawn at (set by [`save`] from the canvas
+/// width; 1 outside it).
+pub fn scale() -> f64 {
+    SCALE.with(|s| s.get())
+}
+
+/// Sets the scale for the lifetime of the guard (restoring the previous one).
+pub struct ScaleGuard(f64);
+
+impl ScaleGuard {
+    /// Draw at the scale for a canvas `width` pixels wide until the guard is dropped.
+    pub fn for_width(width: u32) -> Self {
+        let previous = scale();
+        SCALE.with(|s| s.set(scale_for(width)));
+        ScaleGuard(previous)
+    }
+}
+
+impl Drop for ScaleGuard {
+    fn drop(&mut self) {
+        SCALE.with(|s| s.set(self.0));
+    }
+}
+
+/// A length in pixels designed at scale 1 (margins, label areas, marks), at the current
+/// scale.
+pub fn px(base: u32) -> u32 {
+    (base as f64 * scale()).round() as u32
+}
+
+/// [`px`] as `i32` (offsets of text and marks).
+pub fn pxi(base: i32) -> i32 {
+    (base as f64 * scale()).round() as i32
+}
+
+/// A font size designed at scale 1, at the current scale: rounded up to an even number of
+/// pixels (see the module doc), so never below `base × scale`.
+pub fn font_px(base: u32) -> u32 {
+    let v = (base as f64 * scale() - 1e-9).ceil() as u32;
+    v + v % 2
+}
+
+// ---------------------------------------------------------------------------------------
+// Rich text: subscripts
+
+/// The runs of `markup`: `(text, subscript)`. A subscript is written `_{…}`, or `_` then
+/// letters and digits after a one-letter symbol (optionally with Δ): `U_eff`, `ΔU_1`, `D_c`,
+/// `A_01`; other underscores (`fig14_folds`) stay as they are.
+pub fn rich_runs(markup: &str) -> Vec<(String, bool)> {
+    let chars: Vec<char> = markup.chars().collect();
+    let mut runs: Vec<(String, bool)> = Vec::new();
+    let mut cur = String::new();
+    let mut i = 0;
+    let push = |runs: &mut Vec<(String, bool)>, text: String, sub: bool| {
+        if !text.is_empty() {
+            runs.push((text, sub));
+        }
+    };
+    while i < chars.len() {
+        let c = chars[i];
+        if c == '_' && i + 1 < chars.len() {
+            if chars[i + 1] == '{' {
+                if let Some(close) = chars[i + 2..].iter().position(|&c| c == '}') {
+                    push(&mut runs, std::mem::take(&mut cur), false);
+                    push(
+                        &mut runs,
+                        chars[i + 2..i + 2 + close].iter().collect(),
+                        true,
+                    );
+                    i += close + 3;
+                    continue;
+                }
+            } else if chars[i + 1].is_alphanumeric() && symbol_before(&chars[..i]) {
+                let n = chars[i + 1..]
+                    .iter()
+                    .take_while(|c| c.is_alphanumeric())
+                    .count();
+                push(&mut runs, std::mem::take(&mut cur), false);
+                push(&mut runs, chars[i + 1..i + 1 + n].iter().collect(), true);
+                i += n + 1;
+                continue;
+            }
+        }
+        cur.push(c);
+        i += 1;
+    }
+    push(&mut runs, cur, false);
+    runs
+}
+
+/// Whether `before` ends in a one-letter symbol (a letter, optionally after Δ, itself at
+/// the start or after a character that is not a letter or digit).
+fn symbol_before(before: &[char]) -> bool {
+    let n = before.len();
+    if n == 0 || !before[n - 1].is_alphabetic() {
+        return false;
+    }
+    let start = if n >= 2 && before[n - 2] == 'Δ' {
+        n - 2
+    } else {
+        n - 1
+    };
+    start == 0 || !before[start - 1].is_alphanumeric()
+}
+
+/// The size of a subscript in text of size `size` px: smaller, but never below the
+/// smallest text.
+fn sub_size(size: u32) -> u32 {
+    let v = (size as f64 * 0.72).round() as u32;
+    (v + v % 2).max(font_px(TICK)).min(size)
+}
+
+fn text_width(text: &str, size: u32) -> u32 {
+    init_fonts();
+    (FONT, size)
+        .into_font()
+        .box_size(text)
+        .map_or(size * text.chars().count() as u32 / 2, |(w, _)| w)
+}
+
+/// The width in pixels of `markup` drawn at font size `base` (at the current scale).
+pub fn rich_width(markup: &str, base: u32) -> u32 {
+    let size = font_px(base);
+    rich_runs(markup)
+        .iter()
+        .map(|(t, sub)| text_width(t, if *sub { sub_size(size) } else { size }))
+        .sum()
+}
+
+/// Draw `markup` (subscripts as in [`rich_runs`]) at `at`, anchored by `pos`, font size
+/// `base` at the current scale, in `colour`; `vertical` reads it bottom to top (a y axis
+/// description).
+pub fn rich_text<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
+    markup: &str,
+    at: (i32, i32),
+    pos: Pos,
+    base: u32,
+    colour: RGBColor,
+    vertical: bool,
+) -> Result<()> {
+    init_fonts();
+    let size = font_px(base);
+    let total = rich_width(markup, base) as i32;
+    let start = match pos.h_pos {
+        HPos::Left => 0,
+        HPos::Center => -total / 2,
+        HPos::Right => -total,
+    };
+    // the runs are drawn centred on a line: the anchor's vertical position moves the line
+    let centre = match pos.v_pos {
+        VPos::Top => size as i32 / 2,
+        VPos::Center => 0,
+        VPos::Bottom => -(size as i32) / 2,
+    };
+    let mut along = start;
+    for (text, sub) in rich_runs(markup) {
+        let s = if sub { sub_size(size) } else { size };
+        let across = centre + if sub { (size as i32) * 3 / 10 } else { 0 };
+        let mut style = (FONT, s)
+            .into_font()
+            .color(&colour)
+            .pos(Pos::new(HPos::Left, VPos::Center));
+        let point = if vertical {
+            style = style.transform(FontTransform::Rotate270);
+            (at.0 + across, at.1 - along)
+        } else {
+            (at.0 + along, at.1 + across)
+        };
+        let w = text_width(&text, s) as i32;
+        area.draw(&Text::new(text, point, style)).map_err(pe)?;
+        along += w;
+    }
+    Ok(())
 }
 
 /// A plotters backend whose errors `anyhow` can carry (every backend drawn on here).
@@ -159,6 +399,8 @@ pub fn save(
     stem: &Path,
 ) -> Result<Vec<PathBuf>> {
     init_fonts();
+    // the scale is set by the canvas width (which does not depend on it); the height does
+    let _scale = ScaleGuard::for_width(picture.size().0);
     let (w, h) = picture.size();
     let mut heading = picture.heading();
     heading.verdicts = verdicts;
@@ -274,6 +516,7 @@ pub fn tick_formatter(range: &Range<f64>, ticks: usize) -> impl Fn(&f64) -> Stri
 }
 
 /// A chart in `area` with a caption, axis ranges and axis descriptions, mesh drawn.
+/// Caption and descriptions may carry subscripts (`U_eff`, see [`rich_runs`]).
 pub fn chart<'a, DB: Backend>(
     area: &'a DrawingArea<DB, Shift>,
     caption: &str,
@@ -290,11 +533,35 @@ pub fn chart<'a, DB: Backend>(
 pub enum ChartSize {
     /// A figure panel.
     Panel,
-    /// An inset inside a panel: smaller caption, fewer ticks.
+    /// An inset inside a panel: fewer ticks, tighter margins.
     Inset,
 }
 
-/// [`chart`] at a given size.
+/// The lines of a chart caption wrapped to `width` pixels.
+fn caption_lines(caption: &str, width: u32) -> Vec<String> {
+    if caption.is_empty() {
+        return Vec::new();
+    }
+    wrap(caption, width, CAPTION)
+        .into_iter()
+        .map(|l| l.trim_start().to_string())
+        .collect()
+}
+
+/// The height of a chart caption's strip (its lines, wrapped to `width` pixels, and the gap
+/// below), at the current scale; 0 for an empty caption.
+pub fn caption_height(caption: &str, width: u32) -> u32 {
+    let n = caption_lines(caption, width).len() as u32;
+    if n == 0 {
+        0
+    } else {
+        font_px(CAPTION) * 6 / 5 * n + font_px(CAPTION) / 3
+    }
+}
+
+/// [`chart`] at a given size. The caption is drawn centred above the plotting area, the axis
+/// descriptions centred on it (the y one reading upwards), all as rich text; the label areas
+/// are as wide as the tick labels need.
 pub fn framed<'a, DB: Backend>(
     area: &'a DrawingArea<DB, Shift>,
     caption: &str,
@@ -302,30 +569,94 @@ pub fn framed<'a, DB: Backend>(
     (x_desc, y_desc): (&str, &str),
     size: ChartSize,
 ) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>> {
+    init_fonts();
     let inset = size == ChartSize::Inset;
+    let ticks = if inset { 4 } else { 8 };
+    let (fx, fy) = (tick_formatter(&x, ticks), tick_formatter(&y, ticks));
+    let tick = font_px(TICK);
+    let desc = font_px(AXIS_DESC);
+    let widest = |f: &dyn Fn(&f64) -> String, r: &Range<f64>| {
+        (0..=20)
+            .map(|k| r.start + (r.end - r.start) * k as f64 / 20.0)
+            .map(|v| text_width(&f(&v), tick))
+            .max()
+            .unwrap_or(0)
+    };
+    let y_tick_w = widest(&fy, &y);
+    let x_tick_w = widest(&fx, &x);
+    // no more x ticks than fit, each label with a label's width of room
+    let room = area.dim_in_pixel().0.saturating_sub(y_tick_w + px(80));
+    let x_ticks = (room / (2 * x_tick_w.max(1))).clamp(2, ticks as u32) as usize;
+    let has = |d: &str| !d.is_empty();
+    let y_area = y_tick_w + px(10) + if has(y_desc) { desc * 5 / 4 } else { 0 };
+    let x_area = tick + px(10) + if has(x_desc) { desc * 5 / 4 } else { 0 };
+    let margin = px(if inset { 4 } else { 8 });
+    let width = area.dim_in_pixel().0;
+    let cap = caption_height(caption, width.saturating_sub(2 * margin));
     let mut c = ChartBuilder::on(area)
-        .caption(caption, (FONT, if inset { 16 } else { 20 }))
-        .margin(if inset { 6 } else { 10 })
+        .margin(margin)
+        .margin_top(margin + cap)
         // room for half of the last x tick label, which is centred on the right edge
-        .margin_right(if inset { 16 } else { 26 })
-        .x_label_area_size(if inset { 28 } else { 45 })
-        .y_label_area_size(if inset { 56 } else { 70 })
+        .margin_right(margin.max(x_tick_w / 2 + px(4)))
+        .x_label_area_size(x_area)
+        .y_label_area_size(y_area)
         .build_cartesian_2d(x.clone(), y.clone())
         .map_err(|e| anyhow!("{e}"))?;
-    let ticks = if inset { 5 } else { 10 };
-    let (fx, fy) = (tick_formatter(&x, ticks), tick_formatter(&y, ticks));
     c.configure_mesh()
-        .x_desc(x_desc)
-        .y_desc(y_desc)
-        .x_labels(ticks)
+        .x_labels(x_ticks)
         .y_labels(ticks)
         .x_label_formatter(&fx)
         .y_label_formatter(&fy)
-        .axis_desc_style((FONT, 16))
-        .label_style((FONT, 14))
+        .label_style((FONT, tick))
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(|e| anyhow!("{e}"))?;
+    // the caption and axis descriptions, in the area's own pixels
+    let (px_x, px_y) = c.plotting_area().get_pixel_range();
+    let (bx, by) = area.get_base_pixel();
+    let (x0, x1) = (px_x.start - bx, px_x.end - bx);
+    let (y0, y1) = (px_y.start - by, px_y.end - by);
+    let mid_x = (x0 + x1) / 2;
+    let line = font_px(CAPTION) * 6 / 5;
+    for (k, text) in caption_lines(caption, width.saturating_sub(2 * margin))
+        .iter()
+        .enumerate()
+    {
+        // centred on the plotting area where it fits there, else on the whole area
+        let w = rich_width(text, CAPTION) as i32;
+        let centre = mid_x.clamp(w / 2 + margin as i32, width as i32 - w / 2 - margin as i32);
+        rich_text(
+            area,
+            text,
+            (centre, (margin + line * k as u32 + line / 2) as i32),
+            Pos::new(HPos::Center, VPos::Center),
+            CAPTION,
+            BLACK,
+            false,
+        )?;
+    }
+    if has(x_desc) {
+        rich_text(
+            area,
+            x_desc,
+            (mid_x, y1 + (x_area - desc / 2) as i32 - pxi(2)),
+            Pos::new(HPos::Center, VPos::Center),
+            AXIS_DESC,
+            BLACK,
+            false,
+        )?;
+    }
+    if has(y_desc) {
+        rich_text(
+            area,
+            y_desc,
+            (x0 - (y_area - desc / 2) as i32 + pxi(2), (y0 + y1) / 2),
+            Pos::new(HPos::Center, VPos::Center),
+            AXIS_DESC,
+            BLACK,
+            true,
+        )?;
+    }
     Ok(c)
 }
 
@@ -339,7 +670,9 @@ pub fn legend<'a, DB: Backend + 'a>(
         .position(position)
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
-        .label_font((FONT, 14))
+        .label_font((FONT, font_px(LABEL)))
+        .legend_area_size(px(30))
+        .margin(px(8))
         .draw()
         .map_err(|e| anyhow!("{e}"))
 }
@@ -357,46 +690,94 @@ pub enum Symbol {
     Ring(RGBColor),
     /// A cross.
     Cross(RGBColor),
+    /// A filled circle.
+    Dot(RGBColor),
+    /// A series' line (its colour and dash) with its marker, as [`draw_line`] and
+    /// [`draw_markers`] draw it.
+    Series(SeriesStyle),
+}
+
+impl Symbol {
+    /// Draw the mark centred at `m` (a mark [`px`]`(20)` wide).
+    pub fn draw<DB: Backend>(&self, area: &DrawingArea<DB, Shift>, m: (i32, i32)) -> Result<()> {
+        let (h, w3, w2) = (pxi(10), stroke(3), stroke(2));
+        match *self {
+            Symbol::Swatch(c) => area
+                .draw(&Rectangle::new(
+                    [(m.0 - pxi(8), m.1 - pxi(8)), (m.0 + pxi(8), m.1 + pxi(8))],
+                    c.filled(),
+                ))
+                .map_err(pe),
+            Symbol::Line(c) => area
+                .draw(&PathElement::new(
+                    [(m.0 - h, m.1), (m.0 + h, m.1)],
+                    c.stroke_width(w3),
+                ))
+                .map_err(pe),
+            Symbol::Dashed(c) => {
+                dashed_path(area, &[(m.0 - h, m.1), (m.0 + h, m.1)], Dash::Dashed, c, w3)
+            }
+            Symbol::Ring(c) => area
+                .draw(&Circle::new(m, pxi(6) as u32, c.stroke_width(w2)))
+                .map_err(pe),
+            Symbol::Cross(c) => area
+                .draw(&Cross::new(m, pxi(7) as u32, c.stroke_width(w2)))
+                .map_err(pe),
+            Symbol::Dot(c) => area
+                .draw(&Circle::new(m, pxi(6) as u32, c.filled()))
+                .map_err(pe),
+            Symbol::Series(s) => {
+                let half = pxi(14);
+                dashed_path(
+                    area,
+                    &[(m.0 - half, m.1), (m.0 + half, m.1)],
+                    s.dash,
+                    s.colour,
+                    w3,
+                )?;
+                marker(area, m, s.marker, s.colour)
+            }
+        }
+    }
 }
 
 /// A legend drawn in its own strip outside the plotting areas (below the panels), one for a
 /// whole figure: entries side by side, wrapped into centred rows.
 pub struct LegendStrip {
-    /// Mark and text of each entry.
+    /// Mark and text of each entry (the text may carry subscripts, see [`rich_runs`]).
     pub entries: Vec<(Symbol, String)>,
 }
 
-const LEGEND_SIZE: u32 = 16;
-const LEGEND_ROW: u32 = 28;
-const LEGEND_PAD: u32 = 10;
-/// Width of an entry's mark and the gap before its text.
-const LEGEND_MARK: u32 = 30;
-/// Space between entries.
-const LEGEND_GAP: u32 = 30;
+/// Legend strip layout at scale 1: row height, padding, width of an entry's mark and the
+/// gap before its text, space between entries.
+const LEGEND_ROW: u32 = 26;
+const LEGEND_PAD: u32 = 8;
+const LEGEND_MARK: u32 = 36;
+const LEGEND_GAP: u32 = 26;
 
 impl LegendStrip {
     /// An entry's width in pixels: the mark and the text as laid out by the embedded font
     /// (the same for every backend).
     fn entry_width(text: &str) -> u32 {
-        init_fonts();
-        let text_width = (FONT, LEGEND_SIZE)
-            .into_font()
-            .box_size(text)
-            .map_or(LEGEND_SIZE * text.chars().count() as u32, |(w, _)| w);
-        LEGEND_MARK + text_width
+        px(LEGEND_MARK) + rich_width(text, LABEL)
+    }
+
+    fn row_height() -> u32 {
+        px(LEGEND_ROW).max(font_px(LABEL) * 4 / 3)
     }
 
     /// The entries' indices per row, for a strip `width` pixels wide.
     fn rows(&self, width: u32) -> Vec<Vec<usize>> {
-        let max = width.saturating_sub(2 * LEGEND_PAD);
+        let max = width.saturating_sub(2 * px(LEGEND_PAD));
+        let gap = px(LEGEND_GAP);
         let mut rows: Vec<Vec<usize>> = Vec::new();
         let mut used = 0;
         for (i, (_, text)) in self.entries.iter().enumerate() {
             let w = Self::entry_width(text);
             match rows.last_mut() {
-                Some(row) if used + LEGEND_GAP + w <= max => {
+                Some(row) if used + gap + w <= max => {
                     row.push(i);
-                    used += LEGEND_GAP + w;
+                    used += gap + w;
                 }
                 _ => {
                     rows.push(vec![i]);
@@ -407,11 +788,12 @@ impl LegendStrip {
         rows
     }
 
-    /// Height of the strip for a figure `width` pixels wide (0 without entries).
+    /// Height of the strip for a figure `width` pixels wide (0 without entries), at the
+    /// current scale.
     pub fn height(&self, width: u32) -> u32 {
         match self.rows(width).len() as u32 {
             0 => 0,
-            n => 2 * LEGEND_PAD + n * LEGEND_ROW,
+            n => 2 * px(LEGEND_PAD) + n * Self::row_height() + px(4),
         }
     }
 
@@ -419,81 +801,364 @@ impl LegendStrip {
     pub fn draw<DB: Backend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
         let (width, _) = area.dim_in_pixel();
         let rows = self.rows(width);
+        let (pad, gap, row_h) = (px(LEGEND_PAD), px(LEGEND_GAP), Self::row_height());
         let row_width = |row: &Vec<usize>| -> u32 {
             row.iter()
                 .map(|&i| Self::entry_width(&self.entries[i].1))
                 .sum::<u32>()
-                + LEGEND_GAP * (row.len() as u32).saturating_sub(1)
+                + gap * (row.len() as u32).saturating_sub(1)
         };
         let Some(widest) = rows.iter().map(row_width).max() else {
             return Ok(());
         };
         let left = (width.saturating_sub(widest) / 2) as i32;
+        let top = pxi(4);
         let frame = [
-            (left - LEGEND_PAD as i32, 4),
+            (left - pad as i32, top),
             (
-                left + (widest + LEGEND_PAD) as i32,
-                (LEGEND_PAD + rows.len() as u32 * LEGEND_ROW) as i32 + 4,
+                left + (widest + pad) as i32,
+                top + (2 * pad + rows.len() as u32 * row_h) as i32,
             ),
         ];
         area.draw(&Rectangle::new(frame, RGBColor(150, 150, 150)))
             .map_err(pe)?;
-        let font = (FONT, LEGEND_SIZE)
-            .into_font()
-            .color(&BLACK)
-            .pos(Pos::new(HPos::Left, VPos::Center));
         for (k, row) in rows.iter().enumerate() {
-            let y = (LEGEND_PAD + k as u32 * LEGEND_ROW + LEGEND_ROW / 2) as i32;
+            let y = top + (pad + k as u32 * row_h + row_h / 2) as i32;
             let mut x = left + (widest - row_width(row)) as i32 / 2;
             for &i in row {
                 let (symbol, text) = &self.entries[i];
-                let m = (x + 10, y);
-                match *symbol {
-                    Symbol::Swatch(c) => area.draw(&Rectangle::new(
-                        [(m.0 - 8, m.1 - 8), (m.0 + 8, m.1 + 8)],
-                        c.filled(),
-                    )),
-                    Symbol::Line(c) => area.draw(&PathElement::new(
-                        [(m.0 - 10, m.1), (m.0 + 10, m.1)],
-                        c.stroke_width(3),
-                    )),
-                    Symbol::Dashed(c) => {
-                        area.draw(&PathElement::new(
-                            [(m.0 - 10, m.1), (m.0 - 3, m.1)],
-                            c.stroke_width(3),
-                        ))
-                        .map_err(pe)?;
-                        area.draw(&PathElement::new(
-                            [(m.0 + 3, m.1), (m.0 + 10, m.1)],
-                            c.stroke_width(3),
-                        ))
-                    }
-                    Symbol::Ring(c) => area.draw(&Circle::new(m, 6, c.stroke_width(2))),
-                    Symbol::Cross(c) => area.draw(&Cross::new(m, 7, c.stroke_width(2))),
-                }
-                .map_err(pe)?;
-                area.draw(&Text::new(
-                    text.clone(),
-                    (x + LEGEND_MARK as i32, y),
-                    font.clone(),
-                ))
-                .map_err(pe)?;
-                x += (Self::entry_width(text) + LEGEND_GAP) as i32;
+                symbol.draw(area, (x + pxi(14), y))?;
+                rich_text(
+                    area,
+                    text,
+                    (x + px(LEGEND_MARK) as i32, y),
+                    Pos::new(HPos::Left, VPos::Center),
+                    LABEL,
+                    BLACK,
+                    false,
+                )?;
+                x += (Self::entry_width(text) + gap) as i32;
             }
         }
         Ok(())
     }
 }
 
-/// Distinct line colours for several curves in one panel.
-pub const PALETTE: [RGBColor; 6] = [
+/// Line colours for several curves in one panel: the Okabe–Ito colour-blind-safe palette
+/// without its yellow (black, vermillion, blue, bluish green, orange, reddish purple, sky
+/// blue). Pair a colour with a dash or marker ([`series`]) so curves also part in greyscale.
+pub const PALETTE: [RGBColor; 7] = [
     RGBColor(0, 0, 0),
-    RGBColor(200, 30, 30),
-    RGBColor(30, 90, 200),
-    RGBColor(20, 150, 60),
-    RGBColor(150, 60, 180),
-    RGBColor(230, 130, 0),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 114, 178),
+    RGBColor(0, 158, 115),
+    RGBColor(230, 159, 0),
+    RGBColor(204, 121, 167),
+    RGBColor(86, 180, 233),
 ];
+
+/// A line's dash pattern.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Dash {
+    /// Unbroken.
+    Solid,
+    /// Long dashes.
+    Dashed,
+    /// Dots.
+    Dotted,
+    /// Dash, dot (chain line).
+    Chain,
+}
+
+impl Dash {
+    /// On/off lengths in pixels at scale 1 (empty: solid).
+    fn pattern(self) -> &'static [u32] {
+        match self {
+            Dash::Solid => &[],
+            Dash::Dashed => &[10, 6],
+            Dash::Dotted => &[3, 5],
+            Dash::Chain => &[11, 5, 3, 5],
+        }
+    }
+}
+
+/// A point marker.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Marker {
+    /// None.
+    None,
+    /// An open circle.
+    Circle,
+    /// An open square.
+    Square,
+    /// An open upward triangle.
+    Triangle,
+    /// An open diamond.
+    Diamond,
+    /// A diagonal cross.
+    Cross,
+    /// An upright cross.
+    Plus,
+}
+
+/// How one series of a panel is drawn: colour, dash and marker.
+#[derive(Clone, Copy, PartialEq, Debug)]
+pub struct SeriesStyle {
+    /// The colour (from [`PALETTE`]).
+    pub colour: RGBColor,
+    /// The line's dash pattern.
+    pub dash: Dash,
+    /// The marker of its points (drawn by [`draw_markers`]).
+    pub marker: Marker,
+}
+
+const DASHES: [Dash; 4] = [Dash::Solid, Dash::Dashed, Dash::Dotted, Dash::Chain];
+const MARKERS: [Marker; 6] = [
+    Marker::Circle,
+    Marker::Cross,
+    Marker::Square,
+    Marker::Triangle,
+    Marker::Diamond,
+    Marker::Plus,
+];
+
+/// The style of series `i` of a panel: colour `PALETTE[i]`, dash cycling solid, dashed,
+/// dotted, dash-dot, marker cycling circle, cross, square, triangle, diamond, plus. Any two
+/// of the first four series differ in dash and of the first six in marker, so they part in
+/// greyscale too.
+pub fn series(i: usize) -> SeriesStyle {
+    SeriesStyle {
+        colour: PALETTE[i % PALETTE.len()],
+        dash: DASHES[i % DASHES.len()],
+        marker: MARKERS[i % MARKERS.len()],
+    }
+}
+
+/// A line width designed at scale 1, at the current scale.
+pub fn stroke(base: u32) -> u32 {
+    px(base).max(1)
+}
+
+/// Draw a polyline in pixels of `area` with a dash pattern (the pattern runs on across
+/// vertices).
+fn dashed_path<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
+    pts: &[(i32, i32)],
+    dash: Dash,
+    colour: RGBColor,
+    width: u32,
+) -> Result<()> {
+    let style = colour.stroke_width(width);
+    for piece in dash_pieces(pts, dash) {
+        area.draw(&PathElement::new(piece, style)).map_err(pe)?;
+    }
+    Ok(())
+}
+
+/// The visible pieces of a polyline under a dash pattern (pixels; pattern lengths scaled).
+fn dash_pieces(pts: &[(i32, i32)], dash: Dash) -> Vec<Vec<(i32, i32)>> {
+    let pattern: Vec<f64> = dash
+        .pattern()
+        .iter()
+        .map(|&l| px(l).max(1) as f64)
+        .collect();
+    if pattern.is_empty() {
+        return vec![pts.to_vec()];
+    }
+    let mut pieces = Vec::new();
+    let mut cur: Vec<(i32, i32)> = Vec::new();
+    let (mut k, mut left) = (0usize, pattern[0]);
+    let round = |x: f64, y: f64| (x.round() as i32, y.round() as i32);
+    for w in pts.windows(2) {
+        let (a, b) = (
+            (w[0].0 as f64, w[0].1 as f64),
+            (w[1].0 as f64, w[1].1 as f64),
+        );
+        let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+        let mut t = 0.0;
+        let on = |k: usize| k % 2 == 0;
+        if on(k) && cur.is_empty() {
+            cur.push(round(a.0, a.1));
+        }
+        while len - t > left {
+            t += left;
+            let p = round(a.0 + (b.0 - a.0) * t / len, a.1 + (b.1 - a.1) * t / len);
+            if on(k) {
+                cur.push(p);
+                pieces.push(std::mem::take(&mut cur));
+            } else {
+                cur = vec![p];
+            }
+            k = (k + 1) % pattern.len();
+            left = pattern[k];
+        }
+        left -= len - t;
+        if on(k) {
+            cur.push(round(b.0, b.1));
+        }
+    }
+    if cur.len() > 1 {
+        pieces.push(cur);
+    }
+    pieces
+}
+
+/// Clip the segment a–b to the rectangle `[x0, x1] × [y0, y1]` (Liang–Barsky).
+fn clip(
+    a: (f64, f64),
+    b: (f64, f64),
+    (x0, x1, y0, y1): (f64, f64, f64, f64),
+) -> Option<((f64, f64), (f64, f64))> {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-dx, a.0 - x0),
+        (dx, x1 - a.0),
+        (-dy, a.1 - y0),
+        (dy, y1 - a.1),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let r = q / p;
+            if p < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+        }
+    }
+    (t0 <= t1).then_some({
+        (
+            (a.0 + t0 * dx, a.1 + t0 * dy),
+            (a.0 + t1 * dx, a.1 + t1 * dy),
+        )
+    })
+}
+
+/// Draw `points` (data coordinates) as a line in `style`'s colour and dash, `width` pixels
+/// at scale 1, clipped to the plotting area (points that are not finite break the line).
+pub fn draw_line<DB: Backend>(
+    chart: &ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    points: &[(f64, f64)],
+    style: SeriesStyle,
+    width: u32,
+) -> Result<()> {
+    let plot = chart.plotting_area();
+    let (rx, ry) = plot.get_pixel_range();
+    let area = plot.strip_coord_spec();
+    let (bx, by) = (rx.start, ry.start);
+    let rect = (
+        0.0,
+        (rx.end - rx.start) as f64,
+        0.0,
+        (ry.end - ry.start) as f64,
+    );
+    // pixel positions, unrounded, of the finite points; runs broken at the others
+    let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+    for &(x, y) in points {
+        if x.is_finite() && y.is_finite() {
+            let (px_, py_) = plot.map_coordinate(&(x, y));
+            runs.last_mut()
+                .expect("one run")
+                .push(((px_ - bx) as f64, (py_ - by) as f64));
+        } else if !runs.last().expect("one run").is_empty() {
+            runs.push(Vec::new());
+        }
+    }
+    for run in runs {
+        // the clipped pieces, joined while consecutive
+        let mut pieces: Vec<Vec<(i32, i32)>> = Vec::new();
+        let mut joined = false;
+        for w in run.windows(2) {
+            match clip(w[0], w[1], rect) {
+                Some((a, b)) => {
+                    let (a, b) = (
+                        (a.0.round() as i32, a.1.round() as i32),
+                        (b.0.round() as i32, b.1.round() as i32),
+                    );
+                    if joined {
+                        pieces.last_mut().expect("joined").push(b);
+                    } else {
+                        pieces.push(vec![a, b]);
+                    }
+                    joined = b == (w[1].0.round() as i32, w[1].1.round() as i32);
+                }
+                None => joined = false,
+            }
+        }
+        for piece in pieces {
+            dashed_path(&area, &piece, style.dash, style.colour, stroke(width))?;
+        }
+    }
+    Ok(())
+}
+
+/// Draw a marker centred at `m` (pixels of `area`).
+fn marker<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
+    m: (i32, i32),
+    marker: Marker,
+    colour: RGBColor,
+) -> Result<()> {
+    let r = pxi(4);
+    let st = colour.stroke_width(stroke(1));
+    let poly = |pts: Vec<(i32, i32)>| area.draw(&PathElement::new(pts, st)).map_err(pe);
+    match marker {
+        Marker::None => Ok(()),
+        Marker::Circle => area.draw(&Circle::new(m, r as u32, st)).map_err(pe),
+        Marker::Square => poly(vec![
+            (m.0 - r, m.1 - r),
+            (m.0 + r, m.1 - r),
+            (m.0 + r, m.1 + r),
+            (m.0 - r, m.1 + r),
+            (m.0 - r, m.1 - r),
+        ]),
+        Marker::Triangle => poly(vec![
+            (m.0, m.1 - r - r / 4),
+            (m.0 + r, m.1 + r * 3 / 4),
+            (m.0 - r, m.1 + r * 3 / 4),
+            (m.0, m.1 - r - r / 4),
+        ]),
+        Marker::Diamond => poly(vec![
+            (m.0, m.1 - r - r / 4),
+            (m.0 + r, m.1),
+            (m.0, m.1 + r + r / 4),
+            (m.0 - r, m.1),
+            (m.0, m.1 - r - r / 4),
+        ]),
+        Marker::Cross => area.draw(&Cross::new(m, r as u32, st)).map_err(pe),
+        Marker::Plus => {
+            poly(vec![(m.0 - r, m.1), (m.0 + r, m.1)])?;
+            poly(vec![(m.0, m.1 - r), (m.0, m.1 + r)])
+        }
+    }
+}
+
+/// Draw `style`'s marker at each of `points` (data coordinates) inside the plotting area.
+pub fn draw_markers<DB: Backend>(
+    chart: &ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    points: &[(f64, f64)],
+    style: SeriesStyle,
+) -> Result<()> {
+    let plot = chart.plotting_area();
+    let (rx, ry) = plot.get_pixel_range();
+    let area = plot.strip_coord_spec();
+    for &(x, y) in points.iter().filter(|p| p.0.is_finite() && p.1.is_finite()) {
+        let (px_, py_) = plot.map_coordinate(&(x, y));
+        if rx.contains(&px_) && (ry.start..=ry.end).contains(&py_) {
+            marker(
+                &area,
+                (px_ - rx.start, py_ - ry.start),
+                style.marker,
+                style.colour,
+            )?;
+        }
+    }
+    Ok(())
+}
 
 /// A range covering `values` with a margin of 5 % on each side.
 pub fn padded_range(values: impl IntoIterator<Item = f64>) -> Range<f64> {
@@ -535,7 +1200,7 @@ pub fn viridis(t: f64) -> RGBColor {
     )
 }
 
-/// A horizontal colour bar for values in [lo, hi] with its ticks.
+/// A horizontal colour bar for values in [lo, hi] with its ticks and its label (rich text).
 pub fn colour_bar<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
     label: &str,
@@ -543,11 +1208,14 @@ pub fn colour_bar<DB: Backend>(
     hi: f64,
 ) -> Result<()> {
     let fx = tick_formatter(&(lo..hi), 5);
+    let (tick, desc) = (font_px(TICK), font_px(AXIS_DESC));
+    let edge = text_width(&fx(&hi), tick) / 2 + px(4);
+    let x_area = tick + px(10) + desc * 5 / 4;
     let mut c = ChartBuilder::on(area)
-        .margin_left(70)
-        .margin_right(20)
-        .margin_top(8)
-        .x_label_area_size(40)
+        .margin_left(px(70).max(edge))
+        .margin_right(px(20).max(edge))
+        .margin_top(px(8))
+        .x_label_area_size(x_area)
         .build_cartesian_2d(lo..hi, 0.0..1.0)
         .map_err(pe)?;
     c.configure_mesh()
@@ -555,9 +1223,7 @@ pub fn colour_bar<DB: Backend>(
         .disable_mesh()
         .x_labels(5)
         .x_label_formatter(&fx)
-        .x_desc(label)
-        .axis_desc_style((FONT, 16))
-        .label_style((FONT, 14))
+        .label_style((FONT, tick))
         .draw()
         .map_err(pe)?;
     let n = 64;
@@ -569,5 +1235,114 @@ pub fn colour_bar<DB: Backend>(
         )
     }))
     .map_err(pe)?;
-    Ok(())
+    let (rx, ry) = c.plotting_area().get_pixel_range();
+    let (bx, by) = area.get_base_pixel();
+    rich_text(
+        area,
+        label,
+        (
+            (rx.start + rx.end) / 2 - bx,
+            ry.end - by + (x_area - desc / 2) as i32 - pxi(2),
+        ),
+        Pos::new(HPos::Center, VPos::Center),
+        AXIS_DESC,
+        BLACK,
+        false,
+    )
+}
+
+/// The height a [`colour_bar`] needs, at the current scale.
+pub fn colour_bar_height() -> u32 {
+    px(8) + px(20) + font_px(TICK) + px(10) + font_px(AXIS_DESC) * 5 / 4 + px(4)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn subscripts_parse_from_markup_and_symbols_only() {
+        let r = |s: &str| rich_runs(s);
+        let run = |t: &str, sub: bool| (t.to_string(), sub);
+        assert_eq!(
+            r("U_eff(A0)"),
+            [run("U", false), run("eff", true), run("(A0)", false)]
+        );
+        assert_eq!(
+            r("ΔU_1 and D_c"),
+            [
+                run("ΔU", false),
+                run("1", true),
+                run(" and D", false),
+                run("c", true)
+            ]
+        );
+        assert_eq!(r("A_{01}"), [run("A", false), run("01", true)]);
+        assert_eq!(
+            r("dA_{0}/dt"),
+            [run("dA", false), run("0", true), run("/dt", false)]
+        );
+        // not a one-letter symbol: left alone
+        assert_eq!(r("fig14_folds.csv"), [run("fig14_folds.csv", false)]);
+        assert_eq!(r("a_"), [run("a_", false)]);
+    }
+
+    #[test]
+    fn text_is_scaled_to_print_at_seven_points_and_even() {
+        for width in [600, 1120, 1400, 1880, 3000] {
+            let _g = ScaleGuard::for_width(width);
+            for base in [TICK, LABEL, AXIS_DESC, CAPTION, HEADING_LINE, HEADING_TITLE] {
+                let size = font_px(base);
+                assert_eq!(size % 2, 0);
+                assert!(
+                    size as f64 / 1.24 >= width as f64 / 72.0,
+                    "{width}: {base} → {size}"
+                );
+            }
+            assert!(sub_size(font_px(CAPTION)) as f64 / 1.24 >= width as f64 / 72.0);
+        }
+        assert_eq!(scale(), 1.0, "the guard restores the scale");
+    }
+
+    #[test]
+    fn series_part_in_dash_and_marker() {
+        for i in 0..4 {
+            for j in 0..i {
+                assert_ne!(series(i).dash, series(j).dash);
+                assert_ne!(series(i).colour, series(j).colour);
+            }
+        }
+        for i in 0..6 {
+            for j in 0..i {
+                assert_ne!(series(i).marker, series(j).marker);
+            }
+        }
+        // no Okabe–Ito yellow (240, 228, 66) on white
+        assert!(!PALETTE.contains(&RGBColor(240, 228, 66)));
+    }
+
+    #[test]
+    fn dashes_cover_the_pattern_share_of_a_line() {
+        let line = [(0, 0), (100, 0), (100, 100)];
+        let on: f64 = dash_pieces(&line, Dash::Dashed)
+            .iter()
+            .flat_map(|p| {
+                p.windows(2)
+                    .map(|w| ((w[1].0 - w[0].0).abs() + (w[1].1 - w[0].1).abs()) as f64)
+            })
+            .sum();
+        // 10 on, 6 off at scale 1: 200 px drawn 10/16 on, within a dash
+        assert!((on - 200.0 * 10.0 / 16.0).abs() <= 10.0, "{on}");
+        assert_eq!(dash_pieces(&line, Dash::Solid), vec![line.to_vec()]);
+    }
+
+    #[test]
+    fn clipping_keeps_the_inside_part() {
+        let r = (0.0, 10.0, 0.0, 10.0);
+        assert_eq!(
+            clip((-5.0, 5.0), (5.0, 5.0), r),
+            Some(((0.0, 5.0), (5.0, 5.0)))
+        );
+        assert_eq!(clip((-5.0, -5.0), (-1.0, 20.0), r), None);
+    }
 }

@@ -2,7 +2,7 @@
 //! its harmonic-balance equivalent (Eq. 5), side by side, with their recurrence plots
 //! (Eq. 6–7, ε = 0.1, Euclidean norm) and the recurrence rate and determinism of each.
 //!
-//! Both start at the turning point U = A02, U̇ = 0 of the smallest stable cycle of the averaged
+//! Both start at the turning point U = A01, U̇ = 0 of the smallest stable cycle of the averaged
 //! theory (Eq. 18), as the paper's text says ("around the attractor's minimum amplitude").
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig01_phase_recurrence`].

@@ -5,16 +5,55 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig04_drift`].
 
-use crate::render::plot::{chart, framed, legend, padded_range, pe, Backend, ChartSize, FONT};
+use crate::render::plot::{
+    chart, framed, padded_range, pe, px, pxi, rich_text, Backend, ChartSize, LegendStrip, Symbol,
+    LABEL,
+};
 use anyhow::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use trirhythm_paper::fig04_drift::{Fig04, Panel};
+use trirhythm_paper::fig04_drift::{cycle_names, Fig04, Panel};
 
-picture!(Fig04, |self, root| size (1400, 1000), draw {
-    let areas = root.split_evenly((2, 2));
+/// The legend below the panels (it holds for every panel).
+fn key() -> LegendStrip {
+    LegendStrip {
+        entries: vec![
+            (
+                Symbol::Swatch(UP),
+                "f > 0: amplitude grows (energy uptake)".into(),
+            ),
+            (
+                Symbol::Swatch(DOWN),
+                "f < 0: amplitude decays (dissipation)".into(),
+            ),
+            (Symbol::Line(BLACK), "f(A_0) at the panel's r".into()),
+            (
+                Symbol::Dashed(GREY),
+                "same control parameters, r = 1".into(),
+            ),
+            (Symbol::Dot(BLACK), "stable cycle (df/dA_{0} < 0)".into()),
+            (Symbol::Ring(BLACK), "unstable cycle".into()),
+        ],
+    }
+}
+
+const UP: RGBColor = RGBColor(250, 200, 200);
+const DOWN: RGBColor = RGBColor(200, 215, 250);
+const GREY: RGBColor = RGBColor(120, 120, 120);
+
+picture!(Fig04, |self, root| size (1400, 1000 + key().height(1400)), draw {
+    let h = root.dim_in_pixel().1;
+    let (panels, strip) = root.split_vertically(h - key().height(1400));
+    key().draw(&strip)?;
+    let areas = panels.split_evenly((2, 2));
+    // roots are named after the r = 1 panel's (see `cycle_names`)
+    let reference = self
+        .panels
+        .iter()
+        .find(|p| p.r == 1.0)
+        .map_or(&[][..], |p| &p.cycles[..]);
     for (area, p) in areas.iter().zip(&self.panels) {
-        draw_panel(area, p)?;
+        draw_panel(area, p, &cycle_names(reference, &p.cycles))?;
     }
     Ok(())
 });
@@ -28,6 +67,7 @@ fn x_end(p: &Panel) -> f64 {
 fn draw_panel<DB: Backend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     p: &Panel,
+    names: &[String],
 ) -> Result<()> {
     let x_end = x_end(p);
     let x = 0.0..x_end;
@@ -54,9 +94,8 @@ fn draw_panel<DB: Backend>(
             .filter(|c| c.0 <= x_end && c.1 >= y.start)
             .collect()
     };
-    let mut c = chart(area, &caption, x, y.clone(), "A0", "f(A0)")?;
-    let up = RGBColor(250, 200, 200);
-    let down = RGBColor(200, 215, 250);
+    let mut c = chart(area, &caption, x, y.clone(), "A_0", "f(A_0)")?;
+    let (up, down) = (UP, DOWN);
     c.draw_series(AreaSeries::new(
         shown(&p.curve).into_iter().map(|(a, f)| (a, f.max(0.0))),
         0.0,
@@ -120,18 +159,19 @@ fn draw_panel<DB: Backend>(
         .map_err(pe)?
         .label("unstable cycle")
         .legend(|(x, y)| Circle::new((x + 7, y), 5, BLACK.stroke_width(2)));
-    let label_font = (FONT, 14)
-        .into_font()
-        .color(&BLACK)
-        .pos(Pos::new(HPos::Center, VPos::Bottom));
-    c.draw_series(p.cycles.iter().enumerate().map(|(i, cy)| {
-        EmptyElement::at((cy.amplitude, 0.0))
-            + Text::new(format!("A0{}", i + 1), (0, -9), label_font.clone())
-    }))
-    .map_err(pe)?;
-    // panel (d) has room below its curve; the legend holds for every panel
-    if p.label == "d" {
-        legend(&mut c, SeriesLabelPosition::LowerLeft)?;
+    // the roots' names, just above each root
+    let (bx, by) = area.get_base_pixel();
+    for (cy, name) in p.cycles.iter().zip(names) {
+        let (x, y) = c.backend_coord(&(cy.amplitude, 0.0));
+        rich_text(
+            area,
+            name,
+            (x - bx, y - by - pxi(9)),
+            Pos::new(HPos::Center, VPos::Bottom),
+            LABEL,
+            BLACK,
+            false,
+        )?;
     }
     draw_zoom(area, p, &y, x_end)
 }
@@ -153,8 +193,8 @@ fn draw_zoom<DB: Backend>(
     if zoom_end > 0.4 * x_end && zoom_end < x_end {
         let (w, h) = area.dim_in_pixel();
         let inset = area.clone().shrink(
-            (90, (0.48 * h as f64) as u32),
-            ((0.5 * w as f64) as u32, (0.4 * h as f64) as u32),
+            (px(150), (0.42 * h as f64) as u32),
+            ((0.45 * w as f64) as u32, (0.36 * h as f64) as u32),
         );
         inset.fill(&WHITE).map_err(pe)?;
         let pts: Vec<(f64, f64)> = p
@@ -166,7 +206,7 @@ fn draw_zoom<DB: Backend>(
         let yz = padded_range(pts.iter().map(|c| c.1).chain([0.0]));
         let mut z = framed(
             &inset,
-            &format!("zoom: A0 ≤ {zoom_end:.1}"),
+            &format!("zoom: A_0 ≤ {zoom_end:.1}"),
             (0.0..zoom_end, yz),
             ("", ""),
             ChartSize::Inset,

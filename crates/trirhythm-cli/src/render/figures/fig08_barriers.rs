@@ -3,9 +3,10 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig08_barriers`].
 
 use super::fig07_pseudo_potential::{draw_curves, frame};
-use crate::render::plot::{chart, pe, Backend, FONT};
+use crate::render::plot::{chart, pe, pxi, rich_text, Backend, AXIS_DESC};
 use anyhow::Result;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use trirhythm::theory::averaging::Side;
 use trirhythm_paper::fig08_barriers::Fig08;
 
@@ -62,13 +63,17 @@ fn draw_panel<DB: Backend>(
             c.draw_series([EmptyElement::at((xa, yv)) + Circle::new((0, 0), 3, color.filled())])
                 .map_err(pe)?;
         }
-        c.draw_series([EmptyElement::at((xa, 0.5 * (u_well + u_crest)))
-            + Text::new(
-                format!("ΔU{}", i + 1),
-                (6, -8),
-                (FONT, 16).into_font().color(&color),
-            )])
-        .map_err(pe)?;
+        let (x, y) = c.backend_coord(&(xa, 0.5 * (u_well + u_crest)));
+        let (bx, by) = area.get_base_pixel();
+        rich_text(
+            area,
+            &format!("ΔU_{}", i + 1),
+            (x - bx + pxi(6), y - by),
+            Pos::new(HPos::Left, VPos::Center),
+            AXIS_DESC,
+            color,
+            false,
+        )?;
     }
     Ok(())
 }

@@ -3,13 +3,13 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig09_barrier_surfaces`].
 
-use crate::render::plot::{chart, colour_bar, pe, viridis};
+use crate::render::plot::{chart, colour_bar, colour_bar_height, pe, viridis};
 use plotters::prelude::*;
 use trirhythm_paper::fig09_barrier_surfaces::Fig09;
 
-picture!(Fig09, |self, root| size (1700, 960), draw {
+picture!(Fig09, |self, root| size (1400, 1000), draw {
     let h = root.dim_in_pixel().1;
-    let (rest, bars) = root.split_vertically(h - 90);
+    let (rest, bars) = root.split_vertically(h - colour_bar_height());
     // one colour scale per barrier, shared by both r: the rows can be compared
     let scales: Vec<(f64, f64)> = (0..4)
         .map(|k| {
@@ -25,7 +25,7 @@ picture!(Fig09, |self, root| size (1700, 960), draw {
     for (k, bar) in bars.split_evenly((1, 4)).iter().enumerate() {
         let (lo, hi) = scales[k];
         if lo < hi {
-            colour_bar(bar, &format!("ΔU{} (both r)", k + 1), lo, hi)?;
+            colour_bar(bar, &format!("ΔU_{} (both r)", k + 1), lo, hi)?;
         }
     }
     let areas = rest.split_evenly((2, 4));

@@ -65,7 +65,7 @@ picture!(Fig11, |self, root| size two_rows_of_four(&self.panels), draw {
             ),
         ],
     }
-    .draw(&key.margin(60, 0, 0, 0))?;
+    .draw(&key.margin(crate::render::plot::px(20), 0, 0, 0))?;
     for (area, p) in bottom.split_evenly((1, 4)).iter().zip(&self.panels) {
         draw_amplitude_panel(area, p)?;
     }

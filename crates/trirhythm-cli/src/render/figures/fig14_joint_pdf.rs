@@ -5,16 +5,15 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig14_joint_pdf`].
 
-use crate::render::plot::{chart, colour_bar, pe, viridis, Backend};
+use crate::render::plot::{chart, colour_bar, colour_bar_height, pe, viridis, Backend};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use trirhythm_paper::fig14_joint_pdf::{refine, Fig14, FINE};
 
-const PANEL: (u32, u32) = (460, 400);
+const PANEL: (u32, u32) = (360, 380);
 /// Decades of the logarithmic colour scale.
 const DECADES: f64 = 3.0;
-const BAR: u32 = 70;
 
 /// A heat map of `values` on the cells of (`u_edges`, `v_edges`).
 fn heat<DB: Backend>(
@@ -43,7 +42,7 @@ fn heat<DB: Backend>(
     Ok(())
 }
 
-picture!(Fig14, |self, root| size (4 * PANEL.0, 2 * PANEL.1 + BAR), draw {
+picture!(Fig14, |self, root| size (4 * PANEL.0, 2 * PANEL.1 + colour_bar_height()), draw {
     let columns = root.split_evenly((1, 4));
     for (col, (p, label)) in columns
         .iter()

@@ -4,7 +4,9 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::maps`].
 
-use crate::render::plot::{chart, pe, Backend, LegendStrip, Symbol, FONT};
+use crate::render::plot::{
+    chart, font_px, pe, pxi, rich_text, rich_width, Backend, LegendStrip, Symbol, LABEL,
+};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -163,18 +165,25 @@ fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Resul
     for (i, name) in &p.fold_names {
         let curve = &p.folds.curves[*i];
         let q = &curve.points[curve.points.len() / 2];
-        let style = (FONT, 16)
-            .into_font()
-            .color(&FOLD)
-            .pos(Pos::new(HPos::Left, VPos::Center));
         // on a white box: red on green, blue or black is hard to read
-        let w = (0.5 * 16.0 * name.chars().count() as f64) as i32 + 8;
+        let w = rich_width(name, LABEL) as i32 + pxi(8);
+        let h = font_px(LABEL) as i32 * 3 / 4;
         c.draw_series(std::iter::once(
             EmptyElement::at((q.x / sx, q.y / sy))
-                + Rectangle::new([(6, -11), (6 + w, 11)], WHITE.mix(0.85).filled())
-                + Text::new(name.clone(), (10, 0), style.clone()),
+                + Rectangle::new([(pxi(6), -h), (pxi(6) + w, h)], WHITE.mix(0.85).filled()),
         ))
         .map_err(pe)?;
+        let (x, y) = c.backend_coord(&(q.x / sx, q.y / sy));
+        let (bx, by) = area.get_base_pixel();
+        rich_text(
+            area,
+            name,
+            (x - bx + pxi(10), y - by),
+            Pos::new(HPos::Left, VPos::Center),
+            LABEL,
+            FOLD,
+            false,
+        )?;
     }
     c.draw_series(p.folds.cusps.iter().map(|q| {
         EmptyElement::at((q.x / sx, q.y / sy))

@@ -4,38 +4,59 @@
 //!
 //! Drawing only: the ensembles and their comparison with the theory are [`trirhythm_paper::montecarlo`].
 
-use crate::render::plot::{chart, pe, Backend, Symbol, PALETTE};
+use crate::render::plot::{
+    chart, draw_line, draw_markers, series, Backend, Dash, Marker, SeriesStyle, Symbol, PALETTE,
+};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 use trirhythm_paper::montecarlo::AmplitudePanel;
 
 /// The legend entries of an amplitude panel's series.
 pub fn legend_entries(systems: &[&str]) -> Vec<(Symbol, String)> {
     let mut e = vec![
         (
-            Symbol::Line(PALETTE[0]),
+            Symbol::Series(SeriesStyle {
+                marker: Marker::None,
+                ..theory_style(0)
+            }),
             "theory, paper variant (Eq. 27)".to_string(),
         ),
         (
-            Symbol::Dashed(PALETTE[2]),
+            Symbol::Series(SeriesStyle {
+                marker: Marker::None,
+                ..theory_style(1)
+            }),
             "theory, consistent variant".to_string(),
         ),
     ];
     for (i, s) in systems.iter().enumerate() {
-        let c = mc_colour(i);
-        e.push(if i == 0 {
-            (Symbol::Ring(c), format!("Monte Carlo of {s} (± 1 s.e.)"))
-        } else {
-            (Symbol::Cross(c), format!("Monte Carlo of {s} (± 1 s.e.)"))
-        });
+        let style = mc_style(i);
+        e.push((
+            Symbol::Series(SeriesStyle {
+                dash: Dash::Solid,
+                ..style
+            }),
+            format!("Monte Carlo of {s} (± 1 s.e.)"),
+        ));
     }
     e
 }
 
-fn mc_colour(i: usize) -> RGBColor {
-    [PALETTE[1], PALETTE[3]][i % 2]
+/// The theory's curves: the paper variant black and solid, the consistent one blue and
+/// dashed.
+fn theory_style(i: usize) -> SeriesStyle {
+    series(2 * i)
+}
+
+/// Monte Carlo of the k-th system: vermillion circles, then bluish-green crosses (the
+/// markers part them in greyscale).
+fn mc_style(k: usize) -> SeriesStyle {
+    SeriesStyle {
+        colour: [PALETTE[1], PALETTE[3]][k % 2],
+        dash: Dash::Solid,
+        marker: [Marker::Circle, Marker::Cross][k % 2],
+    }
 }
 
 /// Draw one amplitude panel.
@@ -68,45 +89,21 @@ pub fn draw_amplitude_panel<DB: Backend>(
     }
     .max(1e-3);
     let stationary = p.runs.iter().all(|r| r.stationary);
-    let mut c = chart(area, &p.caption, 0.0..x_max, 0.0..y_max * 1.08, "A", "P(A)")?;
-    // the verdicts, inside the panel at its upper right
-    let status = [
-        (!stationary).then(|| {
-            (
-                "Monte Carlo NOT stationary".to_string(),
-                RGBColor(200, 0, 0),
-            )
-        }),
-        cut.then(|| {
-            (
-                format!("theory peak {theory_max:.1}, cut"),
-                RGBColor(90, 90, 90),
-            )
-        }),
-    ];
-    for (k, (text, colour)) in status.into_iter().flatten().enumerate() {
-        let style = (crate::render::plot::FONT, 14)
-            .into_font()
-            .color(&colour)
-            .pos(Pos::new(HPos::Right, VPos::Top));
-        c.draw_series(std::iter::once(
-            EmptyElement::at((x_max, y_max * 1.08))
-                + Text::new(text, (-8, 6 + 18 * k as i32), style),
-        ))
-        .map_err(pe)?;
+    // the badges go into the panel's title, never over the data
+    let mut caption = p.caption.clone();
+    if cut {
+        caption.push_str(&format!("; theory peak {theory_max:.1} cut"));
     }
+    if !stationary {
+        caption.push_str("; MC NOT stationary");
+    }
+    let c = chart(area, &caption, 0.0..x_max, 0.0..y_max * 1.08, "A", "P(A)")?;
     for (i, (_, xs, ys)) in p.theory.iter().enumerate() {
         let pts: Vec<(f64, f64)> = xs.iter().copied().zip(ys.iter().copied()).collect();
-        if i == 0 {
-            c.draw_series(LineSeries::new(pts, PALETTE[0].stroke_width(2)))
-                .map_err(pe)?;
-        } else {
-            c.draw_series(DashedLineSeries::new(pts, 7, 5, PALETTE[2].stroke_width(2)))
-                .map_err(pe)?;
-        }
+        draw_line(&c, &pts, theory_style(i), 2)?;
     }
     for (k, r) in p.runs.iter().enumerate() {
-        let col = mc_colour(k);
+        let style = mc_style(k);
         let mids: Vec<(f64, f64, f64)> = r
             .edges
             .windows(2)
@@ -114,23 +111,20 @@ pub fn draw_amplitude_panel<DB: Backend>(
             .filter(|(_, (d, _))| **d > 0.0)
             .map(|(w, (&d, &s))| (0.5 * (w[0] + w[1]), d, if s.is_finite() { s } else { 0.0 }))
             .collect();
-        c.draw_series(mids.iter().map(|&(x, d, s)| {
-            PathElement::new([(x, (d - s).max(0.0)), (x, d + s)], col.stroke_width(1))
-        }))
-        .map_err(pe)?;
-        if k == 0 {
-            c.draw_series(
-                mids.iter()
-                    .map(|&(x, d, _)| Circle::new((x, d), 3, col.stroke_width(1))),
-            )
-            .map_err(pe)?;
-        } else {
-            c.draw_series(
-                mids.iter()
-                    .map(|&(x, d, _)| Cross::new((x, d), 3, col.stroke_width(1))),
-            )
-            .map_err(pe)?;
+        for &(x, d, s) in &mids {
+            let bar = [(x, (d - s).max(0.0)), (x, d + s)];
+            draw_line(
+                &c,
+                &bar,
+                SeriesStyle {
+                    dash: Dash::Solid,
+                    ..style
+                },
+                1,
+            )?;
         }
+        let centres: Vec<(f64, f64)> = mids.iter().map(|&(x, d, _)| (x, d)).collect();
+        draw_markers(&c, &centres, style)?;
     }
     Ok(())
 }
@@ -150,7 +144,7 @@ pub fn draw_amplitude_grid<DB: Backend>(
 }
 
 /// Size of one amplitude panel in pixels (Figs 11 and 13).
-pub const PANEL: (u32, u32) = (470, 400);
+pub const PANEL: (u32, u32) = (360, 440);
 
 /// Size of a figure of two rows of four amplitude panels with the legend strip below.
 pub fn two_rows_of_four(panels: &[AmplitudePanel]) -> (u32, u32) {
