@@ -148,6 +148,29 @@ pub fn number(v: f64) -> String {
     }
 }
 
+/// `text` with every stand-alone `nan` or `NaN` (a number printed inside a library's sentence)
+/// written "undefined".
+pub fn spell_undefined(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    let word = |c: Option<&char>| c.is_some_and(|c| c.is_alphanumeric() || *c == '_');
+    while i < chars.len() {
+        let is_nan = chars.len() - i >= 3
+            && chars[i..i + 3].iter().collect::<String>().eq_ignore_ascii_case("nan")
+            && !word(i.checked_sub(1).and_then(|j| chars.get(j)))
+            && !word(chars.get(i + 3));
+        if is_nan {
+            out.push_str("undefined");
+            i += 3;
+        } else {
+            out.push(chars[i]);
+            i += 1;
+        }
+    }
+    out
+}
+
 /// A check in words, as `Check::describe` gives it, with undefined numbers spelled out.
 pub fn describe(c: &Check) -> String {
     let value = match c.value.uncertainty {
@@ -162,7 +185,7 @@ pub fn describe(c: &Check) -> String {
     };
     format!(
         "{}: {value}, {} = {} against {}",
-        c.what,
+        spell_undefined(&c.what),
         c.statistic,
         number(c.statistic_value),
         number(c.threshold)
@@ -242,6 +265,7 @@ code{font-size:.9em}
 table{border-collapse:collapse;width:100%;font-size:.88rem}
 th,td{border:1px solid #ccc;padding:.3rem .4rem;vertical-align:top;text-align:left}
 th{background:#f2f2f2}
+col.claim{width:27%}col.verdict{width:17%}col.rule{width:18%}col.fig{width:6%}
 tr[data-verdict=confirmed] td.verdict{background:#e3f0f8;color:#005f93}
 tr[data-verdict=refuted] td.verdict{background:#fbe9de;color:#a64700}
 tr[data-verdict=undetermined] td.verdict{background:#eee;color:#444}
@@ -342,7 +366,8 @@ pub fn page(p: &Page) -> String {
     ));
     // claims table
     h.push_str(
-        "<h2 id=\"claims\">The claims</h2>\n<table>\n<thead><tr><th>Claim</th><th>Verdict</th>\
+        "<h2 id=\"claims\">The claims</h2>\n<table>\n<colgroup><col class=\"claim\">\
+         <col class=\"verdict\"><col class=\"rule\"><col><col class=\"fig\"></colgroup>\n<thead><tr><th>Claim</th><th>Verdict</th>\
          <th>Rule and statistic</th><th>Deciding numbers</th><th>Figure</th></tr></thead>\n\
          <tbody>\n",
     );
@@ -397,7 +422,7 @@ fn verdict_cell(v: &Verdict) -> String {
     match v {
         Verdict::Undetermined { why } => format!(
             "<span class=\"{tag}\">{tag}</span><br>{}",
-            escape(why)
+            escape(&spell_undefined(why))
         ),
         _ => format!("<span class=\"{tag}\">{tag}</span>"),
     }
@@ -517,7 +542,9 @@ fn section(s: &Section, p: &Page) -> String {
 fn summary(c: &ClaimVerdict) -> String {
     let d = &c.decision;
     let mut line = match &d.verdict {
-        Verdict::Undetermined { why } => format!("{} ({why})", d.verdict.tag()),
+        Verdict::Undetermined { why } => {
+            format!("{} ({})", d.verdict.tag(), spell_undefined(why))
+        }
         v => v.tag().to_string(),
     };
     let shown = d.deciding(2);
@@ -617,6 +644,10 @@ mod tests {
         assert_eq!(number(f64::NAN), "undefined");
         assert_eq!(number(f64::NEG_INFINITY), "−∞");
         assert_eq!(number(0.012345), "0.0123");
+        assert_eq!(
+            spell_undefined("D_c: nan in [nan, 0.5] → NaN; resonance, nanometre"),
+            "D_c: undefined in [undefined, 0.5] → undefined; resonance, nanometre"
+        );
     }
 
     #[test]
