@@ -74,11 +74,13 @@ fn rows(html: &str) -> BTreeMap<String, String> {
 fn quick_report_lists_every_claim_once_with_the_counts_of_its_json() {
     let (out, elapsed) = quick_report();
     // well under a minute (figure all --quick takes seconds)
-    assert!(elapsed.as_secs_f64() < 45.0, "report --quick took {elapsed:?}");
+    assert!(
+        elapsed.as_secs_f64() < 45.0,
+        "report --quick took {elapsed:?}"
+    );
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     let json: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("verdicts.json")).unwrap())
-            .unwrap();
+        serde_json::from_str(&std::fs::read_to_string(out.join("verdicts.json")).unwrap()).unwrap();
     let rows = rows(&html);
     let expected: BTreeSet<String> = registry()
         .into_iter()
@@ -106,7 +108,10 @@ fn quick_report_lists_every_claim_once_with_the_counts_of_its_json() {
             .count()
     };
     for key in ["confirmed", "refuted", "undetermined"] {
-        assert_eq!(count(&html, key), json["counts"][key].as_u64().unwrap() as usize);
+        assert_eq!(
+            count(&html, key),
+            json["counts"][key].as_u64().unwrap() as usize
+        );
         assert_eq!(count(&html, key), tally(key), "{key}");
     }
     assert_eq!(
@@ -231,7 +236,9 @@ fn the_page_loads_in_a_headless_browser() {
     assert!(
         dom.contains("data-images=\"loaded\"") && dom.contains("data-image-count=\"19\""),
         "images: {}\n{log}",
-        dom.lines().find(|l| l.contains("<body")).unwrap_or("no body")
+        dom.lines()
+            .find(|l| l.contains("<body"))
+            .unwrap_or("no body")
     );
     for line in log.lines() {
         assert!(!line.contains("CONSOLE"), "console message: {line}");
@@ -270,7 +277,10 @@ fn the_page_loads_in_a_headless_browser() {
     let non_white = pixels.iter().filter(|p| p[..3] != [255, 255, 255]).count();
     let colours: BTreeSet<[u8; 3]> = pixels.iter().map(|p| [p[0], p[1], p[2]]).collect();
     let share = non_white as f64 / pixels.len() as f64;
-    assert!(share > 0.02, "only {share:.4} of the screenshot is not white");
+    assert!(
+        share > 0.02,
+        "only {share:.4} of the screenshot is not white"
+    );
     assert!(colours.len() > 50, "{} distinct colours", colours.len());
     // the verdict colours are drawn (the table's confirmed and refuted cells)
     assert!(colours.contains(&[0xe3, 0xf0, 0xf8]) || colours.contains(&[0xfb, 0xe9, 0xde]));
@@ -284,10 +294,9 @@ fn edited_figure_data_flips_its_verdict() {
     let scratch = scratch_dir("report-flip");
     let data = scratch.join("data");
     std::fs::create_dir_all(&data).unwrap();
-    let mut fig04: Value = serde_json::from_str(
-        &std::fs::read_to_string(out.join("figures/fig04.json")).unwrap(),
-    )
-    .unwrap();
+    let mut fig04: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("figures/fig04.json")).unwrap())
+            .unwrap();
     // unedited, Fig. 4 alone: still refuted, the other figures' claims not judged
     std::fs::write(data.join("fig04.json"), fig04.to_string()).unwrap();
     let before = scratch.join("before");
@@ -387,8 +396,14 @@ fn occupied_directories_and_bad_flags_are_refused_with_nothing_written() {
     let o = run(&["report", "--quick", "--out-dir", occupied.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("--out-dir") && err.contains("notes.txt"), "{err}");
-    assert_eq!(listing(&occupied), BTreeSet::from(["notes.txt".to_string()]));
+    assert!(
+        err.contains("--out-dir") && err.contains("notes.txt"),
+        "{err}"
+    );
+    assert_eq!(
+        listing(&occupied),
+        BTreeSet::from(["notes.txt".to_string()])
+    );
     // a file
     let file = scratch.join("file");
     std::fs::write(&file, "x").unwrap();
@@ -399,10 +414,19 @@ fn occupied_directories_and_bad_flags_are_refused_with_nothing_written() {
     let target = scratch.join("new");
     let t = target.to_str().unwrap();
     for (args, flag) in [
-        (vec!["report", "--out-dir", t, "--variant", "printed"], "--variant"),
+        (
+            vec!["report", "--out-dir", t, "--variant", "printed"],
+            "--variant",
+        ),
         (vec!["report", "--quick"], "--out-dir"),
-        (vec!["report", "--out-dir", t, "--quick", "--from-data", "x"], "--from-data"),
-        (vec!["report", "--out-dir", t, "--from-data", "no-such-dir"], "--from-data"),
+        (
+            vec!["report", "--out-dir", t, "--quick", "--from-data", "x"],
+            "--from-data",
+        ),
+        (
+            vec!["report", "--out-dir", t, "--from-data", "no-such-dir"],
+            "--from-data",
+        ),
         (vec!["report", "--out-dir", t, "--fast"], "--fast"),
     ] {
         let o = run(&args);
@@ -415,13 +439,18 @@ fn occupied_directories_and_bad_flags_are_refused_with_nothing_written() {
     std::fs::create_dir_all(&mixed).unwrap();
     let (out, _) = quick_report();
     std::fs::copy(out.join("figures/fig04.json"), mixed.join("fig04.json")).unwrap();
-    let mut full: Value = serde_json::from_str(
-        &std::fs::read_to_string(out.join("figures/fig07.json")).unwrap(),
-    )
-    .unwrap();
+    let mut full: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("figures/fig07.json")).unwrap())
+            .unwrap();
     full["quick"] = Value::Bool(false);
     std::fs::write(mixed.join("fig07.json"), full.to_string()).unwrap();
-    let o = run(&["report", "--from-data", mixed.to_str().unwrap(), "--out-dir", t]);
+    let o = run(&[
+        "report",
+        "--from-data",
+        mixed.to_str().unwrap(),
+        "--out-dir",
+        t,
+    ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("one quality and variant"));
     assert_eq!(
@@ -432,9 +461,21 @@ fn occupied_directories_and_bad_flags_are_refused_with_nothing_written() {
     std::fs::create_dir_all(&target).unwrap();
     let data = scratch.join("mixed");
     std::fs::remove_file(data.join("fig07.json")).unwrap();
-    let o = run(&["report", "--from-data", data.to_str().unwrap(), "--out-dir", t]);
+    let o = run(&[
+        "report",
+        "--from-data",
+        data.to_str().unwrap(),
+        "--out-dir",
+        t,
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let o = run(&["report", "--from-data", data.to_str().unwrap(), "--out-dir", t]);
+    let o = run(&[
+        "report",
+        "--from-data",
+        data.to_str().unwrap(),
+        "--out-dir",
+        t,
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(
         listing(&target),

@@ -12,9 +12,7 @@ use crate::args::{Named, VariantArg};
 use crate::error::bad;
 use crate::io::{stdout_write, write_atomic, TemporaryDir};
 use crate::render::paper::{data_options, registry, Request};
-use crate::render::report::{
-    page, Counts, FigureRun, Page, Provenance, Section, VerdictsFile,
-};
+use crate::render::report::{page, Counts, FigureRun, Page, Provenance, Section, VerdictsFile};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -95,10 +93,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         }
         let made = (entry.make)(&request, &figures_dir, true, Some(&mut figures))?;
         let seconds = t.elapsed().as_secs_f64();
-        eprintln!(
-            "figure {} ({}): {seconds:.1} s",
-            entry.number, entry.title
-        );
+        eprintln!("figure {} ({}): {seconds:.1} s", entry.number, entry.title);
         let files = made
             .files
             .iter()
@@ -165,9 +160,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
 /// directory in a missing parent, or a non-empty directory that is not a previous report.
 fn check_out_dir(dir: &Path) -> Result<()> {
     let shown = dir.display();
-    let named = dir
-        .file_name()
-        .is_some_and(|n| n != "." && n != "..");
+    let named = dir.file_name().is_some_and(|n| n != "." && n != "..");
     if !named {
         return bad(format!(
             "--out-dir {shown}: not a directory name the report can be renamed onto; give a \

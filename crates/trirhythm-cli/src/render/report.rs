@@ -157,7 +157,10 @@ pub fn spell_undefined(text: &str) -> String {
     let word = |c: Option<&char>| c.is_some_and(|c| c.is_alphanumeric() || *c == '_');
     while i < chars.len() {
         let is_nan = chars.len() - i >= 3
-            && chars[i..i + 3].iter().collect::<String>().eq_ignore_ascii_case("nan")
+            && chars[i..i + 3]
+                .iter()
+                .collect::<String>()
+                .eq_ignore_ascii_case("nan")
             && !word(i.checked_sub(1).and_then(|j| chars.get(j)))
             && !word(chars.get(i + 3));
         if is_nan {
@@ -566,7 +569,10 @@ fn provenance(p: &Page) -> String {
     let mut h = String::from("<h2 id=\"provenance\">Provenance</h2>\n<table>\n");
     let row = |k: &str, v: String| format!("<tr><th>{}</th><td>{v}</td></tr>\n", escape(k));
     h.push_str(&row("trirhythm", escape(&prov.trirhythm)));
-    h.push_str(&row("git commit", format!("<code>{}</code>", escape(&prov.commit))));
+    h.push_str(&row(
+        "git commit",
+        format!("<code>{}</code>", escape(&prov.commit)),
+    ));
     h.push_str(&row(
         "quality",
         if prov.quick { "quick" } else { "full" }.into(),
