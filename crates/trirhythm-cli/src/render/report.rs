@@ -513,9 +513,9 @@ fn section(s: &Section, p: &Page) -> String {
         for c in mine {
             let tag = c.decision.verdict.tag();
             h.push_str(&format!(
-                "<li><code>{}</code>: <span class=\"{tag}\">{tag}</span> — {}</li>",
+                "<li><code>{}</code>: <span class=\"{tag}\">{tag}</span> {}</li>",
                 escape(&c.claim.id),
-                escape(&summary(c))
+                escape(&detail(c))
             ));
         }
         h.push_str("</ul>\n");
@@ -541,27 +541,19 @@ fn section(s: &Section, p: &Page) -> String {
     h
 }
 
-/// `ClaimVerdict::summary(2)` with undefined numbers spelled out.
-fn summary(c: &ClaimVerdict) -> String {
+/// `ClaimVerdict::summary(2)` after the tag: why when undetermined, then the deciding
+/// numbers, with undefined numbers spelled out.
+fn detail(c: &ClaimVerdict) -> String {
     let d = &c.decision;
-    let mut line = match &d.verdict {
-        Verdict::Undetermined { why } => {
-            format!("{} ({})", d.verdict.tag(), spell_undefined(why))
-        }
-        v => v.tag().to_string(),
-    };
-    let shown = d.deciding(2);
-    if !shown.is_empty() {
-        line.push_str(": ");
-        line.push_str(
-            &shown
-                .iter()
-                .map(|c| describe(c))
-                .collect::<Vec<_>>()
-                .join("; "),
-        );
+    let mut parts = Vec::new();
+    if let Verdict::Undetermined { why } = &d.verdict {
+        parts.push(format!("({})", spell_undefined(why)));
     }
-    line
+    let shown: Vec<String> = d.deciding(2).into_iter().map(describe).collect();
+    if !shown.is_empty() {
+        parts.push(shown.join("; "));
+    }
+    parts.join(" ")
 }
 
 fn provenance(p: &Page) -> String {
