@@ -163,6 +163,20 @@ fn quick_report_lists_every_claim_once_with_the_counts_of_its_json() {
         "Managing trirhythmicity and bifurcation in the fractional biological vibro-impact \
          system under correlated noise"
     ));
+    // every element the page opens it closes (void elements aside), once per body and html
+    for name in [
+        "html", "head", "body", "table", "thead", "tbody", "tr", "td", "th", "section", "ul", "li",
+        "p", "a", "figure", "span", "code", "h2", "h3", "script", "style",
+    ] {
+        let opened =
+            html.matches(&format!("<{name}>")).count() + html.matches(&format!("<{name} ")).count();
+        let closed = html.matches(&format!("</{name}>")).count();
+        assert_eq!(
+            opened, closed,
+            "<{name}> opened {opened} times, closed {closed}"
+        );
+    }
+    assert_eq!(html.matches("<body").count(), 1);
     assert_eq!(json["report"]["quick"], true);
     assert_eq!(json["report"]["figures"].as_array().unwrap().len(), 19);
     // the report leaves nothing beside itself
