@@ -24,7 +24,7 @@ mod error;
 mod io;
 mod render;
 
-use commands::{ensemble, figure, lyapunov, maps, oscillation, simulate, theory};
+use commands::{ensemble, figure, lyapunov, maps, oscillation, report, simulate, theory};
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
@@ -73,6 +73,8 @@ enum Command {
     CriticalNoise(lyapunov::CriticalNoiseArgs),
     /// Reproduce a figure of the paper: data (CSV, and JSON with --data) and picture (PNG + SVG).
     Figure(figure::FigureArgs),
+    /// Every figure and every claim judged: one HTML page (index.html), verdicts.json, figures/.
+    Report(report::ReportArgs),
     /// List the parameter presets (one per figure panel) with their notes.
     Presets,
 }
@@ -93,7 +95,7 @@ impl Command {
             Command::Oscillation(a) => a.out.as_deref(),
             Command::Lyapunov(a) => a.out.as_deref(),
             Command::CriticalNoise(a) => a.out.as_deref(),
-            Command::Figure(_) | Command::Presets => None,
+            Command::Figure(_) | Command::Report(_) | Command::Presets => None,
         }
     }
 }
@@ -123,6 +125,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Lyapunov(a) => lyapunov::lyapunov(a),
         Command::CriticalNoise(a) => lyapunov::critical(a),
         Command::Figure(a) => figure::figure(a),
+        Command::Report(a) => report::report(a),
         Command::Presets => figure::presets(),
     }?;
     std::io::stdout()

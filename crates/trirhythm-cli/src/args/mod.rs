@@ -108,6 +108,7 @@ pub enum VariantArg {
 }
 
 same_variants!(VariantArg => Variant: Paper, Consistent);
+same_variants!(Variant => VariantArg: Paper, Consistent);
 
 /// Parameter selection: a preset, then `--param KEY=VALUE` overrides.
 #[derive(Debug, Clone, Args)]

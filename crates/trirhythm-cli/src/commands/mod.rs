@@ -7,5 +7,6 @@ pub mod figure;
 pub mod lyapunov;
 pub mod maps;
 pub mod oscillation;
+pub mod report;
 pub mod simulate;
 pub mod theory;

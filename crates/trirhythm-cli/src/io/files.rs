@@ -37,11 +37,24 @@ pub fn install_signal_cleanup() {
         // keep the lock until exit: no temporary can be created or renamed after this
         let list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
         for p in list.iter() {
-            let _ = std::fs::remove_file(p);
+            remove(p);
         }
         eprintln!("interrupted: no output written");
         std::process::exit(130);
     });
+}
+
+/// Remove a temporary: a file, or a directory being built with everything in it.
+fn remove(path: &Path) {
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if m.is_dir() => {
+            let _ = std::fs::remove_dir_all(path);
+        }
+        Ok(_) => {
+            let _ = std::fs::remove_file(path);
+        }
+        Err(_) => {}
+    }
 }
 
 /// Refuse a destination that cannot receive a file: a directory, or a path in a directory that
@@ -164,6 +177,98 @@ impl Drop for Temporary {
         if !self.committed {
             let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
             let _ = std::fs::remove_file(&self.path);
+            list.retain(|p| p != &self.path);
+        }
+    }
+}
+
+/// A directory being built: a registered hidden sibling `.NAME.partial-PID` of its target,
+/// removed with everything in it when dropped uncommitted and on SIGINT, SIGTERM or SIGHUP, and
+/// renamed onto the target when complete ([`TemporaryDir::commit`]).
+pub struct TemporaryDir {
+    path: PathBuf,
+    target: PathBuf,
+    committed: bool,
+}
+
+impl TemporaryDir {
+    /// Create the temporary directory of `target` (whose parent must exist).
+    pub fn create(target: &Path) -> Result<TemporaryDir> {
+        let path = temporary_sibling(target);
+        let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+        // a stale one of a killed run with the same process id: start afresh
+        remove(&path);
+        list.push(path.clone());
+        let made = std::fs::create_dir(&path);
+        drop(list);
+        let tmp = TemporaryDir {
+            path,
+            target: target.to_path_buf(),
+            committed: false,
+        };
+        made.with_context(|| format!("creating {}", tmp.path.display()))?;
+        Ok(tmp)
+    }
+
+    /// The temporary directory.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Rename the complete directory onto its target. A target that exists (the caller has
+    /// decided that it may be replaced) is moved aside first and removed after; a signal during
+    /// the renames waits for them and then removes what is left aside.
+    pub fn commit(mut self) -> Result<()> {
+        let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+        let aside = self.target.exists().then(|| {
+            let name = self
+                .target
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            self.target
+                .with_file_name(format!(".{name}.replaced-{}", std::process::id()))
+        });
+        let renamed = (|| -> Result<()> {
+            if let Some(aside) = &aside {
+                remove(aside);
+                std::fs::rename(&self.target, aside).with_context(|| {
+                    format!("moving the previous {} aside", self.target.display())
+                })?;
+                list.push(aside.clone());
+            }
+            std::fs::rename(&self.path, &self.target)
+                .with_context(|| format!("renaming to {}", self.target.display()))
+        })();
+        if renamed.is_err() {
+            // put the previous directory back
+            if let Some(aside) = &aside {
+                if !self.target.exists() {
+                    let _ = std::fs::rename(aside, &self.target);
+                }
+            }
+        }
+        list.retain(|p| p != &self.path);
+        if renamed.is_ok() {
+            self.committed = true;
+        }
+        drop(list);
+        if let Some(aside) = &aside {
+            let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+            if renamed.is_ok() {
+                remove(aside);
+            }
+            list.retain(|p| p != aside);
+        }
+        renamed
+    }
+}
+
+impl Drop for TemporaryDir {
+    fn drop(&mut self) {
+        if !self.committed {
+            let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+            remove(&self.path);
             list.retain(|p| p != &self.path);
         }
     }

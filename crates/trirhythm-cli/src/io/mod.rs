@@ -7,7 +7,7 @@ pub mod json;
 pub mod progress;
 pub mod table;
 
-pub use files::{stdout_write, write_atomic, DirLock, Stream, Temporary};
+pub use files::{stdout_write, write_atomic, DirLock, Stream, Temporary, TemporaryDir};
 pub use json::{emit, jlimit, jnum, jvec, params_json, pretty};
 pub use progress::{progress, Report};
 pub use table::{num, reading, Csv};

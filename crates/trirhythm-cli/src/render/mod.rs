@@ -3,4 +3,6 @@
 //! the commands or the arguments.
 
 pub mod figures;
+pub mod paper;
 pub mod plot;
+pub mod report;

@@ -1,0 +1,304 @@
+//! `trirhythm report`: every figure computed (or read from figure data), every claim of the
+//! paper judged, and one self-contained HTML page with the verdicts, the figures and the
+//! provenance.
+//!
+//! Method: the figures are made one after the other by the same code as `trirhythm figure`
+//! ([`crate::render::paper`]), each collected in a `Figures` value; the claims are judged at once
+//! by `trirhythm_paper::verdict::claims::judge`; the page is [`crate::render::report::page`].
+//! Everything is built in a hidden sibling of `--out-dir` and renamed onto it at the end: an
+//! error or an interrupt leaves no partial report. Tested by `tests/report.rs`.
+
+use crate::args::{Named, VariantArg};
+use crate::error::bad;
+use crate::io::{stdout_write, write_atomic, TemporaryDir};
+use crate::render::paper::{data_options, registry, Request};
+use crate::render::report::{page, Counts, FigureRun, Page, Provenance, Section, VerdictsFile};
+use anyhow::{Context, Result};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use trirhythm_paper::verdict::claims::{judge, Figures};
+use trirhythm_paper::FigureOptions;
+
+/// The entries a report directory holds.
+const REPORT_ENTRIES: [&str; 3] = ["index.html", "verdicts.json", "figures"];
+
+#[derive(Debug, clap::Args)]
+#[command(
+    after_help = "Files, in --out-dir: index.html (the page: the paper, the rules, the counts, \
+    one row per claim with its verdict and deciding numbers, one section per figure, the \
+    provenance), verdicts.json (the verdicts as data, with the counts and the provenance) and \
+    figures/ (each figure's CSV, PNG, SVG and figNN.json, so that `report --from-data \
+    DIR/figures` draws the report again without computing).\n\
+    The report is built in a hidden sibling directory and renamed onto --out-dir when \
+    complete. --out-dir must not exist, be empty, or hold a previous report (index.html, \
+    verdicts.json, figures/ and nothing else), which is replaced."
+)]
+pub struct ReportArgs {
+    /// Directory of the report (created; a previous report there is replaced).
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: PathBuf,
+    /// Coarser grids and shorter runs (for CI and previews).
+    #[arg(long)]
+    pub quick: bool,
+    /// Formula variant of the averaged theory.
+    #[arg(long, value_enum, default_value_t = VariantArg::Paper)]
+    pub variant: VariantArg,
+    /// Read the figures from DIR/figNN.json (written by `figure --data` or a previous report's
+    /// figures/) instead of computing; a missing figure is reported as not in the data.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["quick", "variant"])]
+    pub from_data: Option<PathBuf>,
+}
+
+/// `report`: compute or read every figure, judge every claim, write the page.
+pub fn report(args: &ReportArgs) -> Result<()> {
+    let start = Instant::now();
+    check_out_dir(&args.out_dir)?;
+    let (options, request) = match &args.from_data {
+        None => {
+            let options = FigureOptions {
+                quick: args.quick,
+                variant: args.variant.into(),
+            };
+            (options, Request::Compute(options))
+        }
+        Some(dir) => (data_dir_options(dir)?, Request::FromData(dir.as_path())),
+    };
+    let tmp = TemporaryDir::create(&args.out_dir)?;
+    let figures_dir = tmp.path().join("figures");
+    let mut figures = Figures {
+        options,
+        ..Default::default()
+    };
+    let mut sections = Vec::new();
+    let mut runs = Vec::new();
+    for entry in registry() {
+        let t = Instant::now();
+        let missing = match &args.from_data {
+            Some(dir) => data_options(dir, entry.number)?.is_none(),
+            None => false,
+        };
+        if missing {
+            sections.push(Section {
+                number: entry.number,
+                title: entry.title.into(),
+                heading: None,
+            });
+            runs.push(FigureRun {
+                figure: entry.number,
+                status: "not in the data".into(),
+                seconds: 0.0,
+                files: vec![],
+            });
+            continue;
+        }
+        let made = (entry.make)(&request, &figures_dir, true, Some(&mut figures))?;
+        let seconds = t.elapsed().as_secs_f64();
+        eprintln!("figure {} ({}): {seconds:.1} s", entry.number, entry.title);
+        let files = made
+            .files
+            .iter()
+            .filter_map(|f| f.file_name())
+            .map(|n| format!("figures/{}", n.to_string_lossy()))
+            .collect();
+        sections.push(Section {
+            number: entry.number,
+            title: entry.title.into(),
+            heading: Some(made.heading),
+        });
+        runs.push(FigureRun {
+            figure: entry.number,
+            status: if args.from_data.is_some() {
+                "read".into()
+            } else {
+                "computed".into()
+            },
+            seconds,
+            files,
+        });
+    }
+    let verdicts = judge(&figures);
+    let provenance = Provenance {
+        trirhythm: env!("CARGO_PKG_VERSION").into(),
+        commit: option_env!("TRIRHYTHM_COMMIT").unwrap_or("unknown").into(),
+        quick: options.quick,
+        variant: VariantArg::from(options.variant).name(),
+        from_data: args.from_data.is_some(),
+        command: command_line(args),
+        figures: runs,
+        total_seconds: start.elapsed().as_secs_f64(),
+    };
+    let counts = Counts::of(&verdicts);
+    let json = serde_json::to_string_pretty(&VerdictsFile {
+        report: &provenance,
+        counts,
+        verdicts: &verdicts,
+    })
+    .context("serialising the verdicts")?;
+    write_atomic(&tmp.path().join("verdicts.json"), json.as_bytes())?;
+    let html = page(&Page {
+        verdicts: &verdicts,
+        sections: &sections,
+        provenance: &provenance,
+    });
+    write_atomic(&tmp.path().join("index.html"), html.as_bytes())?;
+    tmp.commit()?;
+    eprintln!(
+        "report: {} confirmed, {} refuted, {} undetermined ({} not decided by code, {} not \
+         judged) in {:.1} s",
+        counts.confirmed,
+        counts.refuted,
+        counts.undetermined,
+        counts.not_computable,
+        counts.not_judged,
+        start.elapsed().as_secs_f64()
+    );
+    let index = args.out_dir.join("index.html");
+    stdout_write(format!("{}\n", index.display()).as_bytes())
+}
+
+/// Refuse an `--out-dir` the report may not take: a file, a path without a name (`.`, `/`), a
+/// directory in a missing parent, or a non-empty directory that is not a previous report.
+fn check_out_dir(dir: &Path) -> Result<()> {
+    let shown = dir.display();
+    let named = dir.file_name().is_some_and(|n| n != "." && n != "..");
+    if !named {
+        return bad(format!(
+            "--out-dir {shown}: not a directory name the report can be renamed onto; give a \
+             new directory such as `report`"
+        ));
+    }
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !parent.is_dir() {
+        return bad(format!(
+            "--out-dir {shown}: directory {} does not exist",
+            parent.display()
+        ));
+    }
+    let Ok(meta) = std::fs::symlink_metadata(dir) else {
+        return Ok(());
+    };
+    if !meta.is_dir() {
+        return bad(format!(
+            "--out-dir {shown}: exists and is not a directory; give a new directory"
+        ));
+    }
+    let entries: Vec<String> = std::fs::read_dir(dir)
+        .with_context(|| format!("reading {shown}"))?
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    if entries.is_empty() {
+        return Ok(());
+    }
+    let foreign: Vec<&String> = entries
+        .iter()
+        .filter(|e| !REPORT_ENTRIES.contains(&e.as_str()))
+        .collect();
+    let previous = foreign.is_empty() && is_report(&dir.join("verdicts.json"));
+    if !previous {
+        let example = foreign
+            .first()
+            .map(|e| format!(" (it holds {e})"))
+            .unwrap_or_default();
+        return bad(format!(
+            "--out-dir {shown}: exists and is neither empty nor a previous report{example}; \
+             give a new or empty directory (a previous report — index.html, verdicts.json, \
+             figures/ and nothing else — is replaced)"
+        ));
+    }
+    Ok(())
+}
+
+/// Whether `path` is the `verdicts.json` of a report (an object with a `report` object naming
+/// the trirhythm version).
+fn is_report(path: &Path) -> bool {
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return false;
+    };
+    let Ok(value) = serde_json::from_str::<serde_json::Value>(&text) else {
+        return false;
+    };
+    value
+        .get("report")
+        .and_then(|r| r.get("trirhythm"))
+        .is_some_and(|v| v.is_string())
+}
+
+/// The options of the figure data in `dir`: every `figNN.json` there must share them; at least
+/// one must exist.
+fn data_dir_options(dir: &Path) -> Result<FigureOptions> {
+    if !dir.is_dir() {
+        return bad(format!(
+            "--from-data {}: not a directory (give the directory holding figNN.json, e.g. a \
+             previous report's figures/)",
+            dir.display()
+        ));
+    }
+    let mut found: Vec<(u32, FigureOptions)> = Vec::new();
+    for entry in registry() {
+        if let Some(o) = data_options(dir, entry.number)? {
+            found.push((entry.number, o));
+        }
+    }
+    let Some(&(first, options)) = found.first() else {
+        return bad(format!(
+            "--from-data {}: holds no figure data (figNN.json); write it with `figure all \
+             --data` or `report`",
+            dir.display()
+        ));
+    };
+    if let Some((n, o)) = found.iter().find(|(_, o)| *o != options) {
+        let describe = |o: &FigureOptions| {
+            format!(
+                "{}, {} variant",
+                if o.quick { "quick" } else { "full" },
+                VariantArg::from(o.variant).name()
+            )
+        };
+        return bad(format!(
+            "--from-data {}: figure {first} was computed {} but figure {n} {}; a report is \
+             judged from figures of one quality and variant",
+            dir.display(),
+            describe(&options),
+            describe(o)
+        ));
+    }
+    Ok(options)
+}
+
+/// The command line as typed, with each path as a name relative to the report (no absolute
+/// path of the machine).
+fn command_line(args: &ReportArgs) -> String {
+    let name = |p: &Path| -> String {
+        p.file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "DIR".into())
+    };
+    let out = name(&args.out_dir);
+    let mut line = format!("trirhythm report --out-dir {out}");
+    match &args.from_data {
+        None => {
+            if args.quick {
+                line.push_str(" --quick");
+            }
+            line.push_str(&format!(" --variant {}", args.variant.name()));
+        }
+        Some(dir) => {
+            let inside = match (dir.canonicalize(), args.out_dir.canonicalize()) {
+                (Ok(d), Ok(o)) => d
+                    .strip_prefix(&o)
+                    .ok()
+                    .map(|rest| PathBuf::from(&out).join(rest)),
+                _ => None,
+            };
+            let shown = inside
+                .map(|p| p.display().to_string())
+                .unwrap_or_else(|| name(dir));
+            line.push_str(&format!(" --from-data {shown}"));
+        }
+    }
+    line
+}
