@@ -126,11 +126,24 @@ fn quick_report_lists_every_claim_once_with_the_counts_of_its_json() {
         rows_of("undetermined"),
         count(&html, "undetermined") + count(&html, "not-computable")
     );
-    // each verdict in the JSON is the row's
+    // each verdict in the JSON is the row's, and the Markdown table's
+    let md = std::fs::read_to_string(out.join("claims.md")).unwrap();
     for c in json["claims"].as_array().unwrap() {
         let id = c["claim"]["id"].as_str().unwrap();
-        assert_eq!(rows[id], c["decision"]["verdict"].as_str().unwrap(), "{id}");
+        let verdict = c["decision"]["verdict"].as_str().unwrap();
+        assert_eq!(rows[id], verdict, "{id}");
+        let line = md
+            .lines()
+            .find(|l| l.starts_with(&format!("| `{id}`")))
+            .unwrap_or_else(|| panic!("{id}: no row in claims.md"));
+        assert!(line.contains(&format!("**{verdict}**")), "{id}: {line}");
+        assert_eq!(line.matches(" | ").count(), 3, "{id}: four cells: {line}");
     }
+    assert_eq!(
+        md.lines().filter(|l| l.starts_with("| `")).count(),
+        expected.len(),
+        "one Markdown row per claim"
+    );
     // one section per figure, every picture present, linked to its SVG
     let imgs: Vec<String> = start_tags(&html, "img")
         .iter()
@@ -493,7 +506,7 @@ fn occupied_directories_and_bad_flags_are_refused_with_nothing_written() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(
         listing(&target),
-        BTreeSet::from(["index.html", "verdicts.json", "figures"].map(String::from))
+        BTreeSet::from(["index.html", "verdicts.json", "claims.md", "figures"].map(String::from))
     );
     assert_eq!(
         listing(&scratch),

@@ -11,6 +11,7 @@
 use crate::args::{Named, VariantArg};
 use crate::error::bad;
 use crate::io::{stdout_write, write_atomic, TemporaryDir};
+use crate::render::claims_table::claims_markdown;
 use crate::render::paper::{data_options, registry, Request};
 use crate::render::report::{page, Counts, FigureRun, Page, Provenance, Section, VerdictsFile};
 use anyhow::{Context, Result};
@@ -20,18 +21,18 @@ use trirhythm_paper::verdict::claims::{judge, Figures};
 use trirhythm_paper::FigureOptions;
 
 /// The entries a report directory holds.
-const REPORT_ENTRIES: [&str; 3] = ["index.html", "verdicts.json", "figures"];
+const REPORT_ENTRIES: [&str; 4] = ["index.html", "verdicts.json", "claims.md", "figures"];
 
 #[derive(Debug, clap::Args)]
 #[command(
     after_help = "Files, in --out-dir: index.html (the page: the paper, the rules, the counts, \
     one row per claim with its verdict and deciding numbers, one section per figure, the \
-    provenance), verdicts.json (the verdicts as data, with the counts and the provenance) and \
-    figures/ (each figure's CSV, PNG, SVG and figNN.json, so that `report --from-data \
+    provenance), verdicts.json (the verdicts as data, with the counts and the provenance), \
+    claims.md (the claims table in Markdown) and figures/ (each figure's CSV, PNG, SVG and figNN.json, so that `report --from-data \
     DIR/figures` draws the report again without computing).\n\
     The report is built in a hidden sibling directory and renamed onto --out-dir when \
     complete. --out-dir must not exist, be empty, or hold a previous report (index.html, \
-    verdicts.json, figures/ and nothing else), which is replaced."
+    verdicts.json, claims.md, figures/ and nothing else), which is replaced."
 )]
 pub struct ReportArgs {
     /// Directory of the report (created; a previous report there is replaced).
@@ -141,6 +142,17 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         provenance: &provenance,
     });
     write_atomic(&tmp.path().join("index.html"), html.as_bytes())?;
+    let source = format!(
+        "trirhythm {}, commit {}, {} quality, {} variant",
+        provenance.trirhythm,
+        provenance.commit,
+        if provenance.quick { "quick" } else { "full" },
+        provenance.variant
+    );
+    write_atomic(
+        &tmp.path().join("claims.md"),
+        claims_markdown(&verdicts, &source).as_bytes(),
+    )?;
     tmp.commit()?;
     eprintln!(
         "report: {} confirmed, {} refuted, {} undetermined ({} not decided by code, {} not \
@@ -206,7 +218,7 @@ fn check_out_dir(dir: &Path) -> Result<()> {
         return bad(format!(
             "--out-dir {shown}: exists and is neither empty nor a previous report{example}; \
              give a new or empty directory (a previous report — index.html, verdicts.json, \
-             figures/ and nothing else — is replaced)"
+             claims.md, figures/ and nothing else — is replaced)"
         ));
     }
     Ok(())

@@ -2,6 +2,7 @@
 //! from data the paper crate computed. Depends on [`crate::io`] (atomic files) only; never on
 //! the commands or the arguments.
 
+pub mod claims_table;
 pub mod figures;
 pub mod paper;
 pub mod plot;

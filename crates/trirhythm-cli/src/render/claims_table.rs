@@ -1,0 +1,54 @@
+//! The claims table of a report as Markdown (`claims.md`): one row per claim — its words and
+//! place, the verdict (with the reason when undetermined) and its deciding numbers — written
+//! from the verdicts alone, so that a README or a paper's supplement can carry the table the
+//! code decided rather than one typed by hand. Tested in `tests/report.rs` (every claim has a
+//! row, the verdict of each row is the page's).
+
+use super::report::{describe, spell_undefined};
+use trirhythm_paper::verdict::claims::Verdicts;
+use trirhythm_paper::verdict::Verdict;
+
+/// A Markdown table cell: pipes escaped, line breaks as spaces.
+fn cell(text: &str) -> String {
+    text.replace('|', "\\|").replace(['\n', '\r'], " ")
+}
+
+/// The claims table of `verdicts` as Markdown, headed by one line naming what it was computed
+/// from (`source`, e.g. "trirhythm 0.1.0, commit …, full quality").
+pub fn claims_markdown(verdicts: &Verdicts, source: &str) -> String {
+    let (c, r, u) = verdicts.counts();
+    let mut out = format!(
+        "Claims of the paper decided by trirhythm ({source}): {c} confirmed, {r} refuted, {u} \
+         undetermined; {} not decided by code.\n\n\
+         | Claim | Where | Verdict | The numbers that decide it |\n|---|---|---|---|\n",
+        verdicts.not_computable.len()
+    );
+    for v in &verdicts.claims {
+        let d = &v.decision;
+        let verdict = match &d.verdict {
+            Verdict::Undetermined { why } => {
+                format!("**undetermined**: {}", spell_undefined(why))
+            }
+            other => format!("**{}**", other.tag()),
+        };
+        let numbers: Vec<String> = d.deciding(2).into_iter().map(describe).collect();
+        out.push_str(&format!(
+            "| `{}`: {} | {} | {} | {} |\n",
+            cell(&v.claim.id),
+            cell(&v.claim.words),
+            cell(&v.claim.place),
+            cell(&verdict),
+            cell(&numbers.join("; "))
+        ));
+    }
+    for n in &verdicts.not_computable {
+        out.push_str(&format!(
+            "| `{}`: {} | {} | not decided by code | needs {} |\n",
+            cell(&n.id),
+            cell(&n.words),
+            cell(&n.place),
+            cell(&n.needs)
+        ));
+    }
+    out
+}
