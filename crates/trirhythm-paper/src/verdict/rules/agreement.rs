@@ -145,8 +145,8 @@ pub fn closeness(pairs: &[(String, Measured, Measured)], tol: f64) -> Decision {
         checks.push(Check {
             what: format!(
                 "{what}: {} against {}",
-                crate::notes::num(a.value),
-                crate::notes::num(b.value)
+                crate::notes::sig(a.value, 4),
+                crate::notes::sig(b.value, 4)
             ),
             value: if se > 0.0 {
                 Measured::with_se(a.value - b.value, se)
