@@ -122,7 +122,7 @@ pub(super) fn fig05_tri_all_r(f: &Fig05) -> Decision {
             Count {
                 what: format!(
                     "stable cycles at r = {}, panel {label} (μ0 = {mu0})",
-                    crate::notes::num(r)
+                    crate::notes::sig(r, 4)
                 ),
                 claimed: 3,
                 computed: stable_at(bd, r),
@@ -245,8 +245,8 @@ pub(super) fn fig09_lambda(f: &Fig09) -> Decision {
                             label: format!(
                                 "ΔU{} at r = {}, τ = {}",
                                 i + 1,
-                                s.r,
-                                crate::notes::num(s.x.value(ix))
+                                crate::notes::sig(s.r, 4),
+                                crate::notes::sig(s.x.value(ix), 4)
                             ),
                             x_name: "λ".into(),
                             points: std::mem::take(run),
