@@ -11,6 +11,7 @@ use trirhythm_paper::verdict::claims::{
 use trirhythm_paper::verdict::rules::{
     agreement, closeness, count, sign_change, trend, Comparison, Count, CountSource, Direction,
     LleCurve, LlePoint, Series, CLOSENESS_REL_TOL,
+    locate, significance, Located, PointSign,
 };
 use trirhythm_paper::verdict::{Decision, Measured, Outcome, Verdict};
 use trirhythm_paper::FigureOptions;
@@ -235,11 +236,26 @@ fn curve(label: &str, pts: &[(f64, f64, f64)]) -> LleCurve {
 fn sign_change_needs_both_signs_in_order() {
     let rising = curve(
         "μ0 = 0.01",
-        &[(0.05, -0.05, 0.005), (0.5, 0.0, 0.005), (1.0, 0.05, 0.005)],
+        &[
+            (0.05, -0.05, 0.005),
+            (0.2, -0.04, 0.005),
+            (0.5, 0.0, 0.005),
+            (1.0, 0.05, 0.005),
+        ],
     );
     let d = sign_change(&[rising]);
     assert_eq!(tag(&d), "confirmed");
-    assert_eq!(d.tests, 3);
+    assert_eq!(d.tests, 4);
+    // the same change with only the ends significant: its bracket is the whole range
+    let whole = curve(
+        "μ0 = 0.01",
+        &[(0.05, -0.05, 0.005), (0.5, 0.0, 0.005), (1.0, 0.05, 0.005)],
+    );
+    let d = sign_change(&[whole]);
+    assert!(
+        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("whole range: D_c not located")),
+        "{d:?}"
+    );
     let falling = curve(
         "μ0 = 0.01",
         &[(0.05, 0.05, 0.005), (0.5, 0.0, 0.005), (1.0, -0.05, 0.005)],
@@ -254,7 +270,7 @@ fn sign_change_needs_both_signs_in_order() {
     );
     let d = sign_change(&[positive]);
     assert!(
-        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("already significantly positive")),
+        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("D_c below the smallest D = 0.05 not excluded")),
         "{d:?}"
     );
     // negative throughout: D_c above the range cannot be excluded
@@ -271,6 +287,48 @@ fn sign_change_needs_both_signs_in_order() {
     let d = sign_change(&[merged]);
     assert!(matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("merged")));
     assert_eq!(d.tests, 1);
+}
+
+#[test]
+fn exponents_consistent_with_zero_are_not_significant() {
+    // ≈ 1e-3 with standard errors of the same size: nothing is significant, no sign change
+    let flat = curve(
+        "λ = 0.95",
+        &[(0.01, -0.001, 0.001), (0.1, 0.0012, 0.001), (1.0, 0.0015, 0.001)],
+    );
+    let d = sign_change(&[flat.clone()]);
+    assert!(
+        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("no significant value of either sign")),
+        "{d:?}"
+    );
+    assert!(d.checks.iter().all(|c| c.outcome == Outcome::Neither));
+    let signs = significance(&[flat]);
+    assert_eq!(signs[0], vec![PointSign::NotSignificant; 3]);
+}
+
+#[test]
+fn locate_names_every_outcome_of_a_curve() {
+    use PointSign::{Negative as N, NotSignificant as O, Positive as P, Undefined as U};
+    let ds = [0.001, 0.01, 0.1, 1.0];
+    assert_eq!(
+        locate(&ds, &[N, N, P, P]),
+        Located::Bracket { lo: 0.01, hi: 0.1 }
+    );
+    // significant only at the two ends: the bracket is the whole range, not a located D_c
+    assert_eq!(locate(&ds, &[N, O, U, P]), Located::WholeRange);
+    assert_eq!(locate(&ds, &[P, N, O, O]), Located::Opposite);
+    assert_eq!(locate(&ds, &[P, O, P, P]), Located::PositiveFromStart);
+    assert_eq!(locate(&ds, &[O, O, P, P]), Located::NoNegative);
+    assert_eq!(locate(&ds, &[N, O, O, O]), Located::NoPositive);
+    assert_eq!(locate(&ds, &[O, U, O, O]), Located::NotSignificant);
+    assert!(Located::PositiveFromStart
+        .words(0.001)
+        .contains("D_c below the smallest D = 0.001 not excluded"));
+    // two points only: the bracket is the range, and the change is located there
+    assert_eq!(
+        locate(&[0.1, 1.0], &[N, P]),
+        Located::Bracket { lo: 0.1, hi: 1.0 }
+    );
 }
 
 #[test]
