@@ -14,8 +14,8 @@
 //! `tests/figures.rs` and the rule's tests in `tests/verdicts.rs`.
 
 use crate::lle::{
-    dt_for, log_spaced, lle_point, lyapunov_caption, mark_signs, panels_table, starts_line,
-    Curve, Panel, StartKind,
+    dt_for, lle_point, log_spaced, lyapunov_caption, mark_signs, panels_table, starts_line, Curve,
+    Panel, StartKind,
 };
 use crate::notes::{num, sig, symbol, table_notes, Caption};
 use crate::table::Table;
@@ -52,22 +52,23 @@ pub fn sizes(quick: bool) -> crate::lle::Sizes {
         }
     } else {
         LyapunovSpec {
-            paths: 6,
+            paths: 8,
             seed: 1,
-            transient: 100.0,
-            length: 500.0,
+            transient: 200.0,
+            length: 1000.0,
             ..Default::default()
         }
     };
     crate::lle::Sizes { spec }
 }
 
-/// The D grid of every column: log-spaced from 0.005 to 2.
+/// The D grid of every column: nine values log-spaced from 0.002 to 2 (a factor
+/// 10^(3/8) apart; two at quick quality).
 pub fn noises(quick: bool) -> Vec<f64> {
     if quick {
         vec![0.01, 2.0]
     } else {
-        log_spaced(0.005, 2.0, 5)
+        log_spaced(0.002, 2.0, 9)
     }
 }
 

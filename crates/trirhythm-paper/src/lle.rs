@@ -66,10 +66,10 @@ impl Sizes {
             }
         } else {
             LyapunovSpec {
-                paths: 6,
+                paths: 8,
                 seed: 1,
-                transient: 100.0,
-                length: 600.0,
+                transient: 200.0,
+                length: 1500.0,
                 ..Default::default()
             }
         };
@@ -94,7 +94,11 @@ impl Sizes {
              of {}; mean ± standard error over {} noise realisations (seed {})",
             num(self.spec.separation),
             self.spec.renormalise_every,
-            DT_LADDER[..5].iter().map(|&d| num(d)).collect::<Vec<_>>().join(", "),
+            DT_LADDER[..5]
+                .iter()
+                .map(|&d| num(d))
+                .collect::<Vec<_>>()
+                .join(", "),
             num(self.spec.length),
             num(self.spec.transient),
             self.spec.paths,
@@ -328,7 +332,10 @@ pub fn lle_point(
         let when: Vec<String> = r
             .per_path
             .iter()
-            .filter_map(|q| q.merged_at.map(|t| format!("{} at t = {}", q.path, sig(t, 4))))
+            .filter_map(|q| {
+                q.merged_at
+                    .map(|t| format!("{} at t = {}", q.path, sig(t, 4)))
+            })
             .collect();
         note = Some(format!(
             "{what}: LLE −∞, not drawn: {} of {} realisations merged (the copy became identical to its reference, both stuck at the wall on the same step with the memory restarted; path {}); the other {}: {}",
@@ -468,7 +475,10 @@ pub fn lle_against_noise(
             curves.iter_mut().filter(|c| c.start == start).collect();
         mark_signs(&mut of_start);
         verdicts.push(sign_counts(&curves, start));
-        for c in curves.iter().filter(|c| c.start == start && !c.points.is_empty()) {
+        for c in curves
+            .iter()
+            .filter(|c| c.start == start && !c.points.is_empty())
+        {
             let ds: Vec<f64> = c.points.iter().map(|q| q.x).collect();
             let signs: Vec<PointSign> = c.points.iter().map(|q| q.sign).collect();
             let located = crate::verdict::rules::locate(&ds, &signs);
@@ -509,12 +519,12 @@ pub fn lle_against_noise(
 }
 
 /// The noise intensities D of a curve of Figs 17 and 18 (the paper does not print them):
-/// log-spaced from 0.001 to 2.
+/// log-spaced from 0.001 to 2 (ten values; three at quick quality).
 pub fn noises(quick: bool) -> Vec<f64> {
     if quick {
         vec![0.01, 0.3, 2.0]
     } else {
-        log_spaced(0.001, 2.0, 8)
+        log_spaced(0.001, 2.0, 10)
     }
 }
 
@@ -557,6 +567,126 @@ pub struct LleNoiseFigure {
     pub varying: &'static [&'static str],
     /// The values chosen where the paper prints none.
     pub choices: &'static str,
+    /// The representative point of the Δt-convergence check: (panel index, the panel's
+    /// parameter value, D), from the rest start.
+    pub dt_check: (usize, f64, f64),
+}
+
+/// The step multiples of a Δt-convergence check: 4Δt, 2Δt, Δt (the rule's) and Δt/2.
+pub const DT_CHECK_FACTORS: [f64; 4] = [4.0, 2.0, 1.0, 0.5];
+
+/// The exponent at one point of a figure at several Δt (rest start, the figure's run sizes).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct DtCheck {
+    /// Which panel, parameter and D.
+    pub what: String,
+    /// The panel's caption letter.
+    pub panel: String,
+    /// Δt of the rule ([`dt_for`]) at this point.
+    pub dt_rule: f64,
+    /// One point per Δt (x = Δt), coarsest first.
+    pub points: Vec<Point>,
+}
+
+impl DtCheck {
+    /// Two lines: "Δt check at …:" and "Δt = 0.01: 0.078 ± 0.001; …" (the rule's Δt starred).
+    pub fn lines(&self) -> [String; 2] {
+        [
+            format!("Δt check at {} (* = the rule's Δt):", self.what),
+            self.points
+                .iter()
+                .map(|q| {
+                    format!(
+                        "{}{}: {}",
+                        num(q.x),
+                        if q.x == self.dt_rule { "*" } else { "" },
+                        if q.flag == Flag::Value {
+                            format!("{} ± {}", sig(q.y, 3), sig(q.se, 2))
+                        } else {
+                            q.flag.name().to_string()
+                        }
+                    )
+                })
+                .collect::<Vec<_>>()
+                .join("; "),
+        ]
+    }
+}
+
+/// The exponent of `figure` at its Δt-check point for each of [`DT_CHECK_FACTORS`].
+pub fn dt_check(figure: &LleNoiseFigure, sizes: &Sizes, monitor: &dyn Monitor) -> Result<DtCheck> {
+    let (k, v, d) = figure.dt_check;
+    let panel = &figure.panels[k];
+    let p = preset(panel.preset)?
+        .params
+        .with(panel.key, v)?
+        .with("D", d)?;
+    let dt_rule = dt_for(p.correlation_time);
+    let letter: String = panel
+        .caption
+        .split(')')
+        .next()
+        .unwrap_or("")
+        .trim_start_matches('(')
+        .into();
+    let what = format!(
+        "({letter}) {} = {}, D = {}, U(0) = 1",
+        symbol(panel.key),
+        num(v),
+        num(d)
+    );
+    let problem = Problem::from_params(&p)?.with_start(Problem::DEFAULT_START.0, 0.0)?;
+    let mut points = Vec::new();
+    for f in DT_CHECK_FACTORS {
+        let dt = dt_rule * f;
+        let method = PredictorCorrector {
+            dt,
+            ..sizes.method(p.correlation_time)
+        };
+        let r = largest_lyapunov(&problem, &method, &sizes.spec, &OnlyCancel(monitor))?;
+        let (y, se) = (r.lle.value, r.lle.stderr);
+        let flag = if r.merged > 0 {
+            Flag::Merged
+        } else if y.is_finite() && se.is_finite() {
+            Flag::Value
+        } else {
+            Flag::Undefined
+        };
+        let ok = flag == Flag::Value;
+        points.push(Point {
+            x: dt,
+            y,
+            lo: if ok { y - se } else { f64::NAN },
+            hi: if ok { y + se } else { f64::NAN },
+            se: if ok { se } else { f64::NAN },
+            n: r.per_path.len(),
+            flag,
+            sign: PointSign::Undefined,
+        });
+    }
+    Ok(DtCheck {
+        what,
+        panel: letter,
+        dt_rule,
+        points,
+    })
+}
+
+/// The table of a Δt check: `dt,lle,se,n,flag,used` (suffix `_dt`).
+pub fn dt_check_table(notes: &[String], check: &DtCheck) -> Table {
+    let mut t = Table::new(notes, &["dt", "lle", "se", "n", "flag", "used"]).named("_dt");
+    for q in &check.points {
+        let ok = q.flag == Flag::Value;
+        t.row([
+            num(q.x),
+            if ok { num(q.y) } else { String::new() },
+            if ok { num(q.se) } else { String::new() },
+            q.n.to_string(),
+            q.flag.name().into(),
+            (q.x == check.dt_rule).to_string(),
+        ]);
+    }
+    t
 }
 
 /// The data of an LLE-against-noise figure (Figs 17 and 18).
@@ -568,6 +698,24 @@ pub struct LleAgainstNoise {
     pub notes: Vec<String>,
     /// Panels (a) and (b).
     pub panels: Vec<Panel>,
+    /// The exponent at one representative point at 4Δt, 2Δt, Δt and Δt/2.
+    pub dt_check: DtCheck,
+}
+
+impl LleAgainstNoise {
+    /// The figure's tables: the panels and the Δt check (`_dt`).
+    pub fn tables(&self) -> Vec<Table> {
+        vec![
+            panels_table(&self.notes, &self.panels),
+            dt_check_table(
+                &[
+                    format!("Δt convergence of the exponent at {}", self.dt_check.what),
+                    "used: the step of the rule (the largest of the ladder not above τ/10)".into(),
+                ],
+                &self.dt_check,
+            ),
+        ]
+    }
 }
 
 /// A caption without the formula-variant line (the Lyapunov figures use no averaged formula
@@ -643,6 +791,14 @@ pub fn lle_against_noise_figure(
         notes.extend(n);
     }
     let base = first.expect("two panels");
+    let check = dt_check(figure, &sz, monitor)?;
+    notes.push(check.lines().join(" "));
+    if let Some(p) = panels
+        .iter_mut()
+        .find(|p| p.caption.starts_with(&format!("({})", check.panel)))
+    {
+        p.verdicts.extend(check.lines());
+    }
     let caption = lyapunov_caption(
         figure.number,
         figure.caption_title,
@@ -655,6 +811,7 @@ pub fn lle_against_noise_figure(
         caption,
         notes: table_notes(figure.number, figure.title, options, &notes),
         panels,
+        dt_check: check,
     })
 }
 

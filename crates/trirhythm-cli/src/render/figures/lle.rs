@@ -219,7 +219,10 @@ pub fn sign_strip() -> LegendStrip {
             (Symbol::Swatch(NEUTRAL), "not significant".into()),
             (Symbol::Cross(BLACK), "undefined (merged)".into()),
             (Symbol::Line(BLACK), "D_c bracket".into()),
-            (Symbol::Ring(BLACK), "right, open: outer-cycle start".into()),
+            (
+                Symbol::Ring(BLACK),
+                "right, open: outer-cycle start (none: no outer cycle)".into(),
+            ),
         ],
     }
 }
@@ -279,8 +282,8 @@ pub fn draw_sign_map<DB: Backend>(
         let xc = i + if open { 0.17 } else { -0.17 };
         if curve.points.is_empty() {
             c.draw_series(std::iter::once(Text::new(
-                "no outer cycle",
-                (xc - 0.1, y.start + 0.05 * (y.end - y.start)),
+                "none",
+                (xc - 0.08, y.start + 0.03 * (y.end - y.start)),
                 (FONT, 12).into_font().color(&BLACK),
             )))
             .map_err(pe)?;

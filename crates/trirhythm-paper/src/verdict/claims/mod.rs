@@ -45,8 +45,8 @@ use trirhythm::Result;
 #[derive(Default)]
 #[allow(missing_docs)]
 pub struct Figures {
-    /// The options the figures were computed with: their run sizes give the degrees of
-    /// freedom of the Lyapunov standard errors (realisations − 1).
+    /// The options the figures were computed with (quick or full quality; the Lyapunov
+    /// figures carry their realisations per point, for the degrees of freedom).
     pub options: FigureOptions,
     pub fig01: Option<Fig01>,
     pub fig02: Option<Fig02>,

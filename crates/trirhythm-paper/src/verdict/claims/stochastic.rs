@@ -155,28 +155,31 @@ pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
         .iter()
         .map(|&start| {
             let mut points = Vec::new();
-            let mut missing = Vec::new();
+            // the columns without a located D_c, grouped by outcome: (words, values)
+            let mut missing: Vec<(String, Vec<String>)> = Vec::new();
             for (c, l) in m.panel.curves.iter().zip(&m.located) {
                 if c.start != start {
                     continue;
                 }
-                match l {
+                let why = match l {
                     Some(Located::Bracket { lo, hi }) => {
-                        points.push((c.value, Measured::bracket((lo * hi).sqrt(), *lo, *hi)))
+                        points.push((c.value, Measured::bracket((lo * hi).sqrt(), *lo, *hi)));
+                        continue;
                     }
-                    Some(l) => missing.push(format!(
-                        "{} = {}: {}",
-                        m.key,
-                        crate::notes::num(c.value),
-                        l.words(first_d)
-                    )),
-                    None => missing.push(format!(
-                        "{} = {}: no outer stable cycle (averaged theory)",
-                        m.key,
-                        crate::notes::num(c.value)
-                    )),
+                    Some(l) => l.kind_words(first_d),
+                    None => "no outer stable cycle (averaged theory)".into(),
+                };
+                let v = crate::notes::num(c.value);
+                match missing.iter_mut().find(|(w, _)| *w == why) {
+                    Some((_, vs)) => vs.push(v),
+                    None => missing.push((why, vec![v])),
                 }
             }
+            let missing_count: usize = missing.iter().map(|(_, v)| v.len()).sum();
+            let missing: Vec<String> = missing
+                .into_iter()
+                .map(|(why, vs)| format!("{} = {}: {why}", m.key, vs.join(", ")))
+                .collect();
             let located = points.len();
             let d = trend(
                 &[Series {
@@ -192,7 +195,7 @@ pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
                 Decision {
                     verdict: Verdict::undetermined(format!(
                         "D_c located at {located} of {} values; no located D_c at {}",
-                        located + missing.len(),
+                        located + missing_count,
                         missing.join("; ")
                     )),
                     ..d

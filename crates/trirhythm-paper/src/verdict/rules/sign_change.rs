@@ -102,13 +102,22 @@ impl Located {
     /// Short, for a picture.
     pub fn tag(&self) -> &'static str {
         match self {
-            Located::Bracket { .. } => "D_c bracketed",
-            Located::WholeRange => "bracket = whole range",
-            Located::Opposite => "+ → − (opposite)",
-            Located::PositiveFromStart => "+ from the smallest D",
-            Located::NoNegative => "no significant −",
-            Located::NoPositive => "no significant +",
-            Located::NotSignificant => "not significant",
+            Located::Bracket { .. } => "bracketed",
+            Located::WholeRange => "whole range",
+            Located::Opposite => "+ → −",
+            Located::PositiveFromStart => "+ from smallest D",
+            Located::NoNegative => "no −",
+            Located::NoPositive => "no +",
+            Located::NotSignificant => "n.s.",
+        }
+    }
+
+    /// The outcome without its numbers, for grouping columns by outcome: [`Located::words`]
+    /// except for a bracket ("D_c located").
+    pub fn kind_words(&self, first_d: f64) -> String {
+        match self {
+            Located::Bracket { .. } => "D_c located".into(),
+            l => l.words(first_d),
         }
     }
 }
@@ -125,14 +134,14 @@ pub fn significance(curves: &[LleCurve]) -> Vec<Vec<PointSign>> {
         .enumerate()
         .map(|(c, curve)| {
             (0..curve.points.len())
-                .map(|k| {
-                    match tested.iter().position(|t| t.curve == c && t.point == k) {
+                .map(
+                    |k| match tested.iter().position(|t| t.curve == c && t.point == k) {
                         None => PointSign::Undefined,
                         Some(j) if !reject[j] => PointSign::NotSignificant,
                         Some(j) if tested[j].z > 0.0 => PointSign::Positive,
                         Some(_) => PointSign::Negative,
-                    }
-                })
+                    },
+                )
                 .collect()
         })
         .collect()
