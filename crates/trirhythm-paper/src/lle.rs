@@ -589,29 +589,36 @@ pub struct DtCheck {
 }
 
 impl DtCheck {
-    /// Two lines: "Δt check at …:" and "Δt = 0.01: 0.078 ± 0.001; …" (the rule's Δt starred).
-    pub fn lines(&self) -> [String; 2] {
-        [
-            format!("Δt check at {} (* = the rule's Δt):", self.what),
-            self.points
-                .iter()
-                .map(|q| {
-                    format!(
-                        "{}{}: {}",
-                        num(q.x),
-                        if q.x == self.dt_rule { "*" } else { "" },
-                        if q.flag == Flag::Value {
-                            format!("{} ± {}", sig(q.y, 3), sig(q.se, 2))
-                        } else {
-                            q.flag.name().to_string()
-                        }
-                    )
-                })
-                .collect::<Vec<_>>()
-                .join("; "),
-        ]
+    /// Three lines: "Δt check at …:", then the exponents at the two coarser and at the two
+    /// finer steps ("0.01: 0.078 ± 0.001; …", the rule's Δt starred).
+    pub fn lines(&self) -> Vec<String> {
+        let cell = |q: &Point| {
+            format!(
+                "Δt = {}{}: {}",
+                num(q.x),
+                if q.x == self.dt_rule { "*" } else { "" },
+                if q.flag == Flag::Value {
+                    format!("{} ± {}", sig(q.y, 3), sig(q.se, 2))
+                } else {
+                    q.flag.name().to_string()
+                }
+            )
+        };
+        let mut lines = vec![format!(
+            "Δt check at {}, {} realisations (* = the rule's Δt):",
+            self.what,
+            self.points.first().map_or(0, |q| q.n)
+        )];
+        for pair in self.points.chunks(2) {
+            lines.push(pair.iter().map(cell).collect::<Vec<_>>().join("; "));
+        }
+        lines
     }
 }
+
+/// Realisations of a Δt check at full quality (four times a curve's point: the differences
+/// between steps are a few per cent of the exponent).
+pub const DT_CHECK_PATHS: usize = 32;
 
 /// The exponent of `figure` at its Δt-check point for each of [`DT_CHECK_FACTORS`].
 pub fn dt_check(figure: &LleNoiseFigure, sizes: &Sizes, monitor: &dyn Monitor) -> Result<DtCheck> {
@@ -636,6 +643,14 @@ pub fn dt_check(figure: &LleNoiseFigure, sizes: &Sizes, monitor: &dyn Monitor) -
         num(d)
     );
     let problem = Problem::from_params(&p)?.with_start(Problem::DEFAULT_START.0, 0.0)?;
+    let spec = LyapunovSpec {
+        paths: if sizes.spec.paths > 2 {
+            DT_CHECK_PATHS
+        } else {
+            sizes.spec.paths
+        },
+        ..sizes.spec.clone()
+    };
     let mut points = Vec::new();
     for f in DT_CHECK_FACTORS {
         let dt = dt_rule * f;
@@ -643,7 +658,7 @@ pub fn dt_check(figure: &LleNoiseFigure, sizes: &Sizes, monitor: &dyn Monitor) -
             dt,
             ..sizes.method(p.correlation_time)
         };
-        let r = largest_lyapunov(&problem, &method, &sizes.spec, &OnlyCancel(monitor))?;
+        let r = largest_lyapunov(&problem, &method, &spec, &OnlyCancel(monitor))?;
         let (y, se) = (r.lle.value, r.lle.stderr);
         let flag = if r.merged > 0 {
             Flag::Merged
@@ -792,7 +807,8 @@ pub fn lle_against_noise_figure(
     }
     let base = first.expect("two panels");
     let check = dt_check(figure, &sz, monitor)?;
-    notes.push(check.lines().join(" "));
+    let lines = check.lines();
+    notes.push(format!("{} {}", lines[0], lines[1..].join("; ")));
     if let Some(p) = panels
         .iter_mut()
         .find(|p| p.caption.starts_with(&format!("({})", check.panel)))
