@@ -174,9 +174,13 @@ impl Figure for Fig19 {
                 .collect();
             for (c, l) in curves.iter().zip(&located) {
                 notes.push(format!(
-                    "{label} {} (U(0) = {}, Δt = {}): {}",
+                    "{label} {} ({}Δt = {}): {}",
                     c.label,
-                    sig(c.u0, 4),
+                    if c.u0.is_finite() {
+                        format!("U(0) = {}, ", sig(c.u0, 4))
+                    } else {
+                        String::new()
+                    },
                     num(c.dt),
                     match l {
                         Some(l) => l.words(d[0]),

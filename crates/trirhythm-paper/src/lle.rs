@@ -752,7 +752,7 @@ pub fn lyapunov_caption(
 /// The starts in one line, for captions.
 pub fn starts_line(variant: Variant) -> String {
     format!(
-        "two starts per curve: U(0) = 1 (rest basin; filled markers) and U(0) = the outer stable cycle's amplitude of the averaged theory at D = 0 ({} formulas; open markers); verdicts per start",
+        "two starts per curve: U(0) = 1 (rest basin; filled markers) and U(0) = the outer stable cycle's amplitude of the averaged theory at D = 0 (--variant {}; open markers); verdicts per start",
         variant.name()
     )
 }
