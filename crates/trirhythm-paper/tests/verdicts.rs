@@ -299,7 +299,7 @@ fn exponents_consistent_with_zero_are_not_significant() {
             (1.0, 0.0015, 0.001),
         ],
     );
-    let d = sign_change(&[flat.clone()]);
+    let d = sign_change(std::slice::from_ref(&flat));
     assert!(
         matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("no significant value of either sign")),
         "{d:?}"

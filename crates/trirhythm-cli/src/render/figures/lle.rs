@@ -12,6 +12,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::ops::Range;
 use trirhythm_paper::lle::{Flag, LleAgainstNoise, Panel, StartKind};
+use trirhythm_paper::notes::sig;
 
 /// Height of the chart part of a panel.
 pub const CHART_HEIGHT: u32 = 440;
@@ -62,10 +63,8 @@ type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoor
 fn log_x_chart<'a, DB: Backend>(
     area: &'a DrawingArea<DB, Shift>,
     caption: &str,
-    x: Range<f64>,
-    y: Range<f64>,
+    (x, y): (Range<f64>, Range<f64>),
     (x_desc, y_desc): (&str, &str),
-    log_y: bool,
 ) -> Result<Chart<'a, DB>> {
     let mut c = ChartBuilder::on(area)
         .caption(caption, (FONT, 20))
@@ -75,25 +74,20 @@ fn log_x_chart<'a, DB: Backend>(
         .y_label_area_size(70)
         .build_cartesian_2d(x, y)
         .map_err(|e| anyhow!("{e}"))?;
-    let pow = |v: &f64| {
-        let d = 10f64.powf(*v);
-        format!("{}", trirhythm_paper::notes::sig(d, 2))
-    };
-    let plain = |v: &f64| format!("{}", trirhythm_paper::notes::sig(*v, 3));
-    let mut mesh = c.configure_mesh();
-    mesh.x_desc(x_desc)
+    let pow = |v: &f64| sig(10f64.powf(*v), 2);
+    let plain = |v: &f64| sig(*v, 3);
+    c.configure_mesh()
+        .x_desc(x_desc)
         .y_desc(y_desc)
         .x_labels(8)
         .y_labels(10)
+        .x_label_formatter(&pow)
+        .y_label_formatter(&plain)
         .axis_desc_style((FONT, 16))
         .label_style((FONT, 14))
-        .light_line_style(RGBColor(235, 235, 235));
-    if log_y {
-        mesh.y_label_formatter(&pow);
-    } else {
-        mesh.x_label_formatter(&pow).y_label_formatter(&plain);
-    }
-    mesh.draw().map_err(|e| anyhow!("{e}"))?;
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(|e| anyhow!("{e}"))?;
     Ok(c)
 }
 
@@ -140,10 +134,8 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
     let mut c = log_x_chart(
         &top,
         &panel.caption,
-        x.clone(),
-        y.clone(),
+        (x.clone(), y.clone()),
         (&panel.x_desc, &panel.y_desc),
-        false,
     )?;
     c.draw_series(std::iter::once(PathElement::new(
         [(x.start, 0.0), (x.end, 0.0)],
@@ -262,7 +254,7 @@ pub fn draw_sign_map<DB: Backend>(
             String::new()
         }
     };
-    let yf = |v: &f64| trirhythm_paper::notes::sig(10f64.powf(*v), 2);
+    let yf = |v: &f64| sig(10f64.powf(*v), 2);
     c.configure_mesh()
         .x_desc(panel.x_desc.as_str())
         .y_desc(panel.y_desc.as_str())

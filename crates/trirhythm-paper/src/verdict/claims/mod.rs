@@ -495,7 +495,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 17(a), Sec. 5",
             words: "\"When the noise level reaches the critical value D_c, the maximum Lyapunov exponent turns positive\" (μ0 varied)",
             rule: "sign_change",
-            judge: |f| f.fig17.as_ref().and_then(|x| x.0.panels.first().map(|p| lle_sign_change(p))),
+            judge: |f| f.fig17.as_ref().and_then(|x| x.0.panels.first().map(lle_sign_change)),
         },
         Spec {
             id: "fig17b-lle-sign-change",
@@ -503,7 +503,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 17(b), Sec. 5",
             words: "the same, τ varied",
             rule: "sign_change",
-            judge: |f| f.fig17.as_ref().and_then(|x| x.0.panels.get(1).map(|p| lle_sign_change(p))),
+            judge: |f| f.fig17.as_ref().and_then(|x| x.0.panels.get(1).map(lle_sign_change)),
         },
         Spec {
             id: "fig18a-lle-sign-change",
@@ -511,7 +511,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 18(a), Sec. 5",
             words: "the same, λ varied",
             rule: "sign_change",
-            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.first().map(|p| lle_sign_change(p))),
+            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.first().map(lle_sign_change)),
         },
         Spec {
             id: "fig18b-lle-sign-change",
@@ -519,7 +519,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 18(b), Sec. 5",
             words: "the same, r varied",
             rule: "sign_change",
-            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(|p| lle_sign_change(p))),
+            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(lle_sign_change)),
         },
         Spec {
             id: "fig18b-impact-loss",
@@ -527,7 +527,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 18(b), Sec. 5",
             words: "more impact loss (smaller r) makes chaos likelier: the LLE grows as r falls (paraphrase)",
             rule: "trend",
-            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(|p| fig18_impact_loss(p))),
+            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(fig18_impact_loss)),
         },
         Spec {
             id: "fig19a-dc-mu0",
