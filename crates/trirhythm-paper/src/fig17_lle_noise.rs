@@ -33,7 +33,7 @@ pub const FIG17: LleNoiseFigure = LleNoiseFigure {
     ],
     varying: &["mu0", "tau", "D"],
     choices: "the paper does not print the four μ0 and τ values nor the D range: μ0 ∈ {0.001, 0.01, 0.05, 0.1}, τ ∈ {0.06, 0.25, 0.5, 1}, D: ten values log-spaced in [0.001, 2] chosen",
-    dt_check: (0, 0.01, 0.1),
+    dt_check: (0, 0.001, 0.1),
 };
 
 /// Fig. 17's data.
