@@ -5,7 +5,9 @@
 //!
 //! Drawing only: the runs and verdicts are [`trirhythm_paper::lle`].
 
-use crate::render::plot::{padded_range, pe, Backend, LegendStrip, Symbol, FONT, PALETTE};
+use crate::render::plot::{
+    padded_range, pe, tick_formatter, Backend, LegendStrip, Symbol, FONT, PALETTE,
+};
 use anyhow::{anyhow, Result};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -72,10 +74,10 @@ fn log_x_chart<'a, DB: Backend>(
         .margin_right(26)
         .x_label_area_size(45)
         .y_label_area_size(70)
-        .build_cartesian_2d(x, y)
+        .build_cartesian_2d(x, y.clone())
         .map_err(|e| anyhow!("{e}"))?;
     let pow = |v: &f64| sig(10f64.powf(*v), 2);
-    let plain = |v: &f64| sig(*v, 3);
+    let plain = tick_formatter(&y, 10);
     c.configure_mesh()
         .x_desc(x_desc)
         .y_desc(y_desc)
@@ -91,12 +93,27 @@ fn log_x_chart<'a, DB: Backend>(
     Ok(c)
 }
 
+/// The fraction of a chart's height that `lines` verdict lines take ([`verdict_text`]).
+fn text_fraction(lines: usize) -> f64 {
+    0.035 + LINE_STEP * lines as f64
+}
+
+/// How much to extend a data range upward (as a fraction of it) so that `lines` verdict lines
+/// sit above the data: t/(1 − t) for a text fraction t.
+fn text_room(lines: usize) -> f64 {
+    let t = text_fraction(lines).min(0.8);
+    t / (1.0 - t)
+}
+
+/// The step between verdict lines, as a fraction of the chart's height.
+const LINE_STEP: f64 = 0.065;
+
 fn verdict_text<DB: Backend>(c: &mut Chart<DB>, lines: &[String]) -> Result<()> {
     let (x, y) = (c.x_range(), c.y_range());
     for (k, v) in lines.iter().enumerate() {
         let at = (
             x.start + 0.02 * (x.end - x.start),
-            y.end - (0.02 + 0.065 * k as f64) * (y.end - y.start),
+            y.end - (0.02 + LINE_STEP * k as f64) * (y.end - y.start),
         );
         c.draw_series(std::iter::once(Text::new(
             v.clone(),
@@ -130,7 +147,7 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
     ys.push(0.0);
     let mut y = padded_range(ys);
     // room at the top for the verdict lines
-    y.end += (y.end - y.start) * 0.075 * panel.verdicts.len() as f64;
+    y.end += (y.end - y.start) * text_room(panel.verdicts.len());
     let mut c = log_x_chart(
         &top,
         &panel.caption,
@@ -236,7 +253,7 @@ pub fn draw_sign_map<DB: Backend>(
         .flat_map(|c| c.points.iter().map(|q| q.x.log10()))
         .collect();
     let mut y = padded_range(ds);
-    y.end += (y.end - y.start) * 0.09 * panel.verdicts.len() as f64;
+    y.end += (y.end - y.start) * text_room(panel.verdicts.len());
     let values = map.values.clone();
     let mut c = ChartBuilder::on(area)
         .caption(&panel.caption, (FONT, 20))
