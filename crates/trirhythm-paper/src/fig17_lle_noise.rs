@@ -5,9 +5,7 @@
 //! One configuration ([`FIG17`]) of the LLE-against-noise computation it shares with
 //! Fig. 18 ([`crate::lle`]). Checked by `tests/figures.rs`.
 
-use crate::lle::{
-    lle_against_noise_figure, panels_table, LleAgainstNoise, LleNoiseFigure, NoisePanel,
-};
+use crate::lle::{lle_against_noise_figure, LleAgainstNoise, LleNoiseFigure, NoisePanel};
 use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
 
@@ -34,7 +32,8 @@ pub const FIG17: LleNoiseFigure = LleNoiseFigure {
         },
     ],
     varying: &["mu0", "tau", "D"],
-    choices: "the paper does not print the four μ0 and τ values nor the D range: μ0 ∈ {0.001, 0.01, 0.05, 0.1}, τ ∈ {0.06, 0.25, 0.5, 1}, D ∈ [0.05, 2] chosen",
+    choices: "the paper does not print the four μ0 and τ values nor the D range: μ0 ∈ {0.001, 0.01, 0.05, 0.1}, τ ∈ {0.06, 0.25, 0.5, 1}, D: ten values log-spaced in [0.001, 2] chosen",
+    dt_check: (0, 0.001, 0.1),
 };
 
 /// Fig. 17's data.
@@ -51,6 +50,6 @@ impl Figure for Fig17 {
     }
 
     fn tables(&self) -> Vec<Table> {
-        vec![panels_table(&self.0.notes, &self.0.panels)]
+        self.0.tables()
     }
 }

@@ -6,9 +6,7 @@
 //! One configuration ([`FIG18`]) of the LLE-against-noise computation it shares with
 //! Fig. 17 ([`crate::lle`]). Checked by `tests/figures.rs`.
 
-use crate::lle::{
-    lle_against_noise_figure, panels_table, LleAgainstNoise, LleNoiseFigure, NoisePanel,
-};
+use crate::lle::{lle_against_noise_figure, LleAgainstNoise, LleNoiseFigure, NoisePanel};
 use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
 
@@ -35,7 +33,8 @@ pub const FIG18: LleNoiseFigure = LleNoiseFigure {
         },
     ],
     varying: &["lambda", "r", "D"],
-    choices: "the paper does not print the four λ and r values, ω0 nor the D range: λ ∈ {0.95, 0.98, 0.995, 1}, r ∈ {0.998, 0.95, 0.9, 0.8}, ω0 = 0.9, D ∈ [0.05, 2] chosen",
+    choices: "the paper does not print the four λ and r values, ω0 nor the D range: λ ∈ {0.95, 0.98, 0.995, 1}, r ∈ {0.998, 0.95, 0.9, 0.8}, ω0 = 0.9, D: ten values log-spaced in [0.001, 2] chosen",
+    dt_check: (1, 0.9, 0.1),
 };
 
 /// Fig. 18's data.
@@ -52,6 +51,6 @@ impl Figure for Fig18 {
     }
 
     fn tables(&self) -> Vec<Table> {
-        vec![panels_table(&self.0.notes, &self.0.panels)]
+        self.0.tables()
     }
 }

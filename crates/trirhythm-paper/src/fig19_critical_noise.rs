@@ -1,23 +1,30 @@
-//! Fig. 19: the critical noise D_c where the largest Lyapunov exponent changes sign, against μ0
-//! (a), τ (b), λ (c) and r (d), with its uncertainty from the standard errors; values without a
-//! sign change in the searched range are said so on the panel, never drawn as a made-up value.
+//! Fig. 19: where the largest Lyapunov exponent changes sign, as a sign map over (parameter, D)
+//! for μ0 (a), τ (b), λ (c) and r (d): per panel, five values of the parameter × a log-spaced
+//! grid of D × two starts, each cell the LLE's sign decided with significance (significantly
+//! +, significantly −, not significant, undefined), and the bracket of D_c drawn where a
+//! significant − → + change is located. The paper's trends of D_c are decided on these brackets.
 //!
-//! Method: [`critical_noise`] (the first sign change of the LLE on a grid of D, bisected, the
-//! last bracket interpolated; the error bar from the nearest D whose LLE is two standard errors
-//! from 0), with the run sizes of Figs 17–18 ([`crate::lle::Sizes`]); the paper's claimed trend
-//! of D_c per panel set against the computed one. Checked by the library's critical-noise tests
-//! and `tests/figures.rs`.
+//! Method: [`crate::lle::lle_point`] at every cell (frozen noise, two trajectories, Δt by
+//! [`crate::lle::dt_for`]), from U(0) = 1 and from the outer stable cycle of the averaged theory
+//! ([`crate::lle::StartKind`]); signs by z = LLE/se, Student's t with realisations − 1 degrees
+//! of freedom, two-sided at 0.05 with Holm–Bonferroni over all cells of a panel
+//! ([`crate::verdict::rules::significance`]); per column (value, start) the outcome of
+//! [`crate::verdict::rules::locate`]: a bracket (largest significantly negative D, smallest
+//! significantly positive D) when it is narrower than the grid, else why not. Checked by
+//! `tests/figures.rs` and the rule's tests in `tests/verdicts.rs`.
 
 use crate::lle::{
-    merged_points_text, noise_point_text, panels_table, Curve, Panel, Point, Sign, Sizes,
+    dt_for, lle_point, log_spaced, lyapunov_caption, mark_signs, panels_table, starts_line, Curve,
+    Panel, StartKind,
 };
-use crate::notes::{caption, num, sig, symbol, table_notes, Caption};
+use crate::notes::{num, sig, symbol, table_notes, Caption};
 use crate::table::Table;
+use crate::verdict::rules::{locate, Located, PointSign};
 use crate::{Figure, FigureOptions, Monitor};
 
 use serde::{Deserialize, Serialize};
-use trirhythm::analysis::lyapunov::{critical_noise, CriticalSearch};
-use trirhythm::model::{preset, Params};
+use trirhythm::analysis::lyapunov::LyapunovSpec;
+use trirhythm::model::preset;
 use trirhythm::Result;
 
 /// (panel, key, values, the paper's claimed trend of D_c).
@@ -33,230 +40,231 @@ pub const PANELS: [(&str, &str, [f64; 5], &str); 4] = [
     ("(d)", "r", [0.8, 0.85, 0.9, 0.95, 0.998], "increases"),
 ];
 
+/// The run sizes of a cell: quick (CI) or paper quality.
+pub fn sizes(quick: bool) -> crate::lle::Sizes {
+    let spec = if quick {
+        LyapunovSpec {
+            paths: 2,
+            seed: 1,
+            transient: 20.0,
+            length: 60.0,
+            ..Default::default()
+        }
+    } else {
+        LyapunovSpec {
+            paths: 8,
+            seed: 1,
+            transient: 200.0,
+            length: 1000.0,
+            ..Default::default()
+        }
+    };
+    crate::lle::Sizes { spec }
+}
+
+/// The D grid of every column: nine values log-spaced from 0.002 to 2 (a factor
+/// 10^(3/8) apart; two at quick quality).
+pub fn noises(quick: bool) -> Vec<f64> {
+    if quick {
+        vec![0.01, 2.0]
+    } else {
+        log_spaced(0.002, 2.0, 9)
+    }
+}
+
+/// One panel: the sign map of one parameter.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct SignMap {
+    /// The cells as curves of the LLE against D, one per (value, start), with their signs.
+    pub panel: Panel,
+    /// The parameter.
+    pub key: String,
+    /// Its values (the map's columns).
+    pub values: Vec<f64>,
+    /// The paper's claimed trend of D_c: `increases` or `decreases`.
+    pub claim: String,
+    /// Per curve of `panel` (same order): where the sign change lies; `None`: no points (no
+    /// outer stable cycle).
+    pub located: Vec<Option<Located>>,
+}
+
 /// Fig. 19's data.
 #[derive(Serialize, Deserialize)]
 pub struct Fig19 {
-    /// What the figure shows, shared parameters, variant, method.
+    /// What the figure shows, shared parameters, method.
     pub caption: Caption,
-    /// Notes of the data table: D_c per value, the paper's trends checked.
+    /// Notes of the data table: the grid, the outcome per column, the paper's trends.
     pub notes: Vec<String>,
     /// Panels (a)–(d).
-    pub panels: Vec<Panel>,
+    pub panels: Vec<SignMap>,
 }
 
 impl Figure for Fig19 {
     const NUMBER: u32 = 19;
     const TITLE: &'static str =
-        "critical noise D_c where the LLE changes sign, against μ0, τ, λ, r";
+        "sign of the LLE over (parameter, D) and the critical noise D_c, against μ0, τ, λ, r";
 
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig19> {
-        let ctx = options;
-        let sz = Sizes::of(ctx.quick);
+        let sz = sizes(options.quick);
         let base = preset("fig19")?.params;
-        let search = CriticalSearch {
-            d_lo: 0.01,
-            d_hi: 2.0,
-            grid: if ctx.quick { 3 } else { 6 },
-            refinements: if ctx.quick { 1 } else { 3 },
-            z: 2.0,
-        };
+        let d = noises(options.quick);
         let mut notes = vec![
             sz.describe(),
+            starts_line(options.variant),
             format!(
-                "D_c: first sign change of the LLE on {} equally spaced D in [{}, {}], bisected {} times, linear interpolation of the last bracket; error bar: nearest evaluated D on each side whose LLE is {} standard errors from 0 (the range's end if none)",
-                search.grid, num(search.d_lo), num(search.d_hi), search.refinements, num(search.z)
+                "grid: 5 values per panel × {} D log-spaced in [{}, {}] ({}) × 2 starts; sign of a cell: z = LLE/se, Student's t with realisations − 1 degrees of freedom, two-sided at 0.05 with Holm–Bonferroni over the panel's cells; D_c bracket: (largest significantly negative D, smallest significantly positive D) of a column when every negative lies below every positive and the bracket is narrower than the grid",
+                d.len(),
+                num(d[0]),
+                num(d[d.len() - 1]),
+                d.iter().map(|&x| num(x)).collect::<Vec<_>>().join(", ")
             ),
-            "the caption prints r = 9.998: 0.998 is meant; ω0 is not printed: 0.9 (as in Fig. 17); the swept values are chosen (not printed)".into(),
+            "the caption prints r = 9.998: 0.998 is meant; ω0 is not printed: 0.9 (as in Fig. 17); the swept values and the D grid are chosen (not printed)".into(),
         ];
+        let per_panel = 2 * 5 * d.len();
+        let total = PANELS.len() * per_panel;
         let mut panels = Vec::new();
-        let total = PANELS.len() * PANELS[0].2.len();
-        for (i, spec) in PANELS.into_iter().enumerate() {
-            let first = i * spec.2.len();
-            panels.push(panel(
-                monitor,
-                &base,
-                (&sz, &search),
-                spec,
-                (first, total),
-                &mut notes,
-            )?);
+        for (i, (label, key, values, claim)) in PANELS.into_iter().enumerate() {
+            let mut curves = Vec::new();
+            let mut step = i * per_panel;
+            for start in StartKind::BOTH {
+                for v in values {
+                    let p = base.with(key, v)?;
+                    let u0 = start.u0(&p, options.variant)?;
+                    let mut points = Vec::new();
+                    if let Some(u0) = u0 {
+                        for &dd in &d {
+                            crate::step(monitor, step, total)?;
+                            step += 1;
+                            let what = format!(
+                                "{label} {} = {}, U(0) = {}, D = {}",
+                                symbol(key),
+                                num(v),
+                                sig(u0, 4),
+                                sig(dd, 4)
+                            );
+                            let (q, note) =
+                                lle_point(monitor, &p.with("D", dd)?, u0, dd, &sz, &what)?;
+                            points.push(q);
+                            notes.extend(note);
+                        }
+                    } else {
+                        step += d.len();
+                    }
+                    curves.push(Curve {
+                        label: format!("{} = {}, {}", symbol(key), num(v), start.name()),
+                        value: v,
+                        start,
+                        u0: u0.unwrap_or(f64::NAN),
+                        dt: dt_for(p.correlation_time),
+                        points,
+                    });
+                }
+            }
+            let mut all: Vec<&mut Curve> = curves.iter_mut().collect();
+            mark_signs(&mut all);
+            let located: Vec<Option<Located>> = curves
+                .iter()
+                .map(|c| {
+                    (!c.points.is_empty()).then(|| {
+                        let ds: Vec<f64> = c.points.iter().map(|q| q.x).collect();
+                        let s: Vec<PointSign> = c.points.iter().map(|q| q.sign).collect();
+                        locate(&ds, &s)
+                    })
+                })
+                .collect();
+            for (c, l) in curves.iter().zip(&located) {
+                notes.push(format!(
+                    "{label} {} ({}Δt = {}): {}",
+                    c.label,
+                    if c.u0.is_finite() {
+                        format!("U(0) = {}, ", sig(c.u0, 4))
+                    } else {
+                        String::new()
+                    },
+                    num(c.dt),
+                    match l {
+                        Some(l) => l.words(d[0]),
+                        None => format!(
+                            "no outer stable cycle in the averaged theory ({} formulas): no outer-cycle start",
+                            options.variant.name()
+                        ),
+                    }
+                ));
+            }
+            let verdicts = panel_verdicts(key, claim, &curves, &located);
+            panels.push(SignMap {
+                panel: Panel {
+                    caption: format!("{label} sign of the LLE over ({}, D)", symbol(key)),
+                    x_key: "D".into(),
+                    x_desc: symbol(key).into(),
+                    y_desc: "noise intensity D (log scale)".into(),
+                    y_key: "lle".into(),
+                    curves,
+                    verdicts,
+                },
+                key: key.into(),
+                values: values.to_vec(),
+                claim: claim.into(),
+                located,
+            });
         }
-        let caption = caption(
+        let caption = lyapunov_caption(
             19,
-            "critical noise D_c where the largest Lyapunov exponent changes sign",
-            ctx,
+            "sign of the largest Lyapunov exponent over (parameter, D) and the critical noise D_c",
+            options,
             &base,
             &["mu0", "tau", "lambda", "r", "D"],
-            vec![sz.describe()],
+            vec![sz.describe(), starts_line(options.variant)],
         );
         Ok(Fig19 {
             caption,
-            notes: table_notes(19, Self::TITLE, ctx, &notes),
+            notes: table_notes(19, Self::TITLE, options, &notes),
             panels,
         })
     }
 
     fn tables(&self) -> Vec<Table> {
-        vec![panels_table(&self.notes, &self.panels)]
+        let panels: Vec<Panel> = self.panels.iter().map(|m| m.panel.clone()).collect();
+        vec![panels_table(&self.notes, &panels)]
     }
 }
 
-/// One panel: D_c against `key` with its uncertainty, where the LLE changes sign from negative
-/// to positive; a note per value and the paper's trend set against the computed one. Progress
-/// counts from `first` of `total` values.
-fn panel(
-    monitor: &dyn Monitor,
-    base: &Params,
-    (sz, search): (&Sizes, &CriticalSearch),
-    (label, key, values, claim): (&str, &str, [f64; 5], &str),
-    (first, total): (usize, usize),
-    notes: &mut Vec<String>,
-) -> Result<Panel> {
-    let mut points = Vec::new();
-    let mut missing = Vec::new();
-    let mut falling: Vec<String> = Vec::new();
-    for (k, v) in values.into_iter().enumerate() {
-        crate::step(monitor, first + k, total)?;
-        let p = base.with(key, v)?;
-        let problem = trirhythm::engine::Problem::from_params(&p)?;
-        let c = critical_noise(
-            &problem,
-            &sz.method,
-            &sz.spec,
-            search,
-            &trirhythm::monitor::OnlyCancel(monitor),
-        )?;
-        let merged = merged_points_text(&c);
-        if c.found() {
-            notes.push(format!(
-                "{label} {} = {}: D_c = {} in [{}, {}] ({}){}",
-                symbol(key),
-                num(v),
-                sig(c.d_c, 4),
-                sig(c.d_c_lo, 4),
-                sig(c.d_c_hi, 4),
-                if c.rising {
-                    "LLE negative below, positive above"
-                } else {
-                    "LLE positive below, negative above: the opposite of the paper's transition"
-                },
-                if merged.is_empty() {
-                    String::new()
-                } else {
-                    format!(
-                        "; no sign at D = {} (realisations merged)",
-                        merged.join(", ")
-                    )
-                }
-            ));
-        } else {
-            let sign = Sign::of(&c);
-            notes.push(format!(
-                "{label} {} = {}: no sign change in range D ∈ [{}, {}] (LLE {}; evaluated: {})",
-                symbol(key),
-                num(v),
-                num(search.d_lo),
-                num(search.d_hi),
-                sign.words(),
-                c.evaluated
-                    .iter()
-                    .map(noise_point_text)
-                    .collect::<Vec<_>>()
-                    .join("; ")
-            ));
-            let tag = sign.tag();
-            missing.push((num(v), tag));
-        }
-        if c.found() && !c.rising {
-            falling.push(num(v));
-        }
-        // only a negative → positive change is the paper's D_c
-        let drawn = c.found() && c.rising;
-        let nan = f64::NAN;
-        points.push(Point {
-            x: v,
-            y: if drawn { c.d_c } else { nan },
-            lo: if drawn { c.d_c_lo } else { nan },
-            hi: if drawn { c.d_c_hi } else { nan },
-        });
-    }
-    let verdicts = verdicts(
-        (label, key, values.len(), claim),
-        &points,
-        &falling,
-        &missing,
-        notes,
-    );
-    Ok(Panel {
-        caption: format!("{label} D_c against {}", symbol(key)),
-        x_key: key.into(),
-        x_desc: symbol(key).into(),
-        y_desc: "critical noise D_c".into(),
-        y_key: "D_c".into(),
-        curves: vec![Curve {
-            label: "D_c with its uncertainty".into(),
-            points,
-        }],
-        verdicts,
-    })
-}
-
-/// A panel's verdicts: the trend of the D_c found against the paper's claim (also as a note),
-/// the values with the opposite transition, and one line per kind of missing sign change.
-fn verdicts(
-    (label, key, count, claim): (&str, &str, usize, &str),
-    points: &[Point],
-    falling: &[String],
-    missing: &[(String, &str)],
-    notes: &mut Vec<String>,
+/// A panel's lines: per start, the D_c brackets located out of the columns and the paper's
+/// trend.
+fn panel_verdicts(
+    key: &str,
+    claim: &str,
+    curves: &[Curve],
+    located: &[Option<Located>],
 ) -> Vec<String> {
-    let found: Vec<&Point> = points.iter().filter(|q| q.y.is_finite()).collect();
-    let trend = if found.len() >= 2 {
-        let up = found.windows(2).all(|w| w[1].y >= w[0].y);
-        let down = found.windows(2).all(|w| w[1].y <= w[0].y);
-        match (up, down) {
-            (true, false) => "increases",
-            (false, true) => "decreases",
-            _ => "not monotonic",
-        }
-    } else {
-        "undetermined"
-    };
-    let verdict = if trend == claim {
-        "agrees"
-    } else {
-        "not reproduced"
-    };
-    notes.push(format!(
-        "{label} paper: D_c {claim} with {}; here: {trend} (negative → positive change at {} of {} values; positive → negative, the opposite transition, at {}): {verdict}",
-        symbol(key), found.len(), count, falling.len()
-    ));
-    let mut verdicts = vec![format!("paper: D_c {claim}; here: {trend}")];
-    if !falling.is_empty() {
-        verdicts.push(format!(
-            "LLE + → − (not drawn) at {} = {}",
-            symbol(key),
-            falling.join(", ")
-        ));
-    }
-    // one line per kind of outcome, so that no line runs past the chart
-    let mut tags: Vec<&str> = Vec::new();
-    for m in missing {
-        if !tags.contains(&m.1) {
-            tags.push(m.1);
-        }
-    }
-    for tag in tags {
-        let at: Vec<&str> = missing
+    let mut lines = vec![format!("paper: D_c {claim} with {}", symbol(key))];
+    for start in StartKind::BOTH {
+        let of: Vec<(&Curve, &Option<Located>)> = curves
             .iter()
-            .filter(|m| m.1 == tag)
-            .map(|m| m.0.as_str())
+            .zip(located)
+            .filter(|(c, _)| c.start == start)
             .collect();
-        verdicts.push(format!(
-            "no sign change in range at {} = {} ({tag})",
-            symbol(key),
-            at.join(", ")
+        let found = of
+            .iter()
+            .filter(|(_, l)| matches!(l, Some(Located::Bracket { .. })))
+            .count();
+        let mut tags: Vec<String> = Vec::new();
+        for (_, l) in &of {
+            let t = l.map_or("no outer cycle", |l| l.tag()).to_string();
+            if !tags.contains(&t) && !matches!(l, Some(Located::Bracket { .. })) {
+                tags.push(t);
+            }
+        }
+        lines.push(format!(
+            "{}: D_c bracketed at {found} of {}{}",
+            start.name(),
+            of.len(),
+            if tags.is_empty() {
+                String::new()
+            } else {
+                format!("; else {}", tags.join(", "))
+            }
         ));
     }
-    verdicts
+    lines
 }

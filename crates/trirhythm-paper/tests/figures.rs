@@ -131,3 +131,118 @@ fn a_figure_reports_progress_and_stops_midway_when_asked() {
     ));
     assert_eq!(monitor.reports.load(Ordering::Relaxed), 2);
 }
+
+#[test]
+fn the_lyapunov_step_resolves_the_correlation_time() {
+    use trirhythm_paper::lle::dt_for;
+    assert_eq!(dt_for(0.025), 0.0025);
+    assert_eq!(dt_for(0.06), 0.005);
+    assert_eq!(dt_for(0.1), 0.01);
+    assert_eq!(dt_for(1.0), 0.01);
+    assert_eq!(dt_for(0.0), 0.01);
+    assert_eq!(dt_for(1e-6), 0.0001);
+    for tau in [0.001, 0.004, 0.025, 0.06, 0.3] {
+        assert!(dt_for(tau) <= tau / 10.0 * (1.0 + 1e-9), "τ = {tau}");
+    }
+}
+
+#[test]
+fn the_outer_start_is_the_averaged_outer_cycle_or_none() {
+    use trirhythm::model::preset;
+    use trirhythm_paper::lle::outer_amplitude;
+    // Fig. 18's set at r = 0.998: a large outer cycle (≈ 12.9 at λ = 1)
+    let p = preset("fig18a")
+        .unwrap()
+        .params
+        .with("lambda", 1.0)
+        .unwrap();
+    let a = outer_amplitude(&p, Variant::Paper).unwrap().unwrap();
+    assert!((10.0..16.0).contains(&a), "{a}");
+    // strong impact loss: no stable cycle, no outer start
+    let p = preset("fig18b").unwrap().params.with("r", 0.8).unwrap();
+    assert_eq!(outer_amplitude(&p, Variant::Paper).unwrap(), None);
+}
+
+#[test]
+fn lyapunov_figures_run_both_starts_and_keep_every_point() {
+    use trirhythm_paper::lle::{panels_table, Curve, Flag, Panel, Point, StartKind};
+    use trirhythm_paper::notes::variant_line;
+    use trirhythm_paper::verdict::rules::PointSign;
+    let f = fig18_lle_noise_fractional::Fig18::compute(&QUICK, &Silent).unwrap();
+    for p in &f.0.panels {
+        for start in StartKind::BOTH {
+            assert_eq!(p.curves.iter().filter(|c| c.start == start).count(), 4);
+        }
+        assert!(
+            p.curves.iter().all(|c| c.dt == 0.0025),
+            "τ = 0.025 runs at Δt = 0.0025"
+        );
+        for c in p.curves.iter().filter(|c| !c.points.is_empty()) {
+            assert!(c.u0 == 1.0 || c.start == StartKind::Outer);
+            for q in &c.points {
+                assert_eq!(q.flag == Flag::Value, q.sign != PointSign::Undefined);
+            }
+        }
+    }
+    assert!(!f.0.caption.lines.contains(&variant_line(Variant::Paper)));
+    let dts: Vec<f64> = f.0.dt_check.points.iter().map(|q| q.x).collect();
+    assert_eq!(dts, vec![0.01, 0.005, 0.0025, 0.00125]);
+    // a merged point is a row with its flag and no value
+    let q = |x: f64, y: f64, flag| Point {
+        x,
+        y,
+        lo: y - 0.01,
+        hi: y + 0.01,
+        se: 0.01,
+        n: 8,
+        flag,
+        sign: PointSign::NotSignificant,
+    };
+    let panel = Panel {
+        caption: "(b) λ = 0.998".into(),
+        x_key: "D".into(),
+        x_desc: String::new(),
+        y_desc: String::new(),
+        y_key: "lle".into(),
+        curves: vec![Curve {
+            label: "r = 0.8, rest".into(),
+            value: 0.8,
+            start: StartKind::Rest,
+            u0: 1.0,
+            dt: 0.0025,
+            points: vec![
+                q(0.1, 0.12, Flag::Value),
+                q(0.3, f64::NEG_INFINITY, Flag::Merged),
+            ],
+        }],
+        verdicts: vec![],
+    };
+    let t = panels_table(&[], &[panel]);
+    assert_eq!(t.rows.len(), 2);
+    let col = |name: &str| t.columns.iter().position(|c| c == name).unwrap();
+    assert_eq!(t.rows[1][col("flag")], "merged");
+    assert_eq!(t.rows[1][col("y")], "");
+    assert_eq!(t.rows[0][col("y")], "0.12");
+    assert_eq!(t.rows[0][col("flag")], "");
+}
+
+#[test]
+fn fig19_is_a_sign_map_of_every_value_and_start() {
+    let f = fig19_critical_noise::Fig19::compute(&QUICK, &Silent).unwrap();
+    assert_eq!(f.panels.len(), 4);
+    for m in &f.panels {
+        assert_eq!(m.panel.curves.len(), 10, "5 values × 2 starts");
+        assert_eq!(m.located.len(), 10);
+        for (c, l) in m.panel.curves.iter().zip(&m.located) {
+            assert_eq!(c.points.is_empty(), l.is_none());
+            assert!(c.points.iter().all(|q| q.x > 0.0));
+        }
+    }
+    let rows = f.tables()[0].rows.len();
+    let points: usize = f
+        .panels
+        .iter()
+        .flat_map(|m| m.panel.curves.iter().map(|c| c.points.len()))
+        .sum();
+    assert_eq!(rows, points, "every cell is a row");
+}

@@ -9,8 +9,8 @@ use trirhythm_paper::verdict::claims::{
     judge, Figures, FIG04_CLAIMED_ROOTS, JUDGED_FIGURES, THEORY_FIGURES,
 };
 use trirhythm_paper::verdict::rules::{
-    agreement, closeness, count, sign_change, trend, Comparison, Count, CountSource, Direction,
-    LleCurve, LlePoint, Series, CLOSENESS_REL_TOL,
+    agreement, closeness, count, locate, sign_change, significance, trend, Comparison, Count,
+    CountSource, Direction, LleCurve, LlePoint, Located, PointSign, Series, CLOSENESS_REL_TOL,
 };
 use trirhythm_paper::verdict::{Decision, Measured, Outcome, Verdict};
 use trirhythm_paper::FigureOptions;
@@ -235,11 +235,26 @@ fn curve(label: &str, pts: &[(f64, f64, f64)]) -> LleCurve {
 fn sign_change_needs_both_signs_in_order() {
     let rising = curve(
         "μ0 = 0.01",
-        &[(0.05, -0.05, 0.005), (0.5, 0.0, 0.005), (1.0, 0.05, 0.005)],
+        &[
+            (0.05, -0.05, 0.005),
+            (0.2, -0.04, 0.005),
+            (0.5, 0.0, 0.005),
+            (1.0, 0.05, 0.005),
+        ],
     );
     let d = sign_change(&[rising]);
     assert_eq!(tag(&d), "confirmed");
-    assert_eq!(d.tests, 3);
+    assert_eq!(d.tests, 4);
+    // the same change with only the ends significant: its bracket is the whole range
+    let whole = curve(
+        "μ0 = 0.01",
+        &[(0.05, -0.05, 0.005), (0.5, 0.0, 0.005), (1.0, 0.05, 0.005)],
+    );
+    let d = sign_change(&[whole]);
+    assert!(
+        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("whole range: D_c not located")),
+        "{d:?}"
+    );
     let falling = curve(
         "μ0 = 0.01",
         &[(0.05, 0.05, 0.005), (0.5, 0.0, 0.005), (1.0, -0.05, 0.005)],
@@ -254,7 +269,7 @@ fn sign_change_needs_both_signs_in_order() {
     );
     let d = sign_change(&[positive]);
     assert!(
-        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("already significantly positive")),
+        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("D_c below the smallest D = 0.05 not excluded")),
         "{d:?}"
     );
     // negative throughout: D_c above the range cannot be excluded
@@ -271,6 +286,52 @@ fn sign_change_needs_both_signs_in_order() {
     let d = sign_change(&[merged]);
     assert!(matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("merged")));
     assert_eq!(d.tests, 1);
+}
+
+#[test]
+fn exponents_consistent_with_zero_are_not_significant() {
+    // ≈ 1e-3 with standard errors of the same size: nothing is significant, no sign change
+    let flat = curve(
+        "λ = 0.95",
+        &[
+            (0.01, -0.001, 0.001),
+            (0.1, 0.0012, 0.001),
+            (1.0, 0.0015, 0.001),
+        ],
+    );
+    let d = sign_change(std::slice::from_ref(&flat));
+    assert!(
+        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("no significant value of either sign")),
+        "{d:?}"
+    );
+    assert!(d.checks.iter().all(|c| c.outcome == Outcome::Neither));
+    let signs = significance(&[flat]);
+    assert_eq!(signs[0], vec![PointSign::NotSignificant; 3]);
+}
+
+#[test]
+fn locate_names_every_outcome_of_a_curve() {
+    use PointSign::{Negative as N, NotSignificant as O, Positive as P, Undefined as U};
+    let ds = [0.001, 0.01, 0.1, 1.0];
+    assert_eq!(
+        locate(&ds, &[N, N, P, P]),
+        Located::Bracket { lo: 0.01, hi: 0.1 }
+    );
+    // significant only at the two ends: the bracket is the whole range, not a located D_c
+    assert_eq!(locate(&ds, &[N, O, U, P]), Located::WholeRange);
+    assert_eq!(locate(&ds, &[P, N, O, O]), Located::Opposite);
+    assert_eq!(locate(&ds, &[P, O, P, P]), Located::PositiveFromStart);
+    assert_eq!(locate(&ds, &[O, O, P, P]), Located::NoNegative);
+    assert_eq!(locate(&ds, &[N, O, O, O]), Located::NoPositive);
+    assert_eq!(locate(&ds, &[O, U, O, O]), Located::NotSignificant);
+    assert!(Located::PositiveFromStart
+        .words(0.001)
+        .contains("D_c below the smallest D = 0.001 not excluded"));
+    // two points only: the bracket is the range, and the change is located there
+    assert_eq!(
+        locate(&[0.1, 1.0], &[N, P]),
+        Located::Bracket { lo: 0.1, hi: 1.0 }
+    );
 }
 
 #[test]
@@ -610,4 +671,106 @@ fn verdicts_of_saved_figure_data() {
     figs.options.quick = quick.unwrap_or(false);
     let v = judge(&figs);
     println!("{}", serde_json::to_string_pretty(&v.claims).unwrap());
+}
+
+// ---- the Lyapunov claims per start ----
+
+fn lle_panel(
+    caption: &str,
+    curves: &[(trirhythm_paper::lle::StartKind, &[f64])],
+) -> trirhythm_paper::lle::Panel {
+    use trirhythm_paper::lle::{Curve, Flag, Panel, Point};
+    let ds = [0.001, 0.01, 0.1, 1.0];
+    Panel {
+        caption: caption.into(),
+        x_key: "D".into(),
+        x_desc: String::new(),
+        y_desc: String::new(),
+        y_key: "lle".into(),
+        curves: curves
+            .iter()
+            .map(|&(start, ys)| Curve {
+                label: format!("μ0 = 0.01, {}", start.name()),
+                value: 0.01,
+                start,
+                u0: 1.0,
+                dt: 0.005,
+                points: ds
+                    .iter()
+                    .zip(ys)
+                    .map(|(&x, &y)| Point {
+                        x,
+                        y,
+                        lo: y - 0.002,
+                        hi: y + 0.002,
+                        se: 0.002,
+                        n: 8,
+                        flag: Flag::Value,
+                        sign: trirhythm_paper::verdict::rules::PointSign::Undefined,
+                    })
+                    .collect(),
+            })
+            .collect(),
+        verdicts: vec![],
+    }
+}
+
+#[test]
+fn a_lyapunov_claim_is_decided_per_start_and_says_so() {
+    use trirhythm_paper::fig17_lle_noise::Fig17;
+    use trirhythm_paper::lle::{DtCheck, LleAgainstNoise, StartKind};
+    use trirhythm_paper::notes::Caption;
+    let rising: &[f64] = &[-0.05, -0.04, 0.05, 0.06];
+    let falling: &[f64] = &[0.05, 0.05, -0.05, -0.05];
+    // (a): rising from the rest basin, falling from the outer cycle; (b): rising from rest,
+    // no outer cycle (a curve without points)
+    let a = lle_panel(
+        "(a) τ = 0.06",
+        &[(StartKind::Rest, rising), (StartKind::Outer, falling)],
+    );
+    let b = lle_panel(
+        "(b) μ0 = 0.001",
+        &[(StartKind::Rest, rising), (StartKind::Outer, &[])],
+    );
+    let data = LleAgainstNoise {
+        caption: Caption {
+            title: String::new(),
+            lines: vec![],
+        },
+        notes: vec![],
+        panels: vec![a, b],
+        dt_check: DtCheck {
+            what: String::new(),
+            panel: "a".into(),
+            dt_rule: 0.005,
+            points: vec![],
+        },
+    };
+    let figs = Figures {
+        fig17: Some(Fig17(data)),
+        ..Default::default()
+    };
+    let v = judge(&figs);
+    let find = |id: &str| {
+        v.claims
+            .iter()
+            .find(|c| c.claim.id == id)
+            .unwrap()
+            .decision
+            .clone()
+    };
+    let a = find("fig17a-lle-sign-change");
+    assert_eq!(tag(&a), "refuted");
+    assert!(
+        a.statistic
+            .contains("per start: from the rest basin (U(0) = 1): confirmed; from the outer cycle"),
+        "{}",
+        a.statistic
+    );
+    assert!(a.statistic.ends_with("refuted"), "{}", a.statistic);
+    let b = find("fig17b-lle-sign-change");
+    assert!(
+        matches!(b.verdict, Verdict::Undetermined { ref why } if why.contains("no outer stable cycle (averaged theory) for μ0 = 0.01, outer")),
+        "{b:?}"
+    );
 }

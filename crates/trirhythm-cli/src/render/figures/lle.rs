@@ -1,29 +1,51 @@
-//! What Figs 17–19 share: runs of the largest Lyapunov exponent at quick or paper quality,
-//! panels of curves with error bars, and their CSV and drawing. Each panel keeps its legend in
-//! a strip below its chart, so no legend covers data.
+//! What Figs 17–19 share: panels of the largest Lyapunov exponent against D on a log axis with
+//! error bars, one colour per value of the panel's parameter, filled markers for the rest
+//! start and open markers for the outer-cycle start; Fig. 19's sign maps over (parameter, D).
+//! Each panel keeps its legend in a strip below its chart, so no legend covers data.
 //!
 //! Drawing only: the runs and verdicts are [`trirhythm_paper::lle`].
 
-use crate::render::plot::{chart, padded_range, pe, Backend, LegendStrip, Symbol, PALETTE};
-use anyhow::Result;
+use crate::render::plot::{
+    padded_range, pe, tick_formatter, Backend, LegendStrip, Symbol, FONT, PALETTE,
+};
+use anyhow::{anyhow, Result};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use trirhythm_paper::lle::{LleAgainstNoise, Panel};
+use std::ops::Range;
+use trirhythm_paper::lle::{Flag, LleAgainstNoise, Panel, StartKind};
+use trirhythm_paper::notes::sig;
 
 /// Height of the chart part of a panel.
-pub const CHART_HEIGHT: u32 = 420;
+pub const CHART_HEIGHT: u32 = 440;
 /// Width of a panel.
-pub const PANEL_WIDTH: u32 = 600;
+pub const PANEL_WIDTH: u32 = 620;
+
+/// The distinct values of a panel's curves, in order (one colour each).
+fn values(panel: &Panel) -> Vec<f64> {
+    let mut v: Vec<f64> = Vec::new();
+    for c in &panel.curves {
+        if !v.contains(&c.value) {
+            v.push(c.value);
+        }
+    }
+    v
+}
+
+fn colour_of(panel: &Panel, value: f64) -> RGBColor {
+    let i = values(panel).iter().position(|&v| v == value).unwrap_or(0);
+    PALETTE[i % PALETTE.len()]
+}
 
 fn strip(panel: &Panel) -> LegendStrip {
-    LegendStrip {
-        entries: panel
-            .curves
-            .iter()
-            .enumerate()
-            .map(|(i, c)| (Symbol::Line(PALETTE[i % PALETTE.len()]), c.label.clone()))
-            .collect(),
+    let mut entries: Vec<(Symbol, String)> = Vec::new();
+    for c in panel.curves.iter().filter(|c| c.start == StartKind::Rest) {
+        let name = c.label.split(',').next().unwrap_or("").to_string();
+        entries.push((Symbol::Line(colour_of(panel, c.value)), name));
     }
+    entries.push((Symbol::Swatch(RGBColor(0, 0, 0)), "filled: U(0) = 1".into()));
+    entries.push((Symbol::Ring(RGBColor(0, 0, 0)), "open: outer cycle".into()));
+    LegendStrip { entries }
 }
 
 /// Height of a panel with its legend strip.
@@ -37,87 +59,148 @@ pub fn panel_height(panels: &[Panel]) -> u32 {
         + 8
 }
 
-/// Draw one panel: chart, error bars, zero line, verdicts, legend strip below.
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// A chart whose x axis is log10 D, its ticks labelled with D itself.
+fn log_x_chart<'a, DB: Backend>(
+    area: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+    (x, y): (Range<f64>, Range<f64>),
+    (x_desc, y_desc): (&str, &str),
+) -> Result<Chart<'a, DB>> {
+    let mut c = ChartBuilder::on(area)
+        .caption(caption, (FONT, 20))
+        .margin(10)
+        .margin_right(26)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x, y.clone())
+        .map_err(|e| anyhow!("{e}"))?;
+    let pow = |v: &f64| sig(10f64.powf(*v), 2);
+    let plain = tick_formatter(&y, 10);
+    c.configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_labels(8)
+        .y_labels(10)
+        .x_label_formatter(&pow)
+        .y_label_formatter(&plain)
+        .axis_desc_style((FONT, 16))
+        .label_style((FONT, 14))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(|e| anyhow!("{e}"))?;
+    Ok(c)
+}
+
+/// The fraction of a chart's height that `lines` verdict lines take ([`verdict_text`]).
+fn text_fraction(lines: usize) -> f64 {
+    0.035 + LINE_STEP * lines as f64
+}
+
+/// How much to extend a data range upward (as a fraction of it) so that `lines` verdict lines
+/// sit above the data: t/(1 − t) for a text fraction t.
+fn text_room(lines: usize) -> f64 {
+    let t = text_fraction(lines).min(0.8);
+    t / (1.0 - t)
+}
+
+/// The step between verdict lines, as a fraction of the chart's height.
+const LINE_STEP: f64 = 0.065;
+
+fn verdict_text<DB: Backend>(c: &mut Chart<DB>, lines: &[String]) -> Result<()> {
+    let (x, y) = (c.x_range(), c.y_range());
+    for (k, v) in lines.iter().enumerate() {
+        let at = (
+            x.start + 0.02 * (x.end - x.start),
+            y.end - (0.02 + LINE_STEP * k as f64) * (y.end - y.start),
+        );
+        c.draw_series(std::iter::once(Text::new(
+            v.clone(),
+            at,
+            (FONT, 14).into_font().color(&BLACK),
+        )))
+        .map_err(pe)?;
+    }
+    Ok(())
+}
+
+/// Draw one LLE-against-D panel: log D axis, error bars, zero line, filled (rest start) and
+/// open (outer-cycle start) markers, verdicts, legend strip below. Merged points are drawn as
+/// crosses on the lower edge.
 pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> Result<()> {
     let (top, bottom) = area.split_vertically(CHART_HEIGHT);
-    let xs = panel
-        .curves
-        .iter()
-        .flat_map(|c| c.points.iter().map(|q| q.x));
-    let x = padded_range(xs);
+    let lx = |d: f64| d.log10();
+    let x = padded_range(
+        panel
+            .curves
+            .iter()
+            .flat_map(|c| c.points.iter().map(|q| lx(q.x))),
+    );
     let mut ys: Vec<f64> = panel
         .curves
         .iter()
         .flat_map(|c| c.points.iter())
-        .filter(|q| q.y.is_finite())
+        .filter(|q| q.flag == Flag::Value)
         .flat_map(|q| [q.lo, q.hi, q.y])
         .collect();
-    if shows_zero(panel) {
-        ys.push(0.0);
-    }
-    if ys.iter().all(|v| !v.is_finite()) {
-        ys = vec![0.0, 1.0];
-    }
+    ys.push(0.0);
     let mut y = padded_range(ys);
     // room at the top for the verdict lines
-    y.end += (y.end - y.start) * 0.08 * panel.verdicts.len() as f64;
-    let mut c = chart(
+    y.end += (y.end - y.start) * text_room(panel.verdicts.len());
+    let mut c = log_x_chart(
         &top,
         &panel.caption,
-        x.clone(),
-        y.clone(),
-        &panel.x_desc,
-        &panel.y_desc,
+        (x.clone(), y.clone()),
+        (&panel.x_desc, &panel.y_desc),
     )?;
-    if shows_zero(panel) {
-        c.draw_series(std::iter::once(PathElement::new(
-            [(x.start, 0.0), (x.end, 0.0)],
-            RGBColor(120, 120, 120).stroke_width(1),
-        )))
-        .map_err(pe)?;
-    }
+    c.draw_series(std::iter::once(PathElement::new(
+        [(x.start, 0.0), (x.end, 0.0)],
+        RGBColor(120, 120, 120).stroke_width(1),
+    )))
+    .map_err(pe)?;
+    let n = panel.curves.len().max(1) as f64;
     for (i, curve) in panel.curves.iter().enumerate() {
-        let colour = PALETTE[i % PALETTE.len()];
+        let colour = colour_of(panel, curve.value);
+        let open = curve.start == StartKind::Outer;
         // a small horizontal offset per curve keeps overlapping error bars apart
-        let shift = (x.end - x.start) * 0.004 * (i as f64 - 1.5);
-        let pts: Vec<(f64, f64)> = curve
-            .points
-            .iter()
-            .filter(|q| q.y.is_finite())
-            .map(|q| (q.x + shift, q.y))
-            .collect();
-        // the line is broken where a point has no value (−∞: merged realisations), so that it
-        // never suggests a measurement there
-        for run in curve.points.split(|q| !q.y.is_finite()) {
-            let run: Vec<(f64, f64)> = run.iter().map(|q| (q.x + shift, q.y)).collect();
-            c.draw_series(LineSeries::new(run, colour.stroke_width(2)))
-                .map_err(pe)?;
+        let shift = (x.end - x.start) * 0.003 * (i as f64 - (n - 1.0) / 2.0);
+        let style = if open {
+            colour.stroke_width(1)
+        } else {
+            colour.stroke_width(2)
+        };
+        for run in curve.points.split(|q| q.flag != Flag::Value) {
+            let run: Vec<(f64, f64)> = run.iter().map(|q| (lx(q.x) + shift, q.y)).collect();
+            c.draw_series(LineSeries::new(run, style)).map_err(pe)?;
         }
-        c.draw_series(pts.iter().map(|&p| Circle::new(p, 4, colour.filled())))
-            .map_err(pe)?;
-        let cap = (x.end - x.start) * 0.006;
-        for q in curve.points.iter().filter(|q| q.y.is_finite()) {
-            let xq = q.x + shift;
+        let cap = (x.end - x.start) * 0.005;
+        for q in &curve.points {
+            let xq = lx(q.x) + shift;
+            if q.flag != Flag::Value {
+                c.draw_series(std::iter::once(Cross::new(
+                    (xq, y.start + 0.02 * (y.end - y.start)),
+                    5,
+                    colour.stroke_width(2),
+                )))
+                .map_err(pe)?;
+                continue;
+            }
             c.draw_series([
                 PathElement::new([(xq, q.lo), (xq, q.hi)], colour.stroke_width(1)),
                 PathElement::new([(xq - cap, q.lo), (xq + cap, q.lo)], colour.stroke_width(1)),
                 PathElement::new([(xq - cap, q.hi), (xq + cap, q.hi)], colour.stroke_width(1)),
             ])
             .map_err(pe)?;
+            let marker = if open {
+                Circle::new((xq, q.y), 4, colour.stroke_width(2))
+            } else {
+                Circle::new((xq, q.y), 4, colour.filled())
+            };
+            c.draw_series(std::iter::once(marker)).map_err(pe)?;
         }
     }
-    for (k, v) in panel.verdicts.iter().enumerate() {
-        let at = (
-            x.start + 0.02 * (x.end - x.start),
-            y.end - (0.02 + 0.075 * k as f64) * (y.end - y.start),
-        );
-        c.draw_series(std::iter::once(Text::new(
-            v.clone(),
-            at,
-            (crate::render::plot::FONT, 14).into_font().color(&BLACK),
-        )))
-        .map_err(pe)?;
-    }
+    verdict_text(&mut c, &panel.verdicts)?;
     strip(panel).draw(&bottom)
 }
 
@@ -129,7 +212,119 @@ picture!(LleAgainstNoise, |self, root| size (2 * PANEL_WIDTH, panel_height(&self
     Ok(())
 });
 
-/// Whether a panel draws the line y = 0: a Lyapunov exponent's sign is the point.
-fn shows_zero(panel: &Panel) -> bool {
-    panel.y_key == "lle"
+/// Colours of a sign map's cells.
+pub const POSITIVE: RGBColor = RGBColor(213, 94, 0);
+/// Significantly negative.
+pub const NEGATIVE: RGBColor = RGBColor(0, 114, 178);
+/// Not significant.
+pub const NEUTRAL: RGBColor = RGBColor(150, 150, 150);
+
+/// The legend of a sign map.
+pub fn sign_strip() -> LegendStrip {
+    LegendStrip {
+        entries: vec![
+            (Symbol::Swatch(POSITIVE), "LLE significantly > 0".into()),
+            (Symbol::Swatch(NEGATIVE), "significantly < 0".into()),
+            (Symbol::Swatch(NEUTRAL), "not significant".into()),
+            (Symbol::Cross(BLACK), "undefined (merged)".into()),
+            (Symbol::Line(BLACK), "D_c bracket".into()),
+            (
+                Symbol::Ring(BLACK),
+                "right, open: outer-cycle start (none: no outer cycle)".into(),
+            ),
+        ],
+    }
+}
+
+/// Draw a sign map: one column per value of the parameter (rest start left, filled; outer
+/// start right, open), the D grid on a log axis, each cell's sign as its colour, the located
+/// D_c brackets as bars.
+pub fn draw_sign_map<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
+    map: &trirhythm_paper::fig19_critical_noise::SignMap,
+) -> Result<()> {
+    use trirhythm_paper::verdict::rules::{Located, PointSign};
+    let panel = &map.panel;
+    let nv = map.values.len() as f64;
+    let x = -0.6..nv - 0.4;
+    let ds: Vec<f64> = panel
+        .curves
+        .iter()
+        .flat_map(|c| c.points.iter().map(|q| q.x.log10()))
+        .collect();
+    let mut y = padded_range(ds);
+    y.end += (y.end - y.start) * text_room(panel.verdicts.len());
+    let values = map.values.clone();
+    let mut c = ChartBuilder::on(area)
+        .caption(&panel.caption, (FONT, 20))
+        .margin(10)
+        .margin_right(26)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x.clone(), y.clone())
+        .map_err(|e| anyhow!("{e}"))?;
+    let xf = |v: &f64| {
+        let i = v.round();
+        if (v - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < values.len() {
+            trirhythm_paper::notes::num(values[i as usize])
+        } else {
+            String::new()
+        }
+    };
+    let yf = |v: &f64| sig(10f64.powf(*v), 2);
+    c.configure_mesh()
+        .x_desc(panel.x_desc.as_str())
+        .y_desc(panel.y_desc.as_str())
+        .x_labels(2 * values.len() + 3)
+        .y_labels(8)
+        .x_label_formatter(&xf)
+        .y_label_formatter(&yf)
+        .disable_x_mesh()
+        .axis_desc_style((FONT, 16))
+        .label_style((FONT, 14))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(|e| anyhow!("{e}"))?;
+    for (curve, located) in panel.curves.iter().zip(&map.located) {
+        let i = values.iter().position(|&v| v == curve.value).unwrap_or(0) as f64;
+        let open = curve.start == StartKind::Outer;
+        let xc = i + if open { 0.17 } else { -0.17 };
+        if curve.points.is_empty() {
+            c.draw_series(std::iter::once(Text::new(
+                "none",
+                (xc - 0.08, y.start + 0.03 * (y.end - y.start)),
+                (FONT, 12).into_font().color(&BLACK),
+            )))
+            .map_err(pe)?;
+        }
+        if let Some(Located::Bracket { lo, hi }) = located {
+            c.draw_series(std::iter::once(PathElement::new(
+                [(xc, lo.log10()), (xc, hi.log10())],
+                BLACK.stroke_width(3),
+            )))
+            .map_err(pe)?;
+        }
+        for q in &curve.points {
+            let at = (xc, q.x.log10());
+            let colour = match q.sign {
+                PointSign::Positive => POSITIVE,
+                PointSign::Negative => NEGATIVE,
+                PointSign::NotSignificant => NEUTRAL,
+                PointSign::Undefined => {
+                    c.draw_series(std::iter::once(Cross::new(at, 6, BLACK.stroke_width(2))))
+                        .map_err(pe)?;
+                    continue;
+                }
+            };
+            let style = if open {
+                colour.stroke_width(3)
+            } else {
+                colour.filled()
+            };
+            c.draw_series(std::iter::once(Circle::new(at, 7, style)))
+                .map_err(pe)?;
+        }
+    }
+    verdict_text(&mut c, &panel.verdicts)?;
+    Ok(())
 }

@@ -45,8 +45,8 @@ use trirhythm::Result;
 #[derive(Default)]
 #[allow(missing_docs)]
 pub struct Figures {
-    /// The options the figures were computed with: their run sizes give the degrees of
-    /// freedom of the Lyapunov standard errors (realisations − 1).
+    /// The options the figures were computed with (quick or full quality; the Lyapunov
+    /// figures carry their realisations per point, for the degrees of freedom).
     pub options: FigureOptions,
     pub fig01: Option<Fig01>,
     pub fig02: Option<Fig02>,
@@ -495,7 +495,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 17(a), Sec. 5",
             words: "\"When the noise level reaches the critical value D_c, the maximum Lyapunov exponent turns positive\" (μ0 varied)",
             rule: "sign_change",
-            judge: |f| f.fig17.as_ref().and_then(|x| x.0.panels.first().map(|p| lle_sign_change(p, lle_dof(f)))),
+            judge: |f| f.fig17.as_ref().and_then(|x| x.0.panels.first().map(lle_sign_change)),
         },
         Spec {
             id: "fig17b-lle-sign-change",
@@ -503,7 +503,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 17(b), Sec. 5",
             words: "the same, τ varied",
             rule: "sign_change",
-            judge: |f| f.fig17.as_ref().and_then(|x| x.0.panels.get(1).map(|p| lle_sign_change(p, lle_dof(f)))),
+            judge: |f| f.fig17.as_ref().and_then(|x| x.0.panels.get(1).map(lle_sign_change)),
         },
         Spec {
             id: "fig18a-lle-sign-change",
@@ -511,7 +511,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 18(a), Sec. 5",
             words: "the same, λ varied",
             rule: "sign_change",
-            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.first().map(|p| lle_sign_change(p, lle_dof(f)))),
+            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.first().map(lle_sign_change)),
         },
         Spec {
             id: "fig18b-lle-sign-change",
@@ -519,7 +519,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 18(b), Sec. 5",
             words: "the same, r varied",
             rule: "sign_change",
-            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(|p| lle_sign_change(p, lle_dof(f)))),
+            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(lle_sign_change)),
         },
         Spec {
             id: "fig18b-impact-loss",
@@ -527,7 +527,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 18(b), Sec. 5",
             words: "more impact loss (smaller r) makes chaos likelier: the LLE grows as r falls (paraphrase)",
             rule: "trend",
-            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(|p| fig18_impact_loss(p, lle_dof(f)))),
+            judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(fig18_impact_loss)),
         },
         Spec {
             id: "fig19a-dc-mu0",
@@ -562,13 +562,6 @@ fn specs() -> Vec<Spec> {
             judge: |f| f.fig19.as_ref().map(|x| fig19_trend(x, 3)),
         },
     ]
-}
-
-/// Degrees of freedom of the Lyapunov figures' standard errors: realisations − 1 at the run
-/// sizes of `figures.options` (a point with merged realisations has no value and no test).
-fn lle_dof(figures: &Figures) -> Option<f64> {
-    let paths = crate::lle::Sizes::of(figures.options.quick).spec.paths;
-    Some(paths.saturating_sub(1).max(1) as f64)
 }
 
 /// Every claim the figure data decides, in order.

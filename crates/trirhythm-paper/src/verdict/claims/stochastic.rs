@@ -4,13 +4,13 @@
 
 use super::super::rules::{
     agreement, count, sign_change, trend, Comparison, Count, CountSource, Direction, LleCurve,
-    LlePoint, Series,
+    Located, Series,
 };
-use super::super::{Decision, Measured, Verdict};
+use super::super::{all_of, Decision, Measured, Verdict};
 use crate::boundary::Panel as BoundaryPanel;
 use crate::fig13_pdf_restitution::Fig13;
-use crate::fig19_critical_noise::{Fig19, PANELS as FIG19_PANELS};
-use crate::lle::Panel as LlePanel;
+use crate::fig19_critical_noise::Fig19;
+use crate::lle::{Panel as LlePanel, StartKind};
 use crate::montecarlo::AmplitudePanel;
 use trirhythm::analysis::oscillation::Side;
 
@@ -57,37 +57,63 @@ pub(super) fn fig13_peaks(f: &Fig13) -> Decision {
     count(&items)
 }
 
-fn lle_curves(p: &LlePanel, dof: Option<f64>) -> Vec<LleCurve> {
-    p.curves
+/// A claim on an LLE panel decided per start ([`StartKind`]) and combined with
+/// [`all_of`]: refuted when one start refutes it, confirmed when both confirm, else
+/// undetermined with each start's reason (a start without an outer cycle on some curve says so).
+fn per_start(p: &LlePanel, rule: &str, decide: impl Fn(&[LleCurve]) -> Decision) -> Decision {
+    let parts = StartKind::BOTH
         .iter()
-        .map(|c| LleCurve {
-            label: c.label.clone(),
-            points: c
-                .points
-                .iter()
-                .map(|q| LlePoint {
-                    d: q.x,
-                    lle: q.y,
-                    se: (q.hi - q.lo) / 2.0,
-                    dof,
-                })
-                .collect(),
+        .map(|&start| {
+            let curves = p.lle_curves(start);
+            let mut d = decide(&curves);
+            let missing = p.without_cycle(start);
+            if !missing.is_empty() && d.verdict != Verdict::Refuted {
+                d.verdict = Verdict::undetermined(format!(
+                    "{}no outer stable cycle (averaged theory) for {}",
+                    match &d.verdict {
+                        Verdict::Undetermined { why } => format!("{why}; "),
+                        _ => String::new(),
+                    },
+                    missing.join(", ")
+                ));
+            }
+            (start.words().to_string(), d)
         })
-        .collect()
+        .collect();
+    per_start_all_of(rule, parts)
 }
 
-pub(super) fn lle_sign_change(p: &LlePanel, dof: Option<f64>) -> Decision {
-    sign_change(&lle_curves(p, dof))
+/// [`all_of`] over the starts, its statistic followed by each start's own verdict ("per start:
+/// from the rest basin …: refuted; from the outer cycle …: undetermined (why)").
+fn per_start_all_of(rule: &str, parts: Vec<(String, Decision)>) -> Decision {
+    let each: Vec<String> = parts
+        .iter()
+        .map(|(name, d)| match &d.verdict {
+            Verdict::Undetermined { why } => format!("{name}: undetermined ({why})"),
+            v => format!("{name}: {}", v.tag()),
+        })
+        .collect();
+    let mut d = all_of(rule, parts);
+    d.statistic = format!("{}; per start: {}", d.statistic, each.join("; "));
+    d
 }
 
-pub(super) fn fig18_impact_loss(p: &LlePanel, dof: Option<f64>) -> Decision {
-    // curves are r = 0.998, 0.95, 0.9, 0.8: the claim's order (more loss); one series per D
-    let curves = lle_curves(p, dof);
+pub(super) fn lle_sign_change(p: &LlePanel) -> Decision {
+    per_start(p, "sign_change", sign_change)
+}
+
+pub(super) fn fig18_impact_loss(p: &LlePanel) -> Decision {
+    per_start(p, "trend", impact_loss)
+}
+
+/// More impact loss, larger LLE: one series over r per D, in the panel's order of r.
+fn impact_loss(curves: &[LleCurve]) -> Decision {
     let r_of = |label: &str| {
         label
-            .rsplit("= ")
+            .split(',')
             .next()
-            .and_then(|s| s.parse::<f64>().ok())
+            .and_then(|s| s.rsplit("= ").next())
+            .and_then(|s| s.trim().parse::<f64>().ok())
             .unwrap_or(f64::NAN)
     };
     let n = curves.iter().map(|c| c.points.len()).min().unwrap_or(0);
@@ -107,50 +133,78 @@ pub(super) fn fig18_impact_loss(p: &LlePanel, dof: Option<f64>) -> Decision {
     trend(&series, Direction::Increases)
 }
 
+/// The paper's trend of D_c on one panel of Fig. 19, per start: the located brackets of D_c
+/// (geometric midpoint as value) against the parameter; a column without a located bracket
+/// makes the start undetermined (with its reason) unless the located ones already refute.
 pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
-    let Some(p) = f.panels.get(panel) else {
+    let Some(m) = f.panels.get(panel) else {
         return trend(&[], Direction::Increases);
     };
-    let direction = if FIG19_PANELS[panel].3 == "decreases" {
+    let direction = if m.claim == "decreases" {
         Direction::Decreases
     } else {
         Direction::Increases
     };
-    let points: Vec<(f64, Measured)> = p
+    let first_d = m
+        .panel
         .curves
-        .first()
-        .map(|c| {
-            c.points
-                .iter()
-                .map(|q| (q.x, Measured::bracket(q.y, q.lo, q.hi)))
-                .collect()
-        })
-        .unwrap_or_default();
-    let missing: Vec<String> = points
         .iter()
-        .filter(|q| !q.1.value.is_finite())
-        .map(|q| crate::notes::num(q.0))
+        .find_map(|c| c.points.first().map(|q| q.x))
+        .unwrap_or(f64::NAN);
+    let parts = StartKind::BOTH
+        .iter()
+        .map(|&start| {
+            let mut points = Vec::new();
+            // the columns without a located D_c, grouped by outcome: (words, values)
+            let mut missing: Vec<(String, Vec<String>)> = Vec::new();
+            for (c, l) in m.panel.curves.iter().zip(&m.located) {
+                if c.start != start {
+                    continue;
+                }
+                let why = match l {
+                    Some(Located::Bracket { lo, hi }) => {
+                        points.push((c.value, Measured::bracket((lo * hi).sqrt(), *lo, *hi)));
+                        continue;
+                    }
+                    Some(l) => l.kind_words(first_d),
+                    None => "no outer stable cycle (averaged theory)".into(),
+                };
+                let v = crate::notes::num(c.value);
+                match missing.iter_mut().find(|(w, _)| *w == why) {
+                    Some((_, vs)) => vs.push(v),
+                    None => missing.push((why, vec![v])),
+                }
+            }
+            let missing_count: usize = missing.iter().map(|(_, v)| v.len()).sum();
+            let missing: Vec<String> = missing
+                .into_iter()
+                .map(|(why, vs)| format!("{} = {}: {why}", m.key, vs.join(", ")))
+                .collect();
+            let located = points.len();
+            let d = trend(
+                &[Series {
+                    label: "D_c".into(),
+                    x_name: m.key.clone(),
+                    points,
+                }],
+                direction,
+            );
+            let d = if missing.is_empty() || d.verdict == Verdict::Refuted {
+                d
+            } else {
+                Decision {
+                    verdict: Verdict::undetermined(format!(
+                        "D_c located at {located} of {} values; no located D_c at {}",
+                        located + missing_count,
+                        missing.join("; ")
+                    )),
+                    ..d
+                }
+            };
+            (start.words().to_string(), d)
+        })
         .collect();
-    let d = trend(
-        &[Series {
-            label: "D_c".into(),
-            x_name: p.x_key.clone(),
-            points,
-        }],
-        direction,
-    );
-    if missing.is_empty() || d.verdict == Verdict::Refuted {
-        d
-    } else {
-        Decision {
-            verdict: Verdict::undetermined(format!(
-                "no negative → positive sign change of the LLE in range (no D_c) at {} = {}",
-                p.x_key,
-                missing.join(", ")
-            )),
-            ..d
-        }
-    }
+    per_start_all_of("trend", parts)
 }
 
 /// The simulated oscillation boundary of each member of a family panel of Fig. 16, one series

@@ -17,7 +17,7 @@ mod trend;
 
 pub use agreement::{agreement, closeness, Comparison};
 pub use count::{count, Count, CountSource};
-pub use sign_change::{sign_change, LleCurve, LlePoint};
+pub use sign_change::{locate, sign_change, significance, LleCurve, LlePoint, Located, PointSign};
 pub use trend::{trend, Direction, Series};
 
 /// Family-wise significance level of every stochastic test (two-sided, Holm–Bonferroni over

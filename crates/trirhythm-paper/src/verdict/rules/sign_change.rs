@@ -3,7 +3,10 @@
 //!
 //! z = LLE/se at every testable point (Student's t with realisations − 1 degrees of freedom
 //! where given), two-sided at [`ALPHA`] with Holm–Bonferroni over all points of the claim; a
-//! curve needs significant values of both signs, every negative below every positive.
+//! curve needs significant values of both signs, every negative below every positive, and a
+//! bracket (largest significant negative D, smallest significant positive D) narrower than the
+//! curve's whole range. [`significance`] and [`locate`] give the same per-point signs and the
+//! per-curve outcome ([`Located`]) to the figures that draw them (Fig. 19's sign maps).
 //! Reference: docs/verdicts.md, "Sign change of the largest Lyapunov exponent". Tested by
 //! `tests/verdicts.rs`.
 
@@ -24,6 +27,157 @@ pub struct LlePoint {
     pub dof: Option<f64>,
 }
 
+/// The sign of one exponent decided with significance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PointSign {
+    /// Significantly positive (Holm-adjusted).
+    Positive,
+    /// Significantly negative (Holm-adjusted).
+    Negative,
+    /// Consistent with zero at the adjusted level.
+    NotSignificant,
+    /// No test: a non-finite exponent (merged realisations) or no standard error.
+    Undefined,
+}
+
+/// Where a curve's sign change lies, from its points' [`PointSign`]s.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case", tag = "kind")]
+pub enum Located {
+    /// Significant negatives all below significant positives, bracket narrower than the range:
+    /// D_c in (lo, hi).
+    Bracket {
+        /// Largest significantly negative D.
+        lo: f64,
+        /// Smallest significantly positive D.
+        hi: f64,
+    },
+    /// A − → + change whose bracket is the whole range: not located.
+    WholeRange,
+    /// A significant positive below a significant negative: the opposite transition.
+    Opposite,
+    /// Significantly positive already at the smallest D, no significant negative: D_c below
+    /// the smallest D is not excluded.
+    PositiveFromStart,
+    /// Significant positives (not at the smallest D) and no significant negative.
+    NoNegative,
+    /// Significant negatives and no significant positive: D_c above the range not excluded.
+    NoPositive,
+    /// No significant value of either sign.
+    NotSignificant,
+}
+
+impl Located {
+    /// In words, for notes and reasons ("D_c in (0.01, 0.1)").
+    pub fn words(&self, first_d: f64) -> String {
+        match self {
+            Located::Bracket { lo, hi } => format!(
+                "D_c in ({}, {})",
+                crate::notes::num(*lo),
+                crate::notes::num(*hi)
+            ),
+            Located::WholeRange => {
+                "a − → + change whose bracket is the whole range: D_c not located".into()
+            }
+            Located::Opposite => {
+                "a significant positive below a significant negative: the opposite transition"
+                    .into()
+            }
+            Located::PositiveFromStart => format!(
+                "significantly positive already at the smallest D = {} with no significant negative: D_c below the smallest D = {} not excluded",
+                crate::notes::num(first_d),
+                crate::notes::num(first_d)
+            ),
+            Located::NoNegative => "no significant negative value in range".into(),
+            Located::NoPositive => {
+                "no significant positive value in range (D_c above the range not excluded)".into()
+            }
+            Located::NotSignificant => {
+                "no significant value of either sign (consistent with 0)".into()
+            }
+        }
+    }
+
+    /// Short, for a picture.
+    pub fn tag(&self) -> &'static str {
+        match self {
+            Located::Bracket { .. } => "bracketed",
+            Located::WholeRange => "whole range",
+            Located::Opposite => "+ → −",
+            Located::PositiveFromStart => "+ from smallest D",
+            Located::NoNegative => "no −",
+            Located::NoPositive => "no +",
+            Located::NotSignificant => "n.s.",
+        }
+    }
+
+    /// The outcome without its numbers, for grouping columns by outcome: [`Located::words`]
+    /// except for a bracket ("D_c located").
+    pub fn kind_words(&self, first_d: f64) -> String {
+        match self {
+            Located::Bracket { .. } => "D_c located".into(),
+            l => l.words(first_d),
+        }
+    }
+}
+
+/// The sign of every point of every curve, decided as [`sign_change`] decides them: z = LLE/se
+/// (Student's t with the point's degrees of freedom, normal without), two-sided at [`ALPHA`],
+/// Holm–Bonferroni over all testable points of all curves together.
+pub fn significance(curves: &[LleCurve]) -> Vec<Vec<PointSign>> {
+    let tested = testable(curves);
+    let ps: Vec<f64> = tested.iter().map(|t| t_two_sided_p(t.z, t.dof)).collect();
+    let (reject, _) = holm(&ps, ALPHA);
+    curves
+        .iter()
+        .enumerate()
+        .map(|(c, curve)| {
+            (0..curve.points.len())
+                .map(
+                    |k| match tested.iter().position(|t| t.curve == c && t.point == k) {
+                        None => PointSign::Undefined,
+                        Some(j) if !reject[j] => PointSign::NotSignificant,
+                        Some(j) if tested[j].z > 0.0 => PointSign::Positive,
+                        Some(_) => PointSign::Negative,
+                    },
+                )
+                .collect()
+        })
+        .collect()
+}
+
+/// Where a curve's sign change lies, from the D of its points (ascending) and their signs.
+pub fn locate(ds: &[f64], signs: &[PointSign]) -> Located {
+    let at = |s: PointSign| -> Vec<f64> {
+        ds.iter()
+            .zip(signs)
+            .filter(|(_, &x)| x == s)
+            .map(|(&d, _)| d)
+            .collect()
+    };
+    let (neg, pos) = (at(PointSign::Negative), at(PointSign::Positive));
+    let first = ds.first().copied().unwrap_or(f64::NAN);
+    let last = ds.last().copied().unwrap_or(f64::NAN);
+    match (neg.is_empty(), pos.is_empty()) {
+        (true, true) => Located::NotSignificant,
+        (true, false) if pos.contains(&first) => Located::PositiveFromStart,
+        (true, false) => Located::NoNegative,
+        (false, true) => Located::NoPositive,
+        (false, false) => {
+            let lo = neg.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let hi = pos.iter().copied().fold(f64::INFINITY, f64::min);
+            if lo >= hi {
+                Located::Opposite
+            } else if lo == first && hi == last && ds.len() > 2 {
+                Located::WholeRange
+            } else {
+                Located::Bracket { lo, hi }
+            }
+        }
+    }
+}
+
 /// One curve of exponents against D, ascending in D.
 #[derive(Debug, Clone)]
 pub struct LleCurve {
@@ -40,12 +194,15 @@ pub struct LleCurve {
 /// Holm–Bonferroni correction over all of them (a point with a non-finite exponent — merged
 /// realisations — or without a standard error is not testable).
 ///
-/// Per curve: confirmed when it has a significant negative and a significant positive value
-/// and every significant negative lies at a smaller D than every significant positive (D_c is
-/// then bracketed inside the range); refuted when a significant positive lies below a
-/// significant negative (the opposite transition); else undetermined: the range starts where
-/// the exponent is already significantly positive (D_c below the range cannot be excluded),
-/// no significant negative, no significant positive, with the untestable points named. The
+/// Per curve ([`locate`]): confirmed when it has a significant negative and a significant
+/// positive value, every significant negative lies at a smaller D than every significant
+/// positive, and the bracket (largest negative D, smallest positive D) is narrower than the
+/// curve's range (D_c is then located inside it); refuted when a significant positive lies
+/// below a significant negative (the opposite transition); else undetermined: a bracket equal
+/// to the whole range (a change, not located), significantly positive already at the smallest
+/// D with no significant negative ("D_c below the smallest D = … not excluded"), no significant
+/// negative, no significant positive, nothing significant (consistent with 0), with the
+/// untestable points named. The
 /// claim: refuted when a curve is, confirmed when every curve is, else undetermined.
 pub fn sign_change(curves: &[LleCurve]) -> Decision {
     let tested = testable(curves);
@@ -189,54 +346,37 @@ fn untestable_text(signs: &Signs) -> String {
     }
 }
 
-/// One curve's part from its significant points: both signs in order, in the wrong order, or
-/// why undetermined.
+/// One curve's part from its significant points: both signs in order with a bracket narrower
+/// than the range, in the wrong order, or why undetermined ([`locate`]).
 fn curve_part(curve: &LleCurve, signs: &Signs) -> Part {
-    let (neg, pos) = (&signs.neg, &signs.pos);
-    let first_d = curve.points.first().map(|q| q.d);
-    let untestable_text = untestable_text(signs);
-    if !neg.is_empty() && !pos.is_empty() {
-        if signs.max_neg() < signs.min_pos() {
-            (true, false, None)
-        } else {
-            (false, true, None)
-        }
-    } else if pos.is_empty() && neg.is_empty() {
-        (
-            false,
-            false,
-            Some(format!(
-                "{}: no significant value of either sign{untestable_text}",
-                curve.label
-            )),
-        )
-    } else if neg.is_empty() {
-        let starts_positive = first_d.is_some_and(|d| pos.contains(&d));
-        (
-            false,
-            false,
-            Some(if starts_positive {
-                format!(
-                    "{}: the range starts where the LLE is already significantly positive (D = {}): D_c below the range cannot be excluded{untestable_text}",
-                    curve.label,
-                    crate::notes::num(first_d.unwrap_or(f64::NAN))
-                )
+    let ds: Vec<f64> = curve.points.iter().map(|q| q.d).collect();
+    let per_point: Vec<PointSign> = ds
+        .iter()
+        .map(|d| {
+            if signs.neg.contains(d) {
+                PointSign::Negative
+            } else if signs.pos.contains(d) {
+                PointSign::Positive
             } else {
-                format!(
-                    "{}: no significant negative value in range{untestable_text}",
-                    curve.label
-                )
-            }),
-        )
-    } else {
-        (
+                PointSign::NotSignificant
+            }
+        })
+        .collect();
+    let first_d = ds.first().copied().unwrap_or(f64::NAN);
+    let located = locate(&ds, &per_point);
+    match located {
+        Located::Bracket { .. } => (true, false, None),
+        Located::Opposite => (false, true, None),
+        _ => (
             false,
             false,
             Some(format!(
-                "{}: no significant positive value in range (D_c above the range cannot be excluded){untestable_text}",
-                curve.label
+                "{}: {}{}",
+                curve.label,
+                located.words(first_d),
+                untestable_text(signs)
             )),
-        )
+        ),
     }
 }
 
