@@ -110,6 +110,32 @@ impl MapPanel {
         }
         h
     }
+
+    /// Share, in per cent of the grid, of the grid points with count `k` (`k ≥ 4`: four or
+    /// more). The verdicts on the map figures' trends are decided on these numbers.
+    pub fn share(&self, k: usize) -> f64 {
+        let h = self.histogram();
+        let total: usize = h.iter().sum();
+        100.0 * h[k.min(4)] as f64 / total.max(1) as f64
+    }
+
+    /// The grid-index bounding box `((ix0, ix1), (iy0, iy1))`, inclusive, of the grid points
+    /// with count `k` (`k ≥ 4`: four or more); `None` when there are none.
+    pub fn bounding_box(&self, k: u8) -> Option<((usize, usize), (usize, usize))> {
+        let nx = self.x.grid.count;
+        let mut b: Option<((usize, usize), (usize, usize))> = None;
+        for (i, &c) in self.counts.iter().enumerate() {
+            if c.min(4) != k.min(4) {
+                continue;
+            }
+            let (ix, iy) = (i % nx, i / nx);
+            b = Some(match b {
+                None => ((ix, ix), (iy, iy)),
+                Some(((x0, x1), (y0, y1))) => ((x0.min(ix), x1.max(ix)), (y0.min(iy), y1.max(iy))),
+            });
+        }
+        b
+    }
 }
 
 /// The paper's names of the saddle-node lines (Sec. 3: "L1 … the saddle-node bifurcation of
