@@ -32,7 +32,7 @@ fn draw_panel<DB: Backend>(
     let (y, clipped) = frame(std::slice::from_ref(&fig.curve), x_end);
     let mut c = chart(area, caption, 0.0..x_end, y, "A0", "U_eff(A0)")?;
     let clipped = &clipped[0];
-    draw_curves(&mut c, std::slice::from_ref(clipped), false)?;
+    draw_curves(&mut c, std::slice::from_ref(clipped))?;
     for (i, b) in fig.barriers.iter().enumerate() {
         if b.well > x_end || b.crest > x_end {
             continue;
