@@ -593,6 +593,12 @@ pub fn framed<'a, DB: Backend>(
     let margin = px(if inset { 4 } else { 8 });
     let width = area.dim_in_pixel().0;
     let cap = caption_height(caption, width.saturating_sub(2 * margin));
+    // no more y ticks than fit, each label with a label's height of room
+    let y_room = area
+        .dim_in_pixel()
+        .1
+        .saturating_sub(cap + x_area + 2 * margin);
+    let y_ticks = (y_room / (2 * tick).max(1)).clamp(2, ticks as u32) as usize;
     let mut c = ChartBuilder::on(area)
         .margin(margin)
         .margin_top(margin + cap)
@@ -604,7 +610,7 @@ pub fn framed<'a, DB: Backend>(
         .map_err(|e| anyhow!("{e}"))?;
     c.configure_mesh()
         .x_labels(x_ticks)
-        .y_labels(ticks)
+        .y_labels(y_ticks)
         .x_label_formatter(&fx)
         .y_label_formatter(&fy)
         .label_style((FONT, tick))

@@ -212,14 +212,15 @@ fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Resul
 }
 
 /// A panel's title: its label and caption, and for a panel of stable cycles the shares of
-/// the grid with one, two and three cycles (per cent, one decimal).
+/// the grid with one, two and three cycles (per cent, one decimal; a no-break space before
+/// each % keeps a share on one line when the title wraps).
 fn panel_title(p: &MapPanel) -> String {
     let title = format!("({}) {}", p.label, p.caption);
     if p.what != What::Rhythmicity {
         return title;
     }
     format!(
-        "{title}: mono {:.1} %, bi {:.1} %, tri {:.1} %",
+        "{title}: mono {:.1}\u{a0}%, bi {:.1}\u{a0}%, tri {:.1}\u{a0}%",
         p.share(1),
         p.share(2),
         p.share(3)
