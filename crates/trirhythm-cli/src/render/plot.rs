@@ -106,9 +106,14 @@ impl Heading {
         font_px(HEADING_LINE) * 5 / 4
     }
 
+    /// The title wrapped to `width` pixels.
+    fn title_lines(&self, width: u32) -> Vec<String> {
+        wrap(&self.title, width.saturating_sub(2 * px(12)), HEADING_TITLE)
+    }
+
     fn height(&self, width: u32) -> u32 {
         px(14)
-            + font_px(HEADING_TITLE) * 5 / 4
+            + font_px(HEADING_TITLE) * 5 / 4 * self.title_lines(width).len() as u32
             + Self::line_height() * self.wrapped(width).len() as u32
             + px(6)
     }
@@ -117,16 +122,19 @@ impl Heading {
         let width = area.dim_in_pixel().0;
         let left = px(12) as i32;
         let title_h = font_px(HEADING_TITLE) * 5 / 4;
-        rich_text(
-            area,
-            &self.title,
-            (left, (px(8) + title_h / 2) as i32),
-            Pos::new(HPos::Left, VPos::Center),
-            HEADING_TITLE,
-            BLACK,
-            false,
-        )?;
-        let top = px(14) + title_h;
+        let titles = self.title_lines(width);
+        for (k, line) in titles.iter().enumerate() {
+            rich_text(
+                area,
+                line,
+                (left, (px(8) + title_h * k as u32 + title_h / 2) as i32),
+                Pos::new(HPos::Left, VPos::Center),
+                HEADING_TITLE,
+                BLACK,
+                false,
+            )?;
+        }
+        let top = px(14) + title_h * titles.len() as u32;
         for (i, (line, colour)) in self.wrapped(width).into_iter().enumerate() {
             let y = top + Self::line_height() * i as u32 + Self::line_height() / 2;
             rich_text(
@@ -666,23 +674,6 @@ pub fn framed<'a, DB: Backend>(
     Ok(c)
 }
 
-/// Draw the legend of a chart whose series carry labels.
-pub fn legend<'a, DB: Backend + 'a>(
-    chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
-    position: SeriesLabelPosition,
-) -> Result<()> {
-    chart
-        .configure_series_labels()
-        .position(position)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font((FONT, font_px(LABEL)))
-        .legend_area_size(px(30))
-        .margin(px(8))
-        .draw()
-        .map_err(|e| anyhow!("{e}"))
-}
-
 /// The mark of a legend entry.
 #[derive(Clone, Copy)]
 pub enum Symbol {
@@ -799,7 +790,8 @@ impl LegendStrip {
     pub fn height(&self, width: u32) -> u32 {
         match self.rows(width).len() as u32 {
             0 => 0,
-            n => 2 * px(LEGEND_PAD) + n * Self::row_height() + px(4),
+            // the frame's top margin, and as much below it
+            n => 2 * px(LEGEND_PAD) + n * Self::row_height() + 2 * px(4),
         }
     }
 
