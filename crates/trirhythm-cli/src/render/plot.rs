@@ -152,11 +152,21 @@ impl Heading {
 }
 
 /// `line` wrapped at word boundaries to `width` pixels at font size `base` (continuations
-/// indented), measured with the embedded font.
+/// indented), measured with the embedded font. A unit sign (`%`) stays with its number.
 fn wrap(line: &str, width: u32, base: u32) -> Vec<String> {
     let mut out = Vec::new();
     let mut cur = String::new();
+    let mut words: Vec<String> = Vec::new();
     for word in line.split(' ') {
+        match words.last_mut() {
+            Some(last) if word.starts_with('%') && !last.is_empty() => {
+                last.push(' ');
+                last.push_str(word);
+            }
+            _ => words.push(word.to_string()),
+        }
+    }
+    for word in &words {
         let candidate = if cur.is_empty() {
             word.to_string()
         } else {
@@ -1332,6 +1342,13 @@ mod tests {
         // 10 on, 6 off at scale 1: 200 px drawn 10/16 on, within a dash
         assert!((on - 200.0 * 10.0 / 16.0).abs() <= 10.0, "{on}");
         assert_eq!(dash_pieces(&line, Dash::Solid), vec![line.to_vec()]);
+    }
+
+    #[test]
+    fn a_per_cent_sign_stays_with_its_number() {
+        let lines = wrap("theory: 0.0 % out of the window", 1, TICK);
+        assert!(lines.iter().any(|l| l.trim() == "0.0 %"), "{lines:?}");
+        assert!(!lines.iter().any(|l| l.trim() == "%"), "{lines:?}");
     }
 
     #[test]
