@@ -414,3 +414,53 @@ pub fn gamma_delta_family(
     );
     Ok(map_figure(ctx, (number, title), subtitle, notes, panels))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn panel(nx: usize, counts: Vec<u8>) -> MapPanel {
+        let ny = counts.len() / nx;
+        let axis = |key: &str, count| PanelAxis {
+            grid: Axis {
+                key: key.into(),
+                start: 0.0,
+                stop: 1.0,
+                count,
+            },
+            label: key.into(),
+            scale: 1.0,
+        };
+        MapPanel {
+            label: "a".into(),
+            caption: String::new(),
+            params: String::new(),
+            what: What::Rhythmicity,
+            x: axis("gamma0", nx),
+            y: axis("delta0", ny),
+            counts,
+            folds: Folds {
+                curves: Vec::new(),
+                cusps: Vec::new(),
+                seeds: 0,
+                unlocated: 0,
+            },
+            printed: None,
+            mark: None,
+            fold_names: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn shares_and_the_box_of_a_count_come_from_the_grid() {
+        // 4 × 3 grid, row-major: two cells with 3 at (1, 1) and (2, 2), one with 5 (≥ 4)
+        let p = panel(4, vec![1, 1, 2, 2, 1, 3, 2, 2, 1, 2, 3, 5]);
+        assert_eq!(p.share(1), 100.0 * 4.0 / 12.0);
+        assert_eq!(p.share(3), 100.0 * 2.0 / 12.0);
+        assert_eq!(p.share(4), 100.0 / 12.0);
+        assert_eq!(p.share(0), 0.0);
+        assert_eq!(p.bounding_box(3), Some(((1, 2), (1, 2))));
+        assert_eq!(p.bounding_box(7), Some(((3, 3), (2, 2))));
+        assert_eq!(p.bounding_box(0), None);
+    }
+}
