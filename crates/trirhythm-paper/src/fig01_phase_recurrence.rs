@@ -284,6 +284,7 @@ fn texts(
             sampling_text(0),
             sampling_text(1)
         ),
+        crate::fig04_drift::CYCLE_NAMING.to_string(),
     ];
     (notes, heading_lines)
 }

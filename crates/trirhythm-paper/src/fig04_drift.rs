@@ -124,6 +124,7 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig04> {
         &["r", "gamma0", "delta0"],
         vec![
             "red: f > 0, the amplitude grows (energy uptake; the paper calls this zone 'dissipation'); blue: f < 0, it decays; dashed: the same control parameters at r = 1".into(),
+            CYCLE_NAMING.into(),
         ],
     );
     Ok(Fig04 {
@@ -132,6 +133,9 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig04> {
         panels,
     })
 }
+
+/// The naming rule of [`cycle_names`] in one line, for the captions of Figs 1 and 4.
+pub const CYCLE_NAMING: &str = "cycle names: A_{01}, A_{02}, … are the roots of f at r = 1 by increasing amplitude; at another r a root takes the name of the r = 1 root of its stability at the same rank from the largest amplitude";
 
 /// The names of a panel's roots `cycles` (ascending amplitude), in the paper's convention:
 /// the roots at r = 1 (`reference`, ascending) are A_01, A_02, … by amplitude (stable odd,

@@ -110,6 +110,32 @@ impl MapPanel {
         }
         h
     }
+
+    /// Share, in per cent of the grid, of the grid points with count `k` (`k ≥ 4`: four or
+    /// more). The verdicts on the map figures' trends are decided on these numbers.
+    pub fn share(&self, k: usize) -> f64 {
+        let h = self.histogram();
+        let total: usize = h.iter().sum();
+        100.0 * h[k.min(4)] as f64 / total.max(1) as f64
+    }
+
+    /// The grid-index bounding box `((ix0, ix1), (iy0, iy1))`, inclusive, of the grid points
+    /// with count `k` (`k ≥ 4`: four or more); `None` when there are none.
+    pub fn bounding_box(&self, k: u8) -> Option<((usize, usize), (usize, usize))> {
+        let nx = self.x.grid.count;
+        let mut b: Option<((usize, usize), (usize, usize))> = None;
+        for (i, &c) in self.counts.iter().enumerate() {
+            if c.min(4) != k.min(4) {
+                continue;
+            }
+            let (ix, iy) = (i % nx, i / nx);
+            b = Some(match b {
+                None => ((ix, ix), (iy, iy)),
+                Some(((x0, x1), (y0, y1))) => ((x0.min(ix), x1.max(ix)), (y0.min(iy), y1.max(iy))),
+            });
+        }
+        b
+    }
 }
 
 /// The paper's names of the saddle-node lines (Sec. 3: "L1 … the saddle-node bifurcation of
@@ -387,4 +413,54 @@ pub fn gamma_delta_family(
         "count = number of stable limit cycles; red: folds f = ∂f/∂A = 0 traced exactly".into(),
     );
     Ok(map_figure(ctx, (number, title), subtitle, notes, panels))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn panel(nx: usize, counts: Vec<u8>) -> MapPanel {
+        let ny = counts.len() / nx;
+        let axis = |key: &str, count| PanelAxis {
+            grid: Axis {
+                key: key.into(),
+                start: 0.0,
+                stop: 1.0,
+                count,
+            },
+            label: key.into(),
+            scale: 1.0,
+        };
+        MapPanel {
+            label: "a".into(),
+            caption: String::new(),
+            params: String::new(),
+            what: What::Rhythmicity,
+            x: axis("gamma0", nx),
+            y: axis("delta0", ny),
+            counts,
+            folds: Folds {
+                curves: Vec::new(),
+                cusps: Vec::new(),
+                seeds: 0,
+                unlocated: 0,
+            },
+            printed: None,
+            mark: None,
+            fold_names: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn shares_and_the_box_of_a_count_come_from_the_grid() {
+        // 4 × 3 grid, row-major: two cells with 3 at (1, 1) and (2, 2), one with 5 (≥ 4)
+        let p = panel(4, vec![1, 1, 2, 2, 1, 3, 2, 2, 1, 2, 3, 5]);
+        assert_eq!(p.share(1), 100.0 * 4.0 / 12.0);
+        assert_eq!(p.share(3), 100.0 * 2.0 / 12.0);
+        assert_eq!(p.share(4), 100.0 / 12.0);
+        assert_eq!(p.share(0), 0.0);
+        assert_eq!(p.bounding_box(3), Some(((1, 2), (1, 2))));
+        assert_eq!(p.bounding_box(7), Some(((3, 3), (2, 2))));
+        assert_eq!(p.bounding_box(0), None);
+    }
 }

@@ -19,9 +19,10 @@ use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use trirhythm::theory::averaging::Variant;
+use trirhythm_paper::notes::sig;
 use trirhythm_paper::table::Table;
 use trirhythm_paper::verdict::claims::{judge_figure, ClaimVerdict, Figures, Slot};
-use trirhythm_paper::verdict::Verdict;
+use trirhythm_paper::verdict::{Check, Decision};
 use trirhythm_paper::{Figure, FigureOptions};
 
 /// `dir/figNN` (without extension).
@@ -156,52 +157,288 @@ fn make<F: Slot + Picture>(
     Ok(Made { files, heading })
 }
 
-/// The verdicts on a figure's claims as short lines for its picture: the claim's id, the
-/// verdict, and for up to three deciding checks what was measured, its statistic and the
-/// threshold or the paper's value it was held against (all from the decision); an
-/// undetermined verdict's reason is cut to its first clause.
+/// The verdicts on a figure's claims as short lines for its picture, each at most about two
+/// printed lines ([`VERDICT_CHARS`]): the claim's id, the verdict, for an undetermined one its
+/// reason first, then the deciding numbers, all taken from the decision, laid out by rule:
+/// a count lists the counts found against the paper's ("positive roots of f, panel a–d: 3,
+/// 2, 2, 0 against the paper's 5, 5, 3, 0"), an agreement H ± s.e. against floor + k s.e., a
+/// trend the values across its range with z (or t) where stochastic, the rest (closeness,
+/// sign change) the statistic against its threshold. The checks' long descriptions are
+/// shortened for the picture ([`shorten`]); the decision itself is unchanged.
 pub fn verdict_lines(verdicts: &[ClaimVerdict]) -> Vec<VerdictLine> {
-    use trirhythm_paper::notes::sig;
     verdicts
         .iter()
-        .map(|v| {
-            let d = &v.decision;
-            let mut text = format!("{} — {}", v.claim.id, d.verdict.tag());
-            if let Verdict::Undetermined { why } = &d.verdict {
-                text.push_str(&format!(" ({})", first_clause(why)));
-            }
-            let checks: Vec<String> = d
-                .deciding(3)
-                .iter()
-                .map(|c| {
-                    format!(
-                        "{}: {} {} vs {}",
-                        first_clause(&c.what),
-                        c.statistic,
-                        sig(c.statistic_value, 3),
-                        sig(c.threshold, 3)
-                    )
-                })
-                .collect();
-            if !checks.is_empty() {
-                text.push_str(": ");
-                text.push_str(&checks.join("; "));
-            }
-            VerdictLine {
-                tag: d.verdict.tag().to_string(),
-                text,
+        .map(|v| VerdictLine {
+            tag: v.decision.verdict.tag().to_string(),
+            text: verdict_text(v),
+        })
+        .collect()
+}
+
+/// The most characters a verdict line takes: about two printed lines on the narrowest
+/// picture.
+pub const VERDICT_CHARS: usize = 190;
+
+fn verdict_text(v: &ClaimVerdict) -> String {
+    use trirhythm_paper::verdict::Verdict;
+    let d = &v.decision;
+    let mut head = format!("{} — {}", v.claim.id, d.verdict.tag());
+    if let Verdict::Undetermined { why } = &d.verdict {
+        head.push_str(&format!(" ({})", first_clause(&shorten(why))));
+    }
+    let items = match d.rule.as_str() {
+        "count" => count_items(d),
+        "agreement" => agreement_items(d),
+        "trend" => trend_items(d),
+        _ => d.deciding(3).iter().map(|c| statistic_item(c)).collect(),
+    };
+    let total: usize = d.tally.iter().sum();
+    let tail = match (&d.verdict, d.rule.as_str()) {
+        (_, "count") => String::new(),
+        (Verdict::Refuted, _) if total > 3 => {
+            format!(" ({} of {total} checks against)", d.tally[1])
+        }
+        _ => String::new(),
+    };
+    fit(&head, &items, &tail, VERDICT_CHARS)
+}
+
+/// `head: item; item…tail`, with as many items as fit in `max` characters (at least the
+/// first, cut with "…" when it alone is too long).
+fn fit(head: &str, items: &[String], tail: &str, max: usize) -> String {
+    let mut text = head.to_string();
+    for (i, item) in items.iter().enumerate() {
+        let sep = if i == 0 { ": " } else { "; " };
+        let len = |s: &str| s.chars().count();
+        if i > 0 && len(&text) + len(sep) + len(item) + len(tail) > max {
+            text.push_str("; …");
+            break;
+        }
+        text.push_str(sep);
+        text.push_str(item);
+    }
+    text.push_str(tail);
+    if text.chars().count() > max {
+        text = text
+            .chars()
+            .take(max - 1)
+            .collect::<String>()
+            .trim_end()
+            .to_string();
+        text.push('…');
+    }
+    text
+}
+
+/// A check's description made short for a picture: the Monte Carlo boilerplate dropped (the
+/// panel label kept), a formula variant as "(… variant)", the map shares named by rhythm.
+fn shorten(text: &str) -> String {
+    let mut t = text.to_string();
+    for (long, short) in [
+        ("peaks of the Monte Carlo P(A) of Eq. 1, ", "peaks, "),
+        ("share of grid points with count one (%)", "mono share (%)"),
+        ("share of grid points with count two (%)", "bi share (%)"),
+        ("share of grid points with count three (%)", "tri share (%)"),
+        (", MC of Eq. 1, paper formulas", ""),
+        (", MC of Eq. 1, consistent formulas", ""),
+    ] {
+        t = t.replace(long, short);
+    }
+    t
+}
+
+/// The formula variant a check's description names, as "(paper variant)", or nothing.
+fn variant_of(what: &str) -> &'static str {
+    if what.contains(", paper formulas") {
+        " (paper variant)"
+    } else if what.contains(", consistent formulas") {
+        " (consistent variant)"
+    } else {
+        ""
+    }
+}
+
+/// A count decision: the counts found against the paper's, in the checks' order, under the
+/// description they share (or each with its own when they share none).
+fn count_items(d: &Decision) -> Vec<String> {
+    let whats: Vec<String> = d.checks.iter().map(|c| label_of(&c.what)).collect();
+    let noun = shared_noun(&whats);
+    let n = |v: f64| sig(v, 3);
+    if noun.is_empty() || d.checks.len() == 1 {
+        return d
+            .checks
+            .iter()
+            .zip(&whats)
+            .map(|(c, w)| {
+                format!(
+                    "{w} {} against the paper's {}",
+                    n(c.statistic_value),
+                    n(c.threshold)
+                )
+            })
+            .collect();
+    }
+    let list = |f: &dyn Fn(&Check) -> f64| runs(&d.checks.iter().map(f).map(n).collect::<Vec<_>>());
+    vec![format!(
+        "{noun} {} against the paper's {}",
+        list(&|c| c.statistic_value),
+        list(&|c| c.threshold)
+    )]
+}
+
+/// Values as a list, runs of one value written `v ×n` when there are more than eight.
+fn runs(values: &[String]) -> String {
+    if values.len() <= 8 {
+        return values.join(", ");
+    }
+    let mut out: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < values.len() {
+        let j = (i..values.len())
+            .find(|&j| values[j] != values[i])
+            .unwrap_or(values.len());
+        out.push(if j - i > 1 {
+            format!("{} ×{}", values[i], j - i)
+        } else {
+            values[i].clone()
+        });
+        i = j;
+    }
+    out.join(", ")
+}
+
+/// The description the items share: their common beginning cut back to its last ", " or
+/// " at " (empty when none).
+fn shared_noun(whats: &[String]) -> String {
+    let Some(first) = whats.first() else {
+        return String::new();
+    };
+    let mut common = first.len();
+    for w in &whats[1..] {
+        common = common.min(
+            first
+                .char_indices()
+                .zip(w.chars())
+                .find(|((_, a), b)| a != b)
+                .map_or(first.len().min(w.len()), |((i, _), _)| i),
+        );
+    }
+    let prefix = &first[..common];
+    let cut = [prefix.rfind(", "), prefix.rfind(" at ")]
+        .into_iter()
+        .flatten()
+        .max();
+    match cut {
+        Some(i) => format!("{}:", prefix[..i].trim_end_matches([',', ':', ' '])),
+        None => String::new(),
+    }
+}
+
+/// An agreement decision: per deciding comparison, H ± s.e. against the finite-sample floor
+/// + k s.e., with the formula variant.
+fn agreement_items(d: &Decision) -> Vec<String> {
+    use trirhythm_paper::verdict::rules::AGREEMENT_K;
+    use trirhythm_paper::verdict::Uncertainty;
+    d.deciding(3)
+        .iter()
+        .map(|c| {
+            let se = match c.value.uncertainty {
+                Uncertainty::StdErr { se, .. } => se,
+                _ => 0.0,
+            };
+            format!(
+                "{}: H = {} ± {} against {} + {} s.e.{}",
+                label_of(&c.what),
+                sig(c.statistic_value, 3),
+                sig(se, 2),
+                sig(c.threshold - AGREEMENT_K * se, 3),
+                sig(AGREEMENT_K, 1),
+                variant_of(&c.what)
+            )
+        })
+        .collect()
+}
+
+/// A trend decision: the changes across the range (or the deciding steps) as "what: a → b
+/// (x = … → …)", with z or t against its threshold where the values are stochastic.
+fn trend_items(d: &Decision) -> Vec<String> {
+    let deciding = d.deciding(usize::MAX);
+    let ranges: Vec<&&Check> = deciding
+        .iter()
+        .filter(|c| c.what.contains(", across the range "))
+        .collect();
+    let shown: Vec<&Check> = if ranges.is_empty() {
+        deciding.into_iter().take(3).collect()
+    } else {
+        ranges.into_iter().copied().collect()
+    };
+    shown
+        .iter()
+        .map(|c| {
+            let what = shorten(&c.what);
+            let item = match what.rsplit_once(": ") {
+                Some((head, values)) => {
+                    let (label, range) = head
+                        .split_once(", across the range ")
+                        .or_else(|| head.rsplit_once(", "))
+                        .unwrap_or((head, ""));
+                    if range.is_empty() {
+                        format!("{label}: {values}")
+                    } else {
+                        format!("{label}: {values} ({range})")
+                    }
+                }
+                None => what.clone(),
+            };
+            let stochastic = c.statistic == "z" || c.statistic.starts_with("t ");
+            if stochastic {
+                format!(
+                    "{item}, {} = {} against {}",
+                    c.statistic,
+                    sig(c.statistic_value, 3),
+                    sig(c.threshold, 3)
+                )
+            } else {
+                item
             }
         })
         .collect()
 }
 
-/// `text` up to its first `;` or ` (` (with "…" when cut), at most 90 characters.
+/// A check's description for a picture: shortened, its parenthetical details (the floor of
+/// an agreement) dropped, and compared numbers ("a against b") to three digits.
+fn label_of(what: &str) -> String {
+    let what = shorten(what);
+    let what = match what.find(" (floor") {
+        Some(i) => what[..i].to_string(),
+        None => what,
+    };
+    let numbers = what.rsplit_once(": ").and_then(|(head, tail)| {
+        let (a, b) = tail.split_once(" against ")?;
+        Some(format!(
+            "{head}: {} against {}",
+            sig(a.parse().ok()?, 3),
+            sig(b.parse().ok()?, 3)
+        ))
+    });
+    first_clause(&numbers.unwrap_or(what))
+}
+
+/// A check as "what, statistic value against threshold".
+fn statistic_item(c: &Check) -> String {
+    format!(
+        "{}, {} {} against {}{}",
+        label_of(&c.what),
+        c.statistic,
+        sig(c.statistic_value, 3),
+        sig(c.threshold, 3),
+        variant_of(&c.what)
+    )
+}
+
+/// `text` up to its first `; ` (with "…" when cut), at most 90 characters.
 fn first_clause(text: &str) -> String {
-    let cut = [text.find("; "), text.find(" (")]
-        .into_iter()
-        .flatten()
-        .min()
-        .unwrap_or(text.len());
+    let cut = text.find("; ").unwrap_or(text.len());
     let mut out: String = text[..cut].chars().take(90).collect();
     if out.len() < text.len() {
         out.push('…');
@@ -289,5 +526,119 @@ pub fn data_options(dir: &Path, n: u32) -> Result<Option<FigureOptions>> {
             "--from-data: {} is not figure data ({e})",
             path.display()
         )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use trirhythm_paper::verdict::claims::Claim;
+    use trirhythm_paper::verdict::{Measured, Outcome, Verdict};
+
+    fn check(what: &str, value: Measured, stat: (&str, f64, f64), outcome: Outcome) -> Check {
+        Check {
+            what: what.into(),
+            value,
+            statistic: stat.0.into(),
+            statistic_value: stat.1,
+            threshold: stat.2,
+            outcome,
+        }
+    }
+
+    fn verdict(id: &str, rule: &str, verdict: Verdict, checks: Vec<Check>) -> ClaimVerdict {
+        let mut tally = [0; 4];
+        for c in &checks {
+            tally[c.outcome as usize] += 1;
+        }
+        ClaimVerdict {
+            claim: Claim {
+                id: id.into(),
+                figure: 4,
+                place: "Fig. 4".into(),
+                words: "words".into(),
+                rule: rule.into(),
+            },
+            decision: Decision {
+                verdict,
+                rule: rule.into(),
+                statistic: "statistic".into(),
+                tests: 0,
+                alpha: None,
+                checks,
+                tally,
+            },
+        }
+    }
+
+    #[test]
+    fn a_count_lists_the_counts_against_the_papers() {
+        let checks = [(3, 5), (2, 5), (2, 3), (0, 0)]
+            .iter()
+            .zip(["a (r = 1)", "b (r = 0.98)", "c (r = 0.96)", "d (r = 0.9)"])
+            .map(|(&(n, claimed), panel)| {
+                check(
+                    &format!("positive roots of f, panel {panel}"),
+                    Measured::exact(n as f64),
+                    ("count", n as f64, claimed as f64),
+                    if n == claimed {
+                        Outcome::For
+                    } else {
+                        Outcome::Against
+                    },
+                )
+            })
+            .collect();
+        let lines = verdict_lines(&[verdict("fig04-roots", "count", Verdict::Refuted, checks)]);
+        assert_eq!(lines[0].tag, "refuted");
+        assert_eq!(
+            lines[0].text,
+            "fig04-roots — refuted: positive roots of f: 3, 2, 2, 0 against the paper's 5, 5, 3, 0"
+        );
+    }
+
+    #[test]
+    fn an_agreement_gives_h_against_floor_and_standard_errors() {
+        let c = check(
+            "(b1) λ = 0.93, MC of Eq. 1, paper formulas (floor √(bins/(8·ESS)) = 0.05, bins 50, ESS 2500)",
+            Measured::with_se(0.24, 0.002),
+            ("H", 0.24, 0.05 + 2.0 * 0.002),
+            Outcome::Against,
+        );
+        let lines = verdict_lines(&[verdict(
+            "fig11b-agreement",
+            "agreement",
+            Verdict::Refuted,
+            vec![c],
+        )]);
+        assert_eq!(
+            lines[0].text,
+            "fig11b-agreement — refuted: (b1) λ = 0.93: H = 0.24 ± 0.002 against 0.05 + 2 s.e. (paper variant)"
+        );
+    }
+
+    #[test]
+    fn an_undetermined_verdict_gives_its_reason_first_and_stays_short() {
+        let why = "λ and r are not printed for Fig. 2; λ = 1, r = 1 chosen (with the values chosen: refuted)";
+        let checks: Vec<Check> = (0..40)
+            .map(|i| {
+                check(
+                    &format!("share of grid points with count three (%), across the range r = 1 → r = 0.{i}: 3.353 → 2.469"),
+                    Measured::exact(-0.88),
+                    ("relative change", -0.26, 1e-9),
+                    Outcome::Neither,
+                )
+            })
+            .collect();
+        let v = verdict("fig02-regions", "trend", Verdict::undetermined(why), checks);
+        let text = &verdict_lines(&[v])[0].text;
+        assert!(
+            text.starts_with(
+                "fig02-regions — undetermined (λ and r are not printed for Fig. 2…): tri share (%): 3.353 → 2.469 (r = 1 → r = 0.0)"
+            ),
+            "{text}"
+        );
+        assert!(text.chars().count() <= VERDICT_CHARS, "{text}");
+        assert!(text.ends_with('…'), "{text}");
     }
 }

@@ -106,9 +106,14 @@ impl Heading {
         font_px(HEADING_LINE) * 5 / 4
     }
 
+    /// The title wrapped to `width` pixels.
+    fn title_lines(&self, width: u32) -> Vec<String> {
+        wrap(&self.title, width.saturating_sub(2 * px(12)), HEADING_TITLE)
+    }
+
     fn height(&self, width: u32) -> u32 {
         px(14)
-            + font_px(HEADING_TITLE) * 5 / 4
+            + font_px(HEADING_TITLE) * 5 / 4 * self.title_lines(width).len() as u32
             + Self::line_height() * self.wrapped(width).len() as u32
             + px(6)
     }
@@ -117,16 +122,19 @@ impl Heading {
         let width = area.dim_in_pixel().0;
         let left = px(12) as i32;
         let title_h = font_px(HEADING_TITLE) * 5 / 4;
-        rich_text(
-            area,
-            &self.title,
-            (left, (px(8) + title_h / 2) as i32),
-            Pos::new(HPos::Left, VPos::Center),
-            HEADING_TITLE,
-            BLACK,
-            false,
-        )?;
-        let top = px(14) + title_h;
+        let titles = self.title_lines(width);
+        for (k, line) in titles.iter().enumerate() {
+            rich_text(
+                area,
+                line,
+                (left, (px(8) + title_h * k as u32 + title_h / 2) as i32),
+                Pos::new(HPos::Left, VPos::Center),
+                HEADING_TITLE,
+                BLACK,
+                false,
+            )?;
+        }
+        let top = px(14) + title_h * titles.len() as u32;
         for (i, (line, colour)) in self.wrapped(width).into_iter().enumerate() {
             let y = top + Self::line_height() * i as u32 + Self::line_height() / 2;
             rich_text(
@@ -144,11 +152,21 @@ impl Heading {
 }
 
 /// `line` wrapped at word boundaries to `width` pixels at font size `base` (continuations
-/// indented), measured with the embedded font.
+/// indented), measured with the embedded font. A unit sign (`%`) stays with its number.
 fn wrap(line: &str, width: u32, base: u32) -> Vec<String> {
     let mut out = Vec::new();
     let mut cur = String::new();
+    let mut words: Vec<String> = Vec::new();
     for word in line.split(' ') {
+        match words.last_mut() {
+            Some(last) if word.starts_with('%') && !last.is_empty() => {
+                last.push(' ');
+                last.push_str(word);
+            }
+            _ => words.push(word.to_string()),
+        }
+    }
+    for word in &words {
         let candidate = if cur.is_empty() {
             word.to_string()
         } else {
@@ -593,6 +611,12 @@ pub fn framed<'a, DB: Backend>(
     let margin = px(if inset { 4 } else { 8 });
     let width = area.dim_in_pixel().0;
     let cap = caption_height(caption, width.saturating_sub(2 * margin));
+    // no more y ticks than fit, each label with a label's height of room
+    let y_room = area
+        .dim_in_pixel()
+        .1
+        .saturating_sub(cap + x_area + 2 * margin);
+    let y_ticks = (y_room / (2 * tick).max(1)).clamp(2, ticks as u32) as usize;
     let mut c = ChartBuilder::on(area)
         .margin(margin)
         .margin_top(margin + cap)
@@ -604,7 +628,7 @@ pub fn framed<'a, DB: Backend>(
         .map_err(|e| anyhow!("{e}"))?;
     c.configure_mesh()
         .x_labels(x_ticks)
-        .y_labels(ticks)
+        .y_labels(y_ticks)
         .x_label_formatter(&fx)
         .y_label_formatter(&fy)
         .label_style((FONT, tick))
@@ -658,23 +682,6 @@ pub fn framed<'a, DB: Backend>(
         )?;
     }
     Ok(c)
-}
-
-/// Draw the legend of a chart whose series carry labels.
-pub fn legend<'a, DB: Backend + 'a>(
-    chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
-    position: SeriesLabelPosition,
-) -> Result<()> {
-    chart
-        .configure_series_labels()
-        .position(position)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font((FONT, font_px(LABEL)))
-        .legend_area_size(px(30))
-        .margin(px(8))
-        .draw()
-        .map_err(|e| anyhow!("{e}"))
 }
 
 /// The mark of a legend entry.
@@ -793,7 +800,8 @@ impl LegendStrip {
     pub fn height(&self, width: u32) -> u32 {
         match self.rows(width).len() as u32 {
             0 => 0,
-            n => 2 * px(LEGEND_PAD) + n * Self::row_height() + px(4),
+            // the frame's top margin, and as much below it
+            n => 2 * px(LEGEND_PAD) + n * Self::row_height() + 2 * px(4),
         }
     }
 
@@ -1334,6 +1342,13 @@ mod tests {
         // 10 on, 6 off at scale 1: 200 px drawn 10/16 on, within a dash
         assert!((on - 200.0 * 10.0 / 16.0).abs() <= 10.0, "{on}");
         assert_eq!(dash_pieces(&line, Dash::Solid), vec![line.to_vec()]);
+    }
+
+    #[test]
+    fn a_per_cent_sign_stays_with_its_number() {
+        let lines = wrap("theory: 0.0 % out of the window", 1, TICK);
+        assert!(lines.iter().any(|l| l.trim() == "0.0 %"), "{lines:?}");
+        assert!(!lines.iter().any(|l| l.trim() == "%"), "{lines:?}");
     }
 
     #[test]

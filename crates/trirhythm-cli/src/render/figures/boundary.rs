@@ -4,7 +4,10 @@
 //!
 //! Drawing only: the boundaries and their distances are [`trirhythm_paper::boundary`].
 
-use crate::render::plot::{chart, legend, pe, Backend, PALETTE};
+use crate::render::plot::{
+    chart, draw_line, draw_markers, pe, pxi, series, stroke, Backend, Dash, LegendStrip, Marker,
+    SeriesStyle, Symbol, PALETTE,
+};
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -34,14 +37,21 @@ fn colour(curve: &Curve) -> RGBColor {
     }
 }
 
-/// Draw one panel: the shaded rest region under the simulated boundary, then every curve
+/// Draw one panel (its legend below it when `strip` > 0): the shaded rest region under the simulated boundary, then every curve
 /// (simulation solid with its bracket as tick marks, averaging dashed, exact dotted or as
 /// markers where it has a single point).
 pub fn draw_panel<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
     panel: &Panel,
-    with_legend: bool,
+    strip: u32,
 ) -> Result<()> {
+    // the legend in a strip `strip` pixels high below the chart (none when 0), outside the data
+    let h = area.dim_in_pixel().1;
+    let (area, below) = area.split_vertically(h.saturating_sub(strip));
+    if strip > 0 {
+        legend_of(&[panel]).draw(&below)?;
+    }
+    let area = &area;
     let top = panel
         .curves
         .iter()
@@ -75,38 +85,93 @@ pub fn draw_panel<DB: Backend>(
             poly.push((xb, y0));
             poly.push((xa, y0));
             c.draw_series(std::iter::once(Polygon::new(poly, SHADE.filled())))
-                .map_err(pe)?
-                .label("no oscillation (simulated)")
-                .legend(|(x, y)| Rectangle::new([(x, y - 5), (x + 16, y + 5)], SHADE.filled()));
+                .map_err(pe)?;
         }
     }
     for curve in &panel.curves {
         draw_curve(&mut c, curve)?;
     }
-    if panel.is_family() {
-        for (text, dash) in [
-            ("solid: simulation", 0),
-            ("dashed: averaging", 1),
-            ("○ / ×: exact", 2),
-        ] {
-            c.draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-                .map_err(pe)?
-                .label(text)
-                .legend(move |(x, y)| match dash {
-                    0 => PathElement::new([(x, y), (x + 20, y)], BLACK.stroke_width(3)),
-                    1 => PathElement::new([(x, y), (x + 8, y)], BLACK.stroke_width(2)),
-                    _ => PathElement::new([(x + 6, y - 4), (x + 12, y + 4)], BLACK.stroke_width(2)),
-                });
-        }
-    }
-    if with_legend {
-        legend(&mut c, SeriesLabelPosition::UpperRight)?;
-    }
     Ok(())
 }
 
-/// One curve in its method's style: simulation solid with markers, averaging dashed, exact
-/// dotted with rings, a single point as a marked cross; keyed in the legend when labelled.
+/// How a curve is drawn: simulation solid (a family member with its [`series`] marker),
+/// averaging dashed, exact dotted with rings.
+fn style(curve: &Curve) -> SeriesStyle {
+    let colour = colour(curve);
+    match curve.method.as_str() {
+        "simulation" => SeriesStyle {
+            colour,
+            dash: Dash::Solid,
+            marker: curve.member.map_or(Marker::None, |i| series(i).marker),
+        },
+        "averaging" => SeriesStyle {
+            colour,
+            dash: Dash::Dashed,
+            marker: Marker::None,
+        },
+        _ => SeriesStyle {
+            colour,
+            dash: Dash::Dotted,
+            marker: Marker::Circle,
+        },
+    }
+}
+
+/// The legend of `panels` together: the shaded rest region, each labelled curve in its
+/// style, and for a family panel the methods' styles (an entry met twice listed once).
+pub fn legend_of(panels: &[&Panel]) -> LegendStrip {
+    let mut entries: Vec<(Symbol, String)> = Vec::new();
+    for panel in panels {
+        for (symbol, text) in legend_entries(panel) {
+            if !entries.iter().any(|(_, t)| *t == text) {
+                entries.push((symbol, text));
+            }
+        }
+    }
+    LegendStrip { entries }
+}
+
+/// A panel's legend entries (see [`legend_of`]).
+fn legend_entries(panel: &Panel) -> Vec<(Symbol, String)> {
+    let mut entries = Vec::new();
+    if panel.curves.iter().any(|c| c.rest_below) {
+        entries.push((
+            Symbol::Swatch(SHADE),
+            "no oscillation (simulated)".to_string(),
+        ));
+    }
+    for curve in panel.curves.iter().filter(|c| !c.label.is_empty()) {
+        let points = curve
+            .points
+            .iter()
+            .filter(|q| q.side == Side::Boundary)
+            .count();
+        let symbol = match points {
+            0 => continue,
+            1 => Symbol::Cross(colour(curve)),
+            _ => Symbol::Series(style(curve)),
+        };
+        entries.push((symbol, curve.label.clone()));
+    }
+    if panel.is_family() {
+        let plain = |dash, marker| {
+            Symbol::Series(SeriesStyle {
+                colour: BLACK,
+                dash,
+                marker,
+            })
+        };
+        entries.push((plain(Dash::Solid, Marker::None), "solid: simulation".into()));
+        entries.push((
+            plain(Dash::Dashed, Marker::None),
+            "dashed: averaging".into(),
+        ));
+        entries.push((Symbol::Ring(BLACK), "○ / ×: exact".into()));
+    }
+    entries
+}
+
+/// One curve in its method's style ([`style`]), a single point as a marked cross.
 fn draw_curve<'a, DB: Backend + 'a>(
     c: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     curve: &Curve,
@@ -121,66 +186,25 @@ fn draw_curve<'a, DB: Backend + 'a>(
         return Ok(());
     }
     let color = colour(curve);
-    let label = curve.label.clone();
-    let keyed = !label.is_empty();
     if pts.len() == 1 {
-        let s = c
-            .draw_series(std::iter::once(
-                EmptyElement::at(pts[0])
-                    + Cross::new((0, 0), 7, color.stroke_width(3))
-                    + Circle::new((0, 0), 9, color.stroke_width(2)),
-            ))
-            .map_err(pe)?;
-        if keyed {
-            s.label(label)
-                .legend(move |(x, y)| Cross::new((x + 8, y), 5, color.stroke_width(3)));
-        }
+        c.draw_series(std::iter::once(
+            EmptyElement::at(pts[0])
+                + Cross::new((0, 0), pxi(7), color.stroke_width(stroke(3)))
+                + Circle::new((0, 0), pxi(9), color.stroke_width(stroke(2))),
+        ))
+        .map_err(pe)?;
         return Ok(());
     }
-    match curve.method.as_str() {
-        "simulation" => {
-            let s = c
-                .draw_series(LineSeries::new(pts.clone(), color.stroke_width(3)))
-                .map_err(pe)?;
-            if keyed {
-                s.label(label).legend(move |(x, y)| {
-                    PathElement::new([(x, y), (x + 16, y)], color.stroke_width(3))
-                });
-            }
-            c.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+    let st = style(curve);
+    let width = if curve.method == "averaging" { 2 } else { 3 };
+    draw_line(c, &pts, st, width)?;
+    match (curve.method.as_str(), st.marker) {
+        ("simulation", Marker::None) => {
+            c.draw_series(pts.iter().map(|&p| Circle::new(p, pxi(3), color.filled())))
                 .map_err(pe)?;
         }
-        "averaging" => {
-            let s = c
-                .draw_series(DashedLineSeries::new(pts, 9, 6, color.stroke_width(2)))
-                .map_err(pe)?;
-            if keyed {
-                s.label(label).legend(move |(x, y)| {
-                    EmptyElement::at((x, y))
-                        + PathElement::new([(0, 0), (8, 0)], color.stroke_width(2))
-                        + PathElement::new([(12, 0), (20, 0)], color.stroke_width(2))
-                });
-            }
-        }
-        _ => {
-            c.draw_series(DashedLineSeries::new(
-                pts.clone(),
-                3,
-                5,
-                color.stroke_width(3),
-            ))
-            .map_err(pe)?;
-            let s = c
-                .draw_series(
-                    pts.iter()
-                        .map(|&p| Circle::new(p, 5, color.stroke_width(2))),
-                )
-                .map_err(pe)?;
-            if keyed {
-                s.label(label)
-                    .legend(move |(x, y)| Circle::new((x + 8, y), 5, color.stroke_width(2)));
-            }
-        }
+        (_, Marker::None) => {}
+        _ => draw_markers(c, &pts, st)?,
     }
     Ok(())
 }

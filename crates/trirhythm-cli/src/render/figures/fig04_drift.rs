@@ -6,10 +6,10 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig04_drift`].
 
 use crate::render::plot::{
-    chart, framed, padded_range, pe, px, pxi, rich_text, Backend, ChartSize, LegendStrip, Symbol,
-    LABEL,
+    chart, framed, padded_range, pe, pxi, rich_text, Backend, ChartSize, LegendStrip, Symbol, LABEL,
 };
 use anyhow::Result;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use trirhythm_paper::fig04_drift::{cycle_names, Fig04, Panel};
@@ -173,13 +173,17 @@ fn draw_panel<DB: Backend>(
             false,
         )?;
     }
-    draw_zoom(area, p, &y, x_end)
+    draw_zoom(area, &c, p, &y, x_end)
 }
 
 /// Where the small-amplitude part is flattened by the scale of the steep fall (the panel's
 /// range `y`), an inset shows it at its own scale (roots there, or their absence, visible).
+/// It goes where it hides least of the panel: of the plotting area's corners and the middles
+/// of its top and bottom, the place covering the fewest points of the curves, no root and no
+/// root's name.
 fn draw_zoom<DB: Backend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
+    c: &ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     p: &Panel,
     y: &std::ops::Range<f64>,
     x_end: f64,
@@ -191,11 +195,60 @@ fn draw_zoom<DB: Backend>(
         .find(|c| c.1.abs() > 0.1 * span)
         .map_or(x_end, |c| c.0);
     if zoom_end > 0.4 * x_end && zoom_end < x_end {
-        let (w, h) = area.dim_in_pixel();
-        let inset = area.clone().shrink(
-            (px(150), (0.42 * h as f64) as u32),
-            ((0.45 * w as f64) as u32, (0.36 * h as f64) as u32),
-        );
+        let (rx, ry) = c.plotting_area().get_pixel_range();
+        let w = ((rx.end - rx.start) as f64 * 0.5) as i32;
+        // the tallest inset (of three heights) that hides no root, else the shortest
+        let mut best = None;
+        for share in [0.48, 0.4, 0.34] {
+            let h = ((ry.end - ry.start) as f64 * share) as i32;
+            let gap = pxi(6);
+            let (left, right) = (rx.start + gap, rx.end - gap - w);
+            let (top, bottom) = (ry.start + gap, ry.end - gap - h);
+            let middle = (rx.start + rx.end - w) / 2;
+            let places = [
+                (left, bottom),
+                (right, bottom),
+                (middle, bottom),
+                (left, top),
+                (right, top),
+                (middle, top),
+            ];
+            let cost = |&(x0, y0): &(i32, i32)| -> u64 {
+                let m = pxi(4);
+                let hit = |(x, y): (i32, i32)| {
+                    x >= x0 - m && x <= x0 + w + m && y >= y0 - m && y <= y0 + h + m
+                };
+                let curves = p
+                    .curve
+                    .iter()
+                    .chain(p.reference.iter().flatten())
+                    .filter(|q| q.0 <= x_end && y.contains(&q.1))
+                    .filter(|q| hit(c.backend_coord(q)))
+                    .count() as u64;
+                let roots = p
+                    .cycles
+                    .iter()
+                    .filter(|cy| {
+                        let (x, y) = c.backend_coord(&(cy.amplitude, 0.0));
+                        hit((x, y)) || hit((x, y - pxi(30)))
+                    })
+                    .count() as u64;
+                curves + 10_000 * roots
+            };
+            if let Some((place, cost)) = places.iter().map(|q| (*q, cost(q))).min_by_key(|q| q.1) {
+                best = Some((place, h));
+                if cost < 10_000 {
+                    break;
+                }
+            }
+        }
+        let Some(((ax, ay), h)) = best else {
+            return Ok(());
+        };
+        let (bx, by) = area.get_base_pixel();
+        let inset = area
+            .clone()
+            .shrink((ax - bx, ay - by), (w as u32, h as u32));
         inset.fill(&WHITE).map_err(pe)?;
         let pts: Vec<(f64, f64)> = p
             .curve

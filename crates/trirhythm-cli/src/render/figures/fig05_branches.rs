@@ -4,7 +4,9 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig05_branches`].
 
-use crate::render::plot::{chart, legend, pe};
+use crate::render::plot::{
+    chart, draw_line, pe, pxi, Dash, LegendStrip, Marker, SeriesStyle, Symbol, PALETTE,
+};
 use plotters::prelude::*;
 use trirhythm_paper::fig05_branches::Fig05;
 
@@ -29,7 +31,7 @@ pub(super) fn runs(
 
 picture!(Fig05, |self, root| size (1500, 960), draw {
     let areas = root.split_evenly((2, 3));
-    for (i, (area, (label, mu0, bd))) in areas.iter().zip(&self.panels).enumerate() {
+    for (area, (label, mu0, bd)) in areas.iter().zip(&self.panels) {
         let amax = bd
             .branches
             .iter()
@@ -44,61 +46,49 @@ picture!(Fig05, |self, root| size (1500, 960), draw {
             "r",
             "A0",
         )?;
-        let mut shown = [false, false];
         for b in &bd.branches {
             for (stable, pts) in runs(&b.points) {
-                if stable {
-                    let s = c
-                        .draw_series(LineSeries::new(pts, BLACK.stroke_width(2)))
-                        .map_err(pe)?;
-                    if !shown[0] {
-                        s.label("stable").legend(|(x, y)| {
-                            PathElement::new([(x, y), (x + 16, y)], BLACK.stroke_width(2))
-                        });
-                        shown[0] = true;
-                    }
-                } else {
-                    let s = c
-                        .draw_series(DashedLineSeries::new(
-                            pts,
-                            6,
-                            4,
-                            RGBColor(200, 30, 30).stroke_width(2),
-                        ))
-                        .map_err(pe)?;
-                    if !shown[1] {
-                        s.label("unstable").legend(|(x, y)| {
-                            PathElement::new(
-                                [(x, y), (x + 16, y)],
-                                RGBColor(200, 30, 30).stroke_width(2),
-                            )
-                        });
-                        shown[1] = true;
-                    }
-                }
+                draw_line(&c, &pts, if stable { STABLE } else { UNSTABLE }, 2)?;
             }
         }
         c.draw_series(bd.folds.iter().map(|&(r, a)| {
-            EmptyElement::at((r, a)) + Circle::new((0, 0), 5, RGBColor(30, 90, 200).filled())
+            EmptyElement::at((r, a)) + Circle::new((0, 0), pxi(6), FOLD_DOT.filled())
         }))
-        .map_err(pe)?
-        .label("fold (saddle-node)")
-        .legend(|(x, y)| Circle::new((x + 8, y), 5, RGBColor(30, 90, 200).filled()));
+        .map_err(pe)?;
         c.draw_series(bd.hopf.iter().map(|&r| {
             EmptyElement::at((r, 0.0))
-                + Rectangle::new([(-5, -5), (5, 5)], RGBColor(20, 150, 60).filled())
+                + Rectangle::new([(-pxi(6), -pxi(6)), (pxi(6), pxi(6))], BORN.filled())
         }))
-        .map_err(pe)?
-        .label("branch born at A0 = 0")
-        .legend(|(x, y)| {
-            Rectangle::new(
-                [(x + 3, y - 5), (x + 13, y + 5)],
-                RGBColor(20, 150, 60).filled(),
-            )
-        });
-        if i == 0 {
-            legend(&mut c, SeriesLabelPosition::LowerLeft)?;
-        }
+        .map_err(pe)?;
+    }
+    // the legend in the free sixth cell, outside the data
+    if let Some(free) = areas.get(self.panels.len()) {
+        let legend = LegendStrip {
+            entries: vec![
+                (Symbol::Series(STABLE), "stable (df/dA0 < 0)".into()),
+                (Symbol::Series(UNSTABLE), "unstable".into()),
+                (Symbol::Dot(FOLD_DOT), "fold (saddle-node)".into()),
+                (Symbol::Swatch(BORN), "branch born at A0 = 0".into()),
+            ],
+        };
+        let (w, h) = free.dim_in_pixel();
+        let top = h.saturating_sub(legend.height(w)) / 2;
+        legend.draw(&free.clone().shrink((0, top), (w, h - top)))?;
     }
     Ok(())
 });
+
+/// Stable branches: black, solid; unstable: vermillion, dashed (they part in greyscale).
+const STABLE: SeriesStyle = SeriesStyle {
+    colour: PALETTE[0],
+    dash: Dash::Solid,
+    marker: Marker::None,
+};
+const UNSTABLE: SeriesStyle = SeriesStyle {
+    colour: PALETTE[1],
+    dash: Dash::Dashed,
+    marker: Marker::None,
+};
+/// Folds: blue dots; branches born at A0 = 0: bluish-green squares (shapes part them).
+const FOLD_DOT: RGBColor = PALETTE[2];
+const BORN: RGBColor = PALETTE[3];

@@ -2,7 +2,10 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig07_pseudo_potential`].
 
-use crate::render::plot::{chart, framed, legend, padded_range, pe, Backend, ChartSize, PALETTE};
+use crate::render::plot::{
+    chart, draw_line, framed, padded_range, pe, pxi, series, stroke, Backend, ChartSize,
+    LegendStrip, Marker, SeriesStyle, Symbol,
+};
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -38,27 +41,26 @@ pub(super) fn frame(curves: &[Curve], x_end: f64) -> (std::ops::Range<f64>, Vec<
     (y, clipped)
 }
 
-/// Draw curves with their wells (filled) and crests (open) marked.
+/// The style of curve `i` of a panel: [`series`] colour and dash, no marker (the markers
+/// are the extrema).
+pub(super) fn curve_style(i: usize) -> SeriesStyle {
+    SeriesStyle {
+        marker: Marker::None,
+        ..series(i)
+    }
+}
+
+/// Draw curves (each in [`curve_style`]) with their wells (filled) and crests (open) marked.
 pub(super) fn draw_curves<'a, DB: Backend + 'a>(
     c: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     curves: &[Curve],
-    with_legend: bool,
 ) -> Result<()> {
     let y = c.y_range();
     let x = c.x_range();
     for (i, cv) in curves.iter().enumerate() {
-        let color = PALETTE[i % PALETTE.len()];
-        let s = c
-            .draw_series(LineSeries::new(
-                cv.points.iter().copied(),
-                color.stroke_width(2),
-            ))
-            .map_err(pe)?;
-        if with_legend {
-            s.label(cv.label.clone()).legend(move |(x, y)| {
-                PathElement::new([(x, y), (x + 15, y)], color.stroke_width(2))
-            });
-        }
+        let style = curve_style(i);
+        let color = style.colour;
+        draw_line(c, &cv.points, style, 2)?;
         let inside = |e: &&Extremum| x.contains(&e.amplitude) && y.contains(&e.potential);
         c.draw_series(cv.extrema.iter().filter(inside).map(|e| {
             let fill = if e.minimum {
@@ -67,16 +69,39 @@ pub(super) fn draw_curves<'a, DB: Backend + 'a>(
                 WHITE.filled()
             };
             EmptyElement::at((e.amplitude, e.potential))
-                + Circle::new((0, 0), 5, fill)
-                + Circle::new((0, 0), 5, color.stroke_width(2))
+                + Circle::new((0, 0), pxi(5), fill)
+                + Circle::new((0, 0), pxi(5), color.stroke_width(stroke(2)))
         }))
         .map_err(pe)?;
     }
     Ok(())
 }
 
-picture!(Fig07, |self, root| size (1400, 620), draw {
-    let areas = root.split_evenly((1, 2));
+/// A panel's legend, in a strip below it: each curve's colour and dash with its label.
+fn legend_of(panel: &Panel) -> LegendStrip {
+    LegendStrip {
+        entries: panel
+            .curves
+            .iter()
+            .enumerate()
+            .map(|(i, cv)| (Symbol::Series(curve_style(i)), cv.label.clone()))
+            .collect(),
+    }
+}
+
+/// Height of the picture above the legend strips.
+const CHARTS: u32 = 620;
+
+picture!(Fig07, |self, root| size {
+    let w = 1400;
+    let strip = self.panels.iter().map(|p| legend_of(p).height(w / 2)).max().unwrap_or(0);
+    (w, CHARTS + strip)
+}, draw {
+    let (charts, strips) = root.split_vertically(CHARTS);
+    let areas = charts.split_evenly((1, 2));
+    for (strip, p) in strips.split_evenly((1, 2)).iter().zip(&self.panels) {
+        legend_of(p).draw(strip)?;
+    }
     for (
         area,
         Panel {
@@ -86,8 +111,7 @@ picture!(Fig07, |self, root| size (1400, 620), draw {
     {
         let (y, clipped) = frame(curves, 14.0);
         let mut c = chart(area, caption, 0.0..14.0, y, "A0", "U_eff(A0)")?;
-        draw_curves(&mut c, &clipped, true)?;
-        legend(&mut c, SeriesLabelPosition::UpperMiddle)?;
+        draw_curves(&mut c, &clipped)?;
         // The inner well A01 is ~1e-3 deep against ~1 for the outer ones: an inset zooms
         // on it, up to the first crest beyond it.
         let zoom_end = curves
@@ -117,7 +141,7 @@ picture!(Fig07, |self, root| size (1400, 620), draw {
                 ("", ""),
                 ChartSize::Inset,
             )?;
-            draw_curves(&mut z, &zoomed, false)?;
+            draw_curves(&mut z, &zoomed)?;
         }
     }
     Ok(())

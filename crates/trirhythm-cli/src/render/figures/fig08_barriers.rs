@@ -3,11 +3,11 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig08_barriers`].
 
 use super::fig07_pseudo_potential::{draw_curves, frame};
-use crate::render::plot::{chart, pe, pxi, rich_text, Backend, AXIS_DESC};
+use crate::render::plot::{chart, pe, pxi, rich_text, rich_width, Backend, AXIS_DESC};
 use anyhow::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use trirhythm::theory::averaging::Side;
+use trirhythm::theory::averaging::{Barrier, Side};
 use trirhythm_paper::fig08_barriers::Fig08;
 
 /// The inner wells' right end: the first crest beyond the first well, with margin.
@@ -32,7 +32,16 @@ fn draw_panel<DB: Backend>(
     let (y, clipped) = frame(std::slice::from_ref(&fig.curve), x_end);
     let mut c = chart(area, caption, 0.0..x_end, y, "A0", "U_eff(A0)")?;
     let clipped = &clipped[0];
-    draw_curves(&mut c, std::slice::from_ref(clipped), false)?;
+    draw_curves(&mut c, std::slice::from_ref(clipped))?;
+    let bar_x = |b: &Barrier| {
+        b.well + if b.side == Side::Left { -0.12 } else { 0.12 } * (b.well - b.crest).abs()
+    };
+    let shown: Vec<f64> = fig
+        .barriers
+        .iter()
+        .filter(|b| b.well <= x_end && b.crest <= x_end)
+        .map(bar_x)
+        .collect();
     for (i, b) in fig.barriers.iter().enumerate() {
         if b.well > x_end || b.crest > x_end {
             continue;
@@ -44,8 +53,7 @@ fn draw_panel<DB: Backend>(
             .map(|e| e.potential)
             .unwrap_or(0.0);
         let u_crest = u_well + b.height;
-        let xa =
-            b.well + if b.side == Side::Left { -0.12 } else { 0.12 } * (b.well - b.crest).abs();
+        let xa = bar_x(b);
         let color = RGBColor(200, 30, 30);
         c.draw_series(DashedLineSeries::new(
             [(b.crest, u_crest), (xa, u_crest)],
@@ -65,11 +73,23 @@ fn draw_panel<DB: Backend>(
         }
         let (x, y) = c.backend_coord(&(xa, 0.5 * (u_well + u_crest)));
         let (bx, by) = area.get_base_pixel();
+        // right of its bar, unless another bar stands within the label's width there
+        let name = format!("ΔU_{}", i + 1);
+        let room = rich_width(&name, AXIS_DESC) as i32 + pxi(10);
+        let crowded = shown.iter().any(|&other| {
+            let ox = c.backend_coord(&(other, 0.0)).0;
+            ox > x && ox - x < room
+        });
+        let (dx, h) = if crowded {
+            (-pxi(6), HPos::Right)
+        } else {
+            (pxi(6), HPos::Left)
+        };
         rich_text(
             area,
-            &format!("ΔU_{}", i + 1),
-            (x - bx + pxi(6), y - by),
-            Pos::new(HPos::Left, VPos::Center),
+            &name,
+            (x - bx + dx, y - by),
+            Pos::new(h, VPos::Center),
             AXIS_DESC,
             color,
             false,

@@ -8,13 +8,20 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig15_oscillation_boundaries`].
 
-use super::boundary::draw_panel;
+use super::boundary::{draw_panel, legend_of};
 use trirhythm_paper::fig15_oscillation_boundaries::Fig15;
 
-picture!(Fig15, |self, root| size (1400, 1500), draw {
-    let areas = root.split_evenly((3, 2));
-    for (i, (area, panel)) in areas.iter().zip(&self.panels).enumerate() {
-        draw_panel(area, panel, i < 2)?;
+/// Height of the panels above the legend strip.
+const PANELS: u32 = 1500;
+
+// six panels; one legend for all of them (the styles of the first row's panels) below
+picture!(Fig15, |self, root| size {
+    let legend = legend_of(&self.panels.iter().take(2).collect::<Vec<_>>());
+    (1400, PANELS + legend.height(1400))
+}, draw {
+    let (panels, strip) = root.split_vertically(PANELS);
+    for (area, panel) in panels.split_evenly((3, 2)).iter().zip(&self.panels) {
+        draw_panel(area, panel, 0)?;
     }
-    Ok(())
+    legend_of(&self.panels.iter().take(2).collect::<Vec<_>>()).draw(&strip)
 });

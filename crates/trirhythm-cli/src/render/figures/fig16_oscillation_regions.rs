@@ -4,13 +4,26 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig16_oscillation_regions`].
 
-use super::boundary::draw_panel;
+use super::boundary::{draw_panel, legend_of};
 use trirhythm_paper::fig16_oscillation_regions::Fig16;
 
-picture!(Fig16, |self, root| size (1400, 1100), draw {
+/// Height of a panel's chart (its legend strip comes below).
+const CHART: u32 = 550;
+
+/// The height of the legend strips: the tallest panel's, so that charts side by side align.
+fn strip(fig: &Fig16) -> u32 {
+    fig.panels
+        .iter()
+        .map(|p| legend_of(&[p]).height(700))
+        .max()
+        .unwrap_or(0)
+}
+
+// four panels, each with its legend in a strip below its chart
+picture!(Fig16, |self, root| size (1400, 2 * (CHART + strip(self))), draw {
     let areas = root.split_evenly((2, 2));
     for (area, panel) in areas.iter().zip(&self.panels) {
-        draw_panel(area, panel, true)?;
+        draw_panel(area, panel, strip(self))?;
     }
     Ok(())
 });

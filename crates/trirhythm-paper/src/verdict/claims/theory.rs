@@ -28,9 +28,7 @@ pub(super) fn fig01_align(f: &Fig01) -> Decision {
 
 /// Share (per cent of the grid) of grid points with count `k`.
 pub(super) fn share(p: &MapPanel, k: usize) -> f64 {
-    let h = p.histogram();
-    let total: usize = h.iter().sum();
-    100.0 * h[k.min(4)] as f64 / total.max(1) as f64
+    p.share(k)
 }
 
 pub(super) fn fig02_regions(panels: &[MapPanel]) -> Decision {
