@@ -99,8 +99,6 @@ fn svg_font_sizes(svg: &str) -> Vec<f64> {
 /// a 72nd of the canvas width, in every figure drawn at the scale of its canvas.
 #[test]
 fn text_prints_at_seven_points_or_more() {
-    // Figs 17–19 still draw one label of fixed size (their shared drawing, lle.rs)
-    const FIXED_SIZE_LABEL: [u32; 3] = [17, 18, 19];
     let dir = scratch_dir("print_size");
     let d = dir.to_str().unwrap();
     ok_output(&["figure", "all", "--quick", "--out-dir", d]);
@@ -116,9 +114,6 @@ fn text_prints_at_seven_points_or_more() {
             sizes.len()
         );
         let min = sizes.iter().copied().fold(f64::INFINITY, f64::min);
-        if FIXED_SIZE_LABEL.contains(&n) {
-            continue;
-        }
         assert!(
             min >= width / 72.0,
             "fig{n:02}: font-size {min} < width {width} / 72 = {}",
@@ -126,7 +121,7 @@ fn text_prints_at_seven_points_or_more() {
         );
         checked += 1;
     }
-    assert_eq!(checked, 16);
+    assert_eq!(checked, 19);
 }
 
 /// Subscripts are drawn as their own, smaller text runs: U_eff's "eff", ΔU_1's "1", D_c's "c".

@@ -119,6 +119,43 @@ impl MapPanel {
         100.0 * h[k.min(4)] as f64 / total.max(1) as f64
     }
 
+    /// What the grid resolves of the share of count `k` (per cent, as [`MapPanel::share`]):
+    /// `(lo, hi)`, from the points of count `k` whose four neighbours all have it (the region's
+    /// interior at this resolution) to those of count `k` or with a neighbour of count `k` (its
+    /// closure). The region's share of the plane lies in this bracket up to features smaller
+    /// than a grid step; a change of share smaller than its width is not resolved by the grid.
+    pub fn share_bracket(&self, k: usize) -> (f64, f64) {
+        let (nx, ny) = (self.x.grid.count, self.y.grid.count);
+        let is_k = |ix: usize, iy: usize| (self.count(ix, iy) as usize).min(4) == k.min(4);
+        let (mut inner, mut closure) = (0usize, 0usize);
+        for iy in 0..ny {
+            for ix in 0..nx {
+                let mut neighbours = Vec::with_capacity(4);
+                if ix > 0 {
+                    neighbours.push((ix - 1, iy));
+                }
+                if ix + 1 < nx {
+                    neighbours.push((ix + 1, iy));
+                }
+                if iy > 0 {
+                    neighbours.push((ix, iy - 1));
+                }
+                if iy + 1 < ny {
+                    neighbours.push((ix, iy + 1));
+                }
+                let here = is_k(ix, iy);
+                if here && neighbours.iter().all(|&(a, b)| is_k(a, b)) {
+                    inner += 1;
+                }
+                if here || neighbours.iter().any(|&(a, b)| is_k(a, b)) {
+                    closure += 1;
+                }
+            }
+        }
+        let total = (nx * ny).max(1) as f64;
+        (100.0 * inner as f64 / total, 100.0 * closure as f64 / total)
+    }
+
     /// The grid-index bounding box `((ix0, ix1), (iy0, iy1))`, inclusive, of the grid points
     /// with count `k` (`k ≥ 4`: four or more); `None` when there are none.
     pub fn bounding_box(&self, k: u8) -> Option<((usize, usize), (usize, usize))> {
@@ -462,5 +499,27 @@ mod tests {
         assert_eq!(p.bounding_box(3), Some(((1, 2), (1, 2))));
         assert_eq!(p.bounding_box(7), Some(((3, 3), (2, 2))));
         assert_eq!(p.bounding_box(0), None);
+    }
+
+    #[test]
+    fn a_share_is_bracketed_by_the_region_s_interior_and_closure_on_the_grid() {
+        // 5 × 5, a 3 × 3 block of count 3 in the middle of count 2
+        let mut counts = vec![2u8; 25];
+        for iy in 1..4 {
+            for ix in 1..4 {
+                counts[iy * 5 + ix] = 3;
+            }
+        }
+        let p = panel(5, counts);
+        let (lo, hi) = p.share_bracket(3);
+        // interior: the centre point only; closure: the block and its 12 edge neighbours
+        assert_eq!(lo, 100.0 / 25.0);
+        assert_eq!(hi, 100.0 * 21.0 / 25.0);
+        assert!(lo <= p.share(3) && p.share(3) <= hi);
+        // a count absent from the grid: an empty bracket at 0
+        assert_eq!(p.share_bracket(1), (0.0, 0.0));
+        // a count everywhere: the whole grid, exactly
+        let all = panel(5, vec![2u8; 25]);
+        assert_eq!(all.share_bracket(2), (100.0, 100.0));
     }
 }

@@ -153,7 +153,7 @@ impl Heading {
 
 /// `line` wrapped at word boundaries to `width` pixels at font size `base` (continuations
 /// indented), measured with the embedded font. A unit sign (`%`) stays with its number.
-fn wrap(line: &str, width: u32, base: u32) -> Vec<String> {
+pub fn wrap(line: &str, width: u32, base: u32) -> Vec<String> {
     let mut out = Vec::new();
     let mut cur = String::new();
     let mut words: Vec<String> = Vec::new();

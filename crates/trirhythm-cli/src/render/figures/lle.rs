@@ -6,12 +6,14 @@
 //! Drawing only: the runs and verdicts are [`trirhythm_paper::lle`].
 
 use crate::render::plot::{
-    padded_range, pe, tick_formatter, Backend, LegendStrip, Symbol, FONT, PALETTE,
+    font_px, padded_range, pe, px, tick_formatter, Backend, LegendStrip, Symbol, AXIS_DESC,
+    CAPTION, FONT, PALETTE, TICK,
 };
 use anyhow::{anyhow, Result};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::ops::Range;
 use trirhythm_paper::lle::{Flag, LleAgainstNoise, Panel, StartKind};
 use trirhythm_paper::notes::sig;
@@ -69,11 +71,11 @@ fn log_x_chart<'a, DB: Backend>(
     (x_desc, y_desc): (&str, &str),
 ) -> Result<Chart<'a, DB>> {
     let mut c = ChartBuilder::on(area)
-        .caption(caption, (FONT, 20))
-        .margin(10)
-        .margin_right(26)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
+        .caption(caption, (FONT, font_px(CAPTION)))
+        .margin(px(10))
+        .margin_right(px(26))
+        .x_label_area_size(px(45))
+        .y_label_area_size(px(70))
         .build_cartesian_2d(x, y.clone())
         .map_err(|e| anyhow!("{e}"))?;
     let pow = |v: &f64| sig(10f64.powf(*v), 2);
@@ -85,8 +87,8 @@ fn log_x_chart<'a, DB: Backend>(
         .y_labels(10)
         .x_label_formatter(&pow)
         .y_label_formatter(&plain)
-        .axis_desc_style((FONT, 16))
-        .label_style((FONT, 14))
+        .axis_desc_style((FONT, font_px(AXIS_DESC)))
+        .label_style((FONT, font_px(TICK)))
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(|e| anyhow!("{e}"))?;
@@ -108,19 +110,41 @@ fn text_room(lines: usize) -> f64 {
 /// The step between verdict lines, as a fraction of the chart's height.
 const LINE_STEP: f64 = 0.065;
 
-fn verdict_text<DB: Backend>(c: &mut Chart<DB>, lines: &[String]) -> Result<()> {
+/// A panel's verdict lines wrapped to the plotting width of a chart drawn in `area` (the
+/// area less the y label area and the margins).
+fn panel_lines<DB: Backend>(area: &DrawingArea<DB, Shift>, verdicts: &[String]) -> Vec<String> {
+    let width = area
+        .dim_in_pixel()
+        .0
+        .saturating_sub(px(70) + px(10) + px(26) + px(20));
+    verdicts
+        .iter()
+        .flat_map(|v| crate::render::plot::wrap(v, width, TICK))
+        .collect()
+}
+
+/// Draw `lines` at the top left of chart `c` (drawn in `area`), subscripts rendered.
+fn verdict_text<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
+    c: &Chart<DB>,
+    lines: &[String],
+) -> Result<()> {
     let (x, y) = (c.x_range(), c.y_range());
+    let base = area.get_base_pixel();
     for (k, v) in lines.iter().enumerate() {
-        let at = (
+        let at = c.backend_coord(&(
             x.start + 0.02 * (x.end - x.start),
             y.end - (0.02 + LINE_STEP * k as f64) * (y.end - y.start),
-        );
-        c.draw_series(std::iter::once(Text::new(
-            v.clone(),
-            at,
-            (FONT, 14).into_font().color(&BLACK),
-        )))
-        .map_err(pe)?;
+        ));
+        crate::render::plot::rich_text(
+            area,
+            v,
+            (at.0 - base.0, at.1 - base.1),
+            Pos::new(HPos::Left, VPos::Top),
+            TICK,
+            BLACK,
+            false,
+        )?;
     }
     Ok(())
 }
@@ -146,8 +170,9 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
         .collect();
     ys.push(0.0);
     let mut y = padded_range(ys);
-    // room at the top for the verdict lines
-    y.end += (y.end - y.start) * text_room(panel.verdicts.len());
+    // room at the top for the verdict lines, wrapped to the plotting width
+    let lines = panel_lines(&top, &panel.verdicts);
+    y.end += (y.end - y.start) * text_room(lines.len());
     let mut c = log_x_chart(
         &top,
         &panel.caption,
@@ -200,7 +225,7 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
             c.draw_series(std::iter::once(marker)).map_err(pe)?;
         }
     }
-    verdict_text(&mut c, &panel.verdicts)?;
+    verdict_text(&top, &c, &lines)?;
     strip(panel).draw(&bottom)
 }
 
@@ -253,14 +278,15 @@ pub fn draw_sign_map<DB: Backend>(
         .flat_map(|c| c.points.iter().map(|q| q.x.log10()))
         .collect();
     let mut y = padded_range(ds);
-    y.end += (y.end - y.start) * text_room(panel.verdicts.len());
+    let lines = panel_lines(area, &panel.verdicts);
+    y.end += (y.end - y.start) * text_room(lines.len());
     let values = map.values.clone();
     let mut c = ChartBuilder::on(area)
-        .caption(&panel.caption, (FONT, 20))
-        .margin(10)
-        .margin_right(26)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
+        .caption(&panel.caption, (FONT, font_px(CAPTION)))
+        .margin(px(10))
+        .margin_right(px(26))
+        .x_label_area_size(px(45))
+        .y_label_area_size(px(70))
         .build_cartesian_2d(x.clone(), y.clone())
         .map_err(|e| anyhow!("{e}"))?;
     let xf = |v: &f64| {
@@ -280,8 +306,8 @@ pub fn draw_sign_map<DB: Backend>(
         .x_label_formatter(&xf)
         .y_label_formatter(&yf)
         .disable_x_mesh()
-        .axis_desc_style((FONT, 16))
-        .label_style((FONT, 14))
+        .axis_desc_style((FONT, font_px(AXIS_DESC)))
+        .label_style((FONT, font_px(TICK)))
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(|e| anyhow!("{e}"))?;
@@ -293,7 +319,7 @@ pub fn draw_sign_map<DB: Backend>(
             c.draw_series(std::iter::once(Text::new(
                 "none",
                 (xc - 0.08, y.start + 0.03 * (y.end - y.start)),
-                (FONT, 12).into_font().color(&BLACK),
+                (FONT, font_px(TICK)).into_font().color(&BLACK),
             )))
             .map_err(pe)?;
         }
@@ -325,6 +351,6 @@ pub fn draw_sign_map<DB: Backend>(
                 .map_err(pe)?;
         }
     }
-    verdict_text(&mut c, &panel.verdicts)?;
+    verdict_text(area, &c, &lines)?;
     Ok(())
 }

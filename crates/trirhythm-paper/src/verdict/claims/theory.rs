@@ -26,6 +26,14 @@ pub(super) fn fig01_align(f: &Fig01) -> Decision {
     closeness(&pairs, CLOSENESS_REL_TOL)
 }
 
+/// The share of count `k` with what the grid resolves of it: a bracket from the region's
+/// interior to its closure on the grid ([`MapPanel::share_bracket`]), so that a trend decides
+/// only on changes larger than the grid's resolution.
+pub(super) fn share_measured(p: &MapPanel, k: usize) -> Measured {
+    let (lo, hi) = p.share_bracket(k);
+    Measured::bracket(share(p, k), lo, hi)
+}
+
 /// Share (per cent of the grid) of grid points with count `k`.
 pub(super) fn share(p: &MapPanel, k: usize) -> f64 {
     p.share(k)
@@ -67,7 +75,7 @@ pub(super) fn share_trend(
         points: panels
             .iter()
             .zip(xs)
-            .map(|(p, &x)| (x, Measured::exact(share(p, k))))
+            .map(|(p, &x)| (x, share_measured(p, k)))
             .collect(),
     };
     trend(&[series], direction)
@@ -331,7 +339,7 @@ pub(super) fn fig12_omega(panels: &[MapPanel], order: [&str; 2], direction: Dire
         x_name: "ω0".into(),
         points: pick
             .iter()
-            .map(|p| (omega(p), Measured::exact(share(p, 3))))
+            .map(|p| (omega(p), share_measured(p, 3)))
             .collect(),
     };
     trend(&[series], direction)
