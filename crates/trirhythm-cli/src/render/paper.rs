@@ -22,7 +22,7 @@ use trirhythm::theory::averaging::Variant;
 use trirhythm_paper::notes::sig;
 use trirhythm_paper::table::Table;
 use trirhythm_paper::verdict::claims::{judge_figure, ClaimVerdict, Figures, Slot};
-use trirhythm_paper::verdict::{Check, Decision};
+use trirhythm_paper::verdict::{Check, Decision, Outcome};
 use trirhythm_paper::{Figure, FigureOptions};
 
 /// `dir/figNN` (without extension).
@@ -278,11 +278,29 @@ fn count_items(d: &Decision) -> Vec<String> {
             })
             .collect();
     }
-    let list = |f: &dyn Fn(&Check) -> f64| runs(&d.checks.iter().map(f).map(n).collect::<Vec<_>>());
+    // a count that decides nothing (from a non-stationary ensemble) in parentheses
+    let deciding = |c: &Check| matches!(c.outcome, Outcome::For | Outcome::Against);
+    let found: Vec<String> = d
+        .checks
+        .iter()
+        .map(|c| {
+            if deciding(c) {
+                n(c.statistic_value)
+            } else {
+                format!("({})", n(c.statistic_value))
+            }
+        })
+        .collect();
+    let claimed: Vec<String> = d.checks.iter().map(|c| n(c.threshold)).collect();
+    let note = if d.checks.iter().all(deciding) {
+        ""
+    } else {
+        " (in parentheses: not deciding)"
+    };
     vec![format!(
-        "{noun} {} against the paper's {}",
-        list(&|c| c.statistic_value),
-        list(&|c| c.threshold)
+        "{noun} {} against the paper's {}{note}",
+        runs(&found),
+        runs(&claimed)
     )]
 }
 
@@ -594,6 +612,29 @@ mod tests {
         assert_eq!(
             lines[0].text,
             "fig04-roots — refuted: positive roots of f: 3, 2, 2, 0 against the paper's 5, 5, 3, 0"
+        );
+    }
+
+    #[test]
+    fn a_count_that_decides_nothing_is_in_parentheses() {
+        // peaks of non-stationary ensembles (outcome undefined) beside a deciding one
+        let checks = [(1, 3, Outcome::Undefined), (1, 2, Outcome::Against)]
+            .iter()
+            .zip(["(a1) r = 0.99", "(a3) r = 0.96"])
+            .map(|(&(n, claimed, outcome), panel)| {
+                check(
+                    &format!("peaks of the Monte Carlo P(A) of Eq. 1, {panel}"),
+                    Measured::exact(n as f64),
+                    ("count", n as f64, claimed as f64),
+                    outcome,
+                )
+            })
+            .collect();
+        let lines = verdict_lines(&[verdict("fig13a-peaks", "count", Verdict::Refuted, checks)]);
+        assert_eq!(
+            lines[0].text,
+            "fig13a-peaks — refuted: peaks: (1), 1 against the paper's 3, 2 (in parentheses: not \
+             deciding)"
         );
     }
 
