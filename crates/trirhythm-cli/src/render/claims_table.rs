@@ -1,5 +1,6 @@
 //! The claims table of a report as Markdown (`claims.md`): one row per claim — its words and
-//! place, the verdict (with the reason when undetermined) and its deciding numbers — written
+//! place, the verdict (with the first clause of the reason when undetermined; the page has it
+//! whole) and its first deciding number — written
 //! from the verdicts alone, so that a README or a paper's supplement can carry the table the
 //! code decided rather than one typed by hand. Tested in `tests/report.rs` (every claim has a
 //! row, the verdict of each row is the page's).
@@ -13,6 +14,24 @@ fn cell(text: &str) -> String {
     text.replace('|', "\\|").replace(['\n', '\r'], " ")
 }
 
+/// The summary clauses of a reason: its first clause and each clause that opens a start's
+/// part ("from the rest basin …", "from the outer cycle …"), with " …" where clauses were left
+/// out.
+fn first_clause(text: &str) -> String {
+    let clauses: Vec<&str> = text.split("; ").collect();
+    let kept: Vec<&str> = clauses
+        .iter()
+        .enumerate()
+        .filter(|(i, c)| *i == 0 || c.starts_with("from the "))
+        .map(|(_, c)| *c)
+        .collect();
+    let mut out = kept.join("; ");
+    if kept.len() < clauses.len() {
+        out.push_str(" …");
+    }
+    out
+}
+
 /// The claims table of `verdicts` as Markdown, headed by one line naming what it was computed
 /// from (`source`, e.g. "trirhythm 0.1.0, commit …, full quality").
 pub fn claims_markdown(verdicts: &Verdicts, source: &str) -> String {
@@ -20,25 +39,29 @@ pub fn claims_markdown(verdicts: &Verdicts, source: &str) -> String {
     let mut out = format!(
         "Claims of the paper decided by trirhythm ({source}): {c} confirmed, {r} refuted, {u} \
          undetermined; {} not decided by code.\n\n\
-         | Claim | Where | Verdict | The numbers that decide it |\n|---|---|---|---|\n",
+         | Claim | Where | Verdict | The number that decides it |\n|---|---|---|---|\n",
         verdicts.not_computable.len()
     );
     for v in &verdicts.claims {
         let d = &v.decision;
         let verdict = match &d.verdict {
             Verdict::Undetermined { why } => {
-                format!("**undetermined**: {}", spell_undefined(why))
+                format!("**undetermined**: {}", first_clause(&spell_undefined(why)))
             }
             other => format!("**{}**", other.tag()),
         };
-        let numbers: Vec<String> = d.deciding(2).into_iter().map(describe).collect();
+        let numbers: Vec<String> = d.deciding(1).into_iter().map(describe).collect();
         out.push_str(&format!(
             "| `{}`: {} | {} | {} | {} |\n",
             cell(&v.claim.id),
             cell(&v.claim.words),
             cell(&v.claim.place),
             cell(&verdict),
-            cell(&numbers.join("; "))
+            if numbers.is_empty() {
+                "—".to_string()
+            } else {
+                cell(&numbers.join("; "))
+            }
         ));
     }
     for n in &verdicts.not_computable {
