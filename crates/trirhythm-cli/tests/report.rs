@@ -58,6 +58,19 @@ fn count(html: &str, key: &str) -> usize {
     html[i..j].trim().parse().unwrap()
 }
 
+/// `report --from-data data --out-dir out` (which must succeed): its page.
+fn report_from(data: &Path, out: &Path) -> String {
+    let o = run(&[
+        "report",
+        "--from-data",
+        data.to_str().unwrap(),
+        "--out-dir",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    std::fs::read_to_string(out.join("index.html")).unwrap()
+}
+
 /// (claim id → verdict) of the claims table; panics on a repeated id.
 fn rows(html: &str) -> BTreeMap<String, String> {
     let mut map = BTreeMap::new();
@@ -326,16 +339,7 @@ fn edited_figure_data_flips_its_verdict() {
             .unwrap();
     // unedited, Fig. 4 alone: still refuted, the other figures' claims not judged
     std::fs::write(data.join("fig04.json"), fig04.to_string()).unwrap();
-    let before = scratch.join("before");
-    let o = run(&[
-        "report",
-        "--from-data",
-        data.to_str().unwrap(),
-        "--out-dir",
-        before.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let html = std::fs::read_to_string(before.join("index.html")).unwrap();
+    let html = report_from(&data, &scratch.join("before"));
     let r = rows(&html);
     assert_eq!(r["fig04-roots"], "refuted");
     assert_eq!(r["fig07-inner-well"], "undetermined");
@@ -359,15 +363,7 @@ fn edited_figure_data_flips_its_verdict() {
     }
     std::fs::write(data.join("fig04.json"), fig04.to_string()).unwrap();
     let after = scratch.join("after");
-    let o = run(&[
-        "report",
-        "--from-data",
-        data.to_str().unwrap(),
-        "--out-dir",
-        after.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let html = std::fs::read_to_string(after.join("index.html")).unwrap();
+    let html = report_from(&data, &after);
     assert_eq!(rows(&html)["fig04-roots"], "confirmed");
     let json: Value =
         serde_json::from_str(&std::fs::read_to_string(after.join("verdicts.json")).unwrap())

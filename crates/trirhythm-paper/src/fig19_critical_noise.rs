@@ -23,7 +23,6 @@ use crate::verdict::rules::{locate, Located, PointSign};
 use crate::{Figure, FigureOptions, Monitor};
 
 use serde::{Deserialize, Serialize};
-use trirhythm::analysis::lyapunov::LyapunovSpec;
 use trirhythm::model::preset;
 use trirhythm::Result;
 
@@ -40,26 +39,9 @@ pub const PANELS: [(&str, &str, [f64; 5], &str); 4] = [
     ("(d)", "r", [0.8, 0.85, 0.9, 0.95, 0.998], "increases"),
 ];
 
-/// The run sizes of a cell: quick (CI) or paper quality.
+/// The run sizes of a cell: quick (CI) or paper quality (windows 60 and 1000).
 pub fn sizes(quick: bool) -> crate::lle::Sizes {
-    let spec = if quick {
-        LyapunovSpec {
-            paths: 2,
-            seed: 1,
-            transient: 20.0,
-            length: 60.0,
-            ..Default::default()
-        }
-    } else {
-        LyapunovSpec {
-            paths: 8,
-            seed: 1,
-            transient: 200.0,
-            length: 1000.0,
-            ..Default::default()
-        }
-    };
-    crate::lle::Sizes { spec }
+    crate::lle::Sizes::with_window(quick, 60.0, 1000.0)
 }
 
 /// The D grid of every column: nine values log-spaced from 0.002 to 2 (a factor

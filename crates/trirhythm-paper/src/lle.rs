@@ -56,24 +56,26 @@ pub struct Sizes {
 impl Sizes {
     /// Quick (CI) or paper quality of Figs 17 and 18.
     pub fn of(quick: bool) -> Sizes {
-        let spec = if quick {
-            LyapunovSpec {
-                paths: 2,
-                seed: 1,
-                transient: 20.0,
-                length: 100.0,
-                ..Default::default()
-            }
+        Sizes::with_window(quick, 100.0, 1500.0)
+    }
+
+    /// Quick (2 realisations, transient 20, window `quick_window`) or paper quality (8
+    /// realisations, transient 200, window `full_window`), seed 1.
+    pub fn with_window(quick: bool, quick_window: f64, full_window: f64) -> Sizes {
+        let (paths, transient, length) = if quick {
+            (2, 20.0, quick_window)
         } else {
-            LyapunovSpec {
-                paths: 8,
-                seed: 1,
-                transient: 200.0,
-                length: 1500.0,
-                ..Default::default()
-            }
+            (8, 200.0, full_window)
         };
-        Sizes { spec }
+        Sizes {
+            spec: LyapunovSpec {
+                paths,
+                seed: 1,
+                transient,
+                length,
+                ..Default::default()
+            },
+        }
     }
 
     /// The integrator for correlation time `tau`: Δt from [`dt_for`], restart impact memory.
@@ -174,6 +176,17 @@ pub enum Flag {
 }
 
 impl Flag {
+    /// The flag of an exponent `y ± se` from realisations of which `merged` merged.
+    pub fn of(merged: usize, y: f64, se: f64) -> Flag {
+        if merged > 0 {
+            Flag::Merged
+        } else if y.is_finite() && se.is_finite() {
+            Flag::Value
+        } else {
+            Flag::Undefined
+        }
+    }
+
     /// The CSV cell.
     pub fn name(self) -> &'static str {
         match self {
@@ -351,13 +364,7 @@ pub fn lle_point(
         ));
     }
     let (y, se) = (r.lle.value, r.lle.stderr);
-    let flag = if r.merged > 0 {
-        Flag::Merged
-    } else if y.is_finite() && se.is_finite() {
-        Flag::Value
-    } else {
-        Flag::Undefined
-    };
+    let flag = Flag::of(r.merged, y, se);
     let point = if flag == Flag::Value {
         Point {
             x,
@@ -660,13 +667,7 @@ pub fn dt_check(figure: &LleNoiseFigure, sizes: &Sizes, monitor: &dyn Monitor) -
         };
         let r = largest_lyapunov(&problem, &method, &spec, &OnlyCancel(monitor))?;
         let (y, se) = (r.lle.value, r.lle.stderr);
-        let flag = if r.merged > 0 {
-            Flag::Merged
-        } else if y.is_finite() && se.is_finite() {
-            Flag::Value
-        } else {
-            Flag::Undefined
-        };
+        let flag = Flag::of(r.merged, y, se);
         let ok = flag == Flag::Value;
         points.push(Point {
             x: dt,
