@@ -211,7 +211,9 @@ const RULES: &[(&str, &str, &str)] = &[
          realisations − 1 degrees of freedom where few), two-sided at family-wise α = 0.05 with \
          the Holm–Bonferroni correction over every stochastic test of the claim. Exact \
          (deterministic) values compare exactly up to a relative tolerance of 10⁻⁹; brackets \
-         change when they do not overlap. Refuted when any step or the range change is \
+         change when they do not overlap. The share of a map's plane is a bracket from the \
+         region's interior to its closure on the grid, so a change the grid does not resolve is \
+         not significant. Refuted when any step or the range change is \
          significant against the claimed direction; confirmed when the range change of every \
          series is significant in the claimed direction; otherwise undetermined (not \
          significant, or a value undefined).",
