@@ -123,13 +123,13 @@ fn against_r(
         x_range: (0.9, 0.999),
         y_range: yr,
         curves: vec![
-            Curve::new("simulation", "simulation", s),
+            Curve::new("simulation", "simulation (bracket < line width)", s),
             Curve::new(
                 "averaging",
-                format!("averaging ({})", options.variant.name()),
+                format!("averaging, f′(0) = 0 ({})", options.variant.name()),
                 a,
             ),
-            Curve::new("exact", "exact: μ0π/(2ω_d) + ln r = 0", e),
+            Curve::new("exact", "exact at λ = 1: μ0π/(2ω_{d}) + ln r = 0", e),
         ],
     };
     Ok((panel, note))
