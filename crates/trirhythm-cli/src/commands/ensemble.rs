@@ -9,7 +9,7 @@
 
 use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs};
 use crate::error::bad;
-use crate::io::{emit, params_json, progress, Csv};
+use crate::io::{emit, params_json, progress, Csv, Report};
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use serde::Serialize;
@@ -90,6 +90,11 @@ pub struct EnsembleArgs {
     pub out: Option<PathBuf>,
 }
 
+/// The least `--amplitude-max`: the energy histogram spans ½ω1²·max², which underflows to 0
+/// (zero-width bins, infinite densities) for max below about 1e-154; 1e-100 keeps every bin width
+/// and density finite.
+pub const MIN_AMPLITUDE_MAX: f64 = 1e-100;
+
 /// An ensemble's inputs in library types, with the choices made for the user.
 pub struct EnsembleSetup {
     pub params: Params,
@@ -116,6 +121,13 @@ impl EnsembleArgs {
         let Some(amplitude_max) = chosen.amplitude_max else {
             return bad("--amplitude-max: no theory to choose the histogram range from; give it");
         };
+        if !(amplitude_max >= MIN_AMPLITUDE_MAX) {
+            return bad(format!(
+                "--amplitude-max {amplitude_max:e}: must be at least {MIN_AMPLITUDE_MAX:e} (below \
+                 it the energy histogram's range ½ω1²·max² and its bin widths underflow to 0, and \
+                 the densities divide by them)"
+            ));
+        }
         let spec = EnsembleSpec {
             paths: self.paths,
             seed: self.seed,
@@ -273,7 +285,7 @@ fn save(dir: &Path, fingerprint: &str, p: &PathStats) -> Result<()> {
 /// How the command watches its run: the progress bar, and each finished path saved in the
 /// checkpoint directory.
 struct Watch<'a> {
-    bar: &'a indicatif::ProgressBar,
+    bar: &'a crate::io::Progress,
     checkpoint: Option<&'a Path>,
     fingerprint: &'a str,
     save_error: std::sync::Mutex<Option<anyhow::Error>>,
@@ -303,6 +315,12 @@ impl Monitor<PathStats> for Watch<'_> {
 pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     let s = args.setup()?;
     let method = method_line(args);
+    // every size, step and range is checked (no path run) before the checkpoint directory or
+    // anything in it is created, so that bad input leaves nothing behind
+    run_paths(&s.problem, &s.method, &s.spec, &[], &Report(|_, _| {}))?;
+    if let Some(out) = &args.out {
+        crate::io::files::check_writable(out, "--out")?;
+    }
     let fingerprint = fingerprint(&s.problem, &s.method, &s.spec);
     // the claim lives until the command returns (or a signal removes it)
     let (_lock, done) = match &args.checkpoint {

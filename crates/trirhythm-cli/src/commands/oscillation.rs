@@ -184,6 +184,10 @@ impl OscillationArgs {
 /// `oscillation`.
 pub fn oscillation(args: &OscillationArgs) -> Result<()> {
     let s = args.setup()?;
+    // a read-only destination is refused before the grid or the boundaries are computed
+    if let Some(out) = &args.out {
+        crate::io::files::check_writable(out, "--out")?;
+    }
     let text = if args.grid {
         let (_, gy) = parse_axis(&args.y, "--y", true)?;
         classify(args, s, &gy.points())?

@@ -198,7 +198,7 @@ fn stream_csv(
     s: &Setup,
     steps: u64,
     report: &dyn Monitor,
-    bar: &indicatif::ProgressBar,
+    bar: &crate::io::Progress,
 ) -> Result<Trajectory> {
     let mut stepper = s.options.stepper(&s.problem, &s.method)?;
     let eta = !s.problem.oscillator().noise().is_none();

@@ -288,6 +288,32 @@ fn pdf_1d(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> {
     })
 }
 
+/// The most cells (U points × U̇ points) of the joint density: the document is held in memory
+/// before it is written, at most [`JOINT_CELL_BYTES`] bytes a cell at its peak, so this bounds
+/// it near 1 GiB.
+pub const MAX_JOINT_CELLS: usize = 2_500_000;
+
+/// The peak memory of one joint-density cell, in bytes, rounded up from the measured peak
+/// resident size of a 2000 × 2000 grid: 361 bytes a cell as CSV (the log-densities, the table
+/// and its text), 112 as JSON.
+pub const JOINT_CELL_BYTES: usize = 400;
+
+/// Refuse a joint grid whose document would not fit in [`MAX_JOINT_CELLS`], before any work,
+/// naming the largest `--grid` count that fits with the given `--vgrid` (and the square grid).
+fn check_joint_cells(nu: usize, nv: usize) -> Result<()> {
+    let cells = nu as u128 * nv as u128;
+    if cells <= MAX_JOINT_CELLS as u128 {
+        return Ok(());
+    }
+    let side = (MAX_JOINT_CELLS as f64).sqrt().floor() as usize;
+    bad(format!(
+        "--grid/--vgrid: {nu} × {nv} = {cells} cells; the joint density is held in memory \
+         (up to {JOINT_CELL_BYTES} bytes a cell), at most {MAX_JOINT_CELLS} cells: with \
+         --vgrid of {nv} points --grid may have at most {} points (or {side} × {side})",
+        MAX_JOINT_CELLS / nv.max(1)
+    ))
+}
+
 /// P(U, U̇) on U ≥ 0 (Eq. 30–31) on a grid.
 fn pdf_joint(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> {
     let a_end = pdf.support_end;
@@ -296,6 +322,7 @@ fn pdf_joint(args: &PdfArgs, th: &Theory, pdf: &AmplitudePdf) -> Result<String> 
     let ug = Grid::parse(args.grid.as_deref().unwrap_or(&u_default), "--grid")?;
     let v_default = format!("{}:{vmax}:101", -vmax);
     let vg = Grid::parse(args.vgrid.as_deref().unwrap_or(&v_default), "--vgrid")?;
+    check_joint_cells(ug.count, vg.count)?;
     let (us, vs) = (ug.points(), vg.points());
     let spacing = (ug.stop - ug.start) / (ug.count - 1) as f64;
     if let Some((m, w)) = pdf

@@ -21,7 +21,7 @@
 
 use crate::error::bad;
 use anyhow::{Context, Result};
-use std::fs::File;
+use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -95,6 +95,25 @@ pub fn check_destination(path: &Path, flag: &str) -> Result<()> {
         ));
     }
     Ok(())
+}
+
+/// [`check_destination`], and that its directory takes a new file: a probe file (a hidden
+/// sibling) is created and removed at once. Call before any long work, so that a read-only
+/// destination is refused before the computation rather than after it.
+pub fn check_writable(path: &Path, flag: &str) -> Result<()> {
+    check_destination(path, flag)?;
+    let probe = temporary_sibling(path);
+    match OpenOptions::new().write(true).create_new(true).open(&probe) {
+        Ok(f) => {
+            drop(f);
+            let _ = std::fs::remove_file(&probe);
+            Ok(())
+        }
+        Err(e) => bad(format!(
+            "{flag} {}: cannot write in its directory ({e})",
+            path.display()
+        )),
+    }
 }
 
 /// `dir/.name.partial-PID.ext`: a hidden sibling keeping the extension (image encoders pick the

@@ -9,5 +9,5 @@ pub mod table;
 
 pub use files::{stdout_write, write_atomic, DirLock, Stream, Temporary, TemporaryDir};
 pub use json::{emit, jlimit, jnum, jvec, params_json, pretty};
-pub use progress::{progress, Report};
+pub use progress::{progress, Progress, Report};
 pub use table::{num, reading, Csv};
