@@ -53,7 +53,7 @@ fn invalid_ensemble_sizes_leave_no_checkpoint_directory() {
         (&["--t-end", "0"], "--t-end"),
         (&["--t-end", "0.001"], "--t-end"),
         (&["--burn-in", "-1"], "--burn-in"),
-        (&["--amplitude-max", "0"], "--amplitude-max"),
+        (&["--amplitude-max", "0"], "amplitude_max = 0"),
         (&["--amplitude-max", "1e-300"], "--amplitude-max"),
         (&["--amplitude-max", "1e7"], "--amplitude-max"),
         (&["--dt", "0"], "dt = 0"),

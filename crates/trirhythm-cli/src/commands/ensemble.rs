@@ -121,7 +121,7 @@ impl EnsembleArgs {
         let Some(amplitude_max) = chosen.amplitude_max else {
             return bad("--amplitude-max: no theory to choose the histogram range from; give it");
         };
-        if amplitude_max.is_nan() || amplitude_max < MIN_AMPLITUDE_MAX {
+        if amplitude_max > 0.0 && amplitude_max < MIN_AMPLITUDE_MAX {
             return bad(format!(
                 "--amplitude-max {amplitude_max:e}: must be at least {MIN_AMPLITUDE_MAX:e} (below \
                  it the energy histogram's range ½ω1²·max² and its bin widths underflow to 0, and \
