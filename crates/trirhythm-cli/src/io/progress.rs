@@ -37,7 +37,12 @@ pub fn status(done: u64, total: u64, elapsed: Duration) -> String {
             "{} elapsed, no estimate before the first unit finishes",
             secs(elapsed)
         ),
-        Some(left) => format!("{} elapsed, about {} left", secs(elapsed), secs(left)),
+        // rounded up: work left never reads "0s"
+        Some(left) => format!(
+            "{} elapsed, about {}s left",
+            secs(elapsed),
+            left.as_secs_f64().ceil()
+        ),
     }
 }
 
@@ -61,14 +66,14 @@ fn style(template: &str) -> indicatif::ProgressStyle {
 impl Progress {
     /// Move to `done` units of the bar's length.
     pub fn set_position(&self, done: u64) {
+        let total = self.bar.length().unwrap_or(0);
+        self.bar
+            .set_message(status(done, total, self.since.elapsed()));
         if done > 0 && !self.started.swap(true, Ordering::Relaxed) {
             self.bar.disable_steady_tick();
             self.bar.set_style(style(RUNNING));
         }
-        let total = self.bar.length().unwrap_or(0);
         self.bar.set_position(done);
-        self.bar
-            .set_message(status(done, total, self.since.elapsed()));
     }
 
     /// Set the number of units.
@@ -86,10 +91,10 @@ impl Progress {
 pub fn progress(len: u64, message: &str) -> Progress {
     use std::io::IsTerminal;
     let bar = if std::io::stderr().is_terminal() {
-        let bar = indicatif::ProgressBar::new(len);
-        bar.set_style(style(WAITING));
-        bar.set_prefix(message.to_string());
-        bar.set_message(status(0, len, Duration::ZERO));
+        let bar = indicatif::ProgressBar::new(len)
+            .with_message(status(0, len, Duration::ZERO))
+            .with_prefix(message.to_string())
+            .with_style(style(WAITING));
         bar.enable_steady_tick(Duration::from_millis(250));
         bar
     } else {
@@ -148,6 +153,11 @@ mod tests {
         assert_eq!(
             status(1, 4, Duration::from_secs(10)),
             "10s elapsed, about 30s left"
+        );
+        // a fraction of a second left reads 1 s, not 0 s
+        assert_eq!(
+            status(999, 1000, Duration::from_secs(5)),
+            "5s elapsed, about 1s left"
         );
         // done: nothing left; more done than the total (a rounded position) is not negative
         assert_eq!(eta(4, 4, Duration::from_secs(10)), Some(Duration::ZERO));
