@@ -46,6 +46,10 @@ pub fn is_bad_input(err: &anyhow::Error) -> bool {
 /// The flag a user typed for each argument the library names in its errors (parameter keys
 /// such as `lambda` or `D` are typed as they are named, with `--param`).
 const FLAGS: &[(&str, &str)] = &[
+    ("dt", "--dt"),
+    ("tolerance", "--tolerance"),
+    ("u0", "--u0"),
+    ("v0", "--v0"),
     ("t_end", "--t-end"),
     ("burn_in", "--burn-in"),
     ("transient", "--transient"),

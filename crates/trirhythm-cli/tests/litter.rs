@@ -203,3 +203,24 @@ fn a_joint_density_too_large_for_memory_is_refused_before_any_work() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_library_error_names_the_flag_typed() {
+    for (args, flag) in [
+        (&["ensemble", "--dt", "0", "--paths", "2"][..], "--dt"),
+        (&["ensemble", "--dt", "nan", "--paths", "2"][..], "--dt"),
+        (&["simulate", "--u0", "inf", "--t-end", "1"][..], "--u0"),
+        (
+            &["simulate", "--tolerance", "0.5", "--t-end", "1"][..],
+            "--tolerance",
+        ),
+    ] {
+        let o = common::run(args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains(&format!("error: {flag}:")),
+            "{args:?} should name {flag}: {err}"
+        );
+    }
+}
