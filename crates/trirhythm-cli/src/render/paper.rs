@@ -13,7 +13,7 @@
 
 use crate::error::bad;
 use crate::io::progress::Bar;
-use crate::io::{write_atomic, Csv};
+use crate::io::{write_atomic, Csv, TemporaryDir};
 use crate::render::plot::{save, Heading, Picture, VerdictLine};
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
@@ -125,7 +125,32 @@ fn make<F: Slot + Picture>(
         Request::FromData(dir) => read_data::<F>(dir)?,
     };
     std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
-    let stem = stem(out_dir, F::NUMBER);
+    // the files are written into a staging directory beside them and moved into `out_dir`
+    // together once all are complete: a figure that fails leaves none of its files
+    let staging = TemporaryDir::create(&stem(out_dir, F::NUMBER))?;
+    let staged = stem(staging.path(), F::NUMBER);
+    let options = FigureOptions {
+        quick: file.quick,
+        variant: file.variant,
+    };
+    let (files, data) = write_files::<F>(file, &staged, data, &options)?;
+    let files = publish(&files, out_dir)?;
+    drop(staging);
+    let (data, heading) = data;
+    if let Some(figures) = figures {
+        *F::slot(figures) = Some(data);
+    }
+    Ok(Made { files, heading })
+}
+
+/// Write a figure's files under `stem` (JSON when asked, CSV, PNG, SVG); returns the paths
+/// written, the data judged and the picture's heading.
+fn write_files<F: Slot + Picture>(
+    file: DataFile<F>,
+    stem: &Path,
+    data: bool,
+    options: &FigureOptions,
+) -> Result<(Vec<PathBuf>, (F, Heading))> {
     let mut files = Vec::new();
     if data {
         let path = stem.with_extension("json");
@@ -142,19 +167,29 @@ fn make<F: Slot + Picture>(
         files.push(path);
     }
     for table in file.data.tables() {
-        files.push(write_table(&stem, &table)?);
+        files.push(write_table(stem, &table)?);
     }
-    let options = FigureOptions {
-        quick: file.quick,
-        variant: file.variant,
-    };
-    let (data, verdicts) = judge_figure(file.data, &options);
-    files.extend(save(&data, verdict_lines(&verdicts), &stem)?);
+    let (data, verdicts) = judge_figure(file.data, options);
+    files.extend(save(&data, verdict_lines(&verdicts), stem)?);
     let heading = data.heading();
-    if let Some(figures) = figures {
-        *F::slot(figures) = Some(data);
+    Ok((files, (data, heading)))
+}
+
+/// Move the staged `files` into `dir` under their names; returns their new paths. Should one
+/// move fail, those already moved are removed again (all or none).
+fn publish(files: &[PathBuf], dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut moved: Vec<PathBuf> = Vec::new();
+    for f in files {
+        let to = dir.join(f.file_name().unwrap_or_default());
+        if let Err(e) = std::fs::rename(f, &to) {
+            for m in &moved {
+                let _ = std::fs::remove_file(m);
+            }
+            return Err(e).with_context(|| format!("moving {} into place", to.display()));
+        }
+        moved.push(to);
     }
-    Ok(Made { files, heading })
+    Ok(moved)
 }
 
 /// The verdicts on a figure's claims as short lines for its picture, each at most about two
@@ -473,8 +508,9 @@ fn write_table(stem: &Path, table: &Table) -> Result<PathBuf> {
     Ok(path)
 }
 
-/// Read `dir/figNN.json` for figure `F` (bad input when missing, malformed or of another
-/// figure).
+/// Read `dir/figNN.json` for figure `F` (bad input when missing, malformed, of another
+/// figure, written by another version of trirhythm, or inconsistent in itself: see
+/// [`Figure::validate`]).
 fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
     let path = stem(dir, F::NUMBER).with_extension("json");
     let text = std::fs::read_to_string(&path).or_else(|e| {
@@ -485,56 +521,51 @@ fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
             F::NUMBER
         ))
     })?;
-    #[derive(Deserialize)]
-    struct Number {
-        figure: u32,
+    let head = head(&path, &text, F::NUMBER)?;
+    let this = env!("CARGO_PKG_VERSION");
+    if head.trirhythm != this {
+        return bad(format!(
+            "--from-data: {}: field `trirhythm` is {:?}, but this is trirhythm {this}; figure \
+             data is read only by the version that wrote it (write it again with `figure {} \
+             --data`)",
+            path.display(),
+            head.trirhythm,
+            F::NUMBER
+        ));
     }
-    match serde_json::from_str::<Number>(&text) {
-        Ok(n) if n.figure == F::NUMBER => {}
-        Ok(n) => {
-            return bad(format!(
-                "--from-data: {} holds the data of figure {}, not {}",
-                path.display(),
-                n.figure,
-                F::NUMBER
-            ))
-        }
-        Err(e) => {
-            return bad(format!(
-                "--from-data: {} is not figure data ({e})",
-                path.display()
-            ))
-        }
-    }
-    serde_json::from_str(&text).or_else(|e| {
+    let file: DataFile<F> = serde_json::from_str(&text).or_else(|e| {
         bad(format!(
             "--from-data: {} is not the data of figure {} as this version writes it ({e})",
             path.display(),
             F::NUMBER
         ))
-    })
+    })?;
+    if let Err(e) = file.data.validate() {
+        return bad(format!(
+            "--from-data: {}: field `data.{}` is inconsistent: {}; write it again with \
+             `figure {} --data`",
+            path.display(),
+            e.field,
+            e.why,
+            F::NUMBER
+        ));
+    }
+    Ok(file)
 }
 
-/// The options `DIR/figNN.json` was computed with, without reading its data: `None` when the
-/// file does not exist; bad input when it exists but is not figure data.
-pub fn data_options(dir: &Path, n: u32) -> Result<Option<FigureOptions>> {
-    let path = stem(dir, n).with_extension("json");
-    if !path.exists() {
-        return Ok(None);
-    }
-    #[derive(Deserialize)]
-    struct Head {
-        figure: u32,
-        variant: Variant,
-        quick: bool,
-    }
-    let text = std::fs::read_to_string(&path)
-        .or_else(|e| bad(format!("--from-data: cannot read {} ({e})", path.display())))?;
-    match serde_json::from_str::<Head>(&text) {
-        Ok(h) if h.figure == n => Ok(Some(FigureOptions {
-            quick: h.quick,
-            variant: h.variant,
-        })),
+/// What a `figNN.json` says of itself, before its data is read.
+#[derive(Deserialize)]
+struct Head {
+    figure: u32,
+    trirhythm: String,
+    variant: Variant,
+    quick: bool,
+}
+
+/// The head of `path` (holding `text`), which must be figure `n`'s.
+fn head(path: &Path, text: &str, n: u32) -> Result<Head> {
+    match serde_json::from_str::<Head>(text) {
+        Ok(h) if h.figure == n => Ok(h),
         Ok(h) => bad(format!(
             "--from-data: {} holds the data of figure {}, not {n}",
             path.display(),
@@ -545,6 +576,22 @@ pub fn data_options(dir: &Path, n: u32) -> Result<Option<FigureOptions>> {
             path.display()
         )),
     }
+}
+
+/// The options `DIR/figNN.json` was computed with, without reading its data: `None` when the
+/// file does not exist; bad input when it exists but is not figure data.
+pub fn data_options(dir: &Path, n: u32) -> Result<Option<FigureOptions>> {
+    let path = stem(dir, n).with_extension("json");
+    if !path.exists() {
+        return Ok(None);
+    }
+    let text = std::fs::read_to_string(&path)
+        .or_else(|e| bad(format!("--from-data: cannot read {} ({e})", path.display())))?;
+    let h = head(&path, &text, n)?;
+    Ok(Some(FigureOptions {
+        quick: h.quick,
+        variant: h.variant,
+    }))
 }
 
 #[cfg(test)]
