@@ -41,9 +41,9 @@ pub fn invalid(field: impl Into<String>, why: impl Into<String>) -> Valid {
     })
 }
 
-/// A grid axis: finite start < stop, at least two points (and no more than a plane holds).
+/// A grid axis: finite start < stop (their difference finite too), at least two points (and no more than a plane holds).
 pub fn axis(field: &str, a: &Axis) -> Valid {
-    if !(a.start.is_finite() && a.stop.is_finite()) {
+    if !(a.start.is_finite() && a.stop.is_finite() && (a.stop - a.start).is_finite()) {
         return invalid(
             field,
             format!("range {} to {} is not finite", a.start, a.stop),

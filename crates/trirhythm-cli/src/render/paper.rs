@@ -133,7 +133,11 @@ fn make<F: Slot + Picture>(
         quick: file.quick,
         variant: file.variant,
     };
-    let (files, data) = write_files::<F>(file, &staged, data, &options)?;
+    let from = match request {
+        Request::FromData(dir) => Some(stem(dir, F::NUMBER).with_extension("json")),
+        Request::Compute(_) => None,
+    };
+    let (files, data) = write_files::<F>(file, &staged, data, &options, from.as_deref())?;
     let files = publish(&files, out_dir)?;
     drop(staging);
     let (data, heading) = data;
@@ -144,12 +148,14 @@ fn make<F: Slot + Picture>(
 }
 
 /// Write a figure's files under `stem` (JSON when asked, CSV, PNG, SVG); returns the paths
-/// written, the data judged and the picture's heading.
+/// written, the data judged and the picture's heading. Data read `from` a file whose tables
+/// hold values no CSV may (NaN, ±∞ where not allowed) is bad input naming that file.
 fn write_files<F: Slot + Picture>(
     file: DataFile<F>,
     stem: &Path,
     data: bool,
     options: &FigureOptions,
+    from: Option<&Path>,
 ) -> Result<(Vec<PathBuf>, (F, Heading))> {
     let mut files = Vec::new();
     if data {
@@ -167,7 +173,17 @@ fn write_files<F: Slot + Picture>(
         files.push(path);
     }
     for table in file.data.tables() {
-        files.push(write_table(stem, &table)?);
+        let csv = match (Csv::of(&table), from) {
+            (Ok(csv), _) => csv,
+            (Err(e), Some(path)) => {
+                return bad(format!(
+                    "--from-data: {}: the data holds values its tables cannot: {e:#}",
+                    path.display()
+                ))
+            }
+            (Err(e), None) => return Err(e),
+        };
+        files.push(write_table(stem, &table, &csv)?);
     }
     let (data, verdicts) = judge_figure(file.data, options);
     files.extend(save(&data, verdict_lines(&verdicts), stem)?);
@@ -499,12 +515,12 @@ fn first_clause(text: &str) -> String {
     out
 }
 
-/// Write one of a figure's tables as `stem{suffix}.csv` (notes as `#` lines); refuses a table
-/// with NaN, or ±∞ outside the columns that allow it. Returns the path written.
-fn write_table(stem: &Path, table: &Table) -> Result<PathBuf> {
+/// Write one of a figure's tables, `csv` (its [`Csv::of`]), as `stem{suffix}.csv`. Returns the
+/// path written.
+fn write_table(stem: &Path, table: &Table, csv: &str) -> Result<PathBuf> {
     let name = stem.file_name().unwrap_or_default().to_string_lossy();
     let path = stem.with_file_name(format!("{name}{}.csv", table.suffix));
-    write_atomic(&path, Csv::of(table)?.as_bytes())?;
+    write_atomic(&path, csv.as_bytes())?;
     Ok(path)
 }
 
