@@ -76,7 +76,10 @@ pub fn len(field: &str, len: usize, expected: usize, of: &str) -> Valid {
 /// Every value finite.
 pub fn finite(field: &str, values: &[f64]) -> Valid {
     match values.iter().position(|v| !v.is_finite()) {
-        Some(i) => invalid(format!("{field}[{i}]"), format!("{} is not finite", values[i])),
+        Some(i) => invalid(
+            format!("{field}[{i}]"),
+            format!("{} is not finite", values[i]),
+        ),
         None => Ok(()),
     }
 }
@@ -85,7 +88,10 @@ pub fn finite(field: &str, values: &[f64]) -> Valid {
 pub fn non_negative(field: &str, values: &[f64]) -> Valid {
     finite(field, values)?;
     match values.iter().position(|v| *v < 0.0) {
-        Some(i) => invalid(format!("{field}[{i}]"), format!("{} is negative", values[i])),
+        Some(i) => invalid(
+            format!("{field}[{i}]"),
+            format!("{} is negative", values[i]),
+        ),
         None => Ok(()),
     }
 }

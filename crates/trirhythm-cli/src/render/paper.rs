@@ -11,7 +11,7 @@
 //! Tests: `tests/figure_data.rs` (JSON round trip, `--from-data` byte-identical),
 //! `tests/pictures.rs`, `tests/report.rs`.
 
-use crate::error::bad;
+use crate::error::{bad, is_bad_input};
 use crate::io::progress::Bar;
 use crate::io::{write_atomic, Csv, TemporaryDir};
 use crate::render::plot::{save, Heading, Picture, VerdictLine};
@@ -137,7 +137,11 @@ fn make<F: Slot + Picture>(
         Request::FromData(dir) => Some(stem(dir, F::NUMBER).with_extension("json")),
         Request::Compute(_) => None,
     };
-    let (files, data) = write_files::<F>(file, &staged, data, &options, from.as_deref())?;
+    let write = || write_files::<F>(file, &staged, data, &options, from.as_deref());
+    let (files, data) = match &from {
+        Some(path) => drawn_from(path, write)?,
+        None => write()?,
+    };
     let files = publish(&files, out_dir)?;
     drop(staging);
     let (data, heading) = data;
@@ -189,6 +193,36 @@ fn write_files<F: Slot + Picture>(
     files.extend(save(&data, verdict_lines(&verdicts), stem)?);
     let heading = data.heading();
     Ok((files, (data, heading)))
+}
+
+/// Draw data read from the file `path` (already checked by [`Figure::validate`]): should the
+/// drawing still refuse a value of it, or fail on it with a panic (a figure whose checks miss
+/// an inconsistency), that is bad input naming the file, reported without a backtrace, and
+/// nothing is written.
+fn drawn_from<T>(path: &Path, draw: impl FnOnce() -> Result<T>) -> Result<T> {
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let drawn = std::panic::catch_unwind(std::panic::AssertUnwindSafe(draw));
+    std::panic::set_hook(hook);
+    match drawn {
+        Ok(Err(e)) if is_bad_input(&e) => bad(format!(
+            "--from-data: {}: the data cannot be drawn: {e:#}",
+            path.display()
+        )),
+        Ok(result) => result,
+        Err(payload) => {
+            let why = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_default();
+            bad(format!(
+                "--from-data: {}: the data is inconsistent and cannot be drawn ({why}); write \
+                 it again with `figure N --data`",
+                path.display()
+            ))
+        }
+    }
 }
 
 /// Move the staged `files` into `dir` under their names; returns their new paths. Should one
@@ -549,6 +583,19 @@ fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
             F::NUMBER
         ));
     }
+    let value: serde_json::Value = serde_json::from_str(&text).or_else(|e| {
+        bad(format!(
+            "--from-data: {} is not figure data ({e})",
+            path.display()
+        ))
+    })?;
+    if let Some((field, x)) = beyond(&value["data"], "data") {
+        return bad(format!(
+            "--from-data: {}: field `{field}` is {x:e}, beyond ±{MAX_MAGNITUDE:e} (no quantity \
+             of a figure comes near; such a value cannot be drawn)",
+            path.display()
+        ));
+    }
     let file: DataFile<F> = serde_json::from_str(&text).or_else(|e| {
         bad(format!(
             "--from-data: {} is not the data of figure {} as this version writes it ({e})",
@@ -567,6 +614,27 @@ fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
         ));
     }
     Ok(file)
+}
+
+/// The largest magnitude a number of figure data may have: far beyond every quantity of the
+/// paper's figures, and far enough below `f64::MAX` that a difference or a scale of two of them
+/// stays finite.
+const MAX_MAGNITUDE: f64 = 1e100;
+
+/// The first number of `v` (at path `at`) beyond ±[`MAX_MAGNITUDE`], with its path.
+fn beyond(v: &serde_json::Value, at: &str) -> Option<(String, f64)> {
+    match v {
+        serde_json::Value::Number(n) => n
+            .as_f64()
+            .filter(|x| x.abs() > MAX_MAGNITUDE)
+            .map(|x| (at.to_string(), x)),
+        serde_json::Value::Array(a) => a
+            .iter()
+            .enumerate()
+            .find_map(|(i, x)| beyond(x, &format!("{at}[{i}]"))),
+        serde_json::Value::Object(m) => m.iter().find_map(|(k, x)| beyond(x, &format!("{at}.{k}"))),
+        _ => None,
+    }
 }
 
 /// What a `figNN.json` says of itself, before its data is read.
