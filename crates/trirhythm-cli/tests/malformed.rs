@@ -261,3 +261,39 @@ fn data_of_another_version_is_refused_naming_the_field() {
     bad["trirhythm"] = serde_json::from_str::<Value>(&text).unwrap()["trirhythm"].clone();
     assert_eq!(read_back(4, "intact", &bad, &case, &["report"]), 0);
 }
+
+/// `lyapunov --format csv` writes what the JSON does: an undefined running estimate (JSON
+/// `null`) is an empty `lle` cell, never a refusal.
+#[test]
+fn lyapunov_csv_writes_every_row_the_json_has() {
+    let base = ["lyapunov", "--t-end", "50", "--paths", "2"];
+    let json: Value = serde_json::from_slice(&ok_output(&base).stdout).unwrap();
+    let running = json["running"].as_array().expect("running estimate");
+    let mut csv_args = base.to_vec();
+    csv_args.extend(["--format", "csv"]);
+    let text = String::from_utf8(ok_output(&csv_args).stdout).unwrap();
+    let rows = common::csv_rows(&text);
+    assert_eq!(rows[0], ["t", "lle", "stderr"]);
+    assert_eq!(rows.len() - 1, running.len(), "one CSV row per JSON entry");
+    for (row, entry) in rows[1..].iter().zip(running) {
+        let v = &entry["value"];
+        if v.is_null() {
+            assert_eq!(row[1], "", "undefined estimate at t = {}", row[0]);
+        } else if let Some(x) = v.as_f64() {
+            assert_eq!(row[1].parse::<f64>().unwrap(), x);
+        }
+    }
+}
+
+/// D is what critical-noise searches: a value given for it is refused, naming it.
+#[test]
+fn critical_noise_refuses_a_value_for_d() {
+    let o = run(&["critical-noise", "--d-range", "0:1", "--param", "D=0.5"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("--param D=0.5") && err.contains("--d-range"),
+        "{err}"
+    );
+    assert!(o.stdout.is_empty());
+}
