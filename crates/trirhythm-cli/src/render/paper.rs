@@ -571,15 +571,35 @@ fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
             F::NUMBER
         ))
     })?;
-    let head = head(&path, &text, F::NUMBER)?;
+    #[derive(Deserialize)]
+    struct Stamp {
+        figure: u32,
+        trirhythm: Option<String>,
+    }
+    let stamp = match serde_json::from_str::<Stamp>(&text) {
+        Ok(n) if n.figure == F::NUMBER => n,
+        Ok(n) => {
+            return bad(format!(
+                "--from-data: {} holds the data of figure {}, not {}",
+                path.display(),
+                n.figure,
+                F::NUMBER
+            ))
+        }
+        Err(e) => {
+            return bad(format!(
+                "--from-data: {} is not figure data ({e})",
+                path.display()
+            ))
+        }
+    };
     let this = env!("CARGO_PKG_VERSION");
-    if head.trirhythm != this {
+    if let Some(version) = stamp.trirhythm.filter(|v| v != this) {
         return bad(format!(
-            "--from-data: {}: field `trirhythm` is {:?}, but this is trirhythm {this}; figure \
-             data is read only by the version that wrote it (write it again with `figure {} \
-             --data`)",
+            "--from-data: {}: field `trirhythm` is {version:?}, but this is trirhythm {this}; \
+             figure data is read only by the version that wrote it (write it again with \
+             `figure {} --data`)",
             path.display(),
-            head.trirhythm,
             F::NUMBER
         ));
     }
@@ -641,7 +661,6 @@ fn beyond(v: &serde_json::Value, at: &str) -> Option<(String, f64)> {
 #[derive(Deserialize)]
 struct Head {
     figure: u32,
-    trirhythm: String,
     variant: Variant,
     quick: bool,
 }
