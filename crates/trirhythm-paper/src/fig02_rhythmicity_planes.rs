@@ -29,6 +29,10 @@ impl Figure for Fig02 {
     fn tables(&self) -> Vec<Table> {
         self.0.tables()
     }
+
+    fn validate(&self) -> crate::validate::Valid {
+        self.0.validate()
+    }
 }
 
 fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<MapFigure> {

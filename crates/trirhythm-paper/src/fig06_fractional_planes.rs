@@ -37,4 +37,8 @@ impl Figure for Fig06 {
     fn tables(&self) -> Vec<Table> {
         self.0.tables()
     }
+
+    fn validate(&self) -> crate::validate::Valid {
+        self.0.validate()
+    }
 }

@@ -54,6 +54,23 @@ impl Figure for Fig09 {
         compute(options, monitor)
     }
 
+    fn validate(&self) -> crate::validate::Valid {
+        use crate::validate::{axis, finite, len, scalar};
+        for (i, p) in self.surfaces.iter().enumerate() {
+            let f = format!("surfaces[{i}]");
+            scalar(&format!("{f}.r"), p.r)?;
+            axis(&format!("{f}.x"), &p.x)?;
+            axis(&format!("{f}.y"), &p.y)?;
+            let points = p.x.count * p.y.count;
+            let of = format!("{} × {} grid points", p.x.count, p.y.count);
+            len(&format!("{f}.heights"), p.heights.len(), points, &of)?;
+            len(&format!("{f}.wells"), p.wells.len(), points, &of)?;
+            let hs: Vec<f64> = p.heights.iter().flatten().flatten().copied().collect();
+            finite(&format!("{f}.heights"), &hs)?;
+        }
+        Ok(())
+    }
+
     fn tables(&self) -> Vec<Table> {
         let mut csv = Table::new(
             &self.notes,

@@ -193,6 +193,13 @@ impl Figure for Fig11 {
         })
     }
 
+    fn validate(&self) -> crate::validate::Valid {
+        for (i, p) in self.panels.iter().enumerate() {
+            p.validate(&format!("panels[{i}]"))?;
+        }
+        Ok(())
+    }
+
     fn tables(&self) -> Vec<Table> {
         let mut csv = Table::new(&self.notes, &["lambda", "u0", "amplitude", "spread"]);
         for s in &self.settled {

@@ -28,6 +28,10 @@ impl Figure for Fig12 {
     fn tables(&self) -> Vec<Table> {
         self.0.tables()
     }
+
+    fn validate(&self) -> crate::validate::Valid {
+        self.0.validate()
+    }
 }
 
 fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<MapFigure> {

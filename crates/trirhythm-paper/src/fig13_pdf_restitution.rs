@@ -98,6 +98,13 @@ impl Figure for Fig13 {
         })
     }
 
+    fn validate(&self) -> crate::validate::Valid {
+        for (i, p) in self.panels.iter().enumerate() {
+            p.validate(&format!("panels[{i}]"))?;
+        }
+        Ok(())
+    }
+
     fn tables(&self) -> Vec<Table> {
         vec![amplitude_table(&self.notes, &self.panels)]
     }

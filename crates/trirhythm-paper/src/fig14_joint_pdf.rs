@@ -204,6 +204,36 @@ impl Figure for Fig14 {
         }
         vec![csv, fine]
     }
+
+    fn validate(&self) -> crate::validate::Valid {
+        use crate::validate::{density_matrix, edges, scalar};
+        for (i, p) in self.panels.iter().enumerate() {
+            let f = format!("panels[{i}]");
+            scalar(&format!("{f}.r"), p.r)?;
+            edges(&format!("{f}.u_edges"), &p.u_edges)?;
+            edges(&format!("{f}.v_edges"), &p.v_edges)?;
+            let (nu, nv) = (p.u_edges.len() - 1, p.v_edges.len() - 1);
+            let of = format!("{nu} × {nv} cells of u_edges, v_edges");
+            density_matrix(&format!("{f}.theory"), &p.theory, nu, nv, &of)?;
+            density_matrix(&format!("{f}.mc"), &p.mc, nu, nv, &of)?;
+            let fine = format!("{} × {} cells, {FINE} times finer", nu * FINE, nv * FINE);
+            density_matrix(
+                &format!("{f}.theory_fine"),
+                &p.theory_fine,
+                nu * FINE,
+                nv * FINE,
+                &fine,
+            )?;
+            for (name, v) in [
+                ("theory_outside", p.theory_outside),
+                ("mc_outside", p.mc_outside),
+                ("hellinger", p.hellinger),
+            ] {
+                scalar(&format!("{f}.{name}"), v)?;
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Edges `k` times finer: each interval of `edges` split evenly into `k`.

@@ -53,6 +53,7 @@ pub mod maps;
 pub mod montecarlo;
 pub mod notes;
 pub mod table;
+pub mod validate;
 pub mod verdict;
 pub mod views;
 
@@ -112,6 +113,14 @@ pub trait Figure: Serialize + DeserializeOwned + Sized {
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Self>;
     /// The data as tables (what `figNN.csv` and its siblings hold), in file order.
     fn tables(&self) -> Vec<table::Table>;
+    /// Check the data as a whole before anything is drawn from it (read back from a file, it
+    /// may be damaged or edited): array lengths against their grids and edges, ranges finite
+    /// and ordered, indices in range. The first inconsistent field is named
+    /// ([`validate::Invalid`]). Computed data passes. Figures whose data has no shape to
+    /// check keep the default, which accepts.
+    fn validate(&self) -> validate::Valid {
+        Ok(())
+    }
 }
 
 /// One figure of the [`registry`].

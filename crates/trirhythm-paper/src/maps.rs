@@ -357,6 +357,55 @@ pub fn map_figure(
 }
 
 impl MapFigure {
+    /// Each panel's axes increase with at least two points, its counts hold one value per
+    /// grid point (at most [`trirhythm::theory::bifurcation::MAXC`]), its fold curves and
+    /// mark are finite and its named folds exist.
+    pub fn validate(&self) -> crate::validate::Valid {
+        use crate::validate::{axis, finite, invalid, len};
+        for (i, p) in self.panels.iter().enumerate() {
+            let f = format!("panels[{i}]");
+            axis(&format!("{f}.x.grid"), &p.x.grid)?;
+            axis(&format!("{f}.y.grid"), &p.y.grid)?;
+            for (name, scale) in [("x", p.x.scale), ("y", p.y.scale)] {
+                if !(scale.is_finite() && scale > 0.0) {
+                    return invalid(format!("{f}.{name}.scale"), format!("{scale} is not > 0"));
+                }
+            }
+            let points = p.x.grid.count * p.y.grid.count;
+            let of = format!("{} × {} grid points", p.x.grid.count, p.y.grid.count);
+            len(&format!("{f}.counts"), p.counts.len(), points, &of)?;
+            let max = trirhythm::theory::bifurcation::MAXC;
+            if let Some(j) = p.counts.iter().position(|&c| c as usize > max) {
+                return invalid(
+                    format!("{f}.counts[{j}]"),
+                    format!("{} exceeds the most possible, {max}", p.counts[j]),
+                );
+            }
+            for (name, folds) in [("folds", Some(&p.folds)), ("printed", p.printed.as_ref())] {
+                for (c, curve) in folds.into_iter().flat_map(|f| f.curves.iter()).enumerate() {
+                    let xs: Vec<f64> = curve
+                        .points
+                        .iter()
+                        .flat_map(|q| [q.x, q.y, q.amplitude])
+                        .collect();
+                    finite(&format!("{f}.{name}.curves[{c}].points"), &xs)?;
+                }
+            }
+            if let Some((x, y, _)) = &p.mark {
+                finite(&format!("{f}.mark"), &[*x, *y])?;
+            }
+            for (j, (c, _)) in p.fold_names.iter().enumerate() {
+                if *c >= p.folds.curves.len() {
+                    return invalid(
+                        format!("{f}.fold_names[{j}]"),
+                        format!("curve {c} of {} curves", p.folds.curves.len()),
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// The figure's tables: `panel,x,y,count` over every grid point (row by row), and
     /// `panel,curve,system,x,y,amplitude` over the fold curves (and the printed Eq. 36–37
     /// curves where traced) as `_folds`.

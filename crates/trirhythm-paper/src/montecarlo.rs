@@ -119,6 +119,35 @@ pub struct AmplitudePanel {
     pub runs: Vec<McRun>,
 }
 
+impl AmplitudePanel {
+    /// Each theory curve has one density per amplitude (or none, where undefined), finite;
+    /// each ensemble's edges increase and its densities and standard errors hold one finite
+    /// value ≥ 0 per bin.
+    pub fn validate(&self, field: &str) -> crate::validate::Valid {
+        use crate::validate::{edges, finite, len, non_negative, scalar};
+        for (i, (_, a, d)) in self.theory.iter().enumerate() {
+            let f = format!("{field}.theory[{i}]");
+            finite(&f, a)?;
+            if !d.is_empty() {
+                len(&f, d.len(), a.len(), "one density per amplitude")?;
+                non_negative(&f, d)?;
+            }
+        }
+        for (i, r) in self.runs.iter().enumerate() {
+            let f = format!("{field}.runs[{i}]");
+            edges(&format!("{f}.edges"), &r.edges)?;
+            let bins = r.edges.len() - 1;
+            let of = format!("{bins} bins of edges");
+            len(&format!("{f}.density"), r.density.len(), bins, &of)?;
+            non_negative(&format!("{f}.density"), &r.density)?;
+            len(&format!("{f}.stderr"), r.stderr.len(), bins, &of)?;
+            non_negative(&format!("{f}.stderr"), &r.stderr)?;
+            scalar(&format!("{f}.beyond"), r.beyond)?;
+        }
+        Ok(())
+    }
+}
+
 pub(crate) fn system_name(s: System) -> &'static str {
     match s {
         System::Fractional => "Eq. 1",

@@ -320,6 +320,19 @@ fn parse_range(s: &str) -> Result<(f64, f64)> {
 
 /// `critical-noise`.
 pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
+    // D is the variable searched over --d-range: a value given for it would be ignored
+    if let Some(kv) = args
+        .sim
+        .params
+        .params
+        .iter()
+        .find(|kv| kv.split_once('=').is_some_and(|(k, _)| k.trim() == "D"))
+    {
+        return bad(format!(
+            "--param {kv}: D is the noise intensity searched over --d-range; give its range \
+             there (--d-range START:STOP) instead"
+        ));
+    }
     let (base, problem, method, spec) = args.sim.setup()?;
     let (d_lo, d_hi) = parse_range(&args.d_range)?;
     // narrower than the library's [0, ∞)
@@ -371,6 +384,11 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
             let mut header =
                 vec!["trirhythm critical-noise: D_c where the LLE changes sign".to_string()];
             header.push(format!("params: {}", base.describe()));
+            header.push(format!(
+                "D: searched over [{}, {}] (the D of the params above is not used)",
+                num(d_lo),
+                num(d_hi)
+            ));
             header.extend(args.sim.describe(&spec));
             Csv::of(&views::critical_table(
                 &header,

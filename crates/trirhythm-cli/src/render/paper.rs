@@ -11,9 +11,9 @@
 //! Tests: `tests/figure_data.rs` (JSON round trip, `--from-data` byte-identical),
 //! `tests/pictures.rs`, `tests/report.rs`.
 
-use crate::error::bad;
+use crate::error::{bad, is_bad_input};
 use crate::io::progress::Bar;
-use crate::io::{write_atomic, Csv};
+use crate::io::{write_atomic, Csv, TemporaryDir};
 use crate::render::plot::{save, Heading, Picture, VerdictLine};
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
@@ -125,7 +125,42 @@ fn make<F: Slot + Picture>(
         Request::FromData(dir) => read_data::<F>(dir)?,
     };
     std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
-    let stem = stem(out_dir, F::NUMBER);
+    // the files are written into a staging directory beside them and moved into `out_dir`
+    // together once all are complete: a figure that fails leaves none of its files
+    let staging = TemporaryDir::create(&stem(out_dir, F::NUMBER))?;
+    let staged = stem(staging.path(), F::NUMBER);
+    let options = FigureOptions {
+        quick: file.quick,
+        variant: file.variant,
+    };
+    let from = match request {
+        Request::FromData(dir) => Some(stem(dir, F::NUMBER).with_extension("json")),
+        Request::Compute(_) => None,
+    };
+    let write = || write_files::<F>(file, &staged, data, &options, from.as_deref());
+    let (files, data) = match &from {
+        Some(path) => drawn_from(path, write)?,
+        None => write()?,
+    };
+    let files = publish(&files, out_dir)?;
+    drop(staging);
+    let (data, heading) = data;
+    if let Some(figures) = figures {
+        *F::slot(figures) = Some(data);
+    }
+    Ok(Made { files, heading })
+}
+
+/// Write a figure's files under `stem` (JSON when asked, CSV, PNG, SVG); returns the paths
+/// written, the data judged and the picture's heading. Data read `from` a file whose tables
+/// hold values no CSV may (NaN, ±∞ where not allowed) is bad input naming that file.
+fn write_files<F: Slot + Picture>(
+    file: DataFile<F>,
+    stem: &Path,
+    data: bool,
+    options: &FigureOptions,
+    from: Option<&Path>,
+) -> Result<(Vec<PathBuf>, (F, Heading))> {
     let mut files = Vec::new();
     if data {
         let path = stem.with_extension("json");
@@ -142,19 +177,69 @@ fn make<F: Slot + Picture>(
         files.push(path);
     }
     for table in file.data.tables() {
-        files.push(write_table(&stem, &table)?);
+        let csv = match (Csv::of(&table), from) {
+            (Ok(csv), _) => csv,
+            (Err(e), Some(path)) => {
+                return bad(format!(
+                    "--from-data: {}: the data holds values its tables cannot: {e:#}",
+                    path.display()
+                ))
+            }
+            (Err(e), None) => return Err(e),
+        };
+        files.push(write_table(stem, &table, &csv)?);
     }
-    let options = FigureOptions {
-        quick: file.quick,
-        variant: file.variant,
-    };
-    let (data, verdicts) = judge_figure(file.data, &options);
-    files.extend(save(&data, verdict_lines(&verdicts), &stem)?);
+    let (data, verdicts) = judge_figure(file.data, options);
+    files.extend(save(&data, verdict_lines(&verdicts), stem)?);
     let heading = data.heading();
-    if let Some(figures) = figures {
-        *F::slot(figures) = Some(data);
+    Ok((files, (data, heading)))
+}
+
+/// Draw data read from the file `path` (already checked by [`Figure::validate`]): should the
+/// drawing still refuse a value of it, or fail on it with a panic (a figure whose checks miss
+/// an inconsistency), that is bad input naming the file, reported without a backtrace, and
+/// nothing is written.
+fn drawn_from<T>(path: &Path, draw: impl FnOnce() -> Result<T>) -> Result<T> {
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let drawn = std::panic::catch_unwind(std::panic::AssertUnwindSafe(draw));
+    std::panic::set_hook(hook);
+    match drawn {
+        Ok(Err(e)) if is_bad_input(&e) => bad(format!(
+            "--from-data: {}: the data cannot be drawn: {e:#}",
+            path.display()
+        )),
+        Ok(result) => result,
+        Err(payload) => {
+            let why = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_default();
+            bad(format!(
+                "--from-data: {}: the data is inconsistent and cannot be drawn ({why}); write \
+                 it again with `figure N --data`",
+                path.display()
+            ))
+        }
     }
-    Ok(Made { files, heading })
+}
+
+/// Move the staged `files` into `dir` under their names; returns their new paths. Should one
+/// move fail, those already moved are removed again (all or none).
+fn publish(files: &[PathBuf], dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut moved: Vec<PathBuf> = Vec::new();
+    for f in files {
+        let to = dir.join(f.file_name().unwrap_or_default());
+        if let Err(e) = std::fs::rename(f, &to) {
+            for m in &moved {
+                let _ = std::fs::remove_file(m);
+            }
+            return Err(e).with_context(|| format!("moving {} into place", to.display()));
+        }
+        moved.push(to);
+    }
+    Ok(moved)
 }
 
 /// The verdicts on a figure's claims as short lines for its picture, each at most about two
@@ -464,17 +549,18 @@ fn first_clause(text: &str) -> String {
     out
 }
 
-/// Write one of a figure's tables as `stem{suffix}.csv` (notes as `#` lines); refuses a table
-/// with NaN, or ±∞ outside the columns that allow it. Returns the path written.
-fn write_table(stem: &Path, table: &Table) -> Result<PathBuf> {
+/// Write one of a figure's tables, `csv` (its [`Csv::of`]), as `stem{suffix}.csv`. Returns the
+/// path written.
+fn write_table(stem: &Path, table: &Table, csv: &str) -> Result<PathBuf> {
     let name = stem.file_name().unwrap_or_default().to_string_lossy();
     let path = stem.with_file_name(format!("{name}{}.csv", table.suffix));
-    write_atomic(&path, Csv::of(table)?.as_bytes())?;
+    write_atomic(&path, csv.as_bytes())?;
     Ok(path)
 }
 
-/// Read `dir/figNN.json` for figure `F` (bad input when missing, malformed or of another
-/// figure).
+/// Read `dir/figNN.json` for figure `F` (bad input when missing, malformed, of another
+/// figure, written by another version of trirhythm, or inconsistent in itself: see
+/// [`Figure::validate`]).
 fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
     let path = stem(dir, F::NUMBER).with_extension("json");
     let text = std::fs::read_to_string(&path).or_else(|e| {
@@ -486,11 +572,12 @@ fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
         ))
     })?;
     #[derive(Deserialize)]
-    struct Number {
+    struct Stamp {
         figure: u32,
+        trirhythm: Option<String>,
     }
-    match serde_json::from_str::<Number>(&text) {
-        Ok(n) if n.figure == F::NUMBER => {}
+    let stamp = match serde_json::from_str::<Stamp>(&text) {
+        Ok(n) if n.figure == F::NUMBER => n,
         Ok(n) => {
             return bad(format!(
                 "--from-data: {} holds the data of figure {}, not {}",
@@ -505,36 +592,83 @@ fn read_data<F: Figure>(dir: &Path) -> Result<DataFile<F>> {
                 path.display()
             ))
         }
+    };
+    let this = env!("CARGO_PKG_VERSION");
+    if let Some(version) = stamp.trirhythm.filter(|v| v != this) {
+        return bad(format!(
+            "--from-data: {}: field `trirhythm` is {version:?}, but this is trirhythm {this}; \
+             figure data is read only by the version that wrote it (write it again with \
+             `figure {} --data`)",
+            path.display(),
+            F::NUMBER
+        ));
     }
-    serde_json::from_str(&text).or_else(|e| {
+    let value: serde_json::Value = serde_json::from_str(&text).or_else(|e| {
+        bad(format!(
+            "--from-data: {} is not figure data ({e})",
+            path.display()
+        ))
+    })?;
+    if let Some((field, x)) = beyond(&value["data"], "data") {
+        return bad(format!(
+            "--from-data: {}: field `{field}` is {x:e}, beyond ±{MAX_MAGNITUDE:e} (no quantity \
+             of a figure comes near; such a value cannot be drawn)",
+            path.display()
+        ));
+    }
+    let file: DataFile<F> = serde_json::from_str(&text).or_else(|e| {
         bad(format!(
             "--from-data: {} is not the data of figure {} as this version writes it ({e})",
             path.display(),
             F::NUMBER
         ))
-    })
+    })?;
+    if let Err(e) = file.data.validate() {
+        return bad(format!(
+            "--from-data: {}: field `data.{}` is inconsistent: {}; write it again with \
+             `figure {} --data`",
+            path.display(),
+            e.field,
+            e.why,
+            F::NUMBER
+        ));
+    }
+    Ok(file)
 }
 
-/// The options `DIR/figNN.json` was computed with, without reading its data: `None` when the
-/// file does not exist; bad input when it exists but is not figure data.
-pub fn data_options(dir: &Path, n: u32) -> Result<Option<FigureOptions>> {
-    let path = stem(dir, n).with_extension("json");
-    if !path.exists() {
-        return Ok(None);
+/// The largest magnitude a number of figure data may have: far beyond every quantity of the
+/// paper's figures, and far enough below `f64::MAX` that a difference or a scale of two of them
+/// stays finite.
+const MAX_MAGNITUDE: f64 = 1e100;
+
+/// The first number of `v` (at path `at`) beyond ±[`MAX_MAGNITUDE`], with its path.
+fn beyond(v: &serde_json::Value, at: &str) -> Option<(String, f64)> {
+    match v {
+        serde_json::Value::Number(n) => n
+            .as_f64()
+            .filter(|x| x.abs() > MAX_MAGNITUDE)
+            .map(|x| (at.to_string(), x)),
+        serde_json::Value::Array(a) => a
+            .iter()
+            .enumerate()
+            .find_map(|(i, x)| beyond(x, &format!("{at}[{i}]"))),
+        serde_json::Value::Object(m) => m.iter().find_map(|(k, x)| beyond(x, &format!("{at}.{k}"))),
+        _ => None,
     }
-    #[derive(Deserialize)]
-    struct Head {
-        figure: u32,
-        variant: Variant,
-        quick: bool,
-    }
-    let text = std::fs::read_to_string(&path)
-        .or_else(|e| bad(format!("--from-data: cannot read {} ({e})", path.display())))?;
-    match serde_json::from_str::<Head>(&text) {
-        Ok(h) if h.figure == n => Ok(Some(FigureOptions {
-            quick: h.quick,
-            variant: h.variant,
-        })),
+}
+
+/// What a `figNN.json` says of itself, before its data is read.
+#[derive(Deserialize)]
+struct Head {
+    figure: u32,
+    variant: Variant,
+    quick: bool,
+}
+
+/// The head of `path` (holding `text`), which must be figure `n`'s.
+fn head(path: &Path, text: &str, n: u32) -> Result<Head> {
+    match serde_json::from_str::<Head>(text) {
+        Ok(h) if h.figure == n => Ok(h),
         Ok(h) => bad(format!(
             "--from-data: {} holds the data of figure {}, not {n}",
             path.display(),
@@ -545,6 +679,22 @@ pub fn data_options(dir: &Path, n: u32) -> Result<Option<FigureOptions>> {
             path.display()
         )),
     }
+}
+
+/// The options `DIR/figNN.json` was computed with, without reading its data: `None` when the
+/// file does not exist; bad input when it exists but is not figure data.
+pub fn data_options(dir: &Path, n: u32) -> Result<Option<FigureOptions>> {
+    let path = stem(dir, n).with_extension("json");
+    if !path.exists() {
+        return Ok(None);
+    }
+    let text = std::fs::read_to_string(&path)
+        .or_else(|e| bad(format!("--from-data: cannot read {} ({e})", path.display())))?;
+    let h = head(&path, &text, n)?;
+    Ok(Some(FigureOptions {
+        quick: h.quick,
+        variant: h.variant,
+    }))
 }
 
 #[cfg(test)]

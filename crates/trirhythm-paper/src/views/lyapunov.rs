@@ -90,14 +90,26 @@ pub fn lle_table(notes: &[String], r: &LyapunovResult) -> Table {
     let mut notes = notes.to_vec();
     notes.push(format!("lle: {}", lle(r)));
     notes.push(
-        "columns: running estimate (time since the transient, mean over paths, standard error)"
+        "columns: running estimate (time since the transient, mean over paths, standard error); \
+         an empty lle is undefined there (JSON null: the window so far too short, or no \
+         realisation left to average), -inf where every copy merged with its reference"
             .into(),
     );
     let mut t = Table::new(&notes, &["t", "lle", "stderr"]).allow_infinity("lle");
     for q in &r.running {
-        t.row([num(q.t), num(q.value), cell(q.stderr)]);
+        t.row([num(q.t), lle_cell(q.value), cell(q.stderr)]);
     }
     t
+}
+
+/// An exponent's CSV cell: the number, `-inf` when every copy merged, empty when undefined
+/// (NaN: too short a window, nothing to average), as JSON writes `null`.
+fn lle_cell(v: f64) -> String {
+    if v.is_nan() {
+        String::new()
+    } else {
+        num(v)
+    }
 }
 
 /// The exponent at each value of `key`: `KEY,lle,stderr,merged,unmerged,unmerged_stderr`.
@@ -105,7 +117,7 @@ pub fn lle_sweep_table(notes: &[String], key: &str, rows: &[(f64, LyapunovResult
     let mut notes = notes.to_vec();
     notes.push(
         "merged: realisations whose copy merged with its reference (then lle = -inf); \
-         unmerged: the mean over the others"
+         unmerged: the mean over the others; an empty cell is undefined (JSON null)"
             .into(),
     );
     let columns = [
@@ -120,7 +132,7 @@ pub fn lle_sweep_table(notes: &[String], key: &str, rows: &[(f64, LyapunovResult
     for (v, r) in rows {
         t.row([
             num(*v),
-            num(r.lle.value),
+            lle_cell(r.lle.value),
             cell(r.lle.stderr),
             r.merged.to_string(),
             cell(r.unmerged.value),
