@@ -101,9 +101,10 @@ impl Command {
 }
 
 fn run(cli: Cli) -> Result<()> {
-    // an output that cannot be written is refused before any work starts
+    // an output that cannot be written (a directory, a missing or read-only directory) is
+    // refused before any work starts, for every command
     if let Some(out) = cli.command.out() {
-        io::files::check_destination(out, "--out")?;
+        io::files::check_writable(out, "--out")?;
     }
     if let Command::Map(a) = &cli.command {
         if let Some(f) = &a.folds_out {

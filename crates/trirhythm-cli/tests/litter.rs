@@ -132,6 +132,16 @@ fn an_unwritable_destination_is_refused_before_the_work() {
             "mu0=0.001:0.3",
         ],
         &["ensemble", "--paths", "64", "--t-end", "20000"],
+        &["lyapunov", "--paths", "64", "--t-end", "20000"],
+        &[
+            "critical-noise",
+            "--d-range",
+            "0.01:2",
+            "--paths",
+            "16",
+            "--t-end",
+            "5000",
+        ],
     ];
     for case in cases {
         let mut args = case.to_vec();
