@@ -378,14 +378,7 @@ fn a_report_redraws_from_its_own_figures() {
     let scratch = scratch_dir("report-redraw");
     let again = scratch.join("again");
     let figures = out.join("figures");
-    let o = run(&[
-        "report",
-        "--from-data",
-        figures.to_str().unwrap(),
-        "--out-dir",
-        again.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    report_from(&figures, &again);
     let verdicts = |d: &Path| -> Value {
         let v: Value =
             serde_json::from_str(&std::fs::read_to_string(d.join("verdicts.json")).unwrap())
