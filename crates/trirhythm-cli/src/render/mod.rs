@@ -4,6 +4,8 @@
 
 pub mod claims_table;
 pub mod figures;
+pub mod legend;
 pub mod paper;
 pub mod plot;
 pub mod report;
+pub mod series;
