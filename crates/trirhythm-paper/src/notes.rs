@@ -126,11 +126,18 @@ pub fn num(v: f64) -> String {
 
 /// A number for prose (notes, messages) to `digits` significant digits, trailing zeros dropped:
 /// 0.40800000000000003 → "0.408", −3.6500952558839547e-4 → "-0.000365" (at 3), exponent
-/// notation outside [1e-4, 1e9). Data cells use [`num`] (round-trip) instead.
+/// notation outside [1e-4, 1e9); in words where the number is not finite: "undefined" for
+/// NaN, "∞" and "−∞" (prose never prints `nan`). Data cells use [`num`] (round-trip) instead.
 pub fn sig(v: f64, digits: usize) -> String {
     let v = v + 0.0;
     let a = v.abs();
-    if !v.is_finite() || v == 0.0 {
+    if v.is_nan() {
+        return "undefined".into();
+    }
+    if v.is_infinite() {
+        return if v > 0.0 { "∞" } else { "−∞" }.into();
+    }
+    if v == 0.0 {
         return num(v);
     }
     let digits = digits.max(1);
@@ -172,7 +179,10 @@ mod tests {
         assert_eq!(sig(2.5e12, 2), "2.5e12");
         assert_eq!(sig(0.0, 3), "0");
         assert_eq!(sig(-0.0, 3), "0");
-        assert_eq!(sig(f64::NAN, 3), "nan");
+        // prose never prints `nan`: non-finite numbers in words
+        assert_eq!(sig(f64::NAN, 3), "undefined");
+        assert_eq!(sig(f64::INFINITY, 3), "∞");
+        assert_eq!(sig(f64::NEG_INFINITY, 3), "−∞");
         assert_eq!(sig(2.0, 4), "2");
     }
 }

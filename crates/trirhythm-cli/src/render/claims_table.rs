@@ -5,7 +5,7 @@
 //! code decided rather than one typed by hand. Tested in `tests/report.rs` (every claim has a
 //! row, the verdict of each row is the page's).
 
-use super::report::{describe, spell_undefined};
+use super::report::spell_undefined;
 use trirhythm_paper::verdict::claims::Verdicts;
 use trirhythm_paper::verdict::Verdict;
 
@@ -50,7 +50,7 @@ pub fn claims_markdown(verdicts: &Verdicts, source: &str) -> String {
             }
             other => format!("**{}**", other.tag()),
         };
-        let numbers: Vec<String> = d.deciding(1).into_iter().map(describe).collect();
+        let numbers: Vec<String> = d.deciding(1).into_iter().map(|c| c.describe()).collect();
         out.push_str(&format!(
             "| `{}`: {} | {} | {} | {} |\n",
             cell(&v.claim.id),

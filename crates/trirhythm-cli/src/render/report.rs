@@ -16,7 +16,7 @@ use crate::render::plot::Heading;
 use serde::{Deserialize, Serialize};
 use trirhythm_paper::notes::sig;
 use trirhythm_paper::verdict::claims::{ClaimVerdict, Verdicts};
-use trirhythm_paper::verdict::{Check, Uncertainty, Verdict};
+use trirhythm_paper::verdict::Verdict;
 
 /// The paper the report judges.
 pub const PAPER_TITLE: &str = "Managing trirhythmicity and bifurcation in the fractional \
@@ -135,17 +135,10 @@ pub fn escape(text: &str) -> String {
     out
 }
 
-/// A number to three significant digits; "undefined" for NaN, "∞" and "−∞" for infinities.
+/// A number to three significant digits, in words where it is not finite (the paper crate's
+/// [`sig`]).
 pub fn number(v: f64) -> String {
-    if v.is_nan() {
-        "undefined".into()
-    } else if v == f64::INFINITY {
-        "∞".into()
-    } else if v == f64::NEG_INFINITY {
-        "−∞".into()
-    } else {
-        sig(v, 3)
-    }
+    sig(v, 3)
 }
 
 /// `text` with every stand-alone `nan` or `NaN` (a number printed inside a library's sentence)
@@ -172,27 +165,6 @@ pub fn spell_undefined(text: &str) -> String {
         }
     }
     out
-}
-
-/// A check in words, as `Check::describe` gives it, with undefined numbers spelled out.
-pub fn describe(c: &Check) -> String {
-    let value = match c.value.uncertainty {
-        Uncertainty::Exact => format!("{} (exact)", number(c.value.value)),
-        Uncertainty::StdErr { se, .. } => format!("{} ± {}", number(c.value.value), number(se)),
-        Uncertainty::Bracket { lo, hi } => format!(
-            "{} in [{}, {}]",
-            number(c.value.value),
-            number(lo),
-            number(hi)
-        ),
-    };
-    format!(
-        "{}: {value}, {} = {} against {}",
-        spell_undefined(&c.what),
-        c.statistic,
-        number(c.statistic_value),
-        number(c.threshold)
-    )
 }
 
 /// `figures/fig04.png`-style anchor of figure `n`.
@@ -438,7 +410,7 @@ fn numbers_cell(c: &ClaimVerdict) -> String {
     let d = &c.decision;
     let mut h = String::from("<ul class=\"checks\">");
     for check in d.deciding(3) {
-        h.push_str(&format!("<li>{}</li>", escape(&describe(check))));
+        h.push_str(&format!("<li>{}</li>", escape(&check.describe())));
     }
     h.push_str("</ul>");
     let [f, a, n, u] = d.tally;
@@ -551,7 +523,7 @@ fn detail(c: &ClaimVerdict) -> String {
     if let Verdict::Undetermined { why } = &d.verdict {
         parts.push(format!("({})", spell_undefined(why)));
     }
-    let shown: Vec<String> = d.deciding(2).into_iter().map(describe).collect();
+    let shown: Vec<String> = d.deciding(2).into_iter().map(|c| c.describe()).collect();
     if !shown.is_empty() {
         parts.push(shown.join("; "));
     }
