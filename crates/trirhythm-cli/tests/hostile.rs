@@ -251,6 +251,71 @@ fn end_time_is_kept_or_refused() {
     assert_eq!(rows.len(), 1 + 5, "header and t = 0, 0.25, …, 1");
 }
 
+/// A step that cannot resolve the problem is refused before any work, naming `--dt` and the
+/// largest step the guard allows; a coarse one runs with its warning in the output.
+#[test]
+fn a_step_that_cannot_be_right_is_refused() {
+    for args in [
+        &[
+            "ensemble", "--preset", "fig13a", "--paths", "2", "--t-end", "100", "--dt", "1",
+        ][..],
+        &[
+            "simulate", "--preset", "fig13b", "--u0", "14.9", "--t-end", "3", "--dt", "0.3",
+        ],
+        &[
+            "lyapunov", "--preset", "fig17a", "--t-end", "10", "--dt", "0.1", "--param", "omega0=7",
+        ],
+    ] {
+        let out = run(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.starts_with("error: --dt"), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("allowed range is") && stderr.contains("here"),
+            "{stderr}"
+        );
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+    // coarse but not wrong: the run goes on and says so, in JSON and in the CSV header
+    let doc = common::ok_json(&[
+        "ensemble",
+        "--preset",
+        "fig2i",
+        "--paths",
+        "2",
+        "--t-end",
+        "100",
+        "--burn-in",
+        "10",
+        "--dt",
+        "0.5",
+        "--param",
+        "D=0.1",
+        "--param",
+        "tau=1",
+        "--format",
+        "json",
+    ]);
+    let w = doc["step_warnings"].as_array().unwrap();
+    assert_eq!(w.len(), 2, "{w:?}");
+    assert!(w[0].as_str().unwrap().contains("halving the step"), "{w:?}");
+    assert!(
+        w[1].as_str().unwrap().contains("2.000 steps per noise"),
+        "{w:?}"
+    );
+    let text = ok_stdout(&[
+        "simulate", "--preset", "fig13a", "--param", "tau=0.05", "--t-end", "1",
+    ]);
+    assert!(text
+        .lines()
+        .any(|l| l.starts_with("# warning: dt = 0.01: 5.000 steps per noise")));
+    // the default step on the paper's set carries no warning
+    let doc = common::ok_json(&[
+        "simulate", "--preset", "fig13a", "--t-end", "1", "--format", "json",
+    ]);
+    assert_eq!(doc["step_warnings"], serde_json::json!([]));
+}
+
 /// Messages use the user's names and signs, and negative numbers reach the flag's own check.
 #[test]
 fn messages_name_what_the_user_typed() {

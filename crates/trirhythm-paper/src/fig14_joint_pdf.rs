@@ -86,7 +86,13 @@ impl Figure for Fig14 {
         for (i, r) in RS.into_iter().enumerate() {
             crate::step(monitor, i, RS.len())?;
             let p = pre.params.with("r", r)?;
-            let res = ensemble(monitor, &p, ctx.variant, System::Fractional, sz, bins)?;
+            let (res, step_warnings) =
+                ensemble(monitor, &p, ctx.variant, System::Fractional, sz, bins)?;
+            notes.extend(
+                step_warnings
+                    .iter()
+                    .map(|w| format!("r = {r}: step warning: {w}")),
+            );
             let pdf = Theory::new(&p, ctx.variant)?.amplitude_pdf()?;
             let j = &res.joint;
             let (du, dv) = (j.u_edges[1] - j.u_edges[0], j.v_edges[1] - j.v_edges[0]);

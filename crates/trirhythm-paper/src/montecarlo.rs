@@ -12,6 +12,7 @@ use crate::notes::num;
 use crate::table::Table;
 use crate::Monitor;
 use serde::{Deserialize, Serialize};
+use trirhythm::analysis::check_step;
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, Wells};
 use trirhythm::analysis::versus::{compare, theory_layout, TheoryComparison};
 use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem, System};
@@ -106,6 +107,10 @@ pub struct McRun {
     pub ess: f64,
     /// Distances to each variant's theory.
     pub distances: Vec<Distance>,
+    /// The step guard's warnings for this ensemble's Δt
+    /// ([`trirhythm::analysis::check_step`]); empty when the step resolves the problem.
+    #[serde(default)]
+    pub step_warnings: Vec<String>,
 }
 
 /// One P(A) panel: theory curves and ensembles.
@@ -156,7 +161,8 @@ pub(crate) fn system_name(s: System) -> &'static str {
     }
 }
 
-/// An ensemble of `system` for `params` (starts and wells from the theory of `variant`).
+/// An ensemble of `system` for `params` (starts and wells from the theory of `variant`), with
+/// the step guard's warnings for its Δt (a step the guard refuses is an error).
 pub fn ensemble(
     monitor: &dyn Monitor,
     params: &Params,
@@ -164,7 +170,7 @@ pub fn ensemble(
     system: System,
     sizes: Sizes,
     joint_bins: usize,
-) -> Result<EnsembleResult> {
+) -> Result<(EnsembleResult, Vec<String>)> {
     let layout = theory_layout(params, variant).ok_or_else(|| Error::Undefined {
         what: "the theory's layout of starts and wells",
         why: format!("no stable cycle or mode for {}", params.describe()),
@@ -190,12 +196,14 @@ pub fn ensemble(
         ..Default::default()
     };
     monitor.check()?;
-    run_ensemble(
+    let warnings = check_step(&problem, &method)?.require()?.warnings();
+    let result = run_ensemble(
         &problem,
         &method,
         &spec,
         &trirhythm::monitor::Relay(monitor),
-    )
+    )?;
+    Ok((result, warnings))
 }
 
 /// A P(A) panel: the theory of both variants and ensembles of each of `systems`.
@@ -211,7 +219,13 @@ pub fn amplitude_panel(
     let mut notes = Vec::new();
     let mut a_max = 0.0f64;
     for &system in systems {
-        let r = ensemble(monitor, params, variant, system, sizes, 8)?;
+        let (r, step_warnings) = ensemble(monitor, params, variant, system, sizes, 8)?;
+        notes.extend(step_warnings.iter().map(|w| {
+            format!(
+                "{caption}, MC of {}: step warning: {w}",
+                system_name(system)
+            )
+        }));
         a_max = a_max.max(*r.amplitude.edges.last().unwrap_or(&1.0));
         let mut distances = Vec::new();
         for (v, c) in comparisons(params, &r, 1) {
@@ -267,6 +281,7 @@ pub fn amplitude_panel(
             r_hat: st.r_hat,
             ess: st.ess,
             distances,
+            step_warnings,
         });
     }
     let mut theory = Vec::new();

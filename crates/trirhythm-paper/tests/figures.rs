@@ -246,3 +246,35 @@ fn fig19_is_a_sign_map_of_every_value_and_start() {
         .sum();
     assert_eq!(rows, points, "every cell is a row");
 }
+
+/// Every preset passes the step guard at the step its figure simulates with: Δt = 0.01, or
+/// for the Lyapunov figures the step that resolves τ ([`trirhythm_paper::lle::dt_for`]), with
+/// no warning.
+#[test]
+fn every_preset_passes_the_step_guard_at_its_figure_step() {
+    use trirhythm::analysis::check_step;
+    use trirhythm::engine::{PredictorCorrector, Problem};
+    for preset in trirhythm::model::presets() {
+        let p = &preset.params;
+        let lyapunov = ["fig17", "fig18", "fig19"]
+            .iter()
+            .any(|f| preset.name.starts_with(f));
+        let dt = if lyapunov {
+            trirhythm_paper::lle::dt_for(p.correlation_time)
+        } else {
+            0.01
+        };
+        let method = PredictorCorrector {
+            dt,
+            ..Default::default()
+        };
+        let r = check_step(&Problem::from_params(p).unwrap(), &method).unwrap();
+        assert!(r.refusal().is_none(), "{}: {r:?}", preset.name);
+        assert!(
+            r.warnings().is_empty(),
+            "{}: {:?}",
+            preset.name,
+            r.warnings()
+        );
+    }
+}

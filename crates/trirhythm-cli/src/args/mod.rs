@@ -297,3 +297,17 @@ impl ModelArgs {
         }
     }
 }
+
+/// The step guard, before any work: a `--dt` that cannot resolve the problem's time scales is
+/// refused (the library's [`trirhythm::analysis::check_step`]: fewer than 10 steps per period
+/// 2π/ω1, or a step-halving deviation above 10 % at the amplitudes the run visits); a coarse
+/// one runs, and its warnings are printed on standard error and returned for the output.
+pub fn guard_step(problem: &Problem, method: &PredictorCorrector) -> Result<Vec<String>> {
+    let warnings = trirhythm::analysis::check_step(problem, method)?
+        .require()?
+        .warnings();
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(warnings)
+}

@@ -7,7 +7,7 @@
 //! same command continues from them and gives a bit-identical result. Keys, columns and flags
 //! are a contract: keep them.
 
-use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs};
+use crate::args::{guard_step, ImpactMemoryArg, ModelArgs, ParamArgs};
 use crate::error::bad;
 use crate::io::{emit, params_json, progress, Csv, Report};
 use anyhow::{Context, Result};
@@ -103,6 +103,9 @@ pub struct EnsembleSetup {
     pub spec: EnsembleSpec,
     /// What was chosen where the user left a value open (printed with the result).
     pub choices: Vec<String>,
+    /// The step guard's warnings (a coarse `--dt`), carried in the output; filled by
+    /// [`guard_step`] once the sizes are valid.
+    pub warnings: Vec<String>,
 }
 
 impl EnsembleArgs {
@@ -143,6 +146,7 @@ impl EnsembleArgs {
         let starts: Vec<(f64, f64)> = starts.iter().map(|&u| (u, 0.0)).collect();
         let problem = self.model.problem(&params)?.with_starts(&starts)?;
         Ok(EnsembleSetup {
+            warnings: vec![],
             problem,
             params,
             method,
@@ -172,6 +176,7 @@ struct Document<'a> {
     params: Value,
     method: &'a str,
     choices: &'a [String],
+    step_warnings: &'a [String],
     wall_time_s: f64,
     #[serde(flatten)]
     result: &'a EnsembleResult,
@@ -313,11 +318,12 @@ impl Monitor<PathStats> for Watch<'_> {
 
 /// Run `ensemble`.
 pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
-    let s = args.setup()?;
+    let mut s = args.setup()?;
     let method = method_line(args);
     // every size, step and range is checked (no path run) before the checkpoint directory or
     // anything in it is created, so that bad input leaves nothing behind
     run_paths(&s.problem, &s.method, &s.spec, &[], &Report(|_, _| {}))?;
+    s.warnings = guard_step(&s.problem, &s.method)?;
     if let Some(out) = &args.out {
         crate::io::files::check_writable(out, "--out")?;
     }
@@ -376,6 +382,7 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
                 params: params_json(&s.params),
                 method: &method,
                 choices: &s.choices,
+                step_warnings: &s.warnings,
                 wall_time_s: wall,
                 result: &r,
                 theory: views::theory_entries(&theory),
@@ -401,6 +408,7 @@ fn csv_text(
         method.to_string(),
     ];
     notes.extend(s.choices.iter().map(|c| format!("chosen: {c}")));
+    notes.extend(s.warnings.iter().map(|w| format!("warning: {w}")));
     notes.push(views::ensemble(r, theory, wall));
     Csv::of(&views::density_table(&notes, &r.amplitude))
 }

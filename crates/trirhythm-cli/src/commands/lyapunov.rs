@@ -3,7 +3,9 @@
 //! critical-noise`: the noise D_c where it changes sign. Keys, columns and flags are a
 //! contract: keep them.
 
-use crate::args::{parse_axis, ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat};
+use crate::args::{
+    guard_step, parse_axis, ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat,
+};
 use crate::error::{allowed, bad};
 use crate::io::progress::Bar;
 use crate::io::{emit, num, params_json, pretty, progress, Csv, Report};
@@ -186,6 +188,7 @@ struct Run<'a> {
     seed: u64,
     separation: f64,
     renormalise_every: u64,
+    step_warnings: &'a [String],
     #[serde(flatten)]
     result: &'a LyapunovResult,
 }
@@ -193,9 +196,11 @@ struct Run<'a> {
 /// `lyapunov`.
 pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
     let (base, problem, method, spec) = args.sim.setup()?;
+    let warnings = guard_step(&problem, &method)?;
     let mut header = vec!["trirhythm lyapunov: largest Lyapunov exponent".to_string()];
     header.push(format!("params: {}", base.describe()));
     header.extend(args.sim.describe(&spec));
+    header.extend(warnings.iter().map(|w| format!("warning: {w}")));
     if let Some(sweep) = &args.sweep {
         return sweep_lyapunov(args, sweep, header, &base, &problem, &method, &spec);
     }
@@ -220,6 +225,7 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
             seed: spec.seed,
             separation: spec.separation,
             renormalise_every: spec.renormalise_every,
+            step_warnings: &warnings,
             result: &r,
         })?,
     };
@@ -238,6 +244,13 @@ fn sweep_lyapunov(
 ) -> Result<()> {
     let (key, values) = parse_sweep(sweep)?;
     let points = sweep_params(base, Some(&key), &values)?;
+    // every point's step is checked before the first is computed
+    let mut header = header;
+    for (p, v) in points.iter().zip(&values) {
+        for w in guard_step(&problem.with_params(p)?, method)? {
+            header.push(format!("warning at {key} = {}: {w}", num(*v)));
+        }
+    }
     let bar = progress(values.len() as u64, "lyapunov sweep");
     let mut rows = Vec::new();
     for (i, p) in points.iter().enumerate() {
@@ -253,6 +266,10 @@ fn sweep_lyapunov(
             "method": args.sim.method.name(),
             "sweep": key,
             "window": spec.length,
+            "step_warnings": header
+                .iter()
+                .filter(|h| h.starts_with("warning"))
+                .collect::<Vec<_>>(),
             "points": rows
                 .iter()
                 .map(|(value, result)| SweepPoint { value: *value, result })
@@ -335,6 +352,8 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
     }
     let (base, problem, method, spec) = args.sim.setup()?;
     let (d_lo, d_hi) = parse_range(&args.d_range)?;
+    // the step is checked with the noise of the range's end (the τ rule needs D > 0)
+    let warnings = guard_step(&problem.with_params(&base.with("D", d_hi)?)?, &method)?;
     // narrower than the library's [0, ∞)
     if !(args.z >= 0.0 && args.z <= 10.0) {
         return bad(format!("--z = {}: allowed range is [0, 10]", num(args.z)));
@@ -357,6 +376,15 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
         None => (None, vec![f64::NAN]),
     };
     let points = sweep_params(&base, key.as_deref(), &values)?;
+    let mut warnings = warnings;
+    if let Some(k) = &key {
+        for (p, v) in points.iter().zip(&values) {
+            let point = problem.with_params(&p.with("D", d_hi)?)?;
+            for w in guard_step(&point, &method)? {
+                warnings.push(format!("at {k} = {}: {w}", num(*v)));
+            }
+        }
+    }
     let per_point = args.grid.saturating_add(args.refinements) as u64;
     let bar = progress(
         per_point.saturating_mul(points.len() as u64),
@@ -390,6 +418,7 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
                 num(d_hi)
             ));
             header.extend(args.sim.describe(&spec));
+            header.extend(warnings.iter().map(|w| format!("warning: {w}")));
             Csv::of(&views::critical_table(
                 &header,
                 &search,
@@ -403,6 +432,7 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
             "window": spec.length,
             "paths": spec.paths,
             "d_range": [d_lo, d_hi],
+            "step_warnings": warnings,
             "sweep": key,
             "results": found
                 .iter()

@@ -5,7 +5,7 @@
 //! header lines and the summary on standard error, or one JSON object with the summary and the
 //! columns. Flags, keys and column names are a contract: keep them.
 
-use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs, SimFormat};
+use crate::args::{guard_step, ImpactMemoryArg, ModelArgs, ParamArgs, SimFormat};
 use crate::error::bad;
 use crate::io::{emit, jvec, num, params_json, progress, Report, Stream};
 use anyhow::{Context, Result};
@@ -62,6 +62,8 @@ pub struct Setup {
     pub problem: Problem,
     pub method: PredictorCorrector,
     pub options: Options,
+    /// The step guard's warnings (a coarse `--dt`), carried in the output.
+    pub warnings: Vec<String>,
 }
 
 impl SimulateArgs {
@@ -79,10 +81,14 @@ impl SimulateArgs {
             ..Default::default()
         };
         let problem = self.model.problem(&p)?.with_start(self.u0, self.v0)?;
+        method.validate()?;
+        options.steps(method.dt)?;
+        let warnings = guard_step(&problem, &method)?;
         Ok(Setup {
             problem,
             method,
             options,
+            warnings,
         })
     }
 }
@@ -174,6 +180,7 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
         let mut m = serde_json::Map::new();
         m.insert("params".into(), params_json(s.problem.params()));
         m.insert("method".into(), json!(method_line(args)));
+        m.insert("step_warnings".into(), json!(s.warnings));
         m.insert("summary".into(), json!(PathSummary::of(&tr, wall)));
         m.insert("t".into(), jvec(&tr.t));
         m.insert("U".into(), jvec(&tr.u));
@@ -212,6 +219,9 @@ fn stream_csv(
     writeln!(w, "# trirhythm simulate: {steps} steps")?;
     writeln!(w, "# params: {}", s.problem.params().describe())?;
     writeln!(w, "# {}", method_line(args))?;
+    for warning in &s.warnings {
+        writeln!(w, "# warning: {warning}")?;
+    }
     writeln!(w, "{}", if eta { "t,U,V,eta" } else { "t,U,V" })?;
     let mut rows = CsvRows {
         out: w,

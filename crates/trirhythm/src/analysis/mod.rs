@@ -1,12 +1,14 @@
 //! Analyses of simulated paths: recurrence quantification (Eq. 6–7), ensembles with their
 //! stationary statistics and diagnosis, the averaged theory tested against them, oscillation
 //! (Hopf) boundaries by simulation, averaging and exact linearisation, and the largest Lyapunov
-//! exponent with frozen noise and the critical noise.
+//! exponent with frozen noise and the critical noise; the step guard at the amplitudes a run
+//! visits.
 
 pub mod ensemble;
 pub mod lyapunov;
 pub mod oscillation;
 pub mod recurrence;
+pub mod resolution;
 pub mod versus;
 
 pub use ensemble::{
@@ -20,6 +22,7 @@ pub use oscillation::{
     Plane, Search,
 };
 pub use recurrence::{RecurrenceMatrix, RecurrenceThreshold};
+pub use resolution::check_step;
 pub use versus::{compare, escape_time, theory_layout, TheoryComparison, TheoryLayout};
 
 /// `paths` are indices in 0..`n` of a driver's paths, none asked twice (the pieces of a run that

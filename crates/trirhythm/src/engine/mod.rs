@@ -21,6 +21,7 @@ pub mod kernel;
 mod memory;
 pub mod noise;
 mod problem;
+pub mod resolution;
 mod stepper;
 
 pub(crate) use drivers::whole_steps;
@@ -36,5 +37,6 @@ pub use problem::{
     Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, Problem, System,
     MAX_AMPLITUDE_PERIODS, MAX_DT, MAX_STARTS, MAX_WINDOW,
 };
+pub use resolution::Resolution;
 pub(crate) use stepper::{fresh_history, Tangent};
 pub use stepper::{Impact, StepEvents, Stepper, MAX_DIRECT_STEPS};

@@ -97,6 +97,9 @@ pub fn draw_amplitude_panel<DB: Backend>(
     if !stationary {
         caption.push_str("; MC NOT stationary");
     }
+    if p.runs.iter().any(|r| !r.step_warnings.is_empty()) {
+        caption.push_str("; Δt coarse (notes)");
+    }
     let c = chart(area, &caption, 0.0..x_max, 0.0..y_max * 1.08, "A", "P(A)")?;
     for (i, (_, xs, ys)) in p.theory.iter().enumerate() {
         let pts: Vec<(f64, f64)> = xs.iter().copied().zip(ys.iter().copied()).collect();
