@@ -85,3 +85,56 @@ pub fn in_flags(err: anyhow::Error) -> anyhow::Error {
         None => err,
     }
 }
+
+/// The allowed range of every whole-number flag, per command (`*`: every command that has the
+/// flag), as the command's own check states it: clap refuses `--every -1` or `--paths 1e3`
+/// before that check runs, and its message ("invalid digit found in string") gives no range.
+pub const WHOLE_NUMBER_FLAGS: &[(&str, &str, &str)] = &[
+    ("ensemble", "--paths", "1 to 1000000"),
+    ("lyapunov", "--paths", "1 to 100000"),
+    ("critical-noise", "--paths", "1 to 100000"),
+    ("*", "--seed", "0 to 18446744073709551615"),
+    ("*", "--every", "1 or more"),
+    ("*", "--sample-every", "1 or more"),
+    ("*", "--bins", "2 to 10000"),
+    ("*", "--joint-bins", "2 to 1000"),
+    ("*", "--renormalise-every", "1 to 1000000 steps"),
+    ("*", "--grid", "2 to 1000"),
+    ("*", "--refinements", "0 to 60"),
+];
+
+/// The allowed range of whole-number flag `flag` of `command`, if it is one.
+pub fn whole_number_range(command: &str, flag: &str) -> Option<&'static str> {
+    WHOLE_NUMBER_FLAGS
+        .iter()
+        .find(|(c, f, _)| *f == flag && *c == command)
+        .or_else(|| {
+            WHOLE_NUMBER_FLAGS
+                .iter()
+                .find(|(c, f, _)| *f == flag && *c == "*")
+        })
+        .map(|(_, _, range)| *range)
+}
+
+/// clap's refusal of a value told like every other bad input: `--every = -1: allowed range is
+/// 1 or more (a whole number)`, for the whole-number flags; `None` for any other error.
+pub fn clap_value_error(command: &str, e: &clap::Error) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if !matches!(
+        e.kind(),
+        ErrorKind::InvalidValue | ErrorKind::ValueValidation
+    ) {
+        return None;
+    }
+    let text = |kind| match e.get(kind) {
+        Some(ContextValue::String(s)) => Some(s.clone()),
+        _ => None,
+    };
+    let arg = text(ContextKind::InvalidArg)?;
+    let value = text(ContextKind::InvalidValue)?;
+    let flag = arg.split([' ', '=']).next()?;
+    let range = whole_number_range(command, flag)?;
+    Some(format!(
+        "{flag} = {value}: allowed range is {range} (a whole number)"
+    ))
+}

@@ -136,7 +136,19 @@ fn run(cli: Cli) -> Result<()> {
 
 fn main() -> ExitCode {
     io::files::install_signal_cleanup();
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let command = std::env::args().nth(1).unwrap_or_default();
+            match error::clap_value_error(&command, &e) {
+                Some(message) => {
+                    eprintln!("error: {message}");
+                    return ExitCode::from(2);
+                }
+                None => e.exit(),
+            }
+        }
+    };
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         // the reader went away (`trirhythm simulate | head`): end quietly
@@ -150,5 +162,51 @@ fn main() -> ExitCode {
                 ExitCode::from(1)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    /// Every whole-number flag of every command has its range in the table, and clap's
+    /// refusal of a negative, fractional or too large value is told with it.
+    #[test]
+    fn every_whole_number_flag_is_refused_with_its_range() {
+        let cli = Cli::command();
+        let mut checked = 0;
+        for sub in cli.get_subcommands() {
+            for arg in sub.get_arguments() {
+                let Some(long) = arg.get_long() else { continue };
+                let flag = format!("--{long}");
+                let id = arg.get_value_parser().type_id();
+                let parsers: [clap::builder::ValueParser; 3] = [
+                    clap::value_parser!(u64).into(),
+                    clap::value_parser!(usize).into(),
+                    clap::value_parser!(u32).into(),
+                ];
+                let whole = parsers.iter().any(|p| p.type_id() == id);
+                if !whole {
+                    continue;
+                }
+                let name = sub.get_name();
+                assert!(
+                    error::whole_number_range(name, &flag).is_some(),
+                    "{name} {flag}: no range in error::WHOLE_NUMBER_FLAGS"
+                );
+                for bad in ["-1", "1.5", "1e3", "99999999999999999999999"] {
+                    let e = Cli::try_parse_from(["trirhythm", name, &flag, bad]).unwrap_err();
+                    let message = error::clap_value_error(name, &e)
+                        .unwrap_or_else(|| panic!("{name} {flag} {bad}: {e}"));
+                    assert!(
+                        message.starts_with(&format!("{flag} = {bad}: allowed range is ")),
+                        "{message}"
+                    );
+                }
+                checked += 1;
+            }
+        }
+        assert!(checked >= 14, "only {checked} whole-number flags found");
     }
 }
