@@ -80,6 +80,28 @@ pub struct Panel {
 }
 
 impl Panel {
+    /// Its ranges finite and increasing, every boundary point at a finite abscissa with its
+    /// bracket in order ([`crate::validate`]).
+    pub fn validate(&self, field: &str) -> crate::validate::Valid {
+        use crate::validate::{invalid, range};
+        range(&format!("{field}.x_range"), self.x_range)?;
+        range(&format!("{field}.y_range"), self.y_range)?;
+        for (j, c) in self.curves.iter().enumerate() {
+            for (k, p) in c.points.iter().enumerate() {
+                if !p.x.is_finite() || p.y_lo > p.y_hi {
+                    return invalid(
+                        format!("{field}.curves[{j}].points[{k}]"),
+                        format!(
+                            "x = {}, bracket [{}, {}]: x must be finite and the bracket ordered",
+                            p.x, p.y_lo, p.y_hi
+                        ),
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Whether the panel's curves are a family (one set of curves per parameter value).
     pub fn is_family(&self) -> bool {
         self.curves.iter().any(|c| c.member.is_some())

@@ -78,6 +78,23 @@ impl Figure for Fig01 {
         compute(options, monitor)
     }
 
+    fn validate(&self) -> crate::validate::Valid {
+        use crate::validate::{finite, fraction, len, points};
+        for (i, p) in self.panels.iter().enumerate() {
+            let f = format!("panels[{i}]");
+            finite(&format!("{f}.t"), &p.t)?;
+            len(&format!("{f}.u"), p.u.len(), p.t.len(), "one per time")?;
+            len(&format!("{f}.v"), p.v.len(), p.t.len(), "one per time")?;
+            finite(&format!("{f}.u"), &p.u)?;
+            finite(&format!("{f}.v"), &p.v)?;
+            points(&format!("{f}.phase"), &p.phase)?;
+            fraction(&format!("{f}.rr"), p.rr)?;
+            fraction(&format!("{f}.det"), p.det)?;
+            finite(&format!("{f}.amplitude"), &[p.amplitude])?;
+        }
+        Ok(())
+    }
+
     fn tables(&self) -> Vec<Table> {
         let mut csv = Table::new(&self.notes, &["system", "t", "U", "V"]);
         for (panel, name) in self.panels.iter().zip(["fractional", "equivalent"]) {

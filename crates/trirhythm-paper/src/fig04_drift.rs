@@ -58,6 +58,21 @@ impl Figure for Fig04 {
         compute(options, monitor)
     }
 
+    fn validate(&self) -> crate::validate::Valid {
+        use crate::validate::{finite, points};
+        for (i, p) in self.panels.iter().enumerate() {
+            let f = format!("panels[{i}]");
+            points(&format!("{f}.curve"), &p.curve)?;
+            if let Some(r) = &p.reference {
+                points(&format!("{f}.reference"), r)?;
+            }
+            let a: Vec<f64> = p.cycles.iter().map(|c| c.amplitude).collect();
+            finite(&format!("{f}.cycles"), &a)?;
+            finite(&format!("{f}.cp"), &p.cp)?;
+        }
+        Ok(())
+    }
+
     fn tables(&self) -> Vec<Table> {
         let mut csv = Table::new(&self.notes, &["panel", "r", "A", "f"]);
         for p in &self.panels {

@@ -44,6 +44,23 @@ impl Figure for Fig05 {
         compute(options, monitor)
     }
 
+    fn validate(&self) -> crate::validate::Valid {
+        use crate::validate::{finite, points, range};
+        for (i, (_, value, d)) in self.panels.iter().enumerate() {
+            let f = format!("panels[{i}]");
+            finite(&format!("{f}.1"), &[*value])?;
+            range(&format!("{f}.2.start"), (d.start, d.stop))?;
+            for (j, b) in d.branches.iter().enumerate() {
+                let pts: Vec<(f64, f64)> =
+                    b.points.iter().map(|p| (p.param, p.amplitude)).collect();
+                points(&format!("{f}.2.branches[{j}].points"), &pts)?;
+            }
+            points(&format!("{f}.2.folds"), &d.folds)?;
+            finite(&format!("{f}.2.hopf"), &d.hopf)?;
+        }
+        Ok(())
+    }
+
     fn tables(&self) -> Vec<Table> {
         let mut csv = Table::new(
             &self.notes,

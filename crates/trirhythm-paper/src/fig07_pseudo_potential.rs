@@ -138,6 +138,18 @@ impl Figure for Fig07 {
         compute(options)
     }
 
+    fn validate(&self) -> crate::validate::Valid {
+        use crate::validate::{limits, points};
+        for (i, p) in self.panels.iter().enumerate() {
+            let f = format!("panels[{i}]");
+            points(&format!("{f}.params"), &p.params)?;
+            for (j, c) in p.curves.iter().enumerate() {
+                limits(&format!("{f}.curves[{j}].points"), &c.points)?;
+            }
+        }
+        Ok(())
+    }
+
     fn tables(&self) -> Vec<Table> {
         let mut csv = Table::new(&self.notes, &["panel", "r", "lambda", "A", "U_eff"]);
         for panel in &self.panels {

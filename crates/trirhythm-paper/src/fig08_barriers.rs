@@ -37,6 +37,15 @@ impl Figure for Fig08 {
         compute(options, monitor)
     }
 
+    fn validate(&self) -> crate::validate::Valid {
+        use crate::validate::{finite, limits};
+        limits("curve.points", &self.curve.points)?;
+        for (i, b) in self.barriers.iter().enumerate() {
+            finite(&format!("barriers[{i}]"), &[b.well, b.crest, b.height])?;
+        }
+        Ok(())
+    }
+
     fn tables(&self) -> Vec<Table> {
         let mut csv = Table::new(&self.notes, &["A", "U_eff"]);
         for &(a, u) in &self.curve.points {

@@ -40,6 +40,13 @@ impl Figure for Fig15 {
         compute(options, monitor)
     }
 
+    fn validate(&self) -> crate::validate::Valid {
+        for (i, p) in self.panels.iter().enumerate() {
+            p.validate(&format!("panels[{i}]"))?;
+        }
+        Ok(())
+    }
+
     fn tables(&self) -> Vec<Table> {
         vec![table(&self.notes, &self.panels)]
     }

@@ -49,6 +49,10 @@ impl Figure for Fig17 {
         lle_against_noise_figure(&FIG17, options, monitor).map(Fig17)
     }
 
+    fn validate(&self) -> crate::validate::Valid {
+        self.0.validate()
+    }
+
     fn tables(&self) -> Vec<Table> {
         self.0.tables()
     }

@@ -50,6 +50,10 @@ impl Figure for Fig18 {
         lle_against_noise_figure(&FIG18, options, monitor).map(Fig18)
     }
 
+    fn validate(&self) -> crate::validate::Valid {
+        self.0.validate()
+    }
+
     fn tables(&self) -> Vec<Table> {
         self.0.tables()
     }

@@ -205,6 +205,22 @@ impl Figure for Fig19 {
         })
     }
 
+    fn validate(&self) -> crate::validate::Valid {
+        use crate::validate::{finite, len};
+        for (i, m) in self.panels.iter().enumerate() {
+            let f = format!("panels[{i}]");
+            m.panel.validate(&format!("{f}.panel"))?;
+            finite(&format!("{f}.values"), &m.values)?;
+            len(
+                &format!("{f}.located"),
+                m.located.len(),
+                m.panel.curves.len(),
+                "one per curve",
+            )?;
+        }
+        Ok(())
+    }
+
     fn tables(&self) -> Vec<Table> {
         let panels: Vec<Panel> = self.panels.iter().map(|m| m.panel.clone()).collect();
         vec![panels_table(&self.notes, &panels)]

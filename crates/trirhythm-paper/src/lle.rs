@@ -277,7 +277,41 @@ pub struct Panel {
     pub verdicts: Vec<String>,
 }
 
+/// Points at finite abscissae whose brackets [lo, hi] are in order.
+fn points_in_order(field: &str, points: &[Point]) -> crate::validate::Valid {
+    for (k, p) in points.iter().enumerate() {
+        if !p.x.is_finite() || p.lo > p.hi || p.y.is_nan() && p.n > 1 && p.lo.is_finite() {
+            return crate::validate::invalid(
+                format!("{field}[{k}]"),
+                format!(
+                    "x = {}, y = {} in [{}, {}]: x must be finite and the bracket ordered",
+                    p.x, p.y, p.lo, p.hi
+                ),
+            );
+        }
+    }
+    Ok(())
+}
+
 impl Panel {
+    /// Every curve's value finite and its points at finite abscissae with ordered brackets
+    /// ([`crate::validate`]).
+    pub fn validate(&self, field: &str) -> crate::validate::Valid {
+        for (j, c) in self.curves.iter().enumerate() {
+            let f = format!("{field}.curves[{j}]");
+            // u0 is NaN where the start does not exist (no outer cycle)
+            crate::validate::finite(&format!("{f}.value"), &[c.value])?;
+            if !(c.dt > 0.0 && c.dt.is_finite()) {
+                return crate::validate::invalid(
+                    format!("{f}.dt"),
+                    format!("{} is not a step", c.dt),
+                );
+            }
+            points_in_order(&format!("{f}.points"), &c.points)?;
+        }
+        Ok(())
+    }
+
     /// The curves of one start with their points as the sign-change rule reads them (a curve
     /// without points, no outer cycle, is left out).
     pub fn lle_curves(&self, start: StartKind) -> Vec<LleCurve> {
@@ -720,6 +754,14 @@ pub struct LleAgainstNoise {
 
 impl LleAgainstNoise {
     /// The figure's tables: the panels and the Δt check (`_dt`).
+    /// The panels and the step check ([`crate::validate`]).
+    pub fn validate(&self) -> crate::validate::Valid {
+        for (i, p) in self.panels.iter().enumerate() {
+            p.validate(&format!("panels[{i}]"))?;
+        }
+        points_in_order("dt_check.points", &self.dt_check.points)
+    }
+
     pub fn tables(&self) -> Vec<Table> {
         vec![
             panels_table(&self.notes, &self.panels),

@@ -111,6 +111,53 @@ pub fn edges(field: &str, values: &[f64]) -> Valid {
     }
 }
 
+/// Points (x, y) of a curve: both coordinates finite.
+pub fn points(field: &str, pts: &[(f64, f64)]) -> Valid {
+    match pts
+        .iter()
+        .position(|(x, y)| !(x.is_finite() && y.is_finite()))
+    {
+        Some(i) => invalid(
+            format!("{field}[{i}]"),
+            format!("({}, {}) is not finite", pts[i].0, pts[i].1),
+        ),
+        None => Ok(()),
+    }
+}
+
+/// Points (x, y) of a curve whose values may be a limit (±∞) but never NaN, at finite x.
+pub fn limits(field: &str, pts: &[(f64, f64)]) -> Valid {
+    match pts.iter().position(|(x, y)| !x.is_finite() || y.is_nan()) {
+        Some(i) => invalid(
+            format!("{field}[{i}]"),
+            format!(
+                "({}, {}): x must be finite and y a number",
+                pts[i].0, pts[i].1
+            ),
+        ),
+        None => Ok(()),
+    }
+}
+
+/// A range (lo, hi) of an axis: finite, lo < hi.
+pub fn range(field: &str, (lo, hi): (f64, f64)) -> Valid {
+    if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+        return invalid(
+            field,
+            format!("({lo}, {hi}) is not a finite increasing range"),
+        );
+    }
+    Ok(())
+}
+
+/// A fraction in [0, 1].
+pub fn fraction(field: &str, value: f64) -> Valid {
+    if !(0.0..=1.0).contains(&value) {
+        return invalid(field, format!("{value} is not in [0, 1]"));
+    }
+    Ok(())
+}
+
 /// A `rows` × `cols` matrix of finite values ≥ 0 (a density on cells).
 pub fn density_matrix(field: &str, m: &[Vec<f64>], rows: usize, cols: usize, of: &str) -> Valid {
     len(field, m.len(), rows, of)?;

@@ -17,6 +17,8 @@ const QUICK: FigureOptions = FigureOptions {
 fn round_trip<F: Figure>() {
     let data = F::compute(&QUICK, &Silent)
         .unwrap_or_else(|e| panic!("figure {} does not compute: {e}", F::NUMBER));
+    data.validate()
+        .unwrap_or_else(|e| panic!("figure {}: computed data fails its check: {e}", F::NUMBER));
     let tables = data.tables();
     assert!(!tables.is_empty(), "figure {}: no table", F::NUMBER);
     for t in &tables {
