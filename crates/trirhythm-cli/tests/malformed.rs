@@ -263,10 +263,11 @@ fn data_of_another_version_is_refused_naming_the_field() {
 }
 
 /// `lyapunov --format csv` writes what the JSON does: an undefined running estimate (JSON
-/// `null`) is an empty `lle` cell, never a refusal.
+/// `"NaN"` or `null`) is an empty `lle` cell, never a refusal. Without a transient the first
+/// renormalisations have no estimate yet, so the run has undefined rows to write.
 #[test]
 fn lyapunov_csv_writes_every_row_the_json_has() {
-    let base = ["lyapunov", "--t-end", "50", "--paths", "2"];
+    let base = ["lyapunov", "--t-end", "5", "--paths", "2", "--transient", "0"];
     let json: Value = serde_json::from_slice(&ok_output(&base).stdout).unwrap();
     let running = json["running"].as_array().expect("running estimate");
     let mut csv_args = base.to_vec();
@@ -275,14 +276,19 @@ fn lyapunov_csv_writes_every_row_the_json_has() {
     let rows = common::csv_rows(&text);
     assert_eq!(rows[0], ["t", "lle", "stderr"]);
     assert_eq!(rows.len() - 1, running.len(), "one CSV row per JSON entry");
+    let mut undefined = 0;
     for (row, entry) in rows[1..].iter().zip(running) {
         let v = &entry["value"];
-        if v.is_null() {
+        if v.is_null() || v == "NaN" {
             assert_eq!(row[1], "", "undefined estimate at t = {}", row[0]);
+            undefined += 1;
         } else if let Some(x) = v.as_f64() {
             assert_eq!(row[1].parse::<f64>().unwrap(), x);
+        } else {
+            panic!("running value {v} at t = {}", row[0]);
         }
     }
+    assert!(undefined > 0, "the case was meant to have undefined estimates");
 }
 
 /// D is what critical-noise searches: a value given for it is refused, naming it.
