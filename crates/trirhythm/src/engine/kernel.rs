@@ -113,8 +113,12 @@ impl IntervalWeights {
             let f = 0.5 * d * pow(c, lambda - 1.0);
             (0.5 * f * (s0 - s1), 0.5 * f * (s0 + s1))
         } else {
-            let m0 = (pow(ub, lambda) - pow(ua, lambda)) / lambda;
-            let m1 = (pow(ub, lambda + 1.0) - pow(ua, lambda + 1.0)) / (lambda + 1.0);
+            // u^{λ+1} = u·u^λ: two powers, one when u_a = 0 (the impacts call this often, and
+            // the platform-independent `pow` is not cheap)
+            let pb = pow(ub, lambda);
+            let pa = if ua == 0.0 { 0.0 } else { pow(ua, lambda) };
+            let m0 = (pb - pa) / lambda;
+            let m1 = (ub * pb - ua * pa) / (lambda + 1.0);
             ((ub * m0 - m1) / d, (m1 - ua * m0) / d)
         }
     }
