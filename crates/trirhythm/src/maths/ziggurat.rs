@@ -32,6 +32,7 @@ use rand::distr::Open01;
 use rand::Rng;
 
 /// R, the start of the tail (= x_1).
+#[allow(clippy::excessive_precision)] // rand_distr's literal, as written there
 const R: f64 = 3.654152885361008796;
 
 /// A standard normal deviate N(0, 1) drawn from `rng`: the same sequence as
