@@ -26,6 +26,7 @@ use crate::{FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::lyapunov::{largest_lyapunov, CriticalNoise, LyapunovSpec, NoisePoint};
 use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem};
+use trirhythm::maths;
 use trirhythm::model::{preset, Params};
 use trirhythm::monitor::OnlyCancel;
 use trirhythm::theory::averaging::{Theory, Variant};
@@ -574,7 +575,8 @@ pub fn log_spaced(lo: f64, hi: f64, n: usize) -> Vec<f64> {
     (0..n)
         .map(|k| {
             let t = k as f64 / (n - 1).max(1) as f64;
-            let v = (lo.ln() + t * (hi.ln() - lo.ln())).exp();
+            // the library's platform-independent maths: the same noise levels everywhere
+            let v = maths::exp(maths::ln(lo) + t * (maths::ln(hi) - maths::ln(lo)));
             sig(v, 3).parse().unwrap_or(v)
         })
         .collect()

@@ -8,6 +8,11 @@
 //!   with `quick`), the ratio λ = 0.998 / λ = 1 of the best runs and run by run, and the
 //!   per-step breakdown (memory, noise, the rest);
 //! - SOE vs Direct at 1e4, 3e4, 1e5 steps (speed-up and max |ΔU|).
+//!
+//! `-- maths` times only the two noisy paths (λ = 0.998 and λ = 1, 10⁷ steps) and the noise
+//! alone, once each, and says which elementary functions the build uses: run a default build
+//! and one with `--features std-maths` alternately to measure what the platform-independent
+//! `trirhythm::maths` costs (the numbers in docs/numerics.md, Speed).
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -67,8 +72,44 @@ fn memory_only(lambda: f64, steps: usize) -> f64 {
     start.elapsed().as_secs_f64()
 }
 
+/// Nanoseconds this thread has run on a CPU (Linux `schedstat`; `None` elsewhere): on a shared
+/// machine the time spent waiting for a core does not count.
+fn cpu_ns() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    text.split_whitespace().next()?.parse().ok()
+}
+
+/// One run of the two noisy paths and of the noise alone, as one line: steps per second of
+/// wall time and of CPU time.
+fn maths_run(n: usize) {
+    let maths = if trirhythm::maths::PLATFORM_MATHS {
+        "std "
+    } else {
+        "libm"
+    };
+    let mut line = String::from(maths);
+    for lambda in [0.998, 1.0] {
+        let c0 = cpu_ns();
+        let (t, impacts, amp) = speed_case(lambda, 0.1, n);
+        let cpu = cpu_ns().zip(c0).map_or(f64::NAN, |(b, a)| (b - a) * 1e-9);
+        line += &format!(
+            "  lambda = {lambda:<5}: {:.4e} steps/s, {:.4e} per CPU s ({impacts} impacts, A {amp:.6})",
+            n as f64 / t,
+            n as f64 / cpu
+        );
+    }
+    let c0 = cpu_ns();
+    noise_only(n);
+    let cpu = cpu_ns().zip(c0).map_or(f64::NAN, |(b, a)| (b - a) * 1e-9);
+    println!("{line}  noise: {:.2} ns/step of CPU", cpu / n as f64 * 1e9);
+}
+
 fn main() {
     let quick = std::env::args().any(|a| a == "quick");
+    if std::env::args().any(|a| a == "maths") {
+        maths_run(if quick { 1_000_000 } else { 10_000_000 });
+        return;
+    }
     let n: usize = if quick { 1_000_000 } else { 10_000_000 };
     // best of `reps` runs, the cases alternating: on a shared machine single runs vary by
     // ±10 %; the fastest run is the one least disturbed

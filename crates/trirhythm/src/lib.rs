@@ -8,7 +8,8 @@
 //! Ornstein–Uhlenbeck noise with ⟨η(t)η(s)⟩ = (D/τ)e^{−|t−s|/τ}.
 //!
 //! Layers, with dependencies pointing one way (a layer uses only those above it):
-//! - [`error`], [`special`] (Γ, Mittag-Leffler): the foundation;
+//! - [`error`], [`maths`] (exp, ln, pow, sin, cos, normal deviates: the same bits on every
+//!   platform), [`special`] (Γ, Mittag-Leffler): the foundation;
 //! - [`model`]: parameters, validation, the paper's presets, the Eq. 5 equivalents;
 //! - [`theory`]: the averaged theory (harmonic balance, stochastic averaging, stationary PDFs,
 //!   certified polynomial roots, quadrature, bifurcation maps and fold curves);
@@ -28,6 +29,7 @@ pub mod analysis;
 pub mod engine;
 pub mod error;
 pub mod known_answers;
+pub mod maths;
 pub mod model;
 pub mod monitor;
 pub mod non_finite;

@@ -61,7 +61,8 @@ fn counts_of_a_noisy_chattering_run_are_pinned() {
         );
         // the counts alone survive small changes of the step (the Hermite-corrected U left
         // them as they were, and moved the final U by 4·10⁻⁵): the end state is pinned too, to
-        // 10⁻⁹ relative (room for a last-bit difference of the platform's exp, amplified)
+        // 10⁻⁹ relative (room for a last-bit change of the maths, amplified; tests/maths.rs pins
+        // the bits of a shorter path)
         let (u, v) = (*tr.u.last().unwrap(), *tr.v.last().unwrap());
         assert!(
             (u - end.0).abs() < 1e-9 * end.0.abs() && (v - end.1).abs() < 1e-9 * end.1.abs(),

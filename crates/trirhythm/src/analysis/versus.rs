@@ -119,7 +119,7 @@ pub fn escape_time(pdf: &AmplitudePdf, sigma1: f64, a: f64, b: f64) -> f64 {
         if y <= 0.0 || mass[k] <= 0.0 {
             return 0.0;
         }
-        2.0 * (mass[k].ln() - pdf.log_density(y)).exp() / sigma1
+        2.0 * crate::maths::exp(crate::maths::ln(mass[k]) - pdf.log_density(y)) / sigma1
     };
     let mut total = 0.0;
     for piece in 0..cuts.len() - 1 {

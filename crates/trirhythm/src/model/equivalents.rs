@@ -12,6 +12,7 @@
 //! (`tests/reference/averaging_reference.py`) to 1e-13; `tests/systems.rs` checks that Eq. (5)
 //! at λ = 1 is Eq. (1).
 
+use crate::maths::{pow, sin};
 use crate::model::Params;
 use std::f64::consts::PI;
 
@@ -44,14 +45,14 @@ impl Equivalents {
     #[inline]
     pub fn from_scalars(mu0: f64, omega0: f64, lambda: f64, c0: f64) -> Self {
         let (l, w0) = (lambda, omega0);
-        let s = (PI * l / 2.0).sin();
+        let s = sin(PI * l / 2.0);
         // cos(πλ/2) = sin(π(1−λ)/2): 1 − λ is exact near λ = 1, so no cancellation.
-        let c = (PI * (1.0 - l) / 2.0).sin();
+        let c = sin(PI * (1.0 - l) / 2.0);
         Equivalents {
-            mu1: mu0 * w0.powf(1.0 - l) / s,
-            beta1: c0 - w0.powf(l) * c / mu0,
-            omega1: (w0.powf(3.0 - l) / s).sqrt(),
-            beta2: w0.powf(1.0 - l) / s,
+            mu1: mu0 * pow(w0, 1.0 - l) / s,
+            beta1: c0 - pow(w0, l) * c / mu0,
+            omega1: (pow(w0, 3.0 - l) / s).sqrt(),
+            beta2: pow(w0, 1.0 - l) / s,
         }
     }
 }

@@ -93,10 +93,11 @@ pub(super) fn stationarity(
         .map(|b| b.a / b.n as f64)
         .collect();
     let grand = m.mean_amplitude.value;
-    let s2_batch = bm.iter().map(|x| (x - grand).powi(2)).sum::<f64>() / (bm.len() as f64 - 1.0);
+    let s2_batch =
+        bm.iter().map(|x| (x - grand) * (x - grand)).sum::<f64>() / (bm.len() as f64 - 1.0);
     // Var A = ⟨A²⟩ − ⟨A⟩², ⟨A²⟩ = ⟨U²⟩ + ⟨U̇²⟩/ω1²
-    let a2 = (m.var_u.value + m.mean_u.value.powi(2))
-        + (m.var_v.value + m.mean_v.value.powi(2)) * inv_omega1_sq;
+    let a2 = (m.var_u.value + m.mean_u.value * m.mean_u.value)
+        + (m.var_v.value + m.mean_v.value * m.mean_v.value) * inv_omega1_sq;
     let var_a = (a2 - grand * grand).max(0.0);
     let ess = if s2_batch > 0.0 {
         (var_a * bm.len() as f64 / s2_batch).min(n_total)
@@ -124,7 +125,7 @@ pub(super) fn stationarity(
     };
     let dn = diffs.len() as f64;
     let drift = diffs.iter().sum::<f64>() / dn;
-    let dsd = (diffs.iter().map(|d| (d - drift).powi(2)).sum::<f64>() / (dn - 1.0)).sqrt();
+    let dsd = (diffs.iter().map(|d| (d - drift) * (d - drift)).sum::<f64>() / (dn - 1.0)).sqrt();
     let drift_z = if dsd > 0.0 {
         drift / (dsd / dn.sqrt())
     } else if drift == 0.0 {

@@ -244,9 +244,13 @@ fn moments(all: &[PathStats], between: bool) -> Moments {
     };
     Moments {
         mean_u: jackknife(&batch_units, |t| t[1] / t[0]),
-        var_u: jackknife(&batch_units, |t| t[2] / t[0] - (t[1] / t[0]).powi(2)),
+        var_u: jackknife(&batch_units, |t| {
+            t[2] / t[0] - (t[1] / t[0]) * (t[1] / t[0])
+        }),
         mean_v: jackknife(&batch_units, |t| t[3] / t[0]),
-        var_v: jackknife(&batch_units, |t| t[4] / t[0] - (t[3] / t[0]).powi(2)),
+        var_v: jackknife(&batch_units, |t| {
+            t[4] / t[0] - (t[3] / t[0]) * (t[3] / t[0])
+        }),
         mean_amplitude: jackknife(&batch_units, |t| t[5] / t[0]),
     }
 }

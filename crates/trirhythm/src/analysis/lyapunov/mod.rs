@@ -459,7 +459,7 @@ pub fn run_paths(
                     // empty memories)
                     let (du, dv) = b.separation(&a);
                     let d0 = spec.separation;
-                    if !b.contract_toward(&a, d0 / du.hypot(dv)) {
+                    if !b.contract_toward(&a, d0 / crate::maths::hypot(du, dv)) {
                         return Err(Error::Undefined {
                             what: "Lyapunov exponent",
                             why: "the perturbed copy could not be placed at the start".into(),

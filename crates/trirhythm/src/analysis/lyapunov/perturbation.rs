@@ -37,7 +37,7 @@ impl Perturbation for TwoPaths {
 
     fn renormalise(&mut self) -> Renormalised {
         let (du, dv) = self.b.separation(&self.a);
-        let d = du.hypot(dv);
+        let d = crate::maths::hypot(du, dv);
         if d > 0.0 && d.is_finite() && self.b.contract_toward(&self.a, self.d0 / d) {
             Renormalised::Grown(d / self.d0)
         } else {
@@ -113,7 +113,7 @@ pub(super) fn one_path(
             match p.renormalise() {
                 Renormalised::Grown(factor) => {
                     if n > transient {
-                        log_sum += factor.ln();
+                        log_sum += crate::maths::ln(factor);
                         count += 1;
                     } else {
                         start = n;

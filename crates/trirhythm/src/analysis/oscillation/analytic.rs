@@ -5,6 +5,7 @@
 use super::{BoundaryPoint, Method, Plane, Side};
 use crate::engine::Barrier;
 use crate::error::{Error, Result};
+use crate::maths::{ln, pow, sin};
 use crate::model::Params;
 use crate::theory::averaging::{Theory, Variant};
 use std::f64::consts::PI;
@@ -32,7 +33,7 @@ pub fn margin(p: &Params, barrier: Barrier, method: &Method) -> Result<Option<f6
 
 /// cos(πλ/2) without cancellation near λ = 1, and sin(πλ/2).
 fn trig(lambda: f64) -> (f64, f64) {
-    ((PI * (1.0 - lambda) / 2.0).sin(), (PI * lambda / 2.0).sin())
+    (sin(PI * (1.0 - lambda) / 2.0), sin(PI * lambda / 2.0))
 }
 
 /// The exact linearisation's margin: μ0c0 − Ω^λcos(πλ/2) without the wall;
@@ -43,8 +44,8 @@ fn exact_margin(p: &Params, barrier: Barrier) -> Option<f64> {
     match barrier {
         Barrier::Off => {
             let (c, s) = trig(p.lambda);
-            let omega = (p.omega0 * p.omega0 / s).powf(1.0 / (1.0 + p.lambda));
-            Some(m - omega.powf(p.lambda) * c)
+            let omega = pow(p.omega0 * p.omega0 / s, 1.0 / (1.0 + p.lambda));
+            Some(m - pow(omega, p.lambda) * c)
         }
         Barrier::On if p.lambda == 1.0 => {
             let r = p.restitution;
@@ -55,7 +56,7 @@ fn exact_margin(p: &Params, barrier: Barrier) -> Option<f64> {
                 return Some(f64::INFINITY);
             }
             let wd = (p.omega0 * p.omega0 - m * m / 4.0).sqrt();
-            Some(m * PI / (2.0 * wd) + r.ln())
+            Some(m * PI / (2.0 * wd) + ln(r))
         }
         Barrier::On => None,
     }
@@ -74,7 +75,7 @@ pub fn averaging_mu0(p: &Params, barrier: Barrier, variant: Variant) -> Option<f
     let eq = crate::model::Equivalents::new(p);
     let kappa = eq.loss_rate(variant, r);
     let (c, s) = trig(p.lambda);
-    let mu = (p.omega0.powf(p.lambda) * c + 2.0 * kappa * s / p.omega0.powf(1.0 - p.lambda)) / c0;
+    let mu = (pow(p.omega0, p.lambda) * c + 2.0 * kappa * s / pow(p.omega0, 1.0 - p.lambda)) / c0;
     (c0 > 0.0 && mu.is_finite()).then_some(mu)
 }
 
@@ -89,11 +90,11 @@ pub fn exact_mu0(p: &Params, barrier: Barrier) -> Option<f64> {
     match barrier {
         Barrier::Off => {
             let (c, s) = trig(p.lambda);
-            let omega = (p.omega0 * p.omega0 / s).powf(1.0 / (1.0 + p.lambda));
-            Some(omega.powf(p.lambda) * c / c0)
+            let omega = pow(p.omega0 * p.omega0 / s, 1.0 / (1.0 + p.lambda));
+            Some(pow(omega, p.lambda) * c / c0)
         }
         Barrier::On if p.lambda == 1.0 && p.restitution > 0.0 => {
-            let k = -2.0 * p.restitution.ln() / PI;
+            let k = -2.0 * ln(p.restitution) / PI;
             Some(k * p.omega0 / (1.0 + k * k / 4.0).sqrt() / c0)
         }
         Barrier::On => None,

@@ -227,7 +227,7 @@ pub(super) fn grow(
             stepper.u().abs() + stepper.v().abs() / params.omega0
         };
         let ratio = (now / a0).max(1e-300);
-        (ratio.ln() / t, 0.0, all.len())
+        (crate::maths::ln(ratio) / t, 0.0, all.len())
     };
     Ok(Growth {
         rate: if stuck { rate.min(-1.0 / period) } else { rate },
@@ -303,7 +303,7 @@ impl Observer for TurningPoints {
             return Flow::Continue;
         }
         self.latest = amp;
-        let y = amp.ln();
+        let y = crate::maths::ln(amp);
         self.all.push((ta, y));
         let a0 = self.a0;
         if !(amp / a0 < DECIDED && a0 / amp < DECIDED) {

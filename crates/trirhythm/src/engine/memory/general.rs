@@ -16,6 +16,7 @@
 use super::moments::advance_moments;
 use super::{piece_integral, History, Piece, Split};
 use crate::engine::kernel::{phi_psi_given, LUMPED_TERMS};
+use crate::maths::exp;
 
 impl History {
     /// The scaled corrections of a split piece at distances 1..=cap (see `split_weights`).
@@ -140,7 +141,7 @@ impl History {
                 let modes = kernel.rates.iter().zip(decays);
                 for ((&rate, &decay), y) in modes.zip(self.modes.y.iter_mut().flatten()) {
                     // e^{−s l₂} = e^{−sh}/e^{−s l₁}: one exponential per mode (s·h ≤ ~2.4)
-                    let e1 = (-rate * l1).exp();
+                    let e1 = exp(-rate * l1);
                     let e2 = decay / e1;
                     let (phi, psi) = phi_psi_given(rate * l1, e1);
                     let mut v = if s.keep_before {

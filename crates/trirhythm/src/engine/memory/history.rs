@@ -21,6 +21,7 @@ use super::{modes::advance_modes_avx, window::dot_avx};
 use super::{piece_integral, Memory, Piece, Split};
 use crate::engine::kernel::{phi_psi, IntervalWeights, SoeKernel, LUMPED_TERMS};
 use crate::error::{Error, Result};
+use crate::maths::{exp, pow};
 use crate::special::gamma;
 
 /// The memory of J^λ g on a uniform grid, the whole history of one path: completed pieces of g
@@ -94,7 +95,7 @@ impl History {
         if window < 2 {
             return Err(Error::invalid("window", window as f64, "2 or more steps"));
         }
-        let scale = dt.powf(lambda) / gamma(lambda);
+        let scale = pow(dt, lambda) / gamma(lambda);
         let direct = matches!(memory, Memory::Direct);
         let iw = IntervalWeights::new(lambda);
         let (wa, wb) = iw.of(0.0, 1.0);
@@ -138,10 +139,10 @@ impl History {
                 let z = s * dt;
                 let (phi, psi) = phi_psi(z);
                 flat[0].push(0.0);
-                flat[1].push((-z).exp());
+                flat[1].push(exp(-z));
                 flat[2].push(dt * psi);
                 flat[3].push(dt * (phi - psi));
-                flat[4].push(w * (-s * back).exp());
+                flat[4].push(w * exp(-s * back));
             }
             // pad to a multiple of 4 with inert modes
             while flat[0].len() % 4 != 0 {
@@ -259,7 +260,7 @@ impl History {
             let back = ((self.local.cap + 1) as f64 - shift) * self.dt;
             let y = self.modes.y.iter().flatten();
             for ((&s, &w), &y) in kernel.rates.iter().zip(&kernel.weights).zip(y) {
-                total += w * (-s * back).exp() * y;
+                total += w * exp(-s * back) * y;
             }
             total += dot_moments(&lumped_weights(&kernel.lumped, back), &self.moments);
         }

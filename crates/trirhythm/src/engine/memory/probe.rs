@@ -25,7 +25,7 @@ pub fn probe_memory(lambda: f64, dt: f64, steps: usize) -> Result<f64> {
         DEFAULT_WINDOW,
     )?;
     // g = sin t by rotation (cheap, so that the probe times the memory, not `sin`)
-    let (c, s) = (dt.cos(), dt.sin());
+    let (c, s) = (crate::maths::cos(dt), crate::maths::sin(dt));
     let (mut left, mut cos) = (0.0, 1.0);
     let mut acc = 0.0;
     for _ in 0..steps {

@@ -126,7 +126,7 @@ impl Tangent {
 
     /// ‖(δU, δV)‖.
     pub fn norm(&self) -> f64 {
-        self.u.hypot(self.v)
+        crate::maths::hypot(self.u, self.v)
     }
 
     /// Whether the whole tangent state is zero (δU, δV, δ of the Volterra constant, δg at the
