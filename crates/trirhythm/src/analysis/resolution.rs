@@ -20,7 +20,7 @@ pub fn expected_amplitudes(problem: &Problem) -> Vec<f64> {
     let mut out: Vec<f64> = problem
         .starts()
         .iter()
-        .map(|&(u, v)| (u * u + (v / omega1).powi(2)).sqrt())
+        .map(|&(u, v)| crate::maths::hypot(u, v / omega1))
         .collect();
     if let Ok(quiet) = problem.params().with("D", 0.0) {
         for variant in [Variant::Paper, Variant::Consistent] {

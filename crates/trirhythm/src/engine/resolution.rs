@@ -265,7 +265,7 @@ fn halving(
                 let n = tr.u.len();
                 let from = n.saturating_sub(last);
                 let sum: f64 = (from..n)
-                    .map(|i| (tr.u[i].powi(2) + (tr.v[i] / omega1).powi(2)).sqrt())
+                    .map(|i| crate::maths::hypot(tr.u[i], tr.v[i] / omega1))
                     .sum();
                 Ok(Some(sum / (n - from) as f64))
             }
