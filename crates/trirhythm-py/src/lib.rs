@@ -27,6 +27,9 @@ use trirhythm::theory::bifurcation::{self as bif, Axis, What};
 use trirhythm_paper::requests::{EnsembleRequest, MemoryKind, Model, Named};
 use trirhythm_paper::FigureOptions;
 
+/// A one-dimensional numpy array.
+type Array<'py, T> = Bound<'py, PyArray1<T>>;
+
 /// A library error as a Python exception: bad input is a `ValueError`, a cancelled run a
 /// `KeyboardInterrupt`, anything else a `RuntimeError`; the message is the library's.
 fn py_err(e: trirhythm::Error) -> PyErr {
@@ -294,11 +297,7 @@ impl PyTheory {
     fn cycles<'py>(
         &self,
         py: Python<'py>,
-    ) -> (
-        Bound<'py, PyArray1<f64>>,
-        Bound<'py, PyArray1<bool>>,
-        Bound<'py, PyArray1<bool>>,
-    ) {
+    ) -> (Array<'py, f64>, Array<'py, bool>, Array<'py, bool>) {
         let c = self.0.cycles();
         (
             c.iter()
@@ -711,11 +710,7 @@ fn _map<'py>(
     variant: &str,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
-) -> PyResult<(
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyAny>,
-)> {
+) -> PyResult<(Array<'py, f64>, Array<'py, f64>, Bound<'py, PyAny>)> {
     let what = match what {
         "rhythmicity" => What::Rhythmicity,
         "modes" => What::Modes,
