@@ -155,3 +155,14 @@ def test_an_exception_in_the_callback_stops_the_call(noisy):
 
     with pytest.raises(RuntimeError, match="stop here"):
         tr.simulate(noisy, t_end=5000.0, every=1000, progress=boom)
+
+
+def test_the_readme_python_example_runs():
+    import pathlib
+    import re
+
+    readme = (pathlib.Path(__file__).resolve().parents[3] / "README.md").read_text()
+    blocks = re.findall(r"```python\n(.*?)```", readme, re.S)
+    assert blocks, "the README has no Python example"
+    assert len(blocks[0].strip().splitlines()) <= 12
+    exec(compile(blocks[0], "README.md", "exec"), {})

@@ -131,14 +131,17 @@ def test_a_worker_stays_responsive_during_a_long_call(client):
         assert time.time() < deadline
         time.sleep(0.05)
     time.sleep(0.3)
+    # a worker whose task held the GIL could not answer before the task ended: every ping must
+    # come back while the task still runs (the time bound is loose for a loaded machine; idle,
+    # a ping takes about 10 ms)
     worst = 0.0
-    for _ in range(5):
+    for _ in range(3):
         t = time.perf_counter()
         client.run(lambda: 1)
         worst = max(worst, time.perf_counter() - t)
+        assert not fut.done(), "the long call ended before the pings: make it longer"
         time.sleep(0.1)
-    assert not fut.done(), "the long call ended before the pings: make it longer"
-    assert worst < 0.5, f"a ping took {worst:.2f} s while a task ran"
+    assert worst < 2.0, f"a ping took {worst:.2f} s while a task ran"
     assert fut.result() == 20_000_000
 
 
