@@ -107,6 +107,21 @@ def test_a_custom_function_and_checkpoints_that_resume(base, tmp_path):
         tr.sweep(_custom, {"lambda": [0.5, 0.9], "r": [0.1, 0.2, 0.3]}, base=base, seed=3, checkpoint=d, scale=2.0)
 
 
+def test_lyapunov_and_boundary_sweeps(base):
+    lle = tr.sweep("lyapunov", {"D": [0.01, 0.05]}, base=base, seed=2, paths=2, t_end=20.0, transient=5.0)
+    direct = tr.lyapunov(base.with_(D=0.05), paths=2, t_end=20.0, transient=5.0, seed=2)["lle"]
+    assert lle["lle"].sel(D=0.05).item() == direct["value"]
+    assert lle["lle_stderr"].sel(D=0.05).item() == direct["stderr"]
+    fig15 = tr.preset("fig15").with_(lambda_=1.0)
+    b = tr.sweep(
+        "oscillation_boundary", {"omega0": [1.0, 1.2]}, base=fig15, x=("r", [0.9]), y=("mu0", 0.001, 0.3), method="exact"
+    )
+    assert b.sizes == {"omega0": 2}
+    one = tr.oscillation_boundary(fig15.with_(omega0=1.2), x=("r", [0.9]), y=("mu0", 0.001, 0.3), method="exact")
+    assert b["y"].sel(omega0=1.2).item() == one["points"][0]["y"]
+    assert b["y_lo"].item(0) <= b["y"].item(0) <= b["y_hi"].item(0)
+
+
 def test_bad_sweeps_are_refused_before_any_work(base):
     with pytest.raises(ValueError, match=r"lambda = 1.5: allowed range is \(0, 1\]"):
         tr.sweep("ensemble", {"lambda": [0.9, 1.5]}, base=base, **KW)

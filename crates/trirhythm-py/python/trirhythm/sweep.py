@@ -16,6 +16,7 @@ Dask is imported only when a ``client`` is given.
 from __future__ import annotations
 
 import hashlib
+import inspect
 import itertools
 import json
 import math
@@ -72,6 +73,13 @@ def statistics(result: Any) -> dict[str, tuple[float, float]]:
     if not isinstance(result, Mapping):
         raise TypeError(f"sweep: cannot take statistics from a {type(result).__name__}")
     out = {}
+    points = result.get("points")
+    if isinstance(points, list) and all(isinstance(p, Mapping) for p in points):
+        # an oscillation boundary: each abscissa's y and bracket (suffix _i with several)
+        for i, p in enumerate(points):
+            for k in ("y", "y_lo", "y_hi", "simulations"):
+                if k in p:
+                    out[k if len(points) == 1 else f"{k}_{i}"] = (_number(p[k]), nan)
     for k, v in result.items():
         if k in _UNSTABLE:
             continue
@@ -86,10 +94,21 @@ def statistics(result: Any) -> dict[str, tuple[float, float]]:
     return out
 
 
+def _takes_seed(f) -> bool:
+    try:
+        ps = inspect.signature(f).parameters.values()
+    except (TypeError, ValueError):
+        return True
+    return any(p.name == "seed" or p.kind is inspect.Parameter.VAR_KEYWORD for p in ps)
+
+
 def _run_point(func, params, seed, kwargs):
-    """One point (runs on a worker): the function's statistics."""
+    """One point (runs on a worker): the function's statistics. A function without a seed
+    (a deterministic one, such as an oscillation boundary) is called without it."""
     f = _named(func) if isinstance(func, str) else func
-    return statistics(f(params, seed=seed, **kwargs))
+    if _takes_seed(f):
+        return statistics(f(params, seed=seed, **kwargs))
+    return statistics(f(params, **kwargs))
 
 
 def _run_chunk(func, params, seed, which, kwargs):
