@@ -1,7 +1,6 @@
 """Sweeps: serial against a Dask LocalCluster of 2 workers and against path-split merges
 (bit for bit), checkpoints, a worker's heartbeat during a long call, KeyboardInterrupt."""
 
-import os
 import signal
 import subprocess
 import sys

@@ -20,9 +20,8 @@ into an ``xarray.Dataset`` (see ``docs/python.md``).
 from __future__ import annotations
 
 import json
-import math
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterable, Sequence
+from typing import Iterable, Sequence
 
 import numpy as np
 
@@ -335,14 +334,11 @@ def _lle_args(params, paths, t_end, seed, options):
     if unknown:
         raise ValueError(f"unknown argument(s) {sorted(unknown)}: expected {sorted(_LLE_DEFAULTS)}")
     o = {**_LLE_DEFAULTS, **options}
-    dt = _finite("dt", o["dt"])
-    if not 1e-4 <= dt <= 0.1:
-        raise ValueError(f"invalid parameter dt = {dt}: allowed range is [1e-4, 0.1]")
     return dict(
         params=_check_params(params),
         t_end=_finite("t_end", t_end),
         transient=_finite("transient", o["transient"]),
-        dt=dt,
+        dt=_finite("dt", o["dt"]),
         paths=_count("paths", paths),
         seed=_count("seed", seed),
         u0=_finite("u0", o["u0"]),

@@ -19,7 +19,6 @@ import hashlib
 import inspect
 import itertools
 import json
-import math
 import os
 import tempfile
 from typing import Any, Callable, Mapping, Sequence
