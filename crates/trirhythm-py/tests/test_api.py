@@ -67,6 +67,11 @@ def test_shapes(noisy):
     assert th.pdf("joint", a, v=np.linspace(-3, 3, 4)).shape == (4, 7)
     amp, stable, fold = th.cycles()
     assert amp.shape == stable.shape == fold.shape and stable.dtype == bool
+    e = tr.ensemble(noisy, paths=2, t_end=10, burn_in=1, bins=16)
+    h = e.density("energy")
+    assert h["edges"].shape == (17,) and h["density"].shape == h["stderr"].shape == (16,)
+    widths = np.diff(e.density()["edges"])
+    assert (e.density()["density"] * widths).sum() + e.density()["beyond"] == pytest.approx(1.0)
     xs, ys, counts = tr.rhythmicity_map(noisy, ("gamma0", 0, 1e-4, 5), ("delta0", 0, 1e-6, 3))
     assert xs.shape == (5,) and ys.shape == (3,) and counts.shape == (3, 5)
     assert set(np.unique(counts)) <= {0, 1, 2, 3}

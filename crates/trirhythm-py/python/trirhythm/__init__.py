@@ -189,10 +189,21 @@ class Ensemble:
             out[f"occupancy_{i}"] = (float(_nonfinite(e["value"])), float(_nonfinite(e["stderr"])))
         return out
 
-    @property
-    def amplitude(self) -> dict:
-        """The amplitude histogram (edges, density, stderr)."""
-        return self.document["amplitude"]
+    def density(self, kind: str = "amplitude") -> dict:
+        """A histogram as numpy arrays: ``edges`` (bins + 1), ``density`` and ``stderr`` (bins),
+        with ``beyond`` (the fraction past the last edge) and ``count``; ``kind`` is
+        ``"amplitude"``, ``"turning"`` or ``"energy"``."""
+        if kind not in ("amplitude", "turning", "energy"):
+            raise ValueError(f"invalid parameter kind = {kind!r}: expected amplitude, turning or energy")
+        d = self.document[kind]
+        arr = lambda xs: np.array([float(_nonfinite(x)) for x in xs])  # noqa: E731
+        return {
+            "edges": arr(d["edges"]),
+            "density": arr(d["density"]),
+            "stderr": arr(d["stderr"]),
+            "beyond": float(_nonfinite(d["beyond"])),
+            "count": int(d["count"]),
+        }
 
 
 @dataclass
