@@ -52,6 +52,7 @@ pub mod lle;
 pub mod maps;
 pub mod montecarlo;
 pub mod notes;
+pub mod requests;
 pub mod table;
 pub mod validate;
 pub mod verdict;

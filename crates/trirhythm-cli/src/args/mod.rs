@@ -6,11 +6,10 @@ use crate::error::bad;
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
-use trirhythm::engine::{
-    Barrier, ImpactMemory, Memory, PredictorCorrector, Problem, System, DEFAULT_WINDOW,
-};
+use trirhythm::engine::{Barrier, ImpactMemory, PredictorCorrector, Problem, System};
 use trirhythm::model::{preset, Params};
 use trirhythm::theory::averaging::Variant;
+use trirhythm_paper::requests::{MemoryKind, Model};
 
 /// The name a value of a value enum has on the command line (`soe`, `restart`).
 pub trait Named {
@@ -263,38 +262,32 @@ pub struct ModelArgs {
 }
 
 impl ModelArgs {
+    /// The library's model of these flags.
+    pub fn model(&self) -> Model {
+        Model {
+            system: self.system.into(),
+            barrier: self.barrier.into(),
+            memory: match self.memory {
+                MemoryArg::Soe => MemoryKind::Soe,
+                MemoryArg::Direct => MemoryKind::Direct,
+            },
+            tolerance: self.tolerance,
+        }
+    }
+
     /// The problem of `params` with this equation and wall (its start still to be set).
     pub fn problem(&self, params: &Params) -> trirhythm::Result<Problem> {
-        Problem::from_params(params)?
-            .with_barrier(self.barrier.into())?
-            .with_system(self.system.into())
+        self.model().problem(params)
     }
 
     /// `memory=… tolerance=… impact_memory=… barrier=… system=…`, for `method:` header lines.
     pub fn line(&self, impact_memory: ImpactMemoryArg) -> String {
-        format!(
-            "memory={} tolerance={} impact_memory={} barrier={} system={}",
-            self.memory.name(),
-            self.tolerance,
-            impact_memory.name(),
-            self.barrier.name(),
-            self.system.name()
-        )
+        self.model().line(impact_memory.into())
     }
 
     /// The predictor–corrector of `--dt`, this memory and `--impact-memory`.
     pub fn method(&self, dt: f64, impact_memory: ImpactMemoryArg) -> PredictorCorrector {
-        PredictorCorrector {
-            dt,
-            memory: match self.memory {
-                MemoryArg::Direct => Memory::Direct,
-                MemoryArg::Soe => Memory::SumOfExponentials {
-                    tolerance: self.tolerance,
-                },
-            },
-            impact_memory: impact_memory.into(),
-            window: DEFAULT_WINDOW,
-        }
+        self.model().method(dt, impact_memory.into())
     }
 }
 

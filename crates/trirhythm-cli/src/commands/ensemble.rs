@@ -7,24 +7,19 @@
 //! same command continues from them and gives a bit-identical result. Keys, columns and flags
 //! are a contract: keep them.
 
-use crate::args::{guard_step, ImpactMemoryArg, ModelArgs, ParamArgs};
+use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs};
 use crate::error::bad;
-use crate::io::{emit, params_json, progress, Csv, Report};
+use crate::io::{emit, progress, Csv, Report};
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use serde::Serialize;
-use serde_json::Value;
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use trirhythm::analysis::ensemble::{
-    fingerprint, merge, run_paths, EnsembleResult, EnsembleSpec, PathStats, Piece,
+    fingerprint, merge, run_paths, EnsembleResult, PathStats, Piece,
 };
-use trirhythm::engine::{PredictorCorrector, Problem};
-use trirhythm::model::Params;
 use trirhythm::monitor::Monitor;
-use trirhythm_paper::montecarlo::{self, comparisons};
-use trirhythm_paper::views::{self, Comparisons, TheoryEntry};
+use trirhythm_paper::requests::EnsembleRequest;
+use trirhythm_paper::views::{self, Comparisons};
 
 /// `json` or `csv`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -90,97 +85,34 @@ pub struct EnsembleArgs {
     pub out: Option<PathBuf>,
 }
 
-/// The least `--amplitude-max`: the energy histogram spans ½ω1²·max², which underflows to 0
-/// (zero-width bins, infinite densities) for max below about 1e-154; 1e-100 keeps every bin width
-/// and density finite.
-pub const MIN_AMPLITUDE_MAX: f64 = 1e-100;
-
 /// An ensemble's inputs in library types, with the choices made for the user.
-pub struct EnsembleSetup {
-    pub params: Params,
-    pub problem: Problem,
-    pub method: PredictorCorrector,
-    pub spec: EnsembleSpec,
-    /// What was chosen where the user left a value open (printed with the result).
-    pub choices: Vec<String>,
-    /// The step guard's warnings (a coarse `--dt`), carried in the output; filled by
-    /// [`guard_step`] once the sizes are valid.
-    pub warnings: Vec<String>,
-}
+pub use trirhythm_paper::requests::EnsembleSetup;
 
 impl EnsembleArgs {
-    /// Validate and convert, filling the open choices from the theory.
-    pub fn setup(&self) -> Result<EnsembleSetup> {
-        let params = self.params.resolve()?;
-        let method = self.model.method(self.dt, self.impact_memory);
-        let chosen =
-            montecarlo::choices(&params, self.params.variant(), &self.u0, self.amplitude_max);
-        let Some(starts) = chosen.starts else {
-            return bad(
-                "--u0: the averaged theory offers no cycle to start from for these parameters; \
-                 give the initial displacements (--u0 A[,A…])",
-            );
-        };
-        let Some(amplitude_max) = chosen.amplitude_max else {
-            return bad("--amplitude-max: no theory to choose the histogram range from; give it");
-        };
-        if amplitude_max > 0.0 && amplitude_max < MIN_AMPLITUDE_MAX {
-            return bad(format!(
-                "--amplitude-max {amplitude_max:e}: must be at least {MIN_AMPLITUDE_MAX:e} (below \
-                 it the energy histogram's range ½ω1²·max² and its bin widths underflow to 0, and \
-                 the densities divide by them)"
-            ));
-        }
-        let spec = EnsembleSpec {
+    /// The request in library terms.
+    pub fn request(&self) -> Result<EnsembleRequest> {
+        Ok(EnsembleRequest {
+            params: self.params.resolve()?,
+            variant: self.params.variant(),
+            model: self.model.model(),
+            impact_memory: self.impact_memory.into(),
+            dt: self.dt,
             paths: self.paths,
-            seed: self.seed,
+            t_end: self.t_end,
             burn_in: self.burn_in,
-            length: self.t_end,
-            sample_every: self.sample_every,
+            seed: self.seed,
+            u0: self.u0.clone(),
             bins: self.bins,
             joint_bins: self.joint_bins,
-            amplitude_max,
-            wells: chosen.wells,
-            ..Default::default()
-        };
-        let starts: Vec<(f64, f64)> = starts.iter().map(|&u| (u, 0.0)).collect();
-        let problem = self.model.problem(&params)?.with_starts(&starts)?;
-        Ok(EnsembleSetup {
-            warnings: vec![],
-            problem,
-            params,
-            method,
-            spec,
-            choices: chosen.said,
+            amplitude_max: self.amplitude_max,
+            sample_every: self.sample_every,
         })
     }
-}
 
-fn method_line(a: &EnsembleArgs) -> String {
-    format!(
-        "method: predictor-corrector dt={} {} paths={} burn_in={} t_end={} seed={} sample_every={}",
-        a.dt,
-        a.model.line(a.impact_memory),
-        a.paths,
-        a.burn_in,
-        a.t_end,
-        a.seed,
-        a.sample_every
-    )
-}
-
-/// The JSON document: the library's result, with what the command adds (the parameters, the
-/// method, the choices made for the user, the wall time and the theory against the result).
-#[derive(Serialize)]
-struct Document<'a> {
-    params: Value,
-    method: &'a str,
-    choices: &'a [String],
-    step_warnings: &'a [String],
-    wall_time_s: f64,
-    #[serde(flatten)]
-    result: &'a EnsembleResult,
-    theory: BTreeMap<&'static str, TheoryEntry<'a>>,
+    /// Validate and convert, filling the open choices from the theory.
+    pub fn setup(&self) -> Result<EnsembleSetup> {
+        Ok(self.request()?.setup()?)
+    }
 }
 
 /// Open the checkpoint directory of a run (`run.txt` names the run, `path-<i>.json` hold
@@ -318,12 +250,11 @@ impl Monitor<PathStats> for Watch<'_> {
 
 /// Run `ensemble`.
 pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
-    let mut s = args.setup()?;
-    let method = method_line(args);
+    let s = args.setup()?;
+    let method = s.method_line.clone();
     // every size, step and range is checked (no path run) before the checkpoint directory or
     // anything in it is created, so that bad input leaves nothing behind
     run_paths(&s.problem, &s.method, &s.spec, &[], &Report(|_, _| {}))?;
-    s.warnings = guard_step(&s.problem, &s.method)?;
     if let Some(out) = &args.out {
         crate::io::files::check_writable(out, "--out")?;
     }
@@ -345,6 +276,9 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     }
     for c in &s.choices {
         eprintln!("chosen: {c}");
+    }
+    for w in &s.step_warnings {
+        eprintln!("warning: {w}");
     }
     let bar = progress(1000, "ensemble");
     let start = Instant::now();
@@ -374,21 +308,10 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
         done.into_iter().chain(fresh).collect(),
     )?;
     let wall = start.elapsed().as_secs_f64();
-    let theory = comparisons(&s.params, &r, args.seed);
+    let theory = s.comparisons(&r);
     eprint!("{}", views::ensemble(&r, &theory, wall));
     let text = match args.format {
-        EnsembleFormat::Json => {
-            let doc = Document {
-                params: params_json(&s.params),
-                method: &method,
-                choices: &s.choices,
-                step_warnings: &s.warnings,
-                wall_time_s: wall,
-                result: &r,
-                theory: views::theory_entries(&theory),
-            };
-            serde_json::to_string(&doc)? + "\n"
-        }
+        EnsembleFormat::Json => serde_json::to_string(&s.document(&r, &theory, wall))? + "\n",
         EnsembleFormat::Csv => csv_text(&s, &method, &r, &theory, wall)?,
     };
     emit(args.out.as_deref(), &text)
@@ -408,7 +331,7 @@ fn csv_text(
         method.to_string(),
     ];
     notes.extend(s.choices.iter().map(|c| format!("chosen: {c}")));
-    notes.extend(s.warnings.iter().map(|w| format!("warning: {w}")));
+    notes.extend(s.step_warnings.iter().map(|w| format!("warning: {w}")));
     notes.push(views::ensemble(r, theory, wall));
     Csv::of(&views::density_table(&notes, &r.amplitude))
 }

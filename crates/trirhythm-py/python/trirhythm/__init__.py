@@ -1,0 +1,476 @@
+"""trirhythm: stochastic fractional-order vibro-impact oscillators with several coexisting
+limit cycles, from Python.
+
+The computations are the Rust library's (the same code as the ``trirhythm`` command line, so
+the same arguments give the same numbers, bit for bit); this package adapts them to numpy
+arrays and dictionaries. Long calls release the GIL, accept ``threads=`` (size of their thread
+pool; default one per core), ``progress=`` (a callable ``f(done, total)``, or ``True`` for a
+tqdm bar) and stop within a second on KeyboardInterrupt.
+
+>>> import trirhythm as tr
+>>> p = tr.preset("fig4c").with_(D=0.01)
+>>> path = tr.simulate(p, t_end=10.0, seed=1)
+>>> path.u.shape
+(1001,)
+
+``sweep`` runs any of these functions over a parameter grid, in-process or on a Dask cluster,
+into an ``xarray.Dataset`` (see ``docs/python.md``).
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from typing import Iterable, Sequence
+
+import numpy as np
+
+from . import _trirhythm as _native
+from ._trirhythm import Params, Theory, preset, version
+
+__all__ = [
+    "Params",
+    "Theory",
+    "preset",
+    "presets",
+    "simulate",
+    "Path",
+    "ensemble",
+    "Ensemble",
+    "ensemble_paths",
+    "merge_paths",
+    "EnsemblePaths",
+    "lyapunov",
+    "critical_noise",
+    "oscillation_boundary",
+    "rhythmicity_map",
+    "modes_map",
+    "figure_data",
+    "sweep",
+    "version",
+]
+
+__version__ = version()
+
+
+def presets() -> dict[str, str]:
+    """Every preset's name with its description (``preset(name)`` gives its parameters)."""
+    return {name: description for name, description, _notes in _native.presets()}
+
+
+def _progress(progress):
+    """A callable ``f(done, total)`` from ``progress`` (``None``, a callable or ``True``)."""
+    if progress is None or progress is False:
+        return None
+    if progress is True:
+        from tqdm.auto import tqdm
+
+        bar = tqdm(total=1.0, bar_format="{l_bar}{bar}| {elapsed}<{remaining}")
+
+        def report(done, total):
+            bar.n = done / total if total else 0.0
+            bar.refresh()
+            if total and done >= total:
+                bar.close()
+
+        return report
+    if not callable(progress):
+        raise ValueError(f"progress = {progress!r}: expected None, True or a callable f(done, total)")
+    return progress
+
+
+def _finite(name: str, value: float) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"invalid parameter {name} = {value!r}: allowed range is a finite number") from None
+    return v
+
+
+def _count(name: str, value, low: int = 0) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
+        raise ValueError(f"invalid parameter {name} = {value!r}: allowed range is an integer, {low} or more")
+    return int(value)
+
+
+def _check_params(params) -> Params:
+    if not isinstance(params, Params):
+        raise ValueError(
+            f"invalid parameter params = {params!r}: expected a trirhythm.Params (preset(name) or Params(**values))"
+        )
+    return params
+
+
+@dataclass
+class Path:
+    """One simulated path: numpy arrays ``t``, ``u``, ``v`` (and ``eta``, the noise, when
+    D > 0, else ``None``) and the run's ``summary`` (steps, impacts, final amplitude, …)."""
+
+    t: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+    eta: np.ndarray | None
+    summary: dict
+
+
+def simulate(
+    params: Params,
+    t_end: float = 200.0,
+    dt: float = 0.01,
+    u0: float = 1.0,
+    v0: float = 0.0,
+    seed: int = 1,
+    path: int = 0,
+    every: int = 1,
+    system: str = "fractional",
+    barrier: bool = True,
+    impact_memory: str = "continuous",
+    memory: str = "soe",
+    tolerance: float = 1e-10,
+    threads: int | None = None,
+    progress=None,
+) -> Path:
+    """One path of Eq. 1 (``system="fractional"``) or of Eq. 5 / Eq. 9 (``"equivalent"``,
+    ``"zhuravlev"``), recorded every ``every`` steps: bit-identical to ``trirhythm simulate``
+    with the same arguments. ``path`` picks noise stream ``path`` of ``seed`` (0: the
+    command line's path)."""
+    _check_params(params)
+    d = _native._simulate(
+        params,
+        _finite("t_end", t_end),
+        _finite("dt", dt),
+        _finite("u0", u0),
+        _finite("v0", v0),
+        _count("seed", seed),
+        _count("path", path),
+        _count("every", every, 1),
+        system,
+        bool(barrier),
+        memory,
+        _finite("tolerance", tolerance),
+        impact_memory,
+        threads,
+        _progress(progress),
+    )
+    eta = d["eta"] if len(d["eta"]) else None
+    return Path(d["t"], d["u"], d["v"], eta, json.loads(d["summary"]))
+
+
+def _nonfinite(x):
+    """The library writes non-finite numbers as strings ("NaN", "inf", "-inf")."""
+    if isinstance(x, str):
+        try:
+            return float(x)
+        except ValueError:
+            return x
+    return x
+
+
+@dataclass
+class Ensemble:
+    """An ensemble's result: ``to_dict()`` is the document ``trirhythm ensemble --format json``
+    writes (``wall_time_s`` aside); ``statistics()`` the moments with their standard errors."""
+
+    document: dict
+
+    def to_dict(self) -> dict:
+        return self.document
+
+    def __getitem__(self, key):
+        return self.document[key]
+
+    def statistics(self) -> dict[str, tuple[float, float]]:
+        """``{name: (value, stderr)}`` for ⟨U⟩, Var U, ⟨U̇⟩, Var U̇, ⟨A⟩ and each well's occupancy."""
+        out = {}
+        for k in ("mean_u", "var_u", "mean_v", "var_v", "mean_amplitude"):
+            e = self.document[k]
+            out[k] = (float(_nonfinite(e["value"])), float(_nonfinite(e["stderr"])))
+        for i, e in enumerate(self.document.get("occupancy") or []):
+            out[f"occupancy_{i}"] = (float(_nonfinite(e["value"])), float(_nonfinite(e["stderr"])))
+        return out
+
+    def density(self, kind: str = "amplitude") -> dict:
+        """A histogram as numpy arrays: ``edges`` (bins + 1), ``density`` and ``stderr`` (bins),
+        with ``beyond`` (the fraction past the last edge) and ``count``; ``kind`` is
+        ``"amplitude"``, ``"turning"`` or ``"energy"``."""
+        if kind not in ("amplitude", "turning", "energy"):
+            raise ValueError(f"invalid parameter kind = {kind!r}: expected amplitude, turning or energy")
+        d = self.document[kind]
+        arr = lambda xs: np.array([float(_nonfinite(x)) for x in xs])  # noqa: E731
+        return {
+            "edges": arr(d["edges"]),
+            "density": arr(d["density"]),
+            "stderr": arr(d["stderr"]),
+            "beyond": float(_nonfinite(d["beyond"])),
+            "count": int(d["count"]),
+        }
+
+
+@dataclass
+class EnsemblePaths:
+    """Some paths of an ensemble (``ensemble_paths``), to be merged with ``merge_paths``;
+    picklable (the statistics travel as exact JSON)."""
+
+    pieces: str
+    which: list[int] = field(default_factory=list)
+
+
+_ENSEMBLE_DEFAULTS = dict(
+    dt=0.01,
+    u0=(),
+    variant="paper",
+    system="fractional",
+    barrier=True,
+    memory="soe",
+    tolerance=1e-10,
+    impact_memory="restart",
+    bins=100,
+    joint_bins=48,
+    amplitude_max=None,
+    sample_every=1,
+)
+
+
+def _ensemble_args(params, paths, t_end, burn_in, seed, options):
+    unknown = set(options) - set(_ENSEMBLE_DEFAULTS)
+    if unknown:
+        raise ValueError(f"unknown argument(s) {sorted(unknown)}: expected {sorted(_ENSEMBLE_DEFAULTS)}")
+    o = {**_ENSEMBLE_DEFAULTS, **options}
+    u0 = o["u0"]
+    u0 = [float(u0)] if isinstance(u0, (int, float)) else [_finite("u0", x) for x in u0]
+    amax = o["amplitude_max"]
+    return (
+        _check_params(params),
+        _count("paths", paths),
+        _finite("t_end", t_end),
+        _finite("burn_in", burn_in),
+        _count("seed", seed),
+        _finite("dt", o["dt"]),
+        u0,
+        o["variant"],
+        o["system"],
+        bool(o["barrier"]),
+        o["memory"],
+        _finite("tolerance", o["tolerance"]),
+        o["impact_memory"],
+        _count("bins", o["bins"]),
+        _count("joint_bins", o["joint_bins"]),
+        None if amax is None else _finite("amplitude_max", amax),
+        _count("sample_every", o["sample_every"]),
+    )
+
+
+def ensemble(
+    params: Params,
+    paths: int = 8,
+    t_end: float = 1000.0,
+    burn_in: float = 100.0,
+    seed: int = 1,
+    *,
+    threads: int | None = None,
+    progress=None,
+    **options,
+) -> Ensemble:
+    """``paths`` paths (path i is noise stream i of ``seed``), each ``burn_in`` discarded then
+    ``t_end`` recorded: the stationary statistics with standard errors, the stationarity
+    diagnosis and the averaged theory against them, as ``trirhythm ensemble``. Options and
+    defaults are the command line's: ``dt=0.01``, ``u0=()`` (the theory's modes),
+    ``variant="paper"``, ``system``, ``barrier``, ``memory``, ``tolerance``,
+    ``impact_memory="restart"``, ``bins=100``, ``joint_bins=48``, ``amplitude_max=None``,
+    ``sample_every=1``."""
+    args = _ensemble_args(params, paths, t_end, burn_in, seed, options)
+    text = _native._ensemble(*args, threads=threads, progress=_progress(progress))
+    return Ensemble(json.loads(text))
+
+
+def ensemble_paths(
+    params: Params,
+    which: Iterable[int],
+    paths: int = 8,
+    t_end: float = 1000.0,
+    burn_in: float = 100.0,
+    seed: int = 1,
+    *,
+    threads: int | None = None,
+    progress=None,
+    **options,
+) -> EnsemblePaths:
+    """Run only the paths ``which`` (indices in ``range(paths)``) of the ensemble that
+    ``ensemble`` with the same arguments runs; ``merge_paths`` puts the pieces together, in
+    any order and any split, into the same result bit for bit."""
+    which = [_count("which", i) for i in which]
+    args = _ensemble_args(params, paths, t_end, burn_in, seed, options)
+    text = _native._ensemble(*args, which=which, merge=False, threads=threads, progress=_progress(progress))
+    return EnsemblePaths(text, which)
+
+
+def merge_paths(
+    params: Params,
+    pieces: Sequence[EnsemblePaths],
+    paths: int = 8,
+    t_end: float = 1000.0,
+    burn_in: float = 100.0,
+    seed: int = 1,
+    **options,
+) -> Ensemble:
+    """Merge the pieces of ``ensemble_paths`` (same arguments) into the ensemble's result;
+    every path must be given exactly once."""
+    args = _ensemble_args(params, paths, t_end, burn_in, seed, options)
+    given = sorted(i for p in pieces for i in p.which)
+    if given != list(range(paths)):
+        raise ValueError(
+            f"invalid parameter pieces: they hold paths {given}, expected each of 0..{paths - 1} once"
+        )
+    text = _native._ensemble(*args, which=[], pieces=[p.pieces for p in pieces])
+    return Ensemble(json.loads(text))
+
+
+_LLE_DEFAULTS = dict(
+    transient=200.0,
+    dt=0.01,
+    u0=1.0,
+    impact_memory="restart",
+    method="two-trajectory",
+    renormalise_every=100,
+    separation=1e-8,
+    system="fractional",
+    barrier=True,
+    memory="soe",
+    tolerance=1e-10,
+)
+
+
+def _lle_args(params, paths, t_end, seed, options):
+    unknown = set(options) - set(_LLE_DEFAULTS)
+    if unknown:
+        raise ValueError(f"unknown argument(s) {sorted(unknown)}: expected {sorted(_LLE_DEFAULTS)}")
+    o = {**_LLE_DEFAULTS, **options}
+    return dict(
+        params=_check_params(params),
+        t_end=_finite("t_end", t_end),
+        transient=_finite("transient", o["transient"]),
+        dt=_finite("dt", o["dt"]),
+        paths=_count("paths", paths),
+        seed=_count("seed", seed),
+        u0=_finite("u0", o["u0"]),
+        impact_memory=o["impact_memory"],
+        method=o["method"],
+        renormalise_every=_count("renormalise_every", o["renormalise_every"]),
+        separation=_finite("separation", o["separation"]),
+        system=o["system"],
+        barrier=bool(o["barrier"]),
+        memory=o["memory"],
+        tolerance=_finite("tolerance", o["tolerance"]),
+    )
+
+
+def lyapunov(
+    params: Params,
+    paths: int = 8,
+    t_end: float = 2000.0,
+    seed: int = 1,
+    *,
+    threads: int | None = None,
+    progress=None,
+    **options,
+) -> dict:
+    """The largest Lyapunov exponent with frozen noise (``trirhythm lyapunov``): a dict with
+    ``lle`` ``{value, stderr}``, ``per_path``, ``running``, … Options: ``transient=200``,
+    ``dt=0.01``, ``u0=1``, ``impact_memory="restart"``, ``method="two-trajectory"`` or
+    ``"tangent"``, ``renormalise_every=100``, ``separation=1e-8``, ``system``, ``barrier``,
+    ``memory``, ``tolerance``."""
+    a = _lle_args(params, paths, t_end, seed, options)
+    return json.loads(_native._lyapunov(**a, threads=threads, progress=_progress(progress)))
+
+
+def critical_noise(
+    params: Params,
+    d_range: tuple[float, float] = (0.0, 0.5),
+    grid: int = 12,
+    refinements: int = 6,
+    z: float = 2.0,
+    paths: int = 8,
+    t_end: float = 2000.0,
+    seed: int = 1,
+    *,
+    threads: int | None = None,
+    progress=None,
+    **options,
+) -> dict:
+    """The noise intensity D_c where the largest Lyapunov exponent changes sign
+    (``trirhythm critical-noise``): ``{d_c, d_c_lo, d_c_hi, rising, evaluated}``."""
+    a = _lle_args(params, paths, t_end, seed, options)
+    lo, hi = (_finite("d_range", x) for x in d_range)
+    r = _native._lyapunov(
+        **a,
+        d_range=(lo, hi),
+        grid=_count("grid", grid),
+        refinements=_count("refinements", refinements),
+        z=_finite("z", z),
+        threads=threads,
+        progress=_progress(progress),
+    )
+    return {k: _nonfinite(v) for k, v in json.loads(r).items()}
+
+
+def oscillation_boundary(
+    params: Params,
+    x: tuple[str, Sequence[float]],
+    y: tuple[str, float, float],
+    method: str = "simulation",
+    variant: str = "paper",
+    barrier: bool = True,
+    tolerance: float = 1e-3,
+    *,
+    threads: int | None = None,
+    progress=None,
+) -> dict:
+    """The oscillation boundary (``trirhythm oscillation``): for each abscissa of
+    ``x = (key, values)`` the value of ``y = (key, lo, hi)`` where the rest state loses
+    stability, by ``method`` ``"simulation"``, ``"averaging"`` or ``"exact"``."""
+    xk, xs = x
+    yk, lo, hi = y
+    r = _native._oscillation_boundary(
+        _check_params(params),
+        xk,
+        [_finite(xk, v) for v in xs],
+        yk,
+        (_finite(yk, lo), _finite(yk, hi)),
+        method,
+        variant,
+        bool(barrier),
+        _finite("tolerance", tolerance),
+        threads=threads,
+        progress=_progress(progress),
+    )
+    return json.loads(r)
+
+
+def _axis(name, a):
+    try:
+        key, start, stop, count = a
+    except (TypeError, ValueError):
+        raise ValueError(f"invalid parameter {name} = {a!r}: expected (key, start, stop, count)") from None
+    return (str(key), _finite(f"{name} start", start), _finite(f"{name} stop", stop), _count(f"{name} count", count, 2))
+
+
+def rhythmicity_map(params, x, y, variant="paper", *, threads=None, progress=None):
+    """Stable-cycle counts of the averaged theory over the plane ``x = (key, start, stop,
+    count)`` × ``y = (…)``: ``(xs, ys, counts)`` with ``counts[iy, ix]`` (``trirhythm map``)."""
+    return _native._map(
+        _check_params(params), _axis("x", x), _axis("y", y), "rhythmicity", variant, threads, _progress(progress)
+    )
+
+
+def modes_map(params, x, y, variant="paper", *, threads=None, progress=None):
+    """Counts of the modes of the stationary P(A) (D > 0) over a plane, as ``rhythmicity_map``."""
+    return _native._map(_check_params(params), _axis("x", x), _axis("y", y), "modes", variant, threads, _progress(progress))
+
+
+def figure_data(n: int, quick: bool = False, variant: str = "paper", *, threads=None, progress=None) -> dict:
+    """Figure ``n``'s data: the value ``trirhythm figure N --data`` writes under ``data`` in
+    ``figNN.json``."""
+    return json.loads(_native._figure_data(_count("n", n, 1), bool(quick), variant, threads, _progress(progress)))
+
+
+from .sweep import sweep  # noqa: E402  (needs the functions above)

@@ -1,0 +1,362 @@
+"""Parameter sweeps: one trirhythm computation at every point of a grid, in-process or on a
+Dask cluster, into an ``xarray.Dataset``.
+
+- Common random numbers: every point runs with the same ``seed`` (path i is noise stream i of
+  the seed at every point), so that differences between points are not noise between seeds.
+- Reproducible: each point's result depends on its parameters, ``seed`` and ``kwargs`` only,
+  never on the worker, the number of workers, the order, or ``chunk_paths`` (the paths of an
+  ensemble split into tasks and merged give the same bits as one call).
+- Checkpoints: with ``checkpoint=DIR`` each finished point is saved as one file in DIR (written
+  atomically); a rerun of the same sweep skips those points, and a directory made for another
+  sweep (another function, grid, base, seed, options or version) is refused.
+
+Dask is imported only when a ``client`` is given.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import inspect
+import itertools
+import json
+import os
+import tempfile
+from typing import Any, Callable, Mapping, Sequence
+
+import numpy as np
+
+# results that depend on the machine or the moment, never kept
+_UNSTABLE = {"wall_time_s", "steps_per_second"}
+# ensemble functions that can split their paths across tasks
+_SPLITTABLE = {"ensemble"}
+
+
+def _named(func: str) -> Callable:
+    import trirhythm
+
+    names = ("ensemble", "lyapunov", "critical_noise", "oscillation_boundary", "simulate")
+    if func not in names:
+        raise ValueError(f"invalid parameter func = {func!r}: expected one of {', '.join(names)} or a callable")
+    return getattr(trirhythm, func)
+
+
+def _number(x):
+    if isinstance(x, bool):
+        return float(x)
+    if isinstance(x, (int, float, np.integer, np.floating)):
+        return float(x)
+    if isinstance(x, str):
+        try:
+            return float(x)  # the library writes non-finite numbers as "NaN", "inf", "-inf"
+        except ValueError:
+            return None
+    return None
+
+
+def statistics(result: Any) -> dict[str, tuple[float, float]]:
+    """The scalar statistics of a result as ``{name: (value, stderr)}`` (stderr NaN where the
+    result gives none): an ``Ensemble``'s moments and occupancies, the ``{value, stderr}`` and
+    number fields of a dict (a Lyapunov exponent, a critical noise), a ``Path``'s summary, a
+    number, a ``(value, stderr)`` pair, or a dict of those (what a custom function returns)."""
+    import trirhythm
+
+    nan = float("nan")
+    if isinstance(result, trirhythm.Ensemble):
+        return result.statistics()
+    if isinstance(result, trirhythm.Path):
+        result = result.summary
+    if isinstance(result, tuple) and len(result) == 2:
+        return {"value": (float(result[0]), float(result[1]))}
+    if _number(result) is not None and not isinstance(result, str):
+        return {"value": (float(result), nan)}
+    if not isinstance(result, Mapping):
+        raise TypeError(f"sweep: cannot take statistics from a {type(result).__name__}")
+    out = {}
+    points = result.get("points")
+    if isinstance(points, list) and all(isinstance(p, Mapping) for p in points):
+        # an oscillation boundary: each abscissa's y and bracket (suffix _i with several)
+        for i, p in enumerate(points):
+            for k in ("y", "y_lo", "y_hi", "simulations"):
+                if k in p:
+                    out[k if len(points) == 1 else f"{k}_{i}"] = (_number(p[k]), nan)
+    for k, v in result.items():
+        if k in _UNSTABLE:
+            continue
+        if isinstance(v, Mapping) and "value" in v and "stderr" in v:
+            out[k] = (_number(v["value"]), _number(v["stderr"]))
+        elif isinstance(v, tuple) and len(v) == 2:
+            out[k] = (float(v[0]), float(v[1]))
+        elif not isinstance(v, str) and _number(v) is not None:
+            out[k] = (_number(v), nan)
+        elif isinstance(v, str) and _number(v) is not None:
+            out[k] = (_number(v), nan)
+    return out
+
+
+def _takes_seed(f) -> bool:
+    try:
+        ps = inspect.signature(f).parameters.values()
+    except (TypeError, ValueError):
+        return True
+    return any(p.name == "seed" or p.kind is inspect.Parameter.VAR_KEYWORD for p in ps)
+
+
+def _run_point(func, params, seed, kwargs):
+    """One point (runs on a worker): the function's statistics. A function without a seed
+    (a deterministic one, such as an oscillation boundary) is called without it."""
+    f = _named(func) if isinstance(func, str) else func
+    if _takes_seed(f):
+        return statistics(f(params, seed=seed, **kwargs))
+    return statistics(f(params, **kwargs))
+
+
+def _run_chunk(func, params, seed, which, kwargs):
+    """Some paths of one point's ensemble (runs on a worker)."""
+    import trirhythm
+
+    return trirhythm.ensemble_paths(params, which, seed=seed, **kwargs)
+
+
+def _merge_chunks(params, seed, kwargs, *pieces):
+    """One point's ensemble from its pieces (runs on a worker)."""
+    import trirhythm
+
+    kw = {k: v for k, v in kwargs.items() if k not in ("threads", "progress")}
+    return statistics(trirhythm.merge_paths(params, pieces, seed=seed, **kw))
+
+
+def _describe(x):
+    """A JSON-able description of an argument, for the fingerprint and the attributes."""
+    import trirhythm
+
+    if isinstance(x, trirhythm.Params):
+        return x.to_dict()
+    if callable(x):
+        return f"{getattr(x, '__module__', '?')}.{getattr(x, '__qualname__', repr(x))}"
+    if isinstance(x, (list, tuple)):
+        return [_describe(v) for v in x]
+    if isinstance(x, Mapping):
+        return {str(k): _describe(v) for k, v in x.items()}
+    if isinstance(x, (np.integer, np.floating)):
+        return x.item()
+    if isinstance(x, (int, float, str, bool)) or x is None:
+        return x
+    return repr(x)
+
+
+def _write_atomic(path: str, text: str) -> None:
+    d = os.path.dirname(path)
+    fd, tmp = tempfile.mkstemp(dir=d, prefix=".tmp-", suffix=".json")
+    try:
+        with os.fdopen(fd, "w") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def _encode(stats):
+    # repr of a float round-trips exactly; NaN and ±inf as strings
+    return {k: [repr(float(v)), repr(float(s))] for k, (v, s) in stats.items()}
+
+
+def _decode(d):
+    return {k: (float(v), float(s)) for k, (v, s) in d.items()}
+
+
+class _Checkpoint:
+    """A directory of one file per finished point, with the sweep's fingerprint."""
+
+    def __init__(self, directory: str, fingerprint: str, description: dict):
+        self.dir = os.fspath(directory)
+        if os.path.exists(self.dir) and not os.path.isdir(self.dir):
+            raise ValueError(f"invalid parameter checkpoint = {self.dir!r}: exists and is not a directory")
+        os.makedirs(self.dir, exist_ok=True)
+        tag = os.path.join(self.dir, "sweep.json")
+        if os.path.exists(tag):
+            with open(tag) as f:
+                held = json.load(f)
+            if held.get("fingerprint") != fingerprint:
+                raise ValueError(
+                    f"invalid parameter checkpoint = {self.dir!r}: holds another sweep (different function, "
+                    "grid, base parameters, seed, options or trirhythm version); use an empty directory"
+                )
+        else:
+            if any(n.startswith("point-") for n in os.listdir(self.dir)):
+                raise ValueError(
+                    f"invalid parameter checkpoint = {self.dir!r}: holds point files but no sweep.json naming "
+                    "their sweep; use an empty directory"
+                )
+            _write_atomic(tag, json.dumps({"fingerprint": fingerprint, "sweep": description}, indent=1))
+        self.fingerprint = fingerprint
+
+    def _file(self, index):
+        return os.path.join(self.dir, "point-" + "-".join(str(i) for i in index) + ".json")
+
+    def load(self, index):
+        try:
+            with open(self._file(index)) as f:
+                d = json.load(f)
+        except FileNotFoundError:
+            return None
+        if d.get("fingerprint") != self.fingerprint or d.get("index") != list(index):
+            raise ValueError(f"checkpoint {self._file(index)}: not a point of this sweep; remove it")
+        return _decode(d["statistics"])
+
+    def save(self, index, stats):
+        doc = {"fingerprint": self.fingerprint, "index": list(index), "statistics": _encode(stats)}
+        _write_atomic(self._file(index), json.dumps(doc))
+
+
+def sweep(
+    func,
+    grid: Mapping[str, Sequence[float]],
+    *,
+    base,
+    client=None,
+    seed: int = 1,
+    chunk_paths: int | None = None,
+    checkpoint: str | os.PathLike | None = None,
+    progress=None,
+    **kwargs,
+):
+    """Run ``func`` at every point of ``grid`` around the parameters ``base``.
+
+    - ``func``: the name of a trirhythm function (``"ensemble"``, ``"lyapunov"``,
+      ``"critical_noise"``, ``"oscillation_boundary"``, ``"simulate"``) called as
+      ``func(params, seed=seed, **kwargs)``, or any picklable callable of that form returning
+      what ``statistics`` reads (a number, a ``(value, stderr)`` pair, a dict of them).
+    - ``grid``: ``{key: values}`` for any parameter keys (``"lambda"``, ``"r"``, ``"D"``, …);
+      the points are the outer product, each validated before any work.
+    - ``client``: ``None`` runs in-process, one point after the other (each call on all
+      cores); a ``dask.distributed.Client`` runs one task per point (or per chunk) on its
+      workers, each with ``threads=1`` unless ``kwargs`` says otherwise.
+    - ``seed``: the same at every point (common random numbers).
+    - ``chunk_paths``: with ``func="ensemble"``, split each point's paths into tasks of this
+      many paths, merged exactly (the result does not depend on it).
+    - ``checkpoint``: a directory keeping each finished point; a rerun resumes.
+    - ``progress``: a callable ``f(done, total)`` over points, or ``True`` for a tqdm bar.
+
+    Returns an ``xarray.Dataset`` with one dimension per key of ``grid`` and, for every
+    statistic, a variable and its standard error ``<name>_stderr``; the attributes record the
+    function, the base parameters, the seed, the options and the trirhythm version.
+    """
+    import xarray as xr
+
+    import trirhythm
+
+    if not isinstance(base, trirhythm.Params):
+        raise ValueError(f"invalid parameter base = {base!r}: expected a trirhythm.Params")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ValueError(f"invalid parameter seed = {seed!r}: allowed range is an integer, 0 or more")
+    if not grid:
+        raise ValueError("invalid parameter grid = {}: give at least one key with its values")
+    keys = list(grid)
+    values = []
+    for k in keys:
+        v = np.asarray(grid[k], dtype=float)
+        if v.ndim != 1 or v.size == 0:
+            raise ValueError(f"invalid parameter grid[{k!r}]: expected a non-empty list of numbers")
+        values.append(v)
+    if isinstance(func, str):
+        _named(func)
+    elif not callable(func):
+        raise ValueError(f"invalid parameter func = {func!r}: expected a function name or a callable")
+    if chunk_paths is not None:
+        if func not in _SPLITTABLE:
+            raise ValueError(f"invalid parameter chunk_paths = {chunk_paths}: only func='ensemble' splits its paths")
+        if isinstance(chunk_paths, bool) or not isinstance(chunk_paths, (int, np.integer)) or chunk_paths < 1:
+            raise ValueError(f"invalid parameter chunk_paths = {chunk_paths!r}: allowed range is 1 or more")
+    shape = tuple(len(v) for v in values)
+    indices = list(itertools.product(*(range(n) for n in shape)))
+    # every point valid before any work: a bad grid value names its key, value and range
+    points = {ix: base.with_(**{k: float(values[d][i]) for d, (k, i) in enumerate(zip(keys, ix))}) for ix in indices}
+    if client is not None and isinstance(func, str):
+        kwargs.setdefault("threads", 1)
+
+    description = {
+        "func": _describe(func),
+        "grid": {k: [float(x) for x in v] for k, v in zip(keys, values)},
+        "base": base.to_dict(),
+        "seed": int(seed),
+        "kwargs": _describe({k: v for k, v in kwargs.items() if k not in ("threads", "progress")}),
+        "trirhythm": trirhythm.__version__,
+    }
+    fingerprint = hashlib.sha256(json.dumps(description, sort_keys=True).encode()).hexdigest()
+    store = _Checkpoint(checkpoint, fingerprint, description) if checkpoint is not None else None
+
+    report = trirhythm._progress(progress)
+    results: dict[tuple, dict] = {}
+    if store is not None:
+        for ix in indices:
+            s = store.load(ix)
+            if s is not None:
+                results[ix] = s
+    todo = [ix for ix in indices if ix not in results]
+
+    def finished(ix, stats):
+        results[ix] = stats
+        if store is not None:
+            store.save(ix, stats)
+        if report is not None:
+            report(len(results), len(indices))
+
+    if client is None:
+        for ix in todo:
+            if chunk_paths is None:
+                stats = _run_point(func, points[ix], int(seed), kwargs)
+            else:
+                paths = kwargs.get("paths", 8)
+                chunks = [list(range(a, min(a + chunk_paths, paths))) for a in range(0, paths, chunk_paths)]
+                pieces = [_run_chunk(func, points[ix], int(seed), c, kwargs) for c in chunks]
+                stats = _merge_chunks(points[ix], int(seed), kwargs, *pieces)
+            finished(ix, stats)
+    else:
+        from distributed import as_completed
+
+        futures = {}
+        for ix in todo:
+            p = points[ix]
+            if chunk_paths is None:
+                fut = client.submit(_run_point, func, p, int(seed), kwargs, pure=False)
+            else:
+                paths = kwargs.get("paths", 8)
+                chunks = [list(range(a, min(a + chunk_paths, paths))) for a in range(0, paths, chunk_paths)]
+                pieces = [client.submit(_run_chunk, func, p, int(seed), c, kwargs, pure=False) for c in chunks]
+                fut = client.submit(_merge_chunks, p, int(seed), kwargs, *pieces, pure=False)
+            futures[fut] = ix
+        try:
+            for fut in as_completed(list(futures)):
+                finished(futures[fut], fut.result())
+        except BaseException:
+            client.cancel(list(futures))
+            raise
+
+    names: list[str] = []
+    for ix in indices:
+        for k in results[ix]:
+            if k not in names:
+                names.append(k)
+    data = {}
+    for n in names:
+        val = np.full(shape, np.nan)
+        err = np.full(shape, np.nan)
+        for ix in indices:
+            if n in results[ix]:
+                val[ix], err[ix] = results[ix][n]
+        data[n] = (keys, val)
+        data[f"{n}_stderr"] = (keys, err)
+    attrs = {
+        "func": json.dumps(description["func"]),
+        "base": json.dumps(description["base"]),
+        "seed": int(seed),
+        "seeds": f"common random numbers: every point uses seed {int(seed)} (path i is noise stream i of it)",
+        "kwargs": json.dumps(description["kwargs"]),
+        "trirhythm": trirhythm.__version__,
+        "fingerprint": fingerprint,
+    }
+    return xr.Dataset(data, coords={k: v for k, v in zip(keys, values)}, attrs=attrs)

@@ -1,0 +1,790 @@
+//! The native module `trirhythm._trirhythm` behind the Python package `trirhythm`.
+//!
+//! It only adapts: every computation is a call of the `trirhythm` or `trirhythm-paper`
+//! library, every document the library's serde form (handed to Python as JSON text and parsed
+//! there), every error the library's message. Long calls ([`long_call`]) release the GIL, run
+//! on a rayon pool of `threads` threads in a second thread, and from the calling thread poll
+//! Python's signal handlers and report progress to a Python callback about every 100 ms; a
+//! `KeyboardInterrupt` (or an exception in the callback) cancels the run through the
+//! library's [`CancelFlag`] and is raised once the run has stopped.
+//!
+//! Tests: the package's pytest suite (`crates/trirhythm-py/tests`).
+
+use numpy::{IntoPyArray, PyArray1};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+use trirhythm::analysis::ensemble::{self as ens, PathStats};
+use trirhythm::analysis::lyapunov::{self as lle, CriticalSearch, LyapunovSpec};
+use trirhythm::analysis::oscillation::{self as osc, Classifier, Search};
+use trirhythm::engine::{simulate_with, ImpactMemory, Options, System};
+use trirhythm::model::{self, Params};
+use trirhythm::monitor::{CancelFlag, Monitor};
+use trirhythm::theory::averaging::{Theory, Variant};
+use trirhythm::theory::bifurcation::{self as bif, Axis, What};
+use trirhythm_paper::requests::{EnsembleRequest, MemoryKind, Model, Named};
+use trirhythm_paper::FigureOptions;
+
+/// A one-dimensional numpy array.
+type Array<'py, T> = Bound<'py, PyArray1<T>>;
+
+/// A library error as a Python exception: bad input is a `ValueError`, a cancelled run a
+/// `KeyboardInterrupt`, anything else a `RuntimeError`; the message is the library's.
+fn py_err(e: trirhythm::Error) -> PyErr {
+    use trirhythm::Error as E;
+    match e {
+        E::Cancelled => PyKeyboardInterrupt::new_err("cancelled"),
+        E::InvalidParameter { .. } | E::Unknown { .. } | E::Undefined { .. } => {
+            PyValueError::new_err(e.to_string())
+        }
+        _ => PyRuntimeError::new_err(e.to_string()),
+    }
+}
+
+fn json_err(e: serde_json::Error) -> PyErr {
+    PyRuntimeError::new_err(format!("serialising a result: {e}"))
+}
+
+/// What a long call reports to: progress counters read by the calling thread, and the flag
+/// that stops the run.
+#[derive(Default)]
+struct Watch {
+    flag: CancelFlag,
+    done: AtomicU64,
+    total: AtomicU64,
+}
+
+impl<T: ?Sized> Monitor<T> for Watch {
+    fn progress(&self, done: u64, total: u64) {
+        self.done.store(done, Ordering::Relaxed);
+        self.total.store(total, Ordering::Relaxed);
+    }
+
+    fn cancelled(&self) -> bool {
+        Monitor::<()>::cancelled(&self.flag)
+    }
+}
+
+/// How often the calling thread checks for signals and reports progress.
+const POLL: Duration = Duration::from_millis(100);
+
+/// Run `work` without the GIL on a pool of `threads` threads (`None`: one per core) in a
+/// second thread, while this thread polls Python's signals and calls `progress(done, total)`
+/// (at most every 100 ms, when it changed). A `KeyboardInterrupt` or an exception of the
+/// callback cancels the run and is raised after it stopped.
+fn long_call<T: Send>(
+    py: Python<'_>,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+    work: impl FnOnce(&Watch) -> trirhythm::Result<T> + Send,
+) -> PyResult<T> {
+    if threads == Some(0) {
+        return Err(PyValueError::new_err(
+            "invalid parameter threads = 0: allowed range is 1 or more (or None: one per core)",
+        ));
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| PyRuntimeError::new_err(format!("starting the thread pool: {e}")))?;
+    let watch = Watch::default();
+    let (result, raised) = py.detach(|| {
+        std::thread::scope(|s| {
+            let handle = s.spawn(|| pool.install(|| work(&watch)));
+            let mut raised: Option<PyErr> = None;
+            let mut last = (u64::MAX, u64::MAX);
+            let mut next_report = Instant::now();
+            while !handle.is_finished() {
+                std::thread::sleep(Duration::from_millis(10));
+                if Instant::now() < next_report || raised.is_some() {
+                    continue;
+                }
+                next_report = Instant::now() + POLL;
+                let now = (
+                    watch.done.load(Ordering::Relaxed),
+                    watch.total.load(Ordering::Relaxed),
+                );
+                let outcome = Python::attach(|py| -> PyResult<()> {
+                    py.check_signals()?;
+                    if let Some(cb) = &progress {
+                        if now != last && now.1 > 0 {
+                            cb.call1(py, now)?;
+                        }
+                    }
+                    Ok(())
+                });
+                last = now;
+                if let Err(e) = outcome {
+                    watch.flag.cancel();
+                    raised = Some(e);
+                }
+            }
+            let result = handle.join().unwrap_or_else(|_| {
+                Err(trirhythm::Error::Undefined {
+                    what: "the run",
+                    why: "a worker thread panicked".into(),
+                })
+            });
+            (result, raised)
+        })
+    });
+    if let Some(e) = raised {
+        return Err(e);
+    }
+    let value = result.map_err(py_err)?;
+    if let Some(cb) = &progress {
+        let t = watch.total.load(Ordering::Relaxed);
+        if t > 0 {
+            cb.call1(py, (t, t))?;
+        }
+    }
+    Ok(value)
+}
+
+/// The model choices of a call: `system`, `barrier`, `memory`, `tolerance`.
+fn model(system: &str, barrier: bool, memory: &str, tolerance: f64) -> PyResult<Model> {
+    Ok(Model {
+        system: System::parse(system).map_err(py_err)?,
+        barrier: if barrier {
+            trirhythm::engine::Barrier::On
+        } else {
+            trirhythm::engine::Barrier::Off
+        },
+        memory: MemoryKind::parse(memory).map_err(py_err)?,
+        tolerance,
+    })
+}
+
+fn impact(name: &str) -> PyResult<ImpactMemory> {
+    ImpactMemory::parse(name).map_err(py_err)
+}
+
+fn variant(name: &str) -> PyResult<Variant> {
+    Variant::parse(name).map_err(py_err)
+}
+
+/// A validated parameter set (`trirhythm.Params`): immutable; `with_(**values)` makes a new
+/// one.
+#[pyclass(name = "Params", module = "trirhythm", frozen, eq)]
+#[derive(Clone, PartialEq)]
+struct PyParams(Params);
+
+#[pymethods]
+impl PyParams {
+    /// The parameters of `pairs` (key, value) over the defaults (Fig. 4(c)'s set with r = 1,
+    /// D = 0, τ = 0), validated.
+    #[new]
+    #[pyo3(signature = (**values))]
+    fn new(values: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        PyParams(Params::default()).with_(values)
+    }
+
+    /// A copy with `values` (keys as `keys()` lists, `lambda_` for `lambda`, `c<k>` for a
+    /// damping coefficient)
+    /// changed; the result is validated: a bad value raises `ValueError` naming the key, the
+    /// value and the allowed range.
+    #[pyo3(signature = (**values))]
+    fn with_(&self, values: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let mut p = self.0.clone();
+        if let Some(values) = values {
+            for (k, v) in values.iter() {
+                let key: String = k.extract()?;
+                // `lambda` is a Python keyword: `with_(lambda_=0.9)`
+                let key = key.strip_suffix('_').unwrap_or(&key).to_string();
+                let value: f64 = v.extract().map_err(|_| {
+                    PyValueError::new_err(format!(
+                        "invalid value for parameter {key}: `{}` is not a number",
+                        v.repr().map(|r| r.to_string()).unwrap_or_default()
+                    ))
+                })?;
+                p.set(&key, value).map_err(py_err)?;
+            }
+        }
+        p.validate().map_err(py_err)?;
+        Ok(PyParams(p))
+    }
+
+    /// The value of `key`.
+    fn __getitem__(&self, key: &str) -> PyResult<f64> {
+        self.0.get(key).map_err(py_err)
+    }
+
+    /// The keys, in order.
+    fn keys(&self) -> Vec<String> {
+        self.0.key_values().into_iter().map(|(k, _)| k).collect()
+    }
+
+    /// `{key: value}` in key order.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (k, v) in self.0.key_values() {
+            d.set_item(k, v)?;
+        }
+        Ok(d)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Params({})", self.0.describe())
+    }
+
+    /// Pickled as its key–value pairs (so that it travels to Dask workers).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyDict>,))> {
+        let f = py
+            .import("trirhythm._trirhythm")?
+            .getattr("_params_from_dict")?;
+        Ok((f, (self.to_dict(py)?,)))
+    }
+}
+
+/// `Params(**d)`, for unpickling.
+#[pyfunction]
+fn _params_from_dict(d: &Bound<'_, PyDict>) -> PyResult<PyParams> {
+    PyParams::new(Some(d))
+}
+
+/// The parameters of a preset (`presets()` lists them).
+#[pyfunction]
+fn preset(name: &str) -> PyResult<PyParams> {
+    Ok(PyParams(model::preset(name).map_err(py_err)?.params))
+}
+
+/// Every preset as `(name, description, notes)`.
+#[pyfunction]
+fn presets() -> Vec<(String, String, Vec<String>)> {
+    model::presets()
+        .into_iter()
+        .map(|p| {
+            (
+                p.name.to_string(),
+                p.description.to_string(),
+                p.notes.iter().map(|n| n.to_string()).collect(),
+            )
+        })
+        .collect()
+}
+
+/// The averaged theory of a parameter set in one formula variant.
+#[pyclass(name = "Theory", module = "trirhythm", frozen)]
+struct PyTheory(Theory);
+
+#[pymethods]
+impl PyTheory {
+    #[new]
+    #[pyo3(signature = (params, variant="paper"))]
+    fn new(params: &PyParams, variant: &str) -> PyResult<Self> {
+        Ok(PyTheory(
+            Theory::new(&params.0, self::variant(variant)?).map_err(py_err)?,
+        ))
+    }
+
+    /// Eq. 5's coefficients `{mu1, beta1, omega1, beta2}`.
+    fn equivalents<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let e = self.0.equivalents();
+        let d = PyDict::new(py);
+        d.set_item("mu1", e.mu1)?;
+        d.set_item("beta1", e.beta1)?;
+        d.set_item("omega1", e.omega1)?;
+        d.set_item("beta2", e.beta2)?;
+        Ok(d)
+    }
+
+    /// The cycles (D = 0) or modes of P(A) (D > 0): `(amplitude, stable, fold)` arrays.
+    fn cycles<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> (Array<'py, f64>, Array<'py, bool>, Array<'py, bool>) {
+        let c = self.0.cycles();
+        (
+            c.iter()
+                .map(|c| c.amplitude)
+                .collect::<Vec<_>>()
+                .into_pyarray(py),
+            c.iter()
+                .map(|c| c.stable)
+                .collect::<Vec<_>>()
+                .into_pyarray(py),
+            c.iter()
+                .map(|c| c.fold)
+                .collect::<Vec<_>>()
+                .into_pyarray(py),
+        )
+    }
+
+    /// The averaged drift f(A) (Eq. 18) at each amplitude.
+    fn drift<'py>(&self, py: Python<'py>, a: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
+        a.iter()
+            .map(|&a| self.0.drift(a))
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
+    }
+
+    /// The pseudo-potential U_eff(A) at each amplitude.
+    fn potential<'py>(&self, py: Python<'py>, a: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
+        a.iter()
+            .map(|&a| self.0.potential(a))
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
+    }
+
+    /// The energy barriers as `(well, crest, side, height)` tuples.
+    fn barriers(&self) -> Vec<(f64, f64, &'static str, f64)> {
+        self.0
+            .barriers()
+            .into_iter()
+            .map(|b| (b.well, b.crest, b.side.name(), b.height))
+            .collect()
+    }
+
+    /// The stationary density `kind` (`amplitude` P(A), `energy` P(H), `log-amplitude`)
+    /// on `grid`; `joint` takes `grid` and `v` (P(U, U̇) on the outer product).
+    #[pyo3(signature = (kind, grid, v=None))]
+    fn pdf<'py>(
+        &self,
+        py: Python<'py>,
+        kind: &str,
+        grid: Vec<f64>,
+        v: Option<Vec<f64>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let pdf = self.0.amplitude_pdf().map_err(py_err)?;
+        let one = |f: &dyn Fn(f64) -> f64| grid.iter().map(|&x| f(x)).collect::<Vec<_>>();
+        let out = match (kind, v) {
+            ("amplitude", None) => one(&|a| pdf.density(a)),
+            ("log-amplitude", None) => one(&|a| pdf.log_density(a)),
+            ("energy", None) => one(&|h| pdf.energy_density(h)),
+            ("joint", Some(v)) => {
+                let rows: Vec<Vec<f64>> = v
+                    .iter()
+                    .map(|&vv| grid.iter().map(|&u| pdf.joint_density(u, vv)).collect())
+                    .collect();
+                return Ok(numpy::PyArray2::from_vec2(py, &rows)
+                    .map_err(|e| PyValueError::new_err(e.to_string()))?
+                    .into_any());
+            }
+            ("joint", None) => {
+                return Err(PyValueError::new_err(
+                    "pdf('joint', u, v): give v, the U̇ grid",
+                ))
+            }
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "unknown kind `{kind}`: expected one of amplitude, log-amplitude, energy, joint"
+                )))
+            }
+        };
+        Ok(out.into_pyarray(py).into_any())
+    }
+}
+
+/// One path (`simulate`): `(t, u, v, eta, summary_json)`; `eta` empty without noise.
+#[pyfunction]
+#[pyo3(signature = (params, t_end, dt, u0, v0, seed, path, every, system, barrier, memory, tolerance, impact_memory, threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn _simulate<'py>(
+    py: Python<'py>,
+    params: &PyParams,
+    t_end: f64,
+    dt: f64,
+    u0: f64,
+    v0: f64,
+    seed: u64,
+    path: u64,
+    every: usize,
+    system: &str,
+    barrier: bool,
+    memory: &str,
+    tolerance: f64,
+    impact_memory: &str,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    if every == 0 {
+        return Err(PyValueError::new_err(
+            "invalid parameter every = 0: allowed range is 1 or more",
+        ));
+    }
+    let m = model(system, barrier, memory, tolerance)?;
+    let method = m.method(dt, impact(impact_memory)?);
+    let problem = m
+        .problem(&params.0)
+        .and_then(|p| p.with_start(u0, v0))
+        .map_err(py_err)?;
+    let options = Options {
+        t_end,
+        seed,
+        path,
+        record_every: every,
+        ..Default::default()
+    };
+    let start = Instant::now();
+    let tr = long_call(py, threads, progress, |w| {
+        simulate_with(&problem, &method, &options, w)
+    })?;
+    let summary = trirhythm_paper::views::PathSummary::of(&tr, start.elapsed().as_secs_f64());
+    let d = PyDict::new(py);
+    d.set_item(
+        "summary",
+        serde_json::to_string(&summary).map_err(json_err)?,
+    )?;
+    d.set_item("t", tr.t.into_pyarray(py))?;
+    d.set_item("u", tr.u.into_pyarray(py))?;
+    d.set_item("v", tr.v.into_pyarray(py))?;
+    d.set_item("eta", tr.eta.into_pyarray(py))?;
+    Ok(d)
+}
+
+/// An ensemble request from the keyword arguments of `ensemble`.
+#[allow(clippy::too_many_arguments)]
+fn ensemble_request(
+    params: &PyParams,
+    paths: usize,
+    t_end: f64,
+    burn_in: f64,
+    seed: u64,
+    dt: f64,
+    u0: Vec<f64>,
+    variant: &str,
+    system: &str,
+    barrier: bool,
+    memory: &str,
+    tolerance: f64,
+    impact_memory: &str,
+    bins: usize,
+    joint_bins: usize,
+    amplitude_max: Option<f64>,
+    sample_every: u64,
+) -> PyResult<EnsembleRequest> {
+    Ok(EnsembleRequest {
+        params: params.0.clone(),
+        variant: self::variant(variant)?,
+        model: model(system, barrier, memory, tolerance)?,
+        impact_memory: impact(impact_memory)?,
+        dt,
+        paths,
+        t_end,
+        burn_in,
+        seed,
+        u0,
+        bins,
+        joint_bins,
+        amplitude_max,
+        sample_every,
+    })
+}
+
+/// Run paths `which` (all when `None`) of an ensemble; with `merge`, the document of the whole
+/// ensemble (JSON), otherwise the paths' statistics (JSON list, for `merge_paths`).
+#[pyfunction]
+#[pyo3(signature = (params, paths, t_end, burn_in, seed, dt, u0, variant, system, barrier, memory, tolerance, impact_memory, bins, joint_bins, amplitude_max, sample_every, which=None, pieces=None, merge=true, threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn _ensemble(
+    py: Python<'_>,
+    params: &PyParams,
+    paths: usize,
+    t_end: f64,
+    burn_in: f64,
+    seed: u64,
+    dt: f64,
+    u0: Vec<f64>,
+    variant: &str,
+    system: &str,
+    barrier: bool,
+    memory: &str,
+    tolerance: f64,
+    impact_memory: &str,
+    bins: usize,
+    joint_bins: usize,
+    amplitude_max: Option<f64>,
+    sample_every: u64,
+    which: Option<Vec<u64>>,
+    pieces: Option<Vec<String>>,
+    merge: bool,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<String> {
+    let request = ensemble_request(
+        params,
+        paths,
+        t_end,
+        burn_in,
+        seed,
+        dt,
+        u0,
+        variant,
+        system,
+        barrier,
+        memory,
+        tolerance,
+        impact_memory,
+        bins,
+        joint_bins,
+        amplitude_max,
+        sample_every,
+    )?;
+    let s = request.setup().map_err(py_err)?;
+    // every size, step and range checked before any work
+    ens::run_paths(
+        &s.problem,
+        &s.method,
+        &s.spec,
+        &[],
+        &trirhythm::monitor::Silent,
+    )
+    .map_err(py_err)?;
+    let mut done: Vec<PathStats> = Vec::new();
+    for text in pieces.unwrap_or_default() {
+        let batch: Vec<PathStats> = serde_json::from_str(&text).map_err(|e| {
+            PyValueError::new_err(format!("pieces: not the paths of an ensemble ({e})"))
+        })?;
+        for p in batch {
+            if !ens::fits(&p, &s.spec, &s.problem) {
+                return Err(PyValueError::new_err(format!(
+                    "pieces: path {} was run for another ensemble (other parameters, sizes or \
+                     seed)",
+                    p.path
+                )));
+            }
+            if done.iter().any(|d| d.path == p.path) {
+                return Err(PyValueError::new_err(format!(
+                    "pieces: path {} is given twice",
+                    p.path
+                )));
+            }
+            done.push(p);
+        }
+    }
+    let todo: Vec<u64> = match which {
+        Some(w) => w,
+        None => (0..paths as u64)
+            .filter(|i| !done.iter().any(|d| d.path == *i))
+            .collect(),
+    };
+    let start = Instant::now();
+    let fresh = long_call(py, threads, progress, |w| {
+        ens::run_paths(&s.problem, &s.method, &s.spec, &todo, w)
+    })?;
+    if !merge {
+        return serde_json::to_string(&fresh).map_err(json_err);
+    }
+    done.extend(fresh);
+    let r = ens::merge(&s.problem, &s.method, &s.spec, done).map_err(py_err)?;
+    let wall = start.elapsed().as_secs_f64();
+    let theory = s.comparisons(&r);
+    serde_json::to_string(&s.document(&r, &theory, wall)).map_err(json_err)
+}
+
+/// The largest Lyapunov exponent (JSON of the library's result).
+#[pyfunction]
+#[pyo3(signature = (params, t_end, transient, dt, paths, seed, u0, impact_memory, method, renormalise_every, separation, system, barrier, memory, tolerance, d_range=None, grid=12, refinements=6, z=2.0, threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn _lyapunov(
+    py: Python<'_>,
+    params: &PyParams,
+    t_end: f64,
+    transient: f64,
+    dt: f64,
+    paths: usize,
+    seed: u64,
+    u0: f64,
+    impact_memory: &str,
+    method: &str,
+    renormalise_every: u64,
+    separation: f64,
+    system: &str,
+    barrier: bool,
+    memory: &str,
+    tolerance: f64,
+    d_range: Option<(f64, f64)>,
+    grid: usize,
+    refinements: usize,
+    z: f64,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<String> {
+    let m = model(system, barrier, memory, tolerance)?;
+    let pc = m.method(dt, impact(impact_memory)?);
+    let problem = m
+        .problem(&params.0)
+        .and_then(|p| p.with_start(u0, 0.0))
+        .map_err(py_err)?;
+    let spec = LyapunovSpec {
+        paths,
+        seed,
+        transient,
+        length: t_end,
+        renormalise_every,
+        separation,
+        method: match method {
+            "tangent" => lle::LyapunovMethod::Tangent,
+            "two-trajectory" => lle::LyapunovMethod::TwoTrajectory,
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "unknown method `{method}`: expected one of tangent, two-trajectory"
+                )))
+            }
+        },
+        ..Default::default()
+    };
+    spec.validate().map_err(py_err)?;
+    match d_range {
+        None => {
+            let r = long_call(py, threads, progress, |w| {
+                lle::largest_lyapunov(&problem, &pc, &spec, w)
+            })?;
+            serde_json::to_string(&r).map_err(json_err)
+        }
+        Some((d_lo, d_hi)) => {
+            let search = CriticalSearch {
+                d_lo,
+                d_hi,
+                grid,
+                refinements,
+                z,
+            };
+            let r = long_call(py, threads, progress, |w| {
+                lle::critical_noise(&problem, &pc, &spec, &search, w)
+            })?;
+            serde_json::to_string(&r).map_err(json_err)
+        }
+    }
+}
+
+/// The oscillation boundary in the plane (x_key over `x`, y_key in `y_range`) by `method`
+/// (JSON of the library's result).
+#[pyfunction]
+#[pyo3(signature = (params, x_key, x, y_key, y_range, method="simulation", variant="paper", barrier=true, tolerance=1e-3, threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn _oscillation_boundary(
+    py: Python<'_>,
+    params: &PyParams,
+    x_key: &str,
+    x: Vec<f64>,
+    y_key: &str,
+    y_range: (f64, f64),
+    method: &str,
+    variant: &str,
+    barrier: bool,
+    tolerance: f64,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<String> {
+    let m = model("fractional", barrier, "soe", 1e-10)?;
+    let template = m.problem(&params.0).map_err(py_err)?;
+    let plane =
+        osc::Plane::new(&template, (x_key, x), (y_key, y_range.0, y_range.1)).map_err(py_err)?;
+    let method = match method {
+        "simulation" => osc::Method::Simulation(Classifier::default()),
+        "averaging" => osc::Method::Averaging(self::variant(variant)?),
+        "exact" => osc::Method::Exact,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "unknown method `{method}`: expected one of simulation, averaging, exact"
+            )))
+        }
+    };
+    let search = Search {
+        tolerance,
+        ..Default::default()
+    };
+    let b = long_call(py, threads, progress, |w| {
+        osc::boundary(&plane, &method, &search, w)
+    })?;
+    serde_json::to_string(&b).map_err(json_err)
+}
+
+/// The count of stable cycles (`rhythmicity`) or of modes of P(A) (`modes`) over a plane of
+/// the averaged theory: `(x, y, counts[ny, nx])`.
+#[pyfunction]
+#[pyo3(signature = (params, x, y, what="rhythmicity", variant="paper", threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn _map<'py>(
+    py: Python<'py>,
+    params: &PyParams,
+    x: (String, f64, f64, usize),
+    y: (String, f64, f64, usize),
+    what: &str,
+    variant: &str,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<(Array<'py, f64>, Array<'py, f64>, Bound<'py, PyAny>)> {
+    let what = match what {
+        "rhythmicity" => What::Rhythmicity,
+        "modes" => What::Modes,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "unknown map `{what}`: expected one of rhythmicity, modes"
+            )))
+        }
+    };
+    let ax = Axis::new(&x.0, x.1, x.2, x.3).map_err(py_err)?;
+    let ay = Axis::new(&y.0, y.1, y.2, y.3).map_err(py_err)?;
+    let plane = bif::Plane::new(&params.0, ax, ay, self::variant(variant)?).map_err(py_err)?;
+    let map = long_call(py, threads, progress, |w| {
+        let report =
+            |done: usize, total: usize| Monitor::<()>::progress(w, done as u64, total as u64);
+        Ok(bif::classify(&plane, what, &report))
+    })?;
+    let (nx, ny) = (map.plane.x.count, map.plane.y.count);
+    let rows: Vec<Vec<u8>> = map.counts.chunks(nx).map(|r| r.to_vec()).collect();
+    debug_assert_eq!(rows.len(), ny);
+    let counts = numpy::PyArray2::from_vec2(py, &rows)
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    Ok((
+        map.plane.x.values().into_pyarray(py),
+        map.plane.y.values().into_pyarray(py),
+        counts.into_any(),
+    ))
+}
+
+/// Figure `n`'s data (JSON: the value `figure N --data` writes under `data`).
+#[pyfunction]
+#[pyo3(signature = (n, quick=false, variant="paper", threads=None, progress=None))]
+fn _figure_data(
+    py: Python<'_>,
+    n: u32,
+    quick: bool,
+    variant: &str,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<String> {
+    let options = FigureOptions {
+        quick,
+        variant: self::variant(variant)?,
+    };
+    if !(1..=19).contains(&n) {
+        return Err(PyValueError::new_err(format!(
+            "invalid parameter n = {n}: allowed range is 1 to 19 (the paper's figures)"
+        )));
+    }
+    let v = long_call(py, threads, progress, |w| {
+        trirhythm_paper::compute_json(n, &options, w)
+    })?;
+    serde_json::to_string(&v).map_err(json_err)
+}
+
+/// The version of the library.
+#[pyfunction]
+fn version() -> &'static str {
+    env!("CARGO_PKG_VERSION")
+}
+
+#[pymodule]
+fn _trirhythm(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyParams>()?;
+    m.add_class::<PyTheory>()?;
+    m.add_function(wrap_pyfunction!(preset, m)?)?;
+    m.add_function(wrap_pyfunction!(presets, m)?)?;
+    m.add_function(wrap_pyfunction!(_params_from_dict, m)?)?;
+    m.add_function(wrap_pyfunction!(_simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(_ensemble, m)?)?;
+    m.add_function(wrap_pyfunction!(_lyapunov, m)?)?;
+    m.add_function(wrap_pyfunction!(_oscillation_boundary, m)?)?;
+    m.add_function(wrap_pyfunction!(_map, m)?)?;
+    m.add_function(wrap_pyfunction!(_figure_data, m)?)?;
+    m.add_function(wrap_pyfunction!(version, m)?)?;
+    Ok(())
+}
