@@ -66,6 +66,7 @@ const FLAGS: &[(&str, &str)] = &[
     ("amplitude_max", "--amplitude-max"),
     ("sample_every", "--sample-every"),
     ("record_every", "--every"),
+    ("every", "--every"),
     ("max_step", "--step"),
 ];
 

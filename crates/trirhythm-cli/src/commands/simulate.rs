@@ -71,7 +71,7 @@ impl SimulateArgs {
     pub fn setup(&self) -> Result<Setup> {
         let p = self.params.resolve()?;
         if self.every == 0 {
-            return bad("invalid parameter every = 0: allowed range is 1 or more");
+            return bad("--every = 0: allowed range is 1 or more");
         }
         let method = self.model.method(self.dt, self.impact_memory);
         let options = Options {
