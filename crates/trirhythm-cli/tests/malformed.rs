@@ -267,7 +267,15 @@ fn data_of_another_version_is_refused_naming_the_field() {
 /// renormalisations have no estimate yet, so the run has undefined rows to write.
 #[test]
 fn lyapunov_csv_writes_every_row_the_json_has() {
-    let base = ["lyapunov", "--t-end", "5", "--paths", "2", "--transient", "0"];
+    let base = [
+        "lyapunov",
+        "--t-end",
+        "5",
+        "--paths",
+        "2",
+        "--transient",
+        "0",
+    ];
     let json: Value = serde_json::from_slice(&ok_output(&base).stdout).unwrap();
     let running = json["running"].as_array().expect("running estimate");
     let mut csv_args = base.to_vec();
@@ -288,7 +296,10 @@ fn lyapunov_csv_writes_every_row_the_json_has() {
             panic!("running value {v} at t = {}", row[0]);
         }
     }
-    assert!(undefined > 0, "the case was meant to have undefined estimates");
+    assert!(
+        undefined > 0,
+        "the case was meant to have undefined estimates"
+    );
 }
 
 /// D is what critical-noise searches: a value given for it is refused, naming it.
