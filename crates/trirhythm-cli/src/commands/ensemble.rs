@@ -8,7 +8,7 @@
 //! are a contract: keep them.
 
 use crate::args::{guard_step, ImpactMemoryArg, ModelArgs, ParamArgs};
-use crate::error::bad;
+use crate::error::{allowed, bad};
 use crate::io::{emit, params_json, progress, Csv, Report};
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
@@ -20,7 +20,7 @@ use std::time::Instant;
 use trirhythm::analysis::ensemble::{
     fingerprint, merge, run_paths, EnsembleResult, EnsembleSpec, PathStats, Piece,
 };
-use trirhythm::engine::{PredictorCorrector, Problem};
+use trirhythm::engine::{Lanes, PredictorCorrector, Problem, LANE_WIDTHS};
 use trirhythm::model::Params;
 use trirhythm::monitor::Monitor;
 use trirhythm_paper::montecarlo::{self, comparisons};
@@ -79,6 +79,10 @@ pub struct EnsembleArgs {
     /// Record every K-th step of the window.
     #[arg(long = "sample-every", default_value_t = 1, allow_hyphen_values = true)]
     pub sample_every: u64,
+    /// Paths stepped together: 1 (one path after the other), 4 or 8 (default: 8 where the
+    /// CPU has AVX-512, else 4). The result is the same bits for every choice.
+    #[arg(long, allow_hyphen_values = true)]
+    pub lanes: Option<usize>,
     /// Save each finished path's statistics here; a rerun continues from them.
     #[arg(long)]
     pub checkpoint: Option<PathBuf>,
@@ -112,6 +116,13 @@ impl EnsembleArgs {
     /// Validate and convert, filling the open choices from the theory.
     pub fn setup(&self) -> Result<EnsembleSetup> {
         let params = self.params.resolve()?;
+        let lanes = match self.lanes {
+            None => Lanes::Auto,
+            Some(w) => {
+                allowed(LANE_WIDTHS.contains(&w), "--lanes", w, "1, 4 or 8")?;
+                Lanes::Width(w)
+            }
+        };
         let method = self.model.method(self.dt, self.impact_memory);
         let chosen =
             montecarlo::choices(&params, self.params.variant(), &self.u0, self.amplitude_max);
@@ -141,6 +152,7 @@ impl EnsembleArgs {
             joint_bins: self.joint_bins,
             amplitude_max,
             wells: chosen.wells,
+            lanes,
             ..Default::default()
         };
         let starts: Vec<(f64, f64)> = starts.iter().map(|&u| (u, 0.0)).collect();
