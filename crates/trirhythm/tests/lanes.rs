@@ -312,3 +312,44 @@ fn the_ensemble_is_the_same_for_every_lane_count() {
         assert!(run(lanes) == one, "{lanes:?}");
     }
 }
+
+/// Two-trajectory Lyapunov realisations in lanes (reference and copy side by side, several
+/// realisations a group) give the exponents, the running estimates and the counts of the
+/// scalar stepper, bit for bit, with impacts (the wall) and without; the tangent method, which
+/// steps path by path, is unchanged by the option.
+#[test]
+fn lyapunov_realisations_are_the_same_for_every_lane_count() {
+    use trirhythm::analysis::lyapunov::{largest_lyapunov, LyapunovMethod, LyapunovSpec};
+    for (preset_name, barrier) in [("fig13a", Barrier::On), ("fig1", Barrier::Off)] {
+        let p = preset(preset_name).unwrap().params.with("D", 0.05).unwrap();
+        let problem = Problem::from_params(&p)
+            .and_then(|q| q.with_barrier(barrier))
+            .and_then(|q| q.with_starts(&[(3.0, 0.0), (7.0, 0.0)]))
+            .unwrap();
+        for method in [LyapunovMethod::TwoTrajectory, LyapunovMethod::Tangent] {
+            let run = |lanes| {
+                let spec = LyapunovSpec {
+                    paths: 7,
+                    seed: 3,
+                    transient: 5.0,
+                    length: 60.0,
+                    renormalise_every: 37,
+                    running_points: 10,
+                    method,
+                    lanes,
+                    ..Default::default()
+                };
+                largest_lyapunov(&problem, &PredictorCorrector::default(), &spec, &Silent).unwrap()
+            };
+            let one = run(Lanes::Width(1));
+            assert!(one.lle.value.is_finite(), "{preset_name} {method:?}");
+            for lanes in [Lanes::Width(4), Lanes::Width(8), Lanes::Auto] {
+                let r = run(lanes);
+                assert!(
+                    format!("{r:?}") == format!("{one:?}"),
+                    "{preset_name} {method:?} {lanes:?}"
+                );
+            }
+        }
+    }
+}

@@ -43,4 +43,4 @@ pub use resolution::Resolution;
 pub use stepper::{
     detected_lanes, Impact, Lanes, StepEvents, Stepper, LANE_WIDTHS, MAX_DIRECT_STEPS,
 };
-pub(crate) use stepper::{fresh_history, Tangent};
+pub(crate) use stepper::{fresh_history, Group, Tangent};

@@ -300,3 +300,83 @@ fn step_body<const L: usize>(
         }
     }
 }
+
+/// Paths of one problem stepped together again and again, in groups of 1, 4 or 8, with no
+/// observer: for drivers that act on the paths between steps (the renormalisations of the
+/// Lyapunov realisations).
+pub(crate) struct Group<'a> {
+    paths: &'a mut [Stepper],
+    lanes: usize,
+    isa: Isa,
+    errors: Vec<Option<Error>>,
+}
+
+impl<'a> Group<'a> {
+    /// `paths` of one problem and method in groups of `lanes` (1, 4 or 8).
+    pub(crate) fn new(paths: &'a mut [Stepper], lanes: usize) -> Result<Self> {
+        Lanes::Width(lanes).width()?;
+        if !same_problem(paths) {
+            return Err(Error::invalid(
+                "paths",
+                paths.len() as f64,
+                "steppers of one problem and method (the lanes share its equation and weights)",
+            ));
+        }
+        let errors = (0..paths.len()).map(|_| None).collect();
+        Ok(Group {
+            paths,
+            lanes,
+            isa: Isa::detect(),
+            errors,
+        })
+    }
+
+    /// One step of every path; a path whose step failed has its error kept
+    /// ([`Group::take_error`]) and must not be stepped again.
+    pub(crate) fn step(&mut self) {
+        let live8 = [true; 8];
+        let live4 = [true; 4];
+        for (k, group) in self.paths.chunks_mut(self.lanes).enumerate() {
+            let errors = &mut self.errors[k * self.lanes..];
+            match self.lanes {
+                8 => {
+                    let mut e: [Option<Error>; 8] = Default::default();
+                    step_group::<8>(self.isa, group, &live8, &mut e);
+                    for (slot, e) in errors.iter_mut().zip(e) {
+                        *slot = slot.take().or(e);
+                    }
+                }
+                4 => {
+                    let mut e: [Option<Error>; 4] = Default::default();
+                    step_group::<4>(self.isa, group, &live4, &mut e);
+                    for (slot, e) in errors.iter_mut().zip(e) {
+                        *slot = slot.take().or(e);
+                    }
+                }
+                _ => {
+                    for (slot, p) in errors.iter_mut().zip(group.iter_mut()) {
+                        if let Err(e) = p.step() {
+                            *slot = Some(e);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The error of path `k`'s last step, if it failed.
+    pub(crate) fn take_error(&mut self, k: usize) -> Option<Error> {
+        self.errors[k].take()
+    }
+
+    /// Path `k`.
+    pub(crate) fn path(&self, k: usize) -> &Stepper {
+        &self.paths[k]
+    }
+
+    /// Paths 2k (a reference) and 2k + 1 (its copy).
+    pub(crate) fn pair(&mut self, k: usize) -> (&Stepper, &mut Stepper) {
+        let (a, b) = self.paths[2 * k..2 * k + 2].split_at_mut(1);
+        (&a[0], &mut b[0])
+    }
+}

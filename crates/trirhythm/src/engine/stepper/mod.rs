@@ -110,6 +110,7 @@ pub(crate) mod lanes;
 mod polynomial;
 mod renormalise;
 mod tangent;
+pub(crate) use lanes::Group;
 pub use lanes::{detected_lanes, Lanes, LANE_WIDTHS};
 pub(crate) use tangent::Tangent;
 
