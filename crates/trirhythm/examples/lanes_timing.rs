@@ -3,14 +3,17 @@
 //! `Lanes::Width(1)` (the scalar stepper, path after path), 4 and 8, on one thread and on two,
 //! the cases interleaved round by round; medians of the rounds, in path·steps per second of
 //! wall time and of CPU time (the process's, so that waiting for a shared core does not count).
-//! The statistics of every lane count are checked to be identical.
+//! The statistics of every lane count are checked to be identical. The same paths are also
+//! timed by the stepper alone (`run_lanes` with an observer that keeps nothing), one thread.
 //!
 //! `cargo run --release -p trirhythm --example lanes_timing [-- steps-per-path [rounds [lanes,…]]]`
 //! (default 10⁶ steps, 3 rounds, lanes 1,4,8).
 
 use std::time::Instant;
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec};
-use trirhythm::engine::{detected_lanes, Lanes, PredictorCorrector, Problem};
+use trirhythm::engine::{
+    detected_lanes, run_lanes, Flow, Lanes, PredictorCorrector, Problem, Stepper,
+};
 use trirhythm::model::preset;
 use trirhythm::monitor::Silent;
 
@@ -93,11 +96,52 @@ fn main() {
             let cpu = cpu_s().zip(c0).map_or(f64::NAN, |(b, a)| b - a);
             (wall, cpu, r)
         };
+        // the stepper alone: the same paths by `run_lanes`, an observer that keeps nothing
+        let bare = |lanes: usize| -> (f64, f64, Vec<u64>) {
+            let horizon = steps * 0.01;
+            let mut paths: Vec<Stepper> = (0..paths as u64)
+                .map(|i| Stepper::new(&problem, &method, (1, i), horizon).unwrap())
+                .collect();
+            let mut observers: Vec<_> = (0..paths.len())
+                .map(|_| |_: &Stepper| Flow::Continue)
+                .collect();
+            let (c0, t0) = (cpu_s(), Instant::now());
+            run_lanes(
+                &mut paths,
+                steps as u64,
+                &mut observers,
+                Lanes::Width(lanes),
+                &Silent,
+            )
+            .unwrap();
+            let wall = t0.elapsed().as_secs_f64();
+            let cpu = cpu_s().zip(c0).map_or(f64::NAN, |(b, a)| b - a);
+            (
+                wall,
+                cpu,
+                paths
+                    .iter()
+                    .map(|p| p.u().to_bits() ^ p.impacts())
+                    .collect(),
+            )
+        };
         // [threads][width] → wall and CPU seconds per round
+        let mut bare_wall = vec![vec![]; widths.len()];
+        let mut bare_cpu = vec![vec![]; widths.len()];
+        let mut bare_ends: Option<Vec<u64>> = None;
         let mut wall = vec![vec![vec![]; widths.len()]; 2];
         let mut cpu = vec![vec![vec![]; widths.len()]; 2];
         let mut reference: Option<EnsembleResult> = None;
         for _ in 0..rounds {
+            for (k, &w) in widths.iter().enumerate() {
+                let (t, c, ends) = pools[0].install(|| bare(w));
+                match &bare_ends {
+                    None => bare_ends = Some(ends),
+                    Some(e) => assert!(*e == ends, "lanes {w}: other paths"),
+                }
+                bare_wall[k].push(t);
+                bare_cpu[k].push(c);
+            }
             for threads in [1, 2] {
                 if threads == 2 && widths.len() == 1 {
                     continue;
@@ -118,8 +162,30 @@ fn main() {
         let work = paths as f64 * steps;
         let scalar = median(wall[0][0].clone());
         let scalar_cpu = median(cpu[0][0].clone());
-        println!("lambda = {lambda} (statistics identical for every lane count and thread count):");
+        let a = reference
+            .as_ref()
+            .map_or(f64::NAN, |r| r.mean_amplitude.value);
+        println!(
+            "lambda = {lambda} (mean amplitude {a}; statistics identical for every lane count and \
+             thread count):"
+        );
+        let (bare0, bare0_cpu) = (median(bare_wall[0].clone()), median(bare_cpu[0].clone()));
+        for (k, &w) in widths.iter().enumerate() {
+            let (t, c) = (median(bare_wall[k].clone()), median(bare_cpu[k].clone()));
+            println!(
+                "  stepper alone (run_lanes, no statistics), lanes {w}: {:6.2} ns per path-step of \
+                 wall, {:6.2} of CPU; against lanes {}: {:.2}x wall, {:.2}x CPU",
+                t / work * 1e9,
+                c / work * 1e9,
+                widths[0],
+                bare0 / t,
+                bare0_cpu / c
+            );
+        }
         for threads in [1, 2] {
+            if wall[threads - 1][0].is_empty() {
+                continue;
+            }
             for (k, &w) in widths.iter().enumerate() {
                 let (t, c) = (
                     median(wall[threads - 1][k].clone()),
@@ -137,6 +203,9 @@ fn main() {
             }
         }
         for (k, &w) in widths.iter().enumerate() {
+            if wall[1][k].is_empty() {
+                continue;
+            }
             println!(
                 "  two threads against one, lanes {w}: {:.2}x wall",
                 median(wall[0][k].clone()) / median(wall[1][k].clone())
