@@ -92,11 +92,8 @@ fn portable_and_avx_memories_give_the_same_bits() {
     if !a.avx {
         return;
     }
-    // a: AVX-512 where the CPU has it, b: AVX, c: portable
     let mut b = a.clone();
-    b.avx512 = false;
-    let mut c = b.clone();
-    c.avx = false;
+    b.avx = false;
     for n in 0..200 {
         let piece = Piece {
             left: (0.37 * n as f64).sin(),
@@ -110,9 +107,7 @@ fn portable_and_avx_memories_give_the_same_bits() {
         };
         a.push(piece);
         b.push(piece);
-        c.push(piece);
-        assert_eq!(a.value().to_bits(), c.value().to_bits(), "step {n}");
-        assert_eq!(b.value().to_bits(), c.value().to_bits(), "step {n}");
+        assert_eq!(a.value().to_bits(), b.value().to_bits(), "step {n}");
     }
 }
 

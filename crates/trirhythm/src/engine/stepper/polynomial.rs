@@ -44,6 +44,7 @@ impl Polynomial {
     /// [`Polynomial::eval`] at L points: the same operations in the same order for each, so
     /// the same bits, in loops the compiler vectorises across the points.
     #[inline(always)]
+    #[allow(clippy::needless_range_loop)]
     pub(super) fn eval_lanes<const L: usize>(&self, x: &[f64; L]) -> [f64; L] {
         let mut out = [0.0; L];
         match self {
