@@ -21,7 +21,8 @@
 //! paths and the ISA the arrays are compiled for. The arrays are compiled twice — for AVX2 (four
 //! doubles a vector) and for the baseline target — and the version is chosen at run time from
 //! the CPU's features ([`is_x86_feature_detected!`]). Eight lanes are the default on every CPU:
-//! measured on the fig13a paths (8 paths × 10⁶ steps, the stepper alone, CPU time), eight lanes
+//! measured on the fig13a paths (8 paths × 10⁶ steps, the stepper alone, wall time of two or
+//! three runs on the shared machine), eight lanes
 //! took 43.6 ns per path-step at λ = 0.998 and 24.2 at λ = 1 with AVX2, 44.7 and 25.8 with the
 //! portable arrays, against 49.2 / 31.4 and 47.7 / 29.1 with four; arrays compiled for AVX-512
 //! were 2–5 % slower than AVX2's (43.8 / 25.3), so they are not built.
