@@ -353,3 +353,57 @@ fn lyapunov_realisations_are_the_same_for_every_lane_count() {
         }
     }
 }
+
+/// `run_lanes` refuses paths of different equations, a missing observer and a bad lane count
+/// (naming the argument), and takes no paths as no work.
+#[test]
+fn run_lanes_checks_its_arguments() {
+    let p = preset("fig13a").unwrap().params;
+    let method = PredictorCorrector::default();
+    let a = Problem::from_params(&p).unwrap();
+    let b = Problem::from_params(&p.with("mu0", 0.01).unwrap()).unwrap();
+    let stepper = |q: &Problem, i| Stepper::new(q, &method, (1, i), 1.0).unwrap();
+    let message = |r: Result<Vec<Result<u64>>>| r.unwrap_err().to_string();
+    let mut mixed = vec![stepper(&a, 0), stepper(&b, 1)];
+    let mut two: Vec<Log> = vec![Log::default(), Log::default()];
+    let e = message(run_lanes(
+        &mut mixed,
+        10,
+        &mut two,
+        Lanes::Width(4),
+        &Silent,
+    ));
+    assert!(e.contains("paths"), "{e}");
+    let mut same = vec![stepper(&a, 0), stepper(&a, 1)];
+    let mut one: Vec<Log> = vec![Log::default()];
+    let e = message(run_lanes(&mut same, 10, &mut one, Lanes::Width(4), &Silent));
+    assert!(e.contains("observers"), "{e}");
+    let e = message(run_lanes(&mut same, 10, &mut two, Lanes::Width(2), &Silent));
+    assert!(e.contains("lanes") && e.contains("1, 4 or 8"), "{e}");
+    let mut none: Vec<Stepper> = vec![];
+    let mut no_obs: Vec<Log> = vec![];
+    assert!(run_lanes(&mut none, 10, &mut no_obs, Lanes::Auto, &Silent)
+        .unwrap()
+        .is_empty());
+    // an observer that stops its path early: the others go on, the counts are the steps taken
+    let mut paths = vec![stepper(&a, 0), stepper(&a, 1), stepper(&a, 2)];
+    let mut stops: Vec<_> = [3u64, 100, 0]
+        .iter()
+        .map(|&at| {
+            move |s: &Stepper| {
+                if s.steps() >= at {
+                    Flow::Stop
+                } else {
+                    Flow::Continue
+                }
+            }
+        })
+        .collect();
+    let taken = run_lanes(&mut paths, 50, &mut stops, Lanes::Width(8), &Silent).unwrap();
+    let taken: Vec<u64> = taken.into_iter().map(|t| t.unwrap()).collect();
+    assert_eq!(taken, vec![3, 50, 0]);
+    assert_eq!(
+        paths.iter().map(|p| p.steps()).collect::<Vec<_>>(),
+        vec![3, 50, 0]
+    );
+}
