@@ -407,3 +407,36 @@ fn run_lanes_checks_its_arguments() {
         vec![3, 50, 0]
     );
 }
+
+/// `simulate_ensemble` (paths in lanes) gives every path's trajectory exactly as `simulate`
+/// gives it alone.
+#[test]
+fn simulate_ensemble_in_lanes_equals_the_paths_alone() {
+    let p = preset("fig13a").unwrap().params.with("D", 0.3).unwrap();
+    let problem = Problem::from_params(&p)
+        .and_then(|q| q.with_starts(&[(3.0, 0.0), (9.0, -1.0)]))
+        .unwrap();
+    let method = PredictorCorrector::default();
+    let options = Options {
+        t_end: 40.0,
+        seed: 9,
+        record_every: 7,
+        record_impacts: true,
+        ..Default::default()
+    };
+    let all = simulate_ensemble(&problem, &method, &options, 11).unwrap();
+    assert_eq!(all.len(), 11);
+    assert!(all.iter().map(|t| t.impacts).sum::<usize>() > 0);
+    for (i, t) in all.iter().enumerate() {
+        let alone = simulate(
+            &problem,
+            &method,
+            &Options {
+                path: i as u64,
+                ..options.clone()
+            },
+        )
+        .unwrap();
+        assert!(*t == alone, "path {i}");
+    }
+}

@@ -467,8 +467,9 @@ pub fn simulate_with(
     Ok(recorder.finish(&stepper))
 }
 
-/// Simulate paths 0..`paths` of `options.seed` in parallel (`options.path` is not used). Path
-/// i depends only on (seed, i), so the result is bit-identical whatever the number of threads.
+/// Simulate paths 0..`paths` of `options.seed` in parallel (`options.path` is not used), in
+/// groups stepped together in lanes ([`run_lanes`] with [`Lanes::Auto`]). Path i depends only on
+/// (seed, i), so the result is bit-identical whatever the number of threads and lanes.
 /// `paths` is at most [`MAX_PATHS`], and all the trajectories together keep at most
 /// [`MAX_KEPT_SAMPLES`] nodes; no paths is an empty ensemble.
 pub fn simulate_ensemble(
@@ -497,17 +498,47 @@ pub fn simulate_ensemble(
     let osc = problem.oscillator();
     // build (and verify) the SOE kernel once for all paths
     let history = fresh_history(problem, method, steps as f64 * method.dt)?;
-    (0..paths as u64)
-        .into_par_iter()
-        .map(|i| {
-            let start = problem.start(i);
-            let mut stepper =
-                Stepper::with_history(problem, method, start, (options.seed, i), history.clone())?;
-            let mut recorder = TrajectoryRecorder::new(osc, options, steps, method.dt)?;
-            run(&mut stepper, steps, &mut recorder, &Silent)?;
-            Ok(recorder.finish(&stepper))
+    // groups of paths stepped together in lanes (the same bits as one by one), narrower when
+    // there are too few paths to give every thread a group
+    let width = Lanes::Auto.width()?;
+    let threads = rayon::current_num_threads().max(1);
+    let width = match paths.div_ceil(threads) {
+        per if per <= 4 => width.min(4),
+        _ => width,
+    };
+    let indices: Vec<u64> = (0..paths as u64).collect();
+    let groups: Vec<Vec<Trajectory>> = indices
+        .par_chunks(width)
+        .map(|group| {
+            let mut steppers = Vec::with_capacity(group.len());
+            let mut recorders = Vec::with_capacity(group.len());
+            for &i in group {
+                let start = problem.start(i);
+                steppers.push(Stepper::with_history(
+                    problem,
+                    method,
+                    start,
+                    (options.seed, i),
+                    history.clone(),
+                )?);
+                recorders.push(TrajectoryRecorder::new(osc, options, steps, method.dt)?);
+            }
+            let taken = run_lanes(
+                &mut steppers,
+                steps,
+                &mut recorders,
+                Lanes::Width(width),
+                &Silent,
+            )?;
+            let mut out = Vec::with_capacity(group.len());
+            for ((s, r), t) in steppers.iter().zip(recorders).zip(taken) {
+                t?;
+                out.push(r.finish(s));
+            }
+            Ok(out)
         })
-        .collect()
+        .collect::<Result<_>>()?;
+    Ok(groups.into_iter().flatten().collect())
 }
 
 /// The result of one path.
