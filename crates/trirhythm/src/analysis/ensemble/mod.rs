@@ -51,8 +51,10 @@
 //!
 //! # Reproducibility
 //! Path i depends only on (seed, i) and the paths' statistics are merged in path order, so the
-//! result is bit-identical whatever the number of threads or the split into pieces, and a run
-//! resumed from saved [`PathStats`] equals the uninterrupted one.
+//! result is bit-identical whatever the number of threads, the lane count
+//! ([`EnsembleSpec::lanes`]: paths stepped together, each with its own bits; `tests/lanes.rs`)
+//! or the split into pieces, and a run resumed from saved [`PathStats`] equals the uninterrupted
+//! one.
 //!
 //! # Tests
 //! `tests/ensemble.rs`: the linear fractional oscillator's exact stationary variances

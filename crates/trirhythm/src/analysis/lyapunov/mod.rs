@@ -88,7 +88,9 @@
 //!
 //! # Reproducibility
 //! Path i depends only on (seed, i); paths run in parallel and are merged in path order, so the
-//! result is bit-identical whatever the number of threads. [`largest_lyapunov`] is
+//! result is bit-identical whatever the number of threads. With two trajectories the reference
+//! and its copy are stepped in neighbouring lanes of the lane stepper, several realisations a
+//! group ([`LyapunovSpec::lanes`]; the same bits as path by path, `tests/lanes.rs`). [`largest_lyapunov`] is
 //! [`run_paths`] over every path, then [`merge`]: the realisations can be run anywhere, in any
 //! split and order, and merged into the same result.
 //!
@@ -228,7 +230,8 @@ impl LyapunovSpec {
     /// [`MAX_PATHS`], `separation` in [1e-12, 1e-4], `renormalise_every` 1 to
     /// [`MAX_RENORMALISE_EVERY`], `running_points` 1 to [`MAX_RUNNING_POINTS`] (and at most
     /// [`MAX_RUNNING_BYTES`] of running estimates in all), `transient` ≥ 0 and `length` > 0
-    /// finite. The steps are checked against the method's Δt by the drivers.
+    /// finite, `lanes` 1, 4 or 8 when given. The steps are checked against the method's Δt by
+    /// the drivers.
     pub fn validate(&self) -> Result<()> {
         self.lanes.width()?;
         if self.paths == 0 || self.paths > MAX_PATHS {
