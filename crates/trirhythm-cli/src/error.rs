@@ -102,6 +102,7 @@ pub const WHOLE_NUMBER_FLAGS: &[(&str, &str, &str)] = &[
     ("*", "--renormalise-every", "1 to 1000000 steps"),
     ("*", "--grid", "2 to 1000"),
     ("*", "--refinements", "0 to 60"),
+    ("*", "--lanes", "1, 4 or 8"),
 ];
 
 /// The allowed range of whole-number flag `flag` of `command`, if it is one.

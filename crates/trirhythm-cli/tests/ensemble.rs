@@ -101,6 +101,14 @@ fn bad_input_names_the_flag() {
         (vec!["--amplitude-max", "1e300"], "amplitude_max = 1e300"),
         (vec!["--t-end", "inf"], "t_end = inf"),
         (vec!["--u0", "nan"], "u0 = NaN"),
+        (
+            vec!["--lanes", "3"],
+            "--lanes = 3: allowed range is 1, 4 or 8",
+        ),
+        (
+            vec!["--lanes", "-4"],
+            "--lanes = -4: allowed range is 1, 4 or 8",
+        ),
         // the statistics of every path are held until the merge: bounded before work starts
         (
             vec!["--paths", "1000000", "--joint-bins", "1000"],
@@ -122,6 +130,30 @@ fn bad_input_names_the_flag() {
 fn without_wall_time(mut v: Value) -> Value {
     v["wall_time_s"] = Value::Null;
     v
+}
+
+/// Paths stepped one by one, in lanes of 4 and of 8: the same document, number for number.
+#[test]
+fn every_lane_count_gives_the_same_result() {
+    let run = |lanes: &str| {
+        without_wall_time(ok_json(&[
+            "ensemble",
+            "--preset",
+            "fig13a",
+            "--paths",
+            "6",
+            "--t-end",
+            "100",
+            "--burn-in",
+            "10",
+            "--lanes",
+            lanes,
+        ]))
+    };
+    let one = run("1");
+    assert_eq!(one["paths"], 6);
+    assert_eq!(one, run("4"));
+    assert_eq!(one, run("8"));
 }
 
 #[cfg(unix)]

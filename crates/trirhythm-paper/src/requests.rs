@@ -18,7 +18,7 @@ use std::collections::BTreeMap;
 use trirhythm::analysis::ensemble::{EnsembleResult, EnsembleSpec};
 use trirhythm::analysis::TheoryComparison;
 use trirhythm::engine::{
-    Barrier, ImpactMemory, Memory, PredictorCorrector, Problem, System, DEFAULT_WINDOW,
+    Barrier, ImpactMemory, Lanes, Memory, PredictorCorrector, Problem, System, DEFAULT_WINDOW,
 };
 use trirhythm::model::Params;
 use trirhythm::theory::averaging::Variant;
@@ -203,6 +203,8 @@ pub struct EnsembleRequest {
     pub amplitude_max: Option<f64>,
     /// Record every K-th step of the window.
     pub sample_every: u64,
+    /// Paths stepped together ([`Lanes`]); the result is the same bits for every choice.
+    pub lanes: Lanes,
 }
 
 impl EnsembleRequest {
@@ -223,6 +225,7 @@ impl EnsembleRequest {
             joint_bins: 48,
             amplitude_max: None,
             sample_every: 1,
+            lanes: Lanes::Auto,
         }
     }
 
@@ -264,6 +267,7 @@ impl EnsembleRequest {
             joint_bins: self.joint_bins,
             amplitude_max,
             wells: chosen.wells,
+            lanes: self.lanes,
             ..Default::default()
         };
         let starts: Vec<(f64, f64)> = starts.iter().map(|&u| (u, 0.0)).collect();

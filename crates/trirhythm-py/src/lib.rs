@@ -473,6 +473,7 @@ fn ensemble_request(
         joint_bins,
         amplitude_max,
         sample_every,
+        lanes: trirhythm::engine::Lanes::Auto,
     })
 }
 

@@ -35,7 +35,7 @@ use trirhythm::engine::kernel::{interval_weights, SoeKernel};
 use trirhythm::engine::noise::{Noise, NoiseStream};
 use trirhythm::engine::{
     probe_memory, run as run_path, simulate, simulate_ensemble, simulate_with, solve_scalar,
-    Barrier, Flow, Memory, Options, Oscillator, PredictorCorrector, Problem, Stepper,
+    Barrier, Flow, Lanes, Memory, Options, Oscillator, PredictorCorrector, Problem, Stepper,
     TrajectoryRecorder,
 };
 use trirhythm::model::preset;
@@ -205,6 +205,7 @@ fn ensemble_spec() -> EnsembleSpec {
         amplitude_max: 10.0,
         batches: 4,
         wells: None,
+        lanes: Lanes::Auto,
     }
 }
 
@@ -1095,6 +1096,14 @@ fn rows() -> Vec<Row> {
         ),
         row!(
             "run_ensemble (EnsembleSpec)",
+            "lanes",
+            "lanes",
+            Count,
+            |v| [1.0, 4.0, 8.0].contains(&v),
+            |v| ens(|s| s.lanes = Lanes::Width(count(v)))
+        ),
+        row!(
+            "run_ensemble (EnsembleSpec)",
             "batches",
             "batches",
             Count,
@@ -1182,6 +1191,14 @@ fn rows() -> Vec<Row> {
             }
         ),
         // ---- analysis::lyapunov: every field of the spec, Δt, the pieces, the critical noise
+        row!(
+            "largest_lyapunov (LyapunovSpec)",
+            "lanes",
+            "lanes",
+            Count,
+            |v| [1.0, 4.0, 8.0].contains(&v),
+            |v| lle(|s, _| s.lanes = Lanes::Width(count(v)))
+        ),
         row!(
             "largest_lyapunov (LyapunovSpec)",
             "paths",

@@ -8,7 +8,7 @@
 //! are a contract: keep them.
 
 use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs};
-use crate::error::bad;
+use crate::error::{allowed, bad};
 use crate::io::{emit, progress, Csv, Report};
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
@@ -17,6 +17,7 @@ use std::time::Instant;
 use trirhythm::analysis::ensemble::{
     fingerprint, merge, run_paths, EnsembleResult, PathStats, Piece,
 };
+use trirhythm::engine::{Lanes, LANE_WIDTHS};
 use trirhythm::monitor::Monitor;
 use trirhythm_paper::requests::EnsembleRequest;
 use trirhythm_paper::views::{self, Comparisons};
@@ -74,6 +75,10 @@ pub struct EnsembleArgs {
     /// Record every K-th step of the window.
     #[arg(long = "sample-every", default_value_t = 1, allow_hyphen_values = true)]
     pub sample_every: u64,
+    /// Paths stepped together: 1 (one path after the other), 4 or 8 (default 8, the fastest
+    /// measured). The result is the same bits for every choice.
+    #[arg(long, allow_hyphen_values = true)]
+    pub lanes: Option<usize>,
     /// Save each finished path's statistics here; a rerun continues from them.
     #[arg(long)]
     pub checkpoint: Option<PathBuf>,
@@ -106,6 +111,13 @@ impl EnsembleArgs {
             joint_bins: self.joint_bins,
             amplitude_max: self.amplitude_max,
             sample_every: self.sample_every,
+            lanes: match self.lanes {
+                None => Lanes::Auto,
+                Some(w) => {
+                    allowed(LANE_WIDTHS.contains(&w), "--lanes", w, "1, 4 or 8")?;
+                    Lanes::Width(w)
+                }
+            },
         })
     }
 

@@ -36,7 +36,8 @@
 use super::problem::{
     Options, Oscillator, PredictorCorrector, Problem, MAX_AMPLITUDE_PERIODS, MAX_DT,
 };
-use super::stepper::{fresh_history, Impact, Stepper};
+use super::stepper::lanes::{same_problem, step_group, Isa};
+use super::stepper::{fresh_history, Impact, Lanes, Stepper};
 use crate::error::{Error, Result};
 use crate::monitor::{Monitor, Silent};
 use rayon::prelude::*;
@@ -98,6 +99,122 @@ pub fn run(
         }
     }
     Ok(steps)
+}
+
+/// [`run`] for several paths of one problem and method: path k is stepped up to `steps` times
+/// and shown, at its start and after every step, to `observers[k]`, which may stop it; the
+/// paths go in groups of `lanes` ([`Lanes::width`]: 1, 4 or 8) whose steps are taken together
+/// (module docs of `stepper::lanes`). Every path gives exactly the bits that [`run`] gives it
+/// alone, whatever the lane count and the group it falls in. Returns for each path the steps it
+/// took, or the error of its failed step (the other paths go on). `monitor` hears the steps
+/// of all paths done about a thousand times and is asked as often whether to stop
+/// ([`Error::Cancelled`] for the whole call). Refused: `steps` above [`MAX_STEPS`], as many
+/// observers as paths wanted, the paths of one problem and method (the same equation, Δt and
+/// memory weights), a lane count other than 1, 4 or 8.
+pub fn run_lanes<O: Observer>(
+    paths: &mut [Stepper],
+    steps: u64,
+    observers: &mut [O],
+    lanes: Lanes,
+    monitor: &dyn Monitor,
+) -> Result<Vec<Result<u64>>> {
+    let width = lanes.width()?;
+    if steps > MAX_STEPS {
+        return Err(Error::invalid(
+            "steps",
+            steps as f64,
+            format!("0 to {MAX_STEPS:e}"),
+        ));
+    }
+    if observers.len() != paths.len() {
+        return Err(Error::invalid(
+            "observers",
+            observers.len() as f64,
+            format!("one per path ({})", paths.len()),
+        ));
+    }
+    if !same_problem(paths) {
+        return Err(Error::invalid(
+            "paths",
+            paths.len() as f64,
+            "steppers of one problem and method (the lanes share its equation and weights)",
+        ));
+    }
+    let total = steps.saturating_mul(paths.len() as u64);
+    let tick = (total / 1000).max(1);
+    let mut done = 0u64;
+    let mut out = Vec::with_capacity(paths.len());
+    if width == 1 {
+        for (p, o) in paths.iter_mut().zip(observers.iter_mut()) {
+            out.push(run(p, steps, o, &Silent));
+            done += steps;
+            monitor.progress(done.min(total), total);
+            monitor.check()?;
+        }
+        return Ok(out);
+    }
+    let isa = Isa::detect();
+    for (group, obs) in paths.chunks_mut(width).zip(observers.chunks_mut(width)) {
+        let results = if width == 8 {
+            run_group::<8, O>(isa, group, obs, steps, (&mut done, tick, total), monitor)?
+        } else {
+            run_group::<4, O>(isa, group, obs, steps, (&mut done, tick, total), monitor)?
+        };
+        out.extend(results);
+    }
+    Ok(out)
+}
+
+/// [`run_lanes`] for one group of at most L paths.
+fn run_group<const L: usize, O: Observer>(
+    isa: Isa,
+    paths: &mut [Stepper],
+    observers: &mut [O],
+    steps: u64,
+    (done, tick, total): (&mut u64, u64, u64),
+    monitor: &dyn Monitor,
+) -> Result<Vec<Result<u64>>> {
+    let n = paths.len();
+    let mut live = [false; L];
+    let mut taken: Vec<Result<u64>> = (0..n).map(|_| Ok(steps)).collect();
+    for k in 0..n {
+        if observers[k].observe(&paths[k]) == Flow::Stop {
+            taken[k] = Ok(0);
+        } else {
+            live[k] = true;
+        }
+    }
+    let mut errors: [Option<Error>; L] = std::array::from_fn(|_| None);
+    let mut until_tick = tick;
+    for step in 1..=steps {
+        let alive = live.iter().filter(|&&l| l).count() as u64;
+        if alive == 0 {
+            break;
+        }
+        step_group::<L>(isa, paths, &live, &mut errors);
+        for k in 0..n {
+            if !live[k] {
+                continue;
+            }
+            if let Some(e) = errors[k].take() {
+                live[k] = false;
+                taken[k] = Err(e);
+            } else if observers[k].observe(&paths[k]) == Flow::Stop {
+                live[k] = false;
+                taken[k] = Ok(step);
+            }
+        }
+        // the progress in path-steps, a countdown as in `run`
+        *done += alive;
+        if until_tick <= alive {
+            until_tick = tick;
+            monitor.progress((*done).min(total), total);
+            monitor.check()?;
+        } else {
+            until_tick -= alive;
+        }
+    }
+    Ok(taken)
 }
 
 /// Whole steps of Δt = `dt` in a span `t` named `name` (0 allowed when `allow_zero`), checked:
@@ -350,8 +467,9 @@ pub fn simulate_with(
     Ok(recorder.finish(&stepper))
 }
 
-/// Simulate paths 0..`paths` of `options.seed` in parallel (`options.path` is not used). Path
-/// i depends only on (seed, i), so the result is bit-identical whatever the number of threads.
+/// Simulate paths 0..`paths` of `options.seed` in parallel (`options.path` is not used), in
+/// groups stepped together in lanes ([`run_lanes`] with [`Lanes::Auto`]). Path i depends only on
+/// (seed, i), so the result is bit-identical whatever the number of threads and lanes.
 /// `paths` is at most [`MAX_PATHS`], and all the trajectories together keep at most
 /// [`MAX_KEPT_SAMPLES`] nodes; no paths is an empty ensemble.
 pub fn simulate_ensemble(
@@ -380,17 +498,47 @@ pub fn simulate_ensemble(
     let osc = problem.oscillator();
     // build (and verify) the SOE kernel once for all paths
     let history = fresh_history(problem, method, steps as f64 * method.dt)?;
-    (0..paths as u64)
-        .into_par_iter()
-        .map(|i| {
-            let start = problem.start(i);
-            let mut stepper =
-                Stepper::with_history(problem, method, start, (options.seed, i), history.clone())?;
-            let mut recorder = TrajectoryRecorder::new(osc, options, steps, method.dt)?;
-            run(&mut stepper, steps, &mut recorder, &Silent)?;
-            Ok(recorder.finish(&stepper))
+    // groups of paths stepped together in lanes (the same bits as one by one), narrower when
+    // there are too few paths to give every thread a group
+    let width = Lanes::Auto.width()?;
+    let threads = rayon::current_num_threads().max(1);
+    let width = match paths.div_ceil(threads) {
+        per if per <= 4 => width.min(4),
+        _ => width,
+    };
+    let indices: Vec<u64> = (0..paths as u64).collect();
+    let groups: Vec<Vec<Trajectory>> = indices
+        .par_chunks(width)
+        .map(|group| {
+            let mut steppers = Vec::with_capacity(group.len());
+            let mut recorders = Vec::with_capacity(group.len());
+            for &i in group {
+                let start = problem.start(i);
+                steppers.push(Stepper::with_history(
+                    problem,
+                    method,
+                    start,
+                    (options.seed, i),
+                    history.clone(),
+                )?);
+                recorders.push(TrajectoryRecorder::new(osc, options, steps, method.dt)?);
+            }
+            let taken = run_lanes(
+                &mut steppers,
+                steps,
+                &mut recorders,
+                Lanes::Width(width),
+                &Silent,
+            )?;
+            let mut out = Vec::with_capacity(group.len());
+            for ((s, r), t) in steppers.iter().zip(recorders).zip(taken) {
+                t?;
+                out.push(r.finish(s));
+            }
+            Ok(out)
         })
-        .collect()
+        .collect::<Result<_>>()?;
+    Ok(groups.into_iter().flatten().collect())
 }
 
 /// The result of one path.

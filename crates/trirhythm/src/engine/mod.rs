@@ -10,7 +10,9 @@
 //!   the method [`PredictorCorrector`];
 //! - [`Stepper`]: the linearly implicit predictor–corrector step with impacts (module docs of
 //!   `stepper` give the method and why);
-//! - drivers: [`run`] with an [`Observer`], [`simulate`], [`simulate_ensemble`]; a
+//! - [`Lanes`]: several paths of one problem stepped together, the arithmetic of their step
+//!   vectorised across them, with the scalar stepper's bits (module docs of `stepper::lanes`);
+//! - drivers: [`run`] with an [`Observer`], [`run_lanes`] for several paths at once, [`simulate`], [`simulate_ensemble`]; a
 //!   [`crate::monitor::Monitor`] hears their progress and can stop them.
 //!
 //! The engine depends on [`crate::model`] (parameters, Eq. 5 equivalents), [`crate::special`]
@@ -26,7 +28,7 @@ mod stepper;
 
 pub(crate) use drivers::whole_steps;
 pub use drivers::{
-    run, simulate, simulate_ensemble, simulate_with, Flow, Observer, Trajectory,
+    run, run_lanes, simulate, simulate_ensemble, simulate_with, Flow, Observer, Trajectory,
     TrajectoryRecorder, MAX_KEPT_SAMPLES, MAX_PATHS, MAX_STEPS,
 };
 pub(crate) use memory::History;
@@ -38,5 +40,7 @@ pub use problem::{
     MAX_AMPLITUDE_PERIODS, MAX_DT, MAX_STARTS, MAX_WINDOW,
 };
 pub use resolution::Resolution;
-pub(crate) use stepper::{fresh_history, Tangent};
-pub use stepper::{Impact, StepEvents, Stepper, MAX_DIRECT_STEPS};
+pub use stepper::{
+    detected_lanes, Impact, Lanes, StepEvents, Stepper, LANE_WIDTHS, MAX_DIRECT_STEPS,
+};
+pub(crate) use stepper::{fresh_history, Group, Tangent};

@@ -171,18 +171,26 @@ impl NoiseStream {
         self.state
     }
 
-    /// The next standard normal deviate of the stream.
-    #[inline]
+    /// The next standard normal deviate of the stream (the block refill out of line: the
+    /// step inlines only the read).
+    #[inline(always)]
     fn normal(&mut self) -> f64 {
         if self.next == BLOCK {
-            for x in self.normals.iter_mut() {
-                *x = standard_normal(&mut self.rng);
-            }
-            self.next = 0;
+            self.refill();
         }
         let x = self.normals[self.next];
         self.next += 1;
         x
+    }
+
+    /// Draw the next block of deviates.
+    #[cold]
+    #[inline(never)]
+    fn refill(&mut self) {
+        for x in self.normals.iter_mut() {
+            *x = standard_normal(&mut self.rng);
+        }
+        self.next = 0;
     }
 
     /// The forcing on the next step: (value at its start, value at its end).

@@ -51,8 +51,10 @@
 //!
 //! # Reproducibility
 //! Path i depends only on (seed, i) and the paths' statistics are merged in path order, so the
-//! result is bit-identical whatever the number of threads or the split into pieces, and a run
-//! resumed from saved [`PathStats`] equals the uninterrupted one.
+//! result is bit-identical whatever the number of threads, the lane count
+//! ([`EnsembleSpec::lanes`]: paths stepped together, each with its own bits; `tests/lanes.rs`)
+//! or the split into pieces, and a run resumed from saved [`PathStats`] equals the uninterrupted
+//! one.
 //!
 //! # Tests
 //! `tests/ensemble.rs`: the linear fractional oscillator's exact stationary variances
@@ -99,7 +101,9 @@ pub use spec::{
     MAX_STATISTICS_BYTES, MAX_WELLS,
 };
 
-use crate::engine::{fresh_history, run, Flow, Observer, PredictorCorrector, Problem, Stepper};
+use crate::engine::{
+    fresh_history, run_lanes, Flow, Lanes, Observer, PredictorCorrector, Problem, Stepper,
+};
 use crate::error::{Error, Result};
 use crate::monitor::{Monitor, Silent};
 use rayon::prelude::*;
@@ -133,36 +137,73 @@ pub fn run_paths(
     let history = fresh_history(problem, method, steps as f64 * method.dt)?;
     let total = paths.len() as u64 * steps;
     let counter = AtomicU64::new(0);
-    paths
-        .par_iter()
-        .map(|&i| {
+    // groups of `width` paths stepped together in lanes; with few paths, narrower groups so
+    // that every thread has one (a path's bits do not depend on its group)
+    let width = spec.lanes.width()?;
+    let threads = rayon::current_num_threads().max(1);
+    let width = match paths.len().div_ceil(threads) {
+        per if width == 8 && per <= 4 => 4,
+        _ => width,
+    };
+    let lanes = Lanes::Width(width);
+    let groups: Vec<Vec<PathStats>> = paths
+        .par_chunks(width)
+        .map(|group| {
             monitor.check()?;
-            let start = problem.start(i);
-            let mut s =
-                Stepper::with_history(problem, method, start, (spec.seed, i), history.clone())?;
-            let mut rec = Recorder::new(&layout, sizes.burn, spec.sample_every, i, start.0);
-            let mut observe = |st: &Stepper| {
-                let f = rec.observe(st);
-                if st.steps() % TICK == 0 {
-                    let d = counter.fetch_add(TICK, Ordering::Relaxed) + TICK;
-                    monitor.progress(d.min(total), total);
-                    if monitor.cancelled() {
-                        return Flow::Stop;
+            let mut steppers = Vec::with_capacity(group.len());
+            let mut recorders = Vec::with_capacity(group.len());
+            for &i in group {
+                let start = problem.start(i);
+                steppers.push(Stepper::with_history(
+                    problem,
+                    method,
+                    start,
+                    (spec.seed, i),
+                    history.clone(),
+                )?);
+                recorders.push(Recorder::new(
+                    &layout,
+                    sizes.burn,
+                    spec.sample_every,
+                    i,
+                    start.0,
+                ));
+            }
+            let mut observers: Vec<_> = recorders
+                .iter_mut()
+                .map(|rec| {
+                    let counter = &counter;
+                    move |st: &Stepper| {
+                        let f = rec.observe(st);
+                        if st.steps() % TICK == 0 {
+                            let d = counter.fetch_add(TICK, Ordering::Relaxed) + TICK;
+                            monitor.progress(d.min(total), total);
+                            if monitor.cancelled() {
+                                return Flow::Stop;
+                            }
+                        }
+                        f
                     }
-                }
-                f
-            };
-            run(&mut s, steps, &mut observe, &Silent).map_err(|e| Error::InPath {
-                path: i,
-                u0: start.0,
-                error: Box::new(e),
-            })?;
-            monitor.check()?;
-            let stats = rec.finish(&s);
-            monitor.finished(&stats)?;
-            Ok(stats)
+                })
+                .collect();
+            let taken = run_lanes(&mut steppers, steps, &mut observers, lanes, &Silent)?;
+            drop(observers);
+            let mut out = Vec::with_capacity(group.len());
+            for (((&i, s), rec), t) in group.iter().zip(&steppers).zip(recorders).zip(taken) {
+                t.map_err(|e| Error::InPath {
+                    path: i,
+                    u0: problem.start(i).0,
+                    error: Box::new(e),
+                })?;
+                monitor.check()?;
+                let stats = rec.finish(s);
+                monitor.finished(&stats)?;
+                out.push(stats);
+            }
+            Ok(out)
         })
-        .collect()
+        .collect::<Result<_>>()?;
+    Ok(groups.into_iter().flatten().collect())
 }
 
 /// Merge the statistics of every path 0..`spec.paths` of the ensemble (from [`run_paths`], in

@@ -17,12 +17,17 @@
 //! The CLI's `tests/checkpoint.rs`: foreign, re-indexed and reshaped path files are refused.
 
 use super::{fits, EnsembleSpec, PathStats};
-use crate::engine::{PredictorCorrector, Problem};
+use crate::engine::{Lanes, PredictorCorrector, Problem};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// The run a piece belongs to, as text: everything that changes its statistics.
 pub fn fingerprint(problem: &Problem, method: &PredictorCorrector, spec: &EnsembleSpec) -> String {
+    // the lane count changes no statistic: pieces run with any lanes merge
+    let spec = &EnsembleSpec {
+        lanes: Lanes::Auto,
+        ..spec.clone()
+    };
     format!(
         "trirhythm ensemble {}\nparams: {}\n{method:?}\nspec: {spec:?}\nstarts: {:?} system: {:?} \
          barrier: {:?} blow_up: {:e}\n",

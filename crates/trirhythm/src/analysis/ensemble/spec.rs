@@ -1,7 +1,7 @@
 //! What an ensemble runs: its spec (paths, seed, window, sampling, histograms, batches) with the
 //! checked sizes of a run, and the wells of the amplitude from the theory.
 
-use crate::engine::{whole_steps, PredictorCorrector};
+use crate::engine::{whole_steps, Lanes, PredictorCorrector};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -145,6 +145,9 @@ pub struct EnsembleSpec {
     pub batches: usize,
     /// Wells for occupancies and passages (from the theory), if any.
     pub wells: Option<Wells>,
+    /// How many paths are stepped together ([`Lanes`]; the default suits the CPU). The
+    /// statistics do not depend on it: every path gives the same bits in any lane count.
+    pub lanes: Lanes,
 }
 
 impl Default for EnsembleSpec {
@@ -160,6 +163,7 @@ impl Default for EnsembleSpec {
             amplitude_max: 15.0,
             batches: 20,
             wells: None,
+            lanes: Lanes::Auto,
         }
     }
 }
@@ -177,9 +181,10 @@ impl EnsembleSpec {
     /// [`MAX_PATHS`], `bins` 2 to [`MAX_BINS`], `joint_bins` 2 to [`MAX_JOINT_BINS`], `batches`
     /// 4 to [`MAX_BATCHES`], `amplitude_max` in (0, [`MAX_AMPLITUDE`]], the wells
     /// ([`Wells::validate`]), the statistics of all paths at most [`MAX_STATISTICS_BYTES`],
-    /// `sample_every` ≥ 1, `burn_in` ≥ 0 and `length` > 0 finite. The steps are checked against
+    /// `sample_every` ≥ 1, `burn_in` ≥ 0 and `length` > 0 finite, `lanes` 1, 4 or 8 when given. The steps are checked against
     /// the method's Δt by the drivers.
     pub fn validate(&self) -> Result<()> {
+        self.lanes.width()?;
         if self.paths == 0 || self.paths > MAX_PATHS {
             return Err(Error::invalid(
                 "paths",

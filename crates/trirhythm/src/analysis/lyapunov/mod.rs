@@ -88,7 +88,9 @@
 //!
 //! # Reproducibility
 //! Path i depends only on (seed, i); paths run in parallel and are merged in path order, so the
-//! result is bit-identical whatever the number of threads. [`largest_lyapunov`] is
+//! result is bit-identical whatever the number of threads. With two trajectories the reference
+//! and its copy are stepped in neighbouring lanes of the lane stepper, several realisations a
+//! group ([`LyapunovSpec::lanes`]; the same bits as path by path, `tests/lanes.rs`). [`largest_lyapunov`] is
 //! [`run_paths`] over every path, then [`merge`]: the realisations can be run anywhere, in any
 //! split and order, and merged into the same result.
 //!
@@ -134,10 +136,12 @@ pub use critical::{
 };
 
 use super::ensemble::Estimate;
-use crate::engine::{fresh_history, whole_steps, PredictorCorrector, Problem, Stepper, Tangent};
+use crate::engine::{
+    fresh_history, whole_steps, Lanes, PredictorCorrector, Problem, Stepper, Tangent,
+};
 use crate::error::{Error, Result};
 use crate::monitor::Monitor;
-use perturbation::{one_path, PathAndTangent, TwoPaths};
+use perturbation::{one_path, pairs_in_lanes, PathAndTangent, TwoPaths};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -177,6 +181,10 @@ pub struct LyapunovSpec {
     pub running_points: usize,
     /// Tangent (variational) equation or two trajectories.
     pub method: LyapunovMethod,
+    /// How many paths are stepped together ([`Lanes`]; the default suits the CPU): with two
+    /// trajectories, the reference and its copy in neighbouring lanes, several realisations a
+    /// group; the tangent method steps path by path. The exponents do not depend on it.
+    pub lanes: Lanes,
 }
 
 /// How the perturbation is followed.
@@ -212,6 +220,7 @@ impl Default for LyapunovSpec {
             separation: 1e-8,
             running_points: 100,
             method: LyapunovMethod::TwoTrajectory,
+            lanes: Lanes::Auto,
         }
     }
 }
@@ -221,8 +230,10 @@ impl LyapunovSpec {
     /// [`MAX_PATHS`], `separation` in [1e-12, 1e-4], `renormalise_every` 1 to
     /// [`MAX_RENORMALISE_EVERY`], `running_points` 1 to [`MAX_RUNNING_POINTS`] (and at most
     /// [`MAX_RUNNING_BYTES`] of running estimates in all), `transient` ≥ 0 and `length` > 0
-    /// finite. The steps are checked against the method's Δt by the drivers.
+    /// finite, `lanes` 1, 4 or 8 when given. The steps are checked against the method's Δt by
+    /// the drivers.
     pub fn validate(&self) -> Result<()> {
+        self.lanes.width()?;
         if self.paths == 0 || self.paths > MAX_PATHS {
             return Err(Error::invalid(
                 "paths",
@@ -437,38 +448,80 @@ pub fn run_paths(
         monitor.progress(done.min(total), total);
         monitor.check()
     };
+    // the copy starts one unit away along U (inward where the blow-up bound is near)
+    let shift = |u0: f64| {
+        if u0 + 1.0 < problem.blow_up() {
+            1.0
+        } else {
+            -1.0
+        }
+    };
+    let make = |i: u64, u0: f64| {
+        let v0 = problem.start(i).1;
+        Stepper::with_history(problem, method, (u0, v0), (spec.seed, i), history.clone())
+    };
+    // the copy pulled to d₀ (both at step 0, empty memories)
+    let pair = |i: u64| -> Result<(Stepper, Stepper)> {
+        let u0 = problem.start(i).0;
+        let a = make(i, u0)?;
+        let mut b = make(i, u0 + shift(u0))?;
+        let (du, dv) = b.separation(&a);
+        let d0 = spec.separation;
+        if !b.contract_toward(&a, d0 / crate::maths::hypot(du, dv)) {
+            return Err(Error::Undefined {
+                what: "Lyapunov exponent",
+                why: "the perturbed copy could not be placed at the start".into(),
+            });
+        }
+        Ok((a, b))
+    };
+    let sizes = (transient, window);
+    let lanes = spec.lanes.width()?;
+    if spec.method == LyapunovMethod::TwoTrajectory && lanes > 1 {
+        // reference and copy in neighbouring lanes, lanes/2 realisations a group; with few
+        // realisations, narrower groups so that every thread has one (the bits do not depend
+        // on the grouping)
+        let threads = rayon::current_num_threads().max(1);
+        let lanes = match paths.len().div_ceil(threads) {
+            per if lanes == 8 && per <= 2 => 4,
+            _ => lanes,
+        };
+        let groups: Vec<Vec<PathRun>> = paths
+            .par_chunks(lanes / 2)
+            .map(|group| {
+                monitor.check()?;
+                let mut steppers = Vec::with_capacity(2 * group.len());
+                for &i in group {
+                    let (a, b) = pair(i)?;
+                    steppers.extend([a, b]);
+                }
+                let d0 = spec.separation;
+                let results = pairs_in_lanes(steppers, d0, group, spec, sizes, lanes, &tick)?;
+                let mut out = Vec::with_capacity(group.len());
+                for (exponent, running) in results {
+                    let run = PathRun { exponent, running };
+                    monitor.finished(&run)?;
+                    out.push(run);
+                }
+                Ok(out)
+            })
+            .collect::<Result<_>>()?;
+        return Ok(groups.into_iter().flatten().collect());
+    }
     paths
         .par_iter()
         .map(|&i| {
             monitor.check()?;
-            let (u0, v0) = problem.start(i);
-            let shift = if u0 + 1.0 < problem.blow_up() {
-                1.0
-            } else {
-                -1.0
-            };
-            let make = |u0: f64| {
-                Stepper::with_history(problem, method, (u0, v0), (spec.seed, i), history.clone())
-            };
-            let a = make(u0)?;
-            let sizes = (transient, window);
             let (exponent, running) = match spec.method {
                 LyapunovMethod::TwoTrajectory => {
-                    let mut b = make(u0 + shift)?;
-                    // the copy starts one unit away along U: pull it to d₀ (both at step 0,
-                    // empty memories)
-                    let (du, dv) = b.separation(&a);
+                    let (a, b) = pair(i)?;
                     let d0 = spec.separation;
-                    if !b.contract_toward(&a, d0 / crate::maths::hypot(du, dv)) {
-                        return Err(Error::Undefined {
-                            what: "Lyapunov exponent",
-                            why: "the perturbed copy could not be placed at the start".into(),
-                        });
-                    }
                     one_path(TwoPaths { a, b, d0 }, spec, sizes, i, &tick)
                 }
                 LyapunovMethod::Tangent => {
-                    let t = Tangent::new(&a, (shift, 0.0));
+                    let u0 = problem.start(i).0;
+                    let a = make(i, u0)?;
+                    let t = Tangent::new(&a, (shift(u0), 0.0));
                     one_path(PathAndTangent { a, t }, spec, sizes, i, &tick)
                 }
             }?;

@@ -3,7 +3,7 @@
 //! finite-time exponent (module docs of [`super`]).
 
 use super::{LyapunovSpec, PathExponent};
-use crate::engine::{Stepper, Tangent};
+use crate::engine::{Group, Stepper, Tangent};
 use crate::error::{Error, Result};
 
 /// The outcome of a due renormalisation.
@@ -36,19 +36,24 @@ impl Perturbation for TwoPaths {
     }
 
     fn renormalise(&mut self) -> Renormalised {
-        let (du, dv) = self.b.separation(&self.a);
-        let d = crate::maths::hypot(du, dv);
-        if d > 0.0 && d.is_finite() && self.b.contract_toward(&self.a, self.d0 / d) {
-            Renormalised::Grown(d / self.d0)
-        } else {
-            Renormalised::Refused {
-                merged: d == 0.0 && self.b.coincides_with(&self.a),
-            }
-        }
+        renormalise_pair(&self.a, &mut self.b, self.d0)
     }
 
     fn reference(&self) -> &Stepper {
         &self.a
+    }
+}
+
+/// Pull the copy `b` back to the distance `d0` from the reference `a`, whole memory included.
+fn renormalise_pair(a: &Stepper, b: &mut Stepper, d0: f64) -> Renormalised {
+    let (du, dv) = b.separation(a);
+    let d = crate::maths::hypot(du, dv);
+    if d > 0.0 && d.is_finite() && b.contract_toward(a, d0 / d) {
+        Renormalised::Grown(d / d0)
+    } else {
+        Renormalised::Refused {
+            merged: d == 0.0 && b.coincides_with(a),
+        }
     }
 }
 
@@ -80,111 +85,217 @@ impl Perturbation for PathAndTangent {
     }
 }
 
+/// The measurement of one realisation's exponent, advanced after each of its steps.
+struct Measure<'a> {
+    spec: &'a LyapunovSpec,
+    transient: u64,
+    window: u64,
+    path: u64,
+    dt: f64,
+    checkpoints: u64,
+    running: Vec<f64>,
+    next_checkpoint: u64,
+    log_sum: f64,
+    count: u64,
+    deferred: u64,
+    /// The step at which the copy merged with the reference for good.
+    merged_at: Option<u64>,
+    /// The step of the last accepted renormalisation, and of the one that opened the window.
+    last: u64,
+    start: u64,
+    next: u64,
+}
+
+/// Steps between two reports of a realisation's progress.
+const TICK_EVERY: u64 = 1 << 14;
+
+impl<'a> Measure<'a> {
+    fn new(spec: &'a LyapunovSpec, (transient, window): (u64, u64), path: u64, dt: f64) -> Self {
+        Measure {
+            spec,
+            transient,
+            window,
+            path,
+            dt,
+            checkpoints: spec.running_points as u64,
+            running: Vec::with_capacity(spec.running_points),
+            next_checkpoint: 1,
+            log_sum: 0.0,
+            count: 0,
+            deferred: 0,
+            merged_at: None,
+            last: 0,
+            start: 0,
+            next: spec.renormalise_every,
+        }
+    }
+
+    /// A failed step of the realisation, as its error (a blow-up leaves the exponent undefined).
+    fn failed(&self, e: Error) -> Error {
+        match e {
+            Error::BlowUp { .. } => Error::Undefined {
+                what: "Lyapunov exponent",
+                why: format!("path {}: {e}", self.path),
+            },
+            other => other,
+        }
+    }
+
+    /// After step `n`: renormalise when due (`renormalise` does it), record the running
+    /// estimate at its checkpoints, report the progress every [`TICK_EVERY`] steps.
+    fn after_step(
+        &mut self,
+        n: u64,
+        renormalise: impl FnOnce() -> Renormalised,
+        tick: &dyn Fn(u64) -> Result<()>,
+    ) -> Result<()> {
+        if n >= self.next && self.merged_at.is_none() {
+            match renormalise() {
+                Renormalised::Grown(factor) => {
+                    if n > self.transient {
+                        self.log_sum += crate::maths::ln(factor);
+                        self.count += 1;
+                    } else {
+                        self.start = n;
+                    }
+                    self.last = n;
+                    self.next = n + self.spec.renormalise_every;
+                }
+                // identical for good: nothing left to renormalise
+                Renormalised::Refused { merged: true } => self.merged_at = Some(n),
+                Renormalised::Refused { merged: false } => self.deferred += 1,
+            }
+        }
+        if n > self.transient {
+            let k = n - self.transient;
+            if k * self.checkpoints >= self.next_checkpoint * self.window {
+                let span = (self.last.saturating_sub(self.start)) as f64 * self.dt;
+                self.running.push(if self.merged_at.is_some() {
+                    f64::NEG_INFINITY
+                } else if self.count > 0 {
+                    self.log_sum / span
+                } else {
+                    f64::NAN
+                });
+                self.next_checkpoint += 1;
+            }
+        }
+        if n % TICK_EVERY == 0 {
+            tick(TICK_EVERY)?;
+        }
+        Ok(())
+    }
+
+    /// The exponent after the last step, with the reference's `impacts`.
+    fn finish(
+        self,
+        impacts: u64,
+        tick: &dyn Fn(u64) -> Result<()>,
+    ) -> Result<(PathExponent, Vec<f64>)> {
+        let (path, dt, count) = (self.path, self.dt, self.count);
+        tick((self.transient + self.window) % TICK_EVERY)?;
+        let measured_time = if count > 0 {
+            (self.last - self.start) as f64 * dt
+        } else {
+            0.0
+        };
+        if let Some(m) = self.merged_at {
+            // the perturbation vanished for good: a contraction faster than any exponential
+            return Ok((
+                PathExponent {
+                    path,
+                    exponent: f64::NEG_INFINITY,
+                    measured_time,
+                    renormalisations: count,
+                    deferred: self.deferred,
+                    impacts,
+                    merged_at: Some(m as f64 * dt),
+                },
+                self.running,
+            ));
+        }
+        if count == 0 {
+            return Err(Error::Undefined {
+                what: "Lyapunov exponent",
+                why: format!(
+                    "path {path}: no renormalisation was possible in the measured window (the two \
+                     paths were never combinable: at rest on the wall, or an impact in every \
+                     window)"
+                ),
+            });
+        }
+        Ok((
+            PathExponent {
+                path,
+                exponent: self.log_sum / measured_time,
+                measured_time,
+                renormalisations: count,
+                deferred: self.deferred,
+                impacts,
+                merged_at: None,
+            },
+            self.running,
+        ))
+    }
+}
+
 /// One realisation: its exponent and its running estimate at `running_points` checkpoints.
 pub(super) fn one_path(
     mut p: impl Perturbation,
     spec: &LyapunovSpec,
-    (transient, window): (u64, u64),
+    sizes: (u64, u64),
     path: u64,
     tick: &dyn Fn(u64) -> Result<()>,
 ) -> Result<(PathExponent, Vec<f64>)> {
-    let total = transient + window;
-    let every = spec.renormalise_every;
-    let checkpoints = spec.running_points as u64;
-    let mut running = Vec::with_capacity(spec.running_points);
-    let mut next_checkpoint = 1;
-    let (mut log_sum, mut count, mut deferred) = (0.0, 0u64, 0u64);
-    // the step at which the copy merged with the reference for good
-    let mut merged_at: Option<u64> = None;
-    // the step of the last accepted renormalisation, and of the one that opened the window
-    let (mut last, mut start) = (0u64, 0u64);
-    let mut next = every;
-    let dt = p.reference().dt();
-    let tick_every = 1u64 << 14;
-    for n in 1..=total {
-        p.step().map_err(|e| match e {
-            Error::BlowUp { .. } => Error::Undefined {
-                what: "Lyapunov exponent",
-                why: format!("path {path}: {e}"),
-            },
-            other => other,
-        })?;
-        if n >= next && merged_at.is_none() {
-            match p.renormalise() {
-                Renormalised::Grown(factor) => {
-                    if n > transient {
-                        log_sum += crate::maths::ln(factor);
-                        count += 1;
-                    } else {
-                        start = n;
-                    }
-                    last = n;
-                    next = n + every;
-                }
-                // identical for good: nothing left to renormalise
-                Renormalised::Refused { merged: true } => merged_at = Some(n),
-                Renormalised::Refused { merged: false } => deferred += 1,
+    let mut m = Measure::new(spec, sizes, path, p.reference().dt());
+    for n in 1..=sizes.0 + sizes.1 {
+        p.step().map_err(|e| m.failed(e))?;
+        m.after_step(n, || p.renormalise(), tick)?;
+    }
+    m.finish(p.reference().impacts(), tick)
+}
+
+/// Two-trajectory realisations stepped together in lanes: `pairs` holds reference and copy of
+/// each in neighbouring lanes (a₀, b₀, a₁, b₁, …), `paths` their indices; the groups of
+/// `lanes` steppers take their steps together (`engine::Group`). Each realisation gives the bits
+/// of [`one_path`] with [`TwoPaths`] (the lane step gives the scalar step's bits, and every
+/// renormalisation acts on its own pair between steps, as there).
+pub(super) fn pairs_in_lanes(
+    mut pairs: Vec<Stepper>,
+    d0: f64,
+    paths: &[u64],
+    spec: &LyapunovSpec,
+    sizes: (u64, u64),
+    lanes: usize,
+    tick: &dyn Fn(u64) -> Result<()>,
+) -> Result<Vec<(PathExponent, Vec<f64>)>> {
+    assert_eq!(pairs.len(), 2 * paths.len(), "two steppers per realisation");
+    let dt = pairs[0].dt();
+    let mut measures: Vec<Measure> = paths
+        .iter()
+        .map(|&i| Measure::new(spec, sizes, i, dt))
+        .collect();
+    let mut group = Group::new(&mut pairs, lanes)?;
+    for n in 1..=sizes.0 + sizes.1 {
+        group.step();
+        for (k, m) in measures.iter_mut().enumerate() {
+            // the reference's error first, as one_path steps it first
+            if let Some(e) = group
+                .take_error(2 * k)
+                .or_else(|| group.take_error(2 * k + 1))
+            {
+                return Err(m.failed(e));
             }
-        }
-        if n > transient {
-            let k = n - transient;
-            if k * checkpoints >= next_checkpoint * window {
-                let span = (last.saturating_sub(start)) as f64 * dt;
-                running.push(if merged_at.is_some() {
-                    f64::NEG_INFINITY
-                } else if count > 0 {
-                    log_sum / span
-                } else {
-                    f64::NAN
-                });
-                next_checkpoint += 1;
-            }
-        }
-        if n % tick_every == 0 {
-            tick(tick_every)?;
+            let (a, b) = group.pair(k);
+            m.after_step(n, || renormalise_pair(a, b, d0), tick)?;
         }
     }
-    tick(total % tick_every)?;
-    let impacts = p.reference().impacts();
-    let measured_time = if count > 0 {
-        (last - start) as f64 * dt
-    } else {
-        0.0
-    };
-    if let Some(m) = merged_at {
-        // the perturbation vanished for good: a contraction faster than any exponential
-        return Ok((
-            PathExponent {
-                path,
-                exponent: f64::NEG_INFINITY,
-                measured_time,
-                renormalisations: count,
-                deferred,
-                impacts,
-                merged_at: Some(m as f64 * dt),
-            },
-            running,
-        ));
-    }
-    if count == 0 {
-        return Err(Error::Undefined {
-            what: "Lyapunov exponent",
-            why: format!(
-                "path {path}: no renormalisation was possible in the measured window (the two \
-                 paths were never combinable: at rest on the wall, or an impact in every window)"
-            ),
-        });
-    }
-    Ok((
-        PathExponent {
-            path,
-            exponent: log_sum / measured_time,
-            measured_time,
-            renormalisations: count,
-            deferred,
-            impacts,
-            merged_at: None,
-        },
-        running,
-    ))
+    measures
+        .into_iter()
+        .enumerate()
+        .map(|(k, m)| {
+            let impacts = group.path(2 * k).impacts();
+            m.finish(impacts, tick)
+        })
+        .collect()
 }

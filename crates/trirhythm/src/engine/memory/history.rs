@@ -330,14 +330,15 @@ impl History {
         self.pushed += 1;
         let leaving = self.local.push(left, right);
         let mut off = 0.0;
+        let mut moments = self.moments;
         if let Some((l0, r0)) = leaving {
             if !self.modes.y.is_empty() {
                 off = advance(&mut self.modes, l0, r0);
             }
-            self.moment_step
-                .advance(&mut self.moments, self.flat, l0, r0);
+            moments = self.moment_step.advanced(&moments, self.flat, l0, r0);
+            self.moments = moments;
         }
-        off += self.lumped_value();
+        off += self.lumped_value_of(&moments);
         off += dot(self.local.older_run(self.older.len()), &self.older);
         self.cached = off + (self.newest.0 * left + self.newest.1 * right);
         if !self.splits.is_empty() {
@@ -348,10 +349,16 @@ impl History {
     /// The lumped slow rates' contribution at the next node.
     #[inline(always)]
     pub(super) fn lumped_value(&self) -> f64 {
+        self.lumped_value_of(&self.moments)
+    }
+
+    /// The lumped slow rates' contribution at the next node with the moments `m`.
+    #[inline(always)]
+    fn lumped_value_of(&self, m: &[f64; LUMPED_TERMS]) -> f64 {
         if self.flat {
-            self.lumped[0] * self.moments[0]
+            self.lumped[0] * m[0]
         } else {
-            dot_moments(&self.lumped_out, &self.moments)
+            dot_moments(&self.lumped_out, m)
         }
     }
 

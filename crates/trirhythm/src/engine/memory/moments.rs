@@ -50,17 +50,31 @@ impl MomentStep {
         }
     }
 
+    /// The moments `m` moved on by a full step over the piece (l → r), as new values: the
+    /// caller keeps them in registers for the lumped value (reading them back from memory at
+    /// once, as a vector over four separate scalar stores, stalls the store forwarding on the
+    /// step's dependency chain: measured ≈ 30 % of the memory's time).
     #[inline(always)]
-    pub(super) fn advance(&self, m: &mut [f64; LUMPED_TERMS], flat: bool, l: f64, r: f64) {
+    pub(super) fn advanced(
+        &self,
+        m: &[f64; LUMPED_TERMS],
+        flat: bool,
+        l: f64,
+        r: f64,
+    ) -> [f64; LUMPED_TERMS] {
         let [s3, s31, s30, s2, s20, s1, half] = self.shift;
         let [a3, b3, a2, b2, a1, b1] = self.piece;
-        if !flat {
-            let [m0, m1, m2, m3] = *m;
-            m[3] = ((m3 + s3 * m2) + (s31 * m1 + s30 * m0)) + (a3 * l + b3 * r);
-            m[2] = (m2 + s2 * m1) + (s20 * m0 + (a2 * l + b2 * r));
-            m[1] = (m1 + s1 * m0) + (a1 * l + b1 * r);
+        let [m0, m1, m2, m3] = *m;
+        let n0 = m0 + half * (l + r);
+        if flat {
+            return [n0, m1, m2, m3];
         }
-        m[0] += half * (l + r);
+        [
+            n0,
+            (m1 + s1 * m0) + (a1 * l + b1 * r),
+            (m2 + s2 * m1) + (s20 * m0 + (a2 * l + b2 * r)),
+            ((m3 + s3 * m2) + (s31 * m1 + s30 * m0)) + (a3 * l + b3 * r),
+        ]
     }
 }
 

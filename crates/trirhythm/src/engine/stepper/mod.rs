@@ -106,13 +106,16 @@ use crate::error::{Error, Exact, Result};
 use polynomial::Polynomial;
 
 mod impact;
+pub(crate) mod lanes;
 mod polynomial;
 mod renormalise;
 mod tangent;
+pub(crate) use lanes::Group;
+pub use lanes::{detected_lanes, Lanes, LANE_WIDTHS};
 pub(crate) use tangent::Tangent;
 
 /// g(U, V, η) = μP(U)V − ω²U + γ·side·η of one system.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Rhs {
     pub lambda: f64,
     /// μP as a polynomial in U².
@@ -162,6 +165,13 @@ impl Rhs {
     #[inline]
     fn damping_slope(&self, u: f64) -> f64 {
         2.0 * u * self.slope.eval(u * u)
+    }
+
+    /// The drift μP(U)V − ω²U and the predictor's weight at a node (u1, v1) where μP = `a1`,
+    /// for steps of length `h`.
+    #[inline(always)]
+    fn node(&self, h: f64, a1: f64, u1: f64, v1: f64) -> (f64, f64) {
+        (a1 * v1 - self.omega2 * u1, predictor_weight(h, a1))
     }
 
     /// The deterministic part μP(U)V − ω²U of g.
@@ -256,7 +266,23 @@ impl Rhs {
         w: f64,
         fr: f64,
     ) -> Pass {
-        let a = self.damping(up);
+        self.pass_with(self.damping(up), len, (u, v, g0), up, known, w, fr)
+    }
+
+    /// [`Rhs::pass`] with μP(up) = `a` given (the lane stepper evaluates it for several paths
+    /// at once).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn pass_with(
+        &self,
+        a: f64,
+        len: f64,
+        (u, v, g0): (f64, f64, f64),
+        up: f64,
+        known: f64,
+        w: f64,
+        fr: f64,
+    ) -> Pass {
         let inv = 1.0 / (1.0 - w * a);
         let lim = hermite_limiter(2.0 * w * a);
         let v1 = (known + w * (fr - self.omega2 * up)) * inv;
@@ -345,6 +371,33 @@ impl Rhs {
             first
         }
     }
+}
+
+/// What a step needs from the state and the noise ([`Stepper::begin`]).
+#[derive(Debug, Clone, Copy, Default)]
+struct Begin {
+    /// The noise at the step's start and end.
+    el: f64,
+    er: f64,
+    u: f64,
+    v: f64,
+    /// g at the start.
+    gl: f64,
+    /// The part of V at the end that does not depend on g there.
+    known: f64,
+    /// The forcing at the end.
+    fr: f64,
+}
+
+/// The end of a step after its events ([`Stepper::end_events`]).
+#[derive(Debug, Clone, Copy)]
+struct End {
+    u1: f64,
+    v1: f64,
+    /// The step's piece of g (its right value set by [`Stepper::complete`]).
+    piece: Piece,
+    /// Whether the piece enters the memory.
+    push: bool,
 }
 
 /// One impact (or Zhuravlev crossing).
@@ -560,24 +613,45 @@ impl Stepper {
     /// Advance one step Δt.
     #[inline]
     pub fn step(&mut self) -> Result<()> {
-        let h = self.h;
+        let b = self.begin();
+        let free = self
+            .rhs
+            .advance(self.h, (b.u, b.v, b.gl), self.pw, b.known, self.wr, b.fr);
+        let (u1, v1) = free.end();
+        let end = self.end_events(&b, u1, v1)?;
+        self.set_node(end.u1, end.v1);
+        self.complete(&b, end);
+        Ok(())
+    }
+
+    /// The first part of a step: the noise on it and what the corrector needs from the state
+    /// (the lane stepper forms the same numbers for several paths, then steps them together).
+    #[inline(always)]
+    fn begin(&mut self) -> Begin {
         let rhs = &self.rhs;
         let (el, er) = self.noise.next_step();
         let (u, v, side) = (self.u, self.v, self.side);
         let gl = self.drift + rhs.forcing(el, side);
         let known = self.base + self.history.value() + self.wl * gl;
-        let free = rhs.advance(
-            h,
-            (u, v, gl),
-            self.pw,
+        Begin {
+            el,
+            er,
+            u,
+            v,
+            gl,
             known,
-            self.wr,
-            rhs.forcing(er, side),
-        );
-        let (mut u1, mut v1) = free.end();
+            fr: rhs.forcing(er, side),
+        }
+    }
+
+    /// The events of a step whose free end is (u1, v1): sticking, an impact (the rest of the
+    /// step redone), the blow-up check, the side of the Zhuravlev crossing. Counts the step.
+    #[inline(always)]
+    fn end_events(&mut self, b: &Begin, mut u1: f64, mut v1: f64) -> Result<End> {
+        let (u, v) = (b.u, b.v);
         self.events = StepEvents::default();
         let mut piece = Piece {
-            left: gl,
+            left: b.gl,
             right: 0.0,
             split: None,
         };
@@ -591,7 +665,7 @@ impl Stepper {
                 self.stuck = false;
             }
         } else if (self.wall && u1 < 0.0) || (self.crossing && u * u1 < 0.0) {
-            let (split, u2, v2) = self.impact(gl, (el, er), (u1, v1));
+            let (split, u2, v2) = self.impact(b.gl, (b.el, b.er), (u1, v1));
             (u1, v1) = (u2, v2);
             piece.split = Some(split);
             if self.wall && u1 < 0.0 {
@@ -606,14 +680,24 @@ impl Stepper {
         if self.crossing && u1 != 0.0 {
             self.side = u1.signum();
         }
-        self.set_node(u1, v1);
-        if push {
-            piece.right = self.drift + self.rhs.forcing(er, self.side);
-            self.history.push(piece);
+        Ok(End {
+            u1,
+            v1,
+            piece,
+            push,
+        })
+    }
+
+    /// The last part of a step, after [`Stepper::set_node`] at its end: the piece of g into the
+    /// memory, the new state.
+    #[inline(always)]
+    fn complete(&mut self, b: &Begin, mut end: End) {
+        if end.push {
+            end.piece.right = self.drift + self.rhs.forcing(b.er, self.side);
+            self.history.push(end.piece);
         }
-        self.u = u1;
-        self.v = v1;
-        Ok(())
+        self.u = end.u1;
+        self.v = end.v1;
     }
 
     /// The node's g without forcing and the predictor's weight at the end of a step at (u1, v1)
@@ -621,8 +705,7 @@ impl Stepper {
     #[inline]
     fn set_node(&mut self, u1: f64, v1: f64) -> f64 {
         let a1 = self.rhs.damping(u1);
-        self.drift = a1 * v1 - self.rhs.omega2 * u1;
-        self.pw = predictor_weight(self.h, a1);
+        (self.drift, self.pw) = self.rhs.node(self.h, a1, u1, v1);
         a1
     }
 

@@ -3,7 +3,7 @@
 /// A polynomial Σ a_k x^k: up to degree 7 evaluated by Estrin's scheme (three levels of
 /// independent multiply–adds instead of Horner's chain of seven: it is on the step's critical
 /// path twice), beyond that by Horner.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub(super) enum Polynomial {
     Short([f64; 8]),
     Long(Vec<f64>),
@@ -39,6 +39,36 @@ impl Polynomial {
             }
             Polynomial::Long(c) => c.iter().rev().fold(0.0, |acc, &c| acc * x + c),
         }
+    }
+
+    /// [`Polynomial::eval`] at L points: the same operations in the same order for each, so
+    /// the same bits, in loops the compiler vectorises across the points.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)]
+    pub(super) fn eval_lanes<const L: usize>(&self, x: &[f64; L]) -> [f64; L] {
+        let mut out = [0.0; L];
+        match self {
+            Polynomial::Short(c) => {
+                for i in 0..L {
+                    let x = x[i];
+                    let x2 = x * x;
+                    let x4 = x2 * x2;
+                    let p01 = c[0] + c[1] * x;
+                    let p23 = c[2] + c[3] * x;
+                    let p45 = c[4] + c[5] * x;
+                    let p67 = c[6] + c[7] * x;
+                    out[i] = (p01 + p23 * x2) + (p45 + p67 * x2) * x4;
+                }
+            }
+            Polynomial::Long(c) => {
+                for &c in c.iter().rev() {
+                    for i in 0..L {
+                        out[i] = out[i] * x[i] + c;
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// The derivative Σ k a_k x^{k−1}.
