@@ -89,6 +89,8 @@ mod merging;
 mod piece;
 mod recording;
 mod spec;
+pub mod splitting;
+mod wells;
 
 pub use diagnostics::Stationarity;
 pub use merging::{Density, EnsembleResult, Estimate, JointDensity, Passage};
@@ -98,6 +100,7 @@ pub use spec::{
     EnsembleSpec, Wells, MAX_AMPLITUDE, MAX_BATCHES, MAX_BINS, MAX_JOINT_BINS, MAX_PATHS,
     MAX_STATISTICS_BYTES, MAX_WELLS,
 };
+pub use wells::{run_wells, Rate, Replica, WellsEstimate, WellsResult, WellsSpec, MIN_EXITS};
 
 use crate::engine::{fresh_history, run, Flow, Observer, PredictorCorrector, Problem, Stepper};
 use crate::error::{Error, Result};
