@@ -12,7 +12,7 @@
 //!   density within their errors.
 
 use rand_chacha::ChaCha8Rng;
-use trirhythm::analysis::ensemble::splitting::{replica_rates, Splitting, Walker};
+use trirhythm::analysis::ensemble::splitting::{replica_rates, Cores, Splitting, Walker};
 use trirhythm::analysis::ensemble::Wells;
 use trirhythm::analysis::versus::{escape_time, theory_layout};
 use trirhythm::engine::noise::path_rng;
@@ -89,11 +89,12 @@ fn residences(preset_name: &str, r: f64, d: f64, replicas: u64) -> Vec<(f64, f64
             rng: path_rng(0, 0),
         })
         .collect();
+    let cores = Cores::of_wells(&wells);
     let runs: Vec<_> = std::thread::scope(|s| {
         let hs: Vec<_> = (0..replicas)
             .map(|rep| {
-                let (w, wells) = (walkers.clone(), &wells);
-                s.spawn(move || replica_rates(w, wells, &sp, rep, &Silent).unwrap())
+                let (w, cores) = (walkers.clone(), &cores);
+                s.spawn(move || replica_rates(w, cores, &sp, rep, &Silent).unwrap())
             })
             .collect();
         hs.into_iter().map(|h| h.join().unwrap()).collect()
@@ -159,4 +160,163 @@ fn rates_of_the_averaged_diffusion_over_seven_decades() {
         8,
     );
     assert!(hi / lo > 1e6, "{lo} {hi}");
+}
+
+/// Fig. 13(a)'s μ0 = 0.005 at r = 0.99 and D = 0.2: two wells whose escape times (about 10⁴)
+/// let direct paths of 1.5·10⁵ mix. The well method's occupancies, mean amplitude and density
+/// agree with the direct ensemble's within their errors.
+#[test]
+#[ignore = "extended: a direct ensemble of 1.2e8 steps beside the well method (about 10 s)"]
+fn the_well_method_agrees_with_a_direct_ensemble_that_mixes() {
+    use trirhythm::analysis::ensemble::{run_ensemble, run_wells, EnsembleSpec, WellsSpec};
+    use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem};
+    let p = preset("fig13a")
+        .unwrap()
+        .params
+        .with("r", 0.99)
+        .unwrap()
+        .with("D", 0.2)
+        .unwrap();
+    let layout = theory_layout(&p, Variant::Paper).unwrap();
+    let spec = EnsembleSpec {
+        paths: 8,
+        seed: 1,
+        burn_in: 200.0,
+        length: 4000.0,
+        bins: 60,
+        joint_bins: 8,
+        amplitude_max: layout.amplitude_max,
+        wells: layout.wells.clone(),
+        ..Default::default()
+    };
+    let method = PredictorCorrector {
+        impact_memory: ImpactMemory::Restart,
+        ..Default::default()
+    };
+    let problem = Problem::from_params(&p).unwrap();
+    let wspec = WellsSpec {
+        clones: 200,
+        ..Default::default()
+    };
+    let w = run_wells(&problem, &method, &spec, &wspec, &Silent).unwrap();
+    assert!(w.wells.valid, "{:?}", w.wells.refusals);
+    let starts: Vec<(f64, f64)> = layout.starts.iter().map(|&u| (u, 0.0)).collect();
+    let direct_spec = EnsembleSpec {
+        length: 150_000.0,
+        ..spec.clone()
+    };
+    let d = run_ensemble(
+        &problem.with_starts(&starts).unwrap(),
+        &method,
+        &direct_spec,
+        &Silent,
+    )
+    .unwrap();
+    assert!(d.stationarity.stationary, "{:?}", d.stationarity);
+    let z = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0) / (a.1 * a.1 + b.1 * b.1).sqrt();
+    for (k, (x, y)) in w.result.occupancy.iter().zip(&d.occupancy).enumerate() {
+        let zk = z((x.value, x.stderr), (y.value, y.stderr));
+        println!("occupancy {k}: wells {x:?}, direct {y:?}, z = {zk:.2}");
+        assert!(zk.abs() < 3.0);
+        assert!(x.value > 0.1 && x.value < 0.9, "both wells matter: {x:?}");
+    }
+    let (x, y) = (w.result.mean_amplitude, d.mean_amplitude);
+    let za = z((x.value, x.stderr), (y.value, y.stderr));
+    println!("mean A: wells {x:?}, direct {y:?}, z = {za:.2}");
+    assert!(za.abs() < 3.0);
+    // each bin within 4 standard errors (60 bins: a 4σ excursion has probability < 0.4 %)
+    let worst = (0..d.amplitude.density.len())
+        .map(|b| {
+            let s = (w.result.amplitude.stderr[b].powi(2) + d.amplitude.stderr[b].powi(2)).sqrt();
+            let diff = (w.result.amplitude.density[b] - d.amplitude.density[b]).abs();
+            if s > 0.0 {
+                diff / s
+            } else {
+                assert!(diff == 0.0, "bin {b}: {diff} without an error");
+                0.0
+            }
+        })
+        .fold(0.0f64, f64::max);
+    println!("largest bin difference: {worst:.2} standard errors");
+    assert!(worst < 4.0);
+}
+
+#[test]
+fn the_well_method_refuses_what_it_cannot_do() {
+    use trirhythm::analysis::ensemble::{run_wells, EnsembleSpec, WellsSpec};
+    use trirhythm::engine::{PredictorCorrector, Problem};
+    let p = preset("fig13a").unwrap().params;
+    let problem = Problem::from_params(&p).unwrap();
+    let method = PredictorCorrector::default();
+    let spec = EnsembleSpec {
+        paths: 4,
+        length: 10.0,
+        ..Default::default()
+    };
+    let e = run_wells(&problem, &method, &spec, &WellsSpec::default(), &Silent)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no wells"), "{e}");
+    let spec = EnsembleSpec {
+        paths: 1,
+        wells: Some(Wells::new(vec![2.0, 12.0], vec![8.0]).unwrap()),
+        ..spec
+    };
+    let e = run_wells(&problem, &method, &spec, &WellsSpec::default(), &Silent)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("paths = 1") && e.contains("2 or more"), "{e}");
+    let spec = EnsembleSpec { paths: 2, ..spec };
+    let bad = WellsSpec {
+        clones: 1,
+        ..Default::default()
+    };
+    let e = run_wells(&problem, &method, &spec, &bad, &Silent)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("clones = 1"), "{e}");
+}
+
+/// A short run of the oscillator's well method is reproducible to the bit and its weights
+/// are a probability vector.
+#[test]
+fn the_well_method_is_reproducible() {
+    use trirhythm::analysis::ensemble::{run_wells, EnsembleSpec, WellsSpec};
+    use trirhythm::engine::{PredictorCorrector, Problem};
+    let p = preset("fig13a")
+        .unwrap()
+        .params
+        .with("r", 0.99)
+        .unwrap()
+        .with("D", 0.2)
+        .unwrap();
+    let layout = theory_layout(&p, Variant::Paper).unwrap();
+    let spec = EnsembleSpec {
+        paths: 2,
+        burn_in: 20.0,
+        length: 300.0,
+        bins: 20,
+        joint_bins: 4,
+        batches: 4,
+        amplitude_max: layout.amplitude_max,
+        wells: layout.wells,
+        ..Default::default()
+    };
+    let problem = Problem::from_params(&p).unwrap();
+    let method = PredictorCorrector::default();
+    let wspec = WellsSpec {
+        clones: 8,
+        ..Default::default()
+    };
+    let a = run_wells(&problem, &method, &spec, &wspec, &Silent).unwrap();
+    let b = run_wells(&problem, &method, &spec, &wspec, &Silent).unwrap();
+    // (NaN fields compare unequal: compare the documents)
+    assert_eq!(
+        serde_json::to_string(&a).unwrap(),
+        serde_json::to_string(&b).unwrap()
+    );
+    let total: f64 = a.wells.weights.iter().map(|w| w.value).sum();
+    assert!(total.is_nan() || (total - 1.0).abs() < 1e-12, "{total}");
+    assert_eq!(a.wells.replicas.len(), 2);
+    assert_eq!(a.wells.rates.len(), 2);
 }

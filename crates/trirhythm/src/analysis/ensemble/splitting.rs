@@ -50,6 +50,56 @@ use crate::error::{Error, Result};
 use crate::monitor::Monitor;
 use serde::{Deserialize, Serialize};
 
+/// The cores of the wells on the order parameter: disjoint, ascending intervals [lo, hi], one
+/// per well. A path's label is the last core it visited.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Cores {
+    /// [lo, hi] of each well's core, ascending and disjoint.
+    pub bounds: Vec<(f64, f64)>,
+}
+
+impl Cores {
+    /// The cores of [`Wells::core`]: closer to the mode than half the distance to the
+    /// neighbouring antimodes.
+    pub fn of_wells(wells: &Wells) -> Self {
+        Cores {
+            bounds: (0..wells.len()).map(|k| wells.core(k)).collect(),
+        }
+    }
+
+    /// Checked cores: at least one, each lo ≤ hi (not NaN), ascending and disjoint.
+    pub fn new(bounds: Vec<(f64, f64)>) -> Result<Self> {
+        let ok = !bounds.is_empty()
+            && bounds.iter().all(|(lo, hi)| lo <= hi)
+            && bounds.windows(2).all(|w| w[0].1 < w[1].0);
+        if !ok {
+            return Err(Error::invalid(
+                "cores",
+                bounds.len() as f64,
+                "one or more intervals lo ≤ hi, ascending and disjoint",
+            ));
+        }
+        Ok(Cores { bounds })
+    }
+
+    /// Number of cores.
+    pub fn len(&self) -> usize {
+        self.bounds.len()
+    }
+
+    /// True when there are none (never for checked cores).
+    pub fn is_empty(&self) -> bool {
+        self.bounds.is_empty()
+    }
+
+    /// The core (well) holding `a`, if any.
+    #[inline]
+    pub fn core_of(&self, a: f64) -> Option<usize> {
+        let k = self.bounds.partition_point(|&(_, hi)| hi < a);
+        (k < self.bounds.len() && a >= self.bounds[k].0).then_some(k)
+    }
+}
+
 /// A path whose whole state can be cloned and whose future noise can be redrawn.
 pub trait Walker: Clone + Send + Sync {
     /// Advance one step; the order parameter (an amplitude ≥ 0) when the step ends at an
@@ -162,10 +212,20 @@ pub struct Transition {
     pub probability: f64,
     /// k = Φ·p.
     pub rate: f64,
-    /// AMS replicas used (the exit states kept; fewer than asked when fewer exits were seen).
+    /// AMS replicas used.
     pub clones: usize,
+    /// Distinct exit states they started from (the replicas draw them with replacement when
+    /// fewer exits than replicas were seen).
+    pub distinct_starts: usize,
     /// AMS iterations.
     pub iterations: usize,
+    /// The farthest amplitude level the splitting passed toward `to` (the exits' own level
+    /// before the first iteration), and the estimated probability that an exit passes it:
+    /// where the splitting died out (every replica at the same level, `probability` 0), this
+    /// says how far it got — p is below `level_probability`.
+    pub level: f64,
+    /// The estimated probability of passing `level`.
+    pub level_probability: f64,
     /// Excursions that reached the step limit (counted as failures).
     pub unended: u64,
     /// AMS finished before its iteration limit.
@@ -213,14 +273,14 @@ pub(super) type Exits<W> = [Vec<(W, f64)>; 2];
 pub(super) fn well_path<W: Walker>(
     mut w: W,
     well: usize,
-    wells: &Wells,
+    wells: &Cores,
     sp: &Splitting,
     replica: u64,
     monitor: &dyn Monitor<()>,
     record: &mut dyn FnMut(&W),
 ) -> Result<(WellPath, Exits<W>)> {
     w.renoise(sp.seed, stream(replica, well, 0, 0));
-    let (lo, hi) = wells.core(well);
+    let (lo, hi) = wells.bounds[well];
     let mut draws = Draws::new(stream(replica, well, 1, 0));
     let mut exits: Exits<W> = [Vec::new(), Vec::new()];
     let mut seen = [0u64; 2];
@@ -370,7 +430,7 @@ fn excursion<W: Walker>(
     from: usize,
     to: usize,
     d: Direction,
-    wells: &Wells,
+    wells: &Cores,
     max_steps: u64,
     above: Option<f64>,
 ) -> Result<Excursion<W>> {
@@ -423,11 +483,22 @@ pub(super) fn ams<W: Walker>(
     from: usize,
     to: usize,
     d: Direction,
-    wells: &Wells,
+    wells: &Cores,
     sp: &Splitting,
     replica: u64,
     monitor: &dyn Monitor<()>,
 ) -> Result<Transition> {
+    // fewer exits than replicas: the replicas start from exits drawn with replacement (each
+    // with a noise stream of its own)
+    let distinct = starts.len();
+    let mut starts = starts;
+    if distinct > 0 && distinct < sp.clones {
+        let mut pick = Draws::new(stream(replica, from, 20 + d.index(), 0));
+        for _ in distinct..sp.clones {
+            let k = pick.below(distinct);
+            starts.push(starts[k].clone());
+        }
+    }
     let n = starts.len();
     let mut t = Transition {
         from,
@@ -436,7 +507,10 @@ pub(super) fn ams<W: Walker>(
         probability: 0.0,
         rate: 0.0,
         clones: n,
+        distinct_starts: distinct,
         iterations: 0,
+        level: f64::NAN,
+        level_probability: 1.0,
         unended: 0,
         complete: true,
         steps: 0,
@@ -501,6 +575,8 @@ pub(super) fn ams<W: Walker>(
         }
         t.iterations += 1;
         log_p += crate::maths::ln(1.0 - killed.len() as f64 / n as f64);
+        t.level = d.score(z);
+        t.level_probability = crate::maths::exp(log_p);
         let survivors: Vec<usize> = (0..n).filter(|&k| reps[k].max > z).collect();
         for &k in &killed {
             let parent = survivors[draws.below(survivors.len())];
@@ -553,13 +629,13 @@ pub(super) fn ams<W: Walker>(
 /// 2 → 1, …).
 pub fn replica_rates<W: Walker>(
     walkers: Vec<W>,
-    wells: &Wells,
+    wells: &Cores,
     sp: &Splitting,
     replica: u64,
     monitor: &dyn Monitor<()>,
 ) -> Result<(Vec<WellPath>, Vec<Transition>)> {
     sp.validate()?;
-    wells.validate()?;
+    let wells = &Cores::new(wells.bounds.clone())?;
     if walkers.len() != wells.len() {
         return Err(Error::invalid(
             "walkers",
@@ -595,16 +671,37 @@ pub fn neighbours(n: usize) -> Vec<(usize, usize, Direction)> {
 
 /// The stationary weights of a birth–death chain of wells from its rates up (k_{i,i+1}) and
 /// down (k_{i+1,i}): π_{i+1}/π_i = k_{i,i+1}/k_{i+1,i} (the net flux across every gap
-/// vanishes), in logarithms so that rates decades apart neither overflow nor underflow.
-/// `None` when a rate is not finite and positive.
+/// vanishes), in logarithms so that rates decades apart neither overflow nor underflow. A zero
+/// rate cuts the chain: the wells from which the path cannot come back (transient) get weight
+/// 0, and the weights are those of the one closed class of wells. `None` when a rate is
+/// negative or not finite, or when two classes are closed (each keeps its mass: the weights
+/// depend on the start).
 pub fn chain_weights(up: &[f64], down: &[f64]) -> Option<Vec<f64>> {
-    if up.len() != down.len() || up.iter().chain(down).any(|k| !(k.is_finite() && *k > 0.0)) {
+    if up.len() != down.len() || up.iter().chain(down).any(|k| !(k.is_finite() && *k >= 0.0)) {
         return None;
     }
-    let mut log = vec![0.0];
-    for (u, d) in up.iter().zip(down) {
-        let last = *log.last().unwrap_or(&0.0);
-        log.push(last + crate::maths::ln(*u) - crate::maths::ln(*d));
+    let n = up.len() + 1;
+    // segments of wells joined by gaps with both rates positive
+    let mut segments = Vec::new();
+    let mut start = 0;
+    for g in 0..n - 1 {
+        if !(up[g] > 0.0 && down[g] > 0.0) {
+            segments.push((start, g));
+            start = g + 1;
+        }
+    }
+    segments.push((start, n - 1));
+    let closed: Vec<(usize, usize)> = segments
+        .into_iter()
+        .filter(|&(a, b)| (a == 0 || down[a - 1] == 0.0) && (b == n - 1 || up[b] == 0.0))
+        .collect();
+    let [(a, b)] = closed[..] else {
+        return None;
+    };
+    let mut log = vec![f64::NEG_INFINITY; n];
+    log[a] = 0.0;
+    for g in a..b {
+        log[g + 1] = log[g] + crate::maths::ln(up[g]) - crate::maths::ln(down[g]);
     }
     let top = log.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let w: Vec<f64> = log.iter().map(|l| crate::maths::exp(l - top)).collect();
@@ -620,7 +717,15 @@ mod tests {
         assert!((w[1] / w[0] - 1e-30).abs() < 1e-42);
         assert!((w[2] / w[1] - 2.0).abs() < 1e-12);
         assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-15);
-        assert!(chain_weights(&[0.0], &[1.0]).is_none());
+        // 0 → 1 never: well 0 is closed, well 1 transient
+        assert_eq!(chain_weights(&[0.0], &[1.0]).unwrap(), vec![1.0, 0.0]);
+        // 1 ⇄ 2 never, 0 → 1 only: wells 1 and 2 both closed
+        assert!(chain_weights(&[1.0, 0.0], &[0.0, 0.0]).is_none());
+        // 0 → 1 only, 1 ⇄ 2 both ways: the class {1, 2}
+        let w = chain_weights(&[1.0, 3.0], &[0.0, 1.0]).unwrap();
+        assert_eq!(w[0], 0.0);
+        assert!((w[2] / w[1] - 3.0).abs() < 1e-12);
+        assert!(chain_weights(&[f64::NAN], &[1.0]).is_none());
     }
 
     use super::*;
@@ -647,8 +752,11 @@ mod tests {
     #[test]
     fn ams_gives_the_gamblers_ruin_probability() {
         // wells: core 0 = [0, 0.5] and core 1 from 39.5: exits at 1 reach 40 with p = 1/40
-        let wells = Wells::new(vec![0.0, 40.0], vec![20.0]).unwrap();
-        assert_eq!(wells.core(0), (0.0, 10.0));
+        let wells = Cores::of_wells(&Wells::new(vec![0.0, 40.0], vec![20.0]).unwrap());
+        assert_eq!(wells.bounds[0], (0.0, 10.0));
+        assert_eq!(wells.core_of(10.0), Some(0));
+        assert_eq!(wells.core_of(10.5), None);
+        assert_eq!(wells.core_of(30.0), Some(1));
         // cores are half-way to the antimode: use a walk shifted so that the exit is at 11,
         // the target at 30 = core 1's lower edge, the return at 10: p = 1/20
         let sp = Splitting {

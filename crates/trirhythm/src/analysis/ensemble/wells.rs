@@ -56,7 +56,8 @@ use super::merging::{assemble, jackknife, Density, EnsembleResult, Estimate, Joi
 use super::recording::{Layout, PathStats, Recorder};
 use super::spec::{EnsembleSpec, Wells, QUARTERS};
 use super::splitting::{
-    ams, chain_weights, neighbours, well_path, Splitting, Transition, Walker, WellPath,
+    ams, chain_weights, neighbours, stream, well_path, Cores, Splitting, Transition, Walker,
+    WellPath,
 };
 use super::Stationarity;
 use crate::engine::{fresh_history, PredictorCorrector, Problem, Stepper, System};
@@ -80,6 +81,9 @@ pub struct WellsSpec {
     pub max_iterations: usize,
     /// Residence time needed, in units of a well's relaxation time.
     pub separation: f64,
+    /// The cores are the [q, 1 − q] quantiles of a pilot path's turning amplitudes in each
+    /// well (within [`Wells::core`]): q = `core_quantile`.
+    pub core_quantile: f64,
 }
 
 impl Default for WellsSpec {
@@ -89,6 +93,7 @@ impl Default for WellsSpec {
             max_excursion: 10_000.0,
             max_iterations: 200_000,
             separation: 10.0,
+            core_quantile: 0.1,
         }
     }
 }
@@ -126,6 +131,10 @@ pub struct Replica {
 pub struct WellsEstimate {
     /// The method's sizes.
     pub spec: WellsSpec,
+    /// The wells' cores used for the labels (from the pilot paths).
+    pub cores: Cores,
+    /// The fraction of each pilot path's turning amplitudes inside [`Wells::core`].
+    pub pilot_inside: Vec<f64>,
     /// Rates between neighbours (0 → 1, 1 → 0, 1 → 2, …).
     pub rates: Vec<Rate>,
     /// The rate matrix k[i][j] (0 on the diagonal and between non-neighbours).
@@ -142,6 +151,8 @@ pub struct WellsEstimate {
     pub valid: bool,
     /// Why not, in words (empty when valid).
     pub refusals: Vec<String>,
+    /// Rates below the method's resolution (taken as 0), in words.
+    pub notes: Vec<String>,
     /// Per replica.
     pub replicas: Vec<Replica>,
     /// Steps computed in all (paths, excursions, replays).
@@ -219,6 +230,13 @@ pub fn run_wells(
             "(0, ∞), finite",
         ));
     }
+    if !(wspec.core_quantile >= 0.0 && wspec.core_quantile < 0.5) {
+        return Err(Error::invalid(
+            "core_quantile",
+            wspec.core_quantile,
+            "[0, 0.5)",
+        ));
+    }
     if !(wspec.separation >= 0.0 && wspec.separation.is_finite()) {
         return Err(Error::invalid(
             "separation",
@@ -243,6 +261,52 @@ pub fn run_wells(
     let layout = Layout::new(spec, problem, sizes.samples);
     let history = fresh_history(problem, method, (sizes.burn + sizes.window) as f64 * dt)?;
     let crossing = problem.system() == System::Zhuravlev;
+    let oscillator = |i: usize, path: u64| -> Result<Oscillator> {
+        let start = (wells.modes[i], 0.0);
+        let s = Stepper::with_history(problem, method, start, (spec.seed, path), history.clone())?;
+        Ok(Oscillator {
+            s,
+            rising: false,
+            crossing,
+        })
+    };
+    // 0. a pilot path per well: its turning amplitudes set the core
+    let pilot_steps = sizes.burn + (sizes.window / 4).max(1);
+    let pilots: Vec<(f64, (f64, f64))> = (0..nw)
+        .into_par_iter()
+        .map(|i| {
+            let mut w = oscillator(i, 0)?;
+            w.renoise(spec.seed, stream(u64::MAX, i, 3, 0));
+            let mut seen = Vec::new();
+            for n in 0..pilot_steps {
+                if let Some(a) = w.advance()? {
+                    if n >= sizes.burn {
+                        seen.push(a);
+                    }
+                }
+                if n % (1 << 16) == 0 {
+                    monitor.check()?;
+                }
+            }
+            let (lo, hi) = wells.core(i);
+            let inside = seen.iter().filter(|&&a| a >= lo && a <= hi).count() as f64
+                / seen.len().max(1) as f64;
+            seen.sort_by(f64::total_cmp);
+            let q =
+                |f: f64| seen[((f * (seen.len() - 1) as f64).round() as usize).min(seen.len() - 1)];
+            let core = if seen.len() >= 10 && inside >= 0.5 {
+                (
+                    q(wspec.core_quantile).max(lo),
+                    q(1.0 - wspec.core_quantile).min(hi),
+                )
+            } else {
+                (lo, hi)
+            };
+            Ok((inside, core))
+        })
+        .collect::<Result<_>>()?;
+    let cores = Cores::new(pilots.iter().map(|p| p.1).collect())?;
+    let pilot_inside: Vec<f64> = pilots.iter().map(|p| p.0).collect();
     // 1. one path per (replica, well)
     let units: Vec<(usize, usize)> = (0..replicas)
         .flat_map(|r| (0..nw).map(move |i| (r, i)))
@@ -252,18 +316,13 @@ pub fn run_wells(
         .map(|&(r, i)| {
             monitor.check()?;
             let start = (wells.modes[i], 0.0);
-            let s = Stepper::with_history(problem, method, start, (spec.seed, 0), history.clone())?;
-            let w = Oscillator {
-                s,
-                rising: false,
-                crossing,
-            };
+            let w = oscillator(i, 0)?;
             let mut rec = Recorder::new(&layout, sizes.burn, spec.sample_every, r as u64, start.0);
             let mut counts = (0, 0);
             let (path, exits) = well_path(
                 w,
                 i,
-                &wells,
+                &cores,
                 &sp,
                 r as u64,
                 monitor,
@@ -309,7 +368,7 @@ pub fn run_wells(
     drop(exits);
     let mut transitions: Vec<Transition> = jobs
         .into_par_iter()
-        .map(|(r, i, j, d, starts)| ams(starts, i, j, d, &wells, &sp, r as u64, monitor))
+        .map(|(r, i, j, d, starts)| ams(starts, i, j, d, &cores, &sp, r as u64, monitor))
         .collect::<Result<_>>()?;
     for (k, t) in transitions.iter_mut().enumerate() {
         let r = k / pairs.len();
@@ -319,6 +378,7 @@ pub fn run_wells(
         t.rate = t.flux * t.probability;
     }
     Ok(combine(
+        (cores, pilot_inside),
         spec,
         &layout,
         &sizes,
@@ -409,6 +469,7 @@ fn quarters(q: &[Vec<u64>]) -> Vec<u64> {
 /// The replicas' results combined: conditional results per well, the weights, the mixture.
 #[allow(clippy::too_many_arguments)]
 fn combine(
+    (cores, pilot_inside): (Cores, Vec<f64>),
     spec: &EnsembleSpec,
     layout: &Layout,
     sizes: &super::spec::Sizes,
@@ -572,6 +633,12 @@ fn combine(
     let weights: Vec<Estimate> = (0..nw)
         .map(|i| jackknife(&units, |t| weights_of(t).map_or(f64::NAN, |w| w[i])))
         .collect();
+    let pooled_weights = off.weights(&units.iter().fold(vec![0.0; off.len()], |mut s, u| {
+        for (x, y) in s.iter_mut().zip(u) {
+            *x += y;
+        }
+        s
+    }));
     let mut rate_matrix = vec![vec![0.0; nw]; nw];
     for r in &rates {
         rate_matrix[r.from][r.to] = r.rate.value;
@@ -586,11 +653,25 @@ fn combine(
         .collect();
     // the diagnostic
     let mut refusals = Vec::new();
+    let mut notes = Vec::new();
     for (k, r) in rates.iter().enumerate() {
-        if !(r.rate.value > 0.0) {
-            refusals.push(format!(
-                "no transition {} → {} found (rate 0): the weights are undetermined",
-                r.from, r.to
+        if r.rate.value.is_nan() || r.rate.value <= 0.0 {
+            let (level, passed) = (0..replicas)
+                .map(|q| &transitions[q * np + k])
+                .map(|t| (t.level, t.level_probability))
+                .fold((f64::NAN, 0.0f64), |(l, p), (tl, tp)| {
+                    let farther = l.is_nan() || (tl - l) * (r.to as f64 - r.from as f64) > 0.0;
+                    if farther {
+                        (tl, tp)
+                    } else {
+                        (l, p.max(tp))
+                    }
+                });
+            notes.push(format!(
+                "{} → {}: no excursion reached the core of well {} in any replica; the \
+                 splitting got as far as amplitude {level:.4} (passed with probability \
+                 {passed:.2e}): the rate is below the method's resolution, taken as 0",
+                r.from, r.to, r.to
             ));
         }
         let incomplete = (0..replicas)
@@ -616,6 +697,13 @@ fn combine(
         }
     }
     for (i, c) in conditional.iter().enumerate() {
+        if pilot_inside[i] < 0.5 {
+            refusals.push(format!(
+                "well {i}: a path started at its mode spent only {:.0} % of its turning points in \
+                 the well's core: the simulated system has no well there",
+                100.0 * pilot_inside[i]
+            ));
+        }
         if !c.stationarity.stationary {
             refusals.push(format!(
                 "well {i}: its conditional statistics are not stationary (R̂ = {:.3}, drift \
@@ -623,13 +711,20 @@ fn combine(
                 c.stationarity.r_hat, c.stationarity.drift_z
             ));
         }
-        if !(residence[i] >= wspec.separation * relaxation[i]) {
+        if residence[i].is_nan() || residence[i] < wspec.separation * relaxation[i] {
             refusals.push(format!(
                 "well {i}: residence time {:.3e} is not {} times its relaxation time {:.3e}: \
                  the rates are not separated from the relaxation inside the well",
                 residence[i], wspec.separation, relaxation[i]
             ));
         }
+    }
+    if pooled_weights.is_none() {
+        refusals.push(
+            "the weights are undetermined: two groups of wells exchange no transition within \
+             the method's resolution (each would keep the mass it starts with)"
+                .into(),
+        );
     }
     let valid = refusals.is_empty();
     let replica_list: Vec<Replica> = (0..replicas)
@@ -642,12 +737,7 @@ fn combine(
         .collect();
     // each replica's own mixture as pseudo-counts (the theory comparison's units)
     let nb = spec.bins;
-    let pooled = off.weights(&units.iter().fold(vec![0.0; off.len()], |mut s, u| {
-        for (x, y) in s.iter_mut().zip(u) {
-            *x += y;
-        }
-        s
-    }));
+    let pooled = pooled_weights.clone();
     let per_path_amplitude: Vec<Vec<u64>> = units
         .iter()
         .zip(&replica_list)
@@ -692,6 +782,7 @@ fn combine(
         .iter()
         .map(|r| format!("well decomposition refused: {r}"))
         .collect();
+    warnings.extend(notes.iter().cloned());
     for (i, c) in conditional.iter().enumerate() {
         warnings.extend(
             c.warnings
@@ -731,6 +822,8 @@ fn combine(
         result,
         wells: WellsEstimate {
             spec: *wspec,
+            cores,
+            pilot_inside,
             rates,
             rate_matrix,
             weights,
@@ -739,6 +832,7 @@ fn combine(
             conditional: conditional.into_iter().map(|c| c.amplitude).collect(),
             valid,
             refusals,
+            notes,
             replicas: replica_list,
             steps,
         },
