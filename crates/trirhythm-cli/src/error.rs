@@ -67,6 +67,10 @@ const FLAGS: &[(&str, &str)] = &[
     ("sample_every", "--sample-every"),
     ("record_every", "--every"),
     ("max_step", "--step"),
+    ("clones", "--clones"),
+    ("max_excursion", "--max-excursion"),
+    ("max_iterations", "--max-iterations"),
+    ("core_quantile", "--core-quantile"),
 ];
 
 /// A library error told in the flag the user typed: `--t-end: invalid parameter t_end = …`.
@@ -101,6 +105,8 @@ pub const WHOLE_NUMBER_FLAGS: &[(&str, &str, &str)] = &[
     ("*", "--renormalise-every", "1 to 1000000 steps"),
     ("*", "--grid", "2 to 1000"),
     ("*", "--refinements", "0 to 60"),
+    ("ensemble", "--clones", "4 to 100000"),
+    ("ensemble", "--max-iterations", "1 or more"),
 ];
 
 /// The allowed range of whole-number flag `flag` of `command`, if it is one.

@@ -65,6 +65,7 @@ use crate::error::{Error, Result};
 use crate::monitor::Monitor;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Fewest exits toward a neighbour per replica on average for a valid decomposition.
 pub const MIN_EXITS: f64 = 10.0;
@@ -311,6 +312,13 @@ pub fn run_wells(
     let units: Vec<(usize, usize)> = (0..replicas)
         .flat_map(|r| (0..nw).map(move |i| (r, i)))
         .collect();
+    // progress: pieces finished (the wells' paths, then the splittings)
+    let total = (units.len() + replicas * 2 * (nw - 1)) as u64;
+    let finished = AtomicU64::new(0);
+    let tick = || {
+        let d = finished.fetch_add(1, Ordering::Relaxed) + 1;
+        monitor.progress(d, total);
+    };
     let runs: Vec<WellRun> = units
         .par_iter()
         .map(|&(r, i)| {
@@ -337,6 +345,7 @@ pub fn run_wells(
                 error: Box::new(e),
             })?;
             let stats = rec.finish_counted(counts);
+            tick();
             Ok((stats, path, exits))
         })
         .collect::<Result<_>>()?;
@@ -368,7 +377,11 @@ pub fn run_wells(
     drop(exits);
     let mut transitions: Vec<Transition> = jobs
         .into_par_iter()
-        .map(|(r, i, j, d, starts)| ams(starts, i, j, d, &cores, &sp, r as u64, monitor))
+        .map(|(r, i, j, d, starts)| {
+            let t = ams(starts, i, j, d, &cores, &sp, r as u64, monitor);
+            tick();
+            t
+        })
         .collect::<Result<_>>()?;
     for (k, t) in transitions.iter_mut().enumerate() {
         let r = k / pairs.len();
