@@ -97,6 +97,9 @@ pub fn draw_amplitude_panel<DB: Backend>(
     if !stationary {
         caption.push_str("; MC NOT stationary");
     }
+    if p.runs.iter().any(|r| r.estimator == "wells") {
+        caption.push_str("; MC by wells");
+    }
     if p.runs.iter().any(|r| !r.step_warnings.is_empty()) {
         caption.push_str("; Δt coarse (notes)");
     }

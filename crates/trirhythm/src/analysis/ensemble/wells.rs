@@ -782,10 +782,20 @@ fn combine(
         r_hat_amplitude: worst(&|s| s.r_hat_amplitude),
         r_hat_wells: conditional.iter().map(|c| c.stationarity.r_hat).collect(),
         r_hat: worst(&|s| s.r_hat),
-        ess: conditional
-            .iter()
-            .map(|c| c.stationarity.ess)
-            .fold(f64::INFINITY, f64::min),
+        // the mixture's effective sample: Var Σπ_i p_i = Σ π_i² Var p_i, Var p_i ∝ 1/ESS_i
+        ess: match &pooled_weights {
+            Some(w) => {
+                1.0 / conditional
+                    .iter()
+                    .zip(w)
+                    .map(|(c, p)| p * p / c.stationarity.ess.max(1.0))
+                    .sum::<f64>()
+            }
+            None => conditional
+                .iter()
+                .map(|c| c.stationarity.ess)
+                .fold(f64::INFINITY, f64::min),
+        },
         drift: f64::NAN,
         drift_z: worst(&|s| s.drift_z.abs()),
         stationary: valid,
