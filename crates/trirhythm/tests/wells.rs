@@ -320,3 +320,57 @@ fn the_well_method_is_reproducible() {
     assert_eq!(a.wells.replicas.len(), 2);
     assert_eq!(a.wells.rates.len(), 2);
 }
+
+/// Fig. 11(b) at λ = 0.998: the outer cycle's splitting dies out close to its core with few
+/// clones, so its rate toward the inner well is only bounded; the bound could move the
+/// weights, and the decomposition says so instead of calling the outer cycle absorbing.
+#[test]
+fn a_rate_below_resolution_that_could_move_the_weights_is_refused() {
+    use trirhythm::analysis::ensemble::{run_wells, EnsembleSpec, WellsSpec};
+    use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem};
+    let p = preset("fig11")
+        .unwrap()
+        .params
+        .with("lambda", 0.998)
+        .unwrap();
+    let layout = theory_layout(&p, Variant::Paper).unwrap();
+    let spec = EnsembleSpec {
+        paths: 2,
+        burn_in: 100.0,
+        length: 1500.0,
+        bins: 20,
+        joint_bins: 4,
+        amplitude_max: layout.amplitude_max,
+        wells: layout.wells,
+        ..Default::default()
+    };
+    let method = PredictorCorrector {
+        impact_memory: ImpactMemory::Restart,
+        ..Default::default()
+    };
+    let wspec = WellsSpec {
+        clones: 20,
+        ..Default::default()
+    };
+    let w = run_wells(
+        &Problem::from_params(&p).unwrap(),
+        &method,
+        &spec,
+        &wspec,
+        &Silent,
+    )
+    .unwrap();
+    let k = &w.wells.rates;
+    assert!(k[0].rate.value > 0.0, "{k:?}");
+    assert_eq!(k[1].rate.value, 0.0, "{k:?}");
+    assert!(!w.wells.valid);
+    assert!(
+        w.wells
+            .refusals
+            .iter()
+            .any(|r| r.contains("could move the weights")),
+        "{:?}",
+        w.wells.refusals
+    );
+    assert!(!w.result.stationarity.stationary);
+}

@@ -34,7 +34,9 @@
 //!   delete-one jackknife standard error over the replicas. The per-unit amplitude histograms
 //!   handed to the theory comparison are each replica's own mixture (Σ_i π_i^ρ P_i^ρ).
 //! - **Validity.** The decomposition is refused (`valid` false, with the reasons) when a rate
-//!   between neighbours is zero or its AMS unfinished, when a well's path saw fewer than
+//!   between neighbours is zero and, set to its bound (the flux times the estimated probability
+//!   of passing the farthest level the splitting reached), would move a weight by more than
+//!   [`MAX_WEIGHT_SHIFT`], or the weights are undetermined, or an AMS is unfinished, when a well's path saw fewer than
 //!   [`MIN_EXITS`] exits toward a neighbour, when a well's conditional statistics are not
 //!   stationary by the direct diagnosis (R̂ over the replicas, drift), or when the mean
 //!   residence time 1/Σ_j k_ij of a well is not at least `separation` times its relaxation
@@ -69,6 +71,10 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Fewest exits toward a neighbour per replica on average for a valid decomposition.
 pub const MIN_EXITS: f64 = 10.0;
+
+/// Largest change of a weight that a rate below resolution, set to its bound, may cause for a
+/// valid decomposition.
+pub const MAX_WEIGHT_SHIFT: f64 = 0.01;
 
 /// The well method's own sizes (the rest is the [`EnsembleSpec`]: `paths` are the replicas,
 /// `burn_in` and `length` each well's path, the histograms and wells as for a direct ensemble).
@@ -730,6 +736,76 @@ fn combine(
                  the rates are not separated from the relaxation inside the well",
                 residence[i], wspec.separation, relaxation[i]
             ));
+        }
+    }
+    // a rate below resolution is not known to be 0: the splitting only says it is below the
+    // flux times the probability of passing the last level it reached. Where that bound could
+    // move the weights, they are not determined.
+    let bounds: Vec<f64> = (0..np)
+        .map(|k| {
+            if rates[k].rate.value > 0.0 {
+                rates[k].rate.value
+            } else {
+                (0..replicas)
+                    .map(|q| {
+                        let t = &transitions[q * np + k];
+                        t.flux * t.level_probability
+                    })
+                    .sum::<f64>()
+                    / replicas as f64
+            }
+        })
+        .collect();
+    let zero: Vec<usize> = (0..np)
+        .filter(|&k| rates[k].rate.value.is_nan() || rates[k].rate.value <= 0.0)
+        .collect();
+    if let (Some(w), false) = (&pooled_weights, zero.is_empty()) {
+        let with = |set: &[usize]| {
+            let k: Vec<f64> = (0..np)
+                .map(|j| {
+                    if set.contains(&j) {
+                        bounds[j]
+                    } else {
+                        rates[j].rate.value.max(0.0)
+                    }
+                })
+                .collect();
+            let up: Vec<f64> = (0..nw - 1).map(|g| k[2 * g]).collect();
+            let down: Vec<f64> = (0..nw - 1).map(|g| k[2 * g + 1]).collect();
+            chain_weights(&up, &down)
+        };
+        let mut trials: Vec<Vec<usize>> = zero.iter().map(|&k| vec![k]).collect();
+        trials.push(zero.clone());
+        let worst = trials
+            .iter()
+            .filter_map(|set| with(set).map(|wb| (set, wb)))
+            .map(|(set, wb)| {
+                let shift = w
+                    .iter()
+                    .zip(&wb)
+                    .map(|(a, b)| (a - b).abs())
+                    .fold(0.0, f64::max);
+                (shift, set, wb)
+            })
+            .max_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((shift, set, wb)) = worst {
+            if shift > MAX_WEIGHT_SHIFT {
+                let named: Vec<String> = set
+                    .iter()
+                    .map(|&k| format!("{} → {} < {:.2e}", rates[k].from, rates[k].to, bounds[k]))
+                    .collect();
+                let shown: Vec<String> = wb.iter().map(|x| format!("{x:.3}")).collect();
+                refusals.push(format!(
+                    "rates below the method's resolution could move the weights: with {} at \
+                     their bounds the weights would be ({}) instead of ({})",
+                    named.join(", "),
+                    shown.join(", "),
+                    w.iter()
+                        .map(|x| format!("{x:.3}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ));
+            }
         }
     }
     if pooled_weights.is_none() {
