@@ -144,7 +144,7 @@ pub struct WellsEstimate {
     pub pilot_inside: Vec<f64>,
     /// Rates between neighbours (0 → 1, 1 → 0, 1 → 2, …).
     pub rates: Vec<Rate>,
-    /// The rate matrix k[i][j] (0 on the diagonal and between non-neighbours).
+    /// The rate matrix, `rate_matrix[i][j]` = k_ij (0 on the diagonal and between non-neighbours).
     pub rate_matrix: Vec<Vec<f64>>,
     /// Stationary weights of the labels.
     pub weights: Vec<Estimate>,
