@@ -26,10 +26,7 @@ fn estimator_of(r: &McRun) -> String {
                 .collect::<Vec<_>>()
                 .join(", ")
         ),
-        Some(w) => format!(
-            " (direct; the well decomposition was refused: {})",
-            w.refusals.join("; ")
-        ),
+        Some(_) => " (direct; the well decomposition refused: the figure's notes say why)".into(),
         None => String::new(),
     }
 }
