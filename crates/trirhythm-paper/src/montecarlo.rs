@@ -537,6 +537,19 @@ pub fn beyond_line(panels: &[AmplitudePanel]) -> String {
     }
 }
 
+/// The ensembles of `panels` shown by the well decomposition, and those where it was tried: one
+/// line for the figure's caption.
+pub fn wells_line(panels: &[AmplitudePanel]) -> String {
+    let runs = || panels.iter().flat_map(|p| &p.runs);
+    let tried = runs().filter(|r| r.wells.is_some()).count();
+    let used = runs().filter(|r| r.estimator == "wells").count();
+    format!(
+        "where the direct ensemble was not stationary the well decomposition was tried ({tried} \
+         ensembles): accepted for {used}, whose stationarity is its diagnostic's (\"MC by \
+         wells\"); the notes give every decomposition's weights, rates, cost and refusal"
+    )
+}
+
 /// (ensembles that passed the stationarity check, ensembles) over `panels`.
 pub fn stationary_count(panels: &[AmplitudePanel]) -> (usize, usize) {
     let runs = || panels.iter().flat_map(|p| &p.runs);
