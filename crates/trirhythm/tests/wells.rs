@@ -148,7 +148,7 @@ fn rates_of_the_averaged_diffusion_are_its_exact_escape_times() {
 }
 
 #[test]
-#[ignore = "extended: seven decades of rate (about a minute in release)"]
+#[ignore = "extended: seven decades of rate (about 10 s)"]
 fn rates_of_the_averaged_diffusion_over_seven_decades() {
     let (lo, hi) = check(
         &[
@@ -166,7 +166,7 @@ fn rates_of_the_averaged_diffusion_over_seven_decades() {
 /// let direct paths of 1.5·10⁵ mix. The well method's occupancies, mean amplitude and density
 /// agree with the direct ensemble's within their errors.
 #[test]
-#[ignore = "extended: a direct ensemble of 1.2e8 steps beside the well method (about 10 s)"]
+#[ignore = "extended: a direct ensemble of 1.2e8 steps beside the well method (about 20 s)"]
 fn the_well_method_agrees_with_a_direct_ensemble_that_mixes() {
     use trirhythm::analysis::ensemble::{run_ensemble, run_wells, EnsembleSpec, WellsSpec};
     use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem};
