@@ -68,6 +68,10 @@ const FLAGS: &[(&str, &str)] = &[
     ("record_every", "--every"),
     ("every", "--every"),
     ("max_step", "--step"),
+    ("clones", "--clones"),
+    ("max_excursion", "--max-excursion"),
+    ("max_iterations", "--max-iterations"),
+    ("core_quantile", "--core-quantile"),
 ];
 
 /// A library error told in the flag the user typed: `--t-end: invalid parameter t_end = …`.
@@ -103,6 +107,8 @@ pub const WHOLE_NUMBER_FLAGS: &[(&str, &str, &str)] = &[
     ("*", "--grid", "2 to 1000"),
     ("*", "--refinements", "0 to 60"),
     ("*", "--lanes", "1, 4 or 8"),
+    ("ensemble", "--clones", "4 to 100000"),
+    ("ensemble", "--max-iterations", "1 or more"),
 ];
 
 /// The allowed range of whole-number flag `flag` of `command`, if it is one.

@@ -127,6 +127,110 @@ fn bad_input_names_the_flag() {
     }
 }
 
+#[test]
+fn the_well_method_keeps_the_document_and_adds_its_decomposition() {
+    let base = [
+        "ensemble",
+        "--preset",
+        "fig13a",
+        "--param",
+        "r=0.99",
+        "--param",
+        "D=0.2",
+        "--method",
+        "wells",
+        "--paths",
+        "2",
+        "--t-end",
+        "300",
+        "--burn-in",
+        "20",
+        "--clones",
+        "8",
+        "--bins",
+        "20",
+        "--joint-bins",
+        "4",
+    ];
+    let v = ok_json(&base);
+    // the direct document's keys for the stationary mixture …
+    for key in [
+        "params",
+        "method",
+        "paths",
+        "mean_u",
+        "stationarity",
+        "warnings",
+        "amplitude",
+        "joint",
+        "theory",
+        "occupancy",
+        "wells",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    assert!(v["method"]
+        .as_str()
+        .unwrap()
+        .contains("estimator=wells clones=8"));
+    // … and the decomposition
+    assert_eq!(v["estimator"], "wells");
+    let d = &v["decomposition"];
+    assert_eq!(d["rate_matrix"].as_array().unwrap().len(), 2);
+    assert_eq!(d["weights"].as_array().unwrap().len(), 2);
+    assert_eq!(d["replicas"].as_array().unwrap().len(), 2);
+    assert_eq!(d["rates"].as_array().unwrap().len(), 2);
+    assert!(d["valid"].is_boolean());
+    assert!(d["cores"]["bounds"].is_array());
+    let n = v["amplitude"]["density"].as_array().unwrap().len();
+    assert_eq!(n, 20);
+
+    for (args, needle) in [
+        (vec!["--clones", "1"], "clones = 1"),
+        (vec!["--max-excursion", "0"], "max_excursion = 0"),
+        (vec!["--core-quantile", "0.5"], "core_quantile = 0.5"),
+        (vec!["--paths", "1"], "paths = 1"),
+    ] {
+        // the flag replaces the base's value
+        let mut a: Vec<&str> = Vec::new();
+        let mut k = 0;
+        while k < base.len() {
+            if base[k] == args[0] {
+                k += 2;
+                continue;
+            }
+            a.push(base[k]);
+            k += 1;
+        }
+        a.extend(args.iter());
+        let out = run(&a);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{a:?}: {err}");
+        assert!(err.contains(needle), "{a:?}: {err}");
+    }
+    // one well has no rates to split: the method runs and reports weight 1
+    let v = ok_json(&[
+        "ensemble",
+        "--preset",
+        "fig13a",
+        "--param",
+        "r=0.84",
+        "--method",
+        "wells",
+        "--paths",
+        "2",
+        "--t-end",
+        "200",
+        "--burn-in",
+        "10",
+        "--bins",
+        "20",
+        "--joint-bins",
+        "4",
+    ]);
+    assert_eq!(v["decomposition"]["weights"][0]["value"], 1.0);
+}
+
 fn without_wall_time(mut v: Value) -> Value {
     v["wall_time_s"] = Value::Null;
     v

@@ -8,7 +8,8 @@
 //! (b) [`crate::montecarlo`]. Checked by `tests/figures.rs`.
 
 use crate::montecarlo::{
-    amplitude_panel, amplitude_table, beyond_line, stationary_count, AmplitudePanel, Sizes,
+    amplitude_panel, amplitude_table, beyond_line, stationary_count, wells_line, AmplitudePanel,
+    Sizes,
 };
 use crate::notes::num;
 use crate::notes::{caption, table_notes, Caption};
@@ -182,6 +183,7 @@ impl Figure for Fig11 {
                 format!("(a) D = 0: averaging's branches (solid stable, dashed unstable) and simulations of Eq. 1 ({t_settle} time units from U(0) = {STARTS_A:?})"),
                 format!("(b) Monte Carlo: {}; {verdict}", sz.describe()),
                 beyond_line(&panels),
+                wells_line(&panels),
             ],
         );
         Ok(Fig11 {

@@ -7,7 +7,8 @@
 //! Checked by `tests/figures.rs` (computes, reads back, stops when cancelled).
 
 use crate::montecarlo::{
-    amplitude_panel, amplitude_table, beyond_line, stationary_count, AmplitudePanel, Sizes,
+    amplitude_panel, amplitude_table, beyond_line, stationary_count, wells_line, AmplitudePanel,
+    Sizes,
 };
 use crate::notes::{caption, table_notes, Caption};
 use crate::table::Table;
@@ -89,6 +90,7 @@ impl Figure for Fig13 {
                 format!("Monte Carlo: {}", sz.describe()),
                 verdict,
                 beyond_line(&panels),
+                wells_line(&panels),
             ],
         );
         Ok(Fig13 {

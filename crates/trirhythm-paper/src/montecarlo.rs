@@ -5,15 +5,22 @@
 //!
 //! Method: [`run_ensemble`] with the impact memory restarted at each impact (the ensembles'
 //! convention), starts and wells from [`theory_layout`]; [`compare`] against each variant's
-//! [`Theory`]. Checked by the library's ensemble tests (statistics, merge) and
-//! `tests/figures.rs` (cancellation, quick computation, JSON round trip).
+//! [`Theory`]. Where the direct ensemble is not stationary and the theory has two wells or
+//! more, the well decomposition ([`run_wells`]: conditional statistics per well, rates by
+//! adaptive multilevel splitting, weights from the rates) is run with [`Sizes::wells`]; when
+//! its diagnostic accepts it, the panel shows its stationary mixture (`estimator: "wells"`),
+//! otherwise the direct histogram stays with the refusal in [`McRun::wells`]. Checked by the
+//! library's ensemble and well tests (statistics, merge, known answers) and `tests/figures.rs`
+//! (cancellation, quick computation, JSON round trip).
 
 use crate::notes::num;
 use crate::table::Table;
 use crate::Monitor;
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::check_step;
-use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec, Wells};
+use trirhythm::analysis::ensemble::{
+    run_ensemble, run_wells, EnsembleResult, EnsembleSpec, Wells, WellsResult, WellsSpec,
+};
 use trirhythm::analysis::versus::{compare, theory_layout, TheoryComparison};
 use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem, System};
 use trirhythm::model::Params;
@@ -54,6 +61,32 @@ impl Sizes {
         }
     }
 
+    /// The well decomposition's sizes where the direct ensemble is not stationary: `paths`
+    /// replicas of one path per well of `length` time units (after `burn_in`), and its
+    /// splitting: 1000 replicas per transition and at most 20000 iterations (full quality:
+    /// enough to bound a rate that dies out below 10⁻⁷ of the flux, at a bounded cost) or 8
+    /// replicas (`--quick`, 100 time units).
+    pub fn wells(&self) -> (f64, WellsSpec) {
+        if self.t_end <= 1000.0 {
+            (
+                self.t_end,
+                WellsSpec {
+                    clones: 8,
+                    ..Default::default()
+                },
+            )
+        } else {
+            (
+                5000.0,
+                WellsSpec {
+                    clones: 1000,
+                    max_iterations: 20_000,
+                    ..Default::default()
+                },
+            )
+        }
+    }
+
     /// One line for headings and notes.
     pub fn describe(&self) -> String {
         format!(
@@ -84,6 +117,85 @@ pub struct Distance {
     pub modes_mc: usize,
 }
 
+/// What the well decomposition found for one ensemble whose direct paths were not
+/// stationary.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct WellsSummary {
+    /// Its diagnostic accepted the decomposition (the run shows its mixture).
+    pub valid: bool,
+    /// The stationary weights of the wells (NaN where undetermined).
+    #[serde(with = "trirhythm::non_finite::vec")]
+    pub weights: Vec<f64>,
+    /// Their standard errors over the replicas.
+    #[serde(with = "trirhythm::non_finite::vec")]
+    pub weight_stderr: Vec<f64>,
+    /// The rates between neighbours: `i → j` and the rate per time unit.
+    pub rates: Vec<(usize, usize)>,
+    /// Rates per time unit (0 below the method's resolution).
+    #[serde(with = "trirhythm::non_finite::vec")]
+    pub rate: Vec<f64>,
+    /// Their standard errors.
+    #[serde(with = "trirhythm::non_finite::vec")]
+    pub rate_stderr: Vec<f64>,
+    /// Why the decomposition was refused (empty when valid).
+    pub refusals: Vec<String>,
+    /// Rates below the method's resolution, in words.
+    pub notes: Vec<String>,
+    /// Steps computed.
+    pub steps: u64,
+    /// Seconds of wall time.
+    pub wall_time_s: f64,
+}
+
+impl WellsSummary {
+    fn of(w: &WellsResult, wall_time_s: f64) -> Self {
+        let e = &w.wells;
+        WellsSummary {
+            valid: e.valid,
+            weights: e.weights.iter().map(|x| x.value).collect(),
+            weight_stderr: e.weights.iter().map(|x| x.stderr).collect(),
+            rates: e.rates.iter().map(|r| (r.from, r.to)).collect(),
+            rate: e.rates.iter().map(|r| r.rate.value).collect(),
+            rate_stderr: e.rates.iter().map(|r| r.rate.stderr).collect(),
+            refusals: e.refusals.clone(),
+            notes: e.notes.clone(),
+            steps: e.steps,
+            wall_time_s,
+        }
+    }
+
+    /// One line: weights, rates, the diagnostic and the cost.
+    pub fn line(&self) -> String {
+        let pm =
+            |v: f64, s: f64| format!("{} ± {}", crate::notes::sig(v, 3), crate::notes::sig(s, 2));
+        let weights: Vec<String> = self
+            .weights
+            .iter()
+            .zip(&self.weight_stderr)
+            .map(|(&v, &s)| pm(v, s))
+            .collect();
+        let rates: Vec<String> = self
+            .rates
+            .iter()
+            .zip(self.rate.iter().zip(&self.rate_stderr))
+            .map(|((i, j), (&v, &s))| format!("k{i}→{j} = {}", pm(v, s)))
+            .collect();
+        format!(
+            "well decomposition {}: weights {}; rates {}; {:.2e} steps in {:.0} s{}",
+            if self.valid { "accepted" } else { "REFUSED" },
+            weights.join(", "),
+            rates.join(", "),
+            self.steps as f64,
+            self.wall_time_s,
+            if self.refusals.is_empty() {
+                String::new()
+            } else {
+                format!("; refused: {}", self.refusals.join("; "))
+            }
+        )
+    }
+}
+
 /// One ensemble's amplitude histogram and verdict.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct McRun {
@@ -111,6 +223,17 @@ pub struct McRun {
     /// ([`trirhythm::analysis::check_step`]); empty when the step resolves the problem.
     #[serde(default)]
     pub step_warnings: Vec<String>,
+    /// `direct` (the paths' samples) or `wells` (the well decomposition's stationary mixture).
+    #[serde(default = "direct")]
+    pub estimator: String,
+    /// The well decomposition, where the direct ensemble was not stationary.
+    #[serde(default)]
+    pub wells: Option<WellsSummary>,
+}
+
+/// `direct`: the estimator of figure data written before the well decomposition.
+pub fn direct() -> String {
+    "direct".into()
 }
 
 /// One P(A) panel: theory curves and ensembles.
@@ -206,6 +329,77 @@ pub fn ensemble(
     Ok((result, warnings))
 }
 
+/// The well decomposition of the ensemble [`ensemble`] runs (same problem, method, seed,
+/// histograms and wells; `sizes.paths` replicas, [`Sizes::wells`]).
+pub fn wells_ensemble(
+    monitor: &dyn Monitor,
+    params: &Params,
+    variant: Variant,
+    system: System,
+    sizes: Sizes,
+    joint_bins: usize,
+) -> Result<WellsResult> {
+    let layout = theory_layout(params, variant).ok_or_else(|| Error::Undefined {
+        what: "the theory's layout of starts and wells",
+        why: format!("no stable cycle or mode for {}", params.describe()),
+    })?;
+    let (length, wspec) = sizes.wells();
+    let spec = EnsembleSpec {
+        paths: sizes.paths,
+        seed: 1,
+        burn_in: sizes.burn_in,
+        length,
+        bins: sizes.bins,
+        joint_bins,
+        amplitude_max: layout.amplitude_max,
+        wells: layout.wells,
+        ..Default::default()
+    };
+    let problem = Problem::from_params(params)?.with_system(system)?;
+    let method = PredictorCorrector {
+        impact_memory: ImpactMemory::Restart,
+        ..Default::default()
+    };
+    run_wells(
+        &problem,
+        &method,
+        &spec,
+        &wspec,
+        &trirhythm::monitor::Relay(monitor),
+    )
+}
+
+/// The direct ensemble, and where it is not stationary and the theory has two wells or more,
+/// the well decomposition: (the result shown, its step warnings, the estimator's name, the
+/// decomposition's summary).
+pub fn stationary_ensemble(
+    monitor: &dyn Monitor,
+    params: &Params,
+    variant: Variant,
+    system: System,
+    sizes: Sizes,
+    joint_bins: usize,
+) -> Result<(
+    EnsembleResult,
+    Vec<String>,
+    &'static str,
+    Option<WellsSummary>,
+)> {
+    let (r, warnings) = ensemble(monitor, params, variant, system, sizes, joint_bins)?;
+    let wells = r.wells.as_ref().map_or(0, Wells::len);
+    if r.stationarity.stationary || wells < 2 {
+        return Ok((r, warnings, "direct", None));
+    }
+    let start = std::time::Instant::now();
+    let w = wells_ensemble(monitor, params, variant, system, sizes, joint_bins)?;
+    let summary = WellsSummary::of(&w, start.elapsed().as_secs_f64());
+    if w.wells.valid {
+        Ok((w.result, warnings, "wells", Some(summary)))
+    } else {
+        Ok((r, warnings, "direct", Some(summary)))
+    }
+}
+
 /// A P(A) panel: the theory of both variants and ensembles of each of `systems`.
 pub fn amplitude_panel(
     monitor: &dyn Monitor,
@@ -219,7 +413,8 @@ pub fn amplitude_panel(
     let mut notes = Vec::new();
     let mut a_max = 0.0f64;
     for &system in systems {
-        let (r, step_warnings) = ensemble(monitor, params, variant, system, sizes, 8)?;
+        let (r, step_warnings, estimator, wells) =
+            stationary_ensemble(monitor, params, variant, system, sizes, 8)?;
         notes.extend(step_warnings.iter().map(|w| {
             format!(
                 "{caption}, MC of {}: step warning: {w}",
@@ -243,10 +438,24 @@ pub fn amplitude_panel(
             }
         }
         let st = &r.stationarity;
+        if let Some(w) = &wells {
+            notes.push(format!(
+                "{caption}, MC of {}: {}",
+                system_name(system),
+                w.line()
+            ));
+            notes.extend(
+                w.notes
+                    .iter()
+                    .map(|n| format!("{caption}, MC of {}: {n}", system_name(system))),
+            );
+        }
         notes.push(format!(
-            "{caption}, MC of {}: {}; R̂ = {:.3}, ESS = {:.0}, drift {:.1} s.e.; mass beyond A = {} (not in the histogram) {:.2} %; {}",
+            "{caption}, MC of {} ({estimator}): {}; R̂ = {:.3}, ESS = {:.0}, drift {:.1} s.e.; mass beyond A = {} (not in the histogram) {:.2} %; {}",
             system_name(system),
-            if st.stationary {
+            if st.stationary && estimator == "wells" {
+                "well decomposition accepted (stationary mixture)"
+            } else if st.stationary {
                 "stationarity check passed"
             } else {
                 "NOT STATIONARY"
@@ -282,6 +491,8 @@ pub fn amplitude_panel(
             ess: st.ess,
             distances,
             step_warnings,
+            estimator: estimator.into(),
+            wells,
         });
     }
     let mut theory = Vec::new();
@@ -324,6 +535,19 @@ pub fn beyond_line(panels: &[AmplitudePanel]) -> String {
         ),
         None => "no Monte Carlo ensemble".into(),
     }
+}
+
+/// The ensembles of `panels` shown by the well decomposition, and those where it was tried: one
+/// line for the figure's caption.
+pub fn wells_line(panels: &[AmplitudePanel]) -> String {
+    let runs = || panels.iter().flat_map(|p| &p.runs);
+    let tried = runs().filter(|r| r.wells.is_some()).count();
+    let used = runs().filter(|r| r.estimator == "wells").count();
+    format!(
+        "where the direct ensemble was not stationary the well decomposition was tried ({tried} \
+         ensembles): accepted for {used}, whose stationarity is its diagnostic's (\"MC by \
+         wells\"); the notes give every decomposition's weights, rates, cost and refusal"
+    )
 }
 
 /// (ensembles that passed the stationarity check, ensembles) over `panels`.

@@ -15,7 +15,9 @@ use crate::views::{self, TheoryEntry};
 use serde::Serialize;
 use serde_json::Value;
 use std::collections::BTreeMap;
-use trirhythm::analysis::ensemble::{EnsembleResult, EnsembleSpec};
+use trirhythm::analysis::ensemble::{
+    run_wells, EnsembleResult, EnsembleSpec, WellsEstimate, WellsResult, WellsSpec,
+};
 use trirhythm::analysis::TheoryComparison;
 use trirhythm::engine::{
     Barrier, ImpactMemory, Lanes, Memory, PredictorCorrector, Problem, System, DEFAULT_WINDOW,
@@ -105,6 +107,23 @@ impl Named for Variant {
         (Variant::Paper, "paper"),
         (Variant::Consistent, "consistent"),
     ];
+}
+
+/// How an ensemble's stationary statistics are estimated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Estimator {
+    /// Paths run side by side, every sample counted (`run_ensemble`).
+    #[default]
+    Direct,
+    /// Well decomposition: conditional statistics per well, rates by splitting
+    /// ([`trirhythm::analysis::ensemble::run_wells`]).
+    Wells,
+}
+
+impl Named for Estimator {
+    const KIND: &'static str = "method";
+    const ALL: &'static [(Self, &'static str)] =
+        &[(Estimator::Direct, "direct"), (Estimator::Wells, "wells")];
 }
 
 /// The equation, the wall and the memory: said once for every run that simulates.
@@ -305,6 +324,16 @@ impl EnsembleRequest {
     }
 }
 
+/// `… estimator=wells clones=… max_excursion=… max_iterations=… separation=…
+/// core_quantile=…`: the `method:` line of a well-decomposition run.
+pub fn wells_line(method_line: &str, w: &WellsSpec) -> String {
+    format!(
+        "{method_line} estimator=wells clones={} max_excursion={} max_iterations={} \
+         separation={} core_quantile={}",
+        w.clones, w.max_excursion, w.max_iterations, w.separation, w.core_quantile
+    )
+}
+
 /// An ensemble's inputs in library types, with the choices made for the user.
 #[derive(Debug, Clone)]
 pub struct EnsembleSetup {
@@ -332,6 +361,36 @@ impl EnsembleSetup {
         result: &EnsembleResult,
     ) -> Vec<(Variant, std::result::Result<TheoryComparison, String>)> {
         comparisons(&self.params, result, self.spec.seed)
+    }
+
+    /// The ensemble by well decomposition: `spec.paths` replicas of one path per well of
+    /// `spec.length`, the rates by splitting with `wells` ([`run_wells`]). Needs the theory's
+    /// wells (an error otherwise).
+    pub fn run_wells(
+        &self,
+        wells: &WellsSpec,
+        monitor: &dyn trirhythm::monitor::Monitor<()>,
+    ) -> Result<WellsResult> {
+        run_wells(&self.problem, &self.method, &self.spec, wells, monitor)
+    }
+
+    /// The JSON document of a well-decomposition run: the direct document's keys for its
+    /// stationary mixture, `estimator: "wells"`, and `decomposition` (rates, rate matrix,
+    /// weights, replicas, diagnostic).
+    pub fn wells_document<'a>(
+        &'a self,
+        result: &'a WellsResult,
+        theory: &'a views::Comparisons,
+        wall_time_s: f64,
+        method_line: &'a str,
+    ) -> WellsDocument<'a> {
+        let mut ensemble = self.document(&result.result, theory, wall_time_s);
+        ensemble.method = method_line;
+        WellsDocument {
+            ensemble,
+            estimator: "wells",
+            decomposition: &result.wells,
+        }
     }
 
     /// The JSON document of `result` (what `trirhythm ensemble --format json` writes).
@@ -372,6 +431,18 @@ pub struct EnsembleDocument<'a> {
     pub result: &'a EnsembleResult,
     /// Each variant of the theory against the result.
     pub theory: BTreeMap<&'static str, TheoryEntry<'a>>,
+}
+
+/// The JSON document of a well-decomposition run ([`EnsembleSetup::wells_document`]).
+#[derive(Serialize)]
+pub struct WellsDocument<'a> {
+    /// The direct document's keys, for the stationary mixture.
+    #[serde(flatten)]
+    pub ensemble: EnsembleDocument<'a>,
+    /// `wells`.
+    pub estimator: &'static str,
+    /// What the well method adds (`decomposition`: the result's `wells` key holds the wells).
+    pub decomposition: &'a WellsEstimate,
 }
 
 /// The parameters as a JSON object in key order (a non-finite value, which validated

@@ -578,6 +578,73 @@ fn _ensemble(
     serde_json::to_string(&s.document(&r, &theory, wall)).map_err(json_err)
 }
 
+/// An ensemble by well decomposition: the document of `trirhythm ensemble --method wells`
+/// (JSON).
+#[pyfunction]
+#[pyo3(signature = (params, paths, t_end, burn_in, seed, dt, u0, variant, system, barrier, memory, tolerance, impact_memory, bins, joint_bins, amplitude_max, sample_every, clones, max_excursion, max_iterations, separation, core_quantile, threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn _ensemble_wells(
+    py: Python<'_>,
+    params: &PyParams,
+    paths: usize,
+    t_end: f64,
+    burn_in: f64,
+    seed: u64,
+    dt: f64,
+    u0: Vec<f64>,
+    variant: &str,
+    system: &str,
+    barrier: bool,
+    memory: &str,
+    tolerance: f64,
+    impact_memory: &str,
+    bins: usize,
+    joint_bins: usize,
+    amplitude_max: Option<f64>,
+    sample_every: u64,
+    clones: usize,
+    max_excursion: f64,
+    max_iterations: usize,
+    separation: f64,
+    core_quantile: f64,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<String> {
+    let request = ensemble_request(
+        params,
+        paths,
+        t_end,
+        burn_in,
+        seed,
+        dt,
+        u0,
+        variant,
+        system,
+        barrier,
+        memory,
+        tolerance,
+        impact_memory,
+        bins,
+        joint_bins,
+        amplitude_max,
+        sample_every,
+    )?;
+    let s = request.setup().map_err(py_err)?;
+    let wspec = ens::WellsSpec {
+        clones,
+        max_excursion,
+        max_iterations,
+        separation,
+        core_quantile,
+    };
+    let start = Instant::now();
+    let w = long_call(py, threads, progress, |m| s.run_wells(&wspec, m))?;
+    let wall = start.elapsed().as_secs_f64();
+    let theory = s.comparisons(&w.result);
+    let line = trirhythm_paper::requests::wells_line(&s.method_line, &wspec);
+    serde_json::to_string(&s.wells_document(&w, &theory, wall, &line)).map_err(json_err)
+}
+
 /// The largest Lyapunov exponent (JSON of the library's result).
 #[pyfunction]
 #[pyo3(signature = (params, t_end, transient, dt, paths, seed, u0, impact_memory, method, renormalise_every, separation, system, barrier, memory, tolerance, d_range=None, grid=12, refinements=6, z=2.0, threads=None, progress=None))]
@@ -782,6 +849,7 @@ fn _trirhythm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_params_from_dict, m)?)?;
     m.add_function(wrap_pyfunction!(_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(_ensemble, m)?)?;
+    m.add_function(wrap_pyfunction!(_ensemble_wells, m)?)?;
     m.add_function(wrap_pyfunction!(_lyapunov, m)?)?;
     m.add_function(wrap_pyfunction!(_oscillation_boundary, m)?)?;
     m.add_function(wrap_pyfunction!(_map, m)?)?;

@@ -117,6 +117,27 @@ def test_ensemble_to_dict_is_the_command_lines_document(cli, noisy):
     assert mine == doc
 
 
+def test_the_well_method_is_the_command_lines(cli):
+    p = tr.preset("fig13a").with_(r=0.99, D=0.2)
+    args = ["--preset", "fig13a", "--param", "r=0.99", "--param", "D=0.2", "--method", "wells"]
+    args += ["--paths", "2", "--t-end", "300", "--burn-in", "20", "--clones", "8", "--bins", "20"]
+    args += ["--joint-bins", "4"]
+    doc = json.loads(run_cli(cli, "ensemble", *args, "--format", "json"))
+    mine = tr.ensemble(
+        p, paths=2, t_end=300, burn_in=20, bins=20, joint_bins=4, method="wells", clones=8
+    ).to_dict()
+    doc.pop("wall_time_s")
+    mine.pop("wall_time_s")
+    assert mine == doc
+    assert mine["estimator"] == "wells" and len(mine["decomposition"]["weights"]) == 2
+    with pytest.raises(ValueError, match="clones = 1"):
+        tr.ensemble(p, paths=2, t_end=300, method="wells", clones=1)
+    with pytest.raises(ValueError, match="method"):
+        tr.ensemble(p, paths=2, t_end=300, method="splitting")
+    with pytest.raises(ValueError, match="clones"):
+        tr.ensemble(p, paths=2, t_end=300, clones=8)
+
+
 def test_figure_data_is_the_command_lines(cli, tmp_path):
     run_cli(cli, "figure", "4", "--quick", "--data", "--out-dir", str(tmp_path))
     with open(tmp_path / "fig04.json") as f:

@@ -1,6 +1,11 @@
 //! `trirhythm ensemble`: N paths, streamed stationary statistics with standard errors, the
 //! stationarity diagnosis, and the averaged theory (both variants) against the simulation.
 //!
+//! `--method wells` estimates the same statistics by well decomposition (conditional
+//! statistics per well, well-to-well rates by adaptive multilevel splitting, stationary
+//! weights from the rates: `trirhythm::analysis::ensemble::run_wells`): `--paths` replicas of
+//! one path per well of `--t-end` each; the document adds `estimator` and `decomposition`.
+//!
 //! Output: one JSON object (`--format json`, the default) or the amplitude histogram as CSV
 //! `A_lo,A_hi,density,stderr` with the summary in `#` lines. A summary goes to standard error.
 //! With `--checkpoint DIR` every finished path's statistics are saved in DIR; a rerun of the
@@ -15,7 +20,7 @@ use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use trirhythm::analysis::ensemble::{
-    fingerprint, merge, run_paths, EnsembleResult, PathStats, Piece,
+    fingerprint, merge, run_paths, EnsembleResult, PathStats, Piece, WellsSpec,
 };
 use trirhythm::engine::{Lanes, LANE_WIDTHS};
 use trirhythm::monitor::Monitor;
@@ -30,6 +35,16 @@ pub enum EnsembleFormat {
     Json,
     /// The amplitude histogram `A_lo,A_hi,density,stderr`, the summary in `#` lines.
     Csv,
+}
+
+/// `direct` or `wells`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum EstimatorArg {
+    /// Paths side by side, every sample counted.
+    #[default]
+    Direct,
+    /// Well decomposition with rates by adaptive multilevel splitting.
+    Wells,
 }
 
 /// Arguments of `ensemble`.
@@ -82,6 +97,39 @@ pub struct EnsembleArgs {
     /// Save each finished path's statistics here; a rerun continues from them.
     #[arg(long)]
     pub checkpoint: Option<PathBuf>,
+    /// How the stationary statistics are estimated: `direct` (the paths' samples) or `wells`
+    /// (well decomposition, for wells between which direct paths do not hop: `--paths`
+    /// replicas of one path per well of `--t-end` each, rates by splitting).
+    #[arg(long = "method", value_enum, default_value_t = EstimatorArg::Direct)]
+    pub method: EstimatorArg,
+    /// `--method wells`: splitting replicas per transition.
+    #[arg(long, default_value_t = 100, allow_hyphen_values = true)]
+    pub clones: usize,
+    /// `--method wells`: longest excursion from a well, in time units.
+    #[arg(
+        long = "max-excursion",
+        default_value_t = 10_000.0,
+        allow_hyphen_values = true
+    )]
+    pub max_excursion: f64,
+    /// `--method wells`: most splitting iterations per transition.
+    #[arg(
+        long = "max-iterations",
+        default_value_t = 200_000,
+        allow_hyphen_values = true
+    )]
+    pub max_iterations: usize,
+    /// `--method wells`: residence time needed, in units of a well's relaxation time.
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
+    pub separation: f64,
+    /// `--method wells`: cores are the [q, 1 − q] quantiles of a pilot path's turning
+    /// amplitudes.
+    #[arg(
+        long = "core-quantile",
+        default_value_t = 0.1,
+        allow_hyphen_values = true
+    )]
+    pub core_quantile: f64,
     /// Output format.
     #[arg(long, value_enum, default_value_t = EnsembleFormat::Json)]
     pub format: EnsembleFormat,
@@ -119,6 +167,17 @@ impl EnsembleArgs {
                 }
             },
         })
+    }
+
+    /// The well method's sizes.
+    pub fn wells_spec(&self) -> WellsSpec {
+        WellsSpec {
+            clones: self.clones,
+            max_excursion: self.max_excursion,
+            max_iterations: self.max_iterations,
+            separation: self.separation,
+            core_quantile: self.core_quantile,
+        }
     }
 
     /// Validate and convert, filling the open choices from the theory.
@@ -260,9 +319,71 @@ impl Monitor<PathStats> for Watch<'_> {
     }
 }
 
+/// Run `ensemble --method wells`.
+fn ensemble_wells(args: &EnsembleArgs, s: &EnsembleSetup) -> Result<()> {
+    if args.checkpoint.is_some() {
+        return bad("--checkpoint: not available with --method wells (its run is one piece)");
+    }
+    let wspec = args.wells_spec();
+    if let Some(out) = &args.out {
+        crate::io::files::check_writable(out, "--out")?;
+    }
+    for c in &s.choices {
+        eprintln!("chosen: {c}");
+    }
+    for w in &s.step_warnings {
+        eprintln!("warning: {w}");
+    }
+    let bar = progress(1000, "ensemble (wells)");
+    let start = Instant::now();
+    let watch = Ticks(&bar);
+    let result = s.run_wells(&wspec, &watch);
+    bar.finish_and_clear();
+    let w = result?;
+    let wall = start.elapsed().as_secs_f64();
+    let theory = s.comparisons(&w.result);
+    let summary = format!(
+        "{}{}",
+        views::wells(&w.wells),
+        views::ensemble(&w.result, &theory, wall)
+    );
+    eprint!("{summary}");
+    let line = trirhythm_paper::requests::wells_line(&s.method_line, &wspec);
+    let text = match args.format {
+        EnsembleFormat::Json => {
+            serde_json::to_string(&s.wells_document(&w, &theory, wall, &line))? + "\n"
+        }
+        EnsembleFormat::Csv => {
+            let mut notes = vec![
+                "trirhythm ensemble".to_string(),
+                format!("params: {}", s.params.describe()),
+                line.clone(),
+            ];
+            notes.extend(s.choices.iter().map(|c| format!("chosen: {c}")));
+            notes.extend(s.step_warnings.iter().map(|w| format!("warning: {w}")));
+            notes.push(summary);
+            Csv::of(&views::density_table(&notes, &w.result.amplitude))?
+        }
+    };
+    emit(args.out.as_deref(), &text)
+}
+
+/// The progress bar of a run without pieces.
+struct Ticks<'a>(&'a crate::io::Progress);
+
+impl Monitor<()> for Ticks<'_> {
+    fn progress(&self, done: u64, total: u64) {
+        let f = done as f64 / total as f64;
+        self.0.set_position((f * 1000.0).min(1000.0) as u64);
+    }
+}
+
 /// Run `ensemble`.
 pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     let s = args.setup()?;
+    if args.method == EstimatorArg::Wells {
+        return ensemble_wells(args, &s);
+    }
     let method = s.method_line.clone();
     // every size, step and range is checked (no path run) before the checkpoint directory or
     // anything in it is created, so that bad input leaves nothing behind

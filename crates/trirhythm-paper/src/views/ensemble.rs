@@ -6,7 +6,7 @@ use crate::notes::num;
 use crate::table::Table;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use trirhythm::analysis::ensemble::{Density, EnsembleResult};
+use trirhythm::analysis::ensemble::{Density, EnsembleResult, WellsEstimate};
 use trirhythm::analysis::versus::TheoryComparison;
 use trirhythm::engine::Trajectory;
 use trirhythm::theory::averaging::Variant;
@@ -114,6 +114,49 @@ pub fn ensemble(r: &EnsembleResult, theory: &Comparisons, wall: f64) -> String {
     }
     for w in &r.warnings {
         t.push_str(&format!("warning: {w}\n"));
+    }
+    t
+}
+
+/// What the well decomposition adds, in words: the cores, each rate (flux × probability), the
+/// weights, residence against relaxation, the verdict of its diagnostic, the cost.
+pub fn wells(w: &WellsEstimate) -> String {
+    let mut t =
+        String::from("estimator: well decomposition (rates by adaptive multilevel splitting)\n");
+    let cores: Vec<String> = w
+        .cores
+        .bounds
+        .iter()
+        .map(|(lo, hi)| format!("[{}, {}]", num(*lo), num(*hi)))
+        .collect();
+    t.push_str(&format!(
+        "cores (turning amplitude): {}\n",
+        cores.join(", ")
+    ));
+    for r in &w.rates {
+        t.push_str(&format!(
+            "rate {} → {}: {} per time unit (flux {} × probability {})\n",
+            r.from,
+            r.to,
+            estimate(r.rate),
+            estimate(r.flux),
+            estimate(r.probability)
+        ));
+    }
+    let weights: Vec<String> = w.weights.iter().map(|&e| estimate(e)).collect();
+    t.push_str(&format!("stationary weights: {}\n", weights.join(", ")));
+    for (i, (res, rel)) in w.residence.iter().zip(&w.relaxation).enumerate() {
+        t.push_str(&format!(
+            "well {i}: residence {res:.4e}, relaxation {rel:.4e}\n"
+        ));
+    }
+    t.push_str(&format!(
+        "decomposition: {}; {:.3e} steps\n",
+        if w.valid { "valid" } else { "REFUSED" },
+        w.steps as f64
+    ));
+    for r in &w.refusals {
+        t.push_str(&format!("refused: {r}\n"));
     }
     t
 }

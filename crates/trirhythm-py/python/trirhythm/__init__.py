@@ -231,6 +231,15 @@ _ENSEMBLE_DEFAULTS = dict(
 )
 
 
+_WELLS_DEFAULTS = dict(
+    clones=100,
+    max_excursion=10_000.0,
+    max_iterations=200_000,
+    separation=10.0,
+    core_quantile=0.1,
+)
+
+
 def _ensemble_args(params, paths, t_end, burn_in, seed, options):
     unknown = set(options) - set(_ENSEMBLE_DEFAULTS)
     if unknown:
@@ -277,8 +286,31 @@ def ensemble(
     defaults are the command line's: ``dt=0.01``, ``u0=()`` (the theory's modes),
     ``variant="paper"``, ``system``, ``barrier``, ``memory``, ``tolerance``,
     ``impact_memory="restart"``, ``bins=100``, ``joint_bins=48``, ``amplitude_max=None``,
-    ``sample_every=1``."""
+    ``sample_every=1``. ``method="wells"`` estimates them by well decomposition, as
+    ``trirhythm ensemble --method wells`` (``paths`` replicas of one path per well of ``t_end``;
+    options ``clones=100``, ``max_excursion=10000``, ``max_iterations=200000``,
+    ``separation=10``, ``core_quantile=0.1``); the document adds ``estimator`` and
+    ``decomposition``."""
+    method = options.pop("method", "direct")
+    wells = {k: options.pop(k) for k in list(options) if k in _WELLS_DEFAULTS}
     args = _ensemble_args(params, paths, t_end, burn_in, seed, options)
+    if method == "wells":
+        w = {**_WELLS_DEFAULTS, **wells}
+        text = _native._ensemble_wells(
+            *args,
+            _count("clones", w["clones"]),
+            _finite("max_excursion", w["max_excursion"]),
+            _count("max_iterations", w["max_iterations"]),
+            _finite("separation", w["separation"]),
+            _finite("core_quantile", w["core_quantile"]),
+            threads=threads,
+            progress=_progress(progress),
+        )
+        return Ensemble(json.loads(text))
+    if method != "direct":
+        raise ValueError(f"invalid parameter method = {method!r}: expected 'direct' or 'wells'")
+    if wells:
+        raise ValueError(f"argument(s) {sorted(wells)} need method='wells'")
     text = _native._ensemble(*args, threads=threads, progress=_progress(progress))
     return Ensemble(json.loads(text))
 

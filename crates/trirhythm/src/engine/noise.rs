@@ -166,6 +166,13 @@ impl NoiseStream {
         })
     }
 
+    /// Draw the future deviates from stream `path` of `seed` instead, keeping the present
+    /// state (the OU node value η_n): a copy of a path that branches off with noise of its own.
+    pub fn renoise(&mut self, seed: u64, path: u64) {
+        self.rng = path_rng(seed, path);
+        self.next = BLOCK;
+    }
+
     /// The current node value η_n (coloured), the last step's level (white), or 0.
     pub fn current(&self) -> f64 {
         self.state

@@ -73,7 +73,8 @@ picture!(Fig14, |self, root| size (4 * PANEL.0, 2 * PANEL.1 + colour_bar_height(
         heat(
             &bottom_area,
             &format!(
-                "MC: H = {:.2}, {:.1} % out{}",
+                "MC{}: H = {:.2}, {:.1} % out{}",
+                if p.estimator == "wells" { " (wells)" } else { "" },
                 p.hellinger,
                 100.0 * p.mc_outside,
                 if p.stationary { "" } else { ", not stationary" }

@@ -89,6 +89,7 @@ pub fn draw_amplitude_panel<DB: Backend>(
     }
     .max(1e-3);
     let stationary = p.runs.iter().all(|r| r.stationary);
+    // (a run by the well decomposition is stationary by that method's diagnostic)
     // the badges go into the panel's title, never over the data
     let mut caption = p.caption.clone();
     if cut {
@@ -96,6 +97,9 @@ pub fn draw_amplitude_panel<DB: Backend>(
     }
     if !stationary {
         caption.push_str("; MC NOT stationary");
+    }
+    for r in p.runs.iter().filter(|r| r.estimator == "wells") {
+        caption.push_str(&format!("; {} by wells", r.system));
     }
     if p.runs.iter().any(|r| !r.step_warnings.is_empty()) {
         caption.push_str("; Δt coarse (notes)");

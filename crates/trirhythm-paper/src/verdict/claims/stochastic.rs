@@ -11,8 +11,25 @@ use crate::boundary::Panel as BoundaryPanel;
 use crate::fig13_pdf_restitution::Fig13;
 use crate::fig19_critical_noise::Fig19;
 use crate::lle::{Panel as LlePanel, StartKind};
-use crate::montecarlo::AmplitudePanel;
+use crate::montecarlo::{AmplitudePanel, McRun};
 use trirhythm::analysis::oscillation::Side;
+
+/// How an ensemble's numbers were estimated, for the verdict's words: the well decomposition,
+/// or the direct paths with the decomposition's refusal where it was tried.
+fn estimator_of(r: &McRun) -> String {
+    match &r.wells {
+        Some(w) if r.estimator == "wells" => format!(
+            " (well decomposition: weights {})",
+            w.weights
+                .iter()
+                .map(|x| crate::notes::sig(*x, 3))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        Some(_) => " (direct; the well decomposition refused: the figure's notes say why)".into(),
+        None => String::new(),
+    }
+}
 
 pub(super) fn agreement_of(panels: &[AmplitudePanel], system: &str, variant: &str) -> Decision {
     let mut items = Vec::new();
@@ -20,7 +37,13 @@ pub(super) fn agreement_of(panels: &[AmplitudePanel], system: &str, variant: &st
         for r in p.runs.iter().filter(|r| r.system == system) {
             if let Some(d) = r.distances.iter().find(|d| d.variant == variant) {
                 items.push(Comparison {
-                    what: format!("{}, MC of {}, {} formulas", p.caption, r.system, variant),
+                    what: format!(
+                        "{}, MC of {}{}, {} formulas",
+                        p.caption,
+                        r.system,
+                        estimator_of(r),
+                        variant
+                    ),
                     hellinger: d.hellinger,
                     se: d.hellinger_stderr,
                     bins: r.edges.len().saturating_sub(1),
@@ -43,7 +66,11 @@ pub(super) fn fig13_peaks(f: &Fig13) -> Decision {
         if let Some(r) = p.runs.iter().find(|r| r.system == "Eq. 1") {
             if let Some(d) = r.distances.first() {
                 items.push(Count {
-                    what: format!("peaks of the Monte Carlo P(A) of Eq. 1, {}", p.caption),
+                    what: format!(
+                        "peaks of the Monte Carlo P(A) of Eq. 1{}, {}",
+                        estimator_of(r),
+                        p.caption
+                    ),
                     claimed,
                     computed: d.modes_mc as u32,
                     source: CountSource::Ensemble {

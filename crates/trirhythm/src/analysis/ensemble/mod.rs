@@ -91,6 +91,8 @@ mod merging;
 mod piece;
 mod recording;
 mod spec;
+pub mod splitting;
+mod wells;
 
 pub use diagnostics::Stationarity;
 pub use merging::{Density, EnsembleResult, Estimate, JointDensity, Passage};
@@ -100,6 +102,7 @@ pub use spec::{
     EnsembleSpec, Wells, MAX_AMPLITUDE, MAX_BATCHES, MAX_BINS, MAX_JOINT_BINS, MAX_PATHS,
     MAX_STATISTICS_BYTES, MAX_WELLS,
 };
+pub use wells::{run_wells, Rate, Replica, WellsEstimate, WellsResult, WellsSpec, MIN_EXITS};
 
 use crate::engine::{
     fresh_history, run_lanes, Flow, Lanes, Observer, PredictorCorrector, Problem, Stepper,

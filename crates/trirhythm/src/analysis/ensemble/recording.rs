@@ -239,6 +239,19 @@ impl<'a> Recorder<'a> {
         self.state = Some(k);
     }
 
+    /// The statistics with the path's impacts and sticking steps given (a path that was
+    /// restarted from earlier states: the well method).
+    pub(super) fn finish_counted(mut self, (impacts, sticking): (u64, u64)) -> PathStats {
+        for (p, c) in self.stats.passages.iter_mut().zip(&self.clocks) {
+            if !c.is_nan() {
+                p.censored += 1;
+            }
+        }
+        self.stats.impacts = impacts;
+        self.stats.sticking_steps = sticking;
+        self.stats
+    }
+
     pub(super) fn finish(mut self, s: &Stepper) -> PathStats {
         for (p, c) in self.stats.passages.iter_mut().zip(&self.clocks) {
             if !c.is_nan() {

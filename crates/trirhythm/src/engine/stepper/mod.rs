@@ -527,6 +527,14 @@ impl Stepper {
         })
     }
 
+    /// Let the noise continue from stream `path` of `seed` from the next step on; the state —
+    /// U, V, the whole memory, the OU forcing's present value, the impact bookkeeping — is kept.
+    /// A clone renoised this way is a branch of the path (rare-event splitting): it shares the
+    /// past and has an independent future.
+    pub fn renoise(&mut self, seed: u64, path: u64) {
+        self.noise.renoise(seed, path);
+    }
+
     /// Time t_n = nΔt.
     #[inline]
     pub fn time(&self) -> f64 {
