@@ -47,8 +47,9 @@
 //! at most 2π/(ω1·[`MIN_STEPS_PER_PERIOD`]).
 //!
 //! # Cost
-//! 3·[`CHECK_PERIODS`]·n_T steps per amplitude (≈ 2·10⁴ at the default Δt = 0.01, ω1 ≈ 1):
-//! milliseconds, against runs of 10⁶–10¹⁰ steps.
+//! 3·[`CHECK_PERIODS`]·n_T steps per amplitude (≈ 2·10⁴ at the default Δt = 0.01, ω1 ≈ 1),
+//! with the sum-of-exponentials memory whatever the run's, and none beyond
+//! [`MAX_CHECK_STEPS_PER_PERIOD`] steps per period: milliseconds, against runs of 10⁶–10¹⁰ steps.
 //!
 //! # Tests
 //! Unit tests below: the default step passes on the paper's presets at their cycles; Δt = 1 on
@@ -72,6 +73,10 @@ pub const REFUSE_DEVIATION: f64 = 0.25;
 pub const WARN_STEPS_PER_TAU: f64 = 10.0;
 /// Most amplitudes one check integrates.
 pub const MAX_CHECK_AMPLITUDES: usize = 16;
+/// Steps per period 2π/ω1 beyond which the halving is not run: far finer than any step the
+/// rules warn at (the stiffest preset, Fig. 13(b), changes by 2·10⁻⁵ at 2500 steps per
+/// period), and it bounds the check's cost at 3·[`CHECK_PERIODS`]·2·10⁴ steps per amplitude.
+pub const MAX_CHECK_STEPS_PER_PERIOD: f64 = 2e4;
 
 /// One step-halving check: the noise-free problem from (A, 0) over [`CHECK_PERIODS`] periods.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -91,7 +96,8 @@ pub struct Resolution {
     pub steps_per_period: f64,
     /// τ/Δt with coloured noise, else `None`.
     pub steps_per_tau: Option<f64>,
-    /// The step-halving checks, one per distinct amplitude (empty when the period rule refused).
+    /// The step-halving checks, one per distinct amplitude (empty when the period rule refused
+    /// or the step is finer than [`MAX_CHECK_STEPS_PER_PERIOD`]).
     pub halvings: Vec<Halving>,
 }
 
@@ -117,9 +123,15 @@ impl Resolution {
             steps_per_tau,
             halvings: vec![],
         };
-        if steps_per_period < MIN_STEPS_PER_PERIOD {
+        if !(MIN_STEPS_PER_PERIOD..=MAX_CHECK_STEPS_PER_PERIOD).contains(&steps_per_period) {
             return Ok(res);
         }
+        // the step's error, not the memory's: the check keeps the history by sums of
+        // exponentials (O(1) per step) even for a run with the exact O(N) memory
+        let method = &PredictorCorrector {
+            memory: super::Memory::default(),
+            ..*method
+        };
         let mut list: Vec<f64> = amplitudes
             .iter()
             .copied()
@@ -333,6 +345,12 @@ mod tests {
         let b = check("fig1", 0.1, &[1.0]).worst_deviation();
         let order = (a / b).log2();
         assert!((1.5..=3.5).contains(&order), "{a} {b} order {order}");
+    }
+
+    #[test]
+    fn a_very_fine_step_is_not_halved() {
+        let r = check("fig13b", 1e-5, &[12.94]);
+        assert!(r.halvings.is_empty() && r.refusal().is_none(), "{r:?}");
     }
 
     #[test]
