@@ -14,7 +14,7 @@
 
 use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs};
 use crate::error::{allowed, bad};
-use crate::io::{emit, progress, Csv, Report};
+use crate::io::{emit, progress, Csv};
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
@@ -385,9 +385,8 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
         return ensemble_wells(args, &s);
     }
     let method = s.method_line.clone();
-    // every size, step and range is checked (no path run) before the checkpoint directory or
-    // anything in it is created, so that bad input leaves nothing behind
-    run_paths(&s.problem, &s.method, &s.spec, &[], &Report(|_, _| {}))?;
+    // `setup` has checked every size, step and range (no path run) before the checkpoint
+    // directory or anything in it is created, so that bad input leaves nothing behind
     if let Some(out) = &args.out {
         crate::io::files::check_writable(out, "--out")?;
     }
