@@ -313,10 +313,10 @@ fn the_ensemble_is_the_same_for_every_lane_count() {
     }
 }
 
-/// Two-trajectory Lyapunov realisations in lanes (reference and copy side by side, several
-/// realisations a group) give the exponents, the running estimates and the counts of the
-/// scalar stepper, bit for bit, with impacts (the wall) and without; the tangent method, which
-/// steps path by path, is unchanged by the option.
+/// Lyapunov realisations in lanes — two trajectories (reference and copy side by side, several
+/// realisations a group) and the tangent method (each path with its tangent in a lane) — give
+/// the exponents, the running estimates and the counts of the scalar stepper, bit for bit,
+/// with impacts (the wall) and without.
 #[test]
 fn lyapunov_realisations_are_the_same_for_every_lane_count() {
     use trirhythm::analysis::lyapunov::{largest_lyapunov, LyapunovMethod, LyapunovSpec};

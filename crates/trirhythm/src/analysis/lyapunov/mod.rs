@@ -90,7 +90,9 @@
 //! Path i depends only on (seed, i); paths run in parallel and are merged in path order, so the
 //! result is bit-identical whatever the number of threads. With two trajectories the reference
 //! and its copy are stepped in neighbouring lanes of the lane stepper, several realisations a
-//! group ([`LyapunovSpec::lanes`]; the same bits as path by path, `tests/lanes.rs`). [`largest_lyapunov`] is
+//! group; with the tangent method each path and its tangent take a lane, the tangent's
+//! linearised step vectorised across lanes like the path's ([`LyapunovSpec::lanes`]; the same
+//! bits as path by path, `tests/lanes.rs`). [`largest_lyapunov`] is
 //! [`run_paths`] over every path, then [`merge`]: the realisations can be run anywhere, in any
 //! split and order, and merged into the same result.
 //!
@@ -141,7 +143,7 @@ use crate::engine::{
 };
 use crate::error::{Error, Result};
 use crate::monitor::Monitor;
-use perturbation::{one_path, pairs_in_lanes, PathAndTangent, TwoPaths};
+use perturbation::{one_path, pairs_in_lanes, tangents_in_lanes, PathAndTangent, TwoPaths};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -183,7 +185,8 @@ pub struct LyapunovSpec {
     pub method: LyapunovMethod,
     /// How many paths are stepped together ([`Lanes`]; the default suits the CPU): with two
     /// trajectories, the reference and its copy in neighbouring lanes, several realisations a
-    /// group; the tangent method steps path by path. The exponents do not depend on it.
+    /// group; with the tangent method, each path with its tangent in a lane. The exponents do
+    /// not depend on it.
     pub lanes: Lanes,
 }
 
@@ -497,6 +500,38 @@ pub fn run_paths(
                 }
                 let d0 = spec.separation;
                 let results = pairs_in_lanes(steppers, d0, group, spec, sizes, lanes, &tick)?;
+                let mut out = Vec::with_capacity(group.len());
+                for (exponent, running) in results {
+                    let run = PathRun { exponent, running };
+                    monitor.finished(&run)?;
+                    out.push(run);
+                }
+                Ok(out)
+            })
+            .collect::<Result<_>>()?;
+        return Ok(groups.into_iter().flatten().collect());
+    }
+    if spec.method == LyapunovMethod::Tangent && lanes > 1 {
+        // each path with its tangent in a lane, `lanes` realisations a group (narrower with few
+        // realisations, as above)
+        let threads = rayon::current_num_threads().max(1);
+        let lanes = match paths.len().div_ceil(threads) {
+            per if lanes == 8 && per <= 4 => 4,
+            _ => lanes,
+        };
+        let groups: Vec<Vec<PathRun>> = paths
+            .par_chunks(lanes)
+            .map(|group| {
+                monitor.check()?;
+                let (mut refs, mut tangents) = (vec![], vec![]);
+                for &i in group {
+                    let u0 = problem.start(i).0;
+                    let a = make(i, u0)?;
+                    tangents.push(Tangent::new(&a, (shift(u0), 0.0)));
+                    refs.push(a);
+                }
+                let results =
+                    tangents_in_lanes((refs, tangents), group, spec, sizes, lanes, &tick)?;
                 let mut out = Vec::with_capacity(group.len());
                 for (exponent, running) in results {
                     let run = PathRun { exponent, running };

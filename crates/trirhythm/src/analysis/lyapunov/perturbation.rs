@@ -69,19 +69,24 @@ impl Perturbation for PathAndTangent {
     }
 
     fn renormalise(&mut self) -> Renormalised {
-        let d = self.t.norm();
-        if d > 0.0 && d.is_finite() {
-            self.t.scale(1.0 / d);
-            Renormalised::Grown(d)
-        } else {
-            Renormalised::Refused {
-                merged: d == 0.0 && self.t.is_zero(),
-            }
-        }
+        renormalise_tangent(&mut self.t)
     }
 
     fn reference(&self) -> &Stepper {
         &self.a
+    }
+}
+
+/// Scale the whole tangent state back to norm 1.
+fn renormalise_tangent(t: &mut Tangent) -> Renormalised {
+    let d = t.norm();
+    if d > 0.0 && d.is_finite() {
+        t.scale(1.0 / d);
+        Renormalised::Grown(d)
+    } else {
+        Renormalised::Refused {
+            merged: d == 0.0 && t.is_zero(),
+        }
     }
 }
 
@@ -255,6 +260,96 @@ pub(super) fn one_path(
     m.finish(p.reference().impacts(), tick)
 }
 
+/// Realisations stepped together in lanes: one step of all, then each renormalised on its own.
+trait InLanes {
+    fn step(&mut self);
+    /// The error of realisation `k`'s last step (its reference's first), if it failed.
+    fn take_error(&mut self, k: usize) -> Option<Error>;
+    fn renormalise(&mut self, k: usize) -> Renormalised;
+    /// Impacts of realisation `k`'s reference.
+    fn impacts(&self, k: usize) -> u64;
+}
+
+/// Reference and copy of realisation k in lanes 2k and 2k + 1.
+struct PairLanes<'a> {
+    group: Group<'a>,
+    d0: f64,
+}
+
+impl InLanes for PairLanes<'_> {
+    fn step(&mut self) {
+        self.group.step();
+    }
+
+    fn take_error(&mut self, k: usize) -> Option<Error> {
+        // the reference's error first, as `one_path` steps it first
+        self.group
+            .take_error(2 * k)
+            .or_else(|| self.group.take_error(2 * k + 1))
+    }
+
+    fn renormalise(&mut self, k: usize) -> Renormalised {
+        let (a, b) = self.group.pair(k);
+        renormalise_pair(a, b, self.d0)
+    }
+
+    fn impacts(&self, k: usize) -> u64 {
+        self.group.path(2 * k).impacts()
+    }
+}
+
+/// Path k with its tangent in lane k.
+struct TangentLanes<'a> {
+    group: Group<'a>,
+}
+
+impl InLanes for TangentLanes<'_> {
+    fn step(&mut self) {
+        self.group.step();
+    }
+
+    fn take_error(&mut self, k: usize) -> Option<Error> {
+        self.group.take_error(k)
+    }
+
+    fn renormalise(&mut self, k: usize) -> Renormalised {
+        renormalise_tangent(self.group.with_tangent(k).1)
+    }
+
+    fn impacts(&self, k: usize) -> u64 {
+        self.group.path(k).impacts()
+    }
+}
+
+/// Realisations `paths` stepped together ([`InLanes`]), each measured as by [`one_path`].
+fn measure_in_lanes(
+    mut r: impl InLanes,
+    dt: f64,
+    paths: &[u64],
+    spec: &LyapunovSpec,
+    sizes: (u64, u64),
+    tick: &dyn Fn(u64) -> Result<()>,
+) -> Result<Vec<(PathExponent, Vec<f64>)>> {
+    let mut measures: Vec<Measure> = paths
+        .iter()
+        .map(|&i| Measure::new(spec, sizes, i, dt))
+        .collect();
+    for n in 1..=sizes.0 + sizes.1 {
+        r.step();
+        for (k, m) in measures.iter_mut().enumerate() {
+            if let Some(e) = r.take_error(k) {
+                return Err(m.failed(e));
+            }
+            m.after_step(n, || r.renormalise(k), tick)?;
+        }
+    }
+    measures
+        .into_iter()
+        .enumerate()
+        .map(|(k, m)| m.finish(r.impacts(k), tick))
+        .collect()
+}
+
 /// Two-trajectory realisations stepped together in lanes: `pairs` holds reference and copy of
 /// each in neighbouring lanes (a₀, b₀, a₁, b₁, …), `paths` their indices; the groups of
 /// `lanes` steppers take their steps together (`engine::Group`). Each realisation gives the bits
@@ -271,31 +366,23 @@ pub(super) fn pairs_in_lanes(
 ) -> Result<Vec<(PathExponent, Vec<f64>)>> {
     assert_eq!(pairs.len(), 2 * paths.len(), "two steppers per realisation");
     let dt = pairs[0].dt();
-    let mut measures: Vec<Measure> = paths
-        .iter()
-        .map(|&i| Measure::new(spec, sizes, i, dt))
-        .collect();
-    let mut group = Group::new(&mut pairs, lanes)?;
-    for n in 1..=sizes.0 + sizes.1 {
-        group.step();
-        for (k, m) in measures.iter_mut().enumerate() {
-            // the reference's error first, as one_path steps it first
-            if let Some(e) = group
-                .take_error(2 * k)
-                .or_else(|| group.take_error(2 * k + 1))
-            {
-                return Err(m.failed(e));
-            }
-            let (a, b) = group.pair(k);
-            m.after_step(n, || renormalise_pair(a, b, d0), tick)?;
-        }
-    }
-    measures
-        .into_iter()
-        .enumerate()
-        .map(|(k, m)| {
-            let impacts = group.path(2 * k).impacts();
-            m.finish(impacts, tick)
-        })
-        .collect()
+    let group = Group::new(&mut pairs, lanes)?;
+    measure_in_lanes(PairLanes { group, d0 }, dt, paths, spec, sizes, tick)
+}
+
+/// Tangent-method realisations stepped together in lanes: path k and its tangent k in lane k
+/// of groups of `lanes` (`engine::Group::with_tangents`). Each realisation gives the bits of
+/// [`one_path`] with [`PathAndTangent`].
+pub(super) fn tangents_in_lanes(
+    (mut refs, mut tangents): (Vec<Stepper>, Vec<Tangent>),
+    paths: &[u64],
+    spec: &LyapunovSpec,
+    sizes: (u64, u64),
+    lanes: usize,
+    tick: &dyn Fn(u64) -> Result<()>,
+) -> Result<Vec<(PathExponent, Vec<f64>)>> {
+    assert_eq!(refs.len(), paths.len(), "one stepper per realisation");
+    let dt = refs[0].dt();
+    let group = Group::with_tangents(&mut refs, &mut tangents, lanes)?;
+    measure_in_lanes(TangentLanes { group }, dt, paths, spec, sizes, tick)
 }

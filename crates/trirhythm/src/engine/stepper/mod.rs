@@ -171,7 +171,7 @@ impl Rhs {
     /// for steps of length `h`.
     #[inline(always)]
     fn node(&self, h: f64, a1: f64, u1: f64, v1: f64) -> (f64, f64) {
-        (a1 * v1 - self.omega2 * u1, predictor_weight(h, a1))
+        node_with(self.omega2, h, a1, u1, v1)
     }
 
     /// The deterministic part μP(U)V − ω²U of g.
@@ -185,6 +185,12 @@ impl Rhs {
     fn forcing(&self, eta: f64, side: f64) -> f64 {
         self.gain * side * eta
     }
+}
+
+/// [`Rhs::node`] with ω² = `omega2` given (the lane stepper's lanes may each have their own).
+#[inline(always)]
+fn node_with(omega2: f64, h: f64, a1: f64, u1: f64, v1: f64) -> (f64, f64) {
+    (a1 * v1 - omega2 * u1, predictor_weight(h, a1))
 }
 
 /// The predictor's weight of g at the start of a step of length `len`: ½len²/(1 + len|a|), a
@@ -226,6 +232,36 @@ struct Pass {
     gr: f64,
     u1: f64,
     v1: f64,
+}
+
+/// [`Rhs::pass_with`] with ω² = `omega2` given (the lane stepper's lanes may each have their
+/// own).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn pass_with(
+    omega2: f64,
+    a: f64,
+    len: f64,
+    (u, v, g0): (f64, f64, f64),
+    up: f64,
+    known: f64,
+    w: f64,
+    fr: f64,
+) -> Pass {
+    let inv = 1.0 / (1.0 - w * a);
+    let lim = hermite_limiter(2.0 * w * a);
+    let v1 = (known + w * (fr - omega2 * up)) * inv;
+    let gr = a * v1 - omega2 * up + fr;
+    let u1 = u + 0.5 * len * (v + v1) + len * len * (1.0 / 12.0) * lim * (g0 - gr);
+    Pass {
+        up,
+        a,
+        inv,
+        lim,
+        gr,
+        u1,
+        v1,
+    }
 }
 
 /// One linearly implicit step of length `len` from (u, v), where g = `g0`, to its free end
@@ -283,20 +319,7 @@ impl Rhs {
         w: f64,
         fr: f64,
     ) -> Pass {
-        let inv = 1.0 / (1.0 - w * a);
-        let lim = hermite_limiter(2.0 * w * a);
-        let v1 = (known + w * (fr - self.omega2 * up)) * inv;
-        let gr = a * v1 - self.omega2 * up + fr;
-        let u1 = u + 0.5 * len * (v + v1) + len * len * (1.0 / 12.0) * lim * (g0 - gr);
-        Pass {
-            up,
-            a,
-            inv,
-            lim,
-            gr,
-            u1,
-            v1,
-        }
+        pass_with(self.omega2, a, len, (u, v, g0), up, known, w, fr)
     }
 
     /// The step of length `len` from (u, v) with g = `g0` there, `known` the part of V at the
@@ -335,16 +358,19 @@ impl Rhs {
         }
     }
 
-    /// The derivative of one pass along (δu, δv, δg0, δup, δknown): (δU₁, δV₁).
+    /// The derivative of one pass along (δu, δv, δg0, δup, δknown): (δU₁, δV₁), with
+    /// d(μP)/dU at the pass's up = `slope` given (the lane stepper evaluates it for several
+    /// paths at once).
+    #[inline(always)]
     fn pass_tangent(
         &self,
         f: &Free,
-        p: &Pass,
+        (p, slope): (&Pass, f64),
         (du, dv, dg0): (f64, f64, f64),
         dup: f64,
         dknown: f64,
     ) -> (f64, f64) {
-        let da = self.damping_slope(p.up) * dup;
+        let da = slope * dup;
         let dv1 = p.inv * (dknown - f.w * self.omega2 * dup + p.v1 * f.w * da);
         let dgr = da * p.v1 + p.a * dv1 - self.omega2 * dup;
         let z = 2.0 * f.w * p.a;
@@ -363,10 +389,31 @@ impl Rhs {
         dpw: f64,
         dknown: f64,
     ) -> (f64, f64) {
+        let second = if f.stiff {
+            self.damping_slope(f.passes[1].up)
+        } else {
+            0.0
+        };
+        let slopes = [self.damping_slope(f.passes[0].up), second];
+        self.advance_tangent_with(f, slopes, (du, dv, dg0), dpw, dknown)
+    }
+
+    /// [`Rhs::advance_tangent`] with d(μP)/dU at the passes' up given (the second only used
+    /// on stiff steps).
+    #[inline(always)]
+    fn advance_tangent_with(
+        &self,
+        f: &Free,
+        slopes: [f64; 2],
+        (du, dv, dg0): (f64, f64, f64),
+        dpw: f64,
+        dknown: f64,
+    ) -> (f64, f64) {
         let dup = du + f.len * dv + f.pw * dg0 + f.g0 * dpw;
-        let first = self.pass_tangent(f, &f.passes[0], (du, dv, dg0), dup, dknown);
+        let first = self.pass_tangent(f, (&f.passes[0], slopes[0]), (du, dv, dg0), dup, dknown);
         if f.stiff {
-            self.pass_tangent(f, &f.passes[1], (du, dv, dg0), first.0, dknown)
+            let p = (&f.passes[1], slopes[1]);
+            self.pass_tangent(f, p, (du, dv, dg0), first.0, dknown)
         } else {
             first
         }

@@ -94,7 +94,7 @@
 //! with the observed order in Δt. `tests/lyapunov.rs`: the exponent by the tangent against the
 //! damped oscillator's −μ0/2 and against two trajectories.
 
-use super::{predictor_weight_slope, Piece, Split, Stepper};
+use super::{predictor_weight_slope, Begin, Piece, Split, Stepper};
 use crate::engine::History;
 use crate::error::Result;
 
@@ -149,6 +149,13 @@ impl Tangent {
         self.history.scale_state(c);
     }
 
+    /// Every number of the tangent state that a step reads, as bits (δU, δV, δg at the node, δ
+    /// of the Volterra constant, the tangent memory's value).
+    #[cfg(test)]
+    pub(crate) fn bits(&self) -> [u64; 5] {
+        [self.u, self.v, self.drift, self.base, self.history.value()].map(f64::to_bits)
+    }
+
     /// The tangent of a state clamped at rest on the wall whose free value was V + δV.
     fn stick(&mut self, dv1: f64, restart: bool) {
         if restart {
@@ -158,6 +165,32 @@ impl Tangent {
             self.base -= dv1;
         }
     }
+}
+
+/// What the tangent's step needs at its start ([`Stepper::begin_tangent`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct TangentBegin {
+    pub(super) du: f64,
+    pub(super) dv: f64,
+    /// δg at the start.
+    pub(super) dgl: f64,
+    /// δ of the predictor's weight.
+    pub(super) dpw: f64,
+    /// δ of the known part.
+    pub(super) dknown: f64,
+}
+
+/// The end of a step and of its tangent after their events
+/// ([`Stepper::end_events_with_tangent`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct TangentEnd {
+    pub(super) u1: f64,
+    pub(super) v1: f64,
+    pub(super) du1: f64,
+    pub(super) dv1: f64,
+    piece: Piece,
+    dpiece: Piece,
+    push: bool,
 }
 
 /// The cubic Hermite basis (h00, h10, h01, h11) at t ∈ [0, 1].
@@ -183,29 +216,60 @@ impl Stepper {
     /// as by [`Stepper::step`], bit for bit.
     pub(crate) fn step_with_tangent(&mut self, t: &mut Tangent) -> Result<()> {
         let h = self.h;
-        let omega2 = self.rhs.omega2;
-        let (el, er) = self.noise.next_step();
-        let (u, v, side) = (self.u, self.v, self.side);
-        let gl = self.drift + self.rhs.forcing(el, side);
-        let known = self.base + self.history.value() + self.wl * gl;
-        let fr = self.rhs.forcing(er, side);
-        let free = self.rhs.advance(h, (u, v, gl), self.pw, known, self.wr, fr);
-        let (mut u1, mut v1) = free.end();
-        // the derivative of the same formulas
-        let dgl = t.drift;
-        let dpw = predictor_weight_slope(h, self.rhs.damping(u), self.rhs.damping_slope(u)) * t.u;
-        let dknown = t.base + t.history.value() + self.wl * dgl;
-        let (mut du1, mut dv1) = self
+        let b = self.begin();
+        let free = self
             .rhs
-            .advance_tangent(&free, (t.u, t.v, dgl), dpw, dknown);
+            .advance(h, (b.u, b.v, b.gl), self.pw, b.known, self.wr, b.fr);
+        let (u1, v1) = free.end();
+        // the derivative of the same formulas
+        let (a0, slope0) = (self.rhs.damping(b.u), self.rhs.damping_slope(b.u));
+        let tb = self.begin_tangent(t, (a0, slope0));
+        let (du1, dv1) = self
+            .rhs
+            .advance_tangent(&free, (tb.du, tb.dv, tb.dgl), tb.dpw, tb.dknown);
+        let end = self.end_events_with_tangent(t, &b, &tb, [u1, v1, du1, dv1])?;
+        let a1 = self.set_node(end.u1, end.v1);
+        let ddrift = self.drift_derivative_at(a1, self.rhs.damping_slope(end.u1), &end);
+        self.complete_with_tangent(t, &b, end, ddrift);
+        Ok(())
+    }
+
+    /// The tangent's part of [`Stepper::begin`]: δg at the start, δ of the known part and the
+    /// predictor weight's derivative, where μP(U) = `a0` and d(μP)/dU = `slope0` (the lane
+    /// stepper evaluates them for several paths at once).
+    #[inline(always)]
+    pub(super) fn begin_tangent(&self, t: &Tangent, (a0, slope0): (f64, f64)) -> TangentBegin {
+        let dgl = t.drift;
+        TangentBegin {
+            du: t.u,
+            dv: t.v,
+            dgl,
+            dpw: predictor_weight_slope(self.h, a0, slope0) * t.u,
+            dknown: t.base + t.history.value() + self.wl * dgl,
+        }
+    }
+
+    /// The events of a step whose free end is `free` = (U₁, V₁, δU₁, δV₁), for the path and its
+    /// tangent: sticking, an impact with the tangent's saltation, the blow-up check, the side of
+    /// the Zhuravlev crossing. Counts the step.
+    #[inline(always)]
+    pub(super) fn end_events_with_tangent(
+        &mut self,
+        t: &mut Tangent,
+        b: &Begin,
+        tb: &TangentBegin,
+        free: [f64; 4],
+    ) -> Result<TangentEnd> {
+        let (u, v) = (b.u, b.v);
+        let [mut u1, mut v1, mut du1, mut dv1] = free;
         self.events = Default::default();
         let mut piece = Piece {
-            left: gl,
+            left: b.gl,
             right: 0.0,
             split: None,
         };
         let mut dpiece = Piece {
-            left: dgl,
+            left: tb.dgl,
             right: 0.0,
             split: None,
         };
@@ -220,7 +284,8 @@ impl Stepper {
             }
         } else if (self.wall && u1 < 0.0) || (self.crossing && u * u1 < 0.0) {
             let free = [u1, v1, du1, dv1];
-            let (split, dsplit, end) = self.impact_with_tangent(t, (gl, dgl), (el, er), free);
+            let (split, dsplit, end) =
+                self.impact_with_tangent(t, (b.gl, tb.dgl), (b.el, b.er), free);
             [u1, v1, du1, dv1] = end;
             piece.split = Some(split);
             dpiece.split = Some(dsplit);
@@ -236,20 +301,44 @@ impl Stepper {
         if self.crossing && u1 != 0.0 {
             self.side = u1.signum();
         }
-        let a1 = self.set_node(u1, v1);
-        let ddrift = (self.rhs.damping_slope(u1) * v1 - omega2) * du1 + a1 * dv1;
-        if push {
-            piece.right = self.drift + self.rhs.forcing(er, self.side);
-            self.history.push(piece);
-            dpiece.right = ddrift;
-            t.history.push(dpiece);
+        Ok(TangentEnd {
+            u1,
+            v1,
+            du1,
+            dv1,
+            piece,
+            dpiece,
+            push,
+        })
+    }
+
+    /// δ(μP(U)V − ω²U) at a step's end, where μP = `a1` and d(μP)/dU = `slope1`.
+    #[inline(always)]
+    pub(super) fn drift_derivative_at(&self, a1: f64, slope1: f64, e: &TangentEnd) -> f64 {
+        (slope1 * e.v1 - self.rhs.omega2) * e.du1 + a1 * e.dv1
+    }
+
+    /// The last part of a step with its tangent, after [`Stepper::set_node`] at its end: the
+    /// pieces of g and δg (δg at the end = `ddrift`) into their memories, the new states.
+    #[inline(always)]
+    pub(super) fn complete_with_tangent(
+        &mut self,
+        t: &mut Tangent,
+        b: &Begin,
+        mut e: TangentEnd,
+        ddrift: f64,
+    ) {
+        if e.push {
+            e.piece.right = self.drift + self.rhs.forcing(b.er, self.side);
+            self.history.push(e.piece);
+            e.dpiece.right = ddrift;
+            t.history.push(e.dpiece);
         }
-        self.u = u1;
-        self.v = v1;
-        t.u = du1;
-        t.v = dv1;
+        self.u = e.u1;
+        self.v = e.v1;
+        t.u = e.du1;
+        t.v = e.dv1;
         t.drift = ddrift;
-        Ok(())
     }
 
     /// [`Stepper::impact`] with the tangent's saltation (module docs). `free` is the free end
