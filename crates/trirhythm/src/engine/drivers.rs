@@ -36,7 +36,7 @@
 use super::problem::{
     Options, Oscillator, PredictorCorrector, Problem, MAX_AMPLITUDE_PERIODS, MAX_DT,
 };
-use super::stepper::lanes::{same_problem, step_group, Isa};
+use super::stepper::lanes::{same_problem, step_group, step_group_mixed, Isa, PerLane};
 use super::stepper::{fresh_history, Impact, Lanes, Stepper};
 use crate::error::{Error, Result};
 use crate::monitor::{Monitor, Silent};
@@ -101,16 +101,17 @@ pub fn run(
     Ok(steps)
 }
 
-/// [`run`] for several paths of one problem and method: path k is stepped up to `steps` times
-/// and shown, at its start and after every step, to `observers[k]`, which may stop it; the
-/// paths go in groups of `lanes` ([`Lanes::width`]: 1, 4 or 8) whose steps are taken together
-/// (module docs of `stepper::lanes`). Every path gives exactly the bits that [`run`] gives it
-/// alone, whatever the lane count and the group it falls in. Returns for each path the steps it
+/// [`run`] for several paths: path k is stepped up to `steps` times and shown, at its start
+/// and after every step, to `observers[k]`, which may stop it; the paths go in groups of
+/// `lanes` ([`Lanes::width`]: 1, 4 or 8) whose steps are taken together (module docs of
+/// `stepper::lanes`). The paths of a group may be of different problems and methods (the
+/// oscillation searches run several parameter values at once): each lane then takes its own
+/// coefficients. Every path gives exactly the bits that [`run`] gives it alone, whatever the
+/// lane count, the group it falls in and its neighbours. Returns for each path the steps it
 /// took, or the error of its failed step (the other paths go on). `monitor` hears the steps
 /// of all paths done about a thousand times and is asked as often whether to stop
 /// ([`Error::Cancelled`] for the whole call). Refused: `steps` above [`MAX_STEPS`], as many
-/// observers as paths wanted, the paths of one problem and method (the same equation, Δt and
-/// memory weights), a lane count other than 1, 4 or 8.
+/// observers as paths wanted, a lane count other than 1, 4 or 8.
 pub fn run_lanes<O: Observer>(
     paths: &mut [Stepper],
     steps: u64,
@@ -131,13 +132,6 @@ pub fn run_lanes<O: Observer>(
             "observers",
             observers.len() as f64,
             format!("one per path ({})", paths.len()),
-        ));
-    }
-    if !same_problem(paths) {
-        return Err(Error::invalid(
-            "paths",
-            paths.len() as f64,
-            "steppers of one problem and method (the lanes share its equation and weights)",
         ));
     }
     let total = steps.saturating_mul(paths.len() as u64);
@@ -185,13 +179,30 @@ fn run_group<const L: usize, O: Observer>(
         }
     }
     let mut errors: [Option<Error>; L] = std::array::from_fn(|_| None);
+    // one problem: its coefficients shared; several: each lane its own; polynomials of
+    // different forms (which no lane step can share): one path after the other
+    let (shared, mixed) = if same_problem(paths) {
+        (true, None)
+    } else {
+        (false, PerLane::<L>::new(paths))
+    };
     let mut until_tick = tick;
     for step in 1..=steps {
         let alive = live.iter().filter(|&&l| l).count() as u64;
         if alive == 0 {
             break;
         }
-        step_group::<L>(isa, paths, &live, &mut errors);
+        match &mixed {
+            _ if shared => step_group::<L>(isa, paths, &live, &mut errors),
+            Some(c) => step_group_mixed::<L>(isa, c, paths, &live, &mut errors),
+            None => {
+                for (k, p) in paths.iter_mut().enumerate() {
+                    if live[k] {
+                        errors[k] = p.step().err();
+                    }
+                }
+            }
+        }
         for k in 0..n {
             if !live[k] {
                 continue;
