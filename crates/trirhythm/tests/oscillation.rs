@@ -309,3 +309,72 @@ fn simulated_boundary_with_the_wall_is_converged_in_step_and_memory() {
         assert!(gap < 1e-3, "{q:?} vs {reference:?}: {gap}");
     }
 }
+
+/// The searches with their simulations in lanes (both probes of a step; a row of a plane,
+/// parameters differing lane by lane) give the points, brackets, growth rates and simulation
+/// counts of one simulation after the other: along μ0 and along λ (each lane its own memory
+/// weights), with the wall and without, by regula falsi and by bisection; a plane whose rows
+/// cross the boundary.
+#[test]
+fn results_do_not_depend_on_the_lanes() {
+    use trirhythm::engine::Lanes;
+    let with = |lanes| Classifier {
+        lanes,
+        ..Default::default()
+    };
+    let cases = [
+        (
+            Barrier::On,
+            ("lambda", vec![0.95, 0.99, 1.0]),
+            ("mu0", 1e-3, 0.3),
+        ),
+        (Barrier::Off, ("omega0", vec![0.5, 0.9]), ("mu0", 1e-3, 0.3)),
+        (Barrier::On, ("mu0", vec![0.02, 0.05]), ("lambda", 0.9, 1.0)),
+        (
+            Barrier::On,
+            ("mu0", vec![0.004, 0.008]),
+            ("omega0", 0.1, 2.0),
+        ),
+    ];
+    let mut crossing = 0;
+    for (barrier, x, y) in cases {
+        let problem = plane(&params(0.5, 0.99, 0.99), barrier, x, y).unwrap();
+        for refinement in [Refinement::Secant, Refinement::Bisection] {
+            let search = Search {
+                refinement,
+                ..Default::default()
+            };
+            let run = |lanes| {
+                let m = Method::Simulation(with(lanes));
+                format!("{:?}", boundary(&problem, &m, &search, &Silent).unwrap())
+            };
+            let one = run(Lanes::Width(1));
+            for lanes in [Lanes::Width(4), Lanes::Width(8)] {
+                assert_eq!(
+                    run(lanes),
+                    one,
+                    "{:?} {refinement:?} {lanes:?}",
+                    problem.y_key
+                );
+            }
+        }
+        let (lo, hi) = problem.y_range;
+        let ys: Vec<f64> = (0..11).map(|k| lo + (hi - lo) * k as f64 / 10.0).collect();
+        let classify = |lanes| {
+            let m = Method::Simulation(with(lanes));
+            classify_plane(&problem, &ys, &m, &Silent).unwrap()
+        };
+        let one = classify(Lanes::Width(1));
+        let oscillating = one.iter().filter(|c| c.oscillates).count();
+        eprintln!(
+            "{}: {oscillating} of {} cells oscillate",
+            problem.y_key,
+            one.len()
+        );
+        crossing += usize::from(oscillating > 0 && oscillating < one.len());
+        for lanes in [Lanes::Width(4), Lanes::Width(8)] {
+            assert_eq!(format!("{:?}", classify(lanes)), format!("{one:?}"));
+        }
+    }
+    assert!(crossing == 4, "{crossing} planes cross the boundary");
+}

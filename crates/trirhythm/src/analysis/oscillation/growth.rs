@@ -3,8 +3,8 @@
 //! and the early stop once the sign is clear (module docs of [`super`]).
 
 use crate::engine::{
-    fresh_history, run, Flow, History, ImpactMemory, Memory, Observer, PredictorCorrector, Problem,
-    Stepper, System,
+    fresh_history, run, run_lanes, Flow, History, ImpactMemory, Lanes, Memory, Observer,
+    PredictorCorrector, Problem, Stepper, System,
 };
 use crate::error::{Error, Exact, Result};
 use crate::model::Params;
@@ -29,6 +29,10 @@ pub struct Classifier {
     /// … and the rates fitted on the window and on its second half agree to this fraction of
     /// |σ| (the transient has died out; the rates then feed the secant accurately).
     pub agreement: f64,
+    /// How many simulations are stepped together ([`Lanes`]; the default suits the CPU): the
+    /// two probes of a search step, a row of a classified plane. The results do not depend on
+    /// it.
+    pub lanes: Lanes,
 }
 
 impl Default for Classifier {
@@ -46,6 +50,7 @@ impl Default for Classifier {
             max_periods: 120.0,
             clarity: 20.0,
             agreement: 0.1,
+            lanes: Lanes::Auto,
         }
     }
 }
@@ -71,12 +76,34 @@ pub struct Growth {
 /// not used: the run must start in the linear regime).
 pub fn growth_rate(problem: &Problem, classifier: &Classifier) -> Result<Growth> {
     classifier.validate()?;
-    let mut cache = None;
+    let mut cache = Cache::default();
     grow(problem, classifier, &mut cache, &crate::monitor::Silent)
 }
 
-/// The memory kept between the runs of one search: (λ, horizon) and the empty history.
-pub(super) type Cache = Option<(f64, f64, History)>;
+/// The empty memories kept between the runs of one search, by (λ, horizon): the most recent
+/// few (the memory is the same for every run of one λ and horizon, so which are kept changes
+/// no result).
+#[derive(Default)]
+pub(super) struct Cache(Vec<(f64, f64, History)>);
+
+/// Memories a [`Cache`] keeps.
+const CACHED: usize = 16;
+
+impl Cache {
+    /// The empty memory of λ = `lambda` over `t_max` for `problem` with `c`'s method.
+    fn history(&mut self, problem: &Problem, c: &Classifier, t_max: f64) -> Result<History> {
+        let lambda = problem.params().lambda;
+        if let Some((_, _, h)) = self.0.iter().find(|(l, t, _)| *l == lambda && *t == t_max) {
+            return Ok(h.clone());
+        }
+        let hist = fresh_history(problem, &c.method, t_max)?;
+        if self.0.len() == CACHED {
+            self.0.remove(0);
+        }
+        self.0.push((lambda, t_max, hist.clone()));
+        Ok(hist)
+    }
+}
 
 /// The run's horizon T = max_periods · 2π/ω0 as a whole number of steps.
 fn horizon(params: &Params, c: &Classifier) -> Result<f64> {
@@ -161,81 +188,189 @@ pub(super) fn check_problem(problem: &Problem) -> Result<()> {
 }
 
 /// The growth of `problem`'s small oscillation (module docs of [`super`]), reusing the empty
-/// memory of `cache` when λ and the horizon are the same; `monitor` may stop the run.
+/// memories of `cache`; `monitor` may stop the run.
 pub(super) fn grow(
     problem: &Problem,
     c: &Classifier,
     cache: &mut Cache,
     monitor: &dyn Monitor,
 ) -> Result<Growth> {
-    check_problem(problem)?;
-    let params = problem.params();
-    let t_max = horizon(params, c)?;
-    let history = match cache {
-        Some((l, h, hist)) if *l == params.lambda && *h == t_max => hist.clone(),
-        _ => {
-            let hist = fresh_history(problem, &c.method, t_max)?;
-            *cache = Some((params.lambda, t_max, hist.clone()));
-            hist
+    let mut r = Run::new(problem, c, cache)?;
+    run(&mut r.stepper, r.steps, &mut r.peaks, monitor)?;
+    Ok(r.shape.finish(&r.stepper, r.peaks))
+}
+
+/// [`grow`] for each of `problems`, the simulations stepped together in lanes
+/// ([`Classifier::lanes`]; paths of different parameters, each lane with its own
+/// coefficients): each result is bit for bit [`grow`]'s, an error included (the runs of the
+/// others are not affected). `monitor` may stop them all ([`crate::Error::Cancelled`]).
+pub(super) fn grow_all(
+    problems: &[Problem],
+    c: &Classifier,
+    cache: &mut Cache,
+    monitor: &dyn Monitor,
+) -> Result<Vec<Result<Growth>>> {
+    let lanes = c.lanes.width()?;
+    if lanes == 1 || problems.len() < 2 {
+        return Ok(problems
+            .iter()
+            .map(|p| grow(p, c, cache, monitor))
+            .collect());
+    }
+    // a group no wider than needed: dead lanes still take the array phases' work
+    let width = if problems.len() <= 4 { 4 } else { lanes };
+    let (mut steppers, mut observers) = (vec![], vec![]);
+    let shapes: Vec<Result<Shape>> = problems
+        .iter()
+        .map(|p| {
+            let r = Run::new(p, c, cache)?;
+            steppers.push(r.stepper);
+            observers.push(Limited {
+                steps: r.steps,
+                peaks: r.peaks,
+            });
+            Ok(r.shape)
+        })
+        .collect();
+    let steps = observers.iter().map(|o| o.steps).max().unwrap_or(0);
+    let taken = run_lanes(
+        &mut steppers,
+        steps,
+        &mut observers,
+        Lanes::Width(width),
+        monitor,
+    )?;
+    let mut done = steppers.into_iter().zip(observers).zip(taken);
+    Ok(shapes
+        .into_iter()
+        .map(|shape| {
+            let shape = shape?;
+            let ((stepper, observer), taken) = done.next().expect("one run per prepared path");
+            taken?;
+            Ok(shape.finish(&stepper, observer.peaks))
+        })
+        .collect())
+}
+
+/// [`TurningPoints`] that also stops its path after `steps` steps (the run's own horizon, in a
+/// group whose paths have others).
+struct Limited {
+    steps: u64,
+    peaks: TurningPoints,
+}
+
+impl Observer for Limited {
+    fn observe(&mut self, s: &Stepper) -> Flow {
+        match self.peaks.observe(s) {
+            Flow::Continue if s.steps() >= self.steps => Flow::Stop,
+            flow => flow,
         }
-    };
-    let dt = c.method.dt;
-    let steps = (t_max / dt).round() as u64;
-    let period = 2.0 * PI / params.omega0;
-    let a0 = c.amplitude;
-    let mut stepper = Stepper::with_history(problem, &c.method, (a0, 0.0), (0, 0), history)?;
-    let mut peaks = TurningPoints {
-        a0,
-        wall: problem.barrier() == crate::engine::Barrier::On,
-        dt,
-        settle: c.settle_periods * period,
-        min_window: c.min_periods * period,
-        clarity: c.clarity,
-        agreement: c.agreement,
-        prev: (a0, 0.0),
-        last_extremum: None,
-        clear: false,
-        stuck: false,
-        latest: a0,
-        all: Vec::new(),
-        window: Vec::new(),
-    };
-    run(&mut stepper, steps, &mut peaks, monitor)?;
-    let taken = stepper.steps();
-    let TurningPoints {
-        all,
-        window,
-        stuck,
-        clear,
-        latest,
-        ..
-    } = peaks;
-    let (rate, standard_error, peaks) = if window.len() >= 3 {
-        let (b, se) = fit(&window);
-        (b, se, window.len())
-    } else if all.len() >= 3 {
-        let (b, se) = fit(&all);
-        (b, se, all.len())
-    } else {
-        // too few turning points: compare the latest amplitude (or the state) with the start
-        let t = stepper.time().max(dt);
-        let now = if stuck {
-            0.0
-        } else if !all.is_empty() {
-            latest
-        } else {
-            stepper.u().abs() + stepper.v().abs() / params.omega0
+    }
+}
+
+/// One growth run: the path from the small amplitude, its turning points, its horizon.
+struct Run {
+    stepper: Stepper,
+    peaks: TurningPoints,
+    steps: u64,
+    shape: Shape,
+}
+
+/// What the growth rate needs of a run besides its path and turning points.
+#[derive(Debug, Clone, Copy)]
+struct Shape {
+    a0: f64,
+    dt: f64,
+    omega0: f64,
+    period: f64,
+}
+
+impl Run {
+    fn new(problem: &Problem, c: &Classifier, cache: &mut Cache) -> Result<Run> {
+        check_problem(problem)?;
+        let params = problem.params();
+        let t_max = horizon(params, c)?;
+        let history = cache.history(problem, c, t_max)?;
+        let dt = c.method.dt;
+        let steps = (t_max / dt).round() as u64;
+        let period = 2.0 * PI / params.omega0;
+        let a0 = c.amplitude;
+        let stepper = Stepper::with_history(problem, &c.method, (a0, 0.0), (0, 0), history)?;
+        let peaks = TurningPoints {
+            a0,
+            wall: problem.barrier() == crate::engine::Barrier::On,
+            dt,
+            settle: c.settle_periods * period,
+            min_window: c.min_periods * period,
+            clarity: c.clarity,
+            agreement: c.agreement,
+            prev: (a0, 0.0),
+            last_extremum: None,
+            clear: false,
+            stuck: false,
+            latest: a0,
+            all: Vec::new(),
+            window: Vec::new(),
         };
-        let ratio = (now / a0).max(1e-300);
-        (crate::maths::ln(ratio) / t, 0.0, all.len())
-    };
-    Ok(Growth {
-        rate: if stuck { rate.min(-1.0 / period) } else { rate },
-        standard_error,
-        clear: clear || stuck,
-        peaks,
-        steps: taken,
-    })
+        Ok(Run {
+            stepper,
+            peaks,
+            steps,
+            shape: Shape {
+                a0,
+                dt,
+                omega0: params.omega0,
+                period,
+            },
+        })
+    }
+}
+
+impl Shape {
+    /// The growth rate of a run's path once it has stopped.
+    fn finish(self, stepper: &Stepper, peaks: TurningPoints) -> Growth {
+        let Shape {
+            a0,
+            dt,
+            omega0,
+            period,
+        } = self;
+        let taken = stepper.steps();
+        let TurningPoints {
+            all,
+            window,
+            stuck,
+            clear,
+            latest,
+            ..
+        } = peaks;
+        let (rate, standard_error, peaks) = if window.len() >= 3 {
+            let (b, se) = fit(&window);
+            (b, se, window.len())
+        } else if all.len() >= 3 {
+            let (b, se) = fit(&all);
+            (b, se, all.len())
+        } else {
+            // too few turning points: compare the latest amplitude (or the state) with the start
+            let t = stepper.time().max(dt);
+            let now = if stuck {
+                0.0
+            } else if !all.is_empty() {
+                latest
+            } else {
+                stepper.u().abs() + stepper.v().abs() / omega0
+            };
+            let ratio = (now / a0).max(1e-300);
+            (crate::maths::ln(ratio) / t, 0.0, all.len())
+        };
+        Growth {
+            rate: if stuck { rate.min(-1.0 / period) } else { rate },
+            standard_error,
+            clear: clear || stuck,
+            peaks,
+            steps: taken,
+        }
+    }
 }
 
 /// The turning points of a path, (t, ln amplitude), all of them and those of the window after

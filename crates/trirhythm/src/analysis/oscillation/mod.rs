@@ -78,7 +78,7 @@ use crate::error::{Error, Exact, Result};
 use crate::model::Params;
 use crate::monitor::{Monitor, OnlyCancel};
 use crate::theory::averaging::Variant;
-use growth::{grow, Cache};
+use growth::Cache;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -408,27 +408,41 @@ pub fn classify_plane(
         .x
         .par_iter()
         .map(|&x| {
-            let mut cache: Cache = None;
+            let mut cache = Cache::default();
             let mut row = Vec::with_capacity(ys.len());
-            for &y in ys {
+            // a simulated row in groups of ys stepped together in lanes
+            let width = match method {
+                Method::Simulation(c) => c.lanes.width()?,
+                _ => 1,
+            };
+            for chunk in ys.chunks(width) {
                 monitor.check()?;
-                let rate = match method {
+                let rates: Vec<Result<f64>> = match method {
                     Method::Simulation(c) => {
-                        let p = plane.problem_at(x, y)?;
-                        grow(&p, c, &mut cache, &OnlyCancel(monitor))?.rate
+                        let only = OnlyCancel(monitor);
+                        let runs = search::grow_at(plane, x, chunk, c, &mut cache, &only)?;
+                        runs.into_iter().map(|g| g.map(|g| g.rate)).collect()
                     }
-                    _ => margin(&plane.at(x, y)?, barrier, method)?.unwrap_or(f64::NAN),
+                    _ => chunk
+                        .iter()
+                        .map(
+                            |&y| Ok(margin(&plane.at(x, y)?, barrier, method)?.unwrap_or(f64::NAN)),
+                        )
+                        .collect(),
                 };
-                let cell = Cell {
-                    x,
-                    y,
-                    oscillates: rate > 0.0,
-                    rate,
-                };
-                let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-                monitor.progress(n, total);
-                monitor.finished(&cell)?;
-                row.push(cell);
+                for (&y, rate) in chunk.iter().zip(rates) {
+                    let rate = rate?;
+                    let cell = Cell {
+                        x,
+                        y,
+                        oscillates: rate > 0.0,
+                        rate,
+                    };
+                    let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+                    monitor.progress(n, total);
+                    monitor.finished(&cell)?;
+                    row.push(cell);
+                }
             }
             Ok(row)
         })
