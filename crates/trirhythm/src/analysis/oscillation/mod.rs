@@ -336,23 +336,40 @@ pub fn boundary(
     plane.validate()?;
     let done = AtomicU64::new(0);
     let total = plane.x.len() as u64;
-    let points = plane
-        .x
-        .par_iter()
-        .map(|&x| {
-            monitor.check()?;
-            let point = match method {
-                Method::Simulation(c) => {
-                    search::simulated(plane, x, c, search, &OnlyCancel(monitor))?
-                }
-                Method::Averaging(_) | Method::Exact => analytic::analytic(plane, x, method)?,
-            };
-            let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-            monitor.progress(n, total);
-            monitor.finished(&point)?;
-            Ok(point)
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let report = |point: &BoundaryPoint| {
+        let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+        monitor.progress(n, total);
+        monitor.finished(point)
+    };
+    let points = match method {
+        Method::Simulation(c) => {
+            // the searches of lanes/2 abscissae advanced together (two runs each at a time),
+            // fewer when the threads would otherwise lack abscissae
+            let threads = rayon::current_num_threads().max(1);
+            let per = (c.lanes.width()? / 2)
+                .min(plane.x.len().div_ceil(threads))
+                .max(1);
+            let groups = plane
+                .x
+                .par_chunks(per)
+                .map(|xs| {
+                    monitor.check()?;
+                    search::simulated(plane, xs, c, search, &OnlyCancel(monitor), &report)
+                })
+                .collect::<Result<Vec<_>>>()?;
+            groups.into_iter().flatten().collect()
+        }
+        Method::Averaging(_) | Method::Exact => plane
+            .x
+            .par_iter()
+            .map(|&x| {
+                monitor.check()?;
+                let point = analytic::analytic(plane, x, method)?;
+                report(&point)?;
+                Ok(point)
+            })
+            .collect::<Result<Vec<_>>>()?,
+    };
     Ok(Boundary {
         method: method.name(),
         points,
