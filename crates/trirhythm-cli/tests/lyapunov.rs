@@ -156,6 +156,10 @@ fn bad_input_names_the_flag() {
         (vec!["lyapunov", "--paths", "0"], "--paths"),
         (vec!["lyapunov", "--dt", "1"], "--dt"),
         (vec!["lyapunov", "--separation", "0.1"], "--separation"),
+        (
+            vec!["lyapunov", "--lanes", "2"],
+            "--lanes = 2: allowed range is 1, 4 or 8",
+        ),
         (vec!["lyapunov", "--sweep", "D=1:0:3"], "--sweep"),
         (vec!["critical-noise", "--d-range", "2:1"], "--d-range"),
         (
@@ -167,5 +171,43 @@ fn bad_input_names_the_flag() {
         assert_eq!(out.status.code(), Some(2), "{args:?}");
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(stderr.contains(needle), "{args:?}: {stderr}");
+    }
+}
+
+/// Both methods give the same exponents, path by path, with the paths in lanes or one after the
+/// other (`--lanes`).
+#[test]
+fn every_lane_count_gives_the_same_exponents() {
+    for method in ["two-trajectory", "tangent"] {
+        let run = |lanes: &str| {
+            let doc = ok_json(&[
+                "lyapunov",
+                "--preset",
+                "fig17a",
+                "--param",
+                "D=0.1",
+                "--paths",
+                "5",
+                "--t-end",
+                "40",
+                "--transient",
+                "5",
+                "--u0",
+                "3",
+                "--method",
+                method,
+                "--lanes",
+                lanes,
+            ]);
+            (
+                doc["lle"].clone(),
+                doc["per_path"].clone(),
+                doc["running"].clone(),
+            )
+        };
+        let one = run("1");
+        assert!(one.0["value"].is_number(), "{method}: {:?}", one.0);
+        assert_eq!(one, run("4"), "{method}");
+        assert_eq!(one, run("8"), "{method}");
     }
 }

@@ -96,6 +96,10 @@ fn bad_input_exits_2_naming_the_flag_and_its_range() {
             "--tolerance = 0: allowed range is (0, 0.1]",
         ),
         (vec!["--dt", "1"], "--dt = 1: allowed range is [1e-4, 0.1]"),
+        (
+            vec!["--lanes", "0"],
+            "--lanes = 0: allowed range is 1, 4 or 8",
+        ),
         (vec!["--x", "r=0.9:0.95:0"], "--x: COUNT"),
         (
             vec!["--x", "r=0.9:0.95:1"],
@@ -122,5 +126,39 @@ fn bad_input_exits_2_naming_the_flag_and_its_range() {
         assert_eq!(out.status.code(), Some(2), "{full:?}");
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains(needle), "{full:?}: {err}");
+    }
+}
+
+/// The simulated boundary and the classified grid are the same with the simulations in lanes
+/// and one after the other (`--lanes`).
+#[test]
+fn every_lane_count_gives_the_same_output() {
+    for grid in [false, true] {
+        let run = |lanes: &str| {
+            let mut args = vec![
+                "oscillation",
+                "--preset",
+                "fig15",
+                "--x",
+                "lambda=0.95:1:3",
+                "--method",
+                "simulation",
+                "--lanes",
+                lanes,
+            ];
+            if grid {
+                args.extend(["--grid", "--y", "mu0=0.001:0.1:6"]);
+            } else {
+                args.extend(["--y", "mu0=0.001:0.3"]);
+            }
+            ok(&args)
+        };
+        let one = run("1");
+        assert!(
+            one.lines().filter(|l| !l.starts_with('#')).count() > 3,
+            "{one}"
+        );
+        assert_eq!(one, run("4"), "grid {grid}");
+        assert_eq!(one, run("8"), "grid {grid}");
     }
 }

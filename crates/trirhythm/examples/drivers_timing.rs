@@ -13,8 +13,9 @@
 //!   lane (coefficients lane by lane; the same fig13a paths, μ0 changed in its last digits so
 //!   that the lanes' problems differ): 8 paths, λ = 0.998, D = 0.1, τ = 0.5, the stepper alone.
 //!
-//! `cargo run --release -p trirhythm --example drivers_timing [-- rounds [scale]]` (default 3
-//! rounds; `scale` < 1 shortens every run, for a smoke test).
+//! `cargo run --release -p trirhythm --example drivers_timing [-- rounds [scale [case]]]`
+//! (default 3 rounds; `scale` < 1 shortens every run, for a smoke test; `case` one of
+//! `tangent`, `two`, `boundary`, `classify`, `step` runs that case alone, e.g. for a profiler).
 
 use std::time::Instant;
 use trirhythm::analysis::lyapunov::{largest_lyapunov, LyapunovMethod, LyapunovSpec};
@@ -101,6 +102,8 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let rounds: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(3);
     let scale: f64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(1.0);
+    let only = args.get(3).cloned();
+    let wanted = |case: &str| only.as_deref().is_none_or(|o| o == case);
     let isa = if std::arch::is_x86_feature_detected!("avx2") {
         "AVX2"
     } else {
@@ -224,24 +227,36 @@ fn main() {
     );
     for _ in 0..rounds {
         pool.install(|| {
-            for (k, w) in [1, 4, 8].into_iter().enumerate() {
-                tangent.record(k, lyap(LyapunovMethod::Tangent, w));
+            if wanted("tangent") {
+                for (k, w) in [1, 4, 8].into_iter().enumerate() {
+                    tangent.record(k, lyap(LyapunovMethod::Tangent, w));
+                }
             }
-            for (k, w) in [1, 8].into_iter().enumerate() {
-                two.record(k, lyap(LyapunovMethod::TwoTrajectory, w));
+            if wanted("two") {
+                for (k, w) in [1, 8].into_iter().enumerate() {
+                    two.record(k, lyap(LyapunovMethod::TwoTrajectory, w));
+                }
             }
-            for (k, w) in [1, 4, 8].into_iter().enumerate() {
-                bnd.record(k, search(w));
+            if wanted("boundary") {
+                for (k, w) in [1, 4, 8].into_iter().enumerate() {
+                    bnd.record(k, search(w));
+                }
             }
-            for (k, w) in [1, 4, 8].into_iter().enumerate() {
-                cls.record(k, classify(w));
+            if wanted("classify") {
+                for (k, w) in [1, 4, 8].into_iter().enumerate() {
+                    cls.record(k, classify(w));
+                }
             }
-            lane_step.record(0, step(false, 1));
-            lane_step.record(1, step(false, 8));
-            lane_step.record(2, step(true, 8));
+            if wanted("step") {
+                lane_step.record(0, step(false, 1));
+                lane_step.record(1, step(false, 8));
+                lane_step.record(2, step(true, 8));
+            }
         });
     }
     for c in [&tangent, &two, &bnd, &cls, &lane_step] {
-        c.report();
+        if c.result.is_some() {
+            c.report();
+        }
     }
 }

@@ -6,7 +6,9 @@ use crate::error::bad;
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
-use trirhythm::engine::{Barrier, ImpactMemory, PredictorCorrector, Problem, System};
+use trirhythm::engine::{
+    Barrier, ImpactMemory, Lanes, PredictorCorrector, Problem, System, LANE_WIDTHS,
+};
 use trirhythm::model::{preset, Params};
 use trirhythm::theory::averaging::Variant;
 use trirhythm_paper::requests::{MemoryKind, Model};
@@ -303,4 +305,16 @@ pub fn guard_step(problem: &Problem, method: &PredictorCorrector) -> Result<Vec<
         eprintln!("warning: {w}");
     }
     Ok(warnings)
+}
+
+/// `--lanes`: the paths or simulations stepped together, 1, 4 or 8 (none: the library's
+/// default, [`Lanes::Auto`]).
+pub fn lanes(w: Option<usize>) -> Result<Lanes> {
+    match w {
+        None => Ok(Lanes::Auto),
+        Some(w) => {
+            crate::error::allowed(LANE_WIDTHS.contains(&w), "--lanes", w, "1, 4 or 8")?;
+            Ok(Lanes::Width(w))
+        }
+    }
 }

@@ -13,7 +13,7 @@
 //! are a contract: keep them.
 
 use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs};
-use crate::error::{allowed, bad};
+use crate::error::bad;
 use crate::io::{emit, progress, Csv};
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
@@ -22,7 +22,6 @@ use std::time::Instant;
 use trirhythm::analysis::ensemble::{
     fingerprint, merge, run_paths, EnsembleResult, PathStats, Piece, WellsSpec,
 };
-use trirhythm::engine::{Lanes, LANE_WIDTHS};
 use trirhythm::monitor::Monitor;
 use trirhythm_paper::requests::EnsembleRequest;
 use trirhythm_paper::views::{self, Comparisons};
@@ -159,13 +158,7 @@ impl EnsembleArgs {
             joint_bins: self.joint_bins,
             amplitude_max: self.amplitude_max,
             sample_every: self.sample_every,
-            lanes: match self.lanes {
-                None => Lanes::Auto,
-                Some(w) => {
-                    allowed(LANE_WIDTHS.contains(&w), "--lanes", w, "1, 4 or 8")?;
-                    Lanes::Width(w)
-                }
-            },
+            lanes: crate::args::lanes(self.lanes)?,
         })
     }
 

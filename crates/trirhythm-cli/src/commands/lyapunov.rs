@@ -83,6 +83,11 @@ pub struct LleArgs {
     /// Separation d₀ the perturbed copy is pulled back to, in [1e-12, 1e-4].
     #[arg(long, default_value_t = 1e-8, allow_hyphen_values = true)]
     pub separation: f64,
+    /// Paths stepped together: 1 (one after the other), 4 or 8 (default 8, the fastest
+    /// measured; the reference and its copy, or each path with its tangent, in lanes). The
+    /// exponents are the same bits for every choice.
+    #[arg(long, allow_hyphen_values = true)]
+    pub lanes: Option<usize>,
 }
 
 impl LleArgs {
@@ -128,6 +133,7 @@ impl LleArgs {
             renormalise_every: self.renormalise_every,
             separation: self.separation,
             method: self.method.into(),
+            lanes: crate::args::lanes(self.lanes)?,
             ..Default::default()
         };
         let problem = self.model.problem(&params)?.with_start(self.u0, 0.0)?;

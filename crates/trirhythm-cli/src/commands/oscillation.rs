@@ -61,6 +61,11 @@ pub struct OscillationArgs {
     /// What the memory does at impacts.
     #[arg(long = "impact-memory", value_enum, default_value_t = ImpactMemoryArg::Continuous)]
     pub impact_memory: ImpactMemoryArg,
+    /// Simulations stepped together: 1 (one after the other), 4 or 8 (default 8: the runs of a
+    /// row of the grid, or the probes of up to four abscissae's searches). The results are the
+    /// same bits for every choice.
+    #[arg(long, allow_hyphen_values = true)]
+    pub lanes: Option<usize>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = SimFormat::Csv)]
     pub format: SimFormat,
@@ -160,6 +165,7 @@ impl OscillationArgs {
         let mut classifier = Classifier::default();
         classifier.method.dt = self.dt;
         classifier.method.impact_memory = self.impact_memory.into();
+        classifier.lanes = crate::args::lanes(self.lanes)?;
         let template = Problem::from_params(&base)?.with_barrier(self.barrier.into())?;
         let plane = Plane::new(&template, (&kx, xs), (&ky, gy.start, gy.stop))?;
         let header = vec![

@@ -27,6 +27,30 @@
 //! portable arrays, against 49.2 / 31.4 and 47.7 / 29.1 with four; arrays compiled for AVX-512
 //! were 2–5 % slower than AVX2's (43.8 / 25.3), so they are not built.
 //!
+//! **Lanes of different problems.** The oscillation searches run several parameter values at
+//! once (μ0, λ, ω0 or r differing from lane to lane), which share no problem. The array phases
+//! are generic over where their coefficients come from ([`Coefficients`]): [`Shared`] reads the
+//! first path's (one problem, the ensembles and the Lyapunov realisations: the code as before),
+//! [`PerLane`] holds the coefficients of the polynomial μP, Δt, the weight w_r and ω² as arrays
+//! `[f64; L]`, so each lane performs the scalar stepper's operations with its own numbers and
+//! gives its own bits; the per-path phases are the scalar code and never shared anything.
+//! Grouping the simulations that share a problem instead would leave the searches nothing to
+//! group (every probe has its own parameter value). Polynomials of different forms (degree ≤ 7
+//! in U² against higher) cannot share one evaluation: such a group is stepped path by path.
+//! Measured (`examples/drivers_timing.rs`, 8 fig13a paths × 2·10⁵ steps, λ = 0.998, the stepper
+//! alone, one thread, medians of CPU time): shared 42.5 ns per path-step, per-lane 42.5 (μ0
+//! changed in its last digits so that the eight lanes' problems differ), scalar 61; and the
+//! shared step against the one before the generic coefficients (the same timing loop built from
+//! both, three alternations): 42.4 / 23.0 ns at λ = 0.998 / 1 before, 42.5 / 23.5 after — the
+//! same within the run-to-run spread.
+//!
+//! **Paths with their tangents** ([`step_group_tangent`], the tangent method of the Lyapunov
+//! exponent): the same phases, the tangent's linearised step beside the path's — μP and its
+//! slope at the start, at each pass's predictor and at the end evaluated in arrays across lanes,
+//! the tangent's passes lane by lane with the path's quantities of the step, its saltation at
+//! impacts and its memory per path by the scalar code ([`Stepper::step_with_tangent`] is split
+//! into the same phases, so the bits are the same by construction).
+//!
 //! What it gains: one path's step is bound by the latency of its dependency chain (two
 //! evaluations of P, two divisions, the memory's last addition); L independent chains overlap
 //! and their arithmetic shares the vector instructions. What it does not change: the memory's
@@ -42,8 +66,12 @@
 //! `tests/lanes.rs`: paths in lanes of 1, 4 and 8, in every position and batch split, give the
 //! scalar stepper's bits (U, V, counts, the whole memory) for random parameters with impacts,
 //! sticking, stiff steps, white, coloured and no noise, λ < 1 and λ = 1, both impact memories,
-//! the equivalent and Zhuravlev systems; the ensemble's statistics are identical for
-//! `--lanes 1`, 4 and 8.
+//! the equivalent and Zhuravlev systems, and so do groups of paths of different problems (each
+//! its own parameters, Δt, memory and system) and of polynomials of different forms; the
+//! ensemble's statistics and the Lyapunov exponents (both methods) are identical for
+//! `--lanes 1`, 4 and 8. The unit tests below: paths with their tangents in lanes of 4 and 8
+//! give `step_with_tangent`'s bits step by step (path, tangent state and tangent memory) over
+//! random parameters, with impacts, sticking and stiff steps.
 
 // element i of every array, lane by lane: the form the loop vectoriser takes and the scalar
 // stepper's expressions read the same
