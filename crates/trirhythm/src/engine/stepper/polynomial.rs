@@ -100,6 +100,7 @@ impl<const L: usize> LanePolynomial<L> {
     /// The polynomials `p` (at most L; the lanes beyond take the first's) side by side, or
     /// None when they are not all of one form (all short, or all long of one length): their
     /// evaluations would not be the same operations.
+    #[allow(clippy::needless_range_loop)]
     pub(super) fn new(p: &[&Polynomial]) -> Option<Self> {
         let first = *p.first()?;
         let lane = |i: usize| *p.get(i).unwrap_or(&first);
