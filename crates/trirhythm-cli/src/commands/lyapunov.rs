@@ -83,9 +83,9 @@ pub struct LleArgs {
     /// Separation d₀ the perturbed copy is pulled back to, in [1e-12, 1e-4].
     #[arg(long, default_value_t = 1e-8, allow_hyphen_values = true)]
     pub separation: f64,
-    /// Paths stepped together: 1 (one after the other), 4 or 8 (default 8, the fastest
-    /// measured; the reference and its copy, or each path with its tangent, in lanes). The
-    /// exponents are the same bits for every choice.
+    /// Paths stepped together: 1 (one after the other), 4 or 8 (default the fastest measured:
+    /// 8 for the reference and its copy, 4 for each path with its tangent). The exponents are
+    /// the same bits for every choice.
     #[arg(long, allow_hyphen_values = true)]
     pub lanes: Option<usize>,
 }

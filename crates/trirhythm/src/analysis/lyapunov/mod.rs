@@ -185,8 +185,8 @@ pub struct LyapunovSpec {
     pub method: LyapunovMethod,
     /// How many paths are stepped together ([`Lanes`]; the default suits the CPU): with two
     /// trajectories, the reference and its copy in neighbouring lanes, several realisations a
-    /// group; with the tangent method, each path with its tangent in a lane. The exponents do
-    /// not depend on it.
+    /// group; with the tangent method, each path with its tangent in a lane (`Auto` is four
+    /// there: measured faster than eight). The exponents do not depend on it.
     pub lanes: Lanes,
 }
 
@@ -513,9 +513,11 @@ pub fn run_paths(
     }
     if spec.method == LyapunovMethod::Tangent && lanes > 1 {
         // each path with its tangent in a lane, `lanes` realisations a group (narrower with few
-        // realisations, as above)
+        // realisations, as above); `Auto` takes four: measured faster than eight for the
+        // tangent (docs/numerics.md, Speed)
         let threads = rayon::current_num_threads().max(1);
         let lanes = match paths.len().div_ceil(threads) {
+            _ if spec.lanes == Lanes::Auto => 4,
             per if lanes == 8 && per <= 4 => 4,
             _ => lanes,
         };
