@@ -234,8 +234,8 @@ struct Pass {
     v1: f64,
 }
 
-/// [`Rhs::pass_with`] with ω² = `omega2` given (the lane stepper's lanes may each have their
-/// own).
+/// [`Rhs::pass`] with μP(up) = `a` and ω² = `omega2` given (the lane stepper evaluates μP for
+/// several paths at once, and its lanes may each have their own ω²).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn pass_with(
@@ -302,23 +302,7 @@ impl Rhs {
         w: f64,
         fr: f64,
     ) -> Pass {
-        self.pass_with(self.damping(up), len, (u, v, g0), up, known, w, fr)
-    }
-
-    /// [`Rhs::pass`] with μP(up) = `a` given (the lane stepper evaluates it for several paths
-    /// at once).
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn pass_with(
-        &self,
-        a: f64,
-        len: f64,
-        (u, v, g0): (f64, f64, f64),
-        up: f64,
-        known: f64,
-        w: f64,
-        fr: f64,
-    ) -> Pass {
+        let a = self.damping(up);
         pass_with(self.omega2, a, len, (u, v, g0), up, known, w, fr)
     }
 
