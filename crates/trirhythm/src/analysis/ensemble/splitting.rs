@@ -100,11 +100,32 @@ impl Cores {
     }
 }
 
+/// What a walker reports after each step: the splitting's score variable (every step) and,
+/// at its observation points, the amplitude that sets the labels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Observation {
+    /// The reaction coordinate of the splitting's levels (an amplitude ≥ 0), every step.
+    pub score: f64,
+    /// The label variable (an amplitude ≥ 0, the cores' coordinate) when the step ends at an
+    /// observation point (a turning point), else `None`.
+    pub label: Option<f64>,
+}
+
+impl Observation {
+    /// One variable for both: the score and, every step, the label.
+    #[inline]
+    pub fn every_step(a: f64) -> Self {
+        Observation {
+            score: a,
+            label: Some(a),
+        }
+    }
+}
+
 /// A path whose whole state can be cloned and whose future noise can be redrawn.
 pub trait Walker: Clone + Send + Sync {
-    /// Advance one step; the order parameter (an amplitude ≥ 0) when the step ends at an
-    /// observation point (a turning point), else `None`.
-    fn advance(&mut self) -> Result<Option<f64>>;
+    /// Advance one step: its score and, at an observation point, its label amplitude.
+    fn advance(&mut self) -> Result<Observation>;
     /// Draw the future noise from stream `stream` of `seed`, keeping the state.
     fn renoise(&mut self, seed: u64, stream: u64);
 }
@@ -291,7 +312,7 @@ pub(super) fn well_path<W: Walker>(
     let mut home = w.clone();
     let mut restarts = 0u64;
     for n in 0..sp.burn {
-        if let Some(a) = w.advance()? {
+        if let Some(a) = w.advance()?.label {
             match wells.core_of(a) {
                 Some(k) if k == well => armed = true,
                 Some(_) => {
@@ -311,7 +332,7 @@ pub(super) fn well_path<W: Walker>(
     // the burn-in ends at the first observation inside the core (the window's first home)
     let mut extra = 0u64;
     loop {
-        if let Some(a) = w.advance()? {
+        if let Some(a) = w.advance()?.label {
             extra += 1;
             match wells.core_of(a) {
                 Some(k) if k == well => break,
@@ -342,7 +363,8 @@ pub(super) fn well_path<W: Walker>(
     home = w.clone();
     let burn_restarts = restarts;
     for n in 0..sp.window {
-        if let Some(a) = w.advance()? {
+        let o = w.advance()?;
+        if let Some(a) = o.label {
             match wells.core_of(a) {
                 Some(k) if k == well => {
                     if !armed {
@@ -370,11 +392,11 @@ pub(super) fn well_path<W: Walker>(
                     seen[k] += 1;
                     // reservoir sampling: each exit kept with probability clones / seen
                     if exits[k].len() < sp.clones {
-                        exits[k].push((w.clone(), a));
+                        exits[k].push((w.clone(), o.score));
                     } else {
                         let j = draws.below(seen[k] as usize);
                         if j < sp.clones {
-                            exits[k][j] = (w.clone(), a);
+                            exits[k][j] = (w.clone(), o.score);
                         }
                     }
                 }
@@ -415,19 +437,30 @@ struct Excursion<W> {
     success: bool,
     unended: bool,
     steps: u64,
-    /// The state at the first observation whose score exceeds the asked level, with that score.
-    branch: Option<(W, f64)>,
+    /// Where a replay asked for a level stopped: the state at the first step whose score
+    /// exceeds the level, with that score, or the landing in the target core first (a success:
+    /// the target's score is +∞).
+    branch: Option<Branch<W>>,
+}
+
+/// A branch point found by a replay.
+enum Branch<W> {
+    /// The state at the first step above the level, and its score.
+    Above(W, f64),
+    /// The replay landed in the target core before its finite score passed the level.
+    Landed,
 }
 
 /// Run the excursion of `start` (score `start_score`) with stream `stream` until it lands in a
-/// core, or, when `above` is given, until its first observation with a score above it.
+/// core (by its label), or, when `above` is given, until its first step with a score above it.
+/// The landing step ends the excursion before its score counts: a landing is scored +∞ (the
+/// target) or ends the path (any other core), so run and replay agree step by step.
 #[allow(clippy::too_many_arguments)]
 fn excursion<W: Walker>(
     start: &W,
     start_score: f64,
     stream: u64,
     seed: u64,
-    from: usize,
     to: usize,
     d: Direction,
     wells: &Cores,
@@ -437,33 +470,32 @@ fn excursion<W: Walker>(
     let mut w = start.clone();
     w.renoise(seed, stream);
     let mut max = start_score;
-    let _ = from;
     for n in 1..=max_steps {
-        if let Some(a) = w.advance()? {
-            let s = d.score(a);
-            if let Some(z) = above {
-                if s > z {
-                    return Ok(Excursion {
-                        max: s,
-                        success: false,
-                        unended: false,
-                        steps: n,
-                        branch: Some((w, s)),
-                    });
-                }
-            }
-            if s > max {
-                max = s;
-            }
-            if let Some(k) = wells.core_of(a) {
+        let o = w.advance()?;
+        if let Some(k) = o.label.and_then(|a| wells.core_of(a)) {
+            let success = k == to;
+            return Ok(Excursion {
+                max,
+                success,
+                unended: false,
+                steps: n,
+                branch: (success && above.is_some()).then_some(Branch::Landed),
+            });
+        }
+        let s = d.score(o.score);
+        if let Some(z) = above {
+            if s > z {
                 return Ok(Excursion {
-                    max,
-                    success: k == to,
+                    max: s,
+                    success: false,
                     unended: false,
                     steps: n,
-                    branch: None,
+                    branch: Some(Branch::Above(w, s)),
                 });
             }
+        }
+        if s > max {
+            max = s;
         }
     }
     Ok(Excursion {
@@ -530,7 +562,6 @@ pub(super) fn ams<W: Walker>(
             r.start_score,
             r.stream,
             sp.seed,
-            from,
             to,
             d,
             wells,
@@ -582,20 +613,32 @@ pub(super) fn ams<W: Walker>(
             let parent = survivors[draws.below(survivors.len())];
             let branch = if reps[parent].start_score > z {
                 // the parent starts above the level: the branch starts where it does
-                Some((reps[parent].start.clone(), reps[parent].start_score))
+                Some(Branch::Above(
+                    reps[parent].start.clone(),
+                    reps[parent].start_score,
+                ))
             } else {
                 let e = run(&reps[parent], Some(z))?;
                 t.steps += e.steps;
                 e.branch
             };
-            let Some((w, s)) = branch else {
-                return Err(Error::Undefined {
-                    what: "an AMS branch",
-                    why:
-                        "the replay of a survivor did not pass its own maximum (the walker is not \
-                          deterministic given its stream)"
+            let (w, s, landed) = match branch {
+                Some(Branch::Above(w, s)) => (w, s, false),
+                // the parent entered the target before its score passed the level: the branch
+                // is that success
+                Some(Branch::Landed) => (
+                    reps[parent].start.clone(),
+                    reps[parent].start_score,
+                    true,
+                ),
+                None => {
+                    return Err(Error::Undefined {
+                        what: "an AMS branch",
+                        why: "the replay of a survivor did not pass its own maximum (the walker \
+                              is not deterministic given its stream)"
                             .into(),
-                });
+                    })
+                }
             };
             let mut r = Replica {
                 start: w,
@@ -604,8 +647,7 @@ pub(super) fn ams<W: Walker>(
                 max: f64::NEG_INFINITY,
                 success: false,
             };
-            if wells.core_of(s.abs()) == Some(to) {
-                // branched where the parent entered the target: a success already
+            if landed {
                 r.max = f64::INFINITY;
                 r.success = true;
             } else {
@@ -739,10 +781,10 @@ mod tests {
     }
 
     impl Walker for Ruin {
-        fn advance(&mut self) -> Result<Option<f64>> {
+        fn advance(&mut self) -> Result<Observation> {
             self.draws = stream(self.draws, 0, 3, 0);
             self.x += if self.draws >> 63 == 1 { 1 } else { -1 };
-            Ok(Some(self.x as f64))
+            Ok(Observation::every_step(self.x as f64))
         }
         fn renoise(&mut self, seed: u64, s: u64) {
             self.draws = stream(seed, 0, s, 0);
