@@ -63,9 +63,9 @@ impl Sizes {
 
     /// The well decomposition's sizes where the direct ensemble is not stationary: `paths`
     /// replicas of one path per well of `length` time units (after `burn_in`), and its
-    /// splitting: 1000 replicas per transition and at most 20000 iterations (full quality:
-    /// enough to bound a rate that dies out below 10⁻⁷ of the flux, at a bounded cost) or 8
-    /// replicas (`--quick`, 100 time units).
+    /// splitting: 200 replicas per transition and at most 700 iterations, each killing a tenth
+    /// (full quality: probabilities resolved or bounded down to ≈ 10⁻³², at a bounded cost) or
+    /// 8 replicas (`--quick`, 100 time units).
     pub fn wells(&self) -> (f64, WellsSpec) {
         if self.t_end <= 1000.0 {
             (
@@ -79,8 +79,8 @@ impl Sizes {
             (
                 5000.0,
                 WellsSpec {
-                    clones: 1000,
-                    max_iterations: 20_000,
+                    clones: 200,
+                    max_iterations: 700,
                     ..Default::default()
                 },
             )

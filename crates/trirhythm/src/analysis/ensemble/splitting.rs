@@ -8,27 +8,40 @@
 //! the wells' stationary weights; it must be estimated without waiting 1/k_ij for a jump.
 //!
 //! # Method
-//! The order parameter is the amplitude `a` that the walker reports at its observation points
-//! (the turning amplitude of the oscillator, once per half-cycle). Well i's *core* is
-//! [`Wells::core`]; a path's label is the last core it visited (the hysteresis of the
-//! ensemble's first passages).
+//! A walker reports two variables ([`Observation`]): the *label* amplitude `a` at its
+//! observation points (the turning amplitude of the oscillator, once per half-cycle), which
+//! sets the cores and the labels, and the *score* after every step, which sets the splitting's
+//! levels. Well i's *core* is an interval of `a` ([`Cores`]); a path's label is the last core it
+//! visited (the hysteresis of the ensemble's first passages).
 //! - **Flux out of the core.** One path per well and replica runs `burn` steps, then `window`
 //!   steps in label i. An *exit* upward (downward) is the first observation above (below) the
 //!   core after an observation inside it; Φ_i^± = exits / (window · Δt). Up to `clones` exit
-//!   states are kept by reservoir sampling (uniform over the exits) as whole cloned walkers.
-//!   Should the path reach another core it is restarted from its latest re-entry into core i
-//!   (the state is kept in label i: killed and restarted).
+//!   states are kept by reservoir sampling (uniform over the exits) as whole cloned walkers,
+//!   with their score. Should the path reach another core it is restarted from its latest
+//!   re-entry into core i (the state is kept in label i: killed and restarted).
 //! - **Probability of reaching the neighbour.** From the exit states, excursions run until
-//!   they land in a core: the target (the neighbouring well's core, i ± 1) is a success, core
-//!   i or any other core a failure. AMS with N = `clones` replicas (Cérou & Guyader 2007; the
-//!   generalised, tie-safe form of Bréhier, Gazeau, Goudenège, Lelièvre & Rousset 2016): at
-//!   each iteration the level z is the lowest maximum of the score (±a) among the replicas;
-//!   every replica whose maximum is ≤ z (K of them) is killed and replaced by a branch of a
-//!   uniformly drawn survivor, cloned at its first observation above z and continued with a
-//!   fresh noise stream (the clone keeps the whole state; [`Walker::renoise`] changes only the
-//!   future noise). The estimate p = Π_n (1 − K_n/N) · (successes at the end)/N is unbiased.
-//!   The state at the first crossing of z is recovered by replaying the survivor's excursion
-//!   from its own start with its own stream (deterministic), so a replica holds one clone.
+//!   they land in a core (by their label): the target (the neighbouring well's core, i ± 1) is a
+//!   success, core i or any other core a failure; the landing step ends the excursion (a
+//!   success scores +∞). Generalised AMS with N = `clones` replicas (Cérou & Guyader 2007;
+//!   Bréhier, Gazeau, Goudenège, Lelièvre & Rousset 2016): at each iteration the level z is the
+//!   k-th lowest maximum of the score (±score) among the replicas, k = ⌈[`KILL_FRACTION`]·N⌉;
+//!   every replica whose maximum is ≤ z (K ≥ k of them, ties included) is killed and replaced
+//!   by a branch of a uniformly drawn survivor, cloned at its first step with a score above z
+//!   and continued with a fresh noise stream (the clone keeps the whole state;
+//!   [`Walker::renoise`] changes only the future noise). The estimate
+//!   p = Π_n (1 − K_n/N) · (successes at the end)/N is unbiased for any score that is a function
+//!   of the walker's state. The state at the first crossing of z is recovered by replaying the
+//!   survivor's excursion from its own start with its own stream (deterministic), so a replica
+//!   holds one clone.
+//! - **The score.** A score whose short-time increments are deterministic (smooth in time, as
+//!   every amplitude of an oscillator driven by coloured noise is) makes the branches of a
+//!   survivor cloned at its own maximum fall back together: all replicas end with the same
+//!   maximum and the splitting dies out (every replica killed: p = 0 for that run). Setting the
+//!   level at the k-th lowest maximum rather than the lowest puts it below most survivors'
+//!   maxima, so branches start while their parents still climb.
+//! - **Resolution.** Where every replica died out, or any stopped at `max_iterations`, the
+//!   splitting only bounds p by the estimated probability of passing the farthest level it
+//!   reached ([`Transition::level_probability`]); the caller decides whether the bound matters.
 //! - **Rate.** k_{i,i±1} = Φ_i^± p_i^±. Transitions that jump over a well are counted as
 //!   failures: the rates of a birth–death chain.
 //!
@@ -43,7 +56,8 @@
 //! # Tests
 //! `tests/wells.rs`: the rates of the averaged amplitude diffusion dA = m1 dt + √σ1 dW (the
 //! theory's m1, σ1) against its exact mean first-passage times over more than six decades;
-//! unit tests below: AMS on a random walk with a closed-form hitting probability.
+//! unit tests below: AMS (with k = ⌈0.1 N⌉) on a random walk with a closed-form hitting
+//! probability.
 
 use super::spec::Wells;
 use crate::error::{Error, Result};
@@ -421,6 +435,19 @@ pub(super) fn well_path<W: Walker>(
     ))
 }
 
+/// The fraction of the AMS replicas killed at each iteration (at least one): the level is the
+/// k-th lowest maximum, k = ⌈fraction·N⌉. Killing more than the lowest one sets the level below
+/// most survivors' maxima, so that a branch starts where its parent was still climbing: with a
+/// smooth score (the phase-averaged amplitude) the branches of a parent cloned at its very
+/// maximum would all fall back together and the splitting die out. The estimator stays
+/// unbiased for every k (Bréhier et al. 2016).
+pub const KILL_FRACTION: f64 = 0.1;
+
+/// k of [`KILL_FRACTION`] for `n` replicas: ⌈fraction·n⌉, at least 1, below n.
+fn kill_count(n: usize) -> usize {
+    ((KILL_FRACTION * n as f64).ceil() as usize).clamp(1, n.saturating_sub(1).max(1))
+}
+
 /// One AMS replica: where its excursion starts, its stream, its best score and fate.
 #[derive(Clone)]
 struct Replica<W> {
@@ -589,9 +616,12 @@ pub(super) fn ams<W: Walker>(
     let mut log_p = 0.0f64;
     loop {
         monitor.check()?;
-        let z = reps.iter().map(|r| r.max).fold(f64::INFINITY, f64::min);
+        // the level: the k-th lowest maximum (k = ⌈KILL_FRACTION·N⌉)
+        let mut maxes: Vec<f64> = reps.iter().map(|r| r.max).collect();
+        let k = kill_count(n);
+        let (_, &mut z, _) = maxes.select_nth_unstable_by(k - 1, f64::total_cmp);
         if z == f64::INFINITY {
-            break; // every replica reached the target
+            break; // all but fewer than k replicas reached the target (the rest fail)
         }
         let killed: Vec<usize> = (0..n).filter(|&k| reps[k].max <= z).collect();
         if killed.len() == n {

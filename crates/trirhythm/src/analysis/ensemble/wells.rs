@@ -11,9 +11,29 @@
 //! fraction of time with that label.
 //!
 //! # Method
+//! - **The simulation's wells.** The theory's wells (modes and antimodes of its P(A)) are
+//!   candidates: a pilot path per theory well starts at its mode. A well the pilot leaves for
+//!   another well's core within [`MIN_STAY`] turning points (it relaxes there) is *missing* in
+//!   the simulation — a finding about the theory, reported in [`WellsEstimate::missing`] and
+//!   the notes; the decomposition runs over the remaining wells, each missing well's region
+//!   joined to the well its pilot settled in. Refused only when a pilot settles in no well's
+//!   core, or stays but spends less than [`MIN_INSIDE`] of its turning points in its core: the
+//!   simulation visits amplitudes that no well covers. The pilot's turning amplitudes in its
+//!   well set the core ([q, 1 − q] quantiles).
 //! - **Labels.** A path's label is the last well core its turning amplitude visited
 //!   ([`Wells::core`]), the hysteresis of the direct ensemble's first passages. Every sample
 //!   has exactly one label, so P = Σ π_i P_i holds exactly.
+//! - **Score of the splitting.** The levels of the splitting are set by the phase-averaged
+//!   energy amplitude Ā(t) = (1/T) ∫_{t−T}^{t} A_E, A_E = √(U² + (U̇/ω1)²), T = 2π/ω1 (ω1 the
+//!   equivalent frequency): A_E is the amplitude variable of the averaging ansatz
+//!   U = A cos(ω1 t + φ), and its average over a period is the theory's slow amplitude A. It
+//!   moves every step (the turning amplitude, once per half-cycle, made every branch start at a
+//!   turning point, and on a strongly contracting cycle all branches fell back: the splitting
+//!   died about three standard deviations past the core). A_E itself swings within a cycle
+//!   (impacts, the nonlinear stiffness) by far more than the noise moves it, so its levels
+//!   follow the phase, not the progress toward the neighbour; the average over a period
+//!   removes that swing. The window of A_E is part of the cloned state, so the score is a
+//!   function of the state and the splitting stays unbiased.
 //! - **Conditional statistics P_i.** For each of `spec.paths` independent replicas, one path
 //!   per well starts at the well's mode (U = m_i, U̇ = 0), discards `burn_in`, and records
 //!   `length` time units in label i with the direct ensemble's recorder (moments, densities of
@@ -33,15 +53,18 @@
 //!   density, moments, occupancies) is a function of the replicas' sums and gets its
 //!   delete-one jackknife standard error over the replicas. The per-unit amplitude histograms
 //!   handed to the theory comparison are each replica's own mixture (Σ_i π_i^ρ P_i^ρ).
-//! - **Validity.** The decomposition is refused (`valid` false, with the reasons) when a rate
-//!   between neighbours is zero and, set to its bound (the flux times the estimated probability
-//!   of passing the farthest level the splitting reached), would move a weight by more than
-//!   [`MAX_WEIGHT_SHIFT`], or the weights are undetermined, or an AMS is unfinished, when a well's path saw fewer than
-//!   [`MIN_EXITS`] exits toward a neighbour, when a well's conditional statistics are not
-//!   stationary by the direct diagnosis (R̂ over the replicas, drift), or when the mean
-//!   residence time 1/Σ_j k_ij of a well is not at least `separation` times its relaxation
-//!   time (sampled time over the effective sample size of A): the rates must be slow against
-//!   the relaxation inside the wells for P_i to be the quasi-stationary density.
+//! - **Validity.** A rate is *unresolved* when its splitting died out in every replica or
+//!   stopped at its iteration limit in any: it is taken as 0 and bounded by the flux times the
+//!   estimated probability of passing the farthest level reached (said in the notes). The
+//!   decomposition is refused (`valid` false, with the reasons) when such a bound, put in place
+//!   of the 0, would move a weight by more than [`MAX_WEIGHT_SHIFT`], or the weights are
+//!   undetermined (two groups of wells exchange no resolved transition), when a well's path saw
+//!   fewer than [`MIN_EXITS`] exits toward a neighbour, when the simulation visits amplitudes
+//!   no well covers (above), when a well's conditional statistics are not stationary by the
+//!   direct diagnosis (R̂ over the replicas, drift), or when the mean residence time
+//!   1/Σ_j k_ij of a well is not at least `separation` times its relaxation time (sampled time
+//!   over the effective sample size of A): the rates must be slow against the relaxation inside
+//!   the wells for P_i to be the quasi-stationary density.
 //!
 //! # Cost
 //! The paths cost replicas × wells × (burn-in + length); an AMS needs about
@@ -52,7 +75,8 @@
 //! `tests/wells.rs`: the averaged amplitude diffusion's rates against the exact mean
 //! first-passage times (six decades and more, known answer); a mixing panel where the direct
 //! ensemble is stationary: the two estimators agree in the weights and the density (extended);
-//! reproducibility; refusals (no wells, one replica).
+//! reproducibility; refusals (no wells, one replica, rates bounded by an iteration limit);
+//! unit tests below: when a bound moves the weights, which wells the simulation lacks.
 
 use super::merging::{assemble, jackknife, Density, EnsembleResult, Estimate, JointDensity};
 use super::recording::{Layout, PathStats, Recorder};
@@ -84,7 +108,9 @@ pub struct WellsSpec {
     pub clones: usize,
     /// Longest excursion in time units (counted as a failure beyond).
     pub max_excursion: f64,
-    /// Most AMS iterations per transition.
+    /// Most AMS iterations per transition; each kills a tenth of the replicas
+    /// ([`super::splitting::KILL_FRACTION`]), so n iterations resolve probabilities down to
+    /// about 0.9ⁿ (2000: 10⁻⁹¹).
     pub max_iterations: usize,
     /// Residence time needed, in units of a well's relaxation time.
     pub separation: f64,
@@ -98,7 +124,7 @@ impl Default for WellsSpec {
         WellsSpec {
             clones: 100,
             max_excursion: 10_000.0,
-            max_iterations: 200_000,
+            max_iterations: 2_000,
             separation: 10.0,
             core_quantile: 0.1,
         }
@@ -183,9 +209,10 @@ pub struct WellsResult {
     pub wells: WellsEstimate,
 }
 
-/// The oscillator as a [`Walker`]: its score is the energy amplitude
-/// A_E = √(U² + (U̇/ω1)²) after every step, its label the turning amplitude |U| at the maxima
-/// of |U|.
+/// The oscillator as a [`Walker`]: its score is the phase-averaged energy amplitude — the
+/// mean of A_E = √(U² + (U̇/ω1)²) over the last period 2π/ω1 — after every step, its label the
+/// turning amplitude |U| at the maxima of |U|. The window of A_E is part of the walker's state
+/// (cloned with it), so the score is a function of the state.
 #[derive(Clone)]
 struct Oscillator {
     s: Stepper,
@@ -193,6 +220,27 @@ struct Oscillator {
     crossing: bool,
     /// 1/ω1².
     inv_omega1_sq: f64,
+    /// The last period's A_E (a ring), its sum and the next slot.
+    window: Vec<f64>,
+    sum: f64,
+    next: usize,
+    filled: usize,
+}
+
+impl Oscillator {
+    fn new(s: Stepper, crossing: bool, omega1: f64, dt: f64) -> Self {
+        let len = (std::f64::consts::TAU / (omega1 * dt)).round().max(1.0) as usize;
+        Oscillator {
+            s,
+            rising: false,
+            crossing,
+            inv_omega1_sq: 1.0 / (omega1 * omega1),
+            window: vec![0.0; len],
+            sum: 0.0,
+            next: 0,
+            filled: 0,
+        }
+    }
 }
 
 impl Walker for Oscillator {
@@ -204,8 +252,20 @@ impl Walker for Oscillator {
         let rising = side * v > 0.0;
         let turning = self.rising && !rising;
         self.rising = rising;
+        let a = (u * u + v * v * self.inv_omega1_sq).sqrt();
+        let n = self.window.len();
+        self.sum += a - self.window[self.next];
+        self.window[self.next] = a;
+        self.next = if self.next + 1 == n { 0 } else { self.next + 1 };
+        if self.filled < n {
+            self.filled += 1;
+        }
+        if self.next == 0 {
+            // once a period, the sum afresh (no drift of rounding)
+            self.sum = self.window.iter().sum();
+        }
         Ok(Observation {
-            score: (u * u + v * v * self.inv_omega1_sq).sqrt(),
+            score: self.sum / self.filled as f64,
             label: turning.then(|| u.abs()),
         })
     }
@@ -281,12 +341,7 @@ pub fn run_wells(
     let oscillator = |mode: f64, path: u64| -> Result<Oscillator> {
         let start = (mode, 0.0);
         let s = Stepper::with_history(problem, method, start, (spec.seed, path), history.clone())?;
-        Ok(Oscillator {
-            s,
-            rising: false,
-            crossing,
-            inv_omega1_sq: 1.0 / (omega1 * omega1),
-        })
+        Ok(Oscillator::new(s, crossing, omega1, dt))
     };
     // 0. a pilot path per theory well: where it settles (the fraction of its turning
     // amplitudes in each well's core) and, in its own well, the core
@@ -298,29 +353,43 @@ pub fn run_wells(
         .map(|i| {
             let mut w = oscillator(theory_wells.modes[i], 0)?;
             w.renoise(spec.seed, stream(u64::MAX, i, 3, 0));
+            // every turning amplitude after the burn-in, and those before the first landing in
+            // another well's core (the pilot's time in label i)
             let mut seen = Vec::new();
+            let mut own = Vec::new();
+            let mut stay: Option<u64> = None;
+            let mut turnings = 0u64;
             for n in 0..pilot_steps {
                 if let Some(a) = w.advance()?.label {
+                    turnings += 1;
+                    if stay.is_none() {
+                        let k = theory_wells.well_of(a);
+                        let (lo, hi) = theory_wells.core(k);
+                        if k != i && a >= lo && a <= hi {
+                            stay = Some(turnings - 1);
+                        }
+                    }
                     if n >= sizes.burn {
                         seen.push(a);
+                        if stay.is_none() {
+                            own.push(a);
+                        }
                     }
                 }
                 if n % (1 << 16) == 0 {
                     monitor.check()?;
                 }
             }
-            let share: Vec<f64> = (0..nt)
-                .map(|k| {
-                    let (lo, hi) = theory_wells.core(k);
-                    seen.iter().filter(|&&a| a >= lo && a <= hi).count() as f64
-                        / seen.len().max(1) as f64
-                })
-                .collect();
+            let in_core = |k: usize, of: &[f64]| {
+                let (lo, hi) = theory_wells.core(k);
+                of.iter().filter(|&&a| a >= lo && a <= hi).count() as f64 / of.len().max(1) as f64
+            };
+            let share: Vec<f64> = (0..nt).map(|k| in_core(k, &seen)).collect();
+            let inside = in_core(i, &own);
             let (lo, hi) = theory_wells.core(i);
-            seen.sort_by(f64::total_cmp);
-            let q =
-                |f: f64| seen[((f * (seen.len() - 1) as f64).round() as usize).min(seen.len() - 1)];
-            let core = if seen.len() >= 10 && share[i] >= 0.5 {
+            own.sort_by(f64::total_cmp);
+            let q = |f: f64| own[((f * (own.len() - 1) as f64).round() as usize).min(own.len() - 1)];
+            let core = if own.len() >= 10 && inside >= MIN_INSIDE {
                 (
                     q(wspec.core_quantile).max(lo),
                     q(1.0 - wspec.core_quantile).min(hi),
@@ -328,10 +397,15 @@ pub fn run_wells(
             } else {
                 (lo, hi)
             };
-            Ok(Pilot { share, core })
+            Ok(Pilot {
+                share,
+                inside,
+                stay,
+                core,
+            })
         })
         .collect::<Result<_>>()?;
-    let pilot_inside: Vec<f64> = pilots.iter().enumerate().map(|(i, p)| p.share[i]).collect();
+    let pilot_inside: Vec<f64> = pilots.iter().map(|p| p.inside).collect();
     let (kept, mut missing, mut refusals) = simulated_wells(&pilots);
     for m in &mut missing {
         m.mode = theory_wells.modes[m.well];
@@ -447,17 +521,28 @@ pub fn run_wells(
     ))
 }
 
-/// What a pilot path started at a theory well's mode saw after its burn-in.
+/// What a pilot path started at a theory well's mode saw.
 struct Pilot {
-    /// The fraction of its turning amplitudes in each theory well's core ([`Wells::core`]).
+    /// The fraction of its turning amplitudes after the burn-in in each theory well's core
+    /// ([`Wells::core`]).
     share: Vec<f64>,
-    /// Its own well's core for the labels: the quantiles of its turning amplitudes.
+    /// The fraction in its own well's core of those after the burn-in and before its first
+    /// landing in another well's core.
+    inside: f64,
+    /// Turning points before its first landing in another well's core (`None`: never).
+    stay: Option<u64>,
+    /// Its own well's core for the labels: the quantiles of its turning amplitudes in label i.
     core: (f64, f64),
 }
 
 /// Least fraction of a pilot's turning amplitudes in its own well's core for the simulation
 /// to have that well (and in another well's core for a missing well to be settled there).
 pub const MIN_INSIDE: f64 = 0.5;
+
+/// Fewest turning points a pilot started at a theory well's mode must stay before it first
+/// lands in another well's core for the simulation to have that well (50 periods: a well whose
+/// paths leave sooner is not metastable, it relaxes into the other well).
+pub const MIN_STAY: u64 = 100;
 
 /// A theory well that the simulation does not have: a path started at its mode relaxes into
 /// another well.
@@ -467,11 +552,11 @@ pub struct MissingWell {
     pub well: usize,
     /// Its mode.
     pub mode: f64,
-    /// The fraction of the pilot's turning amplitudes in the well's own core.
-    pub inside: f64,
+    /// Turning points the pilot stayed before it landed in another well's core.
+    pub stay: u64,
     /// The theory well whose core the pilot settled in.
     pub settled_in: usize,
-    /// The fraction of the pilot's turning amplitudes in that core.
+    /// The fraction of the pilot's turning amplitudes after its burn-in in that core.
     pub settled: f64,
 }
 
@@ -480,12 +565,20 @@ pub struct MissingWell {
 /// well covers), or in a core of another missing well.
 fn simulated_wells(pilots: &[Pilot]) -> (Vec<usize>, Vec<MissingWell>, Vec<String>) {
     let n = pilots.len();
-    let lacks = |i: usize| pilots[i].share[i] < MIN_INSIDE;
+    let left = |i: usize| pilots[i].stay.is_some_and(|s| s < MIN_STAY);
     let mut kept = Vec::new();
     let mut missing = Vec::new();
     let mut refusals = Vec::new();
     for (i, p) in pilots.iter().enumerate() {
-        if !lacks(i) {
+        if !left(i) {
+            if p.inside < MIN_INSIDE {
+                refusals.push(format!(
+                    "theory well {i}: a path started at its mode stayed, but only {:.0} % of its \
+                     turning points were in the well's core: the simulation visits amplitudes \
+                     that no well covers",
+                    100.0 * p.inside
+                ));
+            }
             kept.push(i);
             continue;
         }
@@ -493,21 +586,21 @@ fn simulated_wells(pilots: &[Pilot]) -> (Vec<usize>, Vec<MissingWell>, Vec<Strin
             .filter(|&k| k != i)
             .map(|k| (k, p.share[k]))
             .fold((i, 0.0), |b, x| if x.1 > b.1 { x } else { b });
-        if settled >= MIN_INSIDE && !lacks(j) {
+        if settled >= MIN_INSIDE && !left(j) {
             missing.push(MissingWell {
                 well: i,
                 mode: 0.0,
-                inside: p.share[i],
+                stay: p.stay.unwrap_or(0),
                 settled_in: j,
                 settled,
             });
         } else {
             let inside: f64 = p.share.iter().sum();
             refusals.push(format!(
-                "theory well {i}: a path started at its mode spent only {:.0} % of its turning \
-                 points in its core and settled in no other well's core ({:.0} % of them in any \
-                 core): the simulation visits amplitudes that no well covers",
-                100.0 * p.share[i],
+                "theory well {i}: a path started at its mode left it after {} turning points and \
+                 settled in no other well's core ({:.0} % of its turning points in any core): \
+                 the simulation visits amplitudes that no well covers",
+                p.stay.unwrap_or(0),
                 100.0 * inside
             ));
         }
@@ -900,11 +993,12 @@ fn combine(
         .map(|m| {
             format!(
                 "the theory's well {} (mode {:.4}) is missing in the simulation: a path started \
-                 at its mode spent {:.0} % of its turning points in its core and settled in the \
-                 theory's well {} ({:.0} %); the decomposition is over the simulation's {} wells",
+                 at its mode left it after {} turning points and settled in the theory's well {} \
+                 ({:.0} % of its turning points there); the decomposition is over the \
+                 simulation's {} wells",
                 m.well,
                 m.mode,
-                100.0 * m.inside,
+                m.stay,
                 m.settled_in,
                 100.0 * m.settled,
                 nw
@@ -1147,9 +1241,13 @@ mod tests {
         assert!(set.len() <= 2 && shift > 0.0);
     }
 
-    fn pilot(share: Vec<f64>) -> Pilot {
+    /// A pilot with these shares after the burn-in; it left its well after `stay` turning
+    /// points (or never), with `inside` of its own turning points in its core before.
+    fn pilot(share: Vec<f64>, stay: Option<u64>, inside: f64) -> Pilot {
         Pilot {
             share,
+            inside,
+            stay,
             core: (0.0, 1.0),
         }
     }
@@ -1159,9 +1257,9 @@ mod tests {
         let theory = Wells::new(vec![1.0, 5.0, 10.0], vec![3.0, 7.0]).unwrap();
         // the inner well's pilot settles in the middle well
         let pilots = vec![
-            pilot(vec![0.1, 0.8, 0.0]),
-            pilot(vec![0.0, 0.9, 0.0]),
-            pilot(vec![0.0, 0.0, 1.0]),
+            pilot(vec![0.1, 0.8, 0.0], Some(20), 0.9),
+            pilot(vec![0.0, 0.9, 0.0], None, 0.9),
+            pilot(vec![0.0, 0.0, 1.0], None, 1.0),
         ];
         let (kept, missing, refusals) = simulated_wells(&pilots);
         assert_eq!(kept, vec![1, 2]);
@@ -1172,27 +1270,27 @@ mod tests {
         assert_eq!((w.modes, w.antimodes), (vec![5.0, 10.0], vec![7.0]));
         // the middle well's pilot settles in the outer well: its region goes up
         let pilots = vec![
-            pilot(vec![0.9, 0.0, 0.0]),
-            pilot(vec![0.0, 0.2, 0.7]),
-            pilot(vec![0.0, 0.0, 1.0]),
+            pilot(vec![0.9, 0.0, 0.0], Some(5000), 0.9),
+            pilot(vec![0.0, 0.2, 0.7], Some(3), 1.0),
+            pilot(vec![0.0, 0.0, 1.0], None, 1.0),
         ];
         let (kept, missing, _) = simulated_wells(&pilots);
         let w = reduced_wells(&theory, &kept, &missing).unwrap();
         assert_eq!((w.modes, w.antimodes), (vec![1.0, 10.0], vec![3.0]));
         // ... or down
         let pilots = vec![
-            pilot(vec![0.9, 0.0, 0.0]),
-            pilot(vec![0.7, 0.2, 0.0]),
-            pilot(vec![0.0, 0.0, 1.0]),
+            pilot(vec![0.9, 0.0, 0.0], Some(5000), 0.9),
+            pilot(vec![0.7, 0.2, 0.0], Some(99), 0.6),
+            pilot(vec![0.0, 0.0, 1.0], None, 1.0),
         ];
         let (kept, missing, _) = simulated_wells(&pilots);
         let w = reduced_wells(&theory, &kept, &missing).unwrap();
         assert_eq!((w.modes, w.antimodes), (vec![1.0, 10.0], vec![7.0]));
         // a pilot between the cores: amplitudes that no well covers
         let pilots = vec![
-            pilot(vec![0.9, 0.0, 0.0]),
-            pilot(vec![0.1, 0.3, 0.1]),
-            pilot(vec![0.0, 0.0, 1.0]),
+            pilot(vec![0.9, 0.0, 0.0], Some(5000), 0.9),
+            pilot(vec![0.1, 0.3, 0.1], Some(40), 0.5),
+            pilot(vec![0.0, 0.0, 1.0], None, 1.0),
         ];
         let (kept, missing, refusals) = simulated_wells(&pilots);
         assert_eq!(kept, vec![0, 2]);
