@@ -139,8 +139,12 @@ pub struct WellsSummary {
     pub rate_stderr: Vec<f64>,
     /// Why the decomposition was refused (empty when valid).
     pub refusals: Vec<String>,
-    /// Rates below the method's resolution, in words.
+    /// Rates below the method's resolution and the theory's wells that the simulation lacks,
+    /// in words.
     pub notes: Vec<String>,
+    /// The theory's wells that the simulation lacks (the decomposition is over the others).
+    #[serde(default)]
+    pub missing: Vec<trirhythm::analysis::ensemble::MissingWell>,
     /// Steps computed.
     pub steps: u64,
     /// Seconds of wall time.
@@ -159,6 +163,7 @@ impl WellsSummary {
             rate_stderr: e.rates.iter().map(|r| r.rate.stderr).collect(),
             refusals: e.refusals.clone(),
             notes: e.notes.clone(),
+            missing: e.missing.clone(),
             steps: e.steps,
             wall_time_s,
         }
@@ -180,8 +185,21 @@ impl WellsSummary {
             .zip(self.rate.iter().zip(&self.rate_stderr))
             .map(|((i, j), (&v, &s))| format!("k{i}→{j} = {}", pm(v, s)))
             .collect();
+        let missing = if self.missing.is_empty() {
+            String::new()
+        } else {
+            format!(
+                " (the theory's well{} {} missing in the simulation)",
+                if self.missing.len() == 1 { "" } else { "s" },
+                self.missing
+                    .iter()
+                    .map(|m| format!("at A = {}", crate::notes::sig(m.mode, 4)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
         format!(
-            "well decomposition {}: weights {}; rates {}; {:.2e} steps in {:.0} s{}",
+            "well decomposition {}{missing}: weights {}; rates {}; {:.2e} steps in {:.0} s{}",
             if self.valid { "accepted" } else { "REFUSED" },
             weights.join(", "),
             rates.join(", "),

@@ -656,11 +656,9 @@ pub(super) fn ams<W: Walker>(
                 Some(Branch::Above(w, s)) => (w, s, false),
                 // the parent entered the target before its score passed the level: the branch
                 // is that success
-                Some(Branch::Landed) => (
-                    reps[parent].start.clone(),
-                    reps[parent].start_score,
-                    true,
-                ),
+                Some(Branch::Landed) => {
+                    (reps[parent].start.clone(), reps[parent].start_score, true)
+                }
                 None => {
                     return Err(Error::Undefined {
                         what: "an AMS branch",

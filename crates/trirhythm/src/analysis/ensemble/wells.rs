@@ -388,7 +388,8 @@ pub fn run_wells(
             let inside = in_core(i, &own);
             let (lo, hi) = theory_wells.core(i);
             own.sort_by(f64::total_cmp);
-            let q = |f: f64| own[((f * (own.len() - 1) as f64).round() as usize).min(own.len() - 1)];
+            let q =
+                |f: f64| own[((f * (own.len() - 1) as f64).round() as usize).min(own.len() - 1)];
             let core = if own.len() >= 10 && inside >= MIN_INSIDE {
                 (
                     q(wspec.core_quantile).max(lo),
@@ -626,9 +627,7 @@ fn reduced_wells(theory: &Wells, kept: &[usize], missing: &[MissingWell]) -> Res
     let antimodes = kept
         .windows(2)
         .map(|w| {
-            let m = (w[0] + 1..=w[1])
-                .find(|&m| home(m) >= w[1])
-                .unwrap_or(w[1]);
+            let m = (w[0] + 1..=w[1]).find(|&m| home(m) >= w[1]).unwrap_or(w[1]);
             theory.antimodes[m - 1]
         })
         .collect();
@@ -802,7 +801,7 @@ fn combine(
     let tr = &transitions;
     let of = |k: usize| (0..replicas).map(move |q| &tr[q * np + k]);
     let unresolved: Vec<bool> = (0..np)
-        .map(|k| of(k).any(|t| !t.complete) || of(k).all(|t| !(t.rate > 0.0)))
+        .map(|k| of(k).any(|t| !t.complete) || of(k).all(|t| t.rate.is_nan() || t.rate <= 0.0))
         .collect();
     let bounds: Vec<f64> = (0..np)
         .map(|k| {
@@ -1007,16 +1006,17 @@ fn combine(
         .collect();
     for (k, r) in rates.iter().enumerate() {
         if unresolved[k] {
-            let (level, passed) = of(k)
-                .map(|t| (t.level, t.level_probability))
-                .fold((f64::NAN, 0.0f64), |(l, p), (tl, tp)| {
+            let (level, passed) = of(k).map(|t| (t.level, t.level_probability)).fold(
+                (f64::NAN, 0.0f64),
+                |(l, p), (tl, tp)| {
                     let farther = l.is_nan() || (tl - l) * (r.to as f64 - r.from as f64) > 0.0;
                     if farther {
                         (tl, tp)
                     } else {
                         (l, p.max(tp))
                     }
-                });
+                },
+            );
             let incomplete = of(k).filter(|t| !t.complete).count();
             let how = if incomplete > 0 {
                 format!(
@@ -1024,7 +1024,10 @@ fn combine(
                      replicas"
                 )
             } else {
-                format!("no excursion reached the core of well {} in any replica", r.to)
+                format!(
+                    "no excursion reached the core of well {} in any replica",
+                    r.to
+                )
             };
             notes.push(format!(
                 "{} → {}: {how}; it got as far as energy amplitude {level:.4} (passed with \
