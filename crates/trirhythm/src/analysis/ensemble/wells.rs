@@ -1029,12 +1029,20 @@ fn combine(
                     r.to
                 )
             };
-            notes.push(format!(
-                "{} → {}: {how}; it got as far as energy amplitude {level:.4} (passed with \
-                 probability {passed:.2e}): the rate is below the method's resolution \
-                 (< {:.2e}), taken as 0",
-                r.from, r.to, bounds[k]
-            ));
+            if level.is_nan() {
+                notes.push(format!(
+                    "{} → {}: no exit from the core toward well {} in any replica: the rate is \
+                     unresolved, taken as 0",
+                    r.from, r.to, r.to
+                ));
+            } else {
+                notes.push(format!(
+                    "{} → {}: {how}; it got as far as phase-averaged amplitude {level:.4} \
+                     (passed with probability {passed:.2e}): the rate is below the method's \
+                     resolution (< {:.2e}), taken as 0",
+                    r.from, r.to, bounds[k]
+                ));
+            }
         }
         let d = if r.to > r.from { 0 } else { 1 };
         let exits = (0..replicas)
