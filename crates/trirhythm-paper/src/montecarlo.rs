@@ -63,9 +63,9 @@ impl Sizes {
 
     /// The well decomposition's sizes where the direct ensemble is not stationary: `paths`
     /// replicas of one path per well of `length` time units (after `burn_in`), and its
-    /// splitting: 1000 replicas per transition and at most 20000 iterations (full quality:
-    /// enough to bound a rate that dies out below 10⁻⁷ of the flux, at a bounded cost) or 8
-    /// replicas (`--quick`, 100 time units).
+    /// splitting: 200 replicas per transition and at most 700 iterations, each killing a tenth
+    /// (full quality: probabilities resolved or bounded down to ≈ 10⁻³², at a bounded cost) or
+    /// 8 replicas (`--quick`, 100 time units).
     pub fn wells(&self) -> (f64, WellsSpec) {
         if self.t_end <= 1000.0 {
             (
@@ -79,8 +79,8 @@ impl Sizes {
             (
                 5000.0,
                 WellsSpec {
-                    clones: 1000,
-                    max_iterations: 20_000,
+                    clones: 200,
+                    max_iterations: 700,
                     ..Default::default()
                 },
             )
@@ -139,8 +139,12 @@ pub struct WellsSummary {
     pub rate_stderr: Vec<f64>,
     /// Why the decomposition was refused (empty when valid).
     pub refusals: Vec<String>,
-    /// Rates below the method's resolution, in words.
+    /// Rates below the method's resolution and the theory's wells that the simulation lacks,
+    /// in words.
     pub notes: Vec<String>,
+    /// The theory's wells that the simulation lacks (the decomposition is over the others).
+    #[serde(default)]
+    pub missing: Vec<trirhythm::analysis::ensemble::MissingWell>,
     /// Steps computed.
     pub steps: u64,
     /// Seconds of wall time.
@@ -159,6 +163,7 @@ impl WellsSummary {
             rate_stderr: e.rates.iter().map(|r| r.rate.stderr).collect(),
             refusals: e.refusals.clone(),
             notes: e.notes.clone(),
+            missing: e.missing.clone(),
             steps: e.steps,
             wall_time_s,
         }
@@ -180,8 +185,21 @@ impl WellsSummary {
             .zip(self.rate.iter().zip(&self.rate_stderr))
             .map(|((i, j), (&v, &s))| format!("k{i}→{j} = {}", pm(v, s)))
             .collect();
+        let missing = if self.missing.is_empty() {
+            String::new()
+        } else {
+            format!(
+                " (the theory's well{} {} missing in the simulation)",
+                if self.missing.len() == 1 { "" } else { "s" },
+                self.missing
+                    .iter()
+                    .map(|m| format!("at A = {}", crate::notes::sig(m.mode, 4)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
         format!(
-            "well decomposition {}: weights {}; rates {}; {:.2e} steps in {:.0} s{}",
+            "well decomposition {}{missing}: weights {}; rates {}; {:.2e} steps in {:.0} s{}",
             if self.valid { "accepted" } else { "REFUSED" },
             weights.join(", "),
             rates.join(", "),

@@ -129,6 +129,16 @@ pub fn wells(w: &WellsEstimate) -> String {
         .iter()
         .map(|(lo, hi)| format!("[{}, {}]", num(*lo), num(*hi)))
         .collect();
+    for m in &w.missing {
+        t.push_str(&format!(
+            "theory well {} (mode {}) missing in the simulation: its pilot left after {} turning \
+             points and settled in theory well {}\n",
+            m.well,
+            num(m.mode),
+            m.stay,
+            m.settled_in
+        ));
+    }
     t.push_str(&format!(
         "cores (turning amplitude): {}\n",
         cores.join(", ")

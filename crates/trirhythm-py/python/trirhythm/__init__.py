@@ -234,7 +234,7 @@ _ENSEMBLE_DEFAULTS = dict(
 _WELLS_DEFAULTS = dict(
     clones=100,
     max_excursion=10_000.0,
-    max_iterations=200_000,
+    max_iterations=2_000,
     separation=10.0,
     core_quantile=0.1,
 )
@@ -288,7 +288,7 @@ def ensemble(
     ``impact_memory="restart"``, ``bins=100``, ``joint_bins=48``, ``amplitude_max=None``,
     ``sample_every=1``. ``method="wells"`` estimates them by well decomposition, as
     ``trirhythm ensemble --method wells`` (``paths`` replicas of one path per well of ``t_end``;
-    options ``clones=100``, ``max_excursion=10000``, ``max_iterations=200000``,
+    options ``clones=100``, ``max_excursion=10000``, ``max_iterations=2000``,
     ``separation=10``, ``core_quantile=0.1``); the document adds ``estimator`` and
     ``decomposition``."""
     method = options.pop("method", "direct")

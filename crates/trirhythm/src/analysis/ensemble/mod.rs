@@ -102,7 +102,10 @@ pub use spec::{
     EnsembleSpec, Wells, MAX_AMPLITUDE, MAX_BATCHES, MAX_BINS, MAX_JOINT_BINS, MAX_PATHS,
     MAX_STATISTICS_BYTES, MAX_WELLS,
 };
-pub use wells::{run_wells, Rate, Replica, WellsEstimate, WellsResult, WellsSpec, MIN_EXITS};
+pub use wells::{
+    run_wells, MissingWell, Rate, Replica, WellsEstimate, WellsResult, WellsSpec, MIN_EXITS,
+    MIN_INSIDE,
+};
 
 use crate::engine::{
     fresh_history, run_lanes, Flow, Lanes, Observer, PredictorCorrector, Problem, Stepper,

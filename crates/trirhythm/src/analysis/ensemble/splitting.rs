@@ -8,27 +8,40 @@
 //! the wells' stationary weights; it must be estimated without waiting 1/k_ij for a jump.
 //!
 //! # Method
-//! The order parameter is the amplitude `a` that the walker reports at its observation points
-//! (the turning amplitude of the oscillator, once per half-cycle). Well i's *core* is
-//! [`Wells::core`]; a path's label is the last core it visited (the hysteresis of the
-//! ensemble's first passages).
+//! A walker reports two variables ([`Observation`]): the *label* amplitude `a` at its
+//! observation points (the turning amplitude of the oscillator, once per half-cycle), which
+//! sets the cores and the labels, and the *score* after every step, which sets the splitting's
+//! levels. Well i's *core* is an interval of `a` ([`Cores`]); a path's label is the last core it
+//! visited (the hysteresis of the ensemble's first passages).
 //! - **Flux out of the core.** One path per well and replica runs `burn` steps, then `window`
 //!   steps in label i. An *exit* upward (downward) is the first observation above (below) the
 //!   core after an observation inside it; Φ_i^± = exits / (window · Δt). Up to `clones` exit
-//!   states are kept by reservoir sampling (uniform over the exits) as whole cloned walkers.
-//!   Should the path reach another core it is restarted from its latest re-entry into core i
-//!   (the state is kept in label i: killed and restarted).
+//!   states are kept by reservoir sampling (uniform over the exits) as whole cloned walkers,
+//!   with their score. Should the path reach another core it is restarted from its latest
+//!   re-entry into core i (the state is kept in label i: killed and restarted).
 //! - **Probability of reaching the neighbour.** From the exit states, excursions run until
-//!   they land in a core: the target (the neighbouring well's core, i ± 1) is a success, core
-//!   i or any other core a failure. AMS with N = `clones` replicas (Cérou & Guyader 2007; the
-//!   generalised, tie-safe form of Bréhier, Gazeau, Goudenège, Lelièvre & Rousset 2016): at
-//!   each iteration the level z is the lowest maximum of the score (±a) among the replicas;
-//!   every replica whose maximum is ≤ z (K of them) is killed and replaced by a branch of a
-//!   uniformly drawn survivor, cloned at its first observation above z and continued with a
-//!   fresh noise stream (the clone keeps the whole state; [`Walker::renoise`] changes only the
-//!   future noise). The estimate p = Π_n (1 − K_n/N) · (successes at the end)/N is unbiased.
-//!   The state at the first crossing of z is recovered by replaying the survivor's excursion
-//!   from its own start with its own stream (deterministic), so a replica holds one clone.
+//!   they land in a core (by their label): the target (the neighbouring well's core, i ± 1) is a
+//!   success, core i or any other core a failure; the landing step ends the excursion (a
+//!   success scores +∞). Generalised AMS with N = `clones` replicas (Cérou & Guyader 2007;
+//!   Bréhier, Gazeau, Goudenège, Lelièvre & Rousset 2016): at each iteration the level z is the
+//!   k-th lowest maximum of the score (±score) among the replicas, k = ⌈[`KILL_FRACTION`]·N⌉;
+//!   every replica whose maximum is ≤ z (K ≥ k of them, ties included) is killed and replaced
+//!   by a branch of a uniformly drawn survivor, cloned at its first step with a score above z
+//!   and continued with a fresh noise stream (the clone keeps the whole state;
+//!   [`Walker::renoise`] changes only the future noise). The estimate
+//!   p = Π_n (1 − K_n/N) · (successes at the end)/N is unbiased for any score that is a function
+//!   of the walker's state. The state at the first crossing of z is recovered by replaying the
+//!   survivor's excursion from its own start with its own stream (deterministic), so a replica
+//!   holds one clone.
+//! - **The score.** A score whose short-time increments are deterministic (smooth in time, as
+//!   every amplitude of an oscillator driven by coloured noise is) makes the branches of a
+//!   survivor cloned at its own maximum fall back together: all replicas end with the same
+//!   maximum and the splitting dies out (every replica killed: p = 0 for that run). Setting the
+//!   level at the k-th lowest maximum rather than the lowest puts it below most survivors'
+//!   maxima, so branches start while their parents still climb.
+//! - **Resolution.** Where every replica died out, or any stopped at `max_iterations`, the
+//!   splitting only bounds p by the estimated probability of passing the farthest level it
+//!   reached ([`Transition::level_probability`]); the caller decides whether the bound matters.
 //! - **Rate.** k_{i,i±1} = Φ_i^± p_i^±. Transitions that jump over a well are counted as
 //!   failures: the rates of a birth–death chain.
 //!
@@ -43,7 +56,8 @@
 //! # Tests
 //! `tests/wells.rs`: the rates of the averaged amplitude diffusion dA = m1 dt + √σ1 dW (the
 //! theory's m1, σ1) against its exact mean first-passage times over more than six decades;
-//! unit tests below: AMS on a random walk with a closed-form hitting probability.
+//! unit tests below: AMS (with k = ⌈0.1 N⌉) on a random walk with a closed-form hitting
+//! probability.
 
 use super::spec::Wells;
 use crate::error::{Error, Result};
@@ -100,11 +114,32 @@ impl Cores {
     }
 }
 
+/// What a walker reports after each step: the splitting's score variable (every step) and,
+/// at its observation points, the amplitude that sets the labels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Observation {
+    /// The reaction coordinate of the splitting's levels (an amplitude ≥ 0), every step.
+    pub score: f64,
+    /// The label variable (an amplitude ≥ 0, the cores' coordinate) when the step ends at an
+    /// observation point (a turning point), else `None`.
+    pub label: Option<f64>,
+}
+
+impl Observation {
+    /// One variable for both: the score and, every step, the label.
+    #[inline]
+    pub fn every_step(a: f64) -> Self {
+        Observation {
+            score: a,
+            label: Some(a),
+        }
+    }
+}
+
 /// A path whose whole state can be cloned and whose future noise can be redrawn.
 pub trait Walker: Clone + Send + Sync {
-    /// Advance one step; the order parameter (an amplitude ≥ 0) when the step ends at an
-    /// observation point (a turning point), else `None`.
-    fn advance(&mut self) -> Result<Option<f64>>;
+    /// Advance one step: its score and, at an observation point, its label amplitude.
+    fn advance(&mut self) -> Result<Observation>;
     /// Draw the future noise from stream `stream` of `seed`, keeping the state.
     fn renoise(&mut self, seed: u64, stream: u64);
 }
@@ -291,7 +326,7 @@ pub(super) fn well_path<W: Walker>(
     let mut home = w.clone();
     let mut restarts = 0u64;
     for n in 0..sp.burn {
-        if let Some(a) = w.advance()? {
+        if let Some(a) = w.advance()?.label {
             match wells.core_of(a) {
                 Some(k) if k == well => armed = true,
                 Some(_) => {
@@ -311,7 +346,7 @@ pub(super) fn well_path<W: Walker>(
     // the burn-in ends at the first observation inside the core (the window's first home)
     let mut extra = 0u64;
     loop {
-        if let Some(a) = w.advance()? {
+        if let Some(a) = w.advance()?.label {
             extra += 1;
             match wells.core_of(a) {
                 Some(k) if k == well => break,
@@ -342,7 +377,8 @@ pub(super) fn well_path<W: Walker>(
     home = w.clone();
     let burn_restarts = restarts;
     for n in 0..sp.window {
-        if let Some(a) = w.advance()? {
+        let o = w.advance()?;
+        if let Some(a) = o.label {
             match wells.core_of(a) {
                 Some(k) if k == well => {
                     if !armed {
@@ -370,11 +406,11 @@ pub(super) fn well_path<W: Walker>(
                     seen[k] += 1;
                     // reservoir sampling: each exit kept with probability clones / seen
                     if exits[k].len() < sp.clones {
-                        exits[k].push((w.clone(), a));
+                        exits[k].push((w.clone(), o.score));
                     } else {
                         let j = draws.below(seen[k] as usize);
                         if j < sp.clones {
-                            exits[k][j] = (w.clone(), a);
+                            exits[k][j] = (w.clone(), o.score);
                         }
                     }
                 }
@@ -399,6 +435,19 @@ pub(super) fn well_path<W: Walker>(
     ))
 }
 
+/// The fraction of the AMS replicas killed at each iteration (at least one): the level is the
+/// k-th lowest maximum, k = ⌈fraction·N⌉. Killing more than the lowest one sets the level below
+/// most survivors' maxima, so that a branch starts where its parent was still climbing: with a
+/// smooth score (the phase-averaged amplitude) the branches of a parent cloned at its very
+/// maximum would all fall back together and the splitting die out. The estimator stays
+/// unbiased for every k (Bréhier et al. 2016).
+pub const KILL_FRACTION: f64 = 0.1;
+
+/// k of [`KILL_FRACTION`] for `n` replicas: ⌈fraction·n⌉, at least 1, below n.
+fn kill_count(n: usize) -> usize {
+    ((KILL_FRACTION * n as f64).ceil() as usize).clamp(1, n.saturating_sub(1).max(1))
+}
+
 /// One AMS replica: where its excursion starts, its stream, its best score and fate.
 #[derive(Clone)]
 struct Replica<W> {
@@ -415,19 +464,30 @@ struct Excursion<W> {
     success: bool,
     unended: bool,
     steps: u64,
-    /// The state at the first observation whose score exceeds the asked level, with that score.
-    branch: Option<(W, f64)>,
+    /// Where a replay asked for a level stopped: the state at the first step whose score
+    /// exceeds the level, with that score, or the landing in the target core first (a success:
+    /// the target's score is +∞).
+    branch: Option<Branch<W>>,
+}
+
+/// A branch point found by a replay.
+enum Branch<W> {
+    /// The state at the first step above the level, and its score.
+    Above(W, f64),
+    /// The replay landed in the target core before its finite score passed the level.
+    Landed,
 }
 
 /// Run the excursion of `start` (score `start_score`) with stream `stream` until it lands in a
-/// core, or, when `above` is given, until its first observation with a score above it.
+/// core (by its label), or, when `above` is given, until its first step with a score above it.
+/// The landing step ends the excursion before its score counts: a landing is scored +∞ (the
+/// target) or ends the path (any other core), so run and replay agree step by step.
 #[allow(clippy::too_many_arguments)]
 fn excursion<W: Walker>(
     start: &W,
     start_score: f64,
     stream: u64,
     seed: u64,
-    from: usize,
     to: usize,
     d: Direction,
     wells: &Cores,
@@ -437,33 +497,32 @@ fn excursion<W: Walker>(
     let mut w = start.clone();
     w.renoise(seed, stream);
     let mut max = start_score;
-    let _ = from;
     for n in 1..=max_steps {
-        if let Some(a) = w.advance()? {
-            let s = d.score(a);
-            if let Some(z) = above {
-                if s > z {
-                    return Ok(Excursion {
-                        max: s,
-                        success: false,
-                        unended: false,
-                        steps: n,
-                        branch: Some((w, s)),
-                    });
-                }
-            }
-            if s > max {
-                max = s;
-            }
-            if let Some(k) = wells.core_of(a) {
+        let o = w.advance()?;
+        if let Some(k) = o.label.and_then(|a| wells.core_of(a)) {
+            let success = k == to;
+            return Ok(Excursion {
+                max,
+                success,
+                unended: false,
+                steps: n,
+                branch: (success && above.is_some()).then_some(Branch::Landed),
+            });
+        }
+        let s = d.score(o.score);
+        if let Some(z) = above {
+            if s > z {
                 return Ok(Excursion {
-                    max,
-                    success: k == to,
+                    max: s,
+                    success: false,
                     unended: false,
                     steps: n,
-                    branch: None,
+                    branch: Some(Branch::Above(w, s)),
                 });
             }
+        }
+        if s > max {
+            max = s;
         }
     }
     Ok(Excursion {
@@ -530,7 +589,6 @@ pub(super) fn ams<W: Walker>(
             r.start_score,
             r.stream,
             sp.seed,
-            from,
             to,
             d,
             wells,
@@ -558,9 +616,12 @@ pub(super) fn ams<W: Walker>(
     let mut log_p = 0.0f64;
     loop {
         monitor.check()?;
-        let z = reps.iter().map(|r| r.max).fold(f64::INFINITY, f64::min);
+        // the level: the k-th lowest maximum (k = ⌈KILL_FRACTION·N⌉)
+        let mut maxes: Vec<f64> = reps.iter().map(|r| r.max).collect();
+        let k = kill_count(n);
+        let (_, &mut z, _) = maxes.select_nth_unstable_by(k - 1, f64::total_cmp);
         if z == f64::INFINITY {
-            break; // every replica reached the target
+            break; // all but fewer than k replicas reached the target (the rest fail)
         }
         let killed: Vec<usize> = (0..n).filter(|&k| reps[k].max <= z).collect();
         if killed.len() == n {
@@ -582,20 +643,30 @@ pub(super) fn ams<W: Walker>(
             let parent = survivors[draws.below(survivors.len())];
             let branch = if reps[parent].start_score > z {
                 // the parent starts above the level: the branch starts where it does
-                Some((reps[parent].start.clone(), reps[parent].start_score))
+                Some(Branch::Above(
+                    reps[parent].start.clone(),
+                    reps[parent].start_score,
+                ))
             } else {
                 let e = run(&reps[parent], Some(z))?;
                 t.steps += e.steps;
                 e.branch
             };
-            let Some((w, s)) = branch else {
-                return Err(Error::Undefined {
-                    what: "an AMS branch",
-                    why:
-                        "the replay of a survivor did not pass its own maximum (the walker is not \
-                          deterministic given its stream)"
+            let (w, s, landed) = match branch {
+                Some(Branch::Above(w, s)) => (w, s, false),
+                // the parent entered the target before its score passed the level: the branch
+                // is that success
+                Some(Branch::Landed) => {
+                    (reps[parent].start.clone(), reps[parent].start_score, true)
+                }
+                None => {
+                    return Err(Error::Undefined {
+                        what: "an AMS branch",
+                        why: "the replay of a survivor did not pass its own maximum (the walker \
+                              is not deterministic given its stream)"
                             .into(),
-                });
+                    })
+                }
             };
             let mut r = Replica {
                 start: w,
@@ -604,8 +675,7 @@ pub(super) fn ams<W: Walker>(
                 max: f64::NEG_INFINITY,
                 success: false,
             };
-            if wells.core_of(s.abs()) == Some(to) {
-                // branched where the parent entered the target: a success already
+            if landed {
                 r.max = f64::INFINITY;
                 r.success = true;
             } else {
@@ -739,10 +809,10 @@ mod tests {
     }
 
     impl Walker for Ruin {
-        fn advance(&mut self) -> Result<Option<f64>> {
+        fn advance(&mut self) -> Result<Observation> {
             self.draws = stream(self.draws, 0, 3, 0);
             self.x += if self.draws >> 63 == 1 { 1 } else { -1 };
-            Ok(Some(self.x as f64))
+            Ok(Observation::every_step(self.x as f64))
         }
         fn renoise(&mut self, seed: u64, s: u64) {
             self.draws = stream(seed, 0, s, 0);

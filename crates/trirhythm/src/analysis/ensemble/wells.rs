@@ -11,9 +11,29 @@
 //! fraction of time with that label.
 //!
 //! # Method
+//! - **The simulation's wells.** The theory's wells (modes and antimodes of its P(A)) are
+//!   candidates: a pilot path per theory well starts at its mode. A well the pilot leaves for
+//!   another well's core within [`MIN_STAY`] turning points (it relaxes there) is *missing* in
+//!   the simulation — a finding about the theory, reported in [`WellsEstimate::missing`] and
+//!   the notes; the decomposition runs over the remaining wells, each missing well's region
+//!   joined to the well its pilot settled in. Refused only when a pilot settles in no well's
+//!   core, or stays but spends less than [`MIN_INSIDE`] of its turning points in its core: the
+//!   simulation visits amplitudes that no well covers. The pilot's turning amplitudes in its
+//!   well set the core ([q, 1 − q] quantiles).
 //! - **Labels.** A path's label is the last well core its turning amplitude visited
 //!   ([`Wells::core`]), the hysteresis of the direct ensemble's first passages. Every sample
 //!   has exactly one label, so P = Σ π_i P_i holds exactly.
+//! - **Score of the splitting.** The levels of the splitting are set by the phase-averaged
+//!   energy amplitude Ā(t) = (1/T) ∫_{t−T}^{t} A_E, A_E = √(U² + (U̇/ω1)²), T = 2π/ω1 (ω1 the
+//!   equivalent frequency): A_E is the amplitude variable of the averaging ansatz
+//!   U = A cos(ω1 t + φ), and its average over a period is the theory's slow amplitude A. It
+//!   moves every step (the turning amplitude, once per half-cycle, made every branch start at a
+//!   turning point, and on a strongly contracting cycle all branches fell back: the splitting
+//!   died about three standard deviations past the core). A_E itself swings within a cycle
+//!   (impacts, the nonlinear stiffness) by far more than the noise moves it, so its levels
+//!   follow the phase, not the progress toward the neighbour; the average over a period
+//!   removes that swing. The window of A_E is part of the cloned state, so the score is a
+//!   function of the state and the splitting stays unbiased.
 //! - **Conditional statistics P_i.** For each of `spec.paths` independent replicas, one path
 //!   per well starts at the well's mode (U = m_i, U̇ = 0), discards `burn_in`, and records
 //!   `length` time units in label i with the direct ensemble's recorder (moments, densities of
@@ -33,15 +53,18 @@
 //!   density, moments, occupancies) is a function of the replicas' sums and gets its
 //!   delete-one jackknife standard error over the replicas. The per-unit amplitude histograms
 //!   handed to the theory comparison are each replica's own mixture (Σ_i π_i^ρ P_i^ρ).
-//! - **Validity.** The decomposition is refused (`valid` false, with the reasons) when a rate
-//!   between neighbours is zero and, set to its bound (the flux times the estimated probability
-//!   of passing the farthest level the splitting reached), would move a weight by more than
-//!   [`MAX_WEIGHT_SHIFT`], or the weights are undetermined, or an AMS is unfinished, when a well's path saw fewer than
-//!   [`MIN_EXITS`] exits toward a neighbour, when a well's conditional statistics are not
-//!   stationary by the direct diagnosis (R̂ over the replicas, drift), or when the mean
-//!   residence time 1/Σ_j k_ij of a well is not at least `separation` times its relaxation
-//!   time (sampled time over the effective sample size of A): the rates must be slow against
-//!   the relaxation inside the wells for P_i to be the quasi-stationary density.
+//! - **Validity.** A rate is *unresolved* when its splitting died out in every replica or
+//!   stopped at its iteration limit in any: it is taken as 0 and bounded by the flux times the
+//!   estimated probability of passing the farthest level reached (said in the notes). The
+//!   decomposition is refused (`valid` false, with the reasons) when such a bound, put in place
+//!   of the 0, would move a weight by more than [`MAX_WEIGHT_SHIFT`], or the weights are
+//!   undetermined (two groups of wells exchange no resolved transition), when a well's path saw
+//!   fewer than [`MIN_EXITS`] exits toward a neighbour, when the simulation visits amplitudes
+//!   no well covers (above), when a well's conditional statistics are not stationary by the
+//!   direct diagnosis (R̂ over the replicas, drift), or when the mean residence time
+//!   1/Σ_j k_ij of a well is not at least `separation` times its relaxation time (sampled time
+//!   over the effective sample size of A): the rates must be slow against the relaxation inside
+//!   the wells for P_i to be the quasi-stationary density.
 //!
 //! # Cost
 //! The paths cost replicas × wells × (burn-in + length); an AMS needs about
@@ -52,14 +75,15 @@
 //! `tests/wells.rs`: the averaged amplitude diffusion's rates against the exact mean
 //! first-passage times (six decades and more, known answer); a mixing panel where the direct
 //! ensemble is stationary: the two estimators agree in the weights and the density (extended);
-//! reproducibility; refusals (no wells, one replica).
+//! reproducibility; refusals (no wells, one replica, rates bounded by an iteration limit);
+//! unit tests below: when a bound moves the weights, which wells the simulation lacks.
 
 use super::merging::{assemble, jackknife, Density, EnsembleResult, Estimate, JointDensity};
 use super::recording::{Layout, PathStats, Recorder};
 use super::spec::{EnsembleSpec, Wells, QUARTERS};
 use super::splitting::{
-    ams, chain_weights, neighbours, stream, well_path, Cores, Splitting, Transition, Walker,
-    WellPath,
+    ams, chain_weights, neighbours, stream, well_path, Cores, Observation, Splitting, Transition,
+    Walker, WellPath,
 };
 use super::Stationarity;
 use crate::engine::{fresh_history, PredictorCorrector, Problem, Stepper, System};
@@ -84,7 +108,9 @@ pub struct WellsSpec {
     pub clones: usize,
     /// Longest excursion in time units (counted as a failure beyond).
     pub max_excursion: f64,
-    /// Most AMS iterations per transition.
+    /// Most AMS iterations per transition; each kills a tenth of the replicas
+    /// ([`super::splitting::KILL_FRACTION`]), so n iterations resolve probabilities down to
+    /// about 0.9ⁿ (2000: 10⁻⁹¹).
     pub max_iterations: usize,
     /// Residence time needed, in units of a well's relaxation time.
     pub separation: f64,
@@ -98,7 +124,7 @@ impl Default for WellsSpec {
         WellsSpec {
             clones: 100,
             max_excursion: 10_000.0,
-            max_iterations: 200_000,
+            max_iterations: 2_000,
             separation: 10.0,
             core_quantile: 0.1,
         }
@@ -138,9 +164,16 @@ pub struct Replica {
 pub struct WellsEstimate {
     /// The method's sizes.
     pub spec: WellsSpec,
-    /// The wells' cores used for the labels (from the pilot paths).
+    /// The theory's wells (modes and antimodes of its P(A)); the decomposition is over those
+    /// the simulation has (the result's `wells`).
+    pub theory_wells: Wells,
+    /// The theory's wells that the simulation lacks: a path started at the mode settled in
+    /// another well.
+    pub missing: Vec<MissingWell>,
+    /// The simulation's wells' cores used for the labels (from the pilot paths).
     pub cores: Cores,
-    /// The fraction of each pilot path's turning amplitudes inside [`Wells::core`].
+    /// The fraction of each pilot path's turning amplitudes inside [`Wells::core`], per theory
+    /// well.
     pub pilot_inside: Vec<f64>,
     /// Rates between neighbours (0 → 1, 1 → 0, 1 → 2, …).
     pub rates: Vec<Rate>,
@@ -176,27 +209,65 @@ pub struct WellsResult {
     pub wells: WellsEstimate,
 }
 
-/// The oscillator as a [`Walker`]: its turning amplitudes |U| at the maxima of |U|.
+/// The oscillator as a [`Walker`]: its score is the phase-averaged energy amplitude — the
+/// mean of A_E = √(U² + (U̇/ω1)²) over the last period 2π/ω1 — after every step, its label the
+/// turning amplitude |U| at the maxima of |U|. The window of A_E is part of the walker's state
+/// (cloned with it), so the score is a function of the state.
 #[derive(Clone)]
 struct Oscillator {
     s: Stepper,
     rising: bool,
     crossing: bool,
+    /// 1/ω1².
+    inv_omega1_sq: f64,
+    /// The last period's A_E (a ring), its sum and the next slot.
+    window: Vec<f64>,
+    sum: f64,
+    next: usize,
+    filled: usize,
+}
+
+impl Oscillator {
+    fn new(s: Stepper, crossing: bool, omega1: f64, dt: f64) -> Self {
+        let len = (std::f64::consts::TAU / (omega1 * dt)).round().max(1.0) as usize;
+        Oscillator {
+            s,
+            rising: false,
+            crossing,
+            inv_omega1_sq: 1.0 / (omega1 * omega1),
+            window: vec![0.0; len],
+            sum: 0.0,
+            next: 0,
+            filled: 0,
+        }
+    }
 }
 
 impl Walker for Oscillator {
     #[inline]
-    fn advance(&mut self) -> Result<Option<f64>> {
+    fn advance(&mut self) -> Result<Observation> {
         self.s.step()?;
-        let side = if self.crossing {
-            self.s.u().signum()
-        } else {
-            1.0
-        };
-        let rising = side * self.s.v() > 0.0;
+        let (u, v) = (self.s.u(), self.s.v());
+        let side = if self.crossing { u.signum() } else { 1.0 };
+        let rising = side * v > 0.0;
         let turning = self.rising && !rising;
         self.rising = rising;
-        Ok(turning.then(|| self.s.u().abs()))
+        let a = (u * u + v * v * self.inv_omega1_sq).sqrt();
+        let n = self.window.len();
+        self.sum += a - self.window[self.next];
+        self.window[self.next] = a;
+        self.next = if self.next + 1 == n { 0 } else { self.next + 1 };
+        if self.filled < n {
+            self.filled += 1;
+        }
+        if self.next == 0 {
+            // once a period, the sum afresh (no drift of rounding)
+            self.sum = self.window.iter().sum();
+        }
+        Ok(Observation {
+            score: self.sum / self.filled as f64,
+            label: turning.then(|| u.abs()),
+        })
     }
 
     fn renoise(&mut self, seed: u64, stream: u64) {
@@ -263,45 +334,63 @@ pub fn run_wells(
     };
     sp.validate()?;
     monitor.check()?;
-    let nw = wells.len();
     let replicas = spec.paths;
-    let layout = Layout::new(spec, problem, sizes.samples);
     let history = fresh_history(problem, method, (sizes.burn + sizes.window) as f64 * dt)?;
     let crossing = problem.system() == System::Zhuravlev;
-    let oscillator = |i: usize, path: u64| -> Result<Oscillator> {
-        let start = (wells.modes[i], 0.0);
+    let omega1 = problem.oscillator().equivalents().omega1;
+    let oscillator = |mode: f64, path: u64| -> Result<Oscillator> {
+        let start = (mode, 0.0);
         let s = Stepper::with_history(problem, method, start, (spec.seed, path), history.clone())?;
-        Ok(Oscillator {
-            s,
-            rising: false,
-            crossing,
-        })
+        Ok(Oscillator::new(s, crossing, omega1, dt))
     };
-    // 0. a pilot path per well: its turning amplitudes set the core
+    // 0. a pilot path per theory well: where it settles (the fraction of its turning
+    // amplitudes in each well's core) and, in its own well, the core
+    let theory_wells = wells;
+    let nt = theory_wells.len();
     let pilot_steps = sizes.burn + (sizes.window / 4).max(1);
-    let pilots: Vec<(f64, (f64, f64))> = (0..nw)
+    let pilots: Vec<Pilot> = (0..nt)
         .into_par_iter()
         .map(|i| {
-            let mut w = oscillator(i, 0)?;
+            let mut w = oscillator(theory_wells.modes[i], 0)?;
             w.renoise(spec.seed, stream(u64::MAX, i, 3, 0));
+            // every turning amplitude after the burn-in, and those before the first landing in
+            // another well's core (the pilot's time in label i)
             let mut seen = Vec::new();
+            let mut own = Vec::new();
+            let mut stay: Option<u64> = None;
+            let mut turnings = 0u64;
             for n in 0..pilot_steps {
-                if let Some(a) = w.advance()? {
+                if let Some(a) = w.advance()?.label {
+                    turnings += 1;
+                    if stay.is_none() {
+                        let k = theory_wells.well_of(a);
+                        let (lo, hi) = theory_wells.core(k);
+                        if k != i && a >= lo && a <= hi {
+                            stay = Some(turnings - 1);
+                        }
+                    }
                     if n >= sizes.burn {
                         seen.push(a);
+                        if stay.is_none() {
+                            own.push(a);
+                        }
                     }
                 }
                 if n % (1 << 16) == 0 {
                     monitor.check()?;
                 }
             }
-            let (lo, hi) = wells.core(i);
-            let inside = seen.iter().filter(|&&a| a >= lo && a <= hi).count() as f64
-                / seen.len().max(1) as f64;
-            seen.sort_by(f64::total_cmp);
+            let in_core = |k: usize, of: &[f64]| {
+                let (lo, hi) = theory_wells.core(k);
+                of.iter().filter(|&&a| a >= lo && a <= hi).count() as f64 / of.len().max(1) as f64
+            };
+            let share: Vec<f64> = (0..nt).map(|k| in_core(k, &seen)).collect();
+            let inside = in_core(i, &own);
+            let (lo, hi) = theory_wells.core(i);
+            own.sort_by(f64::total_cmp);
             let q =
-                |f: f64| seen[((f * (seen.len() - 1) as f64).round() as usize).min(seen.len() - 1)];
-            let core = if seen.len() >= 10 && inside >= 0.5 {
+                |f: f64| own[((f * (own.len() - 1) as f64).round() as usize).min(own.len() - 1)];
+            let core = if own.len() >= 10 && inside >= MIN_INSIDE {
                 (
                     q(wspec.core_quantile).max(lo),
                     q(1.0 - wspec.core_quantile).min(hi),
@@ -309,11 +398,27 @@ pub fn run_wells(
             } else {
                 (lo, hi)
             };
-            Ok((inside, core))
+            Ok(Pilot {
+                share,
+                inside,
+                stay,
+                core,
+            })
         })
         .collect::<Result<_>>()?;
-    let cores = Cores::new(pilots.iter().map(|p| p.1).collect())?;
-    let pilot_inside: Vec<f64> = pilots.iter().map(|p| p.0).collect();
+    let pilot_inside: Vec<f64> = pilots.iter().map(|p| p.inside).collect();
+    let (kept, mut missing, mut refusals) = simulated_wells(&pilots);
+    for m in &mut missing {
+        m.mode = theory_wells.modes[m.well];
+    }
+    let wells = reduced_wells(&theory_wells, &kept, &missing)?;
+    let cores = Cores::new(kept.iter().map(|&i| pilots[i].core).collect())?;
+    let spec = &EnsembleSpec {
+        wells: Some(wells.clone()),
+        ..spec.clone()
+    };
+    let nw = wells.len();
+    let layout = Layout::new(spec, problem, sizes.samples);
     // 1. one path per (replica, well)
     let units: Vec<(usize, usize)> = (0..replicas)
         .flat_map(|r| (0..nw).map(move |i| (r, i)))
@@ -330,7 +435,7 @@ pub fn run_wells(
         .map(|&(r, i)| {
             monitor.check()?;
             let start = (wells.modes[i], 0.0);
-            let w = oscillator(i, 0)?;
+            let w = oscillator(wells.modes[i], 0)?;
             let mut rec = Recorder::new(&layout, sizes.burn, spec.sample_every, r as u64, start.0);
             let mut counts = (0, 0);
             let (path, exits) = well_path(
@@ -396,8 +501,15 @@ pub fn run_wells(
         t.flux = p.exits[d] as f64 / p.time;
         t.rate = t.flux * t.probability;
     }
+    let found = Found {
+        cores,
+        pilot_inside,
+        theory_wells,
+        missing,
+        refusals: std::mem::take(&mut refusals),
+    };
     Ok(combine(
-        (cores, pilot_inside),
+        found,
         spec,
         &layout,
         &sizes,
@@ -408,6 +520,169 @@ pub fn run_wells(
         paths,
         transitions,
     ))
+}
+
+/// What a pilot path started at a theory well's mode saw.
+struct Pilot {
+    /// The fraction of its turning amplitudes after the burn-in in each theory well's core
+    /// ([`Wells::core`]).
+    share: Vec<f64>,
+    /// The fraction in its own well's core of those after the burn-in and before its first
+    /// landing in another well's core.
+    inside: f64,
+    /// Turning points before its first landing in another well's core (`None`: never).
+    stay: Option<u64>,
+    /// Its own well's core for the labels: the quantiles of its turning amplitudes in label i.
+    core: (f64, f64),
+}
+
+/// Least fraction of a pilot's turning amplitudes in its own well's core for the simulation
+/// to have that well (and in another well's core for a missing well to be settled there).
+pub const MIN_INSIDE: f64 = 0.5;
+
+/// Fewest turning points a pilot started at a theory well's mode must stay before it first
+/// lands in another well's core for the simulation to have that well (50 periods: a well whose
+/// paths leave sooner is not metastable, it relaxes into the other well).
+pub const MIN_STAY: u64 = 100;
+
+/// A theory well that the simulation does not have: a path started at its mode relaxes into
+/// another well.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MissingWell {
+    /// The theory's well (index among the theory's wells).
+    pub well: usize,
+    /// Its mode.
+    pub mode: f64,
+    /// Turning points the pilot stayed before it landed in another well's core.
+    pub stay: u64,
+    /// The theory well whose core the pilot settled in.
+    pub settled_in: usize,
+    /// The fraction of the pilot's turning amplitudes after its burn-in in that core.
+    pub settled: f64,
+}
+
+/// The theory wells the simulation has (their indices, ascending), those it lacks, and the
+/// refusals: a pilot that settled in no well's core (the simulation visits amplitudes that no
+/// well covers), or in a core of another missing well.
+fn simulated_wells(pilots: &[Pilot]) -> (Vec<usize>, Vec<MissingWell>, Vec<String>) {
+    let n = pilots.len();
+    let left = |i: usize| pilots[i].stay.is_some_and(|s| s < MIN_STAY);
+    let mut kept = Vec::new();
+    let mut missing = Vec::new();
+    let mut refusals = Vec::new();
+    for (i, p) in pilots.iter().enumerate() {
+        if !left(i) {
+            if p.inside < MIN_INSIDE {
+                refusals.push(format!(
+                    "theory well {i}: a path started at its mode stayed, but only {:.0} % of its \
+                     turning points were in the well's core: the simulation visits amplitudes \
+                     that no well covers",
+                    100.0 * p.inside
+                ));
+            }
+            kept.push(i);
+            continue;
+        }
+        let (j, settled) = (0..n)
+            .filter(|&k| k != i)
+            .map(|k| (k, p.share[k]))
+            .fold((i, 0.0), |b, x| if x.1 > b.1 { x } else { b });
+        if settled >= MIN_INSIDE && !left(j) {
+            missing.push(MissingWell {
+                well: i,
+                mode: 0.0,
+                stay: p.stay.unwrap_or(0),
+                settled_in: j,
+                settled,
+            });
+        } else {
+            let inside: f64 = p.share.iter().sum();
+            refusals.push(format!(
+                "theory well {i}: a path started at its mode left it after {} turning points and \
+                 settled in no other well's core ({:.0} % of its turning points in any core): \
+                 the simulation visits amplitudes that no well covers",
+                p.stay.unwrap_or(0),
+                100.0 * inside
+            ));
+        }
+    }
+    if kept.is_empty() {
+        // nothing to decompose over: keep the theory's wells (the refusals say why)
+        kept = (0..n).collect();
+        missing.clear();
+    }
+    (kept, missing, refusals)
+}
+
+/// The wells of the simulation: the theory's modes `kept`; between two kept wells the
+/// antimode below the lowest well (kept or missing) that belongs to the upper one.
+fn reduced_wells(theory: &Wells, kept: &[usize], missing: &[MissingWell]) -> Result<Wells> {
+    let home = |m: usize| {
+        missing
+            .iter()
+            .find(|w| w.well == m)
+            .map_or(m, |w| w.settled_in)
+    };
+    let modes = kept.iter().map(|&i| theory.modes[i]).collect();
+    let antimodes = kept
+        .windows(2)
+        .map(|w| {
+            let m = (w[0] + 1..=w[1]).find(|&m| home(m) >= w[1]).unwrap_or(w[1]);
+            theory.antimodes[m - 1]
+        })
+        .collect();
+    Wells::new(modes, antimodes)
+}
+
+/// The largest change of the `weights` when the unresolved rates `zero` (indices into the
+/// chain's rates, in the order 0 → 1, 1 → 0, 1 → 2, …) are set to their `bounds`, each alone
+/// and all together: (the change, the rates set, the weights then). `None` when no such set
+/// gives weights.
+fn largest_shift(
+    rates: &[f64],
+    bounds: &[f64],
+    zero: &[usize],
+    weights: &[f64],
+) -> Option<(f64, Vec<usize>, Vec<f64>)> {
+    let gaps = rates.len() / 2;
+    let with = |set: &[usize]| {
+        let k: Vec<f64> = (0..rates.len())
+            .map(|j| {
+                if set.contains(&j) {
+                    bounds[j]
+                } else {
+                    rates[j].max(0.0)
+                }
+            })
+            .collect();
+        let up: Vec<f64> = (0..gaps).map(|g| k[2 * g]).collect();
+        let down: Vec<f64> = (0..gaps).map(|g| k[2 * g + 1]).collect();
+        chain_weights(&up, &down)
+    };
+    let mut trials: Vec<Vec<usize>> = zero.iter().map(|&k| vec![k]).collect();
+    trials.push(zero.to_vec());
+    trials
+        .into_iter()
+        .filter_map(|set| with(&set).map(|wb| (set, wb)))
+        .map(|(set, wb)| {
+            let shift = weights
+                .iter()
+                .zip(&wb)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            (shift, set, wb)
+        })
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+}
+
+/// What the pilots decided: the cores of the simulation's wells, the theory's wells and those
+/// the simulation lacks, and the refusals so far.
+struct Found {
+    cores: Cores,
+    pilot_inside: Vec<f64>,
+    theory_wells: Wells,
+    missing: Vec<MissingWell>,
+    refusals: Vec<String>,
 }
 
 /// Offsets of one replica's unit vector: the rates (up, down per gap), then per well its
@@ -488,7 +763,7 @@ fn quarters(q: &[Vec<u64>]) -> Vec<u64> {
 /// The replicas' results combined: conditional results per well, the weights, the mixture.
 #[allow(clippy::too_many_arguments)]
 fn combine(
-    (cores, pilot_inside): (Cores, Vec<f64>),
+    found: Found,
     spec: &EnsembleSpec,
     layout: &Layout,
     sizes: &super::spec::Sizes,
@@ -499,6 +774,13 @@ fn combine(
     paths: Vec<WellPath>,
     transitions: Vec<Transition>,
 ) -> WellsResult {
+    let Found {
+        cores,
+        pilot_inside,
+        theory_wells,
+        missing,
+        mut refusals,
+    } = found;
     let nw = wells.len();
     let replicas = spec.paths;
     let np = 2 * (nw - 1);
@@ -512,11 +794,38 @@ fn combine(
         })
         .collect();
     // one unit vector per replica
+    // a transition is unresolved when its splitting died out in every replica (no excursion
+    // reached the target) or stopped at its iteration limit in any: its rate is then only
+    // bounded by the flux times the estimated probability of passing the farthest level (the
+    // rate itself where a replica resolved it), and taken as 0 in the weights
+    let tr = &transitions;
+    let of = |k: usize| (0..replicas).map(move |q| &tr[q * np + k]);
+    let unresolved: Vec<bool> = (0..np)
+        .map(|k| of(k).any(|t| !t.complete) || of(k).all(|t| t.rate.is_nan() || t.rate <= 0.0))
+        .collect();
+    let bounds: Vec<f64> = (0..np)
+        .map(|k| {
+            of(k)
+                .map(|t| {
+                    if t.complete && t.probability > 0.0 {
+                        t.rate
+                    } else {
+                        t.flux * t.level_probability
+                    }
+                })
+                .sum::<f64>()
+                / replicas as f64
+        })
+        .collect();
     let units: Vec<Vec<f64>> = (0..replicas)
         .map(|r| {
             let mut u = vec![0.0; off.len()];
             for k in 0..np {
-                u[k] = transitions[r * np + k].rate;
+                u[k] = if unresolved[k] {
+                    0.0
+                } else {
+                    transitions[r * np + k].rate
+                };
             }
             for i in 0..nw {
                 let p = &stats[r * nw + i];
@@ -644,7 +953,14 @@ fn combine(
         .map(|(k, &(i, j, _))| Rate {
             from: i,
             to: j,
-            rate: mean_of(k, &|t| t.rate),
+            rate: if unresolved[k] {
+                Estimate {
+                    value: 0.0,
+                    stderr: 0.0,
+                }
+            } else {
+                mean_of(k, &|t| t.rate)
+            },
             flux: mean_of(k, &|t| t.flux),
             probability: mean_of(k, &|t| t.probability),
         })
@@ -671,36 +987,62 @@ fn combine(
         .map(|c| sampled / c.stationarity.ess.max(1.0))
         .collect();
     // the diagnostic
-    let mut refusals = Vec::new();
-    let mut notes = Vec::new();
+    let mut notes: Vec<String> = missing
+        .iter()
+        .map(|m| {
+            format!(
+                "the theory's well {} (mode {:.4}) is missing in the simulation: a path started \
+                 at its mode left it after {} turning points and settled in the theory's well {} \
+                 ({:.0} % of its turning points there); the decomposition is over the \
+                 simulation's {} wells",
+                m.well,
+                m.mode,
+                m.stay,
+                m.settled_in,
+                100.0 * m.settled,
+                nw
+            )
+        })
+        .collect();
     for (k, r) in rates.iter().enumerate() {
-        if r.rate.value.is_nan() || r.rate.value <= 0.0 {
-            let (level, passed) = (0..replicas)
-                .map(|q| &transitions[q * np + k])
-                .map(|t| (t.level, t.level_probability))
-                .fold((f64::NAN, 0.0f64), |(l, p), (tl, tp)| {
+        if unresolved[k] {
+            let (level, passed) = of(k).map(|t| (t.level, t.level_probability)).fold(
+                (f64::NAN, 0.0f64),
+                |(l, p), (tl, tp)| {
                     let farther = l.is_nan() || (tl - l) * (r.to as f64 - r.from as f64) > 0.0;
                     if farther {
                         (tl, tp)
                     } else {
                         (l, p.max(tp))
                     }
-                });
-            notes.push(format!(
-                "{} → {}: no excursion reached the core of well {} in any replica; the \
-                 splitting got as far as amplitude {level:.4} (passed with probability \
-                 {passed:.2e}): the rate is below the method's resolution, taken as 0",
-                r.from, r.to, r.to
-            ));
-        }
-        let incomplete = (0..replicas)
-            .filter(|&q| !transitions[q * np + k].complete)
-            .count();
-        if incomplete > 0 {
-            refusals.push(format!(
-                "the splitting of {} → {} reached its iteration limit in {incomplete} replicas",
-                r.from, r.to
-            ));
+                },
+            );
+            let incomplete = of(k).filter(|t| !t.complete).count();
+            let how = if incomplete > 0 {
+                format!(
+                    "the splitting reached its iteration limit in {incomplete} of {replicas} \
+                     replicas"
+                )
+            } else {
+                format!(
+                    "no excursion reached the core of well {} in any replica",
+                    r.to
+                )
+            };
+            if level.is_nan() {
+                notes.push(format!(
+                    "{} → {}: no exit from the core toward well {} in any replica: the rate is \
+                     unresolved, taken as 0",
+                    r.from, r.to, r.to
+                ));
+            } else {
+                notes.push(format!(
+                    "{} → {}: {how}; it got as far as phase-averaged amplitude {level:.4} \
+                     (passed with probability {passed:.2e}): the rate is below the method's \
+                     resolution (< {:.2e}), taken as 0",
+                    r.from, r.to, bounds[k]
+                ));
+            }
         }
         let d = if r.to > r.from { 0 } else { 1 };
         let exits = (0..replicas)
@@ -716,13 +1058,6 @@ fn combine(
         }
     }
     for (i, c) in conditional.iter().enumerate() {
-        if pilot_inside[i] < 0.5 {
-            refusals.push(format!(
-                "well {i}: a path started at its mode spent only {:.0} % of its turning points in \
-                 the well's core: the simulated system has no well there",
-                100.0 * pilot_inside[i]
-            ));
-        }
         if !c.stationarity.stationary {
             refusals.push(format!(
                 "well {i}: its conditional statistics are not stationary (R̂ = {:.3}, drift \
@@ -741,58 +1076,15 @@ fn combine(
     // a rate below resolution is not known to be 0: the splitting only says it is below the
     // flux times the probability of passing the last level it reached. Where that bound could
     // move the weights, they are not determined.
-    let bounds: Vec<f64> = (0..np)
-        .map(|k| {
-            if rates[k].rate.value > 0.0 {
-                rates[k].rate.value
-            } else {
-                (0..replicas)
-                    .map(|q| {
-                        let t = &transitions[q * np + k];
-                        t.flux * t.level_probability
-                    })
-                    .sum::<f64>()
-                    / replicas as f64
-            }
-        })
-        .collect();
-    let zero: Vec<usize> = (0..np)
-        .filter(|&k| rates[k].rate.value.is_nan() || rates[k].rate.value <= 0.0)
-        .collect();
+    let zero: Vec<usize> = (0..np).filter(|&k| unresolved[k]).collect();
     if let (Some(w), false) = (&pooled_weights, zero.is_empty()) {
-        let with = |set: &[usize]| {
-            let k: Vec<f64> = (0..np)
-                .map(|j| {
-                    if set.contains(&j) {
-                        bounds[j]
-                    } else {
-                        rates[j].rate.value.max(0.0)
-                    }
-                })
-                .collect();
-            let up: Vec<f64> = (0..nw - 1).map(|g| k[2 * g]).collect();
-            let down: Vec<f64> = (0..nw - 1).map(|g| k[2 * g + 1]).collect();
-            chain_weights(&up, &down)
-        };
-        let mut trials: Vec<Vec<usize>> = zero.iter().map(|&k| vec![k]).collect();
-        trials.push(zero.clone());
-        let worst = trials
-            .iter()
-            .filter_map(|set| with(set).map(|wb| (set, wb)))
-            .map(|(set, wb)| {
-                let shift = w
-                    .iter()
-                    .zip(&wb)
-                    .map(|(a, b)| (a - b).abs())
-                    .fold(0.0, f64::max);
-                (shift, set, wb)
-            })
-            .max_by(|a, b| a.0.total_cmp(&b.0));
+        let values: Vec<f64> = rates.iter().map(|r| r.rate.value).collect();
+        let worst = largest_shift(&values, &bounds, &zero, w);
         if let Some((shift, set, wb)) = worst {
             if shift > MAX_WEIGHT_SHIFT {
                 let named: Vec<String> = set
-                    .iter()
-                    .map(|&k| format!("{} → {} < {:.2e}", rates[k].from, rates[k].to, bounds[k]))
+                    .into_iter()
+                    .map(|k| format!("{} → {} < {:.2e}", rates[k].from, rates[k].to, bounds[k]))
                     .collect();
                 let shown: Vec<String> = wb.iter().map(|x| format!("{x:.3}")).collect();
                 refusals.push(format!(
@@ -921,6 +1213,8 @@ fn combine(
         result,
         wells: WellsEstimate {
             spec: *wspec,
+            theory_wells,
+            missing,
             cores,
             pilot_inside,
             rates,
@@ -935,5 +1229,83 @@ fn combine(
             replicas: replica_list,
             steps,
         },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_bound_moves_the_weights_only_when_it_is_not_small() {
+        // two wells: 0 → 1 at 1e-3, 1 → 0 unresolved: weights (0, 1)
+        let w = [0.0, 1.0];
+        let (shift, set, wb) = largest_shift(&[1e-3, 0.0], &[1e-3, 1e-9], &[1], &w).unwrap();
+        assert_eq!(set, vec![1]);
+        assert!((shift - 1e-6).abs() < 1e-9, "{shift}");
+        assert!((wb[0] - 1e-6).abs() < 1e-9);
+        // a bound as large as the rate out: half the mass could be in well 0
+        let (shift, _, wb) = largest_shift(&[1e-3, 0.0], &[1e-3, 1e-3], &[1], &w).unwrap();
+        assert!((shift - 0.5).abs() < 1e-12 && (wb[1] - 0.5).abs() < 1e-12);
+        // both unresolved: each alone keeps a closed class; together they give weights
+        let (shift, set, _) = largest_shift(&[0.0, 0.0], &[1.0, 3.0], &[0, 1], &w).unwrap();
+        assert!(set.len() <= 2 && shift > 0.0);
+    }
+
+    /// A pilot with these shares after the burn-in; it left its well after `stay` turning
+    /// points (or never), with `inside` of its own turning points in its core before.
+    fn pilot(share: Vec<f64>, stay: Option<u64>, inside: f64) -> Pilot {
+        Pilot {
+            share,
+            inside,
+            stay,
+            core: (0.0, 1.0),
+        }
+    }
+
+    #[test]
+    fn a_missing_well_is_dropped_and_a_path_in_no_well_is_refused() {
+        let theory = Wells::new(vec![1.0, 5.0, 10.0], vec![3.0, 7.0]).unwrap();
+        // the inner well's pilot settles in the middle well
+        let pilots = vec![
+            pilot(vec![0.1, 0.8, 0.0], Some(20), 0.9),
+            pilot(vec![0.0, 0.9, 0.0], None, 0.9),
+            pilot(vec![0.0, 0.0, 1.0], None, 1.0),
+        ];
+        let (kept, missing, refusals) = simulated_wells(&pilots);
+        assert_eq!(kept, vec![1, 2]);
+        assert_eq!(missing.len(), 1);
+        assert_eq!((missing[0].well, missing[0].settled_in), (0, 1));
+        assert!(refusals.is_empty());
+        let w = reduced_wells(&theory, &kept, &missing).unwrap();
+        assert_eq!((w.modes, w.antimodes), (vec![5.0, 10.0], vec![7.0]));
+        // the middle well's pilot settles in the outer well: its region goes up
+        let pilots = vec![
+            pilot(vec![0.9, 0.0, 0.0], Some(5000), 0.9),
+            pilot(vec![0.0, 0.2, 0.7], Some(3), 1.0),
+            pilot(vec![0.0, 0.0, 1.0], None, 1.0),
+        ];
+        let (kept, missing, _) = simulated_wells(&pilots);
+        let w = reduced_wells(&theory, &kept, &missing).unwrap();
+        assert_eq!((w.modes, w.antimodes), (vec![1.0, 10.0], vec![3.0]));
+        // ... or down
+        let pilots = vec![
+            pilot(vec![0.9, 0.0, 0.0], Some(5000), 0.9),
+            pilot(vec![0.7, 0.2, 0.0], Some(99), 0.6),
+            pilot(vec![0.0, 0.0, 1.0], None, 1.0),
+        ];
+        let (kept, missing, _) = simulated_wells(&pilots);
+        let w = reduced_wells(&theory, &kept, &missing).unwrap();
+        assert_eq!((w.modes, w.antimodes), (vec![1.0, 10.0], vec![7.0]));
+        // a pilot between the cores: amplitudes that no well covers
+        let pilots = vec![
+            pilot(vec![0.9, 0.0, 0.0], Some(5000), 0.9),
+            pilot(vec![0.1, 0.3, 0.1], Some(40), 0.5),
+            pilot(vec![0.0, 0.0, 1.0], None, 1.0),
+        ];
+        let (kept, missing, refusals) = simulated_wells(&pilots);
+        assert_eq!(kept, vec![0, 2]);
+        assert!(missing.is_empty());
+        assert!(refusals[0].contains("no well covers"), "{refusals:?}");
     }
 }
