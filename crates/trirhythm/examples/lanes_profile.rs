@@ -74,7 +74,7 @@ fn main() {
                 .iter()
                 .map(|s| (s.u(), s.v(), s.impacts()))
                 .collect();
-            println!("ends {ends:?}");
+            println!("ends {ends:?}; {} exponentials", steppers[0].exponentials());
         }
         _ => panic!("{usage}"),
     }
