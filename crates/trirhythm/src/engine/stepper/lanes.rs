@@ -85,6 +85,22 @@ pub fn detected_lanes() -> usize {
     8
 }
 
+/// The width of the lane groups for `units` independent units of work shared among the current
+/// thread pool's threads, each unit taking `lanes_per_unit` lanes (a path: 1; a Lyapunov
+/// realisation's reference and copy: 2): `lanes`' width, narrowed from 8 to 4 when a thread's
+/// share of units would fill no more than four lanes, so that every thread has a group. A path's
+/// bits do not depend on its group, so neither do the results.
+pub(crate) fn group_lanes(lanes: Lanes, units: usize, lanes_per_unit: usize) -> Result<usize> {
+    let width = lanes.width()?;
+    let threads = rayon::current_num_threads().max(1);
+    let per_thread = units.div_ceil(threads) * lanes_per_unit;
+    Ok(if width == 8 && per_thread <= 4 {
+        4
+    } else {
+        width
+    })
+}
+
 /// The instruction set the lane arrays are compiled for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Isa {
