@@ -141,6 +141,16 @@ fn bin(x: f64, scale: f64, n: usize, nf: f64) -> usize {
     }
 }
 
+/// One more count in cell `i` of a recorder's histograms: `i` is a row's offset ([`Rows`] of a
+/// quarter in 0..4) plus a bin of that row (at most its length − 1, from [`bin`]), so it lies
+/// inside the array the recorder allocated for four quarters' rows.
+#[inline(always)]
+fn count(counts: &mut [u64], i: usize) {
+    debug_assert!(i < counts.len());
+    // SAFETY: see above; the unit tests and every debug-build test check the bound
+    unsafe { *counts.get_unchecked_mut(i) += 1 }
+}
+
 /// Offsets in a recorder's flat histogram array: per quarter the amplitude, energy and turning
 /// rows (bins + 1 each), then the joint row (joint_bins² + 1).
 #[derive(Debug, Clone, Copy)]
@@ -257,7 +267,10 @@ impl<'a> Recorder<'a> {
     /// A turning point of amplitude `a` at time t: update the well state and the passages.
     fn turning_point(&mut self, a: f64, t: f64) {
         let l = self.layout;
-        self.counts[self.rows.turning + bin(a, l.a_scale, l.bins, l.bins_f)] += 1;
+        count(
+            &mut self.counts,
+            self.rows.turning + bin(a, l.a_scale, l.bins, l.bins_f),
+        );
         let Some(w) = &l.wells else { return };
         let Some(k) = w.core_of(a) else { return };
         if self.state == Some(k) {
@@ -373,8 +386,11 @@ impl Observer for Recorder<'_> {
             batch.wells[w.well_of(a)] += 1;
         }
         let (rows, counts) = (self.rows, &mut self.counts);
-        counts[rows.amplitude + bin(a, l.a_scale, l.bins, l.bins_f)] += 1;
-        counts[rows.energy + bin(0.5 * l.omega1_sq * a2, l.h_scale, l.bins, l.bins_f)] += 1;
+        count(counts, rows.amplitude + bin(a, l.a_scale, l.bins, l.bins_f));
+        count(
+            counts,
+            rows.energy + bin(0.5 * l.omega1_sq * a2, l.h_scale, l.bins, l.bins_f),
+        );
         let jb = l.joint_bins;
         let iu = bin(u - l.u_lo, l.u_scale, jb, l.joint_bins_f);
         let iv = bin(v - l.v_lo, l.v_scale, jb, l.joint_bins_f);
@@ -383,7 +399,7 @@ impl Observer for Recorder<'_> {
         } else {
             jb * jb
         };
-        counts[rows.joint + cell] += 1;
+        count(counts, rows.joint + cell);
         Flow::Continue
     }
 }

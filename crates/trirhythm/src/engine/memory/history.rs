@@ -278,7 +278,9 @@ impl History {
     }
 
     /// Store a completed (corrected) piece and prepare the history of the next step.
-    #[inline]
+    // always: the constant kernel's running integral is a few operations, inlined into the
+    // step (a call on every step of a λ = 1 path otherwise); the rest is one call away
+    #[inline(always)]
     pub fn push(&mut self, piece: Piece) {
         if !self.direct && self.local.cap == 0 && piece.split.is_none() && self.flat {
             // a constant kernel (λ = 1): the running trapezoidal integral
@@ -287,6 +289,13 @@ impl History {
             self.cached = self.lumped[0] * self.moments[0];
             return;
         }
+        self.push_windowed(piece);
+    }
+
+    /// [`History::push`] with a window or a split piece: the fast path where it applies, else
+    /// the general one.
+    #[inline(never)]
+    fn push_windowed(&mut self, piece: Piece) {
         if !self.direct
             && self.local.cap > 0
             && self.local.len + 1 >= self.local.cap
