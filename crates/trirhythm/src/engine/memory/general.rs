@@ -46,6 +46,7 @@ impl History {
     }
 
     /// [`History::push`] in general: Direct memory, split pieces, λ = 1.
+    #[inline(never)]
     pub(super) fn push_general(&mut self, piece: Piece) {
         let seq = self.pushed;
         self.pushed += 1;
