@@ -17,10 +17,7 @@ use super::modes::{advance_modes, Modes};
 use super::moments::{dot_moments, lumped_weights, MomentStep};
 use super::window::{dot, Window};
 #[cfg(target_arch = "x86_64")]
-use super::{
-    modes::{advance_modes_avx, advance_modes_avx512},
-    window::dot_avx,
-};
+use super::{modes::advance_modes_avx, window::dot_avx};
 use super::{piece_integral, Memory, Piece, Split};
 use crate::engine::kernel::{phi_psi, IntervalWeights, Powers, SoeKernel, LUMPED_TERMS};
 use crate::error::{Error, Result};
@@ -72,8 +69,6 @@ pub(crate) struct History {
     pub(super) modes: Modes,
     /// The CPU runs AVX (the modes are advanced four lanes at once, same bits).
     pub(super) avx: bool,
-    /// The CPU runs AVX-512F (the modes are advanced two blocks of four at once, same bits).
-    pub(super) avx512: bool,
     /// The SOE kernel's lumped polynomial p₀…p₃ (copied out of `soe` for the hot path); at
     /// λ = 1 only p₀ ≠ 0 (`flat`), and only the integral is kept.
     pub(super) lumped: [f64; LUMPED_TERMS],
@@ -122,7 +117,6 @@ impl History {
             soe: None,
             modes: Modes::default(),
             avx: false,
-            avx512: false,
             lumped: [0.0; LUMPED_TERMS],
             flat: true,
             lumped_out: [0.0; LUMPED_TERMS],
@@ -169,7 +163,6 @@ impl History {
             #[cfg(target_arch = "x86_64")]
             {
                 c.avx = std::arch::is_x86_feature_detected!("avx");
-                c.avx512 = c.avx && std::arch::is_x86_feature_detected!("avx512f");
             }
             c.local = Window::new(cap);
             c.grow_weights(cap);
@@ -303,13 +296,6 @@ impl History {
             && !self.split_leaves()
         {
             #[cfg(target_arch = "x86_64")]
-            if self.avx512 {
-                // SAFETY: `avx512` is true only when the CPU reported AVX and AVX-512F at
-                // construction.
-                unsafe { self.push_plain_avx512(piece.left, piece.right) };
-                return;
-            }
-            #[cfg(target_arch = "x86_64")]
             if self.avx {
                 // SAFETY: `avx` is true only when the CPU reported AVX at construction.
                 unsafe { self.push_plain_avx(piece.left, piece.right) };
@@ -330,20 +316,6 @@ impl History {
             left,
             right,
             |m, l, r| advance_modes_avx(m, l, r),
-            |a, b| dot_avx(a, b),
-        )
-    }
-
-    /// [`History::push_plain`] with the modes in AVX-512 (two blocks of four a vector: the even
-    /// blocks' sums in its low half, the odd blocks' in its high half, as the AVX version's two
-    /// accumulators), the rest in AVX: the same operations in the same order, so the same bits.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f,avx")]
-    unsafe fn push_plain_avx512(&mut self, left: f64, right: f64) {
-        self.push_plain_body(
-            left,
-            right,
-            |m, l, r| advance_modes_avx512(m, l, r),
             |a, b| dot_avx(a, b),
         )
     }

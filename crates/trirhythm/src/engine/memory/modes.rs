@@ -5,15 +5,13 @@
 //! Y ← e^{−s h} Y + h ψ(sh) l + h (φ(sh) − ψ(sh)) r.
 //!
 //! Method: the modes in blocks of four lanes, plain multiplies and adds in a fixed order (no
-//! fused multiply–add); the AVX version does the same operations in the same order, and so does
-//! the AVX-512 version (two blocks a vector, the even and odd blocks' sums in its two halves), so
-//! the bits do not depend on the CPU.
+//! fused multiply–add); the AVX version does the same operations in the same order, so the bits
+//! do not depend on the CPU.
 //!
 //! Reference: Jiang, Zhang, Zhang & Zhang, Commun. Comput. Phys. 21 (2017) 650–678 (SOE for the
 //! Caputo derivative).
 //!
-//! Tests: `portable_avx_and_avx512_memories_give_the_same_bits` in the memory's unit tests;
-//! `tests/soe.rs`.
+//! Tests: `portable_and_avx_memories_give_the_same_bits` in the memory's unit tests; `tests/soe.rs`.
 
 /// The exponential modes of an SOE kernel, advanced by one unsplit piece (l, r):
 /// Y ← e^{−sh}Y + a·l + b·r, returning Σ out·Y. Laid out in blocks of four; the arithmetic is
@@ -95,65 +93,6 @@ pub(super) unsafe fn advance_modes_avx(m: &mut Modes, l: f64, r: f64) -> f64 {
     }
     if k < n {
         acc0 = _mm256_add_pd(acc0, block(k));
-    }
-    let mut s = [0.0; 4];
-    _mm256_storeu_pd(s.as_mut_ptr(), _mm256_add_pd(acc0, acc1));
-    (s[0] + s[1]) + (s[2] + s[3])
-}
-
-/// [`advance_modes`] in AVX-512: blocks 2k and 2k + 1 in one vector of eight, so that its low
-/// half sums the even blocks and its high half the odd ones — the two accumulators of
-/// [`advance_modes_avx`], each added to in the same order; an odd last block goes to the even
-/// sums in AVX, as there. The same operations in the same order: the same bits, with half the
-/// vector instructions of the AVX version.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f,avx")]
-#[inline]
-pub(super) unsafe fn advance_modes_avx512(m: &mut Modes, l: f64, r: f64) -> f64 {
-    use std::arch::x86_64::*;
-    let n = m.y.len();
-    assert!(m.decay.len() == n && m.start.len() == n && m.end.len() == n && m.out.len() == n);
-    let (y, d, a, b, o) = (
-        m.y.as_mut_ptr() as *mut f64,
-        m.decay.as_ptr() as *const f64,
-        m.start.as_ptr() as *const f64,
-        m.end.as_ptr() as *const f64,
-        m.out.as_ptr() as *const f64,
-    );
-    let (lv, rv) = (_mm512_set1_pd(l), _mm512_set1_pd(r));
-    // lanes 0–3: the even blocks' sums (acc0 of the AVX version), lanes 4–7: the odd ones'
-    let mut acc = _mm512_setzero_pd();
-    let mut k = 0;
-    while k + 1 < n {
-        let i = 4 * k;
-        // SAFETY: blocks k and k + 1 < n of four f64 in all five arrays (asserted above).
-        let yv = _mm512_loadu_pd(y.add(i));
-        let v = _mm512_add_pd(
-            _mm512_mul_pd(_mm512_loadu_pd(d.add(i)), yv),
-            _mm512_add_pd(
-                _mm512_mul_pd(_mm512_loadu_pd(a.add(i)), lv),
-                _mm512_mul_pd(_mm512_loadu_pd(b.add(i)), rv),
-            ),
-        );
-        _mm512_storeu_pd(y.add(i), v);
-        acc = _mm512_add_pd(acc, _mm512_mul_pd(_mm512_loadu_pd(o.add(i)), v));
-        k += 2;
-    }
-    let mut acc0 = _mm512_castpd512_pd256(acc);
-    let acc1 = _mm512_extractf64x4_pd::<1>(acc);
-    if k < n {
-        let i = 4 * k;
-        // SAFETY: block k < n (asserted above).
-        let yv = _mm256_loadu_pd(y.add(i));
-        let v = _mm256_add_pd(
-            _mm256_mul_pd(_mm256_loadu_pd(d.add(i)), yv),
-            _mm256_add_pd(
-                _mm256_mul_pd(_mm256_loadu_pd(a.add(i)), _mm512_castpd512_pd256(lv)),
-                _mm256_mul_pd(_mm256_loadu_pd(b.add(i)), _mm512_castpd512_pd256(rv)),
-            ),
-        );
-        _mm256_storeu_pd(y.add(i), v);
-        acc0 = _mm256_add_pd(acc0, _mm256_mul_pd(_mm256_loadu_pd(o.add(i)), v));
     }
     let mut s = [0.0; 4];
     _mm256_storeu_pd(s.as_mut_ptr(), _mm256_add_pd(acc0, acc1));

@@ -30,10 +30,9 @@
 //! What it gains: one path's step is bound by the latency of its dependency chain (two
 //! evaluations of P, two divisions, the memory's last addition); L independent chains overlap
 //! and their arithmetic shares the vector instructions. What it does not change: the memory's
-//! mode update (already four modes per AVX instruction for one path, eight with AVX-512), the
-//! noise generator (one ChaCha8 stream per path) and the impacts are per-path work (see
-//! docs/numerics.md, Speed, for the measured split). The lane groups' width for a thread pool is
-//! [`group_lanes`].
+//! mode update (already four modes per AVX instruction for one path), the noise generator (one
+//! ChaCha8 stream per path) and the impacts are per-path work (see docs/numerics.md, Speed, for
+//! the measured split). The lane groups' width for a thread pool is [`group_lanes`].
 //!
 //! # Reference
 //! Structure-of-arrays vectorisation across independent Monte Carlo paths (e.g. the SIMD
