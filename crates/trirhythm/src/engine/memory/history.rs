@@ -271,8 +271,9 @@ impl History {
     }
 
     /// Store a completed (corrected) piece and prepare the history of the next step.
-    // always: the constant kernel's running integral is a few operations, inlined into the
-    // step (a call on every step of a λ = 1 path otherwise); the rest is one call away
+    // always: the constant kernel's running integral and the choice of the path are a few
+    // operations, inlined into the step (a call on every step otherwise: measured 3–4 % of the
+    // lane-8 step at λ = 0.998); the fast path and the general one are one call away
     #[inline(always)]
     pub fn push(&mut self, piece: Piece) {
         if !self.direct && self.local.cap == 0 && piece.split.is_none() && self.flat {
@@ -282,13 +283,6 @@ impl History {
             self.cached = self.lumped[0] * self.moments[0];
             return;
         }
-        self.push_windowed(piece);
-    }
-
-    /// [`History::push`] with a window or a split piece: the fast path where it applies, else
-    /// the general one.
-    #[inline(never)]
-    fn push_windowed(&mut self, piece: Piece) {
         if !self.direct
             && self.local.cap > 0
             && self.local.len + 1 >= self.local.cap
@@ -320,6 +314,7 @@ impl History {
         )
     }
 
+    #[inline(never)]
     fn push_plain(&mut self, left: f64, right: f64) {
         self.push_plain_body(left, right, advance_modes, dot)
     }
