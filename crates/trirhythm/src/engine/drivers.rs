@@ -33,10 +33,11 @@
 //! # Ok::<(), trirhythm::Error>(())
 //! ```
 
+use super::memory::History;
 use super::problem::{
     Options, Oscillator, PredictorCorrector, Problem, MAX_AMPLITUDE_PERIODS, MAX_DT,
 };
-use super::stepper::lanes::{same_problem, step_group, step_group_mixed, Isa, PerLane};
+use super::stepper::lanes::{group_lanes, same_problem, step_group, step_group_mixed, Isa, PerLane};
 use super::stepper::{fresh_history, Impact, Lanes, Stepper};
 use crate::error::{Error, Result};
 use crate::monitor::{Monitor, Silent};
@@ -226,6 +227,25 @@ fn run_group<const L: usize, O: Observer>(
         }
     }
     Ok(taken)
+}
+
+/// The steppers of paths `group` (stream i of `seed` from `problem.start(i)`, in the order
+/// given) with a copy of the empty memory `history` built once for the ensemble: a lane
+/// group's paths for [`run_lanes`].
+pub(crate) fn group_steppers(
+    problem: &Problem,
+    method: &PredictorCorrector,
+    seed: u64,
+    group: &[u64],
+    history: &History,
+) -> Result<Vec<Stepper>> {
+    group
+        .iter()
+        .map(|&i| {
+            let start = problem.start(i);
+            Stepper::with_history(problem, method, start, (seed, i), history.clone())
+        })
+        .collect()
 }
 
 /// Whole steps of Δt = `dt` in a span `t` named `name` (0 allowed when `allow_zero`), checked:
@@ -511,29 +531,16 @@ pub fn simulate_ensemble(
     let history = fresh_history(problem, method, steps as f64 * method.dt)?;
     // groups of paths stepped together in lanes (the same bits as one by one), narrower when
     // there are too few paths to give every thread a group
-    let width = Lanes::Auto.width()?;
-    let threads = rayon::current_num_threads().max(1);
-    let width = match paths.div_ceil(threads) {
-        per if per <= 4 => width.min(4),
-        _ => width,
-    };
+    let width = group_lanes(Lanes::Auto, paths, 1)?;
     let indices: Vec<u64> = (0..paths as u64).collect();
     let groups: Vec<Vec<Trajectory>> = indices
         .par_chunks(width)
         .map(|group| {
-            let mut steppers = Vec::with_capacity(group.len());
-            let mut recorders = Vec::with_capacity(group.len());
-            for &i in group {
-                let start = problem.start(i);
-                steppers.push(Stepper::with_history(
-                    problem,
-                    method,
-                    start,
-                    (options.seed, i),
-                    history.clone(),
-                )?);
-                recorders.push(TrajectoryRecorder::new(osc, options, steps, method.dt)?);
-            }
+            let mut steppers = group_steppers(problem, method, options.seed, group, &history)?;
+            let mut recorders = group
+                .iter()
+                .map(|_| TrajectoryRecorder::new(osc, options, steps, method.dt))
+                .collect::<Result<Vec<_>>>()?;
             let taken = run_lanes(
                 &mut steppers,
                 steps,

@@ -65,7 +65,10 @@ pub fn interval_weights(lambda: f64, ua: f64, ub: f64) -> (f64, f64) {
 
 /// [`interval_weights`] for one order λ, its series' coefficients computed once: the memory
 /// evaluates weights of arbitrary intervals at every impact (the split of a step), where the
-/// series' 24 divisions per call used to cost a noisy path as much as its memory.
+/// series' 24 divisions per call used to cost a noisy path as much as its memory. The powers
+/// uᵏ of the closed form come, for whole u in 1..[`WHOLE_POWERS`], from a table made once with
+/// the same `pow` call, and for the other u from a [`Powers`] memo when the caller passes one
+/// ([`IntervalWeights::of_with`]): the same bits as calling `pow` each time.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct IntervalWeights {
     lambda: f64,
@@ -73,6 +76,21 @@ pub(crate) struct IntervalWeights {
     even: [f64; 12],
     /// 2C(λ−1, 2k + 1)/(2k + 3): the odd terms.
     odd: [f64; 12],
+    /// k^λ for k = 0..WHOLE_POWERS (`pow(k, λ)`; index 0 unused).
+    whole: [f64; WHOLE_POWERS],
+}
+
+/// The whole distances whose powers [`IntervalWeights`] tabulates: the closed form is used only
+/// for intervals within about five steps of the evaluation time (farther, the series).
+pub(crate) const WHOLE_POWERS: usize = 16;
+
+/// The last two powers u^λ of non-whole u that one group of weights computed (an impact's
+/// split, the memory at an instant inside a step): neighbouring intervals share their ends, so
+/// about half the `pow` calls of an impact are answered from here, with the same bits.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Powers {
+    seen: [Option<(u64, f64)>; 2],
+    next: usize,
 }
 
 impl IntervalWeights {
@@ -91,11 +109,41 @@ impl IntervalWeights {
                 odd[m / 2] = 2.0 * binom / (m as f64 + 2.0);
             }
         }
-        IntervalWeights { lambda, even, odd }
+        let whole = std::array::from_fn(|k| if k == 0 { 0.0 } else { pow(k as f64, lambda) });
+        IntervalWeights {
+            lambda,
+            even,
+            odd,
+            whole,
+        }
+    }
+
+    /// u^λ: from the table for whole u, else from `memo` or `pow` (remembered in `memo`).
+    #[inline]
+    fn power(&self, u: f64, memo: &mut Powers) -> f64 {
+        if u >= 1.0 && u < WHOLE_POWERS as f64 && u.fract() == 0.0 {
+            return self.whole[u as usize];
+        }
+        let bits = u.to_bits();
+        for (b, v) in memo.seen.iter().flatten() {
+            if *b == bits {
+                return *v;
+            }
+        }
+        let v = pow(u, self.lambda);
+        memo.seen[memo.next] = Some((bits, v));
+        memo.next = 1 - memo.next;
+        v
     }
 
     /// (w_a, w_b) of the interval [u_a, u_b], as [`interval_weights`].
     pub fn of(&self, ua: f64, ub: f64) -> (f64, f64) {
+        self.of_with(ua, ub, &mut Powers::default())
+    }
+
+    /// [`IntervalWeights::of`] with the powers of the closed form taken from (and kept in)
+    /// `memo` where it has them: for several intervals that share their ends.
+    pub fn of_with(&self, ua: f64, ub: f64, memo: &mut Powers) -> (f64, f64) {
         let lambda = self.lambda;
         let d = ub - ua;
         if d <= 0.0 {
@@ -115,8 +163,8 @@ impl IntervalWeights {
         } else {
             // u^{λ+1} = u·u^λ: two powers, one when u_a = 0 (the impacts call this often, and
             // the platform-independent `pow` is not cheap)
-            let pb = pow(ub, lambda);
-            let pa = if ua == 0.0 { 0.0 } else { pow(ua, lambda) };
+            let pb = self.power(ub, memo);
+            let pa = if ua == 0.0 { 0.0 } else { self.power(ua, memo) };
             let m0 = (pb - pa) / lambda;
             let m1 = (ub * pb - ua * pa) / (lambda + 1.0);
             ((ub * m0 - m1) / d, (m1 - ua * m0) / d)
@@ -503,6 +551,51 @@ mod tests {
                     (a - ra).abs() <= tol && (b - rb).abs() <= tol,
                     "λ={l} [{ua},{ub}]"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn tabulated_and_remembered_powers_give_the_bits_of_pow() {
+        // the closed form with `pow` at each call (as before the table and the memo) against
+        // `of_with` sharing one memo over the intervals of an impact: whole ends, shared
+        // non-whole ends, a start at 0, the series branch in between
+        let plain = |w: &IntervalWeights, l: f64, ua: f64, ub: f64| -> (f64, f64) {
+            let d = ub - ua;
+            if d <= 0.0 {
+                return (0.0, 0.0);
+            }
+            let c = 0.5 * (ua + ub);
+            if ua > 0.0 && 0.5 * d / c < 0.1 {
+                return w.of_with(ua, ub, &mut Powers::default());
+            }
+            let pb = pow(ub, l);
+            let pa = if ua == 0.0 { 0.0 } else { pow(ua, l) };
+            let m0 = (pb - pa) / l;
+            let m1 = (ub * pb - ua * pa) / (l + 1.0);
+            ((ub * m0 - m1) / d, (m1 - ua * m0) / d)
+        };
+        for &l in &[0.3, 0.5, 0.9, 0.998, 1.0] {
+            let w = IntervalWeights::new(l);
+            for &theta in &[0.0, 1e-9, 0.25, 0.4, 0.5, 0.77, 1.0 - 1e-12] {
+                let mut memo = Powers::default();
+                let mut intervals = vec![(0.0, theta), (0.0, 1.0 - theta), (1.0 - theta, 1.0)];
+                for p in 1..20 {
+                    let pf = p as f64;
+                    let mid = pf + 1.0 - theta;
+                    intervals.extend([(pf, mid), (mid, pf + 1.0)]);
+                    let q = pf - (1.0 - theta);
+                    intervals.extend([(q, q + 1.0), (pf, pf + 1.0)]);
+                }
+                for (ua, ub) in intervals {
+                    let (a, b) = w.of_with(ua, ub, &mut memo);
+                    let (ra, rb) = plain(&w, l, ua, ub);
+                    assert_eq!(
+                        (a.to_bits(), b.to_bits()),
+                        (ra.to_bits(), rb.to_bits()),
+                        "λ = {l}, [{ua}, {ub}]"
+                    );
+                }
             }
         }
     }

@@ -26,7 +26,7 @@ mod problem;
 pub mod resolution;
 mod stepper;
 
-pub(crate) use drivers::whole_steps;
+pub(crate) use drivers::{group_steppers, whole_steps};
 pub use drivers::{
     run, run_lanes, simulate, simulate_ensemble, simulate_with, Flow, Observer, Trajectory,
     TrajectoryRecorder, MAX_KEPT_SAMPLES, MAX_PATHS, MAX_STEPS,
@@ -43,4 +43,4 @@ pub use resolution::Resolution;
 pub use stepper::{
     detected_lanes, Impact, Lanes, StepEvents, Stepper, LANE_WIDTHS, MAX_DIRECT_STEPS,
 };
-pub(crate) use stepper::{fresh_history, Group, Tangent};
+pub(crate) use stepper::{fresh_history, group_lanes, Group, Tangent};

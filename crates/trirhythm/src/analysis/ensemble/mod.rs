@@ -108,7 +108,8 @@ pub use wells::{
 };
 
 use crate::engine::{
-    fresh_history, run_lanes, Flow, Lanes, Observer, PredictorCorrector, Problem, Stepper,
+    fresh_history, group_lanes, group_steppers, run_lanes, Flow, Lanes, Observer,
+    PredictorCorrector, Problem, Stepper,
 };
 use crate::error::{Error, Result};
 use crate::monitor::{Monitor, Silent};
@@ -145,36 +146,20 @@ pub fn run_paths(
     let counter = AtomicU64::new(0);
     // groups of `width` paths stepped together in lanes; with few paths, narrower groups so
     // that every thread has one (a path's bits do not depend on its group)
-    let width = spec.lanes.width()?;
-    let threads = rayon::current_num_threads().max(1);
-    let width = match paths.len().div_ceil(threads) {
-        per if width == 8 && per <= 4 => 4,
-        _ => width,
-    };
+    let width = group_lanes(spec.lanes, paths.len(), 1)?;
     let lanes = Lanes::Width(width);
     let groups: Vec<Vec<PathStats>> = paths
         .par_chunks(width)
         .map(|group| {
             monitor.check()?;
-            let mut steppers = Vec::with_capacity(group.len());
-            let mut recorders = Vec::with_capacity(group.len());
-            for &i in group {
-                let start = problem.start(i);
-                steppers.push(Stepper::with_history(
-                    problem,
-                    method,
-                    start,
-                    (spec.seed, i),
-                    history.clone(),
-                )?);
-                recorders.push(Recorder::new(
-                    &layout,
-                    sizes.burn,
-                    spec.sample_every,
-                    i,
-                    start.0,
-                ));
-            }
+            let mut steppers = group_steppers(problem, method, spec.seed, group, &history)?;
+            let mut recorders: Vec<_> = group
+                .iter()
+                .map(|&i| {
+                    let u0 = problem.start(i).0;
+                    Recorder::new(&layout, sizes.burn, spec.sample_every, i, u0)
+                })
+                .collect();
             let mut observers: Vec<_> = recorders
                 .iter_mut()
                 .map(|rec| {

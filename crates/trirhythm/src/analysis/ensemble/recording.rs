@@ -1,6 +1,11 @@
 //! What one path records, streamed: its sums per batch, its histograms per quarter, its first
 //! passages between wells ([`PathStats`], the unit of merging and of checkpoints), and the
-//! recorder that fills them step by step without a division on the hot path.
+//! recorder that fills them step by step without a division on the hot path: its histograms
+//! in one flat array (the current quarter's rows at offsets set when the quarter changes),
+//! bins found by one multiply, two comparisons with the bin count as a double (computed once)
+//! and one truncation to a signed integer, then handed out as [`PathStats`]' histograms at the
+//! end. The bins are those of the plain `(x·scale) as usize` (unit test), and the ensembles'
+//! results are bit-identical (`tests/ensemble.rs`, the CLI's golden outputs).
 
 use super::spec::{EnsembleSpec, Wells, QUARTERS};
 use crate::engine::{Barrier, Flow, Observer, Problem, Stepper, System};
@@ -82,6 +87,9 @@ pub(super) struct Layout {
     pub(super) samples: u64,
     pub(super) wells: Option<Wells>,
     pub(super) crossing: bool,
+    /// `bins` and `joint_bins` as doubles (the bins' upper limits on the hot path).
+    bins_f: f64,
+    joint_bins_f: f64,
 }
 
 impl Layout {
@@ -107,6 +115,8 @@ impl Layout {
             samples,
             wells: spec.wells.clone(),
             crossing,
+            bins_f: spec.bins as f64,
+            joint_bins_f: jb,
         }
     }
 
@@ -118,14 +128,55 @@ impl Layout {
     }
 }
 
-/// Bin of x·scale in 0..n, or n (beyond).
-#[inline]
-fn bin(x: f64, scale: f64, n: usize) -> usize {
+/// Bin of x·scale in 0..n, or n (beyond); `nf` is n as a double.
+#[inline(always)]
+fn bin(x: f64, scale: f64, n: usize, nf: f64) -> usize {
     let b = x * scale;
-    if b >= 0.0 && b < n as f64 {
-        b as usize
+    if b >= 0.0 && b < nf {
+        // SAFETY: 0 ≤ b < n, finite and below 2⁶³: its truncation is an i64, the same integer
+        // as `b as usize` (one conversion instruction instead of the unsigned sequence)
+        unsafe { b.to_int_unchecked::<i64>() as usize }
     } else {
         n
+    }
+}
+
+/// One more count in cell `i` of a recorder's histograms: `i` is a row's offset ([`Rows`] of a
+/// quarter in 0..4) plus a bin of that row (at most its length − 1, from [`bin`]), so it lies
+/// inside the array the recorder allocated for four quarters' rows.
+#[inline(always)]
+fn count(counts: &mut [u64], i: usize) {
+    debug_assert!(i < counts.len());
+    // SAFETY: see above; the unit tests and every debug-build test check the bound
+    unsafe { *counts.get_unchecked_mut(i) += 1 }
+}
+
+/// Offsets in a recorder's flat histogram array: per quarter the amplitude, energy and turning
+/// rows (bins + 1 each), then the joint row (joint_bins² + 1).
+#[derive(Debug, Clone, Copy)]
+struct Rows {
+    amplitude: usize,
+    energy: usize,
+    turning: usize,
+    joint: usize,
+}
+
+impl Rows {
+    /// The rows of quarter q.
+    fn of(layout: &Layout, q: usize) -> Rows {
+        let row = layout.bins + 1;
+        let start = q * Rows::stride(layout);
+        Rows {
+            amplitude: start,
+            energy: start + row,
+            turning: start + 2 * row,
+            joint: start + 3 * row,
+        }
+    }
+
+    /// Counts of one quarter.
+    fn stride(layout: &Layout) -> usize {
+        3 * (layout.bins + 1) + layout.joint_bins * layout.joint_bins + 1
     }
 }
 
@@ -161,6 +212,10 @@ pub(super) struct Recorder<'a> {
     next_quarter: u64,
     batch: usize,
     next_batch: u64,
+    /// The histograms' counts of every quarter ([`Rows`]), handed to `stats` at the end.
+    counts: Vec<u64>,
+    /// The current quarter's rows in `counts`.
+    rows: Rows,
     stats: PathStats,
     /// sgn(Z)·U̇ of the previous node (the direction of |U|).
     rising: bool,
@@ -172,7 +227,6 @@ pub(super) struct Recorder<'a> {
 impl<'a> Recorder<'a> {
     pub(super) fn new(layout: &'a Layout, burn: u64, every: u64, path: u64, u0: f64) -> Self {
         let nw = layout.wells.as_ref().map_or(0, Wells::len);
-        let q = |n: usize| vec![vec![0u64; n + 1]; QUARTERS];
         Recorder {
             layout,
             burn,
@@ -184,6 +238,8 @@ impl<'a> Recorder<'a> {
             next_quarter: quarter_start(1, every * layout.samples),
             batch: 0,
             next_batch: batch_start(1, layout.batches, layout.samples),
+            counts: vec![0; QUARTERS * Rows::stride(layout)],
+            rows: Rows::of(layout, 0),
             stats: PathStats {
                 path,
                 u0,
@@ -194,10 +250,10 @@ impl<'a> Recorder<'a> {
                     };
                     layout.batches
                 ],
-                amplitude: q(layout.bins),
-                energy: q(layout.bins),
-                turning: q(layout.bins),
-                joint: q(layout.joint_bins * layout.joint_bins),
+                amplitude: vec![],
+                energy: vec![],
+                turning: vec![],
+                joint: vec![],
                 passages: vec![PassageSums::default(); nw * nw],
                 impacts: 0,
                 sticking_steps: 0,
@@ -209,9 +265,12 @@ impl<'a> Recorder<'a> {
     }
 
     /// A turning point of amplitude `a` at time t: update the well state and the passages.
-    fn turning_point(&mut self, a: f64, t: f64, quarter: usize) {
+    fn turning_point(&mut self, a: f64, t: f64) {
         let l = self.layout;
-        self.stats.turning[quarter][bin(a, l.a_scale, l.bins)] += 1;
+        count(
+            &mut self.counts,
+            self.rows.turning + bin(a, l.a_scale, l.bins, l.bins_f),
+        );
         let Some(w) = &l.wells else { return };
         let Some(k) = w.core_of(a) else { return };
         if self.state == Some(k) {
@@ -247,20 +306,30 @@ impl<'a> Recorder<'a> {
                 p.censored += 1;
             }
         }
-        self.stats.impacts = impacts;
-        self.stats.sticking_steps = sticking;
+        let l = self.layout;
+        let row = |q: usize, at: fn(&Rows) -> usize, n: usize| {
+            let start = at(&Rows::of(l, q));
+            self.counts[start..start + n + 1].to_vec()
+        };
+        let jb2 = l.joint_bins * l.joint_bins;
+        let st = &mut self.stats;
+        st.amplitude = (0..QUARTERS)
+            .map(|q| row(q, |r| r.amplitude, l.bins))
+            .collect();
+        st.energy = (0..QUARTERS)
+            .map(|q| row(q, |r| r.energy, l.bins))
+            .collect();
+        st.turning = (0..QUARTERS)
+            .map(|q| row(q, |r| r.turning, l.bins))
+            .collect();
+        st.joint = (0..QUARTERS).map(|q| row(q, |r| r.joint, jb2)).collect();
+        st.impacts = impacts;
+        st.sticking_steps = sticking;
         self.stats
     }
 
-    pub(super) fn finish(mut self, s: &Stepper) -> PathStats {
-        for (p, c) in self.stats.passages.iter_mut().zip(&self.clocks) {
-            if !c.is_nan() {
-                p.censored += 1;
-            }
-        }
-        self.stats.impacts = s.impacts();
-        self.stats.sticking_steps = s.sticking_steps();
-        self.stats
+    pub(super) fn finish(self, s: &Stepper) -> PathStats {
+        self.finish_counted((s.impacts(), s.sticking_steps()))
     }
 }
 
@@ -280,13 +349,13 @@ impl Observer for Recorder<'_> {
         if self.k >= self.next_quarter {
             self.quarter += 1;
             self.next_quarter = quarter_start(self.quarter + 1, self.every * l.samples);
+            self.rows = Rows::of(l, self.quarter);
         }
-        let quarter = self.quarter;
         // turning points of |U| are looked for at every step of the window
         let side = if l.crossing { u.signum() } else { 1.0 };
         let rising = side * v > 0.0;
         if self.rising && !rising {
-            self.turning_point(u.abs(), s.time(), quarter);
+            self.turning_point(u.abs(), s.time());
         }
         self.rising = rising;
         self.until_sample -= 1;
@@ -316,17 +385,21 @@ impl Observer for Recorder<'_> {
         if let Some(w) = &l.wells {
             batch.wells[w.well_of(a)] += 1;
         }
-        st.amplitude[quarter][bin(a, l.a_scale, l.bins)] += 1;
-        st.energy[quarter][bin(0.5 * l.omega1_sq * a2, l.h_scale, l.bins)] += 1;
+        let (rows, counts) = (self.rows, &mut self.counts);
+        count(counts, rows.amplitude + bin(a, l.a_scale, l.bins, l.bins_f));
+        count(
+            counts,
+            rows.energy + bin(0.5 * l.omega1_sq * a2, l.h_scale, l.bins, l.bins_f),
+        );
         let jb = l.joint_bins;
-        let iu = bin(u - l.u_lo, l.u_scale, jb);
-        let iv = bin(v - l.v_lo, l.v_scale, jb);
+        let iu = bin(u - l.u_lo, l.u_scale, jb, l.joint_bins_f);
+        let iv = bin(v - l.v_lo, l.v_scale, jb, l.joint_bins_f);
         let cell = if iu < jb && iv < jb {
             iu * jb + iv
         } else {
             jb * jb
         };
-        st.joint[quarter][cell] += 1;
+        count(counts, rows.joint + cell);
         Flow::Continue
     }
 }
@@ -334,6 +407,53 @@ impl Observer for Recorder<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bins_are_those_of_the_plain_conversion() {
+        // the hot path's bin against the plain one: edges, out of range, non-finite, random
+        let plain = |x: f64, scale: f64, n: usize| {
+            let b = x * scale;
+            if b >= 0.0 && b < n as f64 {
+                b as usize
+            } else {
+                n
+            }
+        };
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            -1e-300,
+            1e-300,
+            0.999_999_999_999,
+            1.0,
+            99.999_999_999_99,
+            100.0,
+            100.000_000_000_01,
+            1e300,
+            -1e300,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..10_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            xs.push((state >> 11) as f64 / (1u64 << 53) as f64 * 130.0 - 15.0);
+        }
+        for n in [1usize, 7, 100, 48 * 48] {
+            for &x in &xs {
+                for scale in [1.0, n as f64 / 100.0, 0.37] {
+                    assert_eq!(
+                        bin(x, scale, n, n as f64),
+                        plain(x, scale, n),
+                        "x = {x}, scale {scale}, n = {n}"
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn counters_give_the_quarters_and_batches_of_the_divisions() {

@@ -139,7 +139,7 @@ pub use critical::{
 
 use super::ensemble::Estimate;
 use crate::engine::{
-    fresh_history, whole_steps, Lanes, PredictorCorrector, Problem, Stepper, Tangent,
+    fresh_history, group_lanes, whole_steps, Lanes, PredictorCorrector, Problem, Stepper, Tangent,
 };
 use crate::error::{Error, Result};
 use crate::monitor::Monitor;
@@ -484,11 +484,7 @@ pub fn run_paths(
         // reference and copy in neighbouring lanes, lanes/2 realisations a group; with few
         // realisations, narrower groups so that every thread has one (the bits do not depend
         // on the grouping)
-        let threads = rayon::current_num_threads().max(1);
-        let lanes = match paths.len().div_ceil(threads) {
-            per if lanes == 8 && per <= 2 => 4,
-            _ => lanes,
-        };
+        let lanes = group_lanes(spec.lanes, paths.len(), 2)?;
         let groups: Vec<Vec<PathRun>> = paths
             .par_chunks(lanes / 2)
             .map(|group| {

@@ -15,7 +15,7 @@
 
 use super::moments::advance_moments;
 use super::{piece_integral, History, Piece, Split};
-use crate::engine::kernel::{phi_psi_given, LUMPED_TERMS};
+use crate::engine::kernel::{phi_psi_given, Powers, LUMPED_TERMS};
 use crate::maths::exp;
 
 impl History {
@@ -23,13 +23,14 @@ impl History {
     pub(super) fn split_weight_table(&mut self, s: &Split) -> Vec<[f64; 4]> {
         let cap = self.local.cap;
         self.grow_weights(cap);
+        let memo = &mut Powers::default();
         (1..=cap)
             .map(|p| {
                 let pf = p as f64;
                 let mid = pf + 1.0 - s.theta;
-                let (wa, wb) = self.iw.of(pf, mid);
+                let (wa, wb) = self.iw.of_with(pf, mid, memo);
                 let (wa2, wb2) = if s.keep_before {
-                    self.iw.of(mid, pf + 1.0)
+                    self.iw.of_with(mid, pf + 1.0, memo)
                 } else {
                     (0.0, 0.0)
                 };
@@ -45,6 +46,7 @@ impl History {
     }
 
     /// [`History::push`] in general: Direct memory, split pieces, λ = 1.
+    #[inline(never)]
     pub(super) fn push_general(&mut self, piece: Piece) {
         let seq = self.pushed;
         self.pushed += 1;
@@ -105,6 +107,7 @@ impl History {
         let held = self.held();
         let first = self.pushed - len as u64;
         let mut acc = 0.0;
+        let memo = &mut Powers::default();
         for &(seq, s) in &self.splits {
             let k = (seq - first) as usize;
             let p = len - k;
@@ -114,7 +117,7 @@ impl History {
                 right,
                 split: Some(s),
             };
-            acc += piece_integral(&self.iw, &piece, p as f64)
+            acc += piece_integral(&self.iw, &piece, p as f64, memo)
                 - (self.wl[p] * piece.left + self.wr[p] * piece.right);
         }
         acc

@@ -80,7 +80,7 @@ mod state;
 mod tests;
 mod window;
 
-use super::kernel::IntervalWeights;
+use super::kernel::{IntervalWeights, Powers};
 use crate::error::{Error, Result};
 
 pub(crate) use history::History;
@@ -159,18 +159,25 @@ pub(crate) struct Piece {
 
 /// Weights (of `left`, `right`) of an unsplit piece at distance p plus, when split, the
 /// exact contribution, all in units where the scale h^λ/Γ(λ) is left out.
-pub(super) fn piece_integral(weights: &IntervalWeights, piece: &Piece, p: f64) -> f64 {
+/// The powers of the weights' closed form are taken from and kept in `memo` (neighbouring
+/// pieces share their ends).
+pub(super) fn piece_integral(
+    weights: &IntervalWeights,
+    piece: &Piece,
+    p: f64,
+    memo: &mut Powers,
+) -> f64 {
     match piece.split {
         None => {
-            let (wa, wb) = weights.of(p, p + 1.0);
+            let (wa, wb) = weights.of_with(p, p + 1.0, memo);
             wa * piece.right + wb * piece.left
         }
         Some(s) => {
             let mid = p + 1.0 - s.theta;
-            let (wa, wb) = weights.of(p, mid);
+            let (wa, wb) = weights.of_with(p, mid, memo);
             let mut v = wa * piece.right + wb * s.after;
             if s.keep_before {
-                let (wa, wb) = weights.of(mid, p + 1.0);
+                let (wa, wb) = weights.of_with(mid, p + 1.0, memo);
                 v += wa * s.before + wb * piece.left;
             }
             v

@@ -59,8 +59,8 @@
 //! evaluations of P, two divisions, the memory's last addition); L independent chains overlap
 //! and their arithmetic shares the vector instructions. What it does not change: the memory's
 //! mode update (already four modes per AVX instruction for one path), the noise generator (one
-//! ChaCha8 stream per path) and the impacts are per-path work (see docs/numerics.md, Speed,
-//! for the measured split).
+//! ChaCha8 stream per path) and the impacts are per-path work (see docs/numerics.md, Speed, for
+//! the measured split). The lane groups' width for a thread pool is [`group_lanes`].
 //!
 //! # Reference
 //! Structure-of-arrays vectorisation across independent Monte Carlo paths (e.g. the SIMD
@@ -117,6 +117,22 @@ impl Lanes {
 /// were 2–5 % slower than the AVX2 ones on a CPU that has both, so they are not built.
 pub fn detected_lanes() -> usize {
     8
+}
+
+/// The width of the lane groups for `units` independent units of work shared among the current
+/// thread pool's threads, each unit taking `lanes_per_unit` lanes (a path: 1; a Lyapunov
+/// realisation's reference and copy: 2): `lanes`' width, narrowed from 8 to 4 when a thread's
+/// share of units would fill no more than four lanes, so that every thread has a group. A path's
+/// bits do not depend on its group, so neither do the results.
+pub(crate) fn group_lanes(lanes: Lanes, units: usize, lanes_per_unit: usize) -> Result<usize> {
+    let width = lanes.width()?;
+    let threads = rayon::current_num_threads().max(1);
+    let per_thread = units.div_ceil(threads) * lanes_per_unit;
+    Ok(if width == 8 && per_thread <= 4 {
+        4
+    } else {
+        width
+    })
 }
 
 /// The instruction set the lane arrays are compiled for.

@@ -110,8 +110,8 @@ pub(crate) mod lanes;
 mod polynomial;
 mod renormalise;
 mod tangent;
-pub(crate) use lanes::Group;
 pub use lanes::{detected_lanes, Lanes, LANE_WIDTHS};
+pub(crate) use lanes::{group_lanes, Group};
 pub(crate) use tangent::Tangent;
 
 /// g(U, V, η) = μP(U)V − ω²U + γ·side·η of one system.
