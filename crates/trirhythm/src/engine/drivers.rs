@@ -37,7 +37,9 @@ use super::memory::History;
 use super::problem::{
     Options, Oscillator, PredictorCorrector, Problem, MAX_AMPLITUDE_PERIODS, MAX_DT,
 };
-use super::stepper::lanes::{group_lanes, same_problem, step_group, step_group_mixed, Isa, PerLane};
+use super::stepper::lanes::{
+    group_lanes, same_problem, step_group, step_group_mixed, Isa, PerLane,
+};
 use super::stepper::{fresh_history, Impact, Lanes, Stepper};
 use crate::error::{Error, Result};
 use crate::monitor::{Monitor, Silent};
