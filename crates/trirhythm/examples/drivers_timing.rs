@@ -27,22 +27,9 @@ use trirhythm::engine::{
 use trirhythm::model::preset;
 use trirhythm::monitor::Silent;
 
-/// CPU seconds all threads of this process have run so far (Linux `schedstat`), `None`
-/// elsewhere.
-fn cpu_s() -> Option<f64> {
-    let mut total = 0.0;
-    for task in std::fs::read_dir("/proc/self/task").ok()? {
-        let path = task.ok()?.path().join("schedstat");
-        let text = std::fs::read_to_string(path).ok()?;
-        total += text.split_whitespace().next()?.parse::<f64>().ok()?;
-    }
-    Some(total * 1e-9)
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
-}
+#[path = "support/mod.rs"]
+mod support;
+use support::{cpu_s, median};
 
 /// (CPU, wall) seconds of `f` and its result.
 fn timed<T>(f: impl FnOnce() -> T) -> (f64, f64, T) {

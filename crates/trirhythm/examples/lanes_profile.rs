@@ -10,9 +10,12 @@
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleSpec};
-use trirhythm::engine::{run_lanes, Flow, Lanes, PredictorCorrector, Problem, Stepper};
-use trirhythm::model::preset;
+use trirhythm::engine::{run_lanes, Flow, Lanes, PredictorCorrector, Stepper};
 use trirhythm::monitor::Silent;
+
+#[path = "support/mod.rs"]
+mod support;
+use support::fig13a_problem;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -22,14 +25,7 @@ fn main() {
     let what = args.get(3).expect(usage).as_str();
     let steps: f64 = args.get(4).and_then(|s| s.parse().ok()).expect(usage);
     let paths = 8usize;
-    let p = preset("fig13a")
-        .unwrap()
-        .params
-        .with("lambda", lambda)
-        .unwrap();
-    let problem = Problem::from_params(&p)
-        .and_then(|q| q.with_starts(&[(2.9, 0.0), (7.4, 0.0), (12.9, 0.0)]))
-        .unwrap();
+    let problem = fig13a_problem(lambda);
     let method = PredictorCorrector::default();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)

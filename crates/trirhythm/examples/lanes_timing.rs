@@ -11,30 +11,12 @@
 
 use std::time::Instant;
 use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec};
-use trirhythm::engine::{
-    detected_lanes, run_lanes, Flow, Lanes, PredictorCorrector, Problem, Stepper,
-};
-use trirhythm::model::preset;
+use trirhythm::engine::{detected_lanes, run_lanes, Flow, Lanes, PredictorCorrector, Stepper};
 use trirhythm::monitor::Silent;
 
-/// CPU seconds all threads of this process have run so far (Linux `schedstat` of every task,
-/// in nanoseconds), `None` elsewhere: on a shared machine the time spent waiting for a core
-/// does not count. The pools' threads live through the whole run, so none is missed.
-fn cpu_s() -> Option<f64> {
-    let mut total = 0.0;
-    for task in std::fs::read_dir("/proc/self/task").ok()? {
-        let path = task.ok()?.path().join("schedstat");
-        let text = std::fs::read_to_string(path).ok()?;
-        total += text.split_whitespace().next()?.parse::<f64>().ok()?;
-    }
-    Some(total * 1e-9)
-}
-
-/// The median (NaN for none).
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
-}
+#[path = "support/mod.rs"]
+mod support;
+use support::{cpu_s, fig13a_problem, median};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -67,14 +49,7 @@ fn main() {
         })
         .collect();
     for lambda in [0.998, 1.0] {
-        let p = preset("fig13a")
-            .unwrap()
-            .params
-            .with("lambda", lambda)
-            .unwrap();
-        let problem = Problem::from_params(&p)
-            .and_then(|q| q.with_starts(&[(2.9, 0.0), (7.4, 0.0), (12.9, 0.0)]))
-            .unwrap();
+        let problem = fig13a_problem(lambda);
         let method = PredictorCorrector::default();
         let run = |threads: usize, lanes: usize| -> (f64, f64, EnsembleResult) {
             let spec = EnsembleSpec {

@@ -308,6 +308,31 @@ struct Inputs<const L: usize> {
     pw: [f64; L],
 }
 
+/// Phase (1) of a lane step: per live path, the noise and the numbers the step needs from the
+/// state ([`Stepper::begin`]), gathered into arrays; dead lanes and lanes beyond the paths hold
+/// zeros.
+#[inline(always)]
+fn begin_lanes<const L: usize>(paths: &mut [Stepper], live: &[bool; L]) -> ([Begin; L], Inputs<L>) {
+    let mut begun = [Begin::default(); L];
+    let mut x = Inputs {
+        u: [0.0; L],
+        v: [0.0; L],
+        gl: [0.0; L],
+        known: [0.0; L],
+        fr: [0.0; L],
+        pw: [0.0; L],
+    };
+    for (i, p) in paths.iter_mut().enumerate() {
+        if live[i] {
+            let b = p.begin();
+            begun[i] = b;
+            (x.u[i], x.v[i], x.gl[i], x.known[i], x.fr[i], x.pw[i]) =
+                (b.u, b.v, b.gl, b.known, b.fr, p.pw);
+        }
+    }
+    (begun, x)
+}
+
 /// [`Rhs::pass`] for L lanes: μP in one vectorised evaluation, then the pass element by element
 /// (the same function as the scalar stepper's).
 #[inline(always)]
@@ -355,23 +380,7 @@ fn step_body<const L: usize, C: Coefficients<L>>(
         return;
     }
     // (1) per path: the noise and the state
-    let mut begun = [Begin::default(); L];
-    let mut x = Inputs {
-        u: [0.0; L],
-        v: [0.0; L],
-        gl: [0.0; L],
-        known: [0.0; L],
-        fr: [0.0; L],
-        pw: [0.0; L],
-    };
-    for (i, p) in paths.iter_mut().enumerate() {
-        if live[i] {
-            let b = p.begin();
-            begun[i] = b;
-            (x.u[i], x.v[i], x.gl[i], x.known[i], x.fr[i], x.pw[i]) =
-                (b.u, b.v, b.gl, b.known, b.fr, p.pw);
-        }
-    }
+    let (begun, x) = begin_lanes::<L>(paths, live);
     // (2) all lanes: the predictor and the corrector, the second pass where stiff
     let mut up = [0.0; L];
     for i in 0..L {
@@ -531,23 +540,7 @@ fn step_tangent_body<const L: usize>(
     }
     // (1) per path: the noise and the state; all lanes: μP and its slope at U; per path: the
     // tangent's start
-    let mut begun = [Begin::default(); L];
-    let mut x = Inputs {
-        u: [0.0; L],
-        v: [0.0; L],
-        gl: [0.0; L],
-        known: [0.0; L],
-        fr: [0.0; L],
-        pw: [0.0; L],
-    };
-    for (i, p) in paths.iter_mut().enumerate() {
-        if live[i] {
-            let b = p.begin();
-            begun[i] = b;
-            (x.u[i], x.v[i], x.gl[i], x.known[i], x.fr[i], x.pw[i]) =
-                (b.u, b.v, b.gl, b.known, b.fr, p.pw);
-        }
-    }
+    let (begun, x) = begin_lanes::<L>(paths, live);
     let rhs = &paths[0].rhs;
     let (h, w) = (paths[0].h, paths[0].wr);
     let (a0, slope0) = damping_and_slope(rhs, &x.u);
