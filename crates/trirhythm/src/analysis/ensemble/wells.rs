@@ -187,8 +187,18 @@ pub struct WellsEstimate {
     pub relaxation: Vec<f64>,
     /// The amplitude density conditioned on each label.
     pub conditional: Vec<Density>,
+    /// Each replica's amplitude counts per well (`[replica][well]`, the histogram's bins and
+    /// the count beyond the last edge): the replicas' own conditional densities.
+    #[serde(default)]
+    pub conditional_counts: Vec<Vec<Vec<u64>>>,
     /// The decomposition passed its validity diagnostic.
     pub valid: bool,
+    /// The conditional statistics passed the diagnostic (every refusal, if any, is about the
+    /// rates and weights: a rate bound that could move the weights, undetermined weights, too
+    /// few exits): the stationary density is some mixture Σ π_i P_i of valid P_i
+    /// ([`super::hellinger_bounds`] over every weighting).
+    #[serde(default)]
+    pub conditional_valid: bool,
     /// Why not, in words (empty when valid).
     pub refusals: Vec<String>,
     /// Rates below the method's resolution (taken as 0), in words.
@@ -1004,6 +1014,8 @@ fn combine(
             )
         })
         .collect();
+    // refusals about the rates and weights only (the conditional statistics stand)
+    let mut weight_refusals = 0usize;
     for (k, r) in rates.iter().enumerate() {
         if unresolved[k] {
             let (level, passed) = of(k).map(|t| (t.level, t.level_probability)).fold(
@@ -1050,6 +1062,7 @@ fn combine(
             .sum::<f64>()
             / replicas as f64;
         if exits < MIN_EXITS {
+            weight_refusals += 1;
             refusals.push(format!(
                 "well {}: {exits:.1} exits toward well {} per replica (at least {MIN_EXITS} \
                  needed): lengthen the wells' paths",
@@ -1082,6 +1095,7 @@ fn combine(
         let worst = largest_shift(&values, &bounds, &zero, w);
         if let Some((shift, set, wb)) = worst {
             if shift > MAX_WEIGHT_SHIFT {
+                weight_refusals += 1;
                 let named: Vec<String> = set
                     .into_iter()
                     .map(|k| format!("{} → {} < {:.2e}", rates[k].from, rates[k].to, bounds[k]))
@@ -1101,6 +1115,7 @@ fn combine(
         }
     }
     if pooled_weights.is_none() {
+        weight_refusals += 1;
         refusals.push(
             "the weights are undetermined: two groups of wells exchange no transition within \
              the method's resolution (each would keep the mass it starts with)"
@@ -1108,6 +1123,7 @@ fn combine(
         );
     }
     let valid = refusals.is_empty();
+    let conditional_valid = refusals.len() == weight_refusals;
     let replica_list: Vec<Replica> = (0..replicas)
         .map(|r| Replica {
             replica: r as u64,
@@ -1223,7 +1239,15 @@ fn combine(
             residence,
             relaxation,
             conditional: conditional.into_iter().map(|c| c.amplitude).collect(),
+            conditional_counts: (0..replicas)
+                .map(|r| {
+                    (0..nw)
+                        .map(|i| quarters(&stats[r * nw + i].amplitude))
+                        .collect()
+                })
+                .collect(),
             valid,
+            conditional_valid,
             refusals,
             notes,
             replicas: replica_list,
