@@ -156,7 +156,11 @@ fn ascend(q: &[f64], p: &[Vec<f64>], start: Vec<f64>) -> (f64, Vec<f64>) {
 /// (module docs). `p` holds at least one component of `q`'s length.
 pub fn hellinger_range(q: &[f64], p: &[Vec<f64>]) -> HellingerRange {
     let n = p.len();
-    let vertex = |i: usize| (0..n).map(|j| if j == i { 1.0 } else { 0.0 }).collect::<Vec<_>>();
+    let vertex = |i: usize| {
+        (0..n)
+            .map(|j| if j == i { 1.0 } else { 0.0 })
+            .collect::<Vec<_>>()
+    };
     let per: Vec<f64> = (0..n).map(|i| bc(q, p, &vertex(i))).collect();
     let (component_max, bc_min) = per
         .iter()
@@ -202,11 +206,7 @@ pub fn hellinger_bounds(variant: &str, q: &[f64], counts: &[Vec<Vec<u64>>]) -> H
     let nb = q.len();
     let units: Vec<Vec<f64>> = counts
         .iter()
-        .map(|r| {
-            r.iter()
-                .flat_map(|c| c.iter().map(|&x| x as f64))
-                .collect()
-        })
+        .map(|r| r.iter().flat_map(|c| c.iter().map(|&x| x as f64)).collect())
         .collect();
     let split = |t: &[f64]| -> Vec<Vec<f64>> {
         (0..nw)
@@ -344,7 +344,11 @@ mod tests {
         let loo = [h(3.0, 7.0), h(5.0, 7.0), h(4.0, 2.0)];
         let m = loo.iter().sum::<f64>() / 3.0;
         let se = (2.0 / 3.0 * loo.iter().map(|x| (x - m).powi(2)).sum::<f64>()).sqrt();
-        assert!((b.h_min.stderr - se).abs() < 1e-12, "{} {se}", b.h_min.stderr);
+        assert!(
+            (b.h_min.stderr - se).abs() < 1e-12,
+            "{} {se}",
+            b.h_min.stderr
+        );
         assert!((b.h_max.stderr - se).abs() < 1e-12);
         assert_eq!(b.per_well.len(), 1);
         // two wells where one replica alone lacks a well's samples: still finite

@@ -95,7 +95,9 @@ mod spec;
 pub mod splitting;
 mod wells;
 
-pub use bounds::{hellinger_bounds, hellinger_of_mixture, hellinger_range, HellingerBounds, HellingerRange};
+pub use bounds::{
+    hellinger_bounds, hellinger_of_mixture, hellinger_range, HellingerBounds, HellingerRange,
+};
 pub use diagnostics::Stationarity;
 pub use merging::{Density, EnsembleResult, Estimate, JointDensity, Passage};
 pub use piece::{fingerprint, Piece};

@@ -177,6 +177,10 @@ pub struct WellsEstimate {
     pub pilot_inside: Vec<f64>,
     /// Rates between neighbours (0 → 1, 1 → 0, 1 → 2, …).
     pub rates: Vec<Rate>,
+    /// Upper bound of each rate below the method's resolution (same order as `rates`; NaN
+    /// where the rate is resolved).
+    #[serde(default, with = "crate::non_finite::vec")]
+    pub rate_bounds: Vec<f64>,
     /// The rate matrix, `rate_matrix[i][j]` = k_ij (0 on the diagonal and between non-neighbours).
     pub rate_matrix: Vec<Vec<f64>>,
     /// Stationary weights of the labels.
@@ -187,6 +191,9 @@ pub struct WellsEstimate {
     pub relaxation: Vec<f64>,
     /// The amplitude density conditioned on each label.
     pub conditional: Vec<Density>,
+    /// The effective sample size of A in each well's conditional statistics.
+    #[serde(default, with = "crate::non_finite::vec")]
+    pub conditional_ess: Vec<f64>,
     /// Each replica's amplitude counts per well (`[replica][well]`, the histogram's bins and
     /// the count beyond the last edge): the replicas' own conditional densities.
     #[serde(default)]
@@ -1235,9 +1242,13 @@ fn combine(
             pilot_inside,
             rates,
             rate_matrix,
+            rate_bounds: (0..np)
+                .map(|k| if unresolved[k] { bounds[k] } else { f64::NAN })
+                .collect(),
             weights,
             residence,
             relaxation,
+            conditional_ess: conditional.iter().map(|c| c.stationarity.ess).collect(),
             conditional: conditional.into_iter().map(|c| c.amplitude).collect(),
             conditional_counts: (0..replicas)
                 .map(|r| {
