@@ -26,6 +26,9 @@ fn estimator_of(r: &McRun) -> String {
                 .collect::<Vec<_>>()
                 .join(", ")
         ),
+        Some(w) if w.conditional_valid && !w.bounds.is_empty() => {
+            " (well decomposition: valid conditional densities, weights undetermined)".into()
+        }
         Some(_) => " (direct; the well decomposition refused: the figure's notes say why)".into(),
         None => String::new(),
     }
