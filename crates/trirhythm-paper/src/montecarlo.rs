@@ -204,7 +204,7 @@ impl Bounds {
     /// "[0.41 ± 0.02, 0.88 ± 0.01] (min at weights 0.3, 0.7)".
     pub fn line(&self) -> String {
         format!(
-            "H ∈ [{} ± {}, {} ± {}] for every weighting of the wells (min at weights {}; each              well alone {})",
+            "H ∈ [{} ± {}, {} ± {}] for every weighting of the wells (min at weights {}; each well alone {})",
             crate::notes::sig(self.h_min, 3),
             crate::notes::sig(self.h_min_stderr, 2),
             crate::notes::sig(self.h_max, 3),

@@ -12,11 +12,14 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use trirhythm_paper::montecarlo::{AmplitudePanel, McRun};
 
+/// Densities and standard errors per bin.
+pub type Shown = (Vec<f64>, Vec<f64>);
+
 /// What a run's markers show: its histogram, or, where its well decomposition has valid
 /// conditional densities but undetermined weights, their mixture nearest the paper variant's
 /// theory (the weights of H_min; standard errors √Σ π_i² s_i², the wells' replicas being
 /// independent). `true` in the second place for the mixture.
-pub fn shown_density(r: &McRun) -> ((Vec<f64>, Vec<f64>), bool) {
+pub fn shown_density(r: &McRun) -> (Shown, bool) {
     if let Some(w) = r.wells.as_ref().filter(|w| w.conditional_valid && !w.valid) {
         let nb = r.edges.len().saturating_sub(1);
         let same = w.conditional.iter().all(|c| c.density.len() == nb);
@@ -107,7 +110,7 @@ pub fn draw_amplitude_panel<DB: Backend>(
         .fold(1.0f64, f64::max);
     let finite_max =
         |it: &mut dyn Iterator<Item = f64>| it.filter(|v| v.is_finite()).fold(0.0f64, f64::max);
-    let shown: Vec<((Vec<f64>, Vec<f64>), bool)> = p.runs.iter().map(shown_density).collect();
+    let shown: Vec<(Shown, bool)> = p.runs.iter().map(shown_density).collect();
     let mc_max = finite_max(&mut shown.iter().flat_map(|((density, stderr), _)| {
         density.iter().zip(stderr).map(|(d, s)| d + s.max(0.0))
     }));

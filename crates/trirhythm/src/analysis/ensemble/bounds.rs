@@ -261,7 +261,10 @@ mod tests {
             normalised(vec![0.0, 0.0, 0.0, 2.0, 1.0, 0.1, 0.0, 0.0, 0.0]),
             normalised(vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 3.0, 1.0]),
         ];
-        let bci: Vec<f64> = p.iter().map(|c| bc(&q, &[c.clone()], &[1.0])).collect();
+        let bci: Vec<f64> = p
+            .iter()
+            .map(|c| bc(&q, std::slice::from_ref(c), &[1.0]))
+            .collect();
         let s2: f64 = bci.iter().map(|b| b * b).sum();
         let best: Vec<f64> = bci.iter().map(|b| b * b / s2).collect();
         let r = hellinger_range(&q, &p);
