@@ -138,13 +138,25 @@ pub fn draw_amplitude_panel<DB: Backend>(
         .filter(|(_, (_, m))| *m)
         .map(|(r, _)| r.system.as_str())
         .collect();
-    if !mixtures.is_empty() {
+    if mixtures.is_empty() {
+        if !stationary {
+            caption.push_str("; MC NOT stationary");
+        }
+    } else {
         caption.push_str(&format!(
             "; {}: wells mixed at H_min (weights undetermined)",
             mixtures.join(", ")
         ));
-    } else if !stationary {
-        caption.push_str("; MC NOT stationary");
+        let others: Vec<&str> = p
+            .runs
+            .iter()
+            .zip(&shown)
+            .filter(|(r, (_, m))| !*m && !r.stationary)
+            .map(|(r, _)| r.system.as_str())
+            .collect();
+        if !others.is_empty() {
+            caption.push_str(&format!("; {} NOT stationary", others.join(", ")));
+        }
     }
     for r in p.runs.iter().filter(|r| r.estimator == "wells") {
         caption.push_str(&format!("; {} by wells", r.system));
