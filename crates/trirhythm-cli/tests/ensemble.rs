@@ -184,6 +184,22 @@ fn the_well_method_keeps_the_document_and_adds_its_decomposition() {
     assert!(d["cores"]["bounds"].is_array());
     let n = v["amplitude"]["density"].as_array().unwrap().len();
     assert_eq!(n, 20);
+    // each replica's conditional counts: 2 replicas × 2 wells × (20 bins + beyond), summing to
+    // each well's samples
+    let counts = d["conditional_counts"].as_array().unwrap();
+    assert_eq!(counts.len(), 2);
+    for r in counts {
+        let wells = r.as_array().unwrap();
+        assert_eq!(wells.len(), 2);
+        for c in wells {
+            let c = c.as_array().unwrap();
+            assert_eq!(c.len(), n + 1);
+            assert!(c.iter().map(|x| x.as_u64().unwrap()).sum::<u64>() > 0);
+        }
+    }
+    assert!(d["conditional_valid"].is_boolean());
+    assert_eq!(d["rate_bounds"].as_array().unwrap().len(), 2);
+    assert_eq!(d["conditional_ess"].as_array().unwrap().len(), 2);
 
     for (args, needle) in [
         (vec!["--clones", "1"], "clones = 1"),

@@ -96,6 +96,9 @@ impl Figure for Fig14 {
                 stationary_ensemble(monitor, &p, ctx.variant, System::Fractional, sz, bins)?;
             if let Some(w) = &wells {
                 notes.push(format!("r = {r}: {}", w.line()));
+                if let Some(b) = w.bounds_line() {
+                    notes.push(format!("r = {r}: {b}"));
+                }
                 notes.extend(w.notes.iter().map(|n| format!("r = {r}: {n}")));
             }
             notes.extend(

@@ -137,6 +137,9 @@ pub struct WellsSummary {
     /// Their standard errors.
     #[serde(with = "trirhythm::non_finite::vec")]
     pub rate_stderr: Vec<f64>,
+    /// Upper bounds of the rates below the method's resolution (NaN where resolved).
+    #[serde(default, with = "trirhythm::non_finite::vec")]
+    pub rate_bound: Vec<f64>,
     /// Why the decomposition was refused (empty when valid).
     pub refusals: Vec<String>,
     /// Rates below the method's resolution and the theory's wells that the simulation lacks,
@@ -149,24 +152,170 @@ pub struct WellsSummary {
     pub steps: u64,
     /// Seconds of wall time.
     pub wall_time_s: f64,
+    /// The conditional statistics passed the diagnostic and only the rates and weights did not
+    /// (then `bounds` holds the distances for every weighting).
+    #[serde(default)]
+    pub conditional_valid: bool,
+    /// Each well's conditional density P_i (on the run's edges) with its standard errors.
+    #[serde(default)]
+    pub conditional: Vec<Conditional>,
+    /// The distance to each variant's theory for every weighting of the wells, where the
+    /// conditional statistics are valid but the decomposition was refused.
+    #[serde(default)]
+    pub bounds: Vec<Bounds>,
+}
+
+/// One well's conditional amplitude density.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Conditional {
+    /// Density per bin (the run's edges).
+    pub density: Vec<f64>,
+    /// Its standard errors over the replicas.
+    #[serde(with = "trirhythm::non_finite::vec")]
+    pub stderr: Vec<f64>,
+    /// Effective sample size of the well's amplitude.
+    #[serde(with = "trirhythm::non_finite")]
+    pub ess: f64,
+}
+
+/// The Hellinger distance to one variant's theory over every weighting of the wells
+/// ([`trirhythm::analysis::versus::wells_bounds`]).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Bounds {
+    /// `paper` or `consistent`.
+    pub variant: String,
+    /// The smallest H over every weighting.
+    pub h_min: f64,
+    /// Its jackknife standard error over the replicas.
+    #[serde(with = "trirhythm::non_finite")]
+    pub h_min_stderr: f64,
+    /// The weights of the smallest H.
+    pub weights_min: Vec<f64>,
+    /// The largest H (one well's density alone).
+    pub h_max: f64,
+    /// Its jackknife standard error.
+    #[serde(with = "trirhythm::non_finite")]
+    pub h_max_stderr: f64,
+    /// H of each well's density alone.
+    pub per_well: Vec<f64>,
+}
+
+impl Bounds {
+    /// "[0.41 ± 0.02, 0.88 ± 0.01] (min at weights 0.3, 0.7)".
+    pub fn line(&self) -> String {
+        format!(
+            "H ∈ [{} ± {}, {} ± {}] for every weighting of the wells (min at weights {}; each well alone {})",
+            crate::notes::sig(self.h_min, 3),
+            crate::notes::sig(self.h_min_stderr, 2),
+            crate::notes::sig(self.h_max, 3),
+            crate::notes::sig(self.h_max_stderr, 2),
+            self.weights_min
+                .iter()
+                .map(|x| crate::notes::sig(*x, 3))
+                .collect::<Vec<_>>()
+                .join(", "),
+            self.per_well
+                .iter()
+                .map(|x| crate::notes::sig(*x, 3))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    }
 }
 
 impl WellsSummary {
-    fn of(w: &WellsResult, wall_time_s: f64) -> Self {
+    /// The summary of `w`; where its conditional statistics are valid but it was refused, the
+    /// distances to each variant's theory of `params` over every weighting.
+    pub fn of(w: &WellsResult, params: &Params, wall_time_s: f64) -> Self {
         let e = &w.wells;
+        let bounds = if e.conditional_valid && !e.valid {
+            [Variant::Paper, Variant::Consistent]
+                .into_iter()
+                .filter_map(|v| {
+                    let b = Theory::new(params, v)
+                        .and_then(|th| trirhythm::analysis::versus::wells_bounds(w, &th))
+                        .ok()?;
+                    Some(Bounds {
+                        variant: b.variant,
+                        h_min: b.h_min.value,
+                        h_min_stderr: b.h_min.stderr,
+                        weights_min: b.weights_min,
+                        h_max: b.h_max.value,
+                        h_max_stderr: b.h_max.stderr,
+                        per_well: b.per_well,
+                    })
+                })
+                .collect()
+        } else {
+            vec![]
+        };
         WellsSummary {
+            conditional_valid: e.conditional_valid,
+            conditional: e
+                .conditional
+                .iter()
+                .zip(&e.conditional_ess)
+                .map(|(c, &ess)| Conditional {
+                    density: c.density.clone(),
+                    stderr: c.stderr.clone(),
+                    ess,
+                })
+                .collect(),
+            bounds,
             valid: e.valid,
             weights: e.weights.iter().map(|x| x.value).collect(),
             weight_stderr: e.weights.iter().map(|x| x.stderr).collect(),
             rates: e.rates.iter().map(|r| (r.from, r.to)).collect(),
             rate: e.rates.iter().map(|r| r.rate.value).collect(),
             rate_stderr: e.rates.iter().map(|r| r.rate.stderr).collect(),
+            rate_bound: e.rate_bounds.clone(),
             refusals: e.refusals.clone(),
             notes: e.notes.clone(),
             missing: e.missing.clone(),
             steps: e.steps,
             wall_time_s,
         }
+    }
+
+    /// Where the conditional statistics are valid but the weights are not determined: "weights
+    /// undetermined (rates k1→0 < 1.5e-11, …); paper: H ∈ […] for every weighting …; consistent:
+    /// …" (None otherwise).
+    pub fn bounds_line(&self) -> Option<String> {
+        if self.bounds.is_empty() {
+            return None;
+        }
+        let bounded: Vec<String> = self
+            .rates
+            .iter()
+            .zip(&self.rate_bound)
+            .filter(|(_, b)| b.is_finite())
+            .map(|((i, j), b)| format!("k{i}→{j} < {}", crate::notes::sig(*b, 2)))
+            .collect();
+        let resolved: Vec<String> = self
+            .rates
+            .iter()
+            .zip(self.rate.iter().zip(&self.rate_bound))
+            .filter(|(_, (_, b))| !b.is_finite())
+            .map(|((i, j), (r, _))| format!("k{i}→{j} = {}", crate::notes::sig(*r, 3)))
+            .collect();
+        Some(format!(
+            "weights undetermined (rates {}{}); {}",
+            if bounded.is_empty() {
+                "too few exits".to_string()
+            } else {
+                bounded.join(", ")
+            },
+            if resolved.is_empty() {
+                String::new()
+            } else {
+                format!("; resolved {}", resolved.join(", "))
+            },
+            self.bounds
+                .iter()
+                .map(|b| format!("{}: {}", b.variant, b.line()))
+                .collect::<Vec<_>>()
+                .join("; ")
+        ))
     }
 
     /// One line: weights, rates, the diagnostic and the cost.
@@ -410,7 +559,7 @@ pub fn stationary_ensemble(
     }
     let start = std::time::Instant::now();
     let w = wells_ensemble(monitor, params, variant, system, sizes, joint_bins)?;
-    let summary = WellsSummary::of(&w, start.elapsed().as_secs_f64());
+    let summary = WellsSummary::of(&w, params, start.elapsed().as_secs_f64());
     if w.wells.valid {
         Ok((w.result, warnings, "wells", Some(summary)))
     } else {
@@ -462,6 +611,9 @@ pub fn amplitude_panel(
                 system_name(system),
                 w.line()
             ));
+            if let Some(b) = w.bounds_line() {
+                notes.push(format!("{caption}, MC of {}: {b}", system_name(system)));
+            }
             notes.extend(
                 w.notes
                     .iter()

@@ -422,6 +422,7 @@ fn comparison(h: f64, se: f64, ess: f64, stationary: bool) -> Comparison {
         ess,
         stationary,
         r_hat: if stationary { 1.01 } else { 180.0 },
+        weightings: None,
     }
 }
 
@@ -445,6 +446,68 @@ fn agreement_within_the_floor_plus_k_standard_errors_on_stationary_ensembles() {
         agreement(&[comparison(0.044, f64::INFINITY, 2000.0, true)]).verdict,
         Verdict::Undetermined { .. }
     ));
+}
+
+#[test]
+fn agreement_for_every_weighting_of_wells_whose_weights_are_undetermined() {
+    use trirhythm_paper::verdict::rules::Weightings;
+    // bins 80; ESS per well ≥ 1000 (largest floor √(80/8000) = 0.1), ΣESS = 8000 (smallest
+    // floor √(80/64000) = 0.0354)
+    let with = |h_min: f64, h_max: f64, se: f64| Comparison {
+        weightings: Some(Weightings {
+            h_min,
+            h_min_se: se,
+            h_max,
+            h_max_se: se,
+            ess_min: 1000.0,
+            ess_sum: 8000.0,
+        }),
+        ..comparison(f64::NAN, f64::NAN, f64::NAN, false)
+    };
+    // no weighting agrees: H_min − 2 s.e. = 0.46 > 0.1
+    let d = agreement(&[with(0.5, 0.9, 0.02)]);
+    assert_eq!(tag(&d), "refuted");
+    assert_eq!(d.checks[0].outcome, Outcome::Against);
+    assert!((d.checks[0].threshold - (0.1 + 0.04)).abs() < 1e-12);
+    assert!(d.checks[0].what.contains("every weighting"));
+    // just within: H_min − 2 s.e. = 0.099 ≤ 0.1
+    let d = agreement(&[with(0.139, 0.9, 0.02)]);
+    assert!(
+        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("for every weighting of the wells")),
+        "{:?}",
+        d.verdict
+    );
+    // every weighting agrees: H_max + 2 s.e. = 0.03 ≤ 0.0354
+    let d = agreement(&[with(0.01, 0.02, 0.005)]);
+    assert_eq!(tag(&d), "confirmed");
+    assert_eq!(d.checks[0].outcome, Outcome::For);
+    // H_max + 2 s.e. = 0.04 > 0.0354 although each weighting may agree: undetermined
+    assert_eq!(tag(&agreement(&[with(0.01, 0.03, 0.005)])), "undetermined");
+    // no standard error over the replicas: undetermined
+    assert_eq!(tag(&agreement(&[with(0.5, 0.9, f64::NAN)])), "undetermined");
+    // combined as before: a refuted panel refutes the claim beside an undetermined one, and a
+    // panel refused for another reason (no weightings) stays undetermined
+    let other = comparison(0.044, 0.012, 2000.0, false);
+    assert_eq!(
+        tag(&agreement(&[with(0.5, 0.9, 0.02), other.clone()])),
+        "refuted"
+    );
+    assert_eq!(
+        tag(&agreement(&[with(0.01, 0.02, 0.005), other])),
+        "undetermined"
+    );
+    // weightings on a stationary ensemble are not used: its own H decides
+    let stationary = Comparison {
+        stationary: true,
+        ..with(0.5, 0.9, 0.02)
+    };
+    let stationary = Comparison {
+        hellinger: 0.044,
+        se: 0.012,
+        ess: 2000.0,
+        ..stationary
+    };
+    assert_eq!(tag(&agreement(&[stationary])), "confirmed");
 }
 
 // ---- closeness ----

@@ -383,6 +383,45 @@ fn a_rate_below_resolution_is_bounded_and_refused_where_it_matters() {
         w.wells.notes
     );
     assert!(!w.result.stationarity.stationary);
+    // the conditional statistics stand exactly when every refusal is about rates and weights
+    let about_weights = |r: &String| {
+        r.contains("weights are undetermined")
+            || r.contains("could move the weights")
+            || r.contains("exits toward")
+    };
+    assert_eq!(
+        w.wells.conditional_valid,
+        w.wells.refusals.iter().all(about_weights),
+        "{:?}",
+        w.wells.refusals
+    );
+    // H over every weighting of the wells: brackets every mixture of the pooled conditional
+    // counts, its ends each well alone or better
+    let theory = Theory::new(&p, Variant::Paper).unwrap();
+    let b = trirhythm::analysis::versus::wells_bounds(&w, &theory).unwrap();
+    let pdf = theory.amplitude_pdf().unwrap();
+    let q = trirhythm::analysis::versus::binned(&pdf, &w.result.amplitude.edges);
+    let pooled: Vec<Vec<f64>> = (0..2)
+        .map(|i| {
+            let mut c = vec![0.0; q.len()];
+            for r in &w.wells.conditional_counts {
+                for (x, y) in c.iter_mut().zip(&r[i]) {
+                    *x += *y as f64;
+                }
+            }
+            let t: f64 = c.iter().sum();
+            c.into_iter().map(|x| x / t).collect()
+        })
+        .collect();
+    for f in [0.0, 0.1, 0.5, 0.9, 1.0] {
+        let h = trirhythm::analysis::ensemble::hellinger_of_mixture(&q, &pooled, &[f, 1.0 - f]);
+        assert!(
+            h >= b.h_min.value - 1e-9 && h <= b.h_max.value + 1e-12,
+            "{h} {b:?}"
+        );
+    }
+    assert!((b.h_max.value - b.per_well[0].max(b.per_well[1])).abs() < 1e-12);
+    assert!(b.h_min.stderr.is_finite() && b.h_max.stderr.is_finite());
     let w = run(WellsSpec::default().max_iterations);
     let k = &w.wells.rates;
     println!("{k:?}\n{:?}\n{:?}", w.wells.notes, w.wells.weights);

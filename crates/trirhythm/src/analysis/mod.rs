@@ -23,7 +23,9 @@ pub use oscillation::{
 };
 pub use recurrence::{RecurrenceMatrix, RecurrenceThreshold};
 pub use resolution::check_step;
-pub use versus::{compare, escape_time, theory_layout, TheoryComparison, TheoryLayout};
+pub use versus::{
+    binned, compare, escape_time, theory_layout, wells_bounds, TheoryComparison, TheoryLayout,
+};
 
 /// `paths` are indices in 0..`n` of a driver's paths, none asked twice (the pieces of a run that
 /// a merge puts together).

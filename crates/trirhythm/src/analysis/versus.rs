@@ -33,7 +33,9 @@
 //! Unit tests below: distances vanish for equal densities and are symmetric; the prominence
 //! rule counts and rejects modes as stated.
 
-use super::ensemble::{EnsembleResult, Estimate, Wells};
+use super::ensemble::{
+    hellinger_bounds, EnsembleResult, Estimate, HellingerBounds, Wells, WellsResult,
+};
 use crate::error::Error;
 use crate::theory::averaging::{AmplitudePdf, Theory};
 use rand::{Rng, SeedableRng};
@@ -256,12 +258,7 @@ pub fn compare(
     let pdf = theory.amplitude_pdf()?;
     let edges = &result.amplitude.edges;
     let nb = edges.len() - 1;
-    let mut q: Vec<f64> = edges
-        .windows(2)
-        .map(|w| pdf.probability(w[0], w[1]))
-        .collect();
-    let inside: f64 = q.iter().sum();
-    q.push((1.0 - inside).max(0.0));
+    let q = binned(&pdf, edges);
     let density: Vec<f64> = q[..nb]
         .iter()
         .zip(edges.windows(2))
@@ -347,6 +344,55 @@ pub fn compare(
         occupancy,
         escape_times,
     })
+}
+
+/// The theory's probability of each bin between `edges` and, last, of the mass beyond the last
+/// edge (the distances' probability vectors).
+pub fn binned(pdf: &AmplitudePdf, edges: &[f64]) -> Vec<f64> {
+    let mut q: Vec<f64> = edges
+        .windows(2)
+        .map(|w| pdf.probability(w[0], w[1]))
+        .collect();
+    let inside: f64 = q.iter().sum();
+    q.push((1.0 - inside).max(0.0));
+    q
+}
+
+/// The Hellinger distance between the theory and every weighting of a well decomposition's
+/// conditional densities ([`hellinger_bounds`]): for a decomposition whose conditional
+/// statistics are valid but whose weights are undetermined. Errors when the replicas' counts
+/// do not match the result's bins.
+pub fn wells_bounds(result: &WellsResult, theory: &Theory) -> crate::Result<HellingerBounds> {
+    let pdf = theory.amplitude_pdf()?;
+    let edges = &result.result.amplitude.edges;
+    let q = binned(&pdf, edges);
+    let counts = &result.wells.conditional_counts;
+    let nw = result.wells.conditional.len();
+    if counts.len() < 2 {
+        return Err(Error::invalid(
+            "conditional_counts",
+            counts.len() as f64,
+            "2 or more replicas",
+        ));
+    }
+    if let Some(r) = counts.iter().find(|r| r.len() != nw) {
+        return Err(Error::invalid(
+            "conditional_counts",
+            r.len() as f64,
+            format!("{nw} wells per replica"),
+        ));
+    }
+    if let Some(c) = counts.iter().flatten().find(|c| c.len() != q.len()) {
+        return Err(Error::invalid(
+            "conditional_counts",
+            c.len() as f64,
+            format!(
+                "{} counts per well (the bins and the count beyond)",
+                q.len()
+            ),
+        ));
+    }
+    Ok(hellinger_bounds(theory.variant().name(), &q, counts))
 }
 
 /// What the theory suggests for an ensemble of `params`: the wells (modes and antimodes of

@@ -10,7 +10,45 @@ use crate::render::plot::{
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use trirhythm_paper::montecarlo::AmplitudePanel;
+use trirhythm_paper::montecarlo::{AmplitudePanel, McRun};
+
+/// Densities and standard errors per bin.
+pub type Shown = (Vec<f64>, Vec<f64>);
+
+/// What a run's markers show: its histogram, or, where its well decomposition has valid
+/// conditional densities but undetermined weights, their mixture nearest the paper variant's
+/// theory (the weights of H_min; standard errors √Σ π_i² s_i², the wells' replicas being
+/// independent). `true` in the second place for the mixture.
+pub fn shown_density(r: &McRun) -> (Shown, bool) {
+    if let Some(w) = r.wells.as_ref().filter(|w| w.conditional_valid && !w.valid) {
+        let nb = r.edges.len().saturating_sub(1);
+        let same = w.conditional.iter().all(|c| c.density.len() == nb);
+        if let (Some(b), true) = (w.bounds.first(), same) {
+            let pi = &b.weights_min;
+            let density = (0..nb)
+                .map(|k| {
+                    w.conditional
+                        .iter()
+                        .zip(pi)
+                        .map(|(c, p)| p * c.density[k])
+                        .sum()
+                })
+                .collect();
+            let stderr = (0..nb)
+                .map(|k| {
+                    w.conditional
+                        .iter()
+                        .zip(pi)
+                        .map(|(c, p)| (p * c.stderr[k]).powi(2))
+                        .sum::<f64>()
+                        .sqrt()
+                })
+                .collect();
+            return ((density, stderr), true);
+        }
+    }
+    ((r.density.clone(), r.stderr.clone()), false)
+}
 
 /// The legend entries of an amplitude panel's series.
 pub fn legend_entries(systems: &[&str]) -> Vec<(Symbol, String)> {
@@ -72,12 +110,10 @@ pub fn draw_amplitude_panel<DB: Backend>(
         .fold(1.0f64, f64::max);
     let finite_max =
         |it: &mut dyn Iterator<Item = f64>| it.filter(|v| v.is_finite()).fold(0.0f64, f64::max);
-    let mc_max = finite_max(
-        &mut p
-            .runs
-            .iter()
-            .flat_map(|r| r.density.iter().zip(&r.stderr).map(|(d, s)| d + s.max(0.0))),
-    );
+    let shown: Vec<(Shown, bool)> = p.runs.iter().map(shown_density).collect();
+    let mc_max = finite_max(&mut shown.iter().flat_map(|((density, stderr), _)| {
+        density.iter().zip(stderr).map(|(d, s)| d + s.max(0.0))
+    }));
     let theory_max = finite_max(&mut p.theory.iter().flat_map(|t| t.2.iter().copied()));
     // a theory spike far above the histograms would flatten them: it is cut, and its height
     // given in the caption
@@ -95,8 +131,32 @@ pub fn draw_amplitude_panel<DB: Backend>(
     if cut {
         caption.push_str(&format!("; theory peak {theory_max:.1} cut"));
     }
-    if !stationary {
-        caption.push_str("; MC NOT stationary");
+    let mixtures: Vec<&str> = p
+        .runs
+        .iter()
+        .zip(&shown)
+        .filter(|(_, (_, m))| *m)
+        .map(|(r, _)| r.system.as_str())
+        .collect();
+    if mixtures.is_empty() {
+        if !stationary {
+            caption.push_str("; MC NOT stationary");
+        }
+    } else {
+        caption.push_str(&format!(
+            "; {}: wells mixed at H_min (weights undetermined)",
+            mixtures.join(", ")
+        ));
+        let others: Vec<&str> = p
+            .runs
+            .iter()
+            .zip(&shown)
+            .filter(|(r, (_, m))| !*m && !r.stationary)
+            .map(|(r, _)| r.system.as_str())
+            .collect();
+        if !others.is_empty() {
+            caption.push_str(&format!("; {} NOT stationary", others.join(", ")));
+        }
     }
     for r in p.runs.iter().filter(|r| r.estimator == "wells") {
         caption.push_str(&format!("; {} by wells", r.system));
@@ -109,12 +169,12 @@ pub fn draw_amplitude_panel<DB: Backend>(
         let pts: Vec<(f64, f64)> = xs.iter().copied().zip(ys.iter().copied()).collect();
         draw_line(&c, &pts, theory_style(i), 2)?;
     }
-    for (k, r) in p.runs.iter().enumerate() {
+    for (k, (r, ((density, stderr), _))) in p.runs.iter().zip(&shown).enumerate() {
         let style = mc_style(k);
         let mids: Vec<(f64, f64, f64)> = r
             .edges
             .windows(2)
-            .zip(r.density.iter().zip(&r.stderr))
+            .zip(density.iter().zip(stderr))
             .filter(|(_, (d, _))| **d > 0.0)
             .map(|(w, (&d, &s))| (0.5 * (w[0] + w[1]), d, if s.is_finite() { s } else { 0.0 }))
             .collect();

@@ -4,7 +4,7 @@
 
 use super::super::rules::{
     agreement, count, sign_change, trend, Comparison, Count, CountSource, Direction, LleCurve,
-    Located, Series,
+    Located, Series, Weightings,
 };
 use super::super::{all_of, Decision, Measured, Verdict};
 use crate::boundary::Panel as BoundaryPanel;
@@ -26,9 +26,31 @@ fn estimator_of(r: &McRun) -> String {
                 .collect::<Vec<_>>()
                 .join(", ")
         ),
+        Some(w) if w.conditional_valid && !w.bounds.is_empty() => {
+            " (well decomposition: valid conditional densities, weights undetermined)".into()
+        }
         Some(_) => " (direct; the well decomposition refused: the figure's notes say why)".into(),
         None => String::new(),
     }
+}
+
+/// H over every weighting of the wells, where the run's well decomposition has valid
+/// conditional densities but undetermined weights.
+fn weightings_of(r: &McRun, variant: &str) -> Option<Weightings> {
+    let w = r
+        .wells
+        .as_ref()
+        .filter(|w| w.conditional_valid && !w.valid)?;
+    let b = w.bounds.iter().find(|b| b.variant == variant)?;
+    let ess: Vec<f64> = w.conditional.iter().map(|c| c.ess).collect();
+    Some(Weightings {
+        h_min: b.h_min,
+        h_min_se: b.h_min_stderr,
+        h_max: b.h_max,
+        h_max_se: b.h_max_stderr,
+        ess_min: ess.iter().copied().fold(f64::INFINITY, f64::min),
+        ess_sum: ess.iter().sum(),
+    })
 }
 
 pub(super) fn agreement_of(panels: &[AmplitudePanel], system: &str, variant: &str) -> Decision {
@@ -50,6 +72,7 @@ pub(super) fn agreement_of(panels: &[AmplitudePanel], system: &str, variant: &st
                     ess: r.ess,
                     stationary: r.stationary,
                     r_hat: r.r_hat,
+                    weightings: weightings_of(r, variant),
                 });
             }
         }

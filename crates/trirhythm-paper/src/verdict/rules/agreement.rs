@@ -2,7 +2,9 @@
 //! and two numbers within a relative tolerance.
 //!
 //! Agreement: H within the finite-sample floor √(bins/(8·ESS)) plus k standard errors,
-//! stationary ensembles only. Closeness: the relative difference, widened by 2 s.e. and the
+//! stationary ensembles only; where the well decomposition's weights are undetermined but its
+//! conditional densities are valid, the range of H over every weighting of the wells against
+//! the floors the weighting allows. Closeness: the relative difference, widened by 2 s.e. and the
 //! half-widths of brackets, against the tolerance. Reference: docs/verdicts.md, "Agreement of
 //! theory and Monte Carlo" and "Closeness". Tested by `tests/verdicts.rs`.
 
@@ -26,6 +28,60 @@ pub struct Comparison {
     pub stationary: bool,
     /// Its R̂.
     pub r_hat: f64,
+    /// Where the ensemble is not stationary but a well decomposition's conditional densities
+    /// are valid and only its weights undetermined: H over every weighting.
+    pub weightings: Option<Weightings>,
+}
+
+/// The Hellinger distance over every weighting of a well decomposition's valid conditional
+/// densities (the stationary density is Σ π_i P_i for some unknown π on the simplex).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Weightings {
+    /// min over the weights of H, with its standard error.
+    pub h_min: f64,
+    /// Standard error of `h_min`.
+    pub h_min_se: f64,
+    /// max over the weights (one well alone), with its standard error.
+    pub h_max: f64,
+    /// Standard error of `h_max`.
+    pub h_max_se: f64,
+    /// The smallest effective sample size of a well's conditional statistics: the mixture's
+    /// ESS 1/Σ π_i²/ESS_i is at least this for every π, so its floor at most
+    /// √(bins/(8·ess_min)).
+    pub ess_min: f64,
+    /// The sum of the wells' ESS: the mixture's ESS is at most this (at π_i ∝ ESS_i), so its
+    /// floor at least √(bins/(8·ess_sum)).
+    pub ess_sum: f64,
+}
+
+impl Weightings {
+    /// The decision for every weighting: refuted when H_min − k·se exceeds the largest floor a
+    /// weighting can have (no weighting agrees), confirmed when H_max + k·se is within the
+    /// smallest (every weighting agrees), else neither; and the two floors (largest, smallest).
+    pub fn outcome(&self, bins: usize) -> (Outcome, f64, f64) {
+        let floor = |ess: f64| (bins as f64 / (8.0 * ess)).sqrt();
+        let (largest, smallest) = (floor(self.ess_min), floor(self.ess_sum));
+        let usable = [
+            self.h_min,
+            self.h_min_se,
+            self.h_max,
+            self.h_max_se,
+            largest,
+            smallest,
+        ]
+        .iter()
+        .all(|x| x.is_finite());
+        let outcome = if !usable {
+            Outcome::Undefined
+        } else if self.h_min - AGREEMENT_K * self.h_min_se > largest {
+            Outcome::Against
+        } else if self.h_max + AGREEMENT_K * self.h_max_se <= smallest {
+            Outcome::For
+        } else {
+            Outcome::Neither
+        };
+        (outcome, largest, smallest)
+    }
 }
 
 impl Comparison {
@@ -43,7 +99,11 @@ impl Comparison {
 ///
 /// Per comparison: undetermined when the ensemble is not stationary (R̂ given) or H, its
 /// standard error or the ESS is not finite; confirmed when H ≤ √(bins/(8·ESS)) + k·se; refuted
-/// otherwise. The claim: refuted when a comparison is, confirmed when every one is, else
+/// otherwise. A non-stationary ensemble whose well decomposition has valid conditional
+/// densities but undetermined weights ([`Comparison::weightings`]) is decided for every
+/// weighting of the wells ([`Weightings::outcome`]): refuted when H_min − k·se(H_min) exceeds
+/// the largest floor any weighting has, confirmed when H_max + k·se(H_max) is within the
+/// smallest, else undetermined. The claim: refuted when a comparison is, confirmed when every one is, else
 /// undetermined.
 pub fn agreement(items: &[Comparison]) -> Decision {
     let mut checks = Vec::new();
@@ -52,6 +112,60 @@ pub fn agreement(items: &[Comparison]) -> Decision {
         let floor = c.floor();
         let threshold = floor + AGREEMENT_K * c.se;
         let usable = c.hellinger.is_finite() && c.se.is_finite() && floor.is_finite();
+        if let (false, Some(w)) = (c.stationary, &c.weightings) {
+            let (outcome, largest, smallest) = w.outcome(c.bins);
+            let range = format!(
+                "H ∈ [{} ± {}, {} ± {}]",
+                crate::notes::sig(w.h_min, 3),
+                crate::notes::sig(w.h_min_se, 2),
+                crate::notes::sig(w.h_max, 3),
+                crate::notes::sig(w.h_max_se, 2)
+            );
+            match outcome {
+                Outcome::Undefined => open.push(format!(
+                    "{}: weights undetermined and no standard error of H over the weightings",
+                    c.what
+                )),
+                Outcome::Neither => open.push(format!(
+                    "{}: weights undetermined; {range} for every weighting of the wells, \
+                     neither beyond the largest floor {} (minus {AGREEMENT_K} s.e.) nor within \
+                     the smallest {} (plus {AGREEMENT_K} s.e.)",
+                    c.what,
+                    crate::notes::sig(largest, 3),
+                    crate::notes::sig(smallest, 3)
+                )),
+                _ => {}
+            }
+            let (statistic_value, threshold) = match outcome {
+                Outcome::For => (w.h_max, smallest - AGREEMENT_K * w.h_max_se),
+                _ => (w.h_min, largest + AGREEMENT_K * w.h_min_se),
+            };
+            checks.push(Check {
+                what: format!(
+                    "{} (weights undetermined: {range} for every weighting of the wells; \
+                     floor √(bins/(8·ESS)) between {} and {}, bins {}, ESS per well ≥ {})",
+                    c.what,
+                    crate::notes::sig(smallest, 3),
+                    crate::notes::sig(largest, 3),
+                    c.bins,
+                    crate::notes::sig(w.ess_min, 3)
+                ),
+                value: if outcome == Outcome::For {
+                    Measured::with_se(w.h_max, w.h_max_se)
+                } else {
+                    Measured::with_se(w.h_min, w.h_min_se)
+                },
+                statistic: if outcome == Outcome::For {
+                    "H_max over every weighting".into()
+                } else {
+                    "H_min over every weighting".into()
+                },
+                statistic_value,
+                threshold,
+                outcome,
+            });
+            continue;
+        }
         let outcome = if !c.stationary {
             open.push(format!(
                 "{}: not stationary (R̂ = {})",

@@ -86,6 +86,7 @@
 //! # Ok::<(), trirhythm::Error>(())
 //! ```
 
+mod bounds;
 mod diagnostics;
 mod merging;
 mod piece;
@@ -94,6 +95,9 @@ mod spec;
 pub mod splitting;
 mod wells;
 
+pub use bounds::{
+    hellinger_bounds, hellinger_of_mixture, hellinger_range, HellingerBounds, HellingerRange,
+};
 pub use diagnostics::Stationarity;
 pub use merging::{Density, EnsembleResult, Estimate, JointDensity, Passage};
 pub use piece::{fingerprint, Piece};

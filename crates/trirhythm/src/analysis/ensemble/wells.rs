@@ -177,6 +177,10 @@ pub struct WellsEstimate {
     pub pilot_inside: Vec<f64>,
     /// Rates between neighbours (0 → 1, 1 → 0, 1 → 2, …).
     pub rates: Vec<Rate>,
+    /// Upper bound of each rate below the method's resolution (same order as `rates`; NaN
+    /// where the rate is resolved).
+    #[serde(default, with = "crate::non_finite::vec")]
+    pub rate_bounds: Vec<f64>,
     /// The rate matrix, `rate_matrix[i][j]` = k_ij (0 on the diagonal and between non-neighbours).
     pub rate_matrix: Vec<Vec<f64>>,
     /// Stationary weights of the labels.
@@ -187,8 +191,21 @@ pub struct WellsEstimate {
     pub relaxation: Vec<f64>,
     /// The amplitude density conditioned on each label.
     pub conditional: Vec<Density>,
+    /// The effective sample size of A in each well's conditional statistics.
+    #[serde(default, with = "crate::non_finite::vec")]
+    pub conditional_ess: Vec<f64>,
+    /// Each replica's amplitude counts per well (`[replica][well]`, the histogram's bins and
+    /// the count beyond the last edge): the replicas' own conditional densities.
+    #[serde(default)]
+    pub conditional_counts: Vec<Vec<Vec<u64>>>,
     /// The decomposition passed its validity diagnostic.
     pub valid: bool,
+    /// The conditional statistics passed the diagnostic (every refusal, if any, is about the
+    /// rates and weights: a rate bound that could move the weights, undetermined weights, too
+    /// few exits): the stationary density is some mixture Σ π_i P_i of valid P_i
+    /// ([`super::hellinger_bounds`] over every weighting).
+    #[serde(default)]
+    pub conditional_valid: bool,
     /// Why not, in words (empty when valid).
     pub refusals: Vec<String>,
     /// Rates below the method's resolution (taken as 0), in words.
@@ -1004,6 +1021,8 @@ fn combine(
             )
         })
         .collect();
+    // refusals about the rates and weights only (the conditional statistics stand)
+    let mut weight_refusals = 0usize;
     for (k, r) in rates.iter().enumerate() {
         if unresolved[k] {
             let (level, passed) = of(k).map(|t| (t.level, t.level_probability)).fold(
@@ -1050,6 +1069,7 @@ fn combine(
             .sum::<f64>()
             / replicas as f64;
         if exits < MIN_EXITS {
+            weight_refusals += 1;
             refusals.push(format!(
                 "well {}: {exits:.1} exits toward well {} per replica (at least {MIN_EXITS} \
                  needed): lengthen the wells' paths",
@@ -1082,6 +1102,7 @@ fn combine(
         let worst = largest_shift(&values, &bounds, &zero, w);
         if let Some((shift, set, wb)) = worst {
             if shift > MAX_WEIGHT_SHIFT {
+                weight_refusals += 1;
                 let named: Vec<String> = set
                     .into_iter()
                     .map(|k| format!("{} → {} < {:.2e}", rates[k].from, rates[k].to, bounds[k]))
@@ -1101,6 +1122,7 @@ fn combine(
         }
     }
     if pooled_weights.is_none() {
+        weight_refusals += 1;
         refusals.push(
             "the weights are undetermined: two groups of wells exchange no transition within \
              the method's resolution (each would keep the mass it starts with)"
@@ -1108,6 +1130,7 @@ fn combine(
         );
     }
     let valid = refusals.is_empty();
+    let conditional_valid = refusals.len() == weight_refusals;
     let replica_list: Vec<Replica> = (0..replicas)
         .map(|r| Replica {
             replica: r as u64,
@@ -1219,11 +1242,23 @@ fn combine(
             pilot_inside,
             rates,
             rate_matrix,
+            rate_bounds: (0..np)
+                .map(|k| if unresolved[k] { bounds[k] } else { f64::NAN })
+                .collect(),
             weights,
             residence,
             relaxation,
+            conditional_ess: conditional.iter().map(|c| c.stationarity.ess).collect(),
             conditional: conditional.into_iter().map(|c| c.amplitude).collect(),
+            conditional_counts: (0..replicas)
+                .map(|r| {
+                    (0..nw)
+                        .map(|i| quarters(&stats[r * nw + i].amplitude))
+                        .collect()
+                })
+                .collect(),
             valid,
+            conditional_valid,
             refusals,
             notes,
             replicas: replica_list,
