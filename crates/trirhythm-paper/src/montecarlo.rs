@@ -163,6 +163,9 @@ pub struct WellsSummary {
     /// conditional statistics are valid but the decomposition was refused.
     #[serde(default)]
     pub bounds: Vec<Bounds>,
+    /// Independent replicas behind the standard errors.
+    #[serde(default)]
+    pub replicas: usize,
 }
 
 /// One well's conditional amplitude density.
@@ -274,6 +277,7 @@ impl WellsSummary {
             missing: e.missing.clone(),
             steps: e.steps,
             wall_time_s,
+            replicas: e.replicas.len(),
         }
     }
 

@@ -450,10 +450,10 @@ fn agreement_within_the_floor_plus_k_standard_errors_on_stationary_ensembles() {
 
 #[test]
 fn agreement_for_every_weighting_of_wells_whose_weights_are_undetermined() {
-    use trirhythm_paper::verdict::rules::Weightings;
+    use trirhythm_paper::verdict::rules::{Weightings, MIN_WEIGHTING_REPLICAS};
     // bins 80; ESS per well ≥ 1000 (largest floor √(80/8000) = 0.1), ΣESS = 8000 (smallest
     // floor √(80/64000) = 0.0354)
-    let with = |h_min: f64, h_max: f64, se: f64| Comparison {
+    let with_replicas = |h_min: f64, h_max: f64, se: f64, replicas: usize| Comparison {
         weightings: Some(Weightings {
             h_min,
             h_min_se: se,
@@ -461,9 +461,11 @@ fn agreement_for_every_weighting_of_wells_whose_weights_are_undetermined() {
             h_max_se: se,
             ess_min: 1000.0,
             ess_sum: 8000.0,
+            replicas,
         }),
         ..comparison(f64::NAN, f64::NAN, f64::NAN, false)
     };
+    let with = |h_min: f64, h_max: f64, se: f64| with_replicas(h_min, h_max, se, 16);
     // no weighting agrees: H_min − 2 s.e. = 0.46 > 0.1
     let d = agreement(&[with(0.5, 0.9, 0.02)]);
     assert_eq!(tag(&d), "refuted");
@@ -485,6 +487,22 @@ fn agreement_for_every_weighting_of_wells_whose_weights_are_undetermined() {
     assert_eq!(tag(&agreement(&[with(0.01, 0.03, 0.005)])), "undetermined");
     // no standard error over the replicas: undetermined
     assert_eq!(tag(&agreement(&[with(0.5, 0.9, f64::NAN)])), "undetermined");
+    // a standard error from too few replicas decides nothing (quick mode's 2)
+    let few = agreement(&[with_replicas(0.5, 0.9, 0.02, MIN_WEIGHTING_REPLICAS - 1)]);
+    assert!(
+        matches!(few.verdict, Verdict::Undetermined { ref why } if why.contains("at least 8 replicas")),
+        "{:?}",
+        few.verdict
+    );
+    assert_eq!(
+        tag(&agreement(&[with_replicas(
+            0.5,
+            0.9,
+            0.02,
+            MIN_WEIGHTING_REPLICAS
+        )])),
+        "refuted"
+    );
     // combined as before: a refuted panel refutes the claim beside an undetermined one, and a
     // panel refused for another reason (no weightings) stays undetermined
     let other = comparison(0.044, 0.012, 2000.0, false);

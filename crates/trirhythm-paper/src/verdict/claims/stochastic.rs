@@ -50,6 +50,7 @@ fn weightings_of(r: &McRun, variant: &str) -> Option<Weightings> {
         h_max_se: b.h_max_stderr,
         ess_min: ess.iter().copied().fold(f64::INFINITY, f64::min),
         ess_sum: ess.iter().sum(),
+        replicas: w.replicas,
     })
 }
 

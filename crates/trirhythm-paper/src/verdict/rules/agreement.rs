@@ -52,7 +52,14 @@ pub struct Weightings {
     /// The sum of the wells' ESS: the mixture's ESS is at most this (at π_i ∝ ESS_i), so its
     /// floor at least √(bins/(8·ess_sum)).
     pub ess_sum: f64,
+    /// Independent replicas behind the standard errors (their jackknife).
+    pub replicas: usize,
 }
+
+/// Fewest replicas whose delete-one jackknife standard error a decision over the weightings
+/// rests on: with fewer (quick mode runs 2), the error of the error is too large for a
+/// two-standard-error margin to mean what it says.
+pub const MIN_WEIGHTING_REPLICAS: usize = 8;
 
 impl Weightings {
     /// The decision for every weighting: refuted when H_min − k·se exceeds the largest floor a
@@ -71,7 +78,7 @@ impl Weightings {
         ]
         .iter()
         .all(|x| x.is_finite());
-        let outcome = if !usable {
+        let outcome = if !usable || self.replicas < MIN_WEIGHTING_REPLICAS {
             Outcome::Undefined
         } else if self.h_min - AGREEMENT_K * self.h_min_se > largest {
             Outcome::Against
@@ -123,8 +130,9 @@ pub fn agreement(items: &[Comparison]) -> Decision {
             );
             match outcome {
                 Outcome::Undefined => open.push(format!(
-                    "{}: weights undetermined and no standard error of H over the weightings",
-                    c.what
+                    "{}: weights undetermined and no standard error of H over the weightings \
+                     from at least {MIN_WEIGHTING_REPLICAS} replicas ({} here; {range})",
+                    c.what, w.replicas
                 )),
                 Outcome::Neither => open.push(format!(
                     "{}: weights undetermined; {range} for every weighting of the wells, \

@@ -15,7 +15,7 @@ mod count;
 mod sign_change;
 mod trend;
 
-pub use agreement::{agreement, closeness, Comparison, Weightings};
+pub use agreement::{agreement, closeness, Comparison, Weightings, MIN_WEIGHTING_REPLICAS};
 pub use count::{count, Count, CountSource};
 pub use sign_change::{locate, sign_change, significance, LleCurve, LlePoint, Located, PointSign};
 pub use trend::{trend, Direction, Series};
