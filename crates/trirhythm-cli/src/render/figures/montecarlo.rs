@@ -144,7 +144,7 @@ pub fn draw_amplitude_panel<DB: Backend>(
         }
     } else {
         caption.push_str(&format!(
-            "; {}: wells mixed at H_min (weights undetermined)",
+            "; {}: wells at H_min",
             mixtures.join(", ")
         ));
         let others: Vec<&str> = p
