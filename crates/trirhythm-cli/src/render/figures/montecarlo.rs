@@ -143,10 +143,7 @@ pub fn draw_amplitude_panel<DB: Backend>(
             caption.push_str("; MC NOT stationary");
         }
     } else {
-        caption.push_str(&format!(
-            "; {}: wells at H_min",
-            mixtures.join(", ")
-        ));
+        caption.push_str(&format!("; {}: wells at H_min", mixtures.join(", ")));
         let others: Vec<&str> = p
             .runs
             .iter()
