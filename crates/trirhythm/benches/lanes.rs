@@ -23,18 +23,11 @@ use trirhythm::engine::{
 use trirhythm::model::preset;
 use trirhythm::monitor::Silent;
 
-const STEPS: u64 = 20_000;
+#[path = "../examples/support/mod.rs"]
+mod support;
+use support::fig13a_problem as problem;
 
-fn problem(lambda: f64) -> Problem {
-    let p = preset("fig13a")
-        .unwrap()
-        .params
-        .with("lambda", lambda)
-        .unwrap();
-    Problem::from_params(&p)
-        .and_then(|q| q.with_starts(&[(2.9, 0.0), (7.4, 0.0), (12.9, 0.0)]))
-        .unwrap()
-}
+const STEPS: u64 = 20_000;
 
 fn ensemble(c: &mut Criterion) {
     let pool = rayon::ThreadPoolBuilder::new()

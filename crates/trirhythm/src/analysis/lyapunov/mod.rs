@@ -409,6 +409,21 @@ pub struct PathRun {
     pub running: Vec<f64>,
 }
 
+/// Realisations' results as [`PathRun`]s, each handed to `monitor` as it is finished.
+fn finished_runs(
+    results: Vec<(PathExponent, Vec<f64>)>,
+    monitor: &dyn Monitor<PathRun>,
+) -> Result<Vec<PathRun>> {
+    results
+        .into_iter()
+        .map(|(exponent, running)| {
+            let run = PathRun { exponent, running };
+            monitor.finished(&run)?;
+            Ok(run)
+        })
+        .collect()
+}
+
 /// The largest Lyapunov exponent of `problem` with frozen noise (module docs): path i from
 /// `problem.start(i)` on noise stream i of `spec.seed`; [`run_paths`] over every path, then
 /// [`merge`]. `monitor` hears the steps done, receives each path as it is finished, and may
@@ -496,13 +511,7 @@ pub fn run_paths(
                 }
                 let d0 = spec.separation;
                 let results = pairs_in_lanes(steppers, d0, group, spec, sizes, lanes, &tick)?;
-                let mut out = Vec::with_capacity(group.len());
-                for (exponent, running) in results {
-                    let run = PathRun { exponent, running };
-                    monitor.finished(&run)?;
-                    out.push(run);
-                }
-                Ok(out)
+                finished_runs(results, monitor)
             })
             .collect::<Result<_>>()?;
         return Ok(groups.into_iter().flatten().collect());
@@ -511,11 +520,9 @@ pub fn run_paths(
         // each path with its tangent in a lane, `lanes` realisations a group (narrower with few
         // realisations, as above); `Auto` takes four: measured faster than eight for the
         // tangent (docs/numerics.md, Speed)
-        let threads = rayon::current_num_threads().max(1);
-        let lanes = match paths.len().div_ceil(threads) {
-            _ if spec.lanes == Lanes::Auto => 4,
-            per if lanes == 8 && per <= 4 => 4,
-            _ => lanes,
+        let lanes = match spec.lanes {
+            Lanes::Auto => 4,
+            given => group_lanes(given, paths.len(), 1)?,
         };
         let groups: Vec<Vec<PathRun>> = paths
             .par_chunks(lanes)
@@ -530,13 +537,7 @@ pub fn run_paths(
                 }
                 let results =
                     tangents_in_lanes((refs, tangents), group, spec, sizes, lanes, &tick)?;
-                let mut out = Vec::with_capacity(group.len());
-                for (exponent, running) in results {
-                    let run = PathRun { exponent, running };
-                    monitor.finished(&run)?;
-                    out.push(run);
-                }
-                Ok(out)
+                finished_runs(results, monitor)
             })
             .collect::<Result<_>>()?;
         return Ok(groups.into_iter().flatten().collect());

@@ -178,16 +178,7 @@ pub(crate) fn step_group<const L: usize>(
     live: &[bool; L],
     errors: &mut [Option<Error>; L],
 ) {
-    assert!(
-        paths.len() <= L,
-        "at most {L} paths in a group of {L} lanes"
-    );
-    match isa {
-        #[cfg(target_arch = "x86_64")]
-        // SAFETY: `Isa::Avx2` is only detected where the CPU reports AVX2.
-        Isa::Avx2 => unsafe { step_avx2::<L, _>(&Shared, paths, live, errors) },
-        _ => step_body::<L, _>(&Shared, paths, live, errors),
-    }
+    step_group_with::<L, _>(isa, &Shared, paths, live, errors)
 }
 
 /// [`step_group`] for paths of different problems (at most L of them), each lane with its own
@@ -195,6 +186,18 @@ pub(crate) fn step_group<const L: usize>(
 pub(crate) fn step_group_mixed<const L: usize>(
     isa: Isa,
     c: &PerLane<L>,
+    paths: &mut [Stepper],
+    live: &[bool; L],
+    errors: &mut [Option<Error>; L],
+) {
+    step_group_with::<L, _>(isa, c, paths, live, errors)
+}
+
+/// The lane step with coefficients `c`, in the arrays compiled for `isa`.
+#[inline(always)]
+fn step_group_with<const L: usize, C: Coefficients<L>>(
+    isa: Isa,
+    c: &C,
     paths: &mut [Stepper],
     live: &[bool; L],
     errors: &mut [Option<Error>; L],
