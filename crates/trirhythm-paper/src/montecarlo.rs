@@ -402,6 +402,41 @@ pub struct McRun {
     pub wells: Option<WellsSummary>,
 }
 
+/// A density per bin and its standard errors.
+pub type Shown = (Vec<f64>, Vec<f64>);
+
+impl McRun {
+    /// What the run's markers show: its histogram, or, where its well decomposition has valid
+    /// conditional densities but undetermined weights, their mixture nearest the paper
+    /// variant's theory (the weights of H_min; standard errors √Σ π_i² s_i², the wells'
+    /// replicas being independent). `true` in the second place for the mixture.
+    pub fn shown_density(&self) -> (Shown, bool) {
+        if let Some(w) = self
+            .wells
+            .as_ref()
+            .filter(|w| w.conditional_valid && !w.valid)
+        {
+            let nb = self.edges.len().saturating_sub(1);
+            let same = w.conditional.iter().all(|c| c.density.len() == nb);
+            if let (Some(b), true) = (w.bounds.first(), same) {
+                let pi = &b.weights_min;
+                let mix = |f: &dyn Fn(&Conditional, f64, usize) -> f64| -> Vec<f64> {
+                    (0..nb)
+                        .map(|k| w.conditional.iter().zip(pi).map(|(c, &p)| f(c, p, k)).sum())
+                        .collect()
+                };
+                let density = mix(&|c, p, k| p * c.density[k]);
+                let stderr = mix(&|c, p, k| (p * c.stderr[k]).powi(2))
+                    .into_iter()
+                    .map(f64::sqrt)
+                    .collect();
+                return ((density, stderr), true);
+            }
+        }
+        ((self.density.clone(), self.stderr.clone()), false)
+    }
+}
+
 /// `direct`: the estimator of figure data written before the well decomposition.
 pub fn direct() -> String {
     "direct".into()

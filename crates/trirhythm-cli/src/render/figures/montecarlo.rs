@@ -10,46 +10,9 @@ use crate::render::plot::{
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use trirhythm_paper::montecarlo::{AmplitudePanel, McRun};
+use trirhythm_paper::montecarlo::{AmplitudePanel, McRun, Shown};
 
 /// Densities and standard errors per bin.
-pub type Shown = (Vec<f64>, Vec<f64>);
-
-/// What a run's markers show: its histogram, or, where its well decomposition has valid
-/// conditional densities but undetermined weights, their mixture nearest the paper variant's
-/// theory (the weights of H_min; standard errors √Σ π_i² s_i², the wells' replicas being
-/// independent). `true` in the second place for the mixture.
-pub fn shown_density(r: &McRun) -> (Shown, bool) {
-    if let Some(w) = r.wells.as_ref().filter(|w| w.conditional_valid && !w.valid) {
-        let nb = r.edges.len().saturating_sub(1);
-        let same = w.conditional.iter().all(|c| c.density.len() == nb);
-        if let (Some(b), true) = (w.bounds.first(), same) {
-            let pi = &b.weights_min;
-            let density = (0..nb)
-                .map(|k| {
-                    w.conditional
-                        .iter()
-                        .zip(pi)
-                        .map(|(c, p)| p * c.density[k])
-                        .sum()
-                })
-                .collect();
-            let stderr = (0..nb)
-                .map(|k| {
-                    w.conditional
-                        .iter()
-                        .zip(pi)
-                        .map(|(c, p)| (p * c.stderr[k]).powi(2))
-                        .sum::<f64>()
-                        .sqrt()
-                })
-                .collect();
-            return ((density, stderr), true);
-        }
-    }
-    ((r.density.clone(), r.stderr.clone()), false)
-}
-
 /// The legend entries of an amplitude panel's series.
 pub fn legend_entries(systems: &[&str]) -> Vec<(Symbol, String)> {
     let mut e = vec![
@@ -110,7 +73,7 @@ pub fn draw_amplitude_panel<DB: Backend>(
         .fold(1.0f64, f64::max);
     let finite_max =
         |it: &mut dyn Iterator<Item = f64>| it.filter(|v| v.is_finite()).fold(0.0f64, f64::max);
-    let shown: Vec<(Shown, bool)> = p.runs.iter().map(shown_density).collect();
+    let shown: Vec<(Shown, bool)> = p.runs.iter().map(McRun::shown_density).collect();
     let mc_max = finite_max(&mut shown.iter().flat_map(|((density, stderr), _)| {
         density.iter().zip(stderr).map(|(d, s)| d + s.max(0.0))
     }));
