@@ -5,14 +5,14 @@
 //! # Equation
 //! The step of [`Stepper::step`] (module docs of [`super`]), unchanged: for each path the
 //! damped Taylor predictor U^P, the linearly implicit corrector
-//! V₁ = (known + w(f − ω²U^P))/(1 − w·μP(U^P)), the Hermite-corrected U₁, the second pass on
-//! stiff steps, and at the end the node's drift μP(U₁)V₁ − ω²U₁ and predictor weight.
+//! V₁ = (known + w(f − ω²U^P))/(1 − w·μP(U^P)), the Hermite-corrected U₁, the second pass from
+//! the first's U₁, and at the end the node's drift μP(U₁)V₁ − ω²U₁ and predictor weight.
 //!
 //! # Method
 //! A step of L paths (L = 4 or 8) runs in five phases: (1) per path, the noise and the numbers
 //! the step needs from the state ([`Stepper::begin`]); (2) for all L at once, the polynomial
-//! μP, the predictor, both divisions and the corrector in arrays `[f64; L]`, the second pass
-//! taken for all lanes when any lane is stiff and kept only where it is; (3) per path, the
+//! μP, the predictor, both divisions and the corrector in arrays `[f64; L]`, twice (the two
+//! passes); (3) per path, the
 //! events (sticking, an impact located and the rest of the step redone, blow-up) by the scalar
 //! stepper's own code, only for the lanes that have them; (4) for all L, the node's μP, drift
 //! and predictor weight; (5) per path, the piece of g into its memory. Every lane performs the
@@ -83,7 +83,7 @@
 
 use super::polynomial::LanePolynomial;
 use super::tangent::{TangentBegin, TangentEnd};
-use super::{node_with, pass_with, Begin, End, Free, Pass, Rhs, Stepper, Tangent, SECOND_PASS};
+use super::{node_with, pass_with, Begin, End, Free, Pass, Rhs, Stepper, Tangent};
 use crate::error::{Error, Result};
 
 /// How many paths the drivers step together.
@@ -294,9 +294,8 @@ impl<const L: usize> Coefficients<L> for PerLane<L> {
     }
 }
 
-/// The corrector's pass for L lanes: (μP(up), U₁, V₁).
+/// The corrector's pass for L lanes: (U₁, V₁).
 struct PassLanes<const L: usize> {
-    a: [f64; L],
     u1: [f64; L],
     v1: [f64; L],
 }
@@ -366,7 +365,7 @@ fn pass_lanes<const L: usize, C: Coefficients<L>>(
         u1[i] = p.u1;
         v1[i] = p.v1;
     }
-    PassLanes { a, u1, v1 }
+    PassLanes { u1, v1 }
 }
 
 /// The lane step (module docs: its five phases). Lanes beyond `paths.len()` and dead lanes
@@ -384,27 +383,15 @@ fn step_body<const L: usize, C: Coefficients<L>>(
     }
     // (1) per path: the noise and the state
     let (begun, x) = begin_lanes::<L>(paths, live);
-    // (2) all lanes: the predictor and the corrector, the second pass where stiff
+    // (2) all lanes: the predictor and the corrector's two passes
     let mut up = [0.0; L];
     for i in 0..L {
         let (h, _, _) = c.lane(paths, i);
         up[i] = x.u[i] + h * x.v[i] + x.pw[i] * x.gl[i];
     }
     let one = pass_lanes(c, paths, &x, &up);
-    let mut stiff = [false; L];
-    for i in 0..L {
-        let (_, w, _) = c.lane(paths, i);
-        stiff[i] = (2.0 * w * one.a[i]).abs() > SECOND_PASS;
-    }
-    let (mut u1, mut v1) = (one.u1, one.v1);
-    if stiff.iter().any(|&s| s) {
-        let two = pass_lanes(c, paths, &x, &one.u1);
-        for i in 0..L {
-            if stiff[i] {
-                (u1[i], v1[i]) = (two.u1[i], two.v1[i]);
-            }
-        }
-    }
+    let two = pass_lanes(c, paths, &x, &one.u1);
+    let (u1, v1) = (two.u1, two.v1);
     // (3) per path: the events, for the lanes that have them
     let mut ends: [Option<End>; L] = [None; L];
     for (i, p) in paths.iter_mut().enumerate() {
@@ -553,34 +540,16 @@ fn step_tangent_body<const L: usize>(
             tb[i] = paths[i].begin_tangent(&tangents[i], (a0[i], slope0[i]));
         }
     }
-    // (2) all lanes: the predictor, the corrector and the second pass where stiff; the
+    // (2) all lanes: the predictor, the corrector's two passes; the
     // tangent's passes
     let mut up = [0.0; L];
     for i in 0..L {
         up[i] = x.u[i] + h * x.v[i] + x.pw[i] * x.gl[i];
     }
     let one = full_pass_lanes(rhs, (h, w), &x, &up);
-    let mut stiff = [false; L];
-    for i in 0..L {
-        stiff[i] = (2.0 * w * one[i].a).abs() > SECOND_PASS;
-    }
-    let mut passes: [[Pass; 2]; L] = std::array::from_fn(|i| [one[i], one[i]]);
-    let mut slopes = [[0.0; 2]; L];
-    let s_one = slope_lanes(rhs, &up);
-    for i in 0..L {
-        slopes[i][0] = s_one[i];
-    }
-    if stiff.iter().any(|&s| s) {
-        let u_one: [f64; L] = std::array::from_fn(|i| one[i].u1);
-        let two = full_pass_lanes(rhs, (h, w), &x, &u_one);
-        let s_two = slope_lanes(rhs, &u_one);
-        for i in 0..L {
-            if stiff[i] {
-                passes[i][1] = two[i];
-                slopes[i][1] = s_two[i];
-            }
-        }
-    }
+    let u_one: [f64; L] = std::array::from_fn(|i| one[i].u1);
+    let two = full_pass_lanes(rhs, (h, w), &x, &u_one);
+    let (s_one, s_two) = (slope_lanes(rhs, &up), slope_lanes(rhs, &u_one));
     let mut free = [[0.0; 4]; L];
     for i in 0..L {
         let f = Free {
@@ -588,13 +557,17 @@ fn step_tangent_body<const L: usize>(
             w,
             g0: x.gl[i],
             pw: x.pw[i],
-            passes: passes[i],
-            stiff: stiff[i],
+            passes: [one[i], two[i]],
         };
         let (u1, v1) = f.end();
         let t = &tb[i];
-        let (du1, dv1) =
-            rhs.advance_tangent_with(&f, slopes[i], (t.du, t.dv, t.dgl), t.dpw, t.dknown);
+        let (du1, dv1) = rhs.advance_tangent_with(
+            &f,
+            [s_one[i], s_two[i]],
+            (t.du, t.dv, t.dgl),
+            t.dpw,
+            t.dknown,
+        );
         free[i] = [u1, v1, du1, dv1];
     }
     // (3) per path: the events, for the lanes that have them
@@ -963,7 +936,7 @@ mod tests {
     }
 
     /// Cases that the property above covers: impacts and sticking (a frozen push against the
-    /// wall), stiff steps (the second pass), checked to happen.
+    /// wall), stiff steps, checked to happen.
     #[test]
     fn tangents_in_lanes_meet_impacts_sticking_and_stiff_steps() {
         use crate::model::{Damping, Params};

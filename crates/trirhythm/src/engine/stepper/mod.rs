@@ -28,9 +28,9 @@
 //!   U_{n+1} = U_n + Δt(V_n + V_{n+1})/2 + (Δt²/12)·L(z)·(g_n − g^P_{n+1}),
 //!
 //! with g^P_{n+1} = μP(U^P)V_{n+1} − ω²U^P + γη, z = 2w_r μP(U^P) (= Δt·μP at λ = 1) and
-//! L(z) = 1/(1 + z²/12). Where |z| > 1/2 (stiff damping) the pass is repeated once with U^P
-//! replaced by the U_{n+1} of the first pass. g_{n+1} = g(U_{n+1}, V_{n+1}, η) is stored (only
-//! corrected values enter the history).
+//! L(z) = 1/(1 + z²/12). The pass is then repeated once with U^P replaced by the U_{n+1} of the
+//! first pass, and the second pass is the step. g_{n+1} = g(U_{n+1}, V_{n+1}, η) is stored
+//! (only corrected values enter the history).
 //!
 //! - Why linearly implicit: the explicit corrector g(U^P, V^P) amplifies the damping mode by
 //!   1 + w_r a(1 + w_r a) with a = μP(U); it is unstable once Δt·μ|P(U)| ≳ 2, which the paper's
@@ -48,15 +48,31 @@
 //!   t = 39.6); with it the increment decays like |z|⁻³ and L = 1 − O(Δt²) elsewhere.
 //! - U^P: the Taylor predictor with U″ ≈ g, its g-term damped by 1/(1 + Δt|μP|) so that it
 //!   stays bounded (→ Δt/(2|μP|)·g) where the damping is stiff. Its error O(Δt³) enters V
-//!   through w_r·μP′; on stiff steps the second pass evaluates μP and ω²U at the first pass's
+//!   through w_r·μP′; the second pass evaluates μP and ω²U at the first pass's
 //!   U instead.
+//! - The second pass on every step, not only on stiff ones: the step map must be smooth in the
+//!   state. Up to 6ae8a9e the second pass was taken only where |z| > 1/2; the map then jumped
+//!   by the passes' difference wherever an orbit crossed |z| = 1/2, twice a period on a stiff
+//!   cycle, and the jump locked the cycle's phase to the time grid: the noise-free cycle's
+//!   Lyapunov exponent, which is 0 (its flow direction is neutral), came out at −2.5·10⁻²
+//!   (Fig. 17(a)'s μ0 = 0.1, Δt = 0.01; +0.23 at μ0 = 0.2). A C² blend of the two passes over
+//!   1/2 < |z| < 1 removed the jump but not the locking at μ0 = 0.2 (−0.11 at Δt = 0.005: a
+//!   smooth step map that still changes within a few steps of the orbit); two passes
+//!   everywhere give 0 within the window's bound (`tests/cycle_exponent.rs`) for 1.1–1.2× the
+//!   time of a step (CHANGELOG.md).
+//! - Where z > 2 on a cycle the trapezoidal damping factor (1 − z/2)/(1 + z/2) of V is
+//!   negative: V alternates in sign across the stiff turning point and the discrete map is
+//!   chaotic there, though the amplitude stays within 10⁻³ of the converged one (Fig. 13(b)'s
+//!   μ0 = 0.2 at Δt = 0.01: z ≈ 2.8, noise-free exponent +0.23; at Δt = 0.005, 0 within its
+//!   bound). Such runs need Δt·μ0|P(A)| < 2.
 //! - Measured on Fig. 13(b)'s outer cycle from U = 13 (`tests/stiff.rs`; turning amplitude,
 //!   relative change from Δt = 0.01 to 0.005 / 0.005 to 0.0025): the plain trapezoidal U with
 //!   U^P = U_n + ΔtV_n 1.98·10⁻³ / 5.9·10⁻⁴; the Hermite-corrected U 1.38·10⁻³ / 1.9·10⁻⁴;
 //!   with the Taylor predictor too 2.2·10⁻⁴ / 2.5·10⁻⁵, but without L(z) that blows up on
 //!   Fig. 5(e); with L(z) and the damped Taylor predictor 1.27·10⁻³ / 1.6·10⁻⁴;
-//!   with the second pass on stiff steps (this method) 7.5·10⁻⁴ / 8.2·10⁻⁵ (second-pass
-//!   thresholds |z| > 1 and > 2: 8.1·10⁻⁴ and 7.4·10⁻⁴). The same at λ = 1, with r = 1 and
+//!   with the second pass on stiff steps 7.5·10⁻⁴ / 8.2·10⁻⁵ (second-pass thresholds |z| > 1
+//!   and > 2: 8.1·10⁻⁴ and 7.4·10⁻⁴); with the second pass on every step (this method), as
+//!   `tests/stiff.rs` reports it. The same at λ = 1, with r = 1 and
 //!   without the wall: 7.5–8.4·10⁻⁴, so the error is the smooth stiff turning point's, not the
 //!   impacts' or the memory's. The steps of ordinary paths (μ0 ≤ 0.05) never reach |z| > 1/2.
 //!   The Mittag-Leffler and impact-oscillator errors (`tests/convergence.rs`) are equal or
@@ -89,6 +105,8 @@
 //!
 //! # Tests
 //! `tests/convergence.rs` (observed orders on Mittag-Leffler and impact-oscillator solutions),
+//! `tests/cycle_exponent.rs` (the noise-free exponent on every stable cycle of the Lyapunov
+//! figures is 0 within the window's bound, both methods, at the figures' Δt and half of it),
 //! `tests/stiff.rs` (Fig. 13(b) from U = 13 and Fig. 5(e) at μ0 = 0.7 at Δt = 0.01; amplitude
 //! converged in Δt), `tests/pinned.rs` (a λ = 0.998 trajectory against an independent
 //! integrator, exact counts of a noisy run), `tests/impacts.rs`, `tests/systems.rs`,
@@ -215,9 +233,6 @@ fn hermite_limiter(z: f64) -> f64 {
     1.0 / (1.0 + z * z * (1.0 / 12.0))
 }
 
-/// |z| = |2w·μP| above which a step takes its second pass ([`Rhs::advance`]).
-const SECOND_PASS: f64 = 0.5;
-
 /// One pass of the linearly implicit corrector: U frozen at `up` in μP and ω²U.
 #[derive(Debug, Clone, Copy)]
 struct Pass {
@@ -274,17 +289,16 @@ struct Free {
     g0: f64,
     /// The predictor's weight of g0.
     pw: f64,
-    /// The first pass (from the predictor) and, on stiff steps, the second (from the first
-    /// pass's U).
+    /// The first pass (from the predictor) and the second (from the first pass's U), which
+    /// is the step's end.
     passes: [Pass; 2],
-    stiff: bool,
 }
 
 impl Free {
     /// The end (U₁, V₁) of the step.
     #[inline]
     fn end(&self) -> (f64, f64) {
-        let p = &self.passes[self.stiff as usize];
+        let p = &self.passes[1];
         (p.u1, p.v1)
     }
 }
@@ -310,8 +324,8 @@ impl Rhs {
     /// end that does not depend on g at the end, `w` the scaled weight of g at the end, `fr`
     /// the forcing there:
     /// up = u + len·v + pw·g0, V₁ = (known + w(fr − ω²up))/(1 − w·μP(up)),
-    /// U₁ = u + len(v + V₁)/2 + (len²/12)·lim·(g0 − g₁); where |2w·μP(up)| > [`SECOND_PASS`]
-    /// the pass is repeated once with up = U₁.
+    /// U₁ = u + len(v + V₁)/2 + (len²/12)·lim·(g0 − g₁); the pass is then repeated once with
+    /// up = U₁, and the second pass is the step (module docs: why on every step).
     // always: left to itself the inliner keeps it out of `step` (a call on every step, ≈ 10 %
     // of an ensemble's time, measured with perf)
     #[inline(always)]
@@ -326,19 +340,13 @@ impl Rhs {
         fr: f64,
     ) -> Free {
         let first = self.pass(len, (u, v, g0), u + len * v + pw * g0, known, w, fr);
-        let stiff = (2.0 * w * first.a).abs() > SECOND_PASS;
-        let second = if stiff {
-            self.pass(len, (u, v, g0), first.u1, known, w, fr)
-        } else {
-            first
-        };
+        let second = self.pass(len, (u, v, g0), first.u1, known, w, fr);
         Free {
             len,
             w,
             g0,
             pw,
             passes: [first, second],
-            stiff,
         }
     }
 
@@ -373,17 +381,14 @@ impl Rhs {
         dpw: f64,
         dknown: f64,
     ) -> (f64, f64) {
-        let second = if f.stiff {
-            self.damping_slope(f.passes[1].up)
-        } else {
-            0.0
-        };
-        let slopes = [self.damping_slope(f.passes[0].up), second];
+        let slopes = [
+            self.damping_slope(f.passes[0].up),
+            self.damping_slope(f.passes[1].up),
+        ];
         self.advance_tangent_with(f, slopes, (du, dv, dg0), dpw, dknown)
     }
 
-    /// [`Rhs::advance_tangent`] with d(μP)/dU at the passes' up given (the second only used
-    /// on stiff steps).
+    /// [`Rhs::advance_tangent`] with d(μP)/dU at the passes' up given.
     #[inline(always)]
     fn advance_tangent_with(
         &self,
@@ -395,12 +400,8 @@ impl Rhs {
     ) -> (f64, f64) {
         let dup = du + f.len * dv + f.pw * dg0 + f.g0 * dpw;
         let first = self.pass_tangent(f, (&f.passes[0], slopes[0]), (du, dv, dg0), dup, dknown);
-        if f.stiff {
-            let p = (&f.passes[1], slopes[1]);
-            self.pass_tangent(f, p, (du, dv, dg0), first.0, dknown)
-        } else {
-            first
-        }
+        let p = (&f.passes[1], slopes[1]);
+        self.pass_tangent(f, p, (du, dv, dg0), first.0, dknown)
     }
 }
 

@@ -15,8 +15,8 @@
 //! The step ([`super`], module docs) is a pass with U frozen at up = U_n + ΔtV_n + p(U_n)g_n
 //! (p the predictor's weight), a = μP(up), inv = 1/(1 − w_r a), N = base + J + w_l g_l,
 //! V_{n+1} = (N + w_r(F_r − ω²up))·inv, g^P = aV_{n+1} − ω²up + F_r, L = L(2w_r a),
-//! U_{n+1} = U_n + Δt(V_n + V_{n+1})/2 + (Δt²/12)L(g_l − g^P); a stiff step repeats the pass
-//! with up = U_{n+1} of the first. Its derivative with respect to (U_n, V_n, base, history) is
+//! U_{n+1} = U_n + Δt(V_n + V_{n+1})/2 + (Δt²/12)L(g_l − g^P); the step repeats the pass with
+//! up = U_{n+1} of the first. Its derivative with respect to (U_n, V_n, base, history) is
 //! δup = δU + ΔtδV + pδg_l + g_l p′δU, δa = μP′(up)δup, δN = δbase + δJ + w_l δg_l,
 //! δV_{n+1} = inv·(δN − w_r ω²δup + V_{n+1} w_r δa), δg^P = V_{n+1}δa + aδV_{n+1} − ω²δup,
 //! δL = −L²(z/6)·2w_r δa, δU_{n+1} = δU + Δt(δV + δV_{n+1})/2 + (Δt²/12)(δL(g_l − g^P) +
@@ -25,7 +25,7 @@
 //! (δg_l, δdrift_{n+1}) goes into the tangent memory. This is the derivative of the map the
 //! stepper computes, not of the ODE: central finite differences of [`Stepper::step`] agree with
 //! it to 10⁻⁸ or better (unit tests below, for (U, V), the Volterra constant and a memory
-//! direction, λ = 1 and 0.998, one-pass and stiff two-pass steps).
+//! direction, λ = 1 and 0.998, mildly and strongly stiff steps).
 //! The quantities up, a, inv, w_l, w_r, N are the step's own: the tangent costs a second memory
 //! update, evaluations of P′ and a few multiply–adds.
 
@@ -591,9 +591,8 @@ mod tests {
 
     #[test]
     fn smooth_steps_are_the_derivative_of_the_discrete_step() {
-        // no wall, noise on: a strongly nonlinear damping (fig17a's P at |U| ≈ 1…3, one pass
-        // per step), and fig13b's stiff outer turning point (U ≈ 13, Δt·μ0|P| ≈ 3: the steps
-        // take their second pass)
+        // no wall, noise on: a strongly nonlinear damping (fig17a's P at |U| ≈ 1…3, mild
+        // steps), and fig13b's stiff outer turning point (U ≈ 13, Δt·μ0|P| ≈ 3)
         for (name, mu0, start, warm_up) in [
             ("fig17a", 0.2, (2.0, 0.0), 700),
             ("fig13b", 0.2, (12.9, 3.0), 5),
