@@ -58,8 +58,8 @@
 //!   (Fig. 17(a)'s μ0 = 0.1, Δt = 0.01; +0.23 at μ0 = 0.2). A C² blend of the two passes over
 //!   1/2 < |z| < 1 removed the jump but not the locking at μ0 = 0.2 (−0.11 at Δt = 0.005: a
 //!   smooth step map that still changes within a few steps of the orbit); two passes
-//!   everywhere give 0 within the window's bound (`tests/cycle_exponent.rs`) for 1.1–1.2× the
-//!   time of a step (CHANGELOG.md).
+//!   everywhere give 0 within the window's bound (`tests/cycle_exponent.rs`) for 1.04–1.17×
+//!   the time of a step in eight lanes (1.2–1.3× one path at a time; CHANGELOG.md).
 //! - Where z > 2 on a cycle the trapezoidal damping factor (1 − z/2)/(1 + z/2) of V is
 //!   negative: V alternates in sign across the stiff turning point and the discrete map is
 //!   chaotic there, though the amplitude stays within 10⁻³ of the converged one (Fig. 13(b)'s
