@@ -228,7 +228,12 @@ fn the_well_method_agrees_with_a_direct_ensemble_that_mixes() {
     let za = z((x.value, x.stderr), (y.value, y.stderr));
     println!("mean A: wells {x:?}, direct {y:?}, z = {za:.2}");
     assert!(za.abs() < 3.0);
-    // each bin within 4 standard errors (60 bins: a 4σ excursion has probability < 0.4 %)
+    // each bin within Bonferroni's bound over the 60 bins at a family level of 1 %: both
+    // standard errors come from 8 replicas, so a bin's difference over its standard error is
+    // Student's t with ν ≈ 14 (Welch–Satterthwaite for equal counts), and the bound is
+    // t_{1 − 0.01/120}(14) = 5.08. (It read 4, the normal quantile's: under t(14) some bin
+    // of 60 exceeds 4 in about one run of ten; the second corrector pass on every step drew
+    // 4.25, family p ≈ 0.05.)
     let worst = (0..d.amplitude.density.len())
         .map(|b| {
             let s = (w.result.amplitude.stderr[b].powi(2) + d.amplitude.stderr[b].powi(2)).sqrt();
@@ -242,7 +247,7 @@ fn the_well_method_agrees_with_a_direct_ensemble_that_mixes() {
         })
         .fold(0.0f64, f64::max);
     println!("largest bin difference: {worst:.2} standard errors");
-    assert!(worst < 4.0);
+    assert!(worst < 5.08);
 }
 
 #[test]
