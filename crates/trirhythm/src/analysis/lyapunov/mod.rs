@@ -130,11 +130,21 @@
 //! # Ok::<(), trirhythm::Error>(())
 //! ```
 
+mod attractor;
 mod critical;
 mod perturbation;
+mod phase;
 
+pub use attractor::{
+    attractor_starts, classify_start, Attractor, AttractorSpec, CycleName, StartAttractor,
+    MAX_RUN_TIME, REST_GAP_PERIODS,
+};
 pub use critical::{
     critical_noise, CriticalNoise, CriticalSearch, NoisePoint, MAX_GRID, MAX_REFINEMENTS, MAX_Z,
+};
+pub use phase::{
+    phase_response, PhaseResponse, PhaseSample, PhaseSpec, Section, LINEARITY_LIMIT,
+    MAX_FOLLOW_PERIODS, MAX_HARMONICS, MAX_PHASES,
 };
 
 use super::ensemble::Estimate;
