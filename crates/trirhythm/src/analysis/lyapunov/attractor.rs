@@ -35,7 +35,8 @@
 //! [`CycleName::Unmatched`].
 //!
 //! [`attractor_starts`] gives one start per attractor: it classifies U(0) = each stable cycle
-//! amplitude of the theory, 1 and 0.01 (and 0 with the wall: rest itself), and keeps the first
+//! amplitude of the theory, 1 and 0.01 (not 0: the rest state is an equilibrium a noise-free
+//! path never leaves, stable or not; 0.01 says whether it attracts), and keeps the first
 //! start of each attractor (cycles within `tolerance`·100 of each other in amplitude are the
 //! same), rest first, then the cycles by amplitude.
 //!
@@ -412,7 +413,7 @@ fn name_cycle(problem: &Problem, variant: Variant, amplitude: f64, period: f64) 
 }
 
 /// One start per attractor of the noise-free system of `problem` (module docs): the starts
-/// tried are the theory's stable cycle amplitudes, 1 and 0.01 (and 0 with the wall), each
+/// tried are the theory's stable cycle amplitudes, 1 and 0.01, each
 /// classified by [`classify_start`]; the first start of each attractor is kept (cycles the same
 /// within 100·`tolerance` in amplitude), rest first, then the cycles by amplitude, the unsettled
 /// last.
@@ -424,10 +425,8 @@ pub fn attractor_starts(
     spec.validate()?;
     let (stable, _) = theory_cycles(&noise_free(problem, 1.0)?, spec.variant);
     let mut starts = stable;
+    // not U(0) = 0: an equilibrium that a noise-free path never leaves, stable or not
     starts.extend([1.0, 0.01]);
-    if problem.wall() {
-        starts.push(0.0);
-    }
     let found: Vec<StartAttractor> = {
         use rayon::prelude::*;
         starts

@@ -65,9 +65,14 @@
 //!    holds the sampling, the truncation and the jump's estimate together.
 //!    `phases` must not exceed T/Δt (one grid node per phase).
 //! 6. **No number where there is none**: the coefficient is None, with the reason, for white
-//!    noise with impacts (the divergent series) and where the linearity exceeds
-//!    [`LINEARITY_LIMIT`] (measured on Fig. 17(a)'s μ0 = 0.05 outer cycle at Δt = 0.01: 0.52,
-//!    the stepper locking the phase to the grid; 5·10⁻⁶ at Δt = 0.0025).
+//!    noise with impacts (the divergent series), where the linearity exceeds
+//!    [`LINEARITY_LIMIT`] and where the extrapolation exceeds [`EXTRAPOLATION_LIMIT`]. Both
+//!    catch a step map that is not smooth along the cycle: on Fig. 17(a)'s μ0 = 0.05 outer cycle
+//!    at Δt = 0.01 the phase difference of the copies drifts toward a value locked to the grid
+//!    (followed 12 sections: linearity 8·10⁻⁴ but extrapolation 1.5; 60 sections: linearity
+//!    0.52), at Δt = 0.0025 linearity 5·10⁻⁶ and no extrapolation. Measured elsewhere with the
+//!    restarting impact memory: extrapolation ≤ 5·10⁻⁶ (the copies settle within a few
+//!    periods); with the continuous memory 4·10⁻³–10⁻², the memory's slow tail.
 //!
 //! # Reference
 //! Teramae & Tanaka, PRL 93, 204103 (2004) (white noise, λ = −D⟨Z′²⟩); Goldobin & Pikovsky,
@@ -99,6 +104,9 @@ pub const MAX_PHASES: usize = 4096;
 /// asymptotic phase shift is not linear in the kick (the step map locks the phase to the time
 /// grid), and the sampled Z is not a phase response.
 pub const LINEARITY_LIMIT: f64 = 1e-2;
+/// Largest [`PhaseResponse::extrapolation`] with which a coefficient is given: beyond it the
+/// copies were far from their asymptotic phase when last seen.
+pub const EXTRAPOLATION_LIMIT: f64 = 0.05;
 /// Most harmonics fitted to the sampled Z (module docs, step 5).
 pub const MAX_HARMONICS: usize = 64;
 /// Most periods a kicked copy is followed.
@@ -445,6 +453,15 @@ pub fn phase_response(
         ));
         return Ok(out);
     }
+    if extrapolation.partial_cmp(&EXTRAPOLATION_LIMIT) != Some(std::cmp::Ordering::Less) {
+        out.undefined = Some(format!(
+            "the kicked copies had not settled after {} sections (Aitken's correction {extrapolation:.3} \
+             of max|Z|, above {EXTRAPOLATION_LIMIT}): follow more periods, or the step map drifts \
+             the phase at dt = {h}",
+            spec.periods
+        ));
+        return Ok(out);
+    }
     if tau == 0.0 && section == Section::Impact {
         out.undefined =
             Some("white noise (τ = 0): Z jumps at the impact, so Σ k²|Z_k|² diverges".to_string());
@@ -700,7 +717,9 @@ mod tests {
         assert!(r.z_after < 0.0 && (r.z_before + 0.998 * r.z_after).abs() < 0.1 * r.z_before);
         let c = r.coefficient.unwrap();
         assert!(r.uncertainty < 0.05 * c && r.tail > 0.0, "{r:?}");
-        let white = problem.with_params(&params.with("tau", 0.0).unwrap()).unwrap();
+        let white = problem
+            .with_params(&params.with("tau", 0.0).unwrap())
+            .unwrap();
         let r = phase_response(&white, &method, outer, &spec, &Silent).unwrap();
         assert!(r.coefficient.is_none() && r.undefined.is_some());
         assert!(r.predicted_exponent(0.1).is_none());
