@@ -539,7 +539,10 @@ pub(crate) fn coefficient(
         0.0
     } else {
         let total = if a > 0.0 {
-            0.5 * ((PI / a) / (PI / a).tanh() - 1.0)
+            // x·coth x with x = π/a, coth x = (1 + e^{−2x})/(1 − e^{−2x})
+            let x = PI / a;
+            let e = crate::maths::exp(-2.0 * x);
+            0.5 * (x * (1.0 + e) / -crate::maths::expm1(-2.0 * x) - 1.0)
         } else {
             f64::INFINITY
         };
@@ -560,8 +563,8 @@ fn fourier_fit(thetas: &[f64], ys: &[f64], harmonics: usize) -> Vec<(f64, f64)> 
         let mut row = Vec::with_capacity(m);
         row.push(1.0);
         for k in 1..=harmonics {
-            let (s, c) = (k as f64 * t).sin_cos();
-            row.extend([c, s]);
+            let x = k as f64 * t;
+            row.extend([crate::maths::cos(x), crate::maths::sin(x)]);
         }
         row
     };
