@@ -145,6 +145,7 @@ mod attractor;
 mod critical;
 mod perturbation;
 mod phase;
+mod spectrum;
 
 pub use attractor::{
     attractor_starts, classify_start, Attractor, AttractorSpec, CycleName, StartAttractor,
@@ -155,8 +156,9 @@ pub use critical::{
 };
 pub use phase::{
     phase_response, PhaseResponse, PhaseSample, PhaseSpec, Section, EXTRAPOLATION_LIMIT,
-    LINEARITY_LIMIT, MAX_FOLLOW_PERIODS, MAX_HARMONICS, MAX_PHASES,
+    LINEARITY_LIMIT, MAX_FOLLOW_PERIODS, MAX_PHASES,
 };
+pub use spectrum::MAX_HARMONICS;
 
 use super::ensemble::Estimate;
 use crate::engine::{

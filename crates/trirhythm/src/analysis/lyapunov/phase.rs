@@ -56,8 +56,9 @@
 //!    θ = 0 (quadratic extrapolation to 0⁺ and 2π⁻; J = 0 without impacts), the sawtooth
 //!    s(θ) = J(½ − θ/2π) (whose coefficients are exactly J/(2πik)) subtracted, the continuous
 //!    rest r fitted by least squares with the harmonics k ≤ K = min(`phases`/4,
-//!    [`MAX_HARMONICS`]) (the samples' phases are the grid's, not uniform: a quadrature on them
-//!    errs by O((kΔθ)²), which grows with k, the fit does not), and Z_k = r_k + J/(2πik);
+//!    [`super::MAX_HARMONICS`]; module `spectrum`) (the samples' phases are the grid's, not
+//!    uniform: a quadrature on them errs by O((kΔθ)²), which grows with k, the fit does not),
+//!    and Z_k = r_k + J/(2πik);
 //!    above K, r_k is dropped (r is continuous with a kink at the impact: r_k = O(k⁻²), so its
 //!    share of c above K is O(K⁻³/a²)) and the sawtooth's tail is summed in closed form,
 //!    Σ_{k>K} 1/(1 + k²a²) = (π/a·coth(π/a) − 1)/2 − Σ_{k≤K}, a = Ωτ. The **uncertainty** is
@@ -81,14 +82,17 @@
 //! (phase response by kicks).
 //!
 //! # Tests
-//! Unit tests below: the coefficient of Z = −sin θ (c = 1/(2(1 + Ω²τ²))) and of a sawtooth (its
-//! closed-form tail) from samples; the van der Pol-like cycle at λ = 1 without the wall (Fig.
-//! 2(i)'s parameters) has Z(θ) = −sin θ/(Aω) to 2 % of max|Z|; a start that ends at rest is
-//! refused; τ = 0 with the wall gives no coefficient. `tests/phase.rs` (ignored, extended
-//! suite): the prediction −c·D against the simulated frozen-noise exponent at small D on
-//! Fig. 17(a)'s outer cycles.
+//! Unit tests below: a van der Pol cycle at λ = 1 without the wall (ε = μ0 = 0.01, P = 1 − U²)
+//! has Z(θ) = −sin θ/(Aω), A = 2, ω = 1, to 0.01 (measured: within 2.5·10⁻³, the same at
+//! Δt = 0.0025 and 2.5·10⁻⁴ at ε = 0.001 — the van der Pol response's own O(ε) term, not the
+//! method's; c = 0.10001 against 1/(2A²(1 + τ²)) = 0.1 at τ = 0.5); on Fig. 17(a)'s μ0 = 0.01 outer cycle Z(2π⁻) ≈ −rZ(0⁺)
+//! (0.0570 against 0.0542) and τ = 0 gives no coefficient; a start that ends at rest is
+//! refused. Module `spectrum`: c of a sine and of a sawtooth. `tests/phase.rs`: c converged in
+//! Δt and in the phases; the drifting phase of the stiff step refused; (extended suite) λ̂/D of
+//! the simulated exponent against c on Fig. 17(a)'s outer cycles.
 
 use super::attractor::{hermite_crossing, noise_free, settle};
+use super::spectrum::{coefficient, ends, harmonics};
 use super::{Attractor, AttractorSpec};
 use crate::engine::{PredictorCorrector, Problem, Stepper, System};
 use crate::error::{Error, Result};
@@ -107,8 +111,6 @@ pub const LINEARITY_LIMIT: f64 = 1e-2;
 /// Largest [`PhaseResponse::extrapolation`] with which a coefficient is given: beyond it the
 /// copies were far from their asymptotic phase when last seen.
 pub const EXTRAPOLATION_LIMIT: f64 = 0.05;
-/// Most harmonics fitted to the sampled Z (module docs, step 5).
-pub const MAX_HARMONICS: usize = 64;
 /// Most periods a kicked copy is followed.
 pub const MAX_FOLLOW_PERIODS: usize = 100_000;
 
@@ -480,11 +482,6 @@ pub fn phase_response(
     Ok(out)
 }
 
-/// Harmonics K fitted from `phases` samples: a quarter of them, at most [`MAX_HARMONICS`].
-fn harmonics(phases: usize) -> usize {
-    (phases / 4).min(MAX_HARMONICS)
-}
-
 /// Aitken's Δ² over three values of a sequence (module docs): the extrapolated limit and the
 /// last value.
 fn aitken(x: [f64; 3]) -> (f64, f64) {
@@ -497,142 +494,12 @@ fn aitken(x: [f64; 3]) -> (f64, f64) {
     }
 }
 
-/// Z(0⁺) and Z(2π⁻) by quadratic extrapolation from the first three and the last three
-/// samples.
-fn ends(thetas: &[f64], zs: &[f64]) -> (f64, f64) {
-    let n = thetas.len();
-    // the Lagrange quadratic through three samples, at t
-    let quad = |j: [usize; 3], t: f64| {
-        let x = j.map(|i| thetas[i]);
-        (0..3)
-            .map(|a| {
-                let (b, c) = ((a + 1) % 3, (a + 2) % 3);
-                zs[j[a]] * (t - x[b]) * (t - x[c]) / ((x[a] - x[b]) * (x[a] - x[c]))
-            })
-            .sum::<f64>()
-    };
-    (quad([0, 1, 2], 0.0), quad([n - 3, n - 2, n - 1], 2.0 * PI))
-}
-
-/// c = 2Σ_{k≥1} k²|Z_k|²/(1 + k²a²) from samples (θ_j, Z_j) with the jump `jump` at θ = 0
-/// (module docs, step 5): the sum and the part of it from the sawtooth's tail above `harmonics`.
-/// `a` = Ωτ > 0, or 0 for white noise without a jump.
-pub(crate) fn coefficient(
-    thetas: &[f64],
-    zs: &[f64],
-    jump: f64,
-    harmonics: usize,
-    a: f64,
-) -> (f64, f64) {
-    // the continuous rest r = Z − s by least squares, s the sawtooth J(½ − θ/2π)
-    let saw = |t: f64| jump * (0.5 - t / (2.0 * PI));
-    let rest: Vec<f64> = thetas.iter().zip(zs).map(|(&t, &z)| z - saw(t)).collect();
-    let fit = fourier_fit(thetas, &rest, harmonics);
-    let mut sum = 0.0;
-    for (k, &(a_k, b_k)) in fit.iter().enumerate() {
-        let kf = (k + 1) as f64;
-        // Z_k = (a_k − i(b_k + J/(πk)))/2: the sawtooth is (J/π)Σ sin(kθ)/k
-        let b = b_k + jump / (PI * kf);
-        sum += kf * kf * 0.25 * (a_k * a_k + b * b) / (1.0 + kf * kf * a * a);
-    }
-    let tail = if jump == 0.0 {
-        0.0
-    } else {
-        let total = if a > 0.0 {
-            // x·coth x with x = π/a, coth x = (1 + e^{−2x})/(1 − e^{−2x})
-            let x = PI / a;
-            let e = crate::maths::exp(-2.0 * x);
-            0.5 * (x * (1.0 + e) / -crate::maths::expm1(-2.0 * x) - 1.0)
-        } else {
-            f64::INFINITY
-        };
-        let head: f64 = (1..=harmonics)
-            .map(|k| 1.0 / (1.0 + (k * k) as f64 * a * a))
-            .sum();
-        jump * jump / (4.0 * PI * PI) * (total - head)
-    };
-    (2.0 * (sum + tail), 2.0 * tail)
-}
-
-/// The least-squares fit of a₀ + Σ_{k≤K}(a_k cos kθ + b_k sin kθ) to the samples (θ_j, y_j):
-/// (a_k, b_k) for k = 1..K (normal equations, Gaussian elimination with partial pivoting; the
-/// samples are nearly uniform, so the system is nearly diagonal).
-fn fourier_fit(thetas: &[f64], ys: &[f64], harmonics: usize) -> Vec<(f64, f64)> {
-    let m = 2 * harmonics + 1;
-    let basis = |t: f64| -> Vec<f64> {
-        let mut row = Vec::with_capacity(m);
-        row.push(1.0);
-        for k in 1..=harmonics {
-            let x = k as f64 * t;
-            row.extend([crate::maths::cos(x), crate::maths::sin(x)]);
-        }
-        row
-    };
-    let mut g = vec![vec![0.0; m + 1]; m];
-    for (&t, &y) in thetas.iter().zip(ys) {
-        let row = basis(t);
-        for p in 0..m {
-            for q in 0..m {
-                g[p][q] += row[p] * row[q];
-            }
-            g[p][m] += row[p] * y;
-        }
-    }
-    for col in 0..m {
-        let pivot = (col..m)
-            .max_by(|&i, &j| g[i][col].abs().total_cmp(&g[j][col].abs()))
-            .unwrap_or(col);
-        g.swap(col, pivot);
-        let (top, below) = g.split_at_mut(col + 1);
-        let pivot_row = &top[col];
-        for row in below {
-            let f = row[col] / pivot_row[col];
-            for (x, p) in row[col..].iter_mut().zip(&pivot_row[col..]) {
-                *x -= f * p;
-            }
-        }
-    }
-    let mut x = vec![0.0; m];
-    for i in (0..m).rev() {
-        let tail: f64 = (i + 1..m).map(|q| g[i][q] * x[q]).sum();
-        x[i] = (g[i][m] - tail) / g[i][i];
-    }
-    (1..=harmonics).map(|k| (x[2 * k - 1], x[2 * k])).collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::engine::Barrier;
     use crate::model::preset;
     use crate::monitor::Silent;
-
-    fn grid(n: usize) -> Vec<f64> {
-        (0..n)
-            .map(|j| 2.0 * PI * (j as f64 + 0.5) / n as f64)
-            .collect()
-    }
-
-    #[test]
-    fn the_coefficient_of_a_sine_and_of_a_sawtooth() {
-        let th = grid(64);
-        let zs: Vec<f64> = th.iter().map(|t| -t.sin()).collect();
-        let a = 0.3;
-        let (c, tail) = coefficient(&th, &zs, 0.0, 16, a);
-        assert!((c - 0.5 / (1.0 + a * a)).abs() < 1e-12, "{c}");
-        assert_eq!(tail, 0.0);
-        // a sawtooth J(½ − θ/2π): c = 2(J²/4π²)Σ 1/(1 + k²a²), all of it but the head a tail
-        let j = 0.7;
-        let zs: Vec<f64> = th.iter().map(|t| j * (0.5 - t / (2.0 * PI))).collect();
-        let (after, before) = ends(&th, &zs);
-        assert!((after - before - j).abs() < 1e-12);
-        let (c, _) = coefficient(&th, &zs, j, 16, a);
-        let exact: f64 = (1..2_000_000u64)
-            .map(|k| 1.0 / (1.0 + (k * k) as f64 * a * a))
-            .sum();
-        let exact = 2.0 * j * j / (4.0 * PI * PI) * exact;
-        assert!((c - exact).abs() < 1e-5 * exact, "{c} {exact}");
-    }
 
     #[test]
     fn the_spec_is_checked() {
