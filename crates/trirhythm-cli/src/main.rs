@@ -24,7 +24,7 @@ mod error;
 mod io;
 mod render;
 
-use commands::{ensemble, figure, lyapunov, maps, oscillation, report, simulate, theory};
+use commands::{ensemble, figure, lyapunov, maps, oscillation, phase, report, simulate, theory};
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
@@ -71,6 +71,8 @@ enum Command {
     Lyapunov(lyapunov::LyapunovArgs),
     /// Critical noise D_c where the largest Lyapunov exponent changes sign (CSV KEY,D_c,D_c_lo,D_c_hi).
     CriticalNoise(lyapunov::CriticalNoiseArgs),
+    /// Phase response Z(θ) of a stable cycle by small kicks, and c of λ ≈ −c·D under weak noise.
+    PhaseResponse(phase::PhaseArgs),
     /// Reproduce a figure of the paper: data (CSV, and JSON with --data) and picture (PNG + SVG).
     Figure(figure::FigureArgs),
     /// Every figure and every claim judged: one HTML page (index.html), verdicts.json, figures/.
@@ -95,6 +97,7 @@ impl Command {
             Command::Oscillation(a) => a.out.as_deref(),
             Command::Lyapunov(a) => a.out.as_deref(),
             Command::CriticalNoise(a) => a.out.as_deref(),
+            Command::PhaseResponse(a) => a.out.as_deref(),
             Command::Figure(_) | Command::Report(_) | Command::Presets => None,
         }
     }
@@ -125,6 +128,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Oscillation(a) => oscillation::oscillation(a),
         Command::Lyapunov(a) => lyapunov::lyapunov(a),
         Command::CriticalNoise(a) => lyapunov::critical(a),
+        Command::PhaseResponse(a) => phase::phase(a),
         Command::Figure(a) => figure::figure(a),
         Command::Report(a) => report::report(a),
         Command::Presets => figure::presets(),

@@ -7,6 +7,7 @@ pub mod figure;
 pub mod lyapunov;
 pub mod maps;
 pub mod oscillation;
+pub mod phase;
 pub mod report;
 pub mod simulate;
 pub mod theory;

@@ -86,6 +86,15 @@
 //! with the sign below, to the smallest evaluated D above with the sign above (the range's end
 //! when there is none). No sign change in the range is reported as such, never as a value.
 //!
+//! # Attractors and the phase reduction
+//! [`classify_start`] names a start by the attractor its noise-free path reaches (rest, or the
+//! inner / middle / outer cycle of the averaged theory; module `attractor`), and
+//! [`attractor_starts`] gives one start per attractor. [`phase_response`] measures the phase
+//! response Z(θ) of a stable cycle by small impulses of η with the stepper itself and gives
+//! the phase-reduction prediction λ = −c·D of the exponent under weak OU noise (module
+//! `phase`, with its derivation): the exponent on a cycle is negative and of order D
+//! (noise-induced synchronisation), where the rest state's is positive and flat in D.
+//!
 //! # Reproducibility
 //! Path i depends only on (seed, i); paths run in parallel and are merged in path order, so the
 //! result is bit-identical whatever the number of threads. With two trajectories the reference
@@ -108,7 +117,9 @@
 //! measured z ≤ 0.03) on an impacting limit cycle at λ = 1, on Fig. 17(a)'s parameters at
 //! λ = 0.998 with the wall (both impact memories) and on λ = 0.998, 0.95 without the wall (path by
 //! path within 3e-6); one thread and two bit-identical. Finite differences of the step: unit
-//! tests of `engine::stepper::tangent`.
+//! tests of `engine::stepper::tangent`. `tests/attractor.rs`: Fig. 17(a)'s starts end on the
+//! cycles of their rank, Fig. 18(b)'s at rest. `tests/phase.rs`: c converges in Δt and in the
+//! phases; λ̂/D against c on Fig. 17(a)'s outer cycles (extended suite).
 //!
 //! # Example
 //! ```
@@ -130,12 +141,24 @@
 //! # Ok::<(), trirhythm::Error>(())
 //! ```
 
+mod attractor;
 mod critical;
 mod perturbation;
+mod phase;
+mod spectrum;
 
+pub use attractor::{
+    attractor_starts, classify_start, Attractor, AttractorSpec, CycleName, StartAttractor,
+    MAX_RUN_TIME, REST_GAP_PERIODS,
+};
 pub use critical::{
     critical_noise, CriticalNoise, CriticalSearch, NoisePoint, MAX_GRID, MAX_REFINEMENTS, MAX_Z,
 };
+pub use phase::{
+    phase_response, PhaseResponse, PhaseSample, PhaseSpec, Section, EXTRAPOLATION_LIMIT,
+    LINEARITY_LIMIT, MAX_FOLLOW_PERIODS, MAX_PHASES,
+};
+pub use spectrum::MAX_HARMONICS;
 
 use super::ensemble::Estimate;
 use crate::engine::{

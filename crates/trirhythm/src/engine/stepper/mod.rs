@@ -126,6 +126,7 @@ use polynomial::Polynomial;
 mod impact;
 pub(crate) mod lanes;
 mod polynomial;
+mod pulse;
 mod renormalise;
 mod tangent;
 pub use lanes::{detected_lanes, Lanes, LANE_WIDTHS};
