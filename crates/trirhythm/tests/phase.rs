@@ -7,8 +7,8 @@
 //!   standard errors of λ̂/D plus three of c's uncertainty (extended suite, `--ignored`):
 //!   μ0 = 0.01 at Δt = 0.01, D = 0.05 and 0.1 (32 paths, window 10⁴; measured: c = 0.01304,
 //!   λ̂/D = 0.0122 ± 0.0006 and 0.0131 ± 0.0005 with 64 paths and a window 2·10⁴); μ0 = 0.05 at
-//!   Δt = 0.0025 (the stepper's stiff step at Δt = 0.01 locks the phase to the grid: no
-//!   coefficient there), D = 0.05 (64 paths, window 5000: c = 0.0530, λ̂/D = 0.0551 ± 0.0032 and
+//!   Δt = 0.0025 (measured before the second corrector pass was taken on every step, when the
+//!   stiff step at Δt = 0.01 locked the phase to the grid), D = 0.05 (64 paths, window 5000: c = 0.0530, λ̂/D = 0.0551 ± 0.0032 and
 //!   0.0522 ± 0.0036 with seeds 1 and 2; at D = 0.02 0.039 ± 0.006 and 0.050 ± 0.007, where
 //!   the stepper's D = 0 offset at this Δt, +9.5·10⁻⁴ over a window 5000, weighs more).
 
@@ -54,22 +54,27 @@ fn response(mu0: f64, dt: f64, phases: usize, periods: usize) -> PhaseResponse {
 
 #[test]
 fn the_coefficient_converges_in_dt_and_phases() {
-    for mu0 in [0.001, 0.01] {
+    for mu0 in [0.001, 0.01, 0.05] {
         let coarse = response(mu0, 0.01, 64, 24);
         let fine = response(mu0, 0.005, 128, 24);
         let (a, b) = (coarse.coefficient.unwrap(), fine.coefficient.unwrap());
-        assert!((a - b).abs() < 0.01 * b, "μ0 = {mu0}: {a} against {b}");
+        println!(
+            "μ0 = {mu0}: c = {a} ± {} (Δt = 0.01), {b} ± {} (Δt = 0.005); linearity {:e}",
+            coarse.uncertainty, fine.uncertainty, coarse.linearity
+        );
+        assert!(
+            (a - b).abs() < 0.01 * b + coarse.uncertainty + fine.uncertainty,
+            "μ0 = {mu0}: {a} against {b}"
+        );
         assert!(
             fine.uncertainty < 0.01 * b && fine.linearity < 1e-3,
             "{fine:?}"
         );
+        // μ0 = 0.05 at Δt = 0.01 is the stiff case: before the second corrector pass was taken
+        // on every step the step map drifted the phase toward the grid there (linearity 0.52,
+        // no coefficient)
+        assert!(coarse.linearity < 1e-3, "{coarse:?}");
     }
-    // μ0 = 0.05 at Δt = 0.01: the step map drifts the phase toward the grid, no coefficient
-    let locked = response(0.05, 0.01, 32, 12);
-    assert!(
-        locked.coefficient.is_none() && locked.extrapolation > 0.5,
-        "{locked:?}"
-    );
 }
 
 /// λ̂/D against c at `ds`.
