@@ -14,12 +14,12 @@
 //! `tests/figures.rs` and the rule's tests in `tests/verdicts.rs`.
 
 use crate::lle::{
-    dt_for, lle_point, log_spaced, lyapunov_caption, mark_signs, panels_table, starts_line, Curve,
-    Panel, StartKind,
+    log_spaced, lyapunov_caption, panels_table, plan_curves, run_curve, starts_line, Curve, Panel,
+    StartKind,
 };
 use crate::notes::{num, sig, symbol, table_notes, Caption};
 use crate::table::Table;
-use crate::verdict::rules::{locate, Located, PointSign};
+use crate::verdict::rules::{Bracket, Located};
 use crate::{Figure, FigureOptions, Monitor};
 
 use serde::{Deserialize, Serialize};
@@ -94,7 +94,7 @@ impl Figure for Fig19 {
             sz.describe(),
             starts_line(options.variant),
             format!(
-                "grid: 5 values per panel × {} D log-spaced in [{}, {}] ({}) × 2 starts; sign of a cell: z = LLE/se, Student's t with realisations − 1 degrees of freedom, two-sided at 0.05 with Holm–Bonferroni over the panel's cells; D_c bracket: (largest significantly negative D, smallest significantly positive D) of a column when every negative lies below every positive and the bracket is narrower than the grid",
+                "grid: 5 values per panel × {} D log-spaced in [{}, {}] ({}) × one curve per attractor of the noise-free system (rest curves also at D = 1e-6, 1e-5, 1e-4); a cell's call against the margin δ = 1/W (one-sided Student's t on the unmerged realisations, Bonferroni over the curve's points at 0.05): chaotic (lower bound > δ), not chaotic (upper bound < δ), synchronised (at least half the realisations merged), undecided; D_c bracket: (largest not-chaotic or synchronised D, smallest chaotic D) of a curve",
                 d.len(),
                 num(d[0]),
                 num(d[d.len() - 1]),
@@ -102,76 +102,47 @@ impl Figure for Fig19 {
             ),
             "the caption prints r = 9.998: 0.998 is meant; ω0 is not printed: 0.9 (as in Fig. 17); the swept values and the D grid are chosen (not printed)".into(),
         ];
-        let per_panel = 2 * 5 * d.len();
-        let total = PANELS.len() * per_panel;
+        let mut plans = Vec::new();
+        for (_, key, values, _) in PANELS {
+            let (planned, n) = plan_curves(
+                &base,
+                key,
+                &values,
+                &d,
+                &sz,
+                (options.variant, options.quick),
+            )?;
+            notes.extend(n);
+            plans.push(planned);
+        }
+        let total: usize = plans
+            .iter()
+            .flat_map(|p| p.iter().map(|c| c.noises.len()))
+            .sum();
+        let mut step = 0;
         let mut panels = Vec::new();
-        for (i, (label, key, values, claim)) in PANELS.into_iter().enumerate() {
+        for ((label, key, values, claim), planned) in PANELS.into_iter().zip(&plans) {
             let mut curves = Vec::new();
-            let mut step = i * per_panel;
-            for start in StartKind::BOTH {
-                for v in values {
-                    let p = base.with(key, v)?;
-                    let u0 = start.u0(&p, options.variant)?;
-                    let mut points = Vec::new();
-                    if let Some(u0) = u0 {
-                        for &dd in &d {
-                            crate::step(monitor, step, total)?;
-                            step += 1;
-                            let what = format!(
-                                "{label} {} = {}, U(0) = {}, D = {}",
-                                symbol(key),
-                                num(v),
-                                sig(u0, 4),
-                                sig(dd, 4)
-                            );
-                            let (q, note) =
-                                lle_point(monitor, &p.with("D", dd)?, u0, dd, &sz, &what)?;
-                            points.push(q);
-                            notes.extend(note);
-                        }
-                    } else {
-                        step += d.len();
-                    }
-                    curves.push(Curve {
-                        label: format!("{} = {}, {}", symbol(key), num(v), start.name()),
-                        value: v,
-                        start,
-                        u0: u0.unwrap_or(f64::NAN),
-                        dt: dt_for(p.correlation_time),
-                        points,
-                    });
-                }
+            for c in planned {
+                let (curve, n) = run_curve(monitor, label, key, c, &sz, (&mut step, total))?;
+                notes.extend(n);
+                curves.push(curve);
             }
-            let mut all: Vec<&mut Curve> = curves.iter_mut().collect();
-            mark_signs(&mut all);
             let located: Vec<Option<Located>> = curves
                 .iter()
-                .map(|c| {
-                    (!c.points.is_empty()).then(|| {
-                        let ds: Vec<f64> = c.points.iter().map(|q| q.x).collect();
-                        let s: Vec<PointSign> = c.points.iter().map(|q| q.sign).collect();
-                        locate(&ds, &s)
-                    })
-                })
+                .map(|c| c.regime.as_ref().map(|r| located_of(&r.bracket)))
                 .collect();
-            for (c, l) in curves.iter().zip(&located) {
-                notes.push(format!(
-                    "{label} {} ({}Δt = {}): {}",
-                    c.label,
-                    if c.u0.is_finite() {
-                        format!("U(0) = {}, ", sig(c.u0, 4))
-                    } else {
-                        String::new()
-                    },
-                    num(c.dt),
-                    match l {
-                        Some(l) => l.words(d[0]),
-                        None => format!(
-                            "no outer stable cycle in the averaged theory ({} formulas): no outer-cycle start",
-                            options.variant.name()
-                        ),
-                    }
-                ));
+            for c in &curves {
+                if let Some(r) = &c.regime {
+                    notes.push(format!(
+                        "{label} {} ({}, U(0) = {}, Δt = {}): {}",
+                        c.label,
+                        c.attractor,
+                        sig(c.u0, 4),
+                        num(c.dt),
+                        r.words()
+                    ));
+                }
             }
             let verdicts = panel_verdicts(key, claim, &curves, &located);
             panels.push(SignMap {
@@ -227,7 +198,19 @@ impl Figure for Fig19 {
     }
 }
 
-/// A panel's lines: per start, the D_c brackets located out of the columns and the paper's
+/// A curve's bracket as the sign map draws it: located, positive from the smallest D (chaotic
+/// there: D_c below the grid), no positive (not chaotic up to the largest D) or not significant
+/// (undecided).
+pub fn located_of(b: &Bracket) -> Located {
+    match *b {
+        Bracket::Located { lo, hi } => Located::Bracket { lo, hi },
+        Bracket::Below { .. } => Located::PositiveFromStart,
+        Bracket::Above { .. } => Located::NoPositive,
+        Bracket::Undecided => Located::NotSignificant,
+    }
+}
+
+/// A panel's lines: per regime, the D_c brackets located out of the columns and the paper's
 /// trend.
 fn panel_verdicts(
     key: &str,

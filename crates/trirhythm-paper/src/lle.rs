@@ -21,10 +21,16 @@
 
 use crate::notes::{caption, num, sig, symbol, table_notes, variant_line, Caption};
 use crate::table::Table;
-use crate::verdict::rules::{significance, LleCurve, LlePoint, PointSign};
+use crate::verdict::rules::{
+    agrees_with_prediction, bracket, calls, rest_regime, significance, Bracket, Call, LleCurve,
+    LlePoint, PointSign, RegimePoint, RestRegime, ALPHA,
+};
 use crate::{FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
-use trirhythm::analysis::lyapunov::{largest_lyapunov, CriticalNoise, LyapunovSpec, NoisePoint};
+use trirhythm::analysis::lyapunov::{
+    attractor_starts, largest_lyapunov, phase_response, Attractor, AttractorSpec, CriticalNoise,
+    LyapunovSpec, NoisePoint, PhaseSpec,
+};
 use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem};
 use trirhythm::maths;
 use trirhythm::model::{preset, Params};
@@ -110,44 +116,93 @@ impl Sizes {
     }
 }
 
-/// Where the paths of a curve start.
+/// The regime of a curve: the attractor its start's noise-free path reaches
+/// (`trirhythm::analysis::lyapunov::classify_start`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum StartKind {
-    /// U(0) = 1, U̇(0) = 0: the basin of the rest state where it is stable.
+    /// The noise-free path comes to rest on the wall.
     Rest,
-    /// U(0) = the outer stable cycle's amplitude of the averaged theory, U̇(0) = 0.
-    Outer,
+    /// The noise-free path settles on a limit cycle (which one: [`Curve::attractor`]).
+    #[serde(alias = "outer")]
+    Cycle,
 }
 
 impl StartKind {
     /// Both, in drawing order.
-    pub const BOTH: [StartKind; 2] = [StartKind::Rest, StartKind::Outer];
+    pub const BOTH: [StartKind; 2] = [StartKind::Rest, StartKind::Cycle];
 
     /// Short name (CSV, legends).
     pub fn name(self) -> &'static str {
         match self {
             StartKind::Rest => "rest",
-            StartKind::Outer => "outer",
+            StartKind::Cycle => "cycle",
         }
     }
 
     /// In words, for verdicts.
     pub fn words(self) -> &'static str {
         match self {
-            StartKind::Rest => "from the rest basin (U(0) = 1)",
-            StartKind::Outer => "from the outer cycle (U(0) = its averaged amplitude)",
+            StartKind::Rest => {
+                "in the rest regime (the start's noise-free path comes to rest on the wall)"
+            }
+            StartKind::Cycle => {
+                "in the cycle regime (the start's noise-free path settles on a limit cycle)"
+            }
         }
     }
+}
 
-    /// U(0) for `params` (D is ignored): 1, or the outer cycle's amplitude (`None`: no outer
-    /// stable cycle).
-    pub fn u0(self, params: &Params, variant: Variant) -> Result<Option<f64>> {
-        match self {
-            StartKind::Rest => Ok(Some(Problem::DEFAULT_START.0)),
-            StartKind::Outer => outer_amplitude(params, variant),
+/// One start of a curve: where it begins and the attractor its noise-free path reaches.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RegimeStart {
+    /// The regime.
+    pub kind: StartKind,
+    /// U(0) (U̇(0) = 0).
+    pub u0: f64,
+    /// The attractor in words: `rest`, `inner cycle (A = 1.23)`, ….
+    pub attractor: String,
+}
+
+/// One start per attractor of the noise-free system of `params` (D set to 0) with the step
+/// `method` ([`attractor_starts`]: the theory's stable amplitudes, 1 and 0.01 tried), and a
+/// note for each start that settled on nothing within the run.
+pub fn regime_starts(
+    params: &Params,
+    method: &PredictorCorrector,
+    variant: Variant,
+) -> Result<(Vec<RegimeStart>, Vec<String>)> {
+    let problem = Problem::from_params(&params.with("D", 0.0)?)?;
+    let spec = AttractorSpec {
+        variant,
+        ..Default::default()
+    };
+    let mut starts = Vec::new();
+    let mut notes = Vec::new();
+    for s in attractor_starts(&problem, method, &spec)? {
+        match s.attractor {
+            Attractor::Rest => starts.push(RegimeStart {
+                kind: StartKind::Rest,
+                u0: s.u0,
+                attractor: "rest".into(),
+            }),
+            Attractor::Cycle {
+                amplitude, name, ..
+            } => starts.push(RegimeStart {
+                kind: StartKind::Cycle,
+                u0: s.u0,
+                attractor: format!("{} cycle (A = {})", name.name(), sig(amplitude, 4)),
+            }),
+            Attractor::Unsettled { amplitude } => notes.push(format!(
+                "{}: the noise-free path from U(0) = {} settled on nothing within t = {} (last turning amplitude {}): no curve",
+                params.describe(),
+                sig(s.u0, 4),
+                num(spec.t_max),
+                sig(amplitude, 4)
+            )),
         }
     }
+    Ok((starts, notes))
 }
 
 /// The amplitude of the outer (largest) stable limit cycle of the averaged theory for `params`
@@ -221,9 +276,33 @@ pub struct Point {
     /// What the point holds.
     #[serde(default)]
     pub flag: Flag,
-    /// The sign decided with significance over the panel and start (Holm–Bonferroni).
+    /// The sign decided with significance: in a curve with a [`CurveRegime`] the sign of its
+    /// call (chaotic +, not chaotic or synchronised −, undecided n.s.), else Holm–Bonferroni
+    /// over the panel and start.
     #[serde(default = "undefined_sign")]
     pub sign: PointSign,
+    /// Realisations whose copy merged with its reference (exponent −∞).
+    #[serde(default)]
+    pub merged: usize,
+    /// Mean exponent of the realisations that did not merge (equal to `y` when none merged).
+    #[serde(default = "nan", with = "trirhythm::non_finite")]
+    pub unmerged: f64,
+    /// Its standard error.
+    #[serde(default = "nan", with = "trirhythm::non_finite")]
+    pub unmerged_se: f64,
+}
+
+impl Point {
+    /// The point as the regime rules read it.
+    pub fn regime_point(&self) -> RegimePoint {
+        RegimePoint {
+            d: self.x,
+            mean: self.unmerged,
+            se: self.unmerged_se,
+            n: self.n,
+            merged: self.merged,
+        }
+    }
 }
 
 fn nan() -> f64 {
@@ -251,12 +330,173 @@ pub struct Curve {
     /// The step Δt (NaN for a curve that is not an LLE run).
     #[serde(default = "nan", with = "trirhythm::non_finite")]
     pub dt: f64,
+    /// The attractor of the start's noise-free path in words (`rest`, `outer cycle (A = …)`).
+    #[serde(default)]
+    pub attractor: String,
     /// Its points.
     pub points: Vec<Point>,
+    /// The regime rules' outcome over the points (None: data of an earlier version).
+    #[serde(default)]
+    pub regime: Option<CurveRegime>,
+}
+
+/// What the regime rules say about a curve (`verdict::rules::regime`).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct CurveRegime {
+    /// The margin δ = 1/W of the calls (W the window).
+    pub margin: f64,
+    /// Each point's call.
+    pub calls: Vec<Call>,
+    /// Where D_c lies.
+    pub bracket: Bracket,
+    /// The rest regime's pooled exponent and slope (rest curves only).
+    pub rest: Option<RestRegime>,
+    /// The phase-reduction coefficient c of λ ≈ −c·D on the cycle (cycle curves; None with
+    /// the reason in `prediction_note`).
+    #[serde(with = "trirhythm::non_finite")]
+    pub coefficient: f64,
+    /// Its numerical uncertainty.
+    #[serde(with = "trirhythm::non_finite")]
+    pub coefficient_uncertainty: f64,
+    /// Why there is no coefficient, or how it was measured.
+    pub prediction_note: String,
+    /// Per point: the exponent equivalent to −c·D within δ (two one-sided tests), None
+    /// where not tested.
+    pub agrees: Vec<Option<bool>>,
+}
+
+impl CurveRegime {
+    /// One line: the bracket, the rest regime's numbers or the prediction's agreement.
+    pub fn words(&self) -> String {
+        let mut out = self.bracket.words();
+        if let Some(r) = &self.rest {
+            out.push_str(&format!(
+                "; pooled exponent {} ± {}, slope {} ± {} per decade of D over {} decades{}",
+                sig(r.pooled, 3),
+                sig(r.pooled_se, 2),
+                sig(r.slope, 2),
+                sig(r.slope_se, 2),
+                sig(r.decades, 2),
+                if r.chaotic_every_d {
+                    ": chaotic for every D > 0 tried, D_c = 0"
+                } else {
+                    ""
+                }
+            ));
+        }
+        if self.coefficient.is_finite() {
+            let tested: Vec<bool> = self.agrees.iter().flatten().copied().collect();
+            out.push_str(&format!(
+                "; phase reduction λ ≈ −c·D, c = {} ± {}: equivalent within δ at {} of {} tested points",
+                sig(self.coefficient, 4),
+                sig(self.coefficient_uncertainty, 2),
+                tested.iter().filter(|&&a| a).count(),
+                tested.len()
+            ));
+        } else if !self.prediction_note.is_empty() {
+            out.push_str(&format!("; {}", self.prediction_note));
+        }
+        let merged = self
+            .calls
+            .iter()
+            .filter(|&&c| c == Call::Synchronised)
+            .count();
+        if merged > 0 {
+            out.push_str(&format!(
+                "; synchronised (≥ half the realisations merged) at {merged} D"
+            ));
+        }
+        out
+    }
+}
+
+/// The regime rules over the points of a curve of regime `kind` whose start is `u0`, on the
+/// noise-free system of `params` with `method`, for a window `window` (δ = 1/window): the
+/// calls, the bracket of D_c, the rest regime's statistics or the cycle's phase reduction.
+pub fn decide_regime(
+    kind: StartKind,
+    points: &[Point],
+    (params, method, u0): (&Params, &PredictorCorrector, f64),
+    window: f64,
+    monitor: &dyn Monitor,
+) -> Result<CurveRegime> {
+    let margin = 1.0 / window;
+    let rp: Vec<RegimePoint> = points.iter().map(Point::regime_point).collect();
+    let c = calls(&rp, margin);
+    let ds: Vec<f64> = rp.iter().map(|p| p.d).collect();
+    let b = bracket(&ds, &c);
+    let mut out = CurveRegime {
+        margin,
+        calls: c,
+        bracket: b,
+        rest: None,
+        coefficient: f64::NAN,
+        coefficient_uncertainty: f64::NAN,
+        prediction_note: String::new(),
+        agrees: vec![None; rp.len()],
+    };
+    match kind {
+        StartKind::Rest => out.rest = Some(rest_regime(&rp, margin)),
+        StartKind::Cycle => {
+            monitor.check()?;
+            let problem = Problem::from_params(&params.with("D", 0.0)?)?;
+            let spec = PhaseSpec {
+                phases: 64,
+                periods: 24,
+                ..Default::default()
+            };
+            match phase_response(&problem, method, u0, &spec, &OnlyCancel(monitor)) {
+                Ok(r) => match r.coefficient {
+                    Some(c) => {
+                        out.coefficient = c;
+                        out.coefficient_uncertainty = r.uncertainty;
+                        out.prediction_note = format!(
+                            "phase response by impulses at {} phases, linearity {}",
+                            spec.phases,
+                            sig(r.linearity, 2)
+                        );
+                        let k = rp.len().max(1) as f64;
+                        out.agrees = rp
+                            .iter()
+                            .map(|p| agrees_with_prediction(p, Some(c), margin, ALPHA / k))
+                            .collect();
+                    }
+                    None => {
+                        out.prediction_note = format!(
+                            "no phase-reduction prediction: {}",
+                            r.undefined.unwrap_or_default()
+                        )
+                    }
+                },
+                Err(trirhythm::Error::Cancelled) => return Err(trirhythm::Error::Cancelled),
+                Err(e) => out.prediction_note = format!("no phase-reduction prediction: {e}"),
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The point's sign as its call says (chaotic +, not chaotic or synchronised −, undecided
+/// n.s.).
+pub fn sign_of_call(c: Call) -> PointSign {
+    match c {
+        Call::Chaotic => PointSign::Positive,
+        Call::NotChaotic | Call::Synchronised => PointSign::Negative,
+        Call::Undecided => PointSign::NotSignificant,
+    }
 }
 
 fn rest() -> StartKind {
     StartKind::Rest
+}
+
+/// [`sign_of_call`] on every point of a curve with a regime.
+pub fn mark_calls(c: &mut Curve) {
+    if let Some(r) = &c.regime {
+        for (q, &call) in c.points.iter_mut().zip(&r.calls) {
+            q.sign = sign_of_call(call);
+        }
+    }
 }
 
 /// One panel.
@@ -398,146 +638,206 @@ pub fn lle_point(
             }
         ));
     }
+    Ok((point_of(x, &r), note))
+}
+
+/// The point at abscissa `x` of an estimate (merged realisations: −∞, flagged, their number
+/// and the others' mean kept).
+fn point_of(x: f64, r: &trirhythm::analysis::lyapunov::LyapunovResult) -> Point {
     let (y, se) = (r.lle.value, r.lle.stderr);
     let flag = Flag::of(r.merged, y, se);
-    let point = if flag == Flag::Value {
-        Point {
-            x,
-            y,
-            lo: y - se,
-            hi: y + se,
-            se,
-            n: r.per_path.len(),
-            flag,
-            sign: PointSign::Undefined,
-        }
-    } else {
-        Point {
-            x,
-            y,
-            lo: f64::NAN,
-            hi: f64::NAN,
-            se: f64::NAN,
-            n: r.per_path.len(),
-            flag,
-            sign: PointSign::Undefined,
-        }
-    };
-    Ok((point, note))
+    let ok = flag == Flag::Value;
+    Point {
+        x,
+        y,
+        lo: if ok { y - se } else { f64::NAN },
+        hi: if ok { y + se } else { f64::NAN },
+        se: if ok { se } else { f64::NAN },
+        n: r.per_path.len(),
+        flag,
+        sign: PointSign::Undefined,
+        merged: r.merged,
+        unmerged: r.unmerged.value,
+        unmerged_se: r.unmerged.stderr,
+    }
 }
 
-/// Counts of significant signs of a start's points, for a panel's verdict line.
-fn sign_counts(curves: &[Curve], start: StartKind) -> String {
-    let pts: Vec<&Point> = curves
-        .iter()
-        .filter(|c| c.start == start)
-        .flat_map(|c| c.points.iter())
-        .collect();
-    let count = |s: PointSign| pts.iter().filter(|q| q.sign == s).count();
-    let merged = pts.iter().filter(|q| q.flag == Flag::Merged).count();
-    format!(
-        "{}: + at {}, − at {}, n.s. at {}{} of {}",
-        start.name(),
-        count(PointSign::Positive),
-        count(PointSign::Negative),
-        count(PointSign::NotSignificant),
-        if merged > 0 {
-            format!(", merged at {merged}")
-        } else {
-            String::new()
-        },
-        pts.len()
-    )
+/// The extra noise intensities of a rest-regime curve at paper quality, below the figure's
+/// grid: the rest regime's exponent must be flat over at least three decades down to 10⁻⁶
+/// (`verdict::rules::regime`).
+pub const REST_EXTRA_NOISES: [f64; 3] = [1e-6, 1e-5, 1e-4];
+
+/// The curves of one value of a panel's parameter: one per attractor of the noise-free system
+/// ([`regime_starts`]), with the D grid `noises` (rest curves: [`REST_EXTRA_NOISES`] below it
+/// unless `quick`).
+pub struct PlannedCurve {
+    /// The parameter's value.
+    pub value: f64,
+    /// The curve's parameters (D set per point).
+    pub params: Params,
+    /// Its start and attractor.
+    pub start: RegimeStart,
+    /// Its D grid, ascending.
+    pub noises: Vec<f64>,
 }
 
-/// A panel of LLE against D, one curve per value of `key` and start, with its notes (per curve
-/// the outcome of the sign-change rule, significance over the panel's curves of one start).
-#[allow(clippy::too_many_arguments)]
-pub fn lle_against_noise(
-    monitor: &dyn Monitor,
-    caption: &str,
+/// Plan the curves of `values` of `key` on `base`: classify the starts (noise-free runs) and
+/// fix each curve's D grid; notes for starts that settled on nothing.
+pub fn plan_curves(
     base: &Params,
     key: &str,
     values: &[f64],
     noises: &[f64],
     sizes: &Sizes,
-    variant: Variant,
+    (variant, quick): (Variant, bool),
+) -> Result<(Vec<PlannedCurve>, Vec<String>)> {
+    let mut planned = Vec::new();
+    let mut notes = Vec::new();
+    for &v in values {
+        let p = base.with(key, v)?;
+        let method = sizes.method(p.correlation_time);
+        let (starts, n) = regime_starts(&p, &method, variant)?;
+        notes.extend(n);
+        for start in starts {
+            let mut d: Vec<f64> = Vec::new();
+            if start.kind == StartKind::Rest && !quick {
+                d.extend(REST_EXTRA_NOISES);
+            }
+            d.extend(noises);
+            planned.push(PlannedCurve {
+                value: v,
+                params: p.clone(),
+                start,
+                noises: d,
+            });
+        }
+    }
+    Ok((planned, notes))
+}
+
+/// Compute one planned curve: its points, its regime decision, its points' signs from the
+/// calls; `step` counts the progress over `total`.
+pub fn run_curve(
+    monitor: &dyn Monitor,
+    what: &str,
+    key: &str,
+    c: &PlannedCurve,
+    sizes: &Sizes,
+    (step, total): (&mut usize, usize),
+) -> Result<(Curve, Vec<String>)> {
+    let mut points = Vec::new();
+    let mut notes = Vec::new();
+    let u0 = c.start.u0;
+    for &d in &c.noises {
+        crate::step(monitor, *step, total)?;
+        *step += 1;
+        let at = format!(
+            "{what}, {} = {}, {} from U(0) = {}, D = {}",
+            symbol(key),
+            num(c.value),
+            c.start.attractor,
+            sig(u0, 4),
+            sig(d, 4)
+        );
+        let (q, note) = lle_point(monitor, &c.params.with("D", d)?, u0, d, sizes, &at)?;
+        points.push(q);
+        notes.extend(note);
+    }
+    let method = sizes.method(c.params.correlation_time);
+    let regime = decide_regime(
+        c.start.kind,
+        &points,
+        (&c.params, &method, u0),
+        sizes.spec.length,
+        monitor,
+    )?;
+    let name = c
+        .start
+        .attractor
+        .split(" (")
+        .next()
+        .unwrap_or("")
+        .to_string();
+    let mut curve = Curve {
+        label: format!("{} = {}, {name}", symbol(key), num(c.value)),
+        value: c.value,
+        start: c.start.kind,
+        u0,
+        dt: method.dt,
+        attractor: c.start.attractor.clone(),
+        points,
+        regime: Some(regime),
+    };
+    mark_calls(&mut curve);
+    Ok((curve, notes))
+}
+
+/// Counts of a regime's calls and brackets over a panel's curves, for its verdict lines.
+fn regime_counts(curves: &[Curve], start: StartKind) -> Option<String> {
+    let of: Vec<&Curve> = curves.iter().filter(|c| c.start == start).collect();
+    if of.is_empty() {
+        return None;
+    }
+    let calls: Vec<Call> = of
+        .iter()
+        .filter_map(|c| c.regime.as_ref())
+        .flat_map(|r| r.calls.iter().copied())
+        .collect();
+    let count = |k: Call| calls.iter().filter(|&&c| c == k).count();
+    let located = of
+        .iter()
+        .filter(|c| {
+            matches!(
+                c.regime.as_ref().map(|r| r.bracket),
+                Some(Bracket::Located { .. })
+            )
+        })
+        .count();
+    Some(format!(
+        "{}: chaotic at {}, not chaotic at {}, synchronised at {}, undecided at {}; D_c bracketed on {} of {} curves",
+        start.name(),
+        count(Call::Chaotic),
+        count(Call::NotChaotic),
+        count(Call::Synchronised),
+        count(Call::Undecided),
+        located,
+        of.len()
+    ))
+}
+
+/// A panel of LLE against D: one curve per value of `key` and attractor of its noise-free
+/// system, the regime rules per curve, with its notes.
+#[allow(clippy::too_many_arguments)]
+pub fn lle_against_noise(
+    monitor: &dyn Monitor,
+    caption: &str,
+    planned: &[PlannedCurve],
+    key: &str,
+    sizes: &Sizes,
     (first, total): (usize, usize),
 ) -> Result<(Panel, Vec<String>)> {
     let mut curves = Vec::new();
     let mut notes = Vec::new();
     let mut step = first;
-    for start in StartKind::BOTH {
-        for &v in values {
-            let p = base.with(key, v)?;
-            let label = format!("{} = {}, {}", symbol(key), num(v), start.name());
-            let dt = dt_for(p.correlation_time);
-            let mut points = Vec::new();
-            let u0 = start.u0(&p, variant)?;
-            match u0 {
-                None => {
-                    notes.push(format!(
-                        "{caption}, {} = {}: no outer stable cycle in the averaged theory ({} formulas): no outer-cycle start, no points",
-                        symbol(key),
-                        num(v),
-                        variant.name()
-                    ));
-                    step += noises.len();
-                }
-                Some(u0) => {
-                    for &d in noises {
-                        crate::step(monitor, step, total)?;
-                        step += 1;
-                        let what = format!(
-                            "{caption}, {} = {}, start U(0) = {}, D = {}",
-                            symbol(key),
-                            num(v),
-                            sig(u0, 4),
-                            sig(d, 4)
-                        );
-                        let (q, note) = lle_point(monitor, &p.with("D", d)?, u0, d, sizes, &what)?;
-                        points.push(q);
-                        notes.extend(note);
-                    }
-                }
-            }
-            curves.push(Curve {
-                label,
-                value: v,
-                start,
-                u0: u0.unwrap_or(f64::NAN),
-                dt,
-                points,
-            });
-        }
-    }
-    let mut verdicts = Vec::new();
-    for start in StartKind::BOTH {
-        let mut of_start: Vec<&mut Curve> =
-            curves.iter_mut().filter(|c| c.start == start).collect();
-        mark_signs(&mut of_start);
-        verdicts.push(sign_counts(&curves, start));
-        for c in curves
-            .iter()
-            .filter(|c| c.start == start && !c.points.is_empty())
-        {
-            let ds: Vec<f64> = c.points.iter().map(|q| q.x).collect();
-            let signs: Vec<PointSign> = c.points.iter().map(|q| q.sign).collect();
-            let located = crate::verdict::rules::locate(&ds, &signs);
+    for c in planned {
+        let (curve, n) = run_curve(monitor, caption, key, c, sizes, (&mut step, total))?;
+        notes.extend(n);
+        if let Some(r) = &curve.regime {
             notes.push(format!(
-                "{caption}, {} (U(0) = {}, Δt = {}): {} (Student's t, Holm–Bonferroni over the panel's {} points of this start)",
-                c.label,
-                sig(c.u0, 4),
-                num(c.dt),
-                located.words(ds[0]),
-                curves
-                    .iter()
-                    .filter(|k| k.start == start)
-                    .map(|k| k.points.len())
-                    .sum::<usize>()
+                "{caption}, {} ({}, U(0) = {}, Δt = {}): {}",
+                curve.label,
+                curve.attractor,
+                sig(curve.u0, 4),
+                num(curve.dt),
+                r.words()
             ));
         }
+        curves.push(curve);
     }
+    let mut verdicts: Vec<String> = StartKind::BOTH
+        .iter()
+        .filter_map(|&s| regime_counts(&curves, s))
+        .collect();
     let dts: Vec<String> = {
         let mut d: Vec<f64> = curves.iter().map(|c| c.dt).collect();
         d.sort_by(f64::total_cmp);
@@ -545,7 +845,7 @@ pub fn lle_against_noise(
         d.iter().map(|&x| num(x)).collect()
     };
     verdicts.push(format!(
-        "filled: rest start, open: outer cycle; Δt = {}",
+        "filled: rest regime, open: cycle regime; Δt = {}",
         dts.join(", ")
     ));
     let panel = Panel {
@@ -702,19 +1002,7 @@ pub fn dt_check(figure: &LleNoiseFigure, sizes: &Sizes, monitor: &dyn Monitor) -
             ..sizes.method(p.correlation_time)
         };
         let r = largest_lyapunov(&problem, &method, &spec, &OnlyCancel(monitor))?;
-        let (y, se) = (r.lle.value, r.lle.stderr);
-        let flag = Flag::of(r.merged, y, se);
-        let ok = flag == Flag::Value;
-        points.push(Point {
-            x: dt,
-            y,
-            lo: if ok { y - se } else { f64::NAN },
-            hi: if ok { y + se } else { f64::NAN },
-            se: if ok { se } else { f64::NAN },
-            n: r.per_path.len(),
-            flag,
-            sign: PointSign::Undefined,
-        });
+        points.push(point_of(dt, &r));
     }
     Ok(DtCheck {
         what,
@@ -797,7 +1085,7 @@ pub fn lyapunov_caption(
 /// The starts in one line, for captions.
 pub fn starts_line(variant: Variant) -> String {
     format!(
-        "two starts per curve: U(0) = 1 (rest basin; filled markers) and U(0) = the outer stable cycle's amplitude of the averaged theory at D = 0 (--variant {}; open markers); verdicts per start",
+        "one curve per attractor of the noise-free system: starts U(0) = the averaged theory's stable amplitudes (--variant {}), 1 and 0.01, each classified by its noise-free path and labelled by where it goes; filled markers: rest regime (the path comes to rest on the wall), open: cycle regime; calls per point against δ = 1/W (docs/verdicts.md, \"The Lyapunov claims by regime\")",
         variant.name()
     )
 }
@@ -822,31 +1110,39 @@ pub fn lle_against_noise_figure(
             num(d[d.len() - 1]),
             d.iter().map(|&x| num(x)).collect::<Vec<_>>().join(", ")
         ),
-        "error bars: ± one standard error over noise realisations; signs: z = LLE/se, Student's t with realisations − 1 degrees of freedom, two-sided at 0.05 with Holm–Bonferroni over a panel's points of one start; the exponents are finite-time exponents over the window stated (λ < 1: Mittag-Leffler tails, README \"Lyapunov exponents\")".into(),
+        "error bars: ± one standard error over noise realisations; a point's call against the margin δ = 1/W (one-sided Student's t on the unmerged realisations, Bonferroni over the curve's points at 0.05): chaotic, not chaotic, synchronised (at least half the realisations merged) or undecided; rest-regime curves also at D = 1e-6, 1e-5, 1e-4; the exponents are finite-time exponents over the window stated (λ < 1: Mittag-Leffler tails, README \"Lyapunov exponents\")".into(),
     ];
-    let per_panel: Vec<usize> = figure
-        .panels
-        .iter()
-        .map(|p| 2 * p.values.len() * d.len())
-        .collect();
-    let total: usize = per_panel.iter().sum();
-    let mut first = None;
-    let mut done = 0;
-    for (panel, count) in figure.panels.iter().zip(per_panel) {
+    let mut plans = Vec::new();
+    for panel in &figure.panels {
         let base = preset(panel.preset)?.params;
-        let (p, n) = lle_against_noise(
-            monitor,
-            panel.caption,
+        let (planned, n) = plan_curves(
             &base,
             panel.key,
             panel.values,
             &d,
             &sz,
-            options.variant,
+            (options.variant, options.quick),
+        )?;
+        notes.extend(n);
+        plans.push((base, planned));
+    }
+    let total: usize = plans
+        .iter()
+        .flat_map(|(_, p)| p.iter().map(|c| c.noises.len()))
+        .sum();
+    let mut first = None;
+    let mut done = 0;
+    for (panel, (base, planned)) in figure.panels.iter().zip(&plans) {
+        let (p, n) = lle_against_noise(
+            monitor,
+            panel.caption,
+            planned,
+            panel.key,
+            &sz,
             (done, total),
         )?;
-        done += count;
-        first.get_or_insert(base);
+        done += planned.iter().map(|c| c.noises.len()).sum::<usize>();
+        first.get_or_insert(base.clone());
         panels.push(p);
         notes.extend(n);
     }

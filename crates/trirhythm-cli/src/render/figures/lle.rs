@@ -1,6 +1,6 @@
 //! What Figs 17–19 share: panels of the largest Lyapunov exponent against D on a log axis with
 //! error bars, one colour per value of the panel's parameter, filled markers for the rest
-//! start and open markers for the outer-cycle start; Fig. 19's sign maps over (parameter, D).
+//! regime and open markers for the cycle regime; Fig. 19's sign maps over (parameter, D).
 //! Each panel keeps its legend in a strip below its chart, so no legend covers data.
 //!
 //! Drawing only: the runs and verdicts are [`trirhythm_paper::lle`].
@@ -41,12 +41,20 @@ fn colour_of(panel: &Panel, value: f64) -> RGBColor {
 
 fn strip(panel: &Panel) -> LegendStrip {
     let mut entries: Vec<(Symbol, String)> = Vec::new();
-    for c in panel.curves.iter().filter(|c| c.start == StartKind::Rest) {
+    let mut seen: Vec<f64> = Vec::new();
+    for c in &panel.curves {
+        if seen.contains(&c.value) {
+            continue;
+        }
+        seen.push(c.value);
         let name = c.label.split(',').next().unwrap_or("").to_string();
         entries.push((Symbol::Line(colour_of(panel, c.value)), name));
     }
-    entries.push((Symbol::Swatch(RGBColor(0, 0, 0)), "filled: U(0) = 1".into()));
-    entries.push((Symbol::Ring(RGBColor(0, 0, 0)), "open: outer cycle".into()));
+    entries.push((
+        Symbol::Swatch(RGBColor(0, 0, 0)),
+        "filled: rest regime".into(),
+    ));
+    entries.push((Symbol::Ring(RGBColor(0, 0, 0)), "open: cycle regime".into()));
     LegendStrip { entries }
 }
 
@@ -149,8 +157,8 @@ fn verdict_text<DB: Backend>(
     Ok(())
 }
 
-/// Draw one LLE-against-D panel: log D axis, error bars, zero line, filled (rest start) and
-/// open (outer-cycle start) markers, verdicts, legend strip below. Merged points are drawn as
+/// Draw one LLE-against-D panel: log D axis, error bars, zero line, filled (rest regime) and
+/// open (cycle regime) markers, verdicts, legend strip below. Merged points are drawn as
 /// crosses on the lower edge.
 pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> Result<()> {
     let (top, bottom) = area.split_vertically(CHART_HEIGHT);
@@ -187,7 +195,7 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
     let n = panel.curves.len().max(1) as f64;
     for (i, curve) in panel.curves.iter().enumerate() {
         let colour = colour_of(panel, curve.value);
-        let open = curve.start == StartKind::Outer;
+        let open = curve.start == StartKind::Cycle;
         // a small horizontal offset per curve keeps overlapping error bars apart
         let shift = (x.end - x.start) * 0.003 * (i as f64 - (n - 1.0) / 2.0);
         let style = if open {
@@ -248,21 +256,24 @@ pub const NEUTRAL: RGBColor = RGBColor(150, 150, 150);
 pub fn sign_strip() -> LegendStrip {
     LegendStrip {
         entries: vec![
-            (Symbol::Swatch(POSITIVE), "LLE significantly > 0".into()),
-            (Symbol::Swatch(NEGATIVE), "significantly < 0".into()),
-            (Symbol::Swatch(NEUTRAL), "not significant".into()),
-            (Symbol::Cross(BLACK), "undefined (merged)".into()),
+            (Symbol::Swatch(POSITIVE), "chaotic (LLE > δ)".into()),
+            (
+                Symbol::Swatch(NEGATIVE),
+                "not chaotic or synchronised".into(),
+            ),
+            (Symbol::Swatch(NEUTRAL), "undecided".into()),
+            (Symbol::Cross(BLACK), "undefined".into()),
             (Symbol::Line(BLACK), "D_c bracket".into()),
             (
                 Symbol::Ring(BLACK),
-                "right, open: outer-cycle start (none: no outer cycle)".into(),
+                "left: rest regime, right: cycle regime".into(),
             ),
         ],
     }
 }
 
-/// Draw a sign map: one column per value of the parameter (rest start left, filled; outer
-/// start right, open), the D grid on a log axis, each cell's sign as its colour, the located
+/// Draw a sign map: one column per value of the parameter (rest regime left, filled; cycle
+/// regime right, open), the D grid on a log axis, each cell's sign as its colour, the located
 /// D_c brackets as bars.
 pub fn draw_sign_map<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
@@ -313,7 +324,7 @@ pub fn draw_sign_map<DB: Backend>(
         .map_err(|e| anyhow!("{e}"))?;
     for (curve, located) in panel.curves.iter().zip(&map.located) {
         let i = values.iter().position(|&v| v == curve.value).unwrap_or(0) as f64;
-        let open = curve.start == StartKind::Outer;
+        let open = curve.start == StartKind::Cycle;
         let xc = i + if open { 0.17 } else { -0.17 };
         if curve.points.is_empty() {
             c.draw_series(std::iter::once(Text::new(

@@ -149,8 +149,123 @@ fn per_start_all_of(rule: &str, parts: Vec<(String, Decision)>) -> Decision {
     d
 }
 
+/// "When the noise level reaches D_c, the LLE turns positive", by the regime rules
+/// (`verdict::rules::regime`, docs/verdicts.md): one check per curve of the paper, that is per
+/// value of the panel's parameter. A value is **for** the sentence when one of its regimes has
+/// a located transition D_c ∈ (D1, D2) (not chaotic at D1, chaotic at D2); **against** when
+/// every regime it has is chaotic at every D tried (the rest regime's D_c = 0: positive down to
+/// D = 10⁻⁶ and flat in log D — no transition, whatever start the paper used); otherwise
+/// neither, with each curve's outcome. Refuted when a value is against, confirmed when every
+/// value is for, else undetermined. Data without regimes (an earlier version) fall back to the
+/// sign-change rule per start.
 pub(super) fn lle_sign_change(p: &LlePanel) -> Decision {
-    per_start(p, "sign_change", sign_change)
+    if p.curves.iter().any(|c| c.regime.is_none()) {
+        return per_start(p, "sign_change", sign_change);
+    }
+    regime_sign_change(p)
+}
+
+fn regime_sign_change(p: &LlePanel) -> Decision {
+    use super::super::rules::{Bracket, ALPHA};
+    use super::super::{Check, Outcome};
+    use crate::notes::{num, sig};
+    let mut values: Vec<f64> = Vec::new();
+    for c in &p.curves {
+        if !values.contains(&c.value) {
+            values.push(c.value);
+        }
+    }
+    let mut checks = Vec::new();
+    let mut open = Vec::new();
+    let mut tests = 0;
+    for v in values {
+        let of: Vec<&crate::lle::Curve> = p.curves.iter().filter(|c| c.value == v).collect();
+        let name = of[0]
+            .label
+            .split(',')
+            .next()
+            .unwrap_or("")
+            .trim()
+            .to_string();
+        let mut words = Vec::new();
+        let mut transition: Option<(f64, f64)> = None;
+        let mut always = 0;
+        let mut pooled = None;
+        for c in &of {
+            let r = c.regime.as_ref().expect("checked");
+            tests += r.calls.len();
+            words.push(format!("{}: {}", c.attractor, r.bracket.words()));
+            if let Bracket::Located { lo, hi } = r.bracket {
+                transition.get_or_insert((lo, hi));
+            }
+            if let Some(rest) = &r.rest {
+                pooled = Some((rest.pooled, rest.pooled_se));
+                if rest.chaotic_every_d {
+                    always += 1;
+                }
+            }
+        }
+        let (value, outcome, statistic, stat_value, threshold) = match (transition, pooled) {
+            (Some((lo, hi)), _) => (
+                Measured::bracket((lo * hi).sqrt(), lo, hi),
+                Outcome::For,
+                "smallest chaotic D".to_string(),
+                hi,
+                lo,
+            ),
+            (None, Some((m, se))) if always == of.len() => (
+                Measured::with_se(m, se),
+                Outcome::Against,
+                "pooled exponent of the rest regime (chaotic at every D, flat in log D)"
+                    .to_string(),
+                m,
+                of.iter()
+                    .filter_map(|c| c.regime.as_ref().map(|r| r.margin))
+                    .fold(0.0, f64::max),
+            ),
+            _ => (
+                Measured::exact(f64::NAN),
+                Outcome::Neither,
+                "no located transition".to_string(),
+                f64::NAN,
+                f64::NAN,
+            ),
+        };
+        if outcome == Outcome::Neither {
+            open.push(format!("{name}: {}", words.join("; ")));
+        }
+        checks.push(Check {
+            what: format!("{name}: {}", words.join("; ")),
+            value,
+            statistic,
+            statistic_value: stat_value,
+            threshold,
+            outcome,
+        });
+    }
+    let against = checks.iter().any(|c| c.outcome == Outcome::Against);
+    let verdict = if against {
+        Verdict::Refuted
+    } else if open.is_empty() && !checks.is_empty() {
+        Verdict::Confirmed
+    } else {
+        Verdict::undetermined(if open.is_empty() {
+            "no curves".to_string()
+        } else {
+            format!("no located transition at {}", open.join(" | "))
+        })
+    };
+    let margin = p
+        .curves
+        .iter()
+        .filter_map(|c| c.regime.as_ref().map(|r| r.margin))
+        .fold(0.0, f64::max);
+    let statistic = format!(
+        "per value of the parameter (a curve of the paper), the regimes of its noise-free system: calls against δ = 1/W = {} (one-sided Student's t on the unmerged realisations, Bonferroni over a curve's points at {}); for: a located D_c (not chaotic at D1, chaotic at D2); against: every regime chaotic at every D tried (rest regime: down to D = 1e-6, flat in log D, D_c = 0)",
+        sig(margin, 2),
+        num(ALPHA)
+    );
+    Decision::new(verdict, "regime", statistic, tests, Some(ALPHA), checks)
 }
 
 pub(super) fn fig18_impact_loss(p: &LlePanel) -> Decision {
@@ -204,17 +319,34 @@ pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
         .unwrap_or(f64::NAN);
     let parts = StartKind::BOTH
         .iter()
+        .filter(|&&start| m.panel.curves.iter().any(|c| c.start == start))
         .map(|&start| {
-            let mut points = Vec::new();
+            // one series per attractor of the regime (inner, outer, … cycle; rest)
+            let mut series: Vec<(String, Vec<(f64, Measured)>)> = Vec::new();
             // the columns without a located D_c, grouped by outcome: (words, values)
             let mut missing: Vec<(String, Vec<String>)> = Vec::new();
             for (c, l) in m.panel.curves.iter().zip(&m.located) {
                 if c.start != start {
                     continue;
                 }
+                let name = c.attractor.split(" (").next().unwrap_or("").to_string();
+                let mut push =
+                    |x: f64, v: Measured| match series.iter_mut().find(|(n, _)| *n == name) {
+                        Some((_, pts)) => pts.push((x, v)),
+                        None => series.push((name.clone(), vec![(x, v)])),
+                    };
+                // the rest regime chaotic at every D down to 1e-6, flat in log D: D_c = 0
+                if c.regime
+                    .as_ref()
+                    .and_then(|r| r.rest.as_ref())
+                    .is_some_and(|r| r.chaotic_every_d)
+                {
+                    push(c.value, Measured::exact(0.0));
+                    continue;
+                }
                 let why = match l {
                     Some(Located::Bracket { lo, hi }) => {
-                        points.push((c.value, Measured::bracket((lo * hi).sqrt(), *lo, *hi)));
+                        push(c.value, Measured::bracket((lo * hi).sqrt(), *lo, *hi));
                         continue;
                     }
                     Some(l) => l.kind_words(first_d),
@@ -231,15 +363,17 @@ pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
                 .into_iter()
                 .map(|(why, vs)| format!("{} = {}: {why}", m.key, vs.join(", ")))
                 .collect();
-            let located = points.len();
-            let d = trend(
-                &[Series {
-                    label: "D_c".into(),
+            let located: usize = series.iter().map(|(_, p)| p.len()).sum();
+            let series: Vec<Series> = series
+                .into_iter()
+                .filter(|(_, p)| p.len() >= 2)
+                .map(|(name, points)| Series {
+                    label: format!("D_c ({name})"),
                     x_name: m.key.clone(),
                     points,
-                }],
-                direction,
-            );
+                })
+                .collect();
+            let d = trend(&series, direction);
             let d = if missing.is_empty() || d.verdict == Verdict::Refuted {
                 d
             } else {

@@ -12,11 +12,16 @@
 
 mod agreement;
 mod count;
+mod regime;
 mod sign_change;
 mod trend;
 
 pub use agreement::{agreement, closeness, Comparison, Weightings, MIN_WEIGHTING_REPLICAS};
 pub use count::{count, Count, CountSource};
+pub use regime::{
+    agrees_with_prediction, bracket, call, calls, rest_regime, Bracket, Call, RegimePoint,
+    RestRegime, REST_DECADES,
+};
 pub use sign_change::{locate, sign_change, significance, LleCurve, LlePoint, Located, PointSign};
 pub use trend::{trend, Direction, Series};
 

@@ -1,0 +1,399 @@
+//! Rules that follow the regime: what the theory of noisy oscillators predicts for the
+//! frozen-noise exponent on each kind of attractor, and the tests that call a point and a curve.
+//!
+//! # Theory
+//! - **Rest against the wall.** Near U = 0 the equation is positively homogeneous: the wall,
+//!   the impact law, ω0²U and the fractional operator all scale with the state, only
+//!   μ0(P(U) − P(0))U̇ does not. Scaling the state and the noise together (D → c²D) leaves the
+//!   tangent dynamics unchanged, so the exponent of a path that stays near the wall does not
+//!   depend on D as D → 0: it is flat in log D, and where it is positive D_c = 0 is the answer.
+//! - **A stable cycle.** Weak noise makes the exponent negative, of order D (noise-induced
+//!   synchronisation): λ ≈ −c·D, c from the cycle's phase response
+//!   (`trirhythm::analysis::lyapunov::phase_response`; Teramae & Tanaka, PRL 93, 204103
+//!   (2004); Goldobin, Teramae, Nakao & Ermentrout, PRL 105, 154101 (2010)). A positive exponent
+//!   needs noise beyond the reach of that expansion.
+//!
+//! # Rules
+//! Every test is one-sided at [`ALPHA`] with Student's t on the realisations that did not merge
+//! (ν = n − m − 1), Bonferroni over the points of the curve. The **margin** δ = 1/W (W the
+//! window of the finite-time exponent): an exponent below it does not make one e-fold in the
+//! window, so a finite-time estimate cannot call it chaos; it is the same margin for every
+//! curve and is stated in each decision.
+//! - **A point** ([`call`]): *synchronised* when at least half the realisations merged (the
+//!   copy became identical to its reference: exponent −∞; then the median realisation is −∞);
+//!   else *chaotic* when the lower confidence bound of the unmerged mean exceeds δ, *not
+//!   chaotic* when the upper confidence bound lies below δ, otherwise *undecided*. The merged
+//!   fraction is kept beside the call, never dropped.
+//! - **Against the phase reduction** ([`agrees_with_prediction`]): two one-sided tests that
+//!   |λ − (−cD)| < δ (equivalence), for the figures' small-D points.
+//! - **A curve's D_c** ([`bracket`]): D2 the smallest chaotic D, D1 the largest not-chaotic
+//!   (or synchronised) D below it: D_c ∈ (D1, D2). No chaotic point: not chaotic throughout
+//!   (D_c above the range, when the largest D is called not chaotic). Chaotic at the smallest D:
+//!   D_c below the range.
+//! - **The rest regime** ([`rest_regime`]): the pooled (inverse-variance) exponent and the
+//!   weighted least-squares slope against log10 D; "chaotic for every D > 0 tried: D_c = 0"
+//!   when every point is chaotic, the slope is not significant (two-sided at [`ALPHA`]) and
+//!   the D span at least [`REST_DECADES`] decades.
+//!
+//! Reference: docs/verdicts.md, "The Lyapunov claims by regime". Tested by the unit tests
+//! below (each outcome of each rule, and the merged realisations kept).
+
+use super::super::stats::{t_for_two_sided, t_two_sided_p};
+use super::ALPHA;
+use serde::{Deserialize, Serialize};
+
+/// The fewest decades of D over which the rest regime's exponent must be flat.
+pub const REST_DECADES: f64 = 3.0;
+
+/// One exponent at one noise intensity, with what the realisations did.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RegimePoint {
+    /// Noise intensity D.
+    pub d: f64,
+    /// Mean exponent of the realisations that did not merge.
+    pub mean: f64,
+    /// Its standard error (NaN with fewer than two).
+    pub se: f64,
+    /// Realisations.
+    pub n: usize,
+    /// Realisations whose copy merged with its reference (exponent −∞).
+    pub merged: usize,
+}
+
+impl RegimePoint {
+    /// The share of realisations that merged.
+    pub fn merged_fraction(&self) -> f64 {
+        if self.n == 0 {
+            f64::NAN
+        } else {
+            self.merged as f64 / self.n as f64
+        }
+    }
+
+    /// Degrees of freedom of the unmerged mean.
+    fn dof(&self) -> f64 {
+        (self.n - self.merged) as f64 - 1.0
+    }
+}
+
+/// What a point says about chaos.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Call {
+    /// The exponent exceeds the margin δ (one-sided t).
+    Chaotic,
+    /// The exponent lies below the margin δ (one-sided t).
+    NotChaotic,
+    /// At least half the realisations merged (synchronised: exponent −∞).
+    Synchronised,
+    /// Neither shown (or no standard error).
+    Undecided,
+}
+
+impl Call {
+    /// Short, for tables and pictures.
+    pub fn tag(self) -> &'static str {
+        match self {
+            Call::Chaotic => "chaotic",
+            Call::NotChaotic => "not chaotic",
+            Call::Synchronised => "synchronised",
+            Call::Undecided => "undecided",
+        }
+    }
+
+    /// Not chaotic or synchronised.
+    pub fn is_regular(self) -> bool {
+        matches!(self, Call::NotChaotic | Call::Synchronised)
+    }
+}
+
+/// The one-sided critical t at level `alpha` with `nu` degrees of freedom.
+fn one_sided(alpha: f64, nu: f64) -> f64 {
+    t_for_two_sided(2.0 * alpha, nu)
+}
+
+/// The call of one point with margin `margin` (δ = 1/W), at one-sided level `alpha` (the
+/// family level over the curve divided by its points).
+pub fn call(p: &RegimePoint, margin: f64, alpha: f64) -> Call {
+    if p.n > 0 && 2 * p.merged >= p.n {
+        return Call::Synchronised;
+    }
+    let nu = p.dof();
+    if !(p.mean.is_finite() && p.se.is_finite() && p.se > 0.0 && nu >= 1.0) {
+        return Call::Undecided;
+    }
+    let t = one_sided(alpha, nu);
+    if (p.mean - margin) / p.se > t {
+        Call::Chaotic
+    } else if (margin - p.mean) / p.se > t {
+        Call::NotChaotic
+    } else {
+        Call::Undecided
+    }
+}
+
+/// Every point's call over a curve, Bonferroni over its points at family level [`ALPHA`].
+pub fn calls(points: &[RegimePoint], margin: f64) -> Vec<Call> {
+    let k = points.len().max(1) as f64;
+    points.iter().map(|p| call(p, margin, ALPHA / k)).collect()
+}
+
+/// Equivalence of the exponent with the phase reduction's −c·D within `margin`: two one-sided
+/// t tests at level `alpha`; None where there is no test (merged realisations, no standard
+/// error, no coefficient).
+pub fn agrees_with_prediction(
+    p: &RegimePoint,
+    coefficient: Option<f64>,
+    margin: f64,
+    alpha: f64,
+) -> Option<bool> {
+    let c = coefficient?;
+    let nu = p.dof();
+    if p.merged > 0 || !(p.se.is_finite() && p.se > 0.0 && nu >= 1.0 && p.mean.is_finite()) {
+        return None;
+    }
+    let predicted = -c * p.d;
+    let t = one_sided(alpha, nu);
+    let lower = (p.mean - (predicted - margin)) / p.se;
+    let upper = ((predicted + margin) - p.mean) / p.se;
+    Some(lower > t && upper > t)
+}
+
+/// Where a curve's D_c lies, from its points' calls (D ascending).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", tag = "kind")]
+pub enum Bracket {
+    /// D_c in (lo, hi): `lo` the largest regular D below `hi`, the smallest chaotic D.
+    Located {
+        /// Largest not-chaotic or synchronised D below `hi`.
+        lo: f64,
+        /// Smallest chaotic D.
+        hi: f64,
+    },
+    /// Chaotic at the smallest D: D_c below it (0 in the rest regime).
+    Below {
+        /// The smallest D.
+        d: f64,
+    },
+    /// No chaotic point, the largest D regular: D_c above it.
+    Above {
+        /// The largest D.
+        d: f64,
+    },
+    /// Neither: a chaotic point with nothing regular below it but undecided points, or no
+    /// chaotic point with the largest D undecided.
+    Undecided,
+}
+
+impl Bracket {
+    /// In words.
+    pub fn words(&self) -> String {
+        use crate::notes::num;
+        match self {
+            Bracket::Located { lo, hi } => format!("D_c in ({}, {})", num(*lo), num(*hi)),
+            Bracket::Below { d } => format!(
+                "chaotic from the smallest D = {}: D_c < {}",
+                num(*d),
+                num(*d)
+            ),
+            Bracket::Above { d } => format!(
+                "not chaotic up to the largest D = {}: D_c > {}",
+                num(*d),
+                num(*d)
+            ),
+            Bracket::Undecided => "D_c not bracketed (undecided points between)".into(),
+        }
+    }
+}
+
+/// The bracket of D_c of a curve whose points (D ascending) have the calls `calls`.
+pub fn bracket(ds: &[f64], calls: &[Call]) -> Bracket {
+    let first_chaotic = calls.iter().position(|&c| c == Call::Chaotic);
+    match first_chaotic {
+        Some(0) => Bracket::Below { d: ds[0] },
+        Some(k) => match (0..k).rev().find(|&j| calls[j].is_regular()) {
+            Some(j) => Bracket::Located {
+                lo: ds[j],
+                hi: ds[k],
+            },
+            None => Bracket::Undecided,
+        },
+        None => match calls.last() {
+            Some(c) if c.is_regular() => Bracket::Above {
+                d: ds[ds.len() - 1],
+            },
+            _ => Bracket::Undecided,
+        },
+    }
+}
+
+/// The rest regime's statistics over a curve.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RestRegime {
+    /// The inverse-variance pooled exponent over the curve's unmerged means.
+    pub pooled: f64,
+    /// Its standard error.
+    pub pooled_se: f64,
+    /// Weighted least-squares slope of the exponent against log10 D (per decade).
+    pub slope: f64,
+    /// Its standard error.
+    pub slope_se: f64,
+    /// Decades of D spanned.
+    pub decades: f64,
+    /// Every point chaotic, the slope not significant, at least [`REST_DECADES`] decades:
+    /// chaotic for every D > 0 tried, D_c = 0.
+    pub chaotic_every_d: bool,
+}
+
+/// The rest regime's rule over a curve (module docs), margin δ = `margin`.
+pub fn rest_regime(points: &[RegimePoint], margin: f64) -> RestRegime {
+    let usable: Vec<&RegimePoint> = points
+        .iter()
+        .filter(|p| p.merged == 0 && p.mean.is_finite() && p.se.is_finite() && p.se > 0.0)
+        .collect();
+    let w: Vec<f64> = usable.iter().map(|p| 1.0 / (p.se * p.se)).collect();
+    let sw: f64 = w.iter().sum();
+    let pooled = usable.iter().zip(&w).map(|(p, w)| w * p.mean).sum::<f64>() / sw;
+    let x: Vec<f64> = usable.iter().map(|p| p.d.log10()).collect();
+    let mx = x.iter().zip(&w).map(|(x, w)| w * x).sum::<f64>() / sw;
+    let sxx: f64 = x.iter().zip(&w).map(|(x, w)| w * (x - mx) * (x - mx)).sum();
+    let sxy: f64 = x
+        .iter()
+        .zip(&usable)
+        .zip(&w)
+        .map(|((x, p), w)| w * (x - mx) * (p.mean - pooled))
+        .sum();
+    let slope = sxy / sxx;
+    let slope_se = (1.0 / sxx).sqrt();
+    let decades = match (points.first(), points.last()) {
+        (Some(a), Some(b)) => (b.d / a.d).log10(),
+        _ => 0.0,
+    };
+    let every = !points.is_empty() && calls(points, margin).iter().all(|&c| c == Call::Chaotic);
+    // the slope's t with the pooled degrees of freedom of the smallest point count
+    let nu = usable.iter().map(|p| p.dof()).fold(f64::INFINITY, f64::min);
+    let flat = usable.len() >= 3 && t_two_sided_p(slope / slope_se, nu) > ALPHA;
+    RestRegime {
+        pooled,
+        pooled_se: (1.0 / sw).sqrt(),
+        slope,
+        slope_se,
+        decades,
+        chaotic_every_d: every && flat && decades >= REST_DECADES,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(d: f64, mean: f64, se: f64) -> RegimePoint {
+        RegimePoint {
+            d,
+            mean,
+            se,
+            n: 8,
+            merged: 0,
+        }
+    }
+
+    #[test]
+    fn a_point_is_chaotic_regular_or_undecided_against_the_margin() {
+        let m = 1e-3;
+        // t(7) one-sided at 0.05 is 1.895
+        assert_eq!(call(&point(0.1, 0.01, 0.001), m, 0.05), Call::Chaotic);
+        assert_eq!(call(&point(0.1, -0.01, 0.001), m, 0.05), Call::NotChaotic);
+        // zero with a tight error: below the margin, not chaotic (not "not significant")
+        assert_eq!(call(&point(0.1, 0.0, 2e-4), m, 0.05), Call::NotChaotic);
+        // zero with a wide error: undecided
+        assert_eq!(call(&point(0.1, 0.0, 1e-3), m, 0.05), Call::Undecided);
+        // just above the margin but not by t·se
+        assert_eq!(call(&point(0.1, 2e-3, 1e-3), m, 0.05), Call::Undecided);
+        assert_eq!(call(&point(0.1, f64::NAN, 1e-3), m, 0.05), Call::Undecided);
+    }
+
+    #[test]
+    fn merged_realisations_are_kept_as_synchronised() {
+        let mut p = point(0.3, 0.05, 0.001);
+        p.merged = 4;
+        assert_eq!(call(&p, 1e-3, 0.05), Call::Synchronised);
+        assert_eq!(p.merged_fraction(), 0.5);
+        // three of eight merged: the other five decide, with ν = 4
+        p.merged = 3;
+        assert_eq!(call(&p, 1e-3, 0.05), Call::Chaotic);
+        assert_eq!(agrees_with_prediction(&p, Some(0.01), 1e-3, 0.05), None);
+    }
+
+    #[test]
+    fn the_prediction_is_tested_for_equivalence() {
+        // c = 0.013 at D = 0.05: −6.5e-4
+        let p = point(0.05, -6.3e-4, 5e-5);
+        assert_eq!(
+            agrees_with_prediction(&p, Some(0.013), 1e-3, 0.05),
+            Some(true)
+        );
+        let far = point(0.05, -3e-3, 5e-5);
+        assert_eq!(
+            agrees_with_prediction(&far, Some(0.013), 1e-3, 0.05),
+            Some(false)
+        );
+        // too uncertain to show equivalence
+        let wide = point(0.05, -6.3e-4, 1e-3);
+        assert_eq!(
+            agrees_with_prediction(&wide, Some(0.013), 1e-3, 0.05),
+            Some(false)
+        );
+        assert_eq!(agrees_with_prediction(&p, None, 1e-3, 0.05), None);
+    }
+
+    #[test]
+    fn brackets_follow_the_calls() {
+        use Call::*;
+        let ds = [0.001, 0.01, 0.1, 1.0];
+        assert_eq!(
+            bracket(&ds, &[NotChaotic, Synchronised, Undecided, Chaotic]),
+            Bracket::Located { lo: 0.01, hi: 1.0 }
+        );
+        assert_eq!(bracket(&ds, &[Chaotic; 4]), Bracket::Below { d: 0.001 });
+        assert_eq!(
+            bracket(&ds, &[NotChaotic, NotChaotic, Undecided, NotChaotic]),
+            Bracket::Above { d: 1.0 }
+        );
+        assert_eq!(
+            bracket(&ds, &[Undecided, Chaotic, NotChaotic, Chaotic]),
+            Bracket::Undecided
+        );
+        assert_eq!(
+            bracket(&ds, &[NotChaotic, NotChaotic, NotChaotic, Undecided]),
+            Bracket::Undecided
+        );
+    }
+
+    #[test]
+    fn the_rest_regime_needs_every_point_chaotic_a_flat_curve_and_three_decades() {
+        let ds = [1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1];
+        let flat: Vec<RegimePoint> = ds
+            .iter()
+            .enumerate()
+            .map(|(k, &d)| point(d, 0.08 + if k % 2 == 0 { 1e-3 } else { -1e-3 }, 2e-3))
+            .collect();
+        let r = rest_regime(&flat, 1e-3);
+        assert!(r.chaotic_every_d, "{r:?}");
+        assert!((r.pooled - 0.08).abs() < 1e-3 && r.decades == 5.0);
+        // a trend of 0.01 per decade with errors of 0.002: significant, not flat
+        let rising: Vec<RegimePoint> = ds
+            .iter()
+            .enumerate()
+            .map(|(k, &d)| point(d, 0.05 + 0.01 * k as f64, 2e-3))
+            .collect();
+        let r = rest_regime(&rising, 1e-3);
+        assert!(!r.chaotic_every_d && r.slope > 0.009, "{r:?}");
+        // flat but only two decades
+        let short: Vec<RegimePoint> = flat[3..].to_vec();
+        assert!(!rest_regime(&short, 1e-3).chaotic_every_d);
+        // one point not chaotic
+        let mut dip = flat.clone();
+        dip[2].mean = 0.0;
+        assert!(!rest_regime(&dip, 1e-3).chaotic_every_d);
+    }
+}
