@@ -721,6 +721,127 @@ fn _lyapunov(
     }
 }
 
+/// The attractor of the noise-free path from (u0, 0) (JSON of the library's
+/// `StartAttractor`); with `u0` None, one start per attractor (JSON list).
+#[pyfunction]
+#[pyo3(signature = (params, u0, dt, impact_memory, t_max, variant, system, barrier, memory, tolerance, threads=None))]
+#[allow(clippy::too_many_arguments)]
+fn _attractor(
+    py: Python<'_>,
+    params: &PyParams,
+    u0: Option<f64>,
+    dt: f64,
+    impact_memory: &str,
+    t_max: f64,
+    variant: &str,
+    system: &str,
+    barrier: bool,
+    memory: &str,
+    tolerance: f64,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    let m = model(system, barrier, memory, tolerance)?;
+    let method = m.method(dt, impact(impact_memory)?);
+    let problem = m
+        .problem(&params.0)
+        .and_then(|p| p.with_start(u0.unwrap_or(1.0), 0.0))
+        .map_err(py_err)?;
+    let spec = lle::AttractorSpec {
+        t_max,
+        variant: self::variant(variant)?,
+        ..Default::default()
+    };
+    spec.validate().map_err(py_err)?;
+    method.validate().map_err(py_err)?;
+    match u0 {
+        Some(u0) => {
+            let s = long_call(py, threads, None, |_| {
+                lle::classify_start(&problem, &method, u0, &spec)
+            })?;
+            serde_json::to_string(&s).map_err(json_err)
+        }
+        None => {
+            let s = long_call(py, threads, None, |_| {
+                lle::attractor_starts(&problem, &method, &spec)
+            })?;
+            serde_json::to_string(&s).map_err(json_err)
+        }
+    }
+}
+
+/// The phase response of the cycle the noise-free path from (u0, 0) reaches and the
+/// phase-reduction coefficient (JSON of the library's `PhaseResponse`, with `u0` and the step
+/// guard's `step_warnings`), as `trirhythm phase-response`: `u0` None starts on the averaged
+/// theory's largest stable amplitude (D = 0), Δt must lie in [1e-4, 0.1], and a step that
+/// cannot resolve the problem is refused.
+#[pyfunction]
+#[pyo3(signature = (params, u0, dt, impact_memory, phases, kick, periods, t_max, variant, system, barrier, memory, tolerance, threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn _phase_response(
+    py: Python<'_>,
+    params: &PyParams,
+    u0: Option<f64>,
+    dt: f64,
+    impact_memory: &str,
+    phases: usize,
+    kick: f64,
+    periods: usize,
+    t_max: f64,
+    variant: &str,
+    system: &str,
+    barrier: bool,
+    memory: &str,
+    tolerance: f64,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<(String, Vec<String>)> {
+    let variant = self::variant(variant)?;
+    if !(lle::DT_RANGE.0..=lle::DT_RANGE.1).contains(&dt) {
+        return Err(py_err(trirhythm::Error::invalid("dt", dt, "[1e-4, 0.1]")));
+    }
+    let spec = lle::PhaseSpec {
+        phases,
+        kick,
+        periods,
+        attractor: lle::AttractorSpec {
+            t_max,
+            variant,
+            ..Default::default()
+        },
+    };
+    spec.validate().map_err(py_err)?;
+    let u0 = match u0 {
+        Some(u0) => u0,
+        None => {
+            // the command line's default start: the outer cycle of the theory at D = 0
+            let quiet = params.0.with("D", 0.0).map_err(py_err)?;
+            let theory = Theory::new(&quiet, variant).map_err(py_err)?;
+            match theory.limit_cycles().iter().rev().find(|c| c.stable) {
+                Some(c) => c.amplitude,
+                None => {
+                    return Err(PyValueError::new_err(
+                        "the averaged theory has no stable cycle here: give the start with u0",
+                    ))
+                }
+            }
+        }
+    };
+    let m = model(system, barrier, memory, tolerance)?;
+    let method = m.method(dt, impact(impact_memory)?);
+    let problem = m
+        .problem(&params.0)
+        .and_then(|p| p.with_start(u0, 0.0))
+        .map_err(py_err)?;
+    let warnings = trirhythm::analysis::check_step(&problem, &method)
+        .and_then(|r| r.require())
+        .map_err(py_err)?
+        .warnings();
+    let r = long_call(py, threads, progress, |w| {
+        lle::phase_response(&problem, &method, u0, &spec, w)
+    })?;
+    Ok((serde_json::to_string(&r).map_err(json_err)?, warnings))
+}
+
 /// The oscillation boundary in the plane (x_key over `x`, y_key in `y_range`) by `method`
 /// (JSON of the library's result).
 #[pyfunction]
@@ -851,6 +972,8 @@ fn _trirhythm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_ensemble, m)?)?;
     m.add_function(wrap_pyfunction!(_ensemble_wells, m)?)?;
     m.add_function(wrap_pyfunction!(_lyapunov, m)?)?;
+    m.add_function(wrap_pyfunction!(_attractor, m)?)?;
+    m.add_function(wrap_pyfunction!(_phase_response, m)?)?;
     m.add_function(wrap_pyfunction!(_oscillation_boundary, m)?)?;
     m.add_function(wrap_pyfunction!(_map, m)?)?;
     m.add_function(wrap_pyfunction!(_figure_data, m)?)?;

@@ -20,6 +20,7 @@ into an ``xarray.Dataset`` (see ``docs/python.md``).
 from __future__ import annotations
 
 import json
+import warnings
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
@@ -42,6 +43,11 @@ __all__ = [
     "EnsemblePaths",
     "lyapunov",
     "critical_noise",
+    "attractor",
+    "attractor_starts",
+    "Attractor",
+    "phase_response",
+    "PhaseResponse",
     "oscillation_boundary",
     "rhythmicity_map",
     "modes_map",
@@ -443,6 +449,271 @@ def critical_noise(
         progress=_progress(progress),
     )
     return {k: _nonfinite(v) for k, v in json.loads(r).items()}
+
+
+_MODEL_DEFAULTS = dict(system="fractional", barrier=True, memory="soe", tolerance=1e-10)
+
+
+def _model_args(options):
+    unknown = set(options) - set(_MODEL_DEFAULTS)
+    if unknown:
+        raise ValueError(f"unknown argument(s) {sorted(unknown)}: expected {sorted(_MODEL_DEFAULTS)}")
+    o = {**_MODEL_DEFAULTS, **options}
+    return dict(
+        system=o["system"],
+        barrier=bool(o["barrier"]),
+        memory=o["memory"],
+        tolerance=_finite("tolerance", o["tolerance"]),
+    )
+
+
+@dataclass
+class Attractor:
+    """Where the noise-free path from (U(0), U̇(0)) = (``u0``, 0) ends (the library's
+    ``StartAttractor``).
+
+    ``kind`` is ``"rest"``, ``"cycle"`` or ``"unsettled"``; ``amplitude`` the cycle's turning
+    amplitude max U (extrapolated), the last one when unsettled, 0 at rest; ``period`` the
+    cycle's period (``None`` otherwise); ``name`` the averaged theory's stable cycle it
+    matches, ``"inner"``, ``"middle"``, ``"outer"``, ``"sole"`` or ``"unmatched"`` (``None``
+    unless a cycle), with ``index`` its rank among the theory's stable cycles (ascending) and
+    ``theory_amplitude`` its amplitude A0 (``None`` when unmatched); ``label`` is ``"rest"``,
+    the cycle's name or ``"unsettled"``; ``variant`` the theory's variant that named it.
+    ``decided_at`` (time of the decision), ``turning_points`` and ``remaining`` (the last
+    relative amplitude change still expected; NaN before three turning points) describe the
+    run (``None`` for a ``PhaseResponse``'s ``cycle``); ``to_dict()`` is the library's
+    document."""
+
+    u0: float
+    kind: str
+    amplitude: float
+    period: float | None
+    name: str | None
+    index: int | None
+    theory_amplitude: float | None
+    label: str
+    decided_at: float | None
+    turning_points: int | None
+    remaining: float | None
+    variant: str
+    document: dict = field(repr=False)
+
+    @classmethod
+    def _of(cls, doc: dict) -> "Attractor":
+        """From the library's ``StartAttractor`` document (or ``{u0, attractor, variant}``)."""
+        a = doc["attractor"]
+        kind = a["kind"]
+        name = a.get("name")
+        run = lambda key, f: None if key not in doc else f(_nonfinite(doc[key]))  # noqa: E731
+        return cls(
+            u0=float(doc["u0"]),
+            kind=kind,
+            amplitude=float(a.get("amplitude", 0.0)),
+            period=a.get("period"),
+            name=name,
+            index=a.get("index"),
+            theory_amplitude=a.get("theory_amplitude"),
+            label=name if kind == "cycle" else kind,
+            decided_at=run("decided_at", float),
+            turning_points=run("turning_points", int),
+            remaining=run("remaining", float),
+            variant=doc["variant"],
+            document=doc,
+        )
+
+    def to_dict(self) -> dict:
+        return self.document
+
+
+def attractor(
+    params: Params,
+    u0: float,
+    dt: float = 0.01,
+    impact_memory: str = "restart",
+    t_max: float = 20_000.0,
+    variant: str = "paper",
+    *,
+    threads: int | None = None,
+    **options,
+) -> Attractor:
+    """The attractor the noise-free path (D set to 0) from (U(0), U̇(0)) = (``u0``, 0) reaches:
+    rest on the wall, a limit cycle named by the averaged theory's stable cycle it matches
+    (in ``variant``), or unsettled after ``t_max`` (library ``classify_start``). The run stops
+    when the turning amplitudes have settled (Aitken's extrapolation within 1e-5 at three
+    turning points in a row) or fallen below 1e-3. Options: ``system``, ``barrier``,
+    ``memory``, ``tolerance`` (as ``simulate``; Eq. 9's ``"zhuravlev"`` is refused). The GIL
+    is released; the run is not cancellable midway (Ctrl-C is raised when it ends)."""
+    m = _model_args(options)
+    text = _native._attractor(
+        _check_params(params),
+        _finite("u0", u0),
+        _finite("dt", dt),
+        impact_memory,
+        _finite("t_max", t_max),
+        variant,
+        **m,
+        threads=threads,
+    )
+    return Attractor._of(json.loads(text))
+
+
+def attractor_starts(
+    params: Params,
+    dt: float = 0.01,
+    impact_memory: str = "restart",
+    t_max: float = 20_000.0,
+    variant: str = "paper",
+    *,
+    threads: int | None = None,
+    **options,
+) -> list[tuple[float, Attractor]]:
+    """One start per attractor of the noise-free system (library ``attractor_starts``):
+    ``[(u0, attractor), …]``, rest first, then the cycles by amplitude, the unsettled last.
+    The starts tried are the averaged theory's stable cycle amplitudes, 1 and 0.01, each
+    classified as ``attractor`` does (in parallel on ``threads``); the first start of each
+    attractor is kept. Options as ``attractor``."""
+    m = _model_args(options)
+    text = _native._attractor(
+        _check_params(params),
+        None,
+        _finite("dt", dt),
+        impact_memory,
+        _finite("t_max", t_max),
+        variant,
+        **m,
+        threads=threads,
+    )
+    return [(float(d["u0"]), Attractor._of(d)) for d in json.loads(text)]
+
+
+@dataclass
+class PhaseResponse:
+    """The phase response Z(θ) of a stable cycle and the phase-reduction coefficient c of the
+    frozen-noise exponent, λ_pred = −c·D under weak noise of the parameters' correlation time
+    τ (the library's ``PhaseResponse``; ``trirhythm phase-response``).
+
+    ``theta``, ``z`` (radians per unit impulse of η), ``z_double`` (from twice the kick) and
+    ``z_extrapolation`` (Aitken's correction, units of Z) are numpy arrays over the sampled
+    phases, θ = 0 at the ``section`` (``"impact"`` or ``"upward_crossing"``). ``cycle`` is the
+    ``Attractor`` the start reached, with ``amplitude``, ``period`` and ``omega`` = 2π/T.
+    ``coefficient`` is c, or ``None`` with the reason in ``undefined`` (white noise with
+    impacts, a response not linear in the kick, copies not settled); ``uncertainty`` is
+    |c − c_half| (NaN when undefined). ``linearity`` = max|Z − Z₂|/max|Z| and
+    ``extrapolation`` = max|correction|/max|Z| are the diagnostics; ``jump`` = Z(0⁺) − Z(2π⁻)
+    at the impact (``z_after``, ``z_before``). ``step_warnings`` are the step guard's, as the
+    command line's. ``to_dict()`` is the library's document (the command line's
+    ``--format json`` without its run fields)."""
+
+    u0: float
+    cycle: Attractor
+    amplitude: float
+    period: float
+    omega: float
+    section: str
+    impulse: float
+    theta: np.ndarray
+    z: np.ndarray
+    z_double: np.ndarray = field(repr=False)
+    z_extrapolation: np.ndarray = field(repr=False)
+    z_after: float
+    z_before: float
+    jump: float
+    correlation_time: float
+    coefficient: float | None
+    uncertainty: float
+    harmonics: int
+    tail: float
+    linearity: float
+    extrapolation: float
+    undefined: str | None
+    step_warnings: list[str]
+    document: dict = field(repr=False)
+
+    def to_dict(self) -> dict:
+        return self.document
+
+    def prediction(self, D: float) -> float | None:
+        """λ_pred = −c·D at noise intensity ``D`` (``None`` where c is undefined)."""
+        if self.coefficient is None:
+            return None
+        return -self.coefficient * _finite("D", D)
+
+
+def phase_response(
+    params: Params,
+    u0: float | None = None,
+    dt: float = 0.01,
+    impact_memory: str = "restart",
+    phases: int = 128,
+    kick: float = 1e-4,
+    periods: int = 60,
+    t_max: float = 20_000.0,
+    variant: str = "paper",
+    *,
+    threads: int | None = None,
+    progress=None,
+    **options,
+) -> PhaseResponse:
+    """The phase response of the cycle the noise-free path from (``u0``, 0) reaches, measured
+    by impulses of η with the real stepper, and c of λ_pred = −c·D (``trirhythm
+    phase-response``, bit-identical). Options and defaults are the command line's: ``u0=None``
+    (the averaged theory's largest stable amplitude at D = 0, the outer cycle), ``dt=0.01`` in
+    [1e-4, 0.1], ``impact_memory="restart"``, ``phases=128`` (even, 8 to 4096, at most T/Δt),
+    ``kick=1e-4`` in [1e-8, 1e-2] (relative to A·Ω/2), ``periods=60`` (6 to 100000 sections
+    followed), ``t_max=20000`` (to reach the cycle), ``variant``, ``system``, ``barrier``,
+    ``memory``, ``tolerance``. A start that reaches no cycle raises ``ValueError``. Where the
+    coefficient is undefined it is ``None`` and a ``RuntimeWarning`` gives the reason; the step
+    guard's warnings are warned too."""
+    m = _model_args(options)
+    text, step_warnings = _native._phase_response(
+        _check_params(params),
+        None if u0 is None else _finite("u0", u0),
+        _finite("dt", dt),
+        impact_memory,
+        _count("phases", phases),
+        _finite("kick", kick),
+        _count("periods", periods),
+        _finite("t_max", t_max),
+        variant,
+        **m,
+        threads=threads,
+        progress=_progress(progress),
+    )
+    doc = json.loads(text)
+    samples = doc["samples"]
+    arr = lambda key: np.array([float(_nonfinite(s[key])) for s in samples])  # noqa: E731
+    num = lambda key: float(_nonfinite(doc[key]))  # noqa: E731
+    r = PhaseResponse(
+        u0=num("u0"),
+        cycle=Attractor._of({"u0": doc["u0"], "attractor": doc["cycle"], "variant": variant}),
+        amplitude=num("amplitude"),
+        period=num("period"),
+        omega=num("omega"),
+        section=doc["section"],
+        impulse=num("impulse"),
+        theta=arr("theta"),
+        z=arr("z"),
+        z_double=arr("z_double"),
+        z_extrapolation=arr("extrapolation"),
+        z_after=num("z_after"),
+        z_before=num("z_before"),
+        jump=num("jump"),
+        correlation_time=num("correlation_time"),
+        coefficient=None if doc.get("coefficient") is None else float(doc["coefficient"]),
+        uncertainty=num("uncertainty"),
+        harmonics=int(doc["harmonics"]),
+        tail=num("tail"),
+        linearity=num("linearity"),
+        extrapolation=num("extrapolation"),
+        undefined=doc.get("undefined"),
+        step_warnings=list(step_warnings),
+        document=doc,
+    )
+    for w in step_warnings:
+        warnings.warn(f"phase_response: {w}", RuntimeWarning, stacklevel=2)
+    if r.coefficient is None:
+        warnings.warn(f"phase_response: no coefficient: {r.undefined}", RuntimeWarning, stacklevel=2)
+    return r
 
 
 def oscillation_boundary(
