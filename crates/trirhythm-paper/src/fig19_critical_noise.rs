@@ -1,17 +1,14 @@
-//! Fig. 19: where the largest Lyapunov exponent changes sign, as a sign map over (parameter, D)
-//! for μ0 (a), τ (b), λ (c) and r (d): per panel, five values of the parameter × a log-spaced
-//! grid of D × two starts, each cell the LLE's sign decided with significance (significantly
-//! +, significantly −, not significant, undefined), and the bracket of D_c drawn where a
-//! significant − → + change is located. The paper's trends of D_c are decided on these brackets.
+//! Fig. 19: the critical noise D_c against μ0 (a), τ (b), λ (c) and r (d) at the paper's printed
+//! base point (λ = r = 0.998, μ0 = 0.01, τ = 0.5; the caption's "r = 9.998" is a misprint of
+//! 0.998): per panel, five values of the parameter, one curve per attractor of the noise-free
+//! system ([`crate::lle::plan_curves`]) on a log-spaced grid of D, each point called chaotic /
+//! not chaotic / synchronised / undecided and each curve's D_c bracketed by the regime rules
+//! (`verdict::rules::regime`); drawn as a map over (parameter, D) with the brackets. The paper's
+//! trends of D_c are decided on these brackets, per attractor.
 //!
-//! Method: [`crate::lle::lle_point`] at every cell (frozen noise, two trajectories, Δt by
-//! [`crate::lle::dt_for`]), from U(0) = 1 and from the outer stable cycle of the averaged theory
-//! ([`crate::lle::StartKind`]); signs by z = LLE/se, Student's t with realisations − 1 degrees
-//! of freedom, two-sided at 0.05 with Holm–Bonferroni over all cells of a panel
-//! ([`crate::verdict::rules::significance`]); per column (value, start) the outcome of
-//! [`crate::verdict::rules::locate`]: a bracket (largest significantly negative D, smallest
-//! significantly positive D) when it is narrower than the grid, else why not. Checked by
-//! `tests/figures.rs` and the rule's tests in `tests/verdicts.rs`.
+//! Method: [`crate::lle::run_curve`] (frozen noise, two trajectories, Δt by
+//! [`crate::lle::dt_for`]). Checked by `tests/figures.rs` and the rules' tests in
+//! `tests/verdicts.rs`.
 
 use crate::lle::{
     log_spaced, lyapunov_caption, panels_table, plan_curves, run_curve, starts_line, Curve, Panel,

@@ -1,14 +1,17 @@
 //! The largest Lyapunov exponent against the noise intensity (Figs 17, 18) and what Fig. 19
-//! shares with them: run sizes at quick or paper quality, the step rule, the two starts, panels
-//! of curves with error bars and the words for a critical-noise search.
+//! shares with them: run sizes at quick or paper quality, the step rule, the curves by regime,
+//! panels of curves with error bars and the regime rules' outcome per curve.
 //!
 //! Figs 17 and 18 are one computation, [`lle_against_noise_figure`], with two configurations
-//! ([`LleNoiseFigure`]): two panels, each a set of curves (one per value of a parameter and per
-//! start) of the LLE against D on a log-spaced grid ([`noises`]). Every curve is computed from
-//! two starts ([`StartKind`]): U(0) = 1 (the basin of rest) and U(0) = the outer stable cycle's
-//! amplitude of the averaged theory at D = 0 for the curve's parameters ([`outer_amplitude`];
-//! none: the curve says so and has no points). The verdicts (sign change by Student's t with
-//! Holm–Bonferroni, `verdict::rules::sign_change`) are stated per start.
+//! ([`LleNoiseFigure`]): two panels, each a set of curves of the LLE against D on a log-spaced
+//! grid ([`noises`]). For every value of the panel's parameter the starts are classified by the
+//! attractor their noise-free path reaches ([`regime_starts`]: the averaged theory's stable
+//! amplitudes, 1 and 0.01 tried) and one curve is drawn per attractor: the rest regime
+//! ([`StartKind::Rest`], also at [`REST_EXTRA_NOISES`]) or a cycle ([`StartKind::Cycle`], named
+//! inner / middle / outer in [`Curve::attractor`]). Each curve carries the regime rules'
+//! decision ([`CurveRegime`], `verdict::rules::regime`): every point's call against δ = 1/W with
+//! the merged realisations kept, the bracket of D_c, the rest regime's pooled exponent and slope,
+//! and on a cycle the phase-reduction prediction −c·D with its equivalence test.
 //!
 //! Step: Δt = the largest of [`DT_LADDER`] not above τ/10 ([`dt_for`]): the coloured noise's
 //! correlation time is resolved by at least ten steps (at Δt = 0.01 and τ = 0.025 the exponent

@@ -166,23 +166,35 @@ fn the_outer_start_is_the_averaged_outer_cycle_or_none() {
 }
 
 #[test]
-fn lyapunov_figures_run_both_starts_and_keep_every_point() {
+fn lyapunov_figures_run_one_curve_per_attractor_and_keep_every_point() {
     use trirhythm_paper::lle::{panels_table, Curve, Flag, Panel, Point, StartKind};
     use trirhythm_paper::notes::variant_line;
-    use trirhythm_paper::verdict::rules::PointSign;
+    use trirhythm_paper::verdict::rules::{Bracket, PointSign};
     let f = fig18_lle_noise_fractional::Fig18::compute(&QUICK, &Silent).unwrap();
     for p in &f.0.panels {
-        for start in StartKind::BOTH {
-            assert_eq!(p.curves.iter().filter(|c| c.start == start).count(), 4);
+        // every value has at least one curve, no two curves of a value on the same attractor
+        for v in p.curves.iter().map(|c| c.value) {
+            let of: Vec<&Curve> = p.curves.iter().filter(|c| c.value == v).collect();
+            assert!(!of.is_empty());
+            for (i, a) in of.iter().enumerate() {
+                assert!(of[i + 1..].iter().all(|b| b.attractor != a.attractor));
+            }
         }
         assert!(
             p.curves.iter().all(|c| c.dt == 0.0025),
             "τ = 0.025 runs at Δt = 0.0025"
         );
-        for c in p.curves.iter().filter(|c| !c.points.is_empty()) {
-            assert!(c.u0 == 1.0 || c.start == StartKind::Outer);
+        for c in &p.curves {
+            assert_eq!(c.attractor == "rest", c.start == StartKind::Rest);
+            let r = c.regime.as_ref().expect("every curve decided by its regime");
+            assert_eq!(r.calls.len(), c.points.len());
+            assert_eq!(r.rest.is_some(), c.start == StartKind::Rest);
+            assert!(r.margin > 0.0);
+            if let Bracket::Located { lo, hi } = r.bracket {
+                assert!(lo < hi);
+            }
             for q in &c.points {
-                assert_eq!(q.flag == Flag::Value, q.sign != PointSign::Undefined);
+                assert_ne!(q.sign, PointSign::Undefined, "every point has its call");
             }
         }
     }
@@ -199,6 +211,9 @@ fn lyapunov_figures_run_both_starts_and_keep_every_point() {
         n: 8,
         flag,
         sign: PointSign::NotSignificant,
+        merged: 0,
+        unmerged: y,
+        unmerged_se: 0.01,
     };
     let panel = Panel {
         caption: "(b) λ = 0.998".into(),
@@ -212,10 +227,12 @@ fn lyapunov_figures_run_both_starts_and_keep_every_point() {
             start: StartKind::Rest,
             u0: 1.0,
             dt: 0.0025,
+            attractor: "rest".into(),
             points: vec![
                 q(0.1, 0.12, Flag::Value),
                 q(0.3, f64::NEG_INFINITY, Flag::Merged),
             ],
+            regime: None,
         }],
         verdicts: vec![],
     };
@@ -229,14 +246,20 @@ fn lyapunov_figures_run_both_starts_and_keep_every_point() {
 }
 
 #[test]
-fn fig19_is_a_sign_map_of_every_value_and_start() {
+fn fig19_has_every_value_with_a_curve_per_attractor() {
     let f = fig19_critical_noise::Fig19::compute(&QUICK, &Silent).unwrap();
     assert_eq!(f.panels.len(), 4);
     for m in &f.panels {
-        assert_eq!(m.panel.curves.len(), 10, "5 values × 2 starts");
-        assert_eq!(m.located.len(), 10);
+        for v in &m.values {
+            assert!(
+                m.panel.curves.iter().any(|c| c.value == *v),
+                "{} = {v} has a curve",
+                m.key
+            );
+        }
+        assert_eq!(m.located.len(), m.panel.curves.len());
         for (c, l) in m.panel.curves.iter().zip(&m.located) {
-            assert_eq!(c.points.is_empty(), l.is_none());
+            assert!(l.is_some() && c.regime.is_some());
             assert!(c.points.iter().all(|q| q.x > 0.0));
         }
     }

@@ -790,6 +790,8 @@ fn lle_panel(
                 start,
                 u0: 1.0,
                 dt: 0.005,
+                attractor: String::new(),
+                regime: None,
                 points: ds
                     .iter()
                     .zip(ys)
@@ -802,6 +804,9 @@ fn lle_panel(
                         n: 8,
                         flag: Flag::Value,
                         sign: trirhythm_paper::verdict::rules::PointSign::Undefined,
+                        merged: 0,
+                        unmerged: y,
+                        unmerged_se: 0.002,
                     })
                     .collect(),
             })
@@ -821,11 +826,11 @@ fn a_lyapunov_claim_is_decided_per_start_and_says_so() {
     // no outer cycle (a curve without points)
     let a = lle_panel(
         "(a) τ = 0.06",
-        &[(StartKind::Rest, rising), (StartKind::Outer, falling)],
+        &[(StartKind::Rest, rising), (StartKind::Cycle, falling)],
     );
     let b = lle_panel(
         "(b) μ0 = 0.001",
-        &[(StartKind::Rest, rising), (StartKind::Outer, &[])],
+        &[(StartKind::Rest, rising), (StartKind::Cycle, &[])],
     );
     let data = LleAgainstNoise {
         caption: Caption {
@@ -858,14 +863,140 @@ fn a_lyapunov_claim_is_decided_per_start_and_says_so() {
     assert_eq!(tag(&a), "refuted");
     assert!(
         a.statistic
-            .contains("per start: from the rest basin (U(0) = 1): confirmed; from the outer cycle"),
+            .contains("per start: in the rest regime (the start's noise-free path comes to rest on the wall): confirmed; in the cycle regime"),
         "{}",
         a.statistic
     );
     assert!(a.statistic.ends_with("refuted"), "{}", a.statistic);
     let b = find("fig17b-lle-sign-change");
     assert!(
-        matches!(b.verdict, Verdict::Undetermined { ref why } if why.contains("no outer stable cycle (averaged theory) for μ0 = 0.01, outer")),
+        matches!(b.verdict, Verdict::Undetermined { ref why } if why.contains("no outer stable cycle (averaged theory) for μ0 = 0.01, cycle")),
         "{b:?}"
+    );
+}
+
+// ---- the Lyapunov claims by regime ----
+
+/// A curve of value `v` in `start`'s regime whose regime decision has `bracket` (and, in the
+/// rest regime, `chaotic_every_d`).
+fn regime_curve(
+    v: f64,
+    start: trirhythm_paper::lle::StartKind,
+    bracket: trirhythm_paper::verdict::rules::Bracket,
+    chaotic_every_d: bool,
+) -> trirhythm_paper::lle::Curve {
+    use trirhythm_paper::lle::{Curve, CurveRegime, StartKind};
+    use trirhythm_paper::verdict::rules::RestRegime;
+    let rest = (start == StartKind::Rest).then_some(RestRegime {
+        pooled: 0.08,
+        pooled_se: 0.002,
+        slope: 0.0,
+        slope_se: 0.001,
+        decades: 6.3,
+        chaotic_every_d,
+    });
+    Curve {
+        label: format!("r = {v}, {}", start.name()),
+        value: v,
+        start,
+        u0: 1.0,
+        dt: 0.0025,
+        attractor: if start == StartKind::Rest {
+            "rest".into()
+        } else {
+            "outer cycle (A = 12.8)".into()
+        },
+        points: vec![],
+        regime: Some(CurveRegime {
+            margin: 1.0 / 1500.0,
+            calls: vec![],
+            bracket,
+            rest,
+            coefficient: f64::NAN,
+            coefficient_uncertainty: f64::NAN,
+            prediction_note: String::new(),
+            agrees: vec![],
+        }),
+    }
+}
+
+fn judge_fig18b(curves: Vec<trirhythm_paper::lle::Curve>) -> Decision {
+    use trirhythm_paper::fig18_lle_noise_fractional::Fig18;
+    use trirhythm_paper::lle::{DtCheck, LleAgainstNoise, Panel};
+    use trirhythm_paper::notes::Caption;
+    let panel = |curves| Panel {
+        caption: "(b) λ = 0.998".into(),
+        x_key: "D".into(),
+        x_desc: String::new(),
+        y_desc: String::new(),
+        y_key: "lle".into(),
+        curves,
+        verdicts: vec![],
+    };
+    let data = LleAgainstNoise {
+        caption: Caption {
+            title: String::new(),
+            lines: vec![],
+        },
+        notes: vec![],
+        panels: vec![panel(vec![]), panel(curves)],
+        dt_check: DtCheck {
+            what: String::new(),
+            panel: "b".into(),
+            dt_rule: 0.0025,
+            points: vec![],
+        },
+    };
+    let figs = Figures {
+        fig18: Some(Fig18(data)),
+        ..Default::default()
+    };
+    judge(&figs)
+        .claims
+        .into_iter()
+        .find(|c| c.claim.id == "fig18b-lle-sign-change")
+        .unwrap()
+        .decision
+}
+
+#[test]
+fn a_lyapunov_claim_by_regime_is_decided_per_value_of_the_parameter() {
+    use trirhythm_paper::lle::StartKind::{Cycle, Rest};
+    use trirhythm_paper::verdict::rules::Bracket;
+    let located = Bracket::Located { lo: 0.01, hi: 0.1 };
+    // r = 0.998: rest (D_c = 0) and a cycle with a located transition: for (the paper may have
+    // started on the cycle); r = 0.9: a located transition: for
+    let d = judge_fig18b(vec![
+        regime_curve(0.998, Rest, Bracket::Below { d: 1e-6 }, true),
+        regime_curve(0.998, Cycle, located, false),
+        regime_curve(0.9, Cycle, located, false),
+    ]);
+    assert_eq!(tag(&d), "confirmed", "{d:?}");
+    assert_eq!(d.rule, "regime");
+    // r = 0.8 has only the rest regime, chaotic at every D down to 1e-6: against
+    let d = judge_fig18b(vec![
+        regime_curve(0.998, Cycle, located, false),
+        regime_curve(0.8, Rest, Bracket::Below { d: 1e-6 }, true),
+    ]);
+    assert_eq!(tag(&d), "refuted", "{d:?}");
+    // the rest regime chaotic but not flat (or not over three decades): neither
+    let d = judge_fig18b(vec![
+        regime_curve(0.998, Cycle, located, false),
+        regime_curve(0.8, Rest, Bracket::Below { d: 1e-6 }, false),
+    ]);
+    assert!(
+        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("r = 0.8")),
+        "{d:?}"
+    );
+    // a cycle not chaotic up to the largest D: no located transition
+    let d = judge_fig18b(vec![regime_curve(
+        0.998,
+        Cycle,
+        Bracket::Above { d: 2.0 },
+        false,
+    )]);
+    assert!(
+        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("D_c > 2")),
+        "{d:?}"
     );
 }
