@@ -109,6 +109,12 @@ pub const WHOLE_NUMBER_FLAGS: &[(&str, &str, &str)] = &[
     ("*", "--lanes", "1, 4 or 8"),
     ("ensemble", "--clones", "4 to 100000"),
     ("ensemble", "--max-iterations", "1 or more"),
+    (
+        "phase-response",
+        "--phases",
+        "an even number from 8 to 4096",
+    ),
+    ("phase-response", "--periods", "6 to 100000"),
 ];
 
 /// The allowed range of whole-number flag `flag` of `command`, if it is one.

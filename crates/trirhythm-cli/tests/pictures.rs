@@ -50,11 +50,11 @@ fn every_picture_states_what_it_shows() {
             "{name}: no title"
         );
         if (17..=19).contains(&n) {
-            // the Lyapunov figures use the averaged theory only for the outer start, and say
-            // so there, without the caption's variant line
+            // the Lyapunov figures use the averaged theory only for the starts (its stable
+            // amplitudes), and say so there, without the caption's variant line
             let all = texts.join(" ");
             assert!(
-                all.contains("outer stable cycle") && all.contains("--variant consistent"),
+                all.contains("stable amplitudes") && all.contains("--variant consistent"),
                 "{name}: the outer start's formulas are not stated"
             );
             assert!(

@@ -114,7 +114,7 @@ impl Figure for Fig19 {
         }
         let total: usize = plans
             .iter()
-            .flat_map(|p| p.iter().map(|c| c.noises.len()))
+            .flat_map(|p| p.iter().map(crate::lle::PlannedCurve::most_points))
             .sum();
         let mut step = 0;
         let mut panels = Vec::new();

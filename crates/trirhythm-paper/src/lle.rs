@@ -69,13 +69,13 @@ impl Sizes {
         Sizes::with_window(quick, 100.0, 1500.0)
     }
 
-    /// Quick (2 realisations, transient 20, window `quick_window`) or paper quality (8
+    /// Quick (2 realisations, transient 20, window `quick_window`) or paper quality (16
     /// realisations, transient 200, window `full_window`), seed 1.
     pub fn with_window(quick: bool, quick_window: f64, full_window: f64) -> Sizes {
         let (paths, transient, length) = if quick {
             (2, 20.0, quick_window)
         } else {
-            (8, 200.0, full_window)
+            (16, 200.0, full_window)
         };
         Sizes {
             spec: LyapunovSpec {
@@ -343,6 +343,28 @@ pub struct Curve {
     pub regime: Option<CurveRegime>,
 }
 
+impl Curve {
+    /// The regime rules applied now to the stored points, with the stored margin and
+    /// phase-reduction coefficient (figure data keep the decision of the rules they were
+    /// computed with; the verdicts read this one); None for data without a decision.
+    pub fn redecided(&self) -> Option<CurveRegime> {
+        let r = self.regime.as_ref()?;
+        let prediction = (self.start == StartKind::Cycle).then(|| {
+            (
+                r.coefficient,
+                r.coefficient_uncertainty,
+                r.prediction_note.clone(),
+            )
+        });
+        Some(decide_regime(
+            self.start,
+            &self.points,
+            prediction.as_ref(),
+            1.0 / r.margin,
+        ))
+    }
+}
+
 /// What the regime rules say about a curve (`verdict::rules::regime`).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct CurveRegime {
@@ -374,14 +396,14 @@ impl CurveRegime {
         let mut out = self.bracket.words();
         if let Some(r) = &self.rest {
             out.push_str(&format!(
-                "; pooled exponent {} ± {}, slope {} ± {} per decade of D over {} decades{}",
+                "; at D ≤ 0.01: pooled exponent {} ± {}, slope {} ± {} per decade of D over {} decades{}",
                 sig(r.pooled, 3),
                 sig(r.pooled_se, 2),
                 sig(r.slope, 2),
                 sig(r.slope_se, 2),
                 sig(r.decades, 2),
-                if r.chaotic_every_d {
-                    ": chaotic for every D > 0 tried, D_c = 0"
+                if r.d_c_zero {
+                    ": chaotic as D → 0, D_c = 0"
                 } else {
                     ""
                 }
@@ -413,16 +435,63 @@ impl CurveRegime {
     }
 }
 
-/// The regime rules over the points of a curve of regime `kind` whose start is `u0`, on the
-/// noise-free system of `params` with `method`, for a window `window` (δ = 1/window): the
-/// calls, the bracket of D_c, the rest regime's statistics or the cycle's phase reduction.
+/// The phase-reduction prediction of a cycle curve: c of λ ≈ −c·D from the phase response of
+/// the noise-free cycle through `u0` (64 phases, 24 periods followed), its uncertainty and a
+/// note (the reason where there is none: NaN).
+pub fn phase_prediction(
+    params: &Params,
+    method: &PredictorCorrector,
+    u0: f64,
+    monitor: &dyn Monitor,
+) -> Result<(f64, f64, String)> {
+    monitor.check()?;
+    let problem = Problem::from_params(&params.with("D", 0.0)?)?;
+    let spec = PhaseSpec {
+        phases: 64,
+        periods: 24,
+        ..Default::default()
+    };
+    Ok(
+        match phase_response(&problem, method, u0, &spec, &OnlyCancel(monitor)) {
+            Ok(r) => match r.coefficient {
+                Some(c) => (
+                    c,
+                    r.uncertainty,
+                    format!(
+                        "phase response by impulses at {} phases, linearity {}",
+                        spec.phases,
+                        sig(r.linearity, 2)
+                    ),
+                ),
+                None => (
+                    f64::NAN,
+                    f64::NAN,
+                    format!(
+                        "no phase-reduction prediction: {}",
+                        r.undefined.unwrap_or_default()
+                    ),
+                ),
+            },
+            Err(trirhythm::Error::Cancelled) => return Err(trirhythm::Error::Cancelled),
+            Err(e) => (
+                f64::NAN,
+                f64::NAN,
+                format!("no phase-reduction prediction: {e}"),
+            ),
+        },
+    )
+}
+
+/// The regime rules over the points of a curve of regime `kind` for a window `window`
+/// (δ = 1/window): the calls, the bracket of D_c, the rest regime's statistics or, with the
+/// cycle's phase-reduction `prediction` (c, its uncertainty, a note; [`phase_prediction`]),
+/// the equivalence of each point with −c·D.
 pub fn decide_regime(
     kind: StartKind,
     points: &[Point],
-    (params, method, u0): (&Params, &PredictorCorrector, f64),
+    prediction: Option<&(f64, f64, String)>,
     window: f64,
-    monitor: &dyn Monitor,
-) -> Result<CurveRegime> {
+) -> CurveRegime {
     let margin = 1.0 / window;
     let rp: Vec<RegimePoint> = points.iter().map(Point::regime_point).collect();
     let c = calls(&rp, margin);
@@ -438,45 +507,22 @@ pub fn decide_regime(
         prediction_note: String::new(),
         agrees: vec![None; rp.len()],
     };
-    match kind {
-        StartKind::Rest => out.rest = Some(rest_regime(&rp, margin)),
-        StartKind::Cycle => {
-            monitor.check()?;
-            let problem = Problem::from_params(&params.with("D", 0.0)?)?;
-            let spec = PhaseSpec {
-                phases: 64,
-                periods: 24,
-                ..Default::default()
-            };
-            match phase_response(&problem, method, u0, &spec, &OnlyCancel(monitor)) {
-                Ok(r) => match r.coefficient {
-                    Some(c) => {
-                        out.coefficient = c;
-                        out.coefficient_uncertainty = r.uncertainty;
-                        out.prediction_note = format!(
-                            "phase response by impulses at {} phases, linearity {}",
-                            spec.phases,
-                            sig(r.linearity, 2)
-                        );
-                        let k = rp.len().max(1) as f64;
-                        out.agrees = rp
-                            .iter()
-                            .map(|p| agrees_with_prediction(p, Some(c), margin, ALPHA / k))
-                            .collect();
-                    }
-                    None => {
-                        out.prediction_note = format!(
-                            "no phase-reduction prediction: {}",
-                            r.undefined.unwrap_or_default()
-                        )
-                    }
-                },
-                Err(trirhythm::Error::Cancelled) => return Err(trirhythm::Error::Cancelled),
-                Err(e) => out.prediction_note = format!("no phase-reduction prediction: {e}"),
-            }
+    if kind == StartKind::Rest {
+        out.rest = Some(rest_regime(&rp, margin));
+    }
+    if let Some((c, unc, note)) = prediction {
+        out.coefficient = *c;
+        out.coefficient_uncertainty = *unc;
+        out.prediction_note = note.clone();
+        if c.is_finite() {
+            let k = rp.len().max(1) as f64;
+            out.agrees = rp
+                .iter()
+                .map(|p| agrees_with_prediction(p, Some(*c), margin, ALPHA / k))
+                .collect();
         }
     }
-    Ok(out)
+    out
 }
 
 /// The point's sign as its call says (chaotic +, not chaotic or synchronised −, undecided
@@ -670,6 +716,11 @@ fn point_of(x: f64, r: &trirhythm::analysis::lyapunov::LyapunovResult) -> Point 
 /// (`verdict::rules::regime`).
 pub const REST_EXTRA_NOISES: [f64; 3] = [1e-6, 1e-5, 1e-4];
 
+/// The noise intensities beyond a figure's grid that a cycle-regime curve is extended to at
+/// paper quality when no point up to the grid's largest D is chaotic: the paper prints no D
+/// range, so "D_c above the range" is pushed until chaos or this end.
+pub const CYCLE_EXTRA_NOISES: [f64; 3] = [5.0, 12.0, 30.0];
+
 /// The curves of one value of a panel's parameter: one per attractor of the noise-free system
 /// ([`regime_starts`]), with the D grid `noises` (rest curves: [`REST_EXTRA_NOISES`] below it
 /// unless `quick`).
@@ -682,6 +733,16 @@ pub struct PlannedCurve {
     pub start: RegimeStart,
     /// Its D grid, ascending.
     pub noises: Vec<f64>,
+    /// The D it is extended to when not chaotic up to the grid's end ([`CYCLE_EXTRA_NOISES`]
+    /// for cycle curves at paper quality).
+    pub extension: Vec<f64>,
+}
+
+impl PlannedCurve {
+    /// The most points the curve may take (progress).
+    pub fn most_points(&self) -> usize {
+        self.noises.len() + self.extension.len()
+    }
 }
 
 /// Plan the curves of `values` of `key` on `base`: classify the starts (noise-free runs) and
@@ -707,15 +768,34 @@ pub fn plan_curves(
                 d.extend(REST_EXTRA_NOISES);
             }
             d.extend(noises);
+            let extension = if start.kind == StartKind::Cycle && !quick {
+                CYCLE_EXTRA_NOISES.to_vec()
+            } else {
+                vec![]
+            };
             planned.push(PlannedCurve {
                 value: v,
                 params: p.clone(),
                 start,
                 noises: d,
+                extension,
             });
         }
     }
     Ok((planned, notes))
+}
+
+/// The start of a point at noise `d` of a curve of regime `kind` whose start is `u0`: on a
+/// cycle `u0`; in the rest regime min(`u0`, √D), the state scaled with the noise as the rest
+/// regime's homogeneity scales it (`verdict::rules::regime`): a start far above the noise's
+/// scale would spend the window decaying toward the wall, which the argument does not describe
+/// (measured on Fig. 17(a)'s μ0 = 0.001: from U(0) = 1 the exponent at D = 10⁻⁶ was 0.0014 ±
+/// 0.0009, from U(0) = 10⁻³ 0.0100 ± 0.0013, as at D = 10⁻⁴ from 10⁻², 0.0112 ± 0.0017).
+pub fn rest_start(kind: StartKind, u0: f64, d: f64) -> f64 {
+    match kind {
+        StartKind::Cycle => u0,
+        StartKind::Rest => u0.min(d.sqrt()),
+    }
 }
 
 /// Compute one planned curve: its points, its regime decision, its points' signs from the
@@ -731,29 +811,44 @@ pub fn run_curve(
     let mut points = Vec::new();
     let mut notes = Vec::new();
     let u0 = c.start.u0;
-    for &d in &c.noises {
+    let mut run = |d: f64, points: &mut Vec<Point>, step: &mut usize| -> Result<()> {
         crate::step(monitor, *step, total)?;
         *step += 1;
+        let start = rest_start(c.start.kind, u0, d);
         let at = format!(
             "{what}, {} = {}, {} from U(0) = {}, D = {}",
             symbol(key),
             num(c.value),
             c.start.attractor,
-            sig(u0, 4),
+            sig(start, 4),
             sig(d, 4)
         );
-        let (q, note) = lle_point(monitor, &c.params.with("D", d)?, u0, d, sizes, &at)?;
+        let (q, note) = lle_point(monitor, &c.params.with("D", d)?, start, d, sizes, &at)?;
         points.push(q);
         notes.extend(note);
+        Ok(())
+    };
+    for &d in &c.noises {
+        run(d, &mut points, step)?;
     }
     let method = sizes.method(c.params.correlation_time);
-    let regime = decide_regime(
-        c.start.kind,
-        &points,
-        (&c.params, &method, u0),
-        sizes.spec.length,
-        monitor,
-    )?;
+    let prediction = match c.start.kind {
+        StartKind::Cycle => Some(phase_prediction(&c.params, &method, u0, monitor)?),
+        StartKind::Rest => None,
+    };
+    let decide = |points: &[Point]| {
+        decide_regime(c.start.kind, points, prediction.as_ref(), sizes.spec.length)
+    };
+    let mut regime = decide(&points);
+    // no chaotic point up to the grid's end (regular or undecided there): extended, one D at a
+    // time, until chaos
+    let mut left = c.extension.iter();
+    while !regime.calls.contains(&Call::Chaotic) {
+        let Some(&d) = left.next() else { break };
+        run(d, &mut points, step)?;
+        regime = decide(&points);
+    }
+    *step += left.count();
     let name = c
         .start
         .attractor
@@ -1131,7 +1226,7 @@ pub fn lle_against_noise_figure(
     }
     let total: usize = plans
         .iter()
-        .flat_map(|(_, p)| p.iter().map(|c| c.noises.len()))
+        .flat_map(|(_, p)| p.iter().map(PlannedCurve::most_points))
         .sum();
     let mut first = None;
     let mut done = 0;
@@ -1144,7 +1239,7 @@ pub fn lle_against_noise_figure(
             &sz,
             (done, total),
         )?;
-        done += planned.iter().map(|c| c.noises.len()).sum::<usize>();
+        done += planned.iter().map(PlannedCurve::most_points).sum::<usize>();
         first.get_or_insert(base.clone());
         panels.push(p);
         notes.extend(n);

@@ -186,7 +186,10 @@ fn lyapunov_figures_run_one_curve_per_attractor_and_keep_every_point() {
         );
         for c in &p.curves {
             assert_eq!(c.attractor == "rest", c.start == StartKind::Rest);
-            let r = c.regime.as_ref().expect("every curve decided by its regime");
+            let r = c
+                .regime
+                .as_ref()
+                .expect("every curve decided by its regime");
             assert_eq!(r.calls.len(), c.points.len());
             assert_eq!(r.rest.is_some(), c.start == StartKind::Rest);
             assert!(r.margin > 0.0);

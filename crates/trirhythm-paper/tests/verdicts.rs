@@ -878,12 +878,12 @@ fn a_lyapunov_claim_is_decided_per_start_and_says_so() {
 // ---- the Lyapunov claims by regime ----
 
 /// A curve of value `v` in `start`'s regime whose regime decision has `bracket` (and, in the
-/// rest regime, `chaotic_every_d`).
+/// rest regime, `d_c_zero`).
 fn regime_curve(
     v: f64,
     start: trirhythm_paper::lle::StartKind,
     bracket: trirhythm_paper::verdict::rules::Bracket,
-    chaotic_every_d: bool,
+    d_c_zero: bool,
 ) -> trirhythm_paper::lle::Curve {
     use trirhythm_paper::lle::{Curve, CurveRegime, StartKind};
     use trirhythm_paper::verdict::rules::RestRegime;
@@ -893,7 +893,7 @@ fn regime_curve(
         slope: 0.0,
         slope_se: 0.001,
         decades: 6.3,
-        chaotic_every_d,
+        d_c_zero,
     });
     Curve {
         label: format!("r = {v}, {}", start.name()),

@@ -201,8 +201,27 @@ const RULES: &[(&str, &str, &str)] = &[
          undetermined: not stationary.",
     ),
     (
+        "regime",
+        "The Lyapunov claims by regime",
+        "Each curve of Figs 17–19 is one attractor of the noise-free system (rest on the wall, \
+         or an inner / middle / outer cycle), found by following the starts without noise. A \
+         point is called against the margin δ = 1/W (W the window: below it no e-fold within \
+         the window) with one-sided Student's t on the realisations that did not merge, \
+         Bonferroni over the curve's points at α = 0.05: chaotic (lower bound above δ), not \
+         chaotic (upper bound below δ), synchronised (at least half the realisations merged: \
+         their exponent is −∞) or undecided. D_c lies between the largest not-chaotic D and \
+         the smallest chaotic D. In the rest regime, where the equation near the wall is \
+         homogeneous, D_c = 0 when the exponent pooled over D ≤ 10⁻² (from 10⁻⁶) exceeds δ and \
+         does not trend with log D. On a cycle, the phase-reduction prediction λ ≈ −c·D is \
+         computed from the cycle's phase response and tested for equivalence within δ. The \
+         sign-change claims: per value of the parameter, for when one of its regimes has a \
+         located D_c, against when every regime it has has D_c = 0; refuted when a value is \
+         against, confirmed when every value is for. Fig. 19's trends: the trend rule over each \
+         attractor's brackets of D_c.",
+    ),
+    (
         "sign_change",
-        "Sign change of the largest Lyapunov exponent",
+        "Sign change of the largest Lyapunov exponent (data of earlier versions)",
         "\"Past a critical noise D_c the LLE turns positive\", on each curve of a panel. Every \
          point is tested with t = LLE/se and realisations − 1 degrees of freedom, two-sided, \
          Holm–Bonferroni at α = 0.05 over all points of the claim; a point whose exponent is not \

@@ -3,8 +3,8 @@
 //! agreement, count, sign-change and trend rules.
 
 use super::super::rules::{
-    agreement, count, sign_change, trend, Comparison, Count, CountSource, Direction, LleCurve,
-    Located, Series, Weightings,
+    agreement, count, sign_change, trend, Bracket, Comparison, Count, CountSource, Direction,
+    LleCurve, Located, Series, Weightings,
 };
 use super::super::{all_of, Decision, Measured, Verdict};
 use crate::boundary::Panel as BoundaryPanel;
@@ -153,7 +153,7 @@ fn per_start_all_of(rule: &str, parts: Vec<(String, Decision)>) -> Decision {
 /// (`verdict::rules::regime`, docs/verdicts.md): one check per curve of the paper, that is per
 /// value of the panel's parameter. A value is **for** the sentence when one of its regimes has
 /// a located transition D_c ∈ (D1, D2) (not chaotic at D1, chaotic at D2); **against** when
-/// every regime it has is chaotic at every D tried (the rest regime's D_c = 0: positive down to
+/// every regime it has has D_c = 0 (the rest regime chaotic as D → 0: positive down to
 /// D = 10⁻⁶ and flat in log D — no transition, whatever start the paper used); otherwise
 /// neither, with each curve's outcome. Refuted when a value is against, confirmed when every
 /// value is for, else undetermined. Data without regimes (an earlier version) fall back to the
@@ -166,7 +166,7 @@ pub(super) fn lle_sign_change(p: &LlePanel) -> Decision {
 }
 
 fn regime_sign_change(p: &LlePanel) -> Decision {
-    use super::super::rules::{Bracket, ALPHA};
+    use super::super::rules::ALPHA;
     use super::super::{Check, Outcome};
     use crate::notes::{num, sig};
     let mut values: Vec<f64> = Vec::new();
@@ -192,7 +192,7 @@ fn regime_sign_change(p: &LlePanel) -> Decision {
         let mut always = 0;
         let mut pooled = None;
         for c in &of {
-            let r = c.regime.as_ref().expect("checked");
+            let r = &c.redecided().expect("checked");
             tests += r.calls.len();
             words.push(format!("{}: {}", c.attractor, r.bracket.words()));
             if let Bracket::Located { lo, hi } = r.bracket {
@@ -200,7 +200,7 @@ fn regime_sign_change(p: &LlePanel) -> Decision {
             }
             if let Some(rest) = &r.rest {
                 pooled = Some((rest.pooled, rest.pooled_se));
-                if rest.chaotic_every_d {
+                if rest.d_c_zero {
                     always += 1;
                 }
             }
@@ -216,7 +216,7 @@ fn regime_sign_change(p: &LlePanel) -> Decision {
             (None, Some((m, se))) if always == of.len() => (
                 Measured::with_se(m, se),
                 Outcome::Against,
-                "pooled exponent of the rest regime (chaotic at every D, flat in log D)"
+                "pooled exponent of the rest regime at D ≤ 0.01 (flat in log D: D_c = 0)"
                     .to_string(),
                 m,
                 of.iter()
@@ -261,15 +261,38 @@ fn regime_sign_change(p: &LlePanel) -> Decision {
         .filter_map(|c| c.regime.as_ref().map(|r| r.margin))
         .fold(0.0, f64::max);
     let statistic = format!(
-        "per value of the parameter (a curve of the paper), the regimes of its noise-free system: calls against δ = 1/W = {} (one-sided Student's t on the unmerged realisations, Bonferroni over a curve's points at {}); for: a located D_c (not chaotic at D1, chaotic at D2); against: every regime chaotic at every D tried (rest regime: down to D = 1e-6, flat in log D, D_c = 0)",
+        "per value of the parameter (a curve of the paper), the regimes of its noise-free system: calls against δ = 1/W = {} (one-sided Student's t on the unmerged realisations, Bonferroni over a curve's points at {}); for: a located D_c (not chaotic at D1, chaotic at D2); against: every regime has D_c = 0 (the rest regime: pooled exponent above δ and flat in log D over D = 1e-6 … 1e-2, where the equation near the wall is homogeneous)",
         sig(margin, 2),
         num(ALPHA)
     );
     Decision::new(verdict, "regime", statistic, tests, Some(ALPHA), checks)
 }
 
+/// "More impact loss makes chaos likelier": with regimes, the rest regime's D-independent
+/// exponent (pooled over D ≤ 0.01, `verdict::rules::regime`) grows as r falls, one series over
+/// the rest curves in the panel's order of r (falling); data without regimes fall back to the
+/// LLE at each D per start.
 pub(super) fn fig18_impact_loss(p: &LlePanel) -> Decision {
-    per_start(p, "trend", impact_loss)
+    if p.curves.iter().any(|c| c.regime.is_none()) {
+        return per_start(p, "trend", impact_loss);
+    }
+    let points: Vec<(f64, Measured)> = p
+        .curves
+        .iter()
+        .filter(|c| c.start == StartKind::Rest)
+        .filter_map(|c| {
+            let r = c.redecided()?.rest?;
+            Some((c.value, Measured::with_se(r.pooled, r.pooled_se)))
+        })
+        .collect();
+    trend(
+        &[Series {
+            label: "pooled exponent of the rest regime (D ≤ 0.01)".into(),
+            x_name: "r".into(),
+            points,
+        }],
+        Direction::Increases,
+    )
 }
 
 /// More impact loss, larger LLE: one series over r per D, in the panel's order of r.
@@ -335,13 +358,36 @@ pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
                         Some((_, pts)) => pts.push((x, v)),
                         None => series.push((name.clone(), vec![(x, v)])),
                     };
-                // the rest regime chaotic at every D down to 1e-6, flat in log D: D_c = 0
-                if c.regime
+                // the rest regime chaotic as D → 0 (flat in log D from 1e-6 to 1e-2): D_c = 0
+                let decided = c.redecided();
+                if decided
                     .as_ref()
                     .and_then(|r| r.rest.as_ref())
-                    .is_some_and(|r| r.chaotic_every_d)
+                    .is_some_and(|r| r.d_c_zero)
                 {
                     push(c.value, Measured::exact(0.0));
+                    continue;
+                }
+                // the regime rules' bracket: located, or one-sided where the curve is chaotic
+                // from its smallest D ([0, D]) or not chaotic up to its largest ([D, ∞))
+                if let Some(r) = &decided {
+                    match r.bracket {
+                        Bracket::Located { lo, hi } => {
+                            push(c.value, Measured::bracket((lo * hi).sqrt(), lo, hi))
+                        }
+                        Bracket::Below { d } => push(c.value, Measured::bracket(f64::NAN, 0.0, d)),
+                        Bracket::Above { d } => {
+                            push(c.value, Measured::bracket(f64::NAN, d, f64::INFINITY))
+                        }
+                        Bracket::Undecided => {
+                            let why = r.bracket.words();
+                            let v = crate::notes::num(c.value);
+                            match missing.iter_mut().find(|(w, _)| *w == why) {
+                                Some((_, vs)) => vs.push(v),
+                                None => missing.push((why, vec![v])),
+                            }
+                        }
+                    }
                     continue;
                 }
                 let why = match l {

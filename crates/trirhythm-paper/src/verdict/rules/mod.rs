@@ -20,7 +20,7 @@ pub use agreement::{agreement, closeness, Comparison, Weightings, MIN_WEIGHTING_
 pub use count::{count, Count, CountSource};
 pub use regime::{
     agrees_with_prediction, bracket, call, calls, rest_regime, Bracket, Call, RegimePoint,
-    RestRegime, REST_DECADES,
+    RestRegime, REST_DECADES, REST_HOMOGENEOUS_D,
 };
 pub use sign_change::{locate, sign_change, significance, LleCurve, LlePoint, Located, PointSign};
 pub use trend::{trend, Direction, Series};
