@@ -892,7 +892,7 @@ fn regime_counts(curves: &[Curve], start: StartKind) -> Option<String> {
         })
         .count();
     Some(format!(
-        "{}: chaotic at {}, not chaotic at {}, synchronised at {}, undecided at {}; D_c bracketed on {} of {} curves",
+        "{}: chaotic {}, not chaotic {}, synchronised {}, undecided {}; D_c bracketed {}/{}",
         start.name(),
         count(Call::Chaotic),
         count(Call::NotChaotic),
@@ -1183,7 +1183,7 @@ pub fn lyapunov_caption(
 /// The starts in one line, for captions.
 pub fn starts_line(variant: Variant) -> String {
     format!(
-        "one curve per attractor of the noise-free system: starts U(0) = the averaged theory's stable amplitudes (--variant {}), 1 and 0.01, each classified by its noise-free path and labelled by where it goes; filled markers: rest regime (the path comes to rest on the wall), open: cycle regime; calls per point against δ = 1/W (docs/verdicts.md, \"The Lyapunov claims by regime\")",
+        "one curve per attractor of the noise-free system: starts U(0) = the averaged theory's stable amplitudes (--variant {}), 1 and 0.01, each classified by its noise-free path and labelled by where it goes; filled markers: rest regime (the path comes to rest on the wall), open: cycle regime; dashed: the prediction, −c·D of the phase reduction on a cycle, the pooled D-independent exponent in the rest regime; calls per point against δ = 1/W (docs/verdicts.md, \"The Lyapunov claims by regime\")",
         variant.name()
     )
 }

@@ -55,6 +55,10 @@ fn strip(panel: &Panel) -> LegendStrip {
         "filled: rest regime".into(),
     ));
     entries.push((Symbol::Ring(RGBColor(0, 0, 0)), "open: cycle regime".into()));
+    entries.push((
+        Symbol::Line(RGBColor(120, 120, 120)),
+        "dashed: prediction".into(),
+    ));
     LegendStrip { entries }
 }
 
@@ -231,6 +235,33 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
                 Circle::new((xq, q.y), 4, colour.filled())
             };
             c.draw_series(std::iter::once(marker)).map_err(pe)?;
+        }
+    }
+    // the predictions: −c·D on a cycle (dashed, over its D), the rest regime's D-independent
+    // exponent (dotted, over D ≤ 0.01 where it was pooled)
+    for curve in &panel.curves {
+        let Some(r) = curve.regime.as_ref() else {
+            continue;
+        };
+        let colour = colour_of(panel, curve.value);
+        let ds: Vec<f64> = curve.points.iter().map(|q| q.x).collect();
+        let line: Vec<(f64, f64)> = if let Some(rest) = r.rest.as_ref().filter(|r| r.d_c_zero) {
+            ds.iter()
+                .filter(|&&d| d <= trirhythm_paper::verdict::rules::REST_HOMOGENEOUS_D)
+                .map(|&d| (lx(d), rest.pooled))
+                .collect()
+        } else if r.coefficient.is_finite() {
+            // only where the prediction is on the chart (its order-D validity ends earlier)
+            ds.iter()
+                .map(|&d| (lx(d), -r.coefficient * d))
+                .filter(|&(_, v)| v >= y.start)
+                .collect()
+        } else {
+            vec![]
+        };
+        if line.len() >= 2 {
+            c.draw_series(DashedLineSeries::new(line, 6, 4, colour.stroke_width(1)))
+                .map_err(pe)?;
         }
     }
     verdict_text(&top, &c, &lines)?;

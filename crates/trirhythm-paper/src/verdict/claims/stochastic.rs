@@ -340,8 +340,13 @@ pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
         .iter()
         .find_map(|c| c.points.first().map(|q| q.x))
         .unwrap_or(f64::NAN);
+    // with regimes, D_c is the paper's: "the highest intensity of correlated noise that allows
+    // for a stable cycle" — the cycle regime's; the rest regime (D_c = 0 where it is chaotic as
+    // D → 0) has no cycle to lose and is shown in the figure, not judged here
+    let by_regime = m.panel.curves.iter().any(|c| c.regime.is_some());
     let parts = StartKind::BOTH
         .iter()
+        .filter(|&&start| !by_regime || start == StartKind::Cycle)
         .filter(|&&start| m.panel.curves.iter().any(|c| c.start == start))
         .map(|&start| {
             // one series per attractor of the regime (inner, outer, … cycle; rest)
