@@ -877,41 +877,71 @@ fn a_lyapunov_claim_is_decided_per_start_and_says_so() {
 
 // ---- the Lyapunov claims by regime ----
 
-/// A curve of value `v` in `start`'s regime whose regime decision has `bracket` (and, in the
-/// rest regime, `d_c_zero`).
+/// How a synthetic curve's exponents run against D (standard error 0.001, 16 realisations).
+#[derive(Clone, Copy)]
+enum Shape {
+    /// Not chaotic up to D = 0.01, chaotic from 0.1: D_c ∈ (0.01, 0.1).
+    Located,
+    /// Not chaotic up to D = 2.
+    Regular,
+    /// The rest regime, 0.08 at every D from 1e-6 to 1e-2: D_c = 0.
+    RestFlat,
+    /// The rest regime, chaotic but rising by 0.02 per decade: not flat.
+    RestRising,
+}
+
+/// A curve of value `v` in `start`'s regime whose points run as `shape` (the verdicts apply
+/// the regime rules to the points afresh; the stored decision only carries the margin).
 fn regime_curve(
     v: f64,
     start: trirhythm_paper::lle::StartKind,
-    bracket: trirhythm_paper::verdict::rules::Bracket,
-    d_c_zero: bool,
+    shape: Shape,
 ) -> trirhythm_paper::lle::Curve {
-    use trirhythm_paper::lle::{Curve, CurveRegime, StartKind};
-    use trirhythm_paper::verdict::rules::RestRegime;
-    let rest = (start == StartKind::Rest).then_some(RestRegime {
-        pooled: 0.08,
-        pooled_se: 0.002,
-        slope: 0.0,
-        slope_se: 0.001,
-        decades: 6.3,
-        d_c_zero,
-    });
+    use trirhythm_paper::lle::{Curve, CurveRegime, Flag, Point};
+    use trirhythm_paper::verdict::rules::{Bracket, PointSign};
+    let pairs: Vec<(f64, f64)> = match shape {
+        Shape::Located => vec![(0.001, -0.01), (0.01, -0.01), (0.1, 0.05), (1.0, 0.05)],
+        Shape::Regular => vec![(0.001, -0.01), (0.1, -0.01), (2.0, -0.01)],
+        Shape::RestFlat => [1e-6, 1e-5, 1e-4, 1e-3, 1e-2].map(|d| (d, 0.08)).to_vec(),
+        Shape::RestRising => [1e-6, 1e-5, 1e-4, 1e-3, 1e-2]
+            .iter()
+            .enumerate()
+            .map(|(k, &d)| (d, 0.02 + 0.02 * k as f64))
+            .collect(),
+    };
+    let points = pairs
+        .iter()
+        .map(|&(x, y)| Point {
+            x,
+            y,
+            lo: y - 0.001,
+            hi: y + 0.001,
+            se: 0.001,
+            n: 16,
+            flag: Flag::Value,
+            sign: PointSign::Undefined,
+            merged: 0,
+            unmerged: y,
+            unmerged_se: 0.001,
+        })
+        .collect();
     Curve {
         label: format!("r = {v}, {}", start.name()),
         value: v,
         start,
         u0: 1.0,
         dt: 0.0025,
-        attractor: if start == StartKind::Rest {
+        attractor: if start == trirhythm_paper::lle::StartKind::Rest {
             "rest".into()
         } else {
             "outer cycle (A = 12.8)".into()
         },
-        points: vec![],
+        points,
         regime: Some(CurveRegime {
             margin: 1.0 / 1500.0,
             calls: vec![],
-            bracket,
-            rest,
+            bracket: Bracket::Undecided,
+            rest: None,
             coefficient: f64::NAN,
             coefficient_uncertainty: f64::NAN,
             prediction_note: String::new(),
@@ -962,39 +992,32 @@ fn judge_fig18b(curves: Vec<trirhythm_paper::lle::Curve>) -> Decision {
 #[test]
 fn a_lyapunov_claim_by_regime_is_decided_per_value_of_the_parameter() {
     use trirhythm_paper::lle::StartKind::{Cycle, Rest};
-    use trirhythm_paper::verdict::rules::Bracket;
-    let located = Bracket::Located { lo: 0.01, hi: 0.1 };
     // r = 0.998: rest (D_c = 0) and a cycle with a located transition: for (the paper may have
     // started on the cycle); r = 0.9: a located transition: for
     let d = judge_fig18b(vec![
-        regime_curve(0.998, Rest, Bracket::Below { d: 1e-6 }, true),
-        regime_curve(0.998, Cycle, located, false),
-        regime_curve(0.9, Cycle, located, false),
+        regime_curve(0.998, Rest, Shape::RestFlat),
+        regime_curve(0.998, Cycle, Shape::Located),
+        regime_curve(0.9, Cycle, Shape::Located),
     ]);
     assert_eq!(tag(&d), "confirmed", "{d:?}");
     assert_eq!(d.rule, "regime");
-    // r = 0.8 has only the rest regime, chaotic at every D down to 1e-6: against
+    // r = 0.8 has only the rest regime, chaotic as D → 0 and flat: against
     let d = judge_fig18b(vec![
-        regime_curve(0.998, Cycle, located, false),
-        regime_curve(0.8, Rest, Bracket::Below { d: 1e-6 }, true),
+        regime_curve(0.998, Cycle, Shape::Located),
+        regime_curve(0.8, Rest, Shape::RestFlat),
     ]);
     assert_eq!(tag(&d), "refuted", "{d:?}");
-    // the rest regime chaotic but not flat (or not over three decades): neither
+    // the rest regime chaotic but not flat: neither
     let d = judge_fig18b(vec![
-        regime_curve(0.998, Cycle, located, false),
-        regime_curve(0.8, Rest, Bracket::Below { d: 1e-6 }, false),
+        regime_curve(0.998, Cycle, Shape::Located),
+        regime_curve(0.8, Rest, Shape::RestRising),
     ]);
     assert!(
         matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("r = 0.8")),
         "{d:?}"
     );
     // a cycle not chaotic up to the largest D: no located transition
-    let d = judge_fig18b(vec![regime_curve(
-        0.998,
-        Cycle,
-        Bracket::Above { d: 2.0 },
-        false,
-    )]);
+    let d = judge_fig18b(vec![regime_curve(0.998, Cycle, Shape::Regular)]);
     assert!(
         matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("D_c > 2")),
         "{d:?}"
