@@ -14,7 +14,7 @@ use crate::lle::{
     log_spaced, lyapunov_caption, panels_table, plan_curves, run_curve, starts_line, Curve, Panel,
     StartKind,
 };
-use crate::notes::{num, sig, symbol, table_notes, Caption};
+use crate::notes::{num, symbol, table_notes, Caption};
 use crate::table::Table;
 use crate::verdict::rules::{Bracket, Located};
 use crate::{Figure, FigureOptions, Monitor};
@@ -129,18 +129,7 @@ impl Figure for Fig19 {
                 .iter()
                 .map(|c| c.regime.as_ref().map(|r| located_of(&r.bracket)))
                 .collect();
-            for c in &curves {
-                if let Some(r) = &c.regime {
-                    notes.push(format!(
-                        "{label} {} ({}, U(0) = {}, Δt = {}): {}",
-                        c.label,
-                        c.attractor,
-                        sig(c.u0, 4),
-                        num(c.dt),
-                        r.words()
-                    ));
-                }
-            }
+            notes.extend(curves.iter().filter_map(|c| c.regime_note(label)));
             let verdicts = panel_verdicts(key, claim, &curves, &located);
             panels.push(SignMap {
                 panel: Panel {
@@ -222,6 +211,9 @@ fn panel_verdicts(
             .zip(located)
             .filter(|(c, _)| c.start == start)
             .collect();
+        if of.is_empty() {
+            continue;
+        }
         let found = of
             .iter()
             .filter(|(_, l)| matches!(l, Some(Located::Bracket { .. })))

@@ -344,6 +344,21 @@ pub struct Curve {
 }
 
 impl Curve {
+    /// "`prefix` label (attractor, U(0), Δt): the regime decision in words", for the notes;
+    /// None without a decision.
+    pub fn regime_note(&self, prefix: &str) -> Option<String> {
+        self.regime.as_ref().map(|r| {
+            format!(
+                "{prefix} {} ({}, U(0) = {}, Δt = {}): {}",
+                self.label,
+                self.attractor,
+                sig(self.u0, 4),
+                num(self.dt),
+                r.words()
+            )
+        })
+    }
+
     /// The regime rules applied now to the stored points, with the stored margin and
     /// phase-reduction coefficient (figure data keep the decision of the rules they were
     /// computed with; the verdicts read this one); None for data without a decision.
@@ -920,16 +935,7 @@ pub fn lle_against_noise(
     for c in planned {
         let (curve, n) = run_curve(monitor, caption, key, c, sizes, (&mut step, total))?;
         notes.extend(n);
-        if let Some(r) = &curve.regime {
-            notes.push(format!(
-                "{caption}, {} ({}, U(0) = {}, Δt = {}): {}",
-                curve.label,
-                curve.attractor,
-                sig(curve.u0, 4),
-                num(curve.dt),
-                r.words()
-            ));
-        }
+        notes.extend(curve.regime_note(&format!("{caption},")));
         curves.push(curve);
     }
     let mut verdicts: Vec<String> = StartKind::BOTH

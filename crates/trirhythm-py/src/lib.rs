@@ -814,10 +814,8 @@ fn _phase_response(
         Some(u0) => u0,
         None => {
             // the command line's default start: the outer cycle of the theory at D = 0
-            let quiet = params.0.with("D", 0.0).map_err(py_err)?;
-            let theory = Theory::new(&quiet, variant).map_err(py_err)?;
-            match theory.limit_cycles().iter().rev().find(|c| c.stable) {
-                Some(c) => c.amplitude,
+            match trirhythm_paper::lle::outer_amplitude(&params.0, variant).map_err(py_err)? {
+                Some(a) => a,
                 None => {
                     return Err(PyValueError::new_err(
                         "the averaged theory has no stable cycle here: give the start with u0",

@@ -15,7 +15,6 @@ use std::path::PathBuf;
 use trirhythm::analysis::lyapunov::{
     phase_response, AttractorSpec, PhaseResponse, PhaseSpec, MAX_FOLLOW_PERIODS, MAX_PHASES,
 };
-use trirhythm::theory::averaging::Theory;
 
 /// `text`, `json` or `csv`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -167,11 +166,11 @@ pub fn phase(args: &PhaseArgs) -> Result<()> {
     emit(args.out.as_deref(), &text)
 }
 
-/// The largest stable amplitude of the averaged theory at D = 0 (the default start).
+/// The largest stable amplitude of the averaged theory at D = 0 (the default start,
+/// [`trirhythm_paper::lle::outer_amplitude`]).
 fn outer_amplitude(params: &trirhythm::Params, args: &ParamArgs) -> Result<f64> {
-    let theory = Theory::new(&params.with("D", 0.0)?, args.variant())?;
-    match theory.limit_cycles().iter().rev().find(|c| c.stable) {
-        Some(c) => Ok(c.amplitude),
+    match trirhythm_paper::lle::outer_amplitude(params, args.variant())? {
+        Some(a) => Ok(a),
         None => crate::error::bad(
             "the averaged theory has no stable cycle here: give the start with --u0",
         ),
