@@ -2,9 +2,12 @@
 //! base point (λ = r = 0.998, μ0 = 0.01, τ = 0.5; the caption's "r = 9.998" is a misprint of
 //! 0.998): per panel, five values of the parameter, one curve per attractor of the noise-free
 //! system ([`crate::lle::plan_curves`]) on a log-spaced grid of D, each point called chaotic /
-//! not chaotic / synchronised / undecided and each curve's D_c bracketed by the regime rules
-//! (`verdict::rules::regime`); drawn as a map over (parameter, D) with the brackets. The paper's
-//! trends of D_c are decided on these brackets, per attractor.
+//! not chaotic / synchronised / undecided and each curve's D_c decided by the regime rules
+//! (`verdict::rules::regime`): a bracket (D1, D2), one-sided (below the smallest or above the
+//! largest D), none at all (never chaotic, the exponent falling at strong noise) or 0 (the rest
+//! regime chaotic as D → 0). Drawn as the paper draws it, D_c against the parameter, one series
+//! per attractor; the points' calls are in the data. The paper's trends of D_c are decided on
+//! these brackets, per attractor.
 //!
 //! Method: [`crate::lle::run_curve`] (frozen noise, two trajectories, Δt by
 //! [`crate::lle::dt_for`]). Checked by `tests/figures.rs` and the rules' tests in
@@ -51,7 +54,7 @@ pub fn noises(quick: bool) -> Vec<f64> {
     }
 }
 
-/// One panel: the sign map of one parameter.
+/// One panel: D_c against one parameter, from the curves of the LLE against D behind it.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SignMap {
     /// The cells as curves of the LLE against D, one per (value, start), with their signs.
@@ -80,8 +83,7 @@ pub struct Fig19 {
 
 impl Figure for Fig19 {
     const NUMBER: u32 = 19;
-    const TITLE: &'static str =
-        "sign of the LLE over (parameter, D) and the critical noise D_c, against μ0, τ, λ, r";
+    const TITLE: &'static str = "the critical noise D_c against μ0, τ, λ and r, per attractor";
 
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig19> {
         let sz = sizes(options.quick);
@@ -91,7 +93,7 @@ impl Figure for Fig19 {
             sz.describe(),
             starts_line(options.variant),
             format!(
-                "grid: 5 values per panel × {} D log-spaced in [{}, {}] ({}) × one curve per attractor of the noise-free system (rest curves also at D = 1e-6, 1e-5, 1e-4); a cell's call against the margin δ = 1/W (one-sided Student's t on the unmerged realisations, Bonferroni over the curve's points at 0.05): chaotic (lower bound > δ), not chaotic (upper bound < δ), synchronised (at least half the realisations merged), undecided; D_c bracket: (largest not-chaotic or synchronised D, smallest chaotic D) of a curve",
+                "grid: 5 values per panel × {} D log-spaced in [{}, {}] ({}) × one curve per attractor of the noise-free system (rest curves also at D = 1e-6, 1e-5, 1e-4); a cell's call against the margin δ = 1/W (one-sided Student's t on the unmerged realisations, Bonferroni over the curve's points at 0.05): chaotic (lower bound > δ), not chaotic (upper bound < δ), synchronised (at least half the realisations merged), undecided; D_c bracket: (largest not-chaotic or synchronised D, smallest chaotic D) of a curve; no D_c: never chaotic with the exponent falling over the last decade of D (weighted slope in log D significantly negative, the two largest D regular); D_c = 0: the rest regime chaotic as D → 0",
                 d.len(),
                 num(d[0]),
                 num(d[d.len() - 1]),
@@ -130,10 +132,10 @@ impl Figure for Fig19 {
                 .map(|c| c.regime.as_ref().map(|r| located_of(&r.bracket)))
                 .collect();
             notes.extend(curves.iter().filter_map(|c| c.regime_note(label)));
-            let verdicts = panel_verdicts(key, claim, &curves, &located);
+            let verdicts = panel_verdicts(key, claim, &curves);
             panels.push(SignMap {
                 panel: Panel {
-                    caption: format!("{label} sign of the LLE over ({}, D)", symbol(key)),
+                    caption: format!("{label} D_c against {}", symbol(key)),
                     x_key: "D".into(),
                     x_desc: symbol(key).into(),
                     y_desc: "noise intensity D (log scale)".into(),
@@ -149,7 +151,7 @@ impl Figure for Fig19 {
         }
         let caption = lyapunov_caption(
             19,
-            "sign of the largest Lyapunov exponent over (parameter, D) and the critical noise D_c",
+            "the critical noise D_c against μ0, τ, λ and r, per attractor",
             options,
             &base,
             &["mu0", "tau", "lambda", "r", "D"],
@@ -184,56 +186,55 @@ impl Figure for Fig19 {
     }
 }
 
-/// A curve's bracket as the sign map draws it: located, positive from the smallest D (chaotic
-/// there: D_c below the grid), no positive (not chaotic up to the largest D) or not significant
-/// (undecided).
+/// A curve's bracket in the sign-change terms of earlier data: located, positive from the
+/// smallest D (chaotic there: D_c below the grid), no positive (not chaotic up to the largest D,
+/// or never) or not significant (undecided).
 pub fn located_of(b: &Bracket) -> Located {
     match *b {
         Bracket::Located { lo, hi } => Located::Bracket { lo, hi },
         Bracket::Below { .. } => Located::PositiveFromStart,
-        Bracket::Above { .. } => Located::NoPositive,
+        Bracket::Above { .. } | Bracket::Never { .. } => Located::NoPositive,
         Bracket::Undecided => Located::NotSignificant,
     }
 }
 
-/// A panel's lines: per regime, the D_c brackets located out of the columns and the paper's
-/// trend.
-fn panel_verdicts(
-    key: &str,
-    claim: &str,
-    curves: &[Curve],
-    located: &[Option<Located>],
-) -> Vec<String> {
+/// A panel's lines: the paper's trend, and per regime how many curves end in each outcome of
+/// the regime rules.
+fn panel_verdicts(key: &str, claim: &str, curves: &[Curve]) -> Vec<String> {
     let mut lines = vec![format!("paper: D_c {claim} with {}", symbol(key))];
     for start in StartKind::BOTH {
-        let of: Vec<(&Curve, &Option<Located>)> = curves
-            .iter()
-            .zip(located)
-            .filter(|(c, _)| c.start == start)
-            .collect();
+        let of: Vec<&Curve> = curves.iter().filter(|c| c.start == start).collect();
         if of.is_empty() {
             continue;
         }
-        let found = of
-            .iter()
-            .filter(|(_, l)| matches!(l, Some(Located::Bracket { .. })))
-            .count();
-        let mut tags: Vec<String> = Vec::new();
-        for (_, l) in &of {
-            let t = l.map_or("no outer cycle", |l| l.tag()).to_string();
-            if !tags.contains(&t) && !matches!(l, Some(Located::Bracket { .. })) {
-                tags.push(t);
+        // how many curves end in each outcome, in a fixed order
+        let mut counts: Vec<(&str, usize)> = Vec::new();
+        for c in &of {
+            let tag = match c.regime.as_ref() {
+                Some(r) if r.rest.as_ref().is_some_and(|s| s.d_c_zero) => "D_c = 0",
+                Some(r) => match r.bracket {
+                    Bracket::Located { .. } => "bracketed",
+                    Bracket::Below { .. } => "below the range",
+                    Bracket::Above { .. } => "above the range",
+                    Bracket::Never { .. } => "none (never chaotic)",
+                    Bracket::Undecided => "undecided",
+                },
+                None => "no decision",
+            };
+            match counts.iter_mut().find(|(t, _)| *t == tag) {
+                Some((_, n)) => *n += 1,
+                None => counts.push((tag, 1)),
             }
         }
         lines.push(format!(
-            "{}: D_c bracketed at {found} of {}{}",
+            "{} ({} curves): D_c {}",
             start.name(),
             of.len(),
-            if tags.is_empty() {
-                String::new()
-            } else {
-                format!("; else {}", tags.join(", "))
-            }
+            counts
+                .iter()
+                .map(|(t, n)| format!("{t} at {n}"))
+                .collect::<Vec<_>>()
+                .join(", ")
         ));
     }
     lines

@@ -25,14 +25,14 @@
 use crate::notes::{caption, num, sig, symbol, table_notes, variant_line, Caption};
 use crate::table::Table;
 use crate::verdict::rules::{
-    agrees_with_prediction, bracket, calls, rest_regime, significance, Bracket, Call, LleCurve,
-    LlePoint, PointSign, RegimePoint, RestRegime, ALPHA,
+    agrees_with_prediction, bracket, calls, rest_regime, significance, strong_noise, Bracket, Call,
+    LleCurve, LlePoint, PointSign, RegimePoint, RestRegime, StrongNoise, ALPHA,
 };
 use crate::{FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::lyapunov::{
-    attractor_starts, largest_lyapunov, phase_response, Attractor, AttractorSpec, CriticalNoise,
-    LyapunovSpec, NoisePoint, PhaseSpec,
+    attractor_starts, largest_lyapunov, phase_response, well_escape, Attractor, AttractorSpec,
+    CriticalNoise, LyapunovSpec, NoisePoint, PhaseSpec, WellEscape,
 };
 use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem};
 use trirhythm::maths;
@@ -165,6 +165,8 @@ pub struct RegimeStart {
     pub u0: f64,
     /// The attractor in words: `rest`, `inner cycle (A = 1.23)`, ….
     pub attractor: String,
+    /// The noise-free cycle's turning amplitude (NaN at rest).
+    pub amplitude: f64,
 }
 
 /// One start per attractor of the noise-free system of `params` (D set to 0) with the step
@@ -188,6 +190,7 @@ pub fn regime_starts(
                 kind: StartKind::Rest,
                 u0: s.u0,
                 attractor: "rest".into(),
+                amplitude: f64::NAN,
             }),
             Attractor::Cycle {
                 amplitude, name, ..
@@ -195,6 +198,7 @@ pub fn regime_starts(
                 kind: StartKind::Cycle,
                 u0: s.u0,
                 attractor: format!("{} cycle (A = {})", name.name(), sig(amplitude, 4)),
+                amplitude,
             }),
             Attractor::Unsettled { amplitude } => notes.push(format!(
                 "{}: the noise-free path from U(0) = {} settled on nothing within t = {} (last turning amplitude {}): no curve",
@@ -219,6 +223,41 @@ pub fn outer_amplitude(params: &Params, variant: Variant) -> Result<Option<f64>>
         .filter(|c| c.stable && c.amplitude.is_finite())
         .map(|c| c.amplitude)
         .fold(None, |m: Option<f64>, a| Some(m.map_or(a, |m| m.max(a)))))
+}
+
+/// The well in amplitude of a noise-free cycle of amplitude `amplitude`: between the averaged
+/// theory's unstable cycles (D = 0) next below and above the theory's stable cycle nearest to
+/// it (0 and ∞ where there is none); None when the theory has no stable cycle.
+pub fn cycle_well(params: &Params, variant: Variant, amplitude: f64) -> Result<Option<(f64, f64)>> {
+    let theory = Theory::new(&params.with("D", 0.0)?, variant)?;
+    let cycles: Vec<_> = theory
+        .limit_cycles()
+        .into_iter()
+        .filter(|c| c.amplitude.is_finite())
+        .collect();
+    let Some(stable) = cycles
+        .iter()
+        .filter(|c| c.stable)
+        .map(|c| c.amplitude)
+        .min_by(|a, b| (a - amplitude).abs().total_cmp(&(b - amplitude).abs()))
+    else {
+        return Ok(None);
+    };
+    let unstable = cycles.iter().filter(|c| !c.stable).map(|c| c.amplitude);
+    let lo = unstable.clone().filter(|&a| a < stable).fold(0.0, f64::max);
+    let hi = unstable
+        .filter(|&a| a > stable)
+        .fold(f64::INFINITY, f64::min);
+    Ok(Some((lo, hi)))
+}
+
+/// The escape of a point's reference paths from its cycle's well ([`well_escape`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EscapeAt {
+    /// The point's noise intensity.
+    pub d: f64,
+    /// What the paths did.
+    pub escape: WellEscape,
 }
 
 /// What a point of a curve holds.
@@ -371,12 +410,15 @@ impl Curve {
                 r.prediction_note.clone(),
             )
         });
-        Some(decide_regime(
+        // the escapes are runs of their own, not a function of the points: kept
+        let mut again = decide_regime(
             self.start,
             &self.points,
             prediction.as_ref(),
             1.0 / r.margin,
-        ))
+        );
+        again.escape = r.escape.clone();
+        Some(again)
     }
 }
 
@@ -389,6 +431,10 @@ pub struct CurveRegime {
     pub calls: Vec<Call>,
     /// Where D_c lies.
     pub bracket: Bracket,
+    /// The slope of the exponent over the curve's last decade of D (the strong-noise rule;
+    /// None in data of an earlier version).
+    #[serde(default)]
+    pub strong: Option<StrongNoise>,
     /// The rest regime's pooled exponent and slope (rest curves only).
     pub rest: Option<RestRegime>,
     /// The phase-reduction coefficient c of λ ≈ −c·D on the cycle (cycle curves; None with
@@ -403,12 +449,25 @@ pub struct CurveRegime {
     /// Per point: the exponent equivalent to −c·D within δ (two one-sided tests), None
     /// where not tested.
     pub agrees: Vec<Option<bool>>,
+    /// On a cycle with a located bracket: the escape of the reference paths from the cycle's
+    /// well at the bracket's ends D1 and D2 (empty otherwise).
+    #[serde(default)]
+    pub escape: Vec<EscapeAt>,
 }
 
 impl CurveRegime {
     /// One line: the bracket, the rest regime's numbers or the prediction's agreement.
     pub fn words(&self) -> String {
         let mut out = self.bracket.words();
+        if let Some(s) = self.strong.filter(|s| s.falling) {
+            out.push_str(&format!(
+                " (slope {} ± {} per decade over D = {} … {})",
+                sig(s.slope, 2),
+                sig(s.slope_se, 2),
+                num(s.from),
+                num(s.to)
+            ));
+        }
         if let Some(r) = &self.rest {
             out.push_str(&format!(
                 "; at D ≤ 0.01: pooled exponent {} ± {}, slope {} ± {} per decade of D over {} decades{}",
@@ -436,6 +495,10 @@ impl CurveRegime {
         } else if !self.prediction_note.is_empty() {
             out.push_str(&format!("; {}", self.prediction_note));
         }
+        if let Some(e) = self.escape_words() {
+            out.push_str("; ");
+            out.push_str(&e);
+        }
         let merged = self
             .calls
             .iter()
@@ -447,6 +510,45 @@ impl CurveRegime {
             ));
         }
         out
+    }
+
+    /// The escape of the reference paths from the cycle's well at the bracket's ends, in
+    /// words; None where it was not measured.
+    pub fn escape_words(&self) -> Option<String> {
+        let first = self.escape.first()?;
+        let w = &first.escape;
+        let at: Vec<String> = self
+            .escape
+            .iter()
+            .map(|e| {
+                format!(
+                    "{} of {} at D = {}{}",
+                    e.escape.escaped,
+                    e.escape.paths,
+                    num(e.d),
+                    if e.escape.escaped > 0 {
+                        format!(" (median first exit t = {})", sig(e.escape.median_time, 3))
+                    } else {
+                        String::new()
+                    }
+                )
+            })
+            .collect();
+        let mut out = format!(
+            "reference paths that left the cycle's well A ∈ ({}, {}) within t = {}: {}",
+            sig(w.lo, 4),
+            if w.hi.is_finite() {
+                sig(w.hi, 4)
+            } else {
+                "∞".into()
+            },
+            num(w.run),
+            at.join(", ")
+        );
+        if self.escape.iter().any(|e| e.escape.escaped > 0) {
+            out.push_str(": the bracket depends on the window");
+        }
+        Some(out)
     }
 }
 
@@ -511,16 +613,22 @@ pub fn decide_regime(
     let rp: Vec<RegimePoint> = points.iter().map(Point::regime_point).collect();
     let c = calls(&rp, margin);
     let ds: Vec<f64> = rp.iter().map(|p| p.d).collect();
-    let b = bracket(&ds, &c);
+    let strong = strong_noise(&rp, &c);
+    let b = match bracket(&ds, &c) {
+        Bracket::Above { d } if strong.is_some_and(|s| s.falling) => Bracket::Never { d },
+        b => b,
+    };
     let mut out = CurveRegime {
         margin,
         calls: c,
         bracket: b,
+        strong,
         rest: None,
         coefficient: f64::NAN,
         coefficient_uncertainty: f64::NAN,
         prediction_note: String::new(),
         agrees: vec![None; rp.len()],
+        escape: Vec::new(),
     };
     if kind == StartKind::Rest {
         out.rest = Some(rest_regime(&rp, margin));
@@ -751,6 +859,8 @@ pub struct PlannedCurve {
     /// The D it is extended to when not chaotic up to the grid's end ([`CYCLE_EXTRA_NOISES`]
     /// for cycle curves at paper quality).
     pub extension: Vec<f64>,
+    /// The cycle's well in amplitude ([`cycle_well`]; None at rest or without a theory cycle).
+    pub well: Option<(f64, f64)>,
 }
 
 impl PlannedCurve {
@@ -788,12 +898,17 @@ pub fn plan_curves(
             } else {
                 vec![]
             };
+            let well = match start.kind {
+                StartKind::Cycle => cycle_well(&p, variant, start.amplitude)?,
+                StartKind::Rest => None,
+            };
             planned.push(PlannedCurve {
                 value: v,
                 params: p.clone(),
                 start,
                 noises: d,
                 extension,
+                well,
             });
         }
     }
@@ -864,6 +979,14 @@ pub fn run_curve(
         regime = decide(&points);
     }
     *step += left.count();
+    // a located bracket on a cycle: did the reference paths leave the cycle's well at its ends?
+    if let (Bracket::Located { lo, hi }, Some(well)) = (regime.bracket, c.well) {
+        for d in [lo, hi] {
+            let problem = Problem::from_params(&c.params.with("D", d)?)?.with_start(u0, 0.0)?;
+            let escape = well_escape(&problem, &method, &sizes.spec, well, &OnlyCancel(monitor))?;
+            regime.escape.push(EscapeAt { d, escape });
+        }
+    }
     let name = c
         .start
         .attractor

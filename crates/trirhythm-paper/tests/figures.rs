@@ -275,6 +275,41 @@ fn fig19_has_every_value_with_a_curve_per_attractor() {
     assert_eq!(rows, points, "every cell is a row");
 }
 
+/// A cycle's well lies between the averaged theory's unstable cycles next to it: Fig. 19's base
+/// point is trirhythmic (stable 1.74, 8.17, 12.93; unstable 4.27, 10.57 at D = 0), and the
+/// simulated cycles (inner 1.23, middle 8.04, outer 12.91) each get their own well.
+#[test]
+fn each_cycle_gets_the_well_between_its_unstable_neighbours() {
+    use trirhythm::theory::averaging::Theory;
+    let base = trirhythm::model::preset("fig19").unwrap().params;
+    let cycles = Theory::new(&base.with("D", 0.0).unwrap(), Variant::Paper)
+        .unwrap()
+        .limit_cycles();
+    let unstable: Vec<f64> = cycles
+        .iter()
+        .filter(|c| !c.stable)
+        .map(|c| c.amplitude)
+        .collect();
+    assert_eq!(unstable.len(), 2, "{cycles:?}");
+    let well = |a: f64| lle::cycle_well(&base, Variant::Paper, a).unwrap().unwrap();
+    assert_eq!(well(1.23), (0.0, unstable[0]));
+    assert_eq!(well(8.04), (unstable[0], unstable[1]));
+    assert_eq!(well(12.91), (unstable[1], f64::INFINITY));
+    // no stable cycle in the theory: no well
+    let rest = base.with("r", 0.8).unwrap();
+    let none = Theory::new(&rest.with("D", 0.0).unwrap(), Variant::Paper)
+        .unwrap()
+        .limit_cycles()
+        .iter()
+        .all(|c| !c.stable);
+    assert_eq!(
+        lle::cycle_well(&rest, Variant::Paper, 5.0)
+            .unwrap()
+            .is_none(),
+        none
+    );
+}
+
 /// Every preset passes the step guard at the step its figure simulates with: Δt = 0.01, or
 /// for the Lyapunov figures the step that resolves τ ([`trirhythm_paper::lle::dt_for`]), with
 /// no warning.

@@ -176,6 +176,54 @@ fn trend_of_brackets_decides_by_overlap_and_undefined_values_stop_it() {
         ],
     );
     assert_eq!(tag(&trend(&[above], Direction::Increases)), "confirmed");
+    // open brackets that touch at a finite end differ there: D_c ∈ (12, 30) (chaotic at 30)
+    // against D_c > 30 (regular at 30); at 0 they do not (D_c = 0 against D_c < 0.002)
+    let touching = series(
+        "D_c",
+        &[
+            (0.1, Measured::bracket(19.0, 12.0, 30.0)),
+            (0.3, Measured::bracket(f64::NAN, 30.0, f64::INFINITY)),
+        ],
+    );
+    assert_eq!(tag(&trend(&[touching], Direction::Increases)), "confirmed");
+    let at_zero = series(
+        "D_c",
+        &[
+            (0.1, Measured::exact(0.0)),
+            (0.3, Measured::bracket(f64::NAN, 0.0, 0.002)),
+        ],
+    );
+    assert!(matches!(
+        trend(&[at_zero], Direction::Increases).verdict,
+        Verdict::Undetermined { .. }
+    ));
+    // no D_c at all (infinite) is above any located one, and equal to another
+    let never = |x: f64| {
+        (
+            x,
+            Measured::bracket(f64::INFINITY, f64::INFINITY, f64::INFINITY),
+        )
+    };
+    let to_never = series(
+        "D_c",
+        &[
+            (0.1, Measured::bracket(19.0, 12.0, 30.0)),
+            never(0.3),
+            never(0.5),
+        ],
+    );
+    let d = trend(&[to_never], Direction::Increases);
+    assert_eq!(tag(&d), "confirmed");
+    assert!(
+        d.checks.iter().all(|c| !c.value.value.is_nan()),
+        "{:?}",
+        d.checks
+    );
+    let only_never = series("D_c", &[never(0.3), never(0.5)]);
+    assert!(matches!(
+        trend(&[only_never], Direction::Decreases).verdict,
+        Verdict::Undetermined { .. }
+    ));
 }
 
 // ---- count ----
@@ -884,6 +932,8 @@ enum Shape {
     Located,
     /// Not chaotic up to D = 2.
     Regular,
+    /// Not chaotic anywhere, falling from −0.005 to −0.04 over D = 3 … 30: no D_c.
+    Falling,
     /// The rest regime, 0.08 at every D from 1e-6 to 1e-2: D_c = 0.
     RestFlat,
     /// The rest regime, chaotic but rising by 0.02 per decade: not flat.
@@ -902,6 +952,13 @@ fn regime_curve(
     let pairs: Vec<(f64, f64)> = match shape {
         Shape::Located => vec![(0.001, -0.01), (0.01, -0.01), (0.1, 0.05), (1.0, 0.05)],
         Shape::Regular => vec![(0.001, -0.01), (0.1, -0.01), (2.0, -0.01)],
+        Shape::Falling => vec![
+            (0.001, -0.01),
+            (0.1, -0.01),
+            (3.0, -0.005),
+            (10.0, -0.02),
+            (30.0, -0.04),
+        ],
         Shape::RestFlat => [1e-6, 1e-5, 1e-4, 1e-3, 1e-2].map(|d| (d, 0.08)).to_vec(),
         Shape::RestRising => [1e-6, 1e-5, 1e-4, 1e-3, 1e-2]
             .iter()
@@ -941,11 +998,13 @@ fn regime_curve(
             margin: 1.0 / 1500.0,
             calls: vec![],
             bracket: Bracket::Undecided,
+            strong: None,
             rest: None,
             coefficient: f64::NAN,
             coefficient_uncertainty: f64::NAN,
             prediction_note: String::new(),
             agrees: vec![],
+            escape: vec![],
         }),
     }
 }
@@ -1022,4 +1081,15 @@ fn a_lyapunov_claim_by_regime_is_decided_per_value_of_the_parameter() {
         matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("D_c > 2")),
         "{d:?}"
     );
+    // a cycle never chaotic and falling at strong noise, beside the rest regime with D_c = 0:
+    // no regime changes sign: against
+    let d = judge_fig18b(vec![
+        regime_curve(0.998, Cycle, Shape::Located),
+        regime_curve(0.9, Rest, Shape::RestFlat),
+        regime_curve(0.9, Cycle, Shape::Falling),
+    ]);
+    assert_eq!(tag(&d), "refuted", "{d:?}");
+    // the falling cycle alone: against as well
+    let d = judge_fig18b(vec![regime_curve(0.998, Cycle, Shape::Falling)]);
+    assert_eq!(tag(&d), "refuted", "{d:?}");
 }

@@ -140,6 +140,32 @@ impl Measured {
         }
     }
 
+    /// A bracketed value in words with `digits` significant digits: `v in [lo, hi]`; `none`
+    /// when infinite (no such value at all); `> lo`, `< hi` or `in [lo, hi]` when one-sided or
+    /// without a point value. Other values: as [`crate::notes::sig`].
+    pub fn bracket_words(&self, digits: usize) -> String {
+        use crate::notes::sig;
+        let Uncertainty::Bracket { lo, hi } = self.uncertainty else {
+            return sig(self.value, digits);
+        };
+        if lo == f64::INFINITY {
+            "none".into()
+        } else if self.value.is_nan() && hi == f64::INFINITY {
+            format!("> {}", sig(lo, digits))
+        } else if self.value.is_nan() && lo == 0.0 {
+            format!("< {}", sig(hi, digits))
+        } else if self.value.is_nan() {
+            format!("in [{}, {}]", sig(lo, digits), sig(hi, digits))
+        } else {
+            format!(
+                "{} in [{}, {}]",
+                sig(self.value, digits),
+                sig(lo, digits),
+                sig(hi, digits)
+            )
+        }
+    }
+
     /// The interval the value is known to lie in: a point when exact, the bracket, or
     /// value ± z·se.
     pub(crate) fn interval(&self, z: f64) -> (f64, f64) {
@@ -196,14 +222,7 @@ impl Check {
             Uncertainty::StdErr { se, .. } => {
                 format!("{} ± {}", sig(self.value.value, 3), sig(se, 3))
             }
-            Uncertainty::Bracket { lo, hi } => {
-                format!(
-                    "{} in [{}, {}]",
-                    sig(self.value.value, 3),
-                    sig(lo, 3),
-                    sig(hi, 3)
-                )
-            }
+            Uncertainty::Bracket { .. } => self.value.bracket_words(3),
         };
         format!(
             "{}: {value}, {} = {} against {}",

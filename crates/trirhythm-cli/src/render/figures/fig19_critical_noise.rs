@@ -1,16 +1,283 @@
-//! Fig. 19: the sign of the largest Lyapunov exponent over (parameter, D) for μ0 (a), τ (b),
-//! λ (c) and r (d), each cell decided with significance, from two starts, with the D_c brackets
-//! drawn where a significant − → + change is located.
+//! Fig. 19 as the paper draws it: the critical noise D_c against μ0 (a), τ (b), λ (c) and r (d),
+//! one series per attractor of the noise-free system (rest, inner, middle, outer cycle). A
+//! located D_c is its bracket (D1, D2) drawn as a bar with a marker at √(D1·D2); a one-sided
+//! bracket as a bar to the edge of the searched range; a curve never chaotic (no D_c at all)
+//! in a row above the range, the rest regime chaotic as D → 0 (D_c = 0) in a row below it.
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig19_critical_noise`].
 
-use super::lle::{draw_sign_map, sign_strip, CHART_HEIGHT, PANEL_WIDTH};
-use trirhythm_paper::fig19_critical_noise::Fig19;
+use super::lle::{CHART_HEIGHT, PANEL_WIDTH};
+use crate::render::plot::{
+    font_px, pe, px, Backend, LegendStrip, Symbol, AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
+};
+use anyhow::{anyhow, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use trirhythm_paper::fig19_critical_noise::{Fig19, SignMap};
+use trirhythm_paper::lle::Curve;
+use trirhythm_paper::notes::{num, sig};
+use trirhythm_paper::verdict::rules::Bracket;
 
-picture!(Fig19, |self, root| size (2 * PANEL_WIDTH, 2 * CHART_HEIGHT + sign_strip().height(2 * PANEL_WIDTH) + 8), draw {
+/// The attractors in the order of their slots in a column, with their colours.
+const ATTRACTORS: [(&str, RGBColor); 4] = [
+    ("rest", RGBColor(0, 0, 0)),
+    ("inner", PALETTE[1]),
+    ("middle", PALETTE[3]),
+    ("outer", PALETTE[2]),
+];
+
+/// Horizontal offset of an attractor's slot within its column.
+fn slot(k: usize) -> f64 {
+    -0.27 + 0.18 * k as f64
+}
+
+/// The attractor's index in [`ATTRACTORS`] (its first word: `rest`, `inner`, …).
+fn attractor_of(c: &Curve) -> usize {
+    let word = c.attractor.split_whitespace().next().unwrap_or("");
+    ATTRACTORS
+        .iter()
+        .position(|(n, _)| *n == word)
+        .unwrap_or(ATTRACTORS.len() - 1)
+}
+
+/// What a curve says about D_c, as drawn.
+enum Mark {
+    /// D_c in (lo, hi).
+    Located(f64, f64),
+    /// D_c < d (chaotic from the smallest D).
+    Below(f64),
+    /// D_c > d (regular up to the largest D).
+    Above(f64),
+    /// No D_c: never chaotic, falling at strong noise.
+    Never,
+    /// D_c = 0: the rest regime chaotic as D → 0.
+    Zero,
+    /// No bracket.
+    Undecided,
+}
+
+fn mark_of(c: &Curve) -> Mark {
+    let Some(r) = c.redecided() else {
+        return Mark::Undecided;
+    };
+    if r.rest.as_ref().is_some_and(|s| s.d_c_zero) {
+        return Mark::Zero;
+    }
+    match r.bracket {
+        Bracket::Located { lo, hi } => Mark::Located(lo, hi),
+        Bracket::Below { d } => Mark::Below(d),
+        Bracket::Above { d } => Mark::Above(d),
+        Bracket::Never { .. } => Mark::Never,
+        Bracket::Undecided => Mark::Undecided,
+    }
+}
+
+/// The legend below the panels.
+fn strip() -> LegendStrip {
+    let mut entries: Vec<(Symbol, String)> = ATTRACTORS
+        .iter()
+        .map(|(n, c)| {
+            (
+                Symbol::Line(*c),
+                if *n == "rest" {
+                    "rest regime".to_string()
+                } else {
+                    format!("{n} cycle")
+                },
+            )
+        })
+        .collect();
+    entries.extend([
+        (
+            Symbol::Dot(RGBColor(0, 0, 0)),
+            "D_c bracket: regular at its foot, chaotic at its top; row \"0\": rest chaotic as D → 0".into(),
+        ),
+        (
+            Symbol::Ring(RGBColor(0, 0, 0)),
+            "row \"none\": never chaotic, no D_c".into(),
+        ),
+        (
+            Symbol::Cross(RGBColor(0, 0, 0)),
+            "undecided: no bracket".into(),
+        ),
+    ]);
+    LegendStrip { entries }
+}
+
+/// One panel: columns of the parameter's values, log D upward, the rows "no D_c" above and
+/// "D_c = 0" below the searched range.
+fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> Result<()> {
+    let panel = &map.panel;
+    let values = map.values.clone();
+    let nv = values.len() as f64;
+    let logs: Vec<f64> = panel
+        .curves
+        .iter()
+        .flat_map(|c| c.points.iter().map(|q| q.x.log10()))
+        .filter(|v| v.is_finite())
+        .collect();
+    let (lo, hi) = logs
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let (lo, hi) = if lo.is_finite() {
+        (lo, hi)
+    } else {
+        (-3.0, 1.0)
+    };
+    // the rows outside the searched range, 0.7 decades beyond its ends
+    let (zero_row, never_row) = (lo - 0.7, hi + 0.7);
+    let (below_edge, above_edge) = (lo - 0.35, hi + 0.35);
+    let y = (lo - 1.0)..(hi + 1.0);
+    let caption = panel
+        .caption
+        .split(' ')
+        .next()
+        .map(|l| format!("{l} critical noise against {}", panel.x_desc))
+        .unwrap_or_default();
+    let mut c = ChartBuilder::on(area)
+        .caption(caption, (FONT, font_px(CAPTION)))
+        .margin(px(10))
+        .margin_right(px(26))
+        .x_label_area_size(px(45))
+        .y_label_area_size(px(80))
+        .build_cartesian_2d(-0.5..nv - 0.5, y.clone())
+        .map_err(|e| anyhow!("{e}"))?;
+    let xf = |v: &f64| {
+        let i = v.round();
+        if (v - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < values.len() {
+            num(values[i as usize])
+        } else {
+            String::new()
+        }
+    };
+    // D ticks inside the searched range; the two rows are named beside the axis
+    let yf = |v: &f64| {
+        if *v >= lo - 1e-9 && *v <= hi + 1e-9 {
+            sig(10f64.powf(*v), 2)
+        } else {
+            String::new()
+        }
+    };
+    c.configure_mesh()
+        .x_desc(panel.x_desc.as_str())
+        .y_desc("critical noise (log scale)")
+        .x_labels(values.len() * 2 + 1)
+        .y_labels(8)
+        .x_label_formatter(&xf)
+        .y_label_formatter(&yf)
+        .disable_x_mesh()
+        .axis_desc_style((FONT, font_px(AXIS_DESC)))
+        .label_style((FONT, font_px(TICK)))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(|e| anyhow!("{e}"))?;
+    let base = area.get_base_pixel();
+    for (row, text) in [(never_row, "none"), (zero_row, "0")] {
+        let at = c.backend_coord(&(-0.5, row));
+        crate::render::plot::rich_text(
+            area,
+            text,
+            (at.0 - base.0 - px(8) as i32, at.1 - base.1),
+            Pos::new(HPos::Right, VPos::Center),
+            TICK,
+            BLACK,
+            false,
+        )?;
+    }
+    let grey = RGBColor(150, 150, 150);
+    for edge in [below_edge, above_edge] {
+        c.draw_series(DashedLineSeries::new(
+            [(-0.5, edge), (nv - 0.5, edge)],
+            4,
+            4,
+            grey.stroke_width(1),
+        ))
+        .map_err(pe)?;
+    }
+    // per attractor: the marker positions of the located D_c, for the connecting lines
+    let mut located: Vec<Vec<(f64, f64)>> = vec![Vec::new(); ATTRACTORS.len()];
+    for curve in &panel.curves {
+        let i = values.iter().position(|&v| v == curve.value).unwrap_or(0) as f64;
+        let k = attractor_of(curve);
+        let colour = ATTRACTORS[k].1;
+        let x = i + slot(k);
+        let cap = 0.05;
+        let bar = |a: f64, b: f64| {
+            [
+                PathElement::new([(x, a), (x, b)], colour.stroke_width(3)),
+                PathElement::new([(x - cap, a), (x + cap, a)], colour.stroke_width(2)),
+                PathElement::new([(x - cap, b), (x + cap, b)], colour.stroke_width(2)),
+            ]
+        };
+        match mark_of(curve) {
+            Mark::Located(a, b) => {
+                let (a, b) = (a.log10(), b.log10());
+                c.draw_series(bar(a, b)).map_err(pe)?;
+                let m = 0.5 * (a + b);
+                c.draw_series(std::iter::once(Circle::new((x, m), 5, colour.filled())))
+                    .map_err(pe)?;
+                located[k].push((x, m));
+            }
+            Mark::Above(d) => {
+                c.draw_series(bar(d.log10(), above_edge)).map_err(pe)?;
+                c.draw_series(std::iter::once(TriangleMarker::new(
+                    (x, above_edge),
+                    7,
+                    colour.filled(),
+                )))
+                .map_err(pe)?;
+            }
+            Mark::Below(d) => {
+                c.draw_series(bar(below_edge, d.log10())).map_err(pe)?;
+            }
+            Mark::Never => {
+                c.draw_series(std::iter::once(Circle::new(
+                    (x, never_row),
+                    6,
+                    colour.stroke_width(3),
+                )))
+                .map_err(pe)?;
+            }
+            Mark::Zero => {
+                c.draw_series(std::iter::once(Circle::new(
+                    (x, zero_row),
+                    6,
+                    colour.filled(),
+                )))
+                .map_err(pe)?;
+            }
+            Mark::Undecided => {
+                c.draw_series(std::iter::once(Cross::new(
+                    (x, 0.5 * (lo + hi)),
+                    6,
+                    colour.stroke_width(2),
+                )))
+                .map_err(pe)?;
+            }
+        }
+    }
+    for (k, pts) in located.iter().enumerate() {
+        for w in pts.windows(2) {
+            // only between neighbouring columns
+            if (w[1].0 - w[0].0 - 1.0).abs() < 1e-9 {
+                c.draw_series(std::iter::once(PathElement::new(
+                    [w[0], w[1]],
+                    ATTRACTORS[k].1.stroke_width(1),
+                )))
+                .map_err(pe)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+picture!(Fig19, |self, root| size (2 * PANEL_WIDTH, 2 * CHART_HEIGHT + strip().height(2 * PANEL_WIDTH) + 8), draw {
     let (maps, legend) = root.split_vertically(2 * CHART_HEIGHT);
     for (area, map) in maps.split_evenly((2, 2)).iter().zip(&self.panels) {
-        draw_sign_map(area, map)?;
+        draw_dc_panel(area, map)?;
     }
-    sign_strip().draw(&legend)
+    strip().draw(&legend)
 });

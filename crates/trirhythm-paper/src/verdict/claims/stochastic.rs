@@ -153,8 +153,9 @@ fn per_start_all_of(rule: &str, parts: Vec<(String, Decision)>) -> Decision {
 /// (`verdict::rules::regime`, docs/verdicts.md): one check per curve of the paper, that is per
 /// value of the panel's parameter. A value is **for** the sentence when one of its regimes has
 /// a located transition D_c ∈ (D1, D2) (not chaotic at D1, chaotic at D2); **against** when
-/// every regime it has has D_c = 0 (the rest regime chaotic as D → 0: positive down to
-/// D = 10⁻⁶ and flat in log D — no transition, whatever start the paper used); otherwise
+/// none of its regimes changes sign: each has D_c = 0 (the rest regime chaotic as D → 0:
+/// positive down to D = 10⁻⁶ and flat in log D) or no D_c at all (a cycle never chaotic, its
+/// exponent falling at strong noise) — no transition, whatever start the paper used; otherwise
 /// neither, with each curve's outcome. Refuted when a value is against, confirmed when every
 /// value is for, else undetermined. Data without regimes (an earlier version) fall back to the
 /// sign-change rule per start.
@@ -190,13 +191,21 @@ fn regime_sign_change(p: &LlePanel) -> Decision {
         let mut words = Vec::new();
         let mut transition: Option<(f64, f64)> = None;
         let mut always = 0;
+        let mut never = 0;
         let mut pooled = None;
         for c in &of {
             let r = &c.redecided().expect("checked");
             tests += r.calls.len();
-            words.push(format!("{}: {}", c.attractor, r.bracket.words()));
-            if let Bracket::Located { lo, hi } = r.bracket {
-                transition.get_or_insert((lo, hi));
+            words.push(match r.escape_words() {
+                Some(e) => format!("{}: {} ({e})", c.attractor, r.bracket.words()),
+                None => format!("{}: {}", c.attractor, r.bracket.words()),
+            });
+            match r.bracket {
+                Bracket::Located { lo, hi } => {
+                    transition.get_or_insert((lo, hi));
+                }
+                Bracket::Never { .. } => never += 1,
+                _ => {}
             }
             if let Some(rest) = &r.rest {
                 pooled = Some((rest.pooled, rest.pooled_se));
@@ -213,7 +222,7 @@ fn regime_sign_change(p: &LlePanel) -> Decision {
                 hi,
                 lo,
             ),
-            (None, Some((m, se))) if always == of.len() => (
+            (None, Some((m, se))) if always + never == of.len() && always > 0 => (
                 Measured::with_se(m, se),
                 Outcome::Against,
                 "pooled exponent of the rest regime at D ≤ 0.01 (flat in log D: D_c = 0)"
@@ -222,6 +231,13 @@ fn regime_sign_change(p: &LlePanel) -> Decision {
                 of.iter()
                     .filter_map(|c| c.regime.as_ref().map(|r| r.margin))
                     .fold(0.0, f64::max),
+            ),
+            (None, _) if never == of.len() => (
+                Measured::exact(f64::INFINITY),
+                Outcome::Against,
+                "no regime chaotic at any D (exponent falling with D at strong noise)".to_string(),
+                f64::INFINITY,
+                f64::NAN,
             ),
             _ => (
                 Measured::exact(f64::NAN),
@@ -351,6 +367,8 @@ pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
         .map(|&start| {
             // one series per attractor of the regime (inner, outer, … cycle; rest)
             let mut series: Vec<(String, Vec<(f64, Measured)>)> = Vec::new();
+            // the located brackets whose reference paths left the cycle's well
+            let mut escaped: Vec<String> = Vec::new();
             // the columns without a located D_c, grouped by outcome: (words, values)
             let mut missing: Vec<(String, Vec<String>)> = Vec::new();
             for (c, l) in m.panel.curves.iter().zip(&m.located) {
@@ -376,6 +394,17 @@ pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
                 // the regime rules' bracket: located, or one-sided where the curve is chaotic
                 // from its smallest D ([0, D]) or not chaotic up to its largest ([D, ∞))
                 if let Some(r) = &decided {
+                    if let Some(e) = r.escape.iter().rev().find(|e| e.escape.escaped > 0) {
+                        escaped.push(format!(
+                            "{} = {} {name}: {} of {} at D = {} (median t = {})",
+                            m.key,
+                            crate::notes::num(c.value),
+                            e.escape.escaped,
+                            e.escape.paths,
+                            crate::notes::num(e.d),
+                            crate::notes::sig(e.escape.median_time, 3)
+                        ));
+                    }
                     match r.bracket {
                         Bracket::Located { lo, hi } => {
                             push(c.value, Measured::bracket((lo * hi).sqrt(), lo, hi))
@@ -384,6 +413,11 @@ pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
                         Bracket::Above { d } => {
                             push(c.value, Measured::bracket(f64::NAN, d, f64::INFINITY))
                         }
+                        // no D_c at any D: infinite, above every located or one-sided one
+                        Bracket::Never { .. } => push(
+                            c.value,
+                            Measured::bracket(f64::INFINITY, f64::INFINITY, f64::INFINITY),
+                        ),
                         Bracket::Undecided => {
                             let why = r.bracket.words();
                             let v = crate::notes::num(c.value);
@@ -415,6 +449,52 @@ pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
                 .map(|(why, vs)| format!("{} = {}: {why}", m.key, vs.join(", ")))
                 .collect();
             let located: usize = series.iter().map(|(_, p)| p.len()).sum();
+            let finite = |m: &Measured| m.interval(0.0).0.is_finite();
+            // an attractor with no D_c at any value says nothing about how D_c changes: its
+            // series is named, not tested; when no attractor has a D_c anywhere, the claim has
+            // nothing to change
+            let (without, series): (Vec<_>, Vec<_>) = series
+                .into_iter()
+                .partition(|(_, p)| !p.iter().any(|(_, m)| finite(m)));
+            if series.is_empty() && !without.is_empty() && missing.is_empty() {
+                let names: Vec<String> = without.iter().map(|(n, _)| n.clone()).collect();
+                let mut xs: Vec<f64> = without
+                    .iter()
+                    .flat_map(|(_, p)| p.iter().map(|(x, _)| *x))
+                    .collect();
+                xs.sort_by(f64::total_cmp);
+                xs.dedup();
+                let largest = m
+                    .panel
+                    .curves
+                    .iter()
+                    .filter(|c| c.start == start)
+                    .flat_map(|c| c.points.iter().map(|q| q.x))
+                    .fold(f64::NAN, f64::max);
+                let what = format!(
+                    "no D_c at any {} = {} on the {}: never chaotic up to D = {}, the exponent falling with D at strong noise",
+                    m.key,
+                    xs.iter().map(|&x| crate::notes::num(x)).collect::<Vec<_>>().join(", "),
+                    names.join(", "),
+                    crate::notes::num(largest)
+                );
+                let d = Decision::new(
+                    Verdict::Refuted,
+                    "trend",
+                    format!("{what}: there is no critical noise to change with {}", m.key),
+                    0,
+                    None,
+                    vec![super::super::Check {
+                        what,
+                        value: Measured::bracket(f64::INFINITY, f64::INFINITY, f64::INFINITY),
+                        statistic: "D_c (none) against the largest D tried".into(),
+                        statistic_value: f64::INFINITY,
+                        threshold: largest,
+                        outcome: super::super::Outcome::Against,
+                    }],
+                );
+                return (start.words().to_string(), d);
+            }
             let series: Vec<Series> = series
                 .into_iter()
                 .filter(|(_, p)| p.len() >= 2)
@@ -424,7 +504,21 @@ pub(super) fn fig19_trend(f: &Fig19, panel: usize) -> Decision {
                     points,
                 })
                 .collect();
-            let d = trend(&series, direction);
+            let mut d = trend(&series, direction);
+            if !escaped.is_empty() {
+                d.statistic.push_str(&format!(
+                    "; brackets that depend on the window (reference paths left the cycle's well within it): {}",
+                    escaped.join("; ")
+                ));
+            }
+            if !without.is_empty() {
+                let names: Vec<String> = without.iter().map(|(n, _)| n.clone()).collect();
+                d.statistic.push_str(&format!(
+                    "; not tested: the {} (no D_c at any {}: never chaotic)",
+                    names.join(", "),
+                    m.key
+                ));
+            }
             let d = if missing.is_empty() || d.verdict == Verdict::Refuted {
                 d
             } else {

@@ -19,8 +19,8 @@ mod trend;
 pub use agreement::{agreement, closeness, Comparison, Weightings, MIN_WEIGHTING_REPLICAS};
 pub use count::{count, Count, CountSource};
 pub use regime::{
-    agrees_with_prediction, bracket, call, calls, rest_regime, Bracket, Call, RegimePoint,
-    RestRegime, REST_DECADES, REST_HOMOGENEOUS_D,
+    agrees_with_prediction, bracket, call, calls, rest_regime, strong_noise, Bracket, Call,
+    RegimePoint, RestRegime, StrongNoise, REST_DECADES, REST_HOMOGENEOUS_D,
 };
 pub use sign_change::{locate, sign_change, significance, LleCurve, LlePoint, Located, PointSign};
 pub use trend::{trend, Direction, Series};

@@ -30,6 +30,14 @@
 //!   (or synchronised) D below it: D_c ∈ (D1, D2). No chaotic point: not chaotic throughout
 //!   (D_c above the range, when the largest D is called not chaotic). Chaotic at the smallest D:
 //!   D_c below the range.
+//! - **No D_c at all** ([`strong_noise`], [`Bracket::Never`]): a curve with no chaotic point
+//!   whose exponent, over its last decade of D (at least three points, the two largest called
+//!   regular), falls with D — the weighted least-squares slope against log10 D significantly
+//!   negative (one-sided t at [`ALPHA`]). Strong noise drives the path to amplitudes where the
+//!   damping's highest power dominates μ0P(U); there the motion is overdamped and contracts, so
+//!   the exponent moves away from the margin as D grows: the curve has no critical noise, not
+//!   one above the range. (Measured beyond the figures' range on Fig. 19's base point, τ = 0.3
+//!   and 0.5: −0.01 to −0.05 at D = 100, 300 and 1000; docs/verdicts.md.)
 //! - **The rest regime** ([`rest_regime`]): over the points at D ≤ [`REST_HOMOGENEOUS_D`]
 //!   (where the homogeneity holds), the pooled (inverse-variance) exponent and the weighted
 //!   least-squares slope against log10 D; "chaotic as D → 0: D_c = 0" when the pooled exponent
@@ -184,6 +192,12 @@ pub enum Bracket {
         /// The largest D.
         d: f64,
     },
+    /// No chaotic point and the exponent falling with D over the last decade ([`strong_noise`]):
+    /// no D_c at any D.
+    Never {
+        /// The largest D.
+        d: f64,
+    },
     /// Neither: a chaotic point with nothing regular below it but undecided points, or no
     /// chaotic point with the largest D undecided.
     Undecided,
@@ -203,6 +217,10 @@ impl Bracket {
             Bracket::Above { d } => format!(
                 "not chaotic up to the largest D = {}: D_c > {}",
                 num(*d),
+                num(*d)
+            ),
+            Bracket::Never { d } => format!(
+                "never chaotic: regular up to D = {} and falling with D there: no D_c",
                 num(*d)
             ),
             Bracket::Undecided => "D_c not bracketed (undecided points between)".into(),
@@ -260,19 +278,29 @@ pub struct RestRegime {
 /// breaks the homogeneity, μ0(P(U) − P(0)) ≈ −μ0U², is then at most 10⁻² of μ0P(0).
 pub const REST_HOMOGENEOUS_D: f64 = 1e-2;
 
-/// The rest regime's rule over a curve (module docs), margin δ = `margin`: the points at
-/// D ≤ [`REST_HOMOGENEOUS_D`] pooled and regressed on log10 D.
-pub fn rest_regime(points: &[RegimePoint], margin: f64) -> RestRegime {
-    let usable: Vec<&RegimePoint> = points
+/// The inverse-variance pooled mean of points, the weighted least-squares slope against
+/// log10 D, their standard errors, the decades spanned and the degrees of freedom of the
+/// least-informed point (conservative for the tests).
+struct LogFit {
+    pooled: f64,
+    pooled_se: f64,
+    slope: f64,
+    slope_se: f64,
+    decades: f64,
+    nu: f64,
+}
+
+/// The points with a finite mean and standard error and no merged realisation, `keep` of D.
+fn usable(points: &[RegimePoint], keep: impl Fn(f64) -> bool) -> Vec<&RegimePoint> {
+    points
         .iter()
         .filter(|p| {
-            p.d <= REST_HOMOGENEOUS_D
-                && p.merged == 0
-                && p.mean.is_finite()
-                && p.se.is_finite()
-                && p.se > 0.0
+            keep(p.d) && p.merged == 0 && p.mean.is_finite() && p.se.is_finite() && p.se > 0.0
         })
-        .collect();
+        .collect()
+}
+
+fn log_fit(usable: &[&RegimePoint]) -> LogFit {
     let w: Vec<f64> = usable.iter().map(|p| 1.0 / (p.se * p.se)).collect();
     let sw: f64 = w.iter().sum();
     let pooled = usable.iter().zip(&w).map(|(p, w)| w * p.mean).sum::<f64>() / sw;
@@ -282,7 +310,7 @@ pub fn rest_regime(points: &[RegimePoint], margin: f64) -> RestRegime {
     let sxx: f64 = x.iter().zip(&w).map(|(x, w)| w * (x - mx) * (x - mx)).sum();
     let sxy: f64 = x
         .iter()
-        .zip(&usable)
+        .zip(usable.iter())
         .zip(&w)
         .map(|((x, p), w)| w * (x - mx) * (p.mean - pooled))
         .sum();
@@ -294,6 +322,28 @@ pub fn rest_regime(points: &[RegimePoint], margin: f64) -> RestRegime {
     };
     // the tests with the degrees of freedom of the least-informed point (conservative)
     let nu = usable.iter().map(|p| p.dof()).fold(f64::INFINITY, f64::min);
+    LogFit {
+        pooled,
+        pooled_se,
+        slope,
+        slope_se,
+        decades,
+        nu,
+    }
+}
+
+/// The rest regime's rule over a curve (module docs), margin δ = `margin`: the points at
+/// D ≤ [`REST_HOMOGENEOUS_D`] pooled and regressed on log10 D.
+pub fn rest_regime(points: &[RegimePoint], margin: f64) -> RestRegime {
+    let usable = usable(points, |d| d <= REST_HOMOGENEOUS_D);
+    let LogFit {
+        pooled,
+        pooled_se,
+        slope,
+        slope_se,
+        decades,
+        nu,
+    } = log_fit(&usable);
     let positive = (pooled - margin) / pooled_se > one_sided(ALPHA, nu);
     let flat = t_two_sided_p(slope / slope_se, nu) > ALPHA;
     RestRegime {
@@ -304,6 +354,52 @@ pub fn rest_regime(points: &[RegimePoint], margin: f64) -> RestRegime {
         decades,
         d_c_zero: usable.len() >= 3 && positive && flat && decades >= REST_DECADES,
     }
+}
+
+/// The strong-noise end of a curve: the slope of its exponent against log10 D over its last
+/// decade of D.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct StrongNoise {
+    /// The smallest D used (≥ a tenth of the largest).
+    #[serde(with = "trirhythm::non_finite")]
+    pub from: f64,
+    /// The largest D.
+    #[serde(with = "trirhythm::non_finite")]
+    pub to: f64,
+    /// Points used.
+    pub points: usize,
+    /// Weighted least-squares slope per decade of D.
+    #[serde(with = "trirhythm::non_finite")]
+    pub slope: f64,
+    /// Its standard error.
+    #[serde(with = "trirhythm::non_finite")]
+    pub slope_se: f64,
+    /// No chaotic point, the two largest D regular, at least three points and the slope
+    /// significantly negative (one-sided t at [`ALPHA`]): the curve has no D_c.
+    pub falling: bool,
+}
+
+/// The strong-noise rule (module docs) over a curve's points (D ascending) and calls; None
+/// for a curve without points.
+pub fn strong_noise(points: &[RegimePoint], calls: &[Call]) -> Option<StrongNoise> {
+    let top = points.last()?.d;
+    let used = usable(points, |d| d >= top / 10.0);
+    let fit = log_fit(&used);
+    let regular_end = calls.len() >= 2 && calls[calls.len() - 2..].iter().all(|c| c.is_regular());
+    let never_chaotic = !calls.contains(&Call::Chaotic);
+    let falling = never_chaotic
+        && regular_end
+        && used.len() >= 3
+        && fit.slope.is_finite()
+        && -fit.slope / fit.slope_se > one_sided(ALPHA, fit.nu);
+    Some(StrongNoise {
+        from: used.first().map_or(f64::NAN, |p| p.d),
+        to: top,
+        points: used.len(),
+        slope: fit.slope,
+        slope_se: fit.slope_se,
+        falling,
+    })
 }
 
 #[cfg(test)]
@@ -403,6 +499,43 @@ mod tests {
             bracket(&ds, &[NotChaotic, NotChaotic, NotChaotic, Undecided]),
             Bracket::Undecided
         );
+    }
+
+    #[test]
+    fn a_curve_falling_at_strong_noise_has_no_critical_noise() {
+        use Call::*;
+        let ds = [0.1, 1.0, 5.0, 12.0, 30.0];
+        let falling: Vec<RegimePoint> = ds
+            .iter()
+            .zip([0.0, 0.0, -0.006, -0.02, -0.035])
+            .map(|(&d, m)| point(d, m, 3e-3))
+            .collect();
+        let calls = [NotChaotic, Undecided, Undecided, NotChaotic, NotChaotic];
+        let s = strong_noise(&falling, &calls).unwrap();
+        assert!(
+            s.falling && s.points == 3 && s.from == 5.0 && s.slope < 0.0,
+            "{s:?}"
+        );
+        // a chaotic point anywhere: a D_c exists
+        let mut with_chaos = calls;
+        with_chaos[1] = Chaotic;
+        assert!(!strong_noise(&falling, &with_chaos).unwrap().falling);
+        // the largest D undecided: not shown
+        let mut open = calls;
+        open[4] = Undecided;
+        assert!(!strong_noise(&falling, &open).unwrap().falling);
+        // flat at the end within the errors: D_c may lie beyond the range
+        let flat: Vec<RegimePoint> = ds.iter().map(|&d| point(d, -0.01, 3e-3)).collect();
+        assert!(!strong_noise(&flat, &calls).unwrap().falling);
+        // rising toward the margin: not
+        let rising: Vec<RegimePoint> = ds
+            .iter()
+            .zip([0.0, -0.03, -0.02, -0.01, -0.005])
+            .map(|(&d, m)| point(d, m, 1e-3))
+            .collect();
+        assert!(!strong_noise(&rising, &calls).unwrap().falling);
+        // two points in the last decade: too few
+        assert!(!strong_noise(&falling[..4], &calls[..4]).unwrap().falling);
     }
 
     #[test]

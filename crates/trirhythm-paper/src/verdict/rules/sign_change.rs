@@ -6,7 +6,7 @@
 //! curve needs significant values of both signs, every negative below every positive, and a
 //! bracket (largest significant negative D, smallest significant positive D) narrower than the
 //! curve's whole range. [`significance`] and [`locate`] give the same per-point signs and the
-//! per-curve outcome ([`Located`]) to the figures that draw them (Fig. 19's sign maps).
+//! per-curve outcome ([`Located`]) to the figures that read them (data of earlier versions).
 //! Reference: docs/verdicts.md, "Sign change of the largest Lyapunov exponent". Tested by
 //! `tests/verdicts.rs`.
 

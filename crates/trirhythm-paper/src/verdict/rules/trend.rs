@@ -3,7 +3,7 @@
 //! Each step between neighbouring values and the change across the whole range is a test:
 //! z (Student's t where degrees of freedom are given) from standard errors, two-sided at
 //! [`ALPHA`] with Holm–Bonferroni over the stochastic tests of the claim; exact values up to
-//! [`EXACT_REL_TOL`]; brackets by overlap. Reference: docs/verdicts.md, "Trend". Tested by
+//! [`EXACT_REL_TOL`]; brackets by overlap (as open intervals). Reference: docs/verdicts.md, "Trend". Tested by
 //! `tests/verdicts.rs`.
 
 use super::super::stats::{holm, t_for_two_sided, t_two_sided_p};
@@ -55,9 +55,7 @@ fn shown(m: &Measured) -> String {
     match m.uncertainty {
         Uncertainty::Exact => sig(m.value, 4),
         Uncertainty::StdErr { se, .. } => format!("{} ± {}", sig(m.value, 3), sig(se, 2)),
-        Uncertainty::Bracket { lo, hi } => {
-            format!("{} in [{}, {}]", sig(m.value, 4), sig(lo, 4), sig(hi, 4))
-        }
+        Uncertainty::Bracket { .. } => m.bracket_words(4),
     }
 }
 
@@ -101,8 +99,36 @@ fn compare(a: &Measured, b: &Measured, direction: Direction) -> (f64, Measured, 
             if [alo, ahi, blo, bhi].iter().any(|v| v.is_nan()) {
                 return (diff, Measured::exact(f64::NAN), Pair::Undefined);
             }
-            let up = blo > ahi;
-            let down = bhi < alo;
+            // brackets are open intervals (D_c ∈ (D1, D2): regular at D1, chaotic at D2): two
+            // that touch at a finite, positive end differ there, one regular and one not; an
+            // infinite value (no D_c at all) equals another
+            let both = bracketed(a) && bracketed(b);
+            let apart =
+                |lo: f64, hi: f64| lo > hi || (both && lo == hi && lo.is_finite() && lo > 0.0);
+            if alo == f64::INFINITY && blo == f64::INFINITY {
+                return (
+                    0.0,
+                    Measured::exact(0.0),
+                    Pair::Bracket(0.0, Outcome::Neither),
+                );
+            }
+            // one of the two is none: the change is infinite
+            if alo == f64::INFINITY || blo == f64::INFINITY {
+                let up = blo == f64::INFINITY;
+                let change = if up { f64::INFINITY } else { f64::NEG_INFINITY };
+                let outcome = if up == (s > 0.0) {
+                    Outcome::For
+                } else {
+                    Outcome::Against
+                };
+                return (
+                    change,
+                    Measured::exact(change),
+                    Pair::Bracket(f64::INFINITY, outcome),
+                );
+            }
+            let up = apart(blo, ahi);
+            let down = apart(alo, bhi);
             let outcome = match (up, down) {
                 (true, _) if s > 0.0 => Outcome::For,
                 (true, _) => Outcome::Against,
@@ -143,7 +169,10 @@ fn compare(a: &Measured, b: &Measured, direction: Direction) -> (f64, Measured, 
 /// the Holm–Bonferroni correction over every such test of the claim (all series together);
 /// exact values compare exactly (a change within [`EXACT_REL_TOL`] of the larger magnitude is
 /// no change); bracketed values change where the brackets do not overlap (a standard error
-/// beside a bracket counts as ±2 s.e.).
+/// beside a bracket counts as ±2 s.e.). Brackets are open intervals — a critical noise in
+/// (D1, D2) is regular at D1 and chaotic at D2 — so two that touch at a finite, positive end
+/// differ (the two curves were called differently there); an infinite value (no critical noise
+/// at all) lies above every finite bracket and equals another.
 ///
 /// Verdict: refuted when any step or range change is significant against the claimed
 /// direction; otherwise undetermined when a value is undefined; confirmed when the change
@@ -166,7 +195,7 @@ pub fn trend(series: &[Series], direction: Direction) -> Decision {
         verdict,
         "trend",
         format!(
-            "{} along each series: steps and the change across the range; z = change/√(se₁²+se₂²) (Student's t with the smaller degrees of freedom where given) two-sided at α = {ALPHA} with Holm–Bonferroni over the {} stochastic tests; exact values up to a relative tolerance {EXACT_REL_TOL:e}; brackets by overlap",
+            "{} along each series: steps and the change across the range; z = change/√(se₁²+se₂²) (Student's t with the smaller degrees of freedom where given) two-sided at α = {ALPHA} with Holm–Bonferroni over the {} stochastic tests; exact values up to a relative tolerance {EXACT_REL_TOL:e}; brackets by overlap, as open intervals",
             match direction {
                 Direction::Increases => "increase",
                 Direction::Decreases => "decrease",
@@ -285,7 +314,7 @@ fn deterministic_outcomes(tests: &[Test], outcome: &mut [Outcome], stat: &mut [S
             }
             Pair::Bracket(gap, o) => {
                 outcome[i] = o;
-                stat[i] = ("gap between the brackets".into(), gap, 0.0);
+                stat[i] = ("gap between the open brackets".into(), gap, 0.0);
             }
             Pair::Undefined => stat[i] = ("undefined".into(), f64::NAN, f64::NAN),
             Pair::Z(..) => {}

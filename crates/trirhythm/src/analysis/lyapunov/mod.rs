@@ -143,6 +143,7 @@
 
 mod attractor;
 mod critical;
+mod escape;
 mod perturbation;
 mod phase;
 mod spectrum;
@@ -154,6 +155,7 @@ pub use attractor::{
 pub use critical::{
     critical_noise, CriticalNoise, CriticalSearch, NoisePoint, MAX_GRID, MAX_REFINEMENTS, MAX_Z,
 };
+pub use escape::{well_escape, WellEscape};
 pub use phase::{
     phase_response, PhaseResponse, PhaseSample, PhaseSpec, Section, EXTRAPOLATION_LIMIT,
     LINEARITY_LIMIT, MAX_FOLLOW_PERIODS, MAX_PHASES,
