@@ -147,6 +147,11 @@ pub(crate) struct Split {
     pub after: f64,
     /// False when the memory restarted at the impact (the part before it is forgotten).
     pub keep_before: bool,
+    /// A point mass at the impact, in units of g·Δt: its contribution to J^λ at u steps after
+    /// the impact is (h^λ/Γ(λ))·mass·u^{λ−1}. Always 0 in a path's own history; a tangent's
+    /// history holds there the derivative of its reference's split piece in θ, whose jump
+    /// moves with the impact (module docs of `engine::stepper::tangent`).
+    pub mass: f64,
 }
 
 /// One completed step of g: linear from `left` to `right`, or two linear pieces when split.
@@ -179,6 +184,41 @@ pub(super) fn piece_integral(
             if s.keep_before {
                 let (wa, wb) = weights.of_with(mid, p + 1.0, memo);
                 v += wa * s.before + wb * piece.left;
+            }
+            if s.mass != 0.0 {
+                v += s.mass * weights.kernel_with(mid, memo);
+            }
+            v
+        }
+    }
+}
+
+/// d/dp of [`piece_integral`] (every distance of the piece moved by the same amount: the
+/// evaluation time moving later), from the weights' own derivatives
+/// ([`IntervalWeights::shift_rates_with`]). p > 0 for λ < 1.
+pub(super) fn piece_shift_rate(
+    weights: &IntervalWeights,
+    piece: &Piece,
+    p: f64,
+    memo: &mut Powers,
+) -> f64 {
+    match piece.split {
+        None => {
+            let (_, (da, db)) = weights.shift_rates_with(p, p + 1.0, memo);
+            da * piece.right + db * piece.left
+        }
+        Some(s) => {
+            let mid = p + 1.0 - s.theta;
+            let (_, (da, db)) = weights.shift_rates_with(p, mid, memo);
+            let mut v = da * piece.right + db * s.after;
+            if s.keep_before {
+                let (_, (da, db)) = weights.shift_rates_with(mid, p + 1.0, memo);
+                v += da * s.before + db * piece.left;
+            }
+            if s.mass != 0.0 {
+                // d/du u^{λ−1} = (λ − 1)u^{λ−1}/u
+                let lambda = weights.lambda();
+                v += s.mass * (lambda - 1.0) * weights.kernel_with(mid, memo) / mid;
             }
             v
         }
