@@ -19,6 +19,16 @@
 //! the whole memory included ([`History::contract_toward`], Benettin's method for the
 //! fractional state).
 //!
+//! A split piece may carry a point mass at its impact ([`Split::mass`], in g·Δt; only a
+//! tangent's history has one: the derivative of its reference's split piece in θ, module docs
+//! of `engine::stepper::tangent`). It is weighed with the kernel itself — (h^λ/Γ(λ))·u^{λ−1}
+//! at u steps in the window and the direct memory, e^{−sℓ} into each mode and ℓᵏ into the
+//! moments when it leaves the window (ℓ its distance from the window's new start) — so that it
+//! is carried as exactly as the linear pieces. For the tangent's impact step the history also
+//! gives the derivatives in θ of its value at an instant inside the step and of a split
+//! current step ([`History::at_fraction_rate`], [`History::current_split_rate`]), from the
+//! derivatives of the interval weights under their limits.
+//!
 //! # Cost and the step's dependency chain
 //! The step's critical path runs through the memory: the newest piece (g_n, computed from
 //! V_n) enters J for the next step, which gives V_{n+1}. Everything else — the modes advanced
@@ -56,7 +66,9 @@
 //! Unit tests in `tests.rs` (the scalar solver at order 1 is the trapezoidal PECE by hand; scaling the
 //! history equals the history of the scaled g, for both memories, with a split piece; the
 //! portable and AVX fast paths give the same bits; every window of 2 … 10 steps, padded or
-//! not, agrees with `Direct` to 10⁻¹⁰);
+//! not, agrees with `Direct` to 10⁻¹⁰; a point mass and two lines are the θ-derivative of a
+//! split piece, against differences in θ, in the window and in the modes, for both memories;
+//! the rates in θ against differences of `at_fraction` and `current_split`);
 //! `tests/soe.rs` (SOE against Direct on Eq. 1).
 //!
 //! # Layout

@@ -112,8 +112,9 @@
 //! integrator, exact counts of a noisy run), `tests/impacts.rs`, `tests/systems.rs`,
 //! `tests/stochastic.rs`, `tests/tangent.rs` (the renormalisation of a perturbed copy acts on
 //! the whole memory: exact for a linear system, −μ/2 for the damped oscillator), the unit
-//! tests of [`tangent`] (the tangent step against finite differences of [`Stepper::step`],
-//! smooth and impact steps), the unit tests of `impact` (the crossing by Newton equals
+//! tests of [`tangent`] (the tangent step against finite differences of [`Stepper::step`] for
+//! every kind of step: smooth, stiff, an impact and the steps after it, sticking, leaving the
+//! wall), the unit tests of `impact` (the crossing by Newton equals
 //! bisection).
 
 use super::drivers::MAX_STEPS;

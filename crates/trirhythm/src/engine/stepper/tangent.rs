@@ -1,6 +1,8 @@
 //! The tangent (variational) dynamics of a path: [`Tangent`] holds δx = (δU, δV), δ of the
 //! Volterra constant, δg at the node and the memory of δg, and [`Stepper::step_with_tangent`]
-//! advances a path and its tangent in one pass.
+//! advances a path and its tangent in one pass. Every step — smooth, stiff, an impact with its
+//! redone rest, sticking, leaving the wall — is differentiated as the stepper takes it: the
+//! tangent is the derivative of the discrete step map [`Stepper::step`], memory included.
 //!
 //! # Equation
 //! Linearising U′ = V, V = V₀ + Σ jumps + J^λ g, g = μP(U)V − ω²U + γη about a path gives the
@@ -11,7 +13,7 @@
 //! pieces held exactly, impact splits at the same fractions). Renormalising δ therefore means
 //! scaling **every** number of the tangent state by one factor ([`Tangent::scale`]).
 //!
-//! # Smooth steps: the exact derivative of the discrete step
+//! # Smooth steps
 //! The step ([`super`], module docs) is a pass with U frozen at up = U_n + ΔtV_n + p(U_n)g_n
 //! (p the predictor's weight), a = μP(up), inv = 1/(1 − w_r a), N = base + J + w_l g_l,
 //! V_{n+1} = (N + w_r(F_r − ω²up))·inv, g^P = aV_{n+1} − ω²up + F_r, L = L(2w_r a),
@@ -22,76 +24,98 @@
 //! δL = −L²(z/6)·2w_r δa, δU_{n+1} = δU + Δt(δV + δV_{n+1})/2 + (Δt²/12)(δL(g_l − g^P) +
 //! L(δg_l − δg^P)) (the second pass: the same with δup = δU_{n+1} of the first),
 //! with δg_l the stored δ(drift) of the node and δJ the tangent memory's value; the piece
-//! (δg_l, δdrift_{n+1}) goes into the tangent memory. This is the derivative of the map the
-//! stepper computes, not of the ODE: central finite differences of [`Stepper::step`] agree with
-//! it to 10⁻⁸ or better (unit tests below, for (U, V), the Volterra constant and a memory
-//! direction, λ = 1 and 0.998, mildly and strongly stiff steps).
-//! The quantities up, a, inv, w_l, w_r, N are the step's own: the tangent costs a second memory
-//! update, evaluations of P′ and a few multiply–adds.
-
-//! # Impact steps: the saltation of the impact map
-//! The discrete impact step is not differentiated (its θ-dependence runs through the kernel
-//! weights of the split piece, the memory's whole layout); the tangent jumps by the saltation
-//! of the continuous impact map instead, at the reference's instant t* = t_n + θΔt:
-//! 1. δx at t*₋: δU₋ from the step's cubic Hermite interpolant (the one the stepper locates θ
-//!    with; linear in its data) applied to (δU_n, δV_n, δU_{n+1}, δV_{n+1}) of the free step;
-//!    δV₋ the tangent's own Volterra value at t*, (δbase + δJ(t*) − w_s ω² δU₋)/(1 − w_s μP(0)),
-//!    as the stepper takes V₋.
-//! 2. The perturbed path hits at t* + δt*, δt* = −δU₋/V₋. With the reset V₊ = ρV₋ (ρ = −r at the
-//!    wall, +r for Eq. 9's crossing), δU₊ = ρ δU₋, and the constant of V's Volterra form jumps
-//!    by (ρ − 1)V₋ taken **at the perturbed instant**: δ(jump) = (ρ − 1)(δV₋ + V̇₋δt*). With
-//!    the restarting memory the constant becomes ρV₋ at the perturbed instant and the tangent
-//!    memory restarts with the reference's.
-//! 3. g jumps by [g] = g₊ − g₋ at t*; in the perturbed path it jumps δt* later, which puts an
-//!    impulse of mass m = −[g]δt* at t* into δg's history (−g₊δt* with the restarting memory,
-//!    whose history begins at t*). Its J^λ is m·k(t − t*), k the kernel.
+//! (δg_l, δdrift_{n+1}) goes into the tangent memory. The quantities up, a, inv, w_l, w_r, N
+//! are the step's own: the tangent costs a second memory update, evaluations of P′ and a few
+//! multiply–adds.
 //!
-//! At λ = 1 (k ≡ 1, V̇₋ = g₋) this is the saltation matrix: δU₊ = ρδU₋,
-//! δV₊ = ρδV₋ + (g₊ − ρg₋)δU₋/V₋ (for the wall ρ = −r: −rδV₋ + (g₊ + rg₋)δU₋/V₋).
+//! # Impact steps
+//! The impact step ([`super::impact`]) locates θ on the cubic Hermite interpolant of the free
+//! step, takes V₋ as the scheme's Volterra value at t* = t_n + θΔt, jumps and redoes the rest
+//! of the step from (0, V₊). θ depends on the state, and it enters the step's own weights and,
+//! through the split piece, the memory of every later step. Its derivative, in the order the
+//! step computes (`impact_with_tangent`):
+//! 1. **δθ.** θ is the root of H(θ) = h₀₀U_n + h₁₀ΔtV_n + h₀₁U₁ + h₁₁ΔtV₁ (the Hermite basis at
+//!    θ, (U₁, V₁) the free end): δθ = −(h₀₀δU_n + h₁₀ΔtδV_n + h₀₁δU₁ + h₁₁ΔtδV₁)/H′(θ), with
+//!    (δU₁, δV₁) the free step's derivative above.
+//! 2. **δV(t*).** V(t*)(1 − w_s a₀) = base + J(θ) + w_s(θ)F(θ) (a₀ = μP(0), J the memory and
+//!    the step's part up to t*, w_s the weight of g there, F = γ·side·η(θ) with η
+//!    interpolated over the step): δV(t*) = (δbase + δJ + J′δθ + δw_s·F + w_s δF +
+//!    V(t*)a₀δw_s)/(1 − w_s a₀),
+//!    δJ the tangent memory at θ, J′ = ∂J/∂θ and δw_s = w_s′δθ the derivatives of the
+//!    reference's memory at the moving instant ([`History::at_fraction_rate`]: the exact
+//!    window's weights differentiated under their limits, −s_j w_j e^{−s_j·back} for each SOE
+//!    mode, the lumped cubic's derivative, the step's part stretching with the instant),
+//!    δF = γ·side·(η_r − η_l)δθ.
+//! 3. **The jump.** V₋ = V(t*) (the wall clips a grazing V(t*) ≥ 0 to 0: δV₋ = 0 there),
+//!    V₊ = ρV₋ (ρ = −r at the wall, +r for Eq. 9's crossing): δV₊ = ρδV₋. The continuous
+//!    memory's constant gains V₊ − V(t*): δbase += δV₊ − δV(t*); the restarting memory sets
+//!    base = V₊: δbase = δV₊, and the tangent memory restarts with the reference's. The split
+//!    piece's values: δg₋ = a₀δV(t*) + δF, δg₊ = a₀δV₊ + δF₊ (the forcing on the side
+//!    after).
+//! 4. **The redone rest** from (0, V₊) over (1 − θ)Δt: U starts at 0 whatever the state (the
+//!    perturbation of where the wall is met is all in δθ), its known part and the weight of g
+//!    at its end move with θ ([`History::current_split_rate`]) and so do its length and its
+//!    predictor weight: the passes are differentiated in (len, w) too
+//!    (`Rhs::advance_tangent_moving`).
+//! 5. **The split piece in the tangent memory.** The reference's split piece (g_n → g₋ on
+//!    [t_n, t*], g₊ → g_{n+1} on [t*, t_{n+1}]) enters every later J^λ through integrals whose
+//!    limits move with θ. With its values held, ∂/∂θ of the piece is exact for any kernel: a
+//!    **point mass** (g₋ − g₊)δθ (in g·Δt) at t* (−g₊δθ when the memory restarted there, the
+//!    part before being forgotten), and the two lines from 0 at t_n to −(g₋ − g_n)/θ·δθ at t*
+//!    and from −(g_{n+1} − g₊)/(1 − θ)·δθ at t* to 0 at t_{n+1} (`fold_theta`). The lines
+//!    share the split's layout, so they are added to the tangent's split values; the point mass
+//!    is the memory's `Split::mass`, which a history weighs with the kernel
+//!    itself: (h^λ/Γ(λ))·mass·u^{λ−1} at u steps in the exact window (and in the direct
+//!    memory), h·mass·e^{−s_j ℓ₂} into each SOE mode and h·mass·ℓ₂ᵏ into the lumped moments
+//!    when the piece leaves the window (ℓ₂ = (1 − θ)Δt, the mass's distance from the window's
+//!    new start). The tangent memory is thus the derivative of the reference's memory as the
+//!    reference computes it — the same SOE kernel, the same lumped cubic — at every later
+//!    step, for every λ and both impact memories; a path's own history never holds a mass (its
+//!    bits are unchanged).
 //!
-//! **The impulse in the tangent memory.** The memory holds piecewise-linear pieces, so a Dirac
-//! mass is not representable exactly. It is folded into the tangent's split piece at the
-//! reference's θ: δg₋ gains 2m(1 − θ)/(θΔt) and δg₊ gains 2mθ/((1 − θ)Δt), two hat functions
-//! whose total mass is m and whose first moment about t* is zero (with the restarting memory only
-//! the part after t* exists: δg₊ gains 2m/((1 − θ)Δt), mass m). At λ = 1 (k constant) this is
-//! exact. For λ < 1 it is not, and not at a rate in Δt: the kernel k(τ) ∝ τ^{λ−1} is scale-free,
-//! so spreading the mass over a step changes its weight at the next nodes, O(Δt) away, by a
-//! fixed fraction of order (1 − λ) (the error fades as (Δt/distance)² further on). Measured on
-//! the impact step's Jacobian (unit test below): 2·10⁻⁴ relative at λ = 0.998, up to 10⁻² at
-//! λ = 0.95, for every Δt from 0.02 to 0.00125. An exact treatment would need a Dirac piece in
-//! the memory's exact window (the SOE modes could take it exactly); not done, to keep the
-//! tangent memory a plain [`History`]. The value δV₊ from which the rest of the step is
-//! linearised counts the impulse at its λ = 1 weight (k(0⁺) is infinite for λ < 1; the
-//! singular part is carried by the memory from the end of the step on).
+//! # Sticking and leaving the wall
+//! A step that ends clamped (a stuck oscillator whose free step ends at U ≤ 0, or an impact
+//! whose rest would cross the wall again) sets (U, V) = (0, 0) whatever the state before:
+//! (δU, δV) = (0, 0), δg at the node 0. With the continuous memory the wall's reaction −V₁
+//! goes into the Volterra constant: δbase −= δV₁, δV₁ the free (or redone) end's derivative,
+//! and the step's piece (δg_l, 0) enters the tangent memory as g's does. With the restarting
+//! memory the memory restarts at rest and the constant is 0: the whole tangent state is 0 —
+//! the clamped state has forgotten the perturbation, and so has the map. A step leaving the
+//! wall from rest is a free step from (0, 0) with its memory: the smooth step's derivative.
 //!
-//! **V̇₋ for λ < 1.** V = base + J^λ g is not differentiable to g: V̇ = d/dt J^λ g. It is taken
-//! as the derivative in θ of the scheme's own J^λ of the history and of the current piece,
-//! held as the line through (t_n, g_l) and (t*, g₋) (central difference of
-//! [`History::at_fraction`], ε = 10⁻⁴ of a step), which is exactly g₋ at λ = 1.
-//!
-//! The rest of the step [t*, t_{n+1}] is the linearisation of the stepper's redone step from
-//! (δU₊, δV₊), with its own quantities (the split weights, up, the denominator). The discrete
-//! impact step and this saltation differ at O(Δt^p): at λ = 1 the unit test measures p ≈ 1.8
-//! (relative error of the step's Jacobian 5.6·10⁻⁵ at Δt = 0.02, 3.1·10⁻⁷ at Δt = 0.00125,
-//! both impact memories); for λ < 1 see the impulse above (p ≈ 0).
-//!
-//! Why not differentiate the discrete impact step exactly: θ enters the kernel weights of the
-//! split piece, in the current step and in every later one (and in the SOE absorption of the
-//! split piece), so the exact derivative needs a θ-direction of the memory — the same Dirac
-//! piece — and the kernel weights' derivatives in θ, i.e. a restructured memory. The
-//! saltation reuses the memory as it is.
-//!
-//! - A grazing impact with V₋ = 0 (the wall clips a scheme value ≥ 0) has no saltation (δt*
-//!   unbounded): the tangent is clamped like a sticking step.
-//! - Sticking steps: the clamped state (0, 0) does not depend on the state before, so
-//!   (δU, δV) = (0, 0); the wall's reaction −V_{n+1} in the Volterra constant has the
-//!   derivative −δV_{n+1} (continuous memory), or the tangent memory restarts at rest.
+//! # What is exact
+//! The tangent is the derivative of the map [`Stepper::step`] computes, to rounding: the
+//! interval weights and the SOE factors are differentiated in their own closed forms (they are
+//! exact integrals, [`crate::engine::kernel`]), so nothing of the kernel's approximation is
+//! replaced by the exact kernel. Not differentiable, and not differentiated: the switches of
+//! the map (a step with or without an impact, sticking or leaving, the wall's clipping at
+//! V(t*) = 0) and an interpolant that touches U = 0 (H′(θ) = 0: δθ unbounded; the tangent then
+//! holds θ, δθ = 0). Up to 28994b9 the impact step used the saltation of the continuous impact
+//! map instead, off by a fixed fraction of order 1 − λ (CHANGELOG.md).
 //!
 //! # Tests
 //! Unit tests below: the reference advanced by [`Stepper::step_with_tangent`] is bit-identical
-//! to [`Stepper::step`]; smooth steps against central finite differences of the stepper
-//! (U, V, base and memory directions; λ = 1 and 0.998); impact steps against finite differences
-//! with the observed order in Δt. `tests/lyapunov.rs`: the exponent by the tangent against the
+//! to [`Stepper::step`]. Every kind of step against central differences of the stepper along
+//! δU, δV, the Volterra constant and the memory, comparing (U, V), the Volterra constant and
+//! the memory's value: smooth steps (mild, and stiff where the second pass matters), λ = 1,
+//! 0.998, 0.95, 1 and 40 steps; the first impact of a noisy path at λ = 1, 0.998, 0.95 with
+//! both impact memories, 1, 4 (the split piece and its point mass in the exact window), 20
+//! (absorbed into the SOE modes and lumped moments) and 200 steps, the direct memory at
+//! λ = 0.95, Eq. 9's crossing; a step with an impact ending stuck, a sticking step and the step
+//! leaving the wall, 1 and 30 steps, λ = 1, 0.998, 0.95, both impact memories. The differences
+//! are Richardson-extrapolated from ε and 2ε (their O(ε²) error removed) at the best ε of
+//! 10⁻² … 10⁻⁷, and must agree to 10⁻⁸ relative or within their rounding resolution
+//! 32·2⁻⁵³·max|x|/ε (x the end state: a sticking step's derivatives, ~10⁻⁶, sit on a Volterra
+//! constant and a memory of order 10 that cancel). Measured: impact steps and the steps after
+//! them ≤ 2·10⁻¹⁰ relative at every λ (the saltation before was off by 2·10⁻⁴ at λ = 0.998 and
+//! 10⁻² at λ = 0.95); smooth steps ≤ 5·10⁻¹⁰; sticking and leaving the wall ≤ 6·10⁻⁶ with
+//! the continuous memory (the restarting one: exactly 0 after a sticking step, ≤ 10⁻¹⁰
+//! leaving) where the derivative is not itself near the resolution (a sticking step's δ of
+//! the constant along the constant, 4·10⁻¹⁰: 5·10⁻⁴), each within 0.3 of its rounding
+//! resolution. A copy displaced by d₀ and never renormalised follows the tangent over 10⁵
+//! steps and some 280 impacts of Fig. 17(a)'s impacting cycle (1.0·10⁻⁶ at λ = 0.995,
+//! 1.1·10⁻⁵ at λ = 0.95: the copy's nonlinearity and rounding). The memory's unit tests check
+//! the point mass and the rates in θ against differences in θ. `tests/lyapunov.rs`: the exponent by the tangent against the
 //! damped oscillator's −μ0/2 and against two trajectories.
 
 use super::{predictor_weight_len_slope, predictor_weight_slope, Begin, Piece, Split, Stepper};
@@ -221,9 +245,8 @@ fn hermite_basis_slope(t: f64) -> [f64; 4] {
 
 /// The derivative in θ of a completed split piece of the reference (`piece`, its right value
 /// set), added to the tangent's split `d` along δθ = `dtheta`: moving the impact by δθ steps
-/// with the piece's values held changes g by a point mass [g]δθ at the impact ([g] = g₋ − g₊
-/// the jump the part before carries into the part after; −g₊ when the part before is
-/// forgotten, the restarting memory) and by the line from 0 at t_n to −(g₋ − g_n)/θ·δθ at t*
+/// with the piece's values held changes g by a point mass (g₋ − g₊)δθ at the impact (−g₊δθ
+/// when the part before is forgotten, the restarting memory) and by the line from 0 at t_n to −(g₋ − g_n)/θ·δθ at t*
 /// before it and from −(g_{n+1} − g₊)/(1 − θ)·δθ at t* to 0 at t_{n+1} after it (the two
 /// linear parts stretching). Exact for every J^λ: the derivative of the piece's integrals
 /// against any kernel under their moving limits.
@@ -898,5 +921,52 @@ mod tests {
             }
         }
         eprintln!("{report}");
+    }
+
+    #[test]
+    fn a_perturbed_copy_follows_the_tangent_over_many_impacts() {
+        // Fig. 17(a)'s impacting outer cycle (μ0 = 0.001, D = 0, from U = 12.5 after 500 time
+        // units), a copy displaced by d₀ along U and never renormalised: after 10⁵ steps and
+        // some 280 impacts its difference from the reference over d₀ is the tangent up to the
+        // copy's nonlinearity (O(d₀)) and rounding (O(2⁻⁵³/d₀)); measured 1.0e-6 at λ = 0.995
+        // (d₀ = 1e-7) and 1.1e-5 at λ = 0.95 (d₀ = 1e-9: the perturbation decays by 10⁻¹⁰)
+        for (lambda, d0, bound) in [(0.995, 1e-7, 1e-5), (0.95, 1e-9, 1e-4)] {
+            let p = params("fig17a", &[("lambda", lambda), ("D", 0.0), ("mu0", 0.001)]);
+            let problem = Problem::from_params(&p)
+                .and_then(|q| q.with_start(12.5, 0.0))
+                .unwrap();
+            let method = PredictorCorrector {
+                dt: 0.01,
+                impact_memory: ImpactMemory::Restart,
+                ..Default::default()
+            };
+            let o = Options {
+                t_end: 1500.0,
+                seed: 1,
+                ..Default::default()
+            };
+            let mut s = o.stepper(&problem, &method).unwrap();
+            for _ in 0..50_000 {
+                s.step().unwrap();
+            }
+            let mut copy = s.clone();
+            copy.u += d0;
+            copy.set_node(copy.u, copy.v);
+            let mut t = Tangent::new(&s, (1.0, 0.0));
+            t.base = 0.0;
+            let before = s.impacts();
+            for _ in 0..100_000 {
+                s.step_with_tangent(&mut t).unwrap();
+                copy.step().unwrap();
+            }
+            let fd = ((copy.u - s.u) / d0, (copy.v - s.v) / d0);
+            let err = (fd.0 - t.u).hypot(fd.1 - t.v) / t.u.hypot(t.v);
+            let impacts = s.impacts() - before;
+            eprintln!("λ = {lambda}: {impacts} impacts, relative difference {err:.1e}");
+            assert!(
+                impacts > 200 && err < bound,
+                "λ = {lambda}: {impacts} impacts, {err:e}"
+            );
+        }
     }
 }
