@@ -89,8 +89,8 @@
 //! exact integrals, [`crate::engine::kernel`]), so nothing of the kernel's approximation is
 //! replaced by the exact kernel. Not differentiable, and not differentiated: the switches of
 //! the map (a step with or without an impact, sticking or leaving, the wall's clipping at
-//! V(t*) = 0) and an interpolant that touches U = 0 (H′(θ) = 0: δθ unbounded; the tangent then
-//! holds θ, δθ = 0). Up to 28994b9 the impact step used the saltation of the continuous impact
+//! V(t*) = 0), an interpolant that touches U = 0 (H′(θ) = 0: δθ unbounded) and an impact at
+//! the step's very end (θ = 1); in the last two the tangent holds θ (δθ = 0). Up to 28994b9 the impact step used the saltation of the continuous impact
 //! map instead, off by a fixed fraction of order 1 − λ (CHANGELOG.md).
 //!
 //! # Tests
@@ -429,14 +429,21 @@ impl Stepper {
         let dh = b[0] * t.u + b[1] * h * t.v + b[2] * du1 + b[3] * h * dv1;
         let slope = db[0] * self.u + db[1] * h * self.v + db[2] * u1 + db[3] * h * v1;
         let mut dtheta = -dh / slope;
-        if !dtheta.is_finite() {
-            // a root of H with H′ = 0 (the interpolant touches U = 0): no derivative; the
-            // tangent goes on with the impact time held
+        if !(dtheta.is_finite() && theta > 0.0 && theta < 1.0) {
+            // a root of H with H′ = 0 (the interpolant touches U = 0), or an impact at the
+            // step's very end (θ = 1, a rest of length 0): no derivative; the tangent goes on
+            // with the impact time held
             dtheta = 0.0;
         }
-        // δV₋: V₋(1 − w_s a₀) = base + J(θ) + w_s(θ)·F(θ); J and w_s move with θ
+        // the reference's rates in θ are formed only when θ moves (at θ = 1 they are not
+        // finite)
+        // δV(t*): V(t*)(1 − w_s a₀) = base + J(θ) + w_s(θ)·F(θ); J and w_s move with θ
         let (dhs, _) = t.history.at_fraction(theta, dgl);
-        let (rate_hs, rate_ws) = self.history.at_fraction_rate(theta, gl);
+        let (rate_hs, rate_ws) = if dtheta != 0.0 {
+            self.history.at_fraction_rate(theta, gl)
+        } else {
+            (0.0, 0.0)
+        };
         let dforcing = self.rhs.gain * self.side * (er - el) * dtheta;
         let dws = rate_ws * dtheta;
         let dv_at = (t.base
@@ -474,7 +481,11 @@ impl Stepper {
         // the rest of the step, [t*, t_{n+1}] from (0, V₊): its known part, weight and length
         // follow θ
         let (dknown_s, _) = t.history.current_split(dgl, &dsplit);
-        let (rate_known, rate_w) = self.history.current_split_rate(gl, &rest.split);
+        let (rate_known, rate_w) = if dtheta != 0.0 {
+            self.history.current_split_rate(gl, &rest.split)
+        } else {
+            (0.0, 0.0)
+        };
         let dknown = t.base + t.history.value() + dknown_s + rate_known * dtheta;
         let f = &rest.free;
         let dlen = -h * dtheta;
