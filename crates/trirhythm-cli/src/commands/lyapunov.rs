@@ -27,7 +27,7 @@ use trirhythm_paper::views::{self, CriticalOutcome, SweepPoint};
 /// How the exponent is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
 pub enum LyapunovMethod {
-    /// The variational equation with its own memory and the impact map's saltation.
+    /// The variational equation with its own memory: the exact derivative of every step, impacts included.
     Tangent,
     /// Two paths on the same noise, the copy pulled back to --separation (Benettin).
     #[default]

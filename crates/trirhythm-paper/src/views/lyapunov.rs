@@ -210,8 +210,8 @@ pub fn lyapunov_spec(spec: &LyapunovSpec) -> [String; 2] {
             ),
             LyapunovMethod::Tangent => format!(
                 "method: tangent (variational) equation along the path (frozen noise), its \
-                 memory a second history of the perturbation, the saltation of the impact \
-                 map at impacts; the whole tangent state renormalised every {} steps",
+                 memory a second history of the perturbation, the derivative of every step \
+                 (impacts included); the whole tangent state renormalised every {} steps",
                 spec.renormalise_every
             ),
         },

@@ -170,6 +170,61 @@ impl IntervalWeights {
             ((ub * m0 - m1) / d, (m1 - ua * m0) / d)
         }
     }
+
+    /// u^{λ−1}, the kernel in units of steps without its 1/Γ(λ) (u ≥ 0; +∞ at u = 0 for
+    /// λ < 1), its power u^λ from the table or `memo` as in [`IntervalWeights::of_with`].
+    pub fn kernel_with(&self, u: f64, memo: &mut Powers) -> f64 {
+        if u > 0.0 {
+            self.power(u, memo) / u
+        } else if self.lambda == 1.0 {
+            1.0
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// The weights (w_a, w_b) of [u_a, u_b] and their derivatives with respect to each end:
+    /// with d = u_b − u_a, ∂w_a/∂u_a = w_a/d − u_a^{λ−1}, ∂w_b/∂u_a = −w_a/d,
+    /// ∂w_a/∂u_b = w_b/d, ∂w_b/∂u_b = u_b^{λ−1} − w_b/d (differentiate the integrals of
+    /// [`interval_weights`] under their limits; the weights' own series or closed form, so the
+    /// derivatives are those of the weights the memory uses). Returns
+    /// ((w_a, w_b), (∂w_a/∂u_a, ∂w_b/∂u_a), (∂w_a/∂u_b, ∂w_b/∂u_b)); the derivatives in u_a
+    /// are +∞-valued at u_a = 0 for λ < 1 and must then not be used.
+    #[allow(clippy::type_complexity)]
+    pub fn rates_with(
+        &self,
+        ua: f64,
+        ub: f64,
+        memo: &mut Powers,
+    ) -> ((f64, f64), (f64, f64), (f64, f64)) {
+        let (wa, wb) = self.of_with(ua, ub, memo);
+        let d = ub - ua;
+        let ka = self.kernel_with(ua, memo);
+        let kb = self.kernel_with(ub, memo);
+        ((wa, wb), (wa / d - ka, -wa / d), (wb / d, kb - wb / d))
+    }
+
+    /// d/dσ of the weights of [u_a + σ, u_b + σ] at σ = 0 (the interval moved away from the
+    /// evaluation time): ((w_a, w_b), (dw_a, dw_b)) with dw_a = (w_a + w_b)/d − u_a^{λ−1} and
+    /// dw_b = u_b^{λ−1} − (w_a + w_b)/d (the sums of the two columns of
+    /// [`IntervalWeights::rates_with`]). u_a > 0 for λ < 1.
+    pub fn shift_rates_with(
+        &self,
+        ua: f64,
+        ub: f64,
+        memo: &mut Powers,
+    ) -> ((f64, f64), (f64, f64)) {
+        let (wa, wb) = self.of_with(ua, ub, memo);
+        let mean = (wa + wb) / (ub - ua);
+        let ka = self.kernel_with(ua, memo);
+        let kb = self.kernel_with(ub, memo);
+        ((wa, wb), (mean - ka, kb - mean))
+    }
+
+    /// λ.
+    pub fn lambda(&self) -> f64 {
+        self.lambda
+    }
 }
 
 /// The series form of [`interval_weights`] term by term, as first written (the reference of

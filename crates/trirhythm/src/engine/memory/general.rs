@@ -20,7 +20,7 @@ use crate::maths::exp;
 
 impl History {
     /// The scaled corrections of a split piece at distances 1..=cap (see `split_weights`).
-    pub(super) fn split_weight_table(&mut self, s: &Split) -> Vec<[f64; 4]> {
+    pub(super) fn split_weight_table(&mut self, s: &Split) -> Vec<[f64; 5]> {
         let cap = self.local.cap;
         self.grow_weights(cap);
         let memo = &mut Powers::default();
@@ -35,11 +35,17 @@ impl History {
                     (0.0, 0.0)
                 };
                 let k = self.scale;
+                let point = if s.mass != 0.0 {
+                    k * self.iw.kernel_with(mid, memo)
+                } else {
+                    0.0
+                };
                 [
                     k * (wb2 - self.wl[p]),
                     k * wa2,
                     k * wb,
                     k * (wa - self.wr[p]),
+                    point,
                 ]
             })
             .collect()
@@ -154,6 +160,10 @@ impl History {
                     };
                     let (phi, psi) = phi_psi_given(rate * l2, e2);
                     v = e2 * v + l2 * psi * s.after + l2 * (phi - psi) * right;
+                    if s.mass != 0.0 {
+                        // the point mass at the impact, l₂ before the window's new start
+                        v += h * s.mass * e2;
+                    }
                     *y = v;
                 }
                 if s.keep_before {
@@ -162,6 +172,15 @@ impl History {
                     self.moments = [0.0; LUMPED_TERMS];
                 }
                 advance_moments(&mut self.moments, self.flat, l2, s.after, right);
+                if s.mass != 0.0 {
+                    // m_k gains mass·h·l₂ᵏ (only m₀ is kept with a flat kernel)
+                    let kept = if self.flat { 1 } else { LUMPED_TERMS };
+                    let mut x = h * s.mass;
+                    for m in &mut self.moments[..kept] {
+                        *m += x;
+                        x *= l2;
+                    }
+                }
                 self.modes.dot()
             }
         }

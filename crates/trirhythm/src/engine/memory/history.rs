@@ -18,7 +18,7 @@ use super::moments::{dot_moments, lumped_weights, MomentStep};
 use super::window::{dot, Window};
 #[cfg(target_arch = "x86_64")]
 use super::{modes::advance_modes_avx, window::dot_avx};
-use super::{piece_integral, Memory, Piece, Split};
+use super::{piece_integral, piece_shift_rate, Memory, Piece, Split};
 use crate::engine::kernel::{phi_psi, IntervalWeights, Powers, SoeKernel, LUMPED_TERMS};
 use crate::error::{Error, Result};
 use crate::maths::{exp, pow};
@@ -49,9 +49,10 @@ pub(crate) struct History {
     /// Split pieces still held exactly, by sequence number (pieces pushed since the start).
     pub(super) splits: Vec<(u64, Split)>,
     /// For each held split (same order), with a window: its scaled corrections — exact minus
-    /// plain weights of (left, before, after, right) — at distances 1..=cap (index p − 1),
-    /// computed once when the split is pushed, so that the fast path carries split pieces.
-    pub(super) split_weights: Vec<Vec<[f64; 4]>>,
+    /// plain weights of (left, before, after, right), and the weight of its point mass (0 when
+    /// it has none) — at distances 1..=cap (index p − 1), computed once when the split is
+    /// pushed, so that the fast path carries split pieces.
+    pub(super) split_weights: Vec<Vec<[f64; 5]>>,
     pub(super) pushed: u64,
     /// Weights of left/right of an unsplit piece at distance p (index p).
     pub(super) wl: Vec<f64>,
@@ -223,6 +224,22 @@ impl History {
         (self.scale * known, self.scale * wa)
     }
 
+    /// The derivatives in θ of [`History::current_split`]'s two numbers, with the values of
+    /// the split held: the part after the impact, [0, 1 − θ] in distances from t_{n+1},
+    /// shrinks at its far end, the part before, [1 − θ, 1], grows at its near end.
+    pub fn current_split_rate(&self, left: f64, split: &Split) -> (f64, f64) {
+        let mid = 1.0 - split.theta;
+        let memo = &mut Powers::default();
+        // d/dθ = −d/d(mid)
+        let (_, _, (dwa, dwb)) = self.iw.rates_with(0.0, mid, memo);
+        let mut dknown = dwb * split.after;
+        if split.keep_before {
+            let (_, (dwa2, dwb2), _) = self.iw.rates_with(mid, 1.0, memo);
+            dknown += dwa2 * split.before + dwb2 * left;
+        }
+        (-self.scale * dknown, -self.scale * dwa)
+    }
+
     /// The pieces held exactly as (left, right), oldest first.
     pub(super) fn held(&self) -> &[[f64; 2]] {
         if self.direct {
@@ -268,6 +285,37 @@ impl History {
         }
         let (wa, wb) = self.iw.of_with(0.0, theta, memo);
         (total + self.scale * wb * left, self.scale * wa)
+    }
+
+    /// The derivatives in θ of [`History::at_fraction`]'s two numbers (J at t_n + θh of the
+    /// completed pieces and of the current step's part [t_n, t_n + θh], which is held as the
+    /// line from `left` at t_n to the unknown value at the instant; the weight of that value):
+    /// the instant moves, every distance to the past grows. The window's pieces by the
+    /// derivatives of their weights ([`piece_shift_rate`]), the modes by −s_j·w_j e^{−s_j·back},
+    /// the lumped cubic by its derivative, the current part by ∂/∂u_b of the weights of [0, θ]
+    /// (the piece stretches with the instant). The derivative of the memory as the stepper
+    /// computes it, the SOE kernel included (the tangent's impact step).
+    pub fn at_fraction_rate(&self, theta: f64, left: f64) -> (f64, f64) {
+        let shift = 1.0 - theta;
+        let len = self.held().len();
+        let mut sum = 0.0;
+        let memo = &mut Powers::default();
+        for (k, piece) in self.exact_pieces().enumerate() {
+            sum += piece_shift_rate(&self.iw, &piece, (len - k) as f64 - shift, memo);
+        }
+        let mut total = self.scale * sum;
+        if let Some(kernel) = &self.soe {
+            let back = ((self.local.cap + 1) as f64 - shift) * self.dt;
+            let y = self.modes.y.iter().flatten();
+            for ((&s, &w), &y) in kernel.rates.iter().zip(&kernel.weights).zip(y) {
+                total -= s * self.dt * w * exp(-s * back) * y;
+            }
+            let p = &kernel.lumped;
+            let dp = [p[1], 2.0 * p[2], 3.0 * p[3], 0.0];
+            total += self.dt * dot_moments(&lumped_weights(&dp, back), &self.moments);
+        }
+        let (_, _, (dwa, dwb)) = self.iw.rates_with(0.0, theta, memo);
+        (total + self.scale * dwb * left, self.scale * dwa)
     }
 
     /// Store a completed (corrected) piece and prepare the history of the next step.
@@ -390,6 +438,9 @@ impl History {
             let [l, r] = held[(seq - first) as usize];
             let c = w[(self.pushed - seq) as usize - 1];
             acc += ((c[0] * l + c[1] * s.before) + c[2] * s.after) + c[3] * r;
+            if s.mass != 0.0 {
+                acc += c[4] * s.mass;
+            }
         }
         acc
     }

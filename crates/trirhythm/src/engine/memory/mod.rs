@@ -19,6 +19,16 @@
 //! the whole memory included ([`History::contract_toward`], Benettin's method for the
 //! fractional state).
 //!
+//! A split piece may carry a point mass at its impact ([`Split::mass`], in g·Δt; only a
+//! tangent's history has one: the derivative of its reference's split piece in θ, module docs
+//! of `engine::stepper::tangent`). It is weighed with the kernel itself — (h^λ/Γ(λ))·u^{λ−1}
+//! at u steps in the window and the direct memory, e^{−sℓ} into each mode and ℓᵏ into the
+//! moments when it leaves the window (ℓ its distance from the window's new start) — so that it
+//! is carried as exactly as the linear pieces. For the tangent's impact step the history also
+//! gives the derivatives in θ of its value at an instant inside the step and of a split
+//! current step ([`History::at_fraction_rate`], [`History::current_split_rate`]), from the
+//! derivatives of the interval weights under their limits.
+//!
 //! # Cost and the step's dependency chain
 //! The step's critical path runs through the memory: the newest piece (g_n, computed from
 //! V_n) enters J for the next step, which gives V_{n+1}. Everything else — the modes advanced
@@ -56,7 +66,9 @@
 //! Unit tests in `tests.rs` (the scalar solver at order 1 is the trapezoidal PECE by hand; scaling the
 //! history equals the history of the scaled g, for both memories, with a split piece; the
 //! portable and AVX fast paths give the same bits; every window of 2 … 10 steps, padded or
-//! not, agrees with `Direct` to 10⁻¹⁰);
+//! not, agrees with `Direct` to 10⁻¹⁰; a point mass and two lines are the θ-derivative of a
+//! split piece, against differences in θ, in the window and in the modes, for both memories;
+//! the rates in θ against differences of `at_fraction` and `current_split`);
 //! `tests/soe.rs` (SOE against Direct on Eq. 1).
 //!
 //! # Layout
@@ -147,6 +159,11 @@ pub(crate) struct Split {
     pub after: f64,
     /// False when the memory restarted at the impact (the part before it is forgotten).
     pub keep_before: bool,
+    /// A point mass at the impact, in units of g·Δt: its contribution to J^λ at u steps after
+    /// the impact is (h^λ/Γ(λ))·mass·u^{λ−1}. Always 0 in a path's own history; a tangent's
+    /// history holds there the derivative of its reference's split piece in θ, whose jump
+    /// moves with the impact (module docs of `engine::stepper::tangent`).
+    pub mass: f64,
 }
 
 /// One completed step of g: linear from `left` to `right`, or two linear pieces when split.
@@ -179,6 +196,41 @@ pub(super) fn piece_integral(
             if s.keep_before {
                 let (wa, wb) = weights.of_with(mid, p + 1.0, memo);
                 v += wa * s.before + wb * piece.left;
+            }
+            if s.mass != 0.0 {
+                v += s.mass * weights.kernel_with(mid, memo);
+            }
+            v
+        }
+    }
+}
+
+/// d/dp of [`piece_integral`] (every distance of the piece moved by the same amount: the
+/// evaluation time moving later), from the weights' own derivatives
+/// ([`IntervalWeights::shift_rates_with`]). p > 0 for λ < 1.
+pub(super) fn piece_shift_rate(
+    weights: &IntervalWeights,
+    piece: &Piece,
+    p: f64,
+    memo: &mut Powers,
+) -> f64 {
+    match piece.split {
+        None => {
+            let (_, (da, db)) = weights.shift_rates_with(p, p + 1.0, memo);
+            da * piece.right + db * piece.left
+        }
+        Some(s) => {
+            let mid = p + 1.0 - s.theta;
+            let (_, (da, db)) = weights.shift_rates_with(p, mid, memo);
+            let mut v = da * piece.right + db * s.after;
+            if s.keep_before {
+                let (_, (da, db)) = weights.shift_rates_with(mid, p + 1.0, memo);
+                v += da * s.before + db * piece.left;
+            }
+            if s.mass != 0.0 {
+                // d/du u^{λ−1} = (λ − 1)u^{λ−1}/u
+                let lambda = weights.lambda();
+                v += s.mass * (lambda - 1.0) * weights.kernel_with(mid, memo) / mid;
             }
             v
         }

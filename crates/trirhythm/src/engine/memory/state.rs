@@ -59,6 +59,7 @@ impl History {
             let rs = reference.map(|r| r.splits[k].1);
             f(rs.map(|s| s.before), &mut s.before);
             f(rs.map(|s| s.after), &mut s.after);
+            f(rs.map(|s| s.mass), &mut s.mass);
         }
         for (k, y) in self.modes.flat_mut().enumerate() {
             f(r_modes.as_ref().map(|r| r[k]), y);
@@ -112,7 +113,7 @@ impl History {
             && self
                 .splits
                 .iter()
-                .all(|(_, s)| s.before == 0.0 && s.after == 0.0)
+                .all(|(_, s)| s.before == 0.0 && s.after == 0.0 && s.mass == 0.0)
             && self.modes.y.as_flattened().iter().all(zero)
             && self.moments.iter().all(zero)
             && self.cached == 0.0
@@ -149,7 +150,7 @@ impl History {
             + self.wr.capacity()
             + 5 * self.modes.len())
             + std::mem::size_of::<(u64, Split)>() * self.splits.capacity()
-            + std::mem::size_of::<[f64; 4]>()
+            + std::mem::size_of::<[f64; 5]>()
                 * self.split_weights.iter().map(Vec::len).sum::<usize>()
     }
 }

@@ -103,6 +103,7 @@ fn portable_and_avx_memories_give_the_same_bits() {
                 before: 3.0,
                 after: -1.0,
                 keep_before: true,
+                mass: 0.0,
             }),
         };
         a.push(piece);
@@ -191,6 +192,7 @@ fn scaling_the_history_equals_the_history_of_the_scaled_g() {
                     before: k * 3.0,
                     after: -k,
                     keep_before: true,
+                    mass: 0.0,
                 }),
             };
             for n in 0..40 {
@@ -208,6 +210,134 @@ fn scaling_the_history_equals_the_history_of_the_scaled_g() {
                 assert!((fa - fb).abs() <= 1e-13 * fb.abs().max(1.0));
                 a.push(piece(n, c));
                 b.push(piece(n, c));
+            }
+        }
+    }
+}
+
+/// The history of a smooth g with one split piece at step `at`, split at `theta` with jump
+/// values (before, after) and `mass`, `n` pieces pushed.
+fn split_history(
+    lambda: f64,
+    memory: Memory,
+    (at, theta, keep): (usize, f64, bool),
+    (before, after, mass): (f64, f64, f64),
+    g: &dyn Fn(usize) -> f64,
+    n: usize,
+) -> History {
+    let mut h = History::new(lambda, 0.01, 10.0, memory, DEFAULT_WINDOW).unwrap();
+    for k in 0..n {
+        h.push(Piece {
+            left: g(k),
+            right: g(k + 1),
+            split: (k == at).then_some(Split {
+                theta,
+                before,
+                after,
+                keep_before: keep,
+                mass,
+            }),
+        });
+    }
+    h
+}
+
+#[test]
+fn a_point_mass_and_two_lines_are_the_theta_derivative_of_a_split_piece() {
+    // moving a split piece's impact by δθ (values held) changes J^λ as a point mass
+    // (g₋ − g₊)δθ at the impact (−g₊δθ when the part before is forgotten) and two lines that
+    // vanish at the piece's ends: the central difference in θ of the history (values at every
+    // later node: in the window, then in the modes and lumped moments) against the history of
+    // that derivative alone, for both memories and at λ = 1
+    let g = |k: usize| (0.37 * k as f64).sin() + 0.05 * k as f64;
+    let (at, theta, before, after) = (12, 0.37, 2.5, -1.3);
+    let (left, right) = (g(at), g(at + 1));
+    // the differences err by O(ε²) and by rounding, 1e-16/ε of values of order 1 against
+    // derivatives of order 10⁻³: 1e-10 at ε = 1e-4 (1e-8 at ε = 1e-6, so rounding)
+    let eps = 1e-4;
+    for memory in [
+        Memory::Direct,
+        Memory::SumOfExponentials { tolerance: 1e-12 },
+    ] {
+        for lambda in [0.95, 0.998, 1.0] {
+            for keep in [true, false] {
+                let mass = if keep { before - after } else { -after };
+                let db = -(before - left) / theta;
+                let da = -(right - after) / (1.0 - theta);
+                let zero = |_: usize| 0.0;
+                let mut worst: f64 = 0.0;
+                for n in at + 1..at + 40 {
+                    let at_theta = |th: f64| {
+                        split_history(lambda, memory, (at, th, keep), (before, after, 0.0), &g, n)
+                    };
+                    let (plus, minus) = (at_theta(theta + eps), at_theta(theta - eps));
+                    let d =
+                        split_history(lambda, memory, (at, theta, keep), (db, da, mass), &zero, n);
+                    let fd = (plus.value() - minus.value()) / (2.0 * eps);
+                    worst = worst.max((d.value() - fd).abs() / fd.abs().max(1e-3));
+                    let fd = (plus.at_fraction(0.3, 1.0).0 - minus.at_fraction(0.3, 1.0).0)
+                        / (2.0 * eps);
+                    let got = d.at_fraction(0.3, 0.0).0;
+                    worst = worst.max((got - fd).abs() / fd.abs().max(1e-3));
+                }
+                assert!(
+                    worst < 1e-8,
+                    "{memory:?} λ = {lambda} keep {keep}: {worst:e}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_rates_in_theta_are_the_derivatives_of_the_weights() {
+    // at_fraction_rate and current_split_rate against central differences in θ of
+    // at_fraction and current_split, with held split pieces in the window, both memories
+    let g = |k: usize| (0.37 * k as f64).sin() + 0.05 * k as f64;
+    let eps = 1e-6;
+    for memory in [
+        Memory::Direct,
+        Memory::SumOfExponentials { tolerance: 1e-12 },
+    ] {
+        for lambda in [0.6, 0.95, 0.998, 1.0] {
+            for n in [3, 30] {
+                let h = split_history(lambda, memory, (n - 2, 0.4, true), (2.0, -1.0, 0.0), &g, n);
+                for theta in [0.01, 0.3, 0.9] {
+                    let (left, star) = (0.7, -0.4);
+                    let j = |th: f64| {
+                        let (hs, ws) = h.at_fraction(th, left);
+                        (hs + ws * star, ws)
+                    };
+                    let (rate, rate_w) = h.at_fraction_rate(theta, left);
+                    let (p, m) = (j(theta + eps), j(theta - eps));
+                    let fd = ((p.0 - m.0) / (2.0 * eps), (p.1 - m.1) / (2.0 * eps));
+                    let got = (rate + rate_w * star, rate_w);
+                    for (a, b) in [(got.0, fd.0), (got.1, fd.1)] {
+                        assert!(
+                            (a - b).abs() <= 1e-7 * b.abs().max(1.0),
+                            "{memory:?} λ = {lambda} n = {n} θ = {theta}: {a} vs {b}"
+                        );
+                    }
+                    for keep in [true, false] {
+                        let split = |th: f64| Split {
+                            theta: th,
+                            before: 1.5,
+                            after: -0.8,
+                            keep_before: keep,
+                            mass: 0.0,
+                        };
+                        let (rk, rw) = h.current_split_rate(left, &split(theta));
+                        let p = h.current_split(left, &split(theta + eps));
+                        let m = h.current_split(left, &split(theta - eps));
+                        let fd = ((p.0 - m.0) / (2.0 * eps), (p.1 - m.1) / (2.0 * eps));
+                        for (a, b) in [(rk, fd.0), (rw, fd.1)] {
+                            assert!(
+                                (a - b).abs() <= 1e-7 * b.abs().max(1.0),
+                                "split {keep} λ = {lambda} θ = {theta}: {a} vs {b}"
+                            );
+                        }
+                    }
+                }
             }
         }
     }

@@ -119,6 +119,7 @@ impl Stepper {
             before: a0 * v_at + c.forcing,
             after: a0 * v_plus + after_forcing,
             keep_before: !self.restart,
+            mass: 0.0,
         };
         // V(t*+) = V₊ exactly: restart the memory there, or shift V's Volterra constant
         if self.restart {

@@ -48,8 +48,8 @@
 //! **Paths with their tangents** ([`step_group_tangent`], the tangent method of the Lyapunov
 //! exponent): the same phases, the tangent's linearised step beside the path's — μP and its
 //! slope at the start, at each pass's predictor and at the end evaluated in arrays across lanes,
-//! the tangent's passes lane by lane with the path's quantities of the step, its saltation at
-//! impacts and its memory per path by the scalar code ([`Stepper::step_with_tangent`] is split
+//! the tangent's passes lane by lane with the path's quantities of the step, the derivative of
+//! its impact steps and its memory per path by the scalar code ([`Stepper::step_with_tangent`] is split
 //! into the same phases, so the bits are the same by construction). Measured at Fig. 17(a)'s
 //! sizes (8 realisations, `examples/drivers_timing.rs`): 1.08–1.13× with four lanes, 1.00–1.04×
 //! with eight — the two memory pushes per step (path and tangent), the deviates and the impacts

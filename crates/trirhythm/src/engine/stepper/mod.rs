@@ -112,8 +112,9 @@
 //! integrator, exact counts of a noisy run), `tests/impacts.rs`, `tests/systems.rs`,
 //! `tests/stochastic.rs`, `tests/tangent.rs` (the renormalisation of a perturbed copy acts on
 //! the whole memory: exact for a linear system, −μ/2 for the damped oscillator), the unit
-//! tests of [`tangent`] (the tangent step against finite differences of [`Stepper::step`],
-//! smooth and impact steps), the unit tests of `impact` (the crossing by Newton equals
+//! tests of [`tangent`] (the tangent step against finite differences of [`Stepper::step`] for
+//! every kind of step: smooth, stiff, an impact and the steps after it, sticking, leaving the
+//! wall), the unit tests of `impact` (the crossing by Newton equals
 //! bisection).
 
 use super::drivers::MAX_STEPS;
@@ -225,6 +226,13 @@ fn predictor_weight(len: f64, a: f64) -> f64 {
 fn predictor_weight_slope(len: f64, a: f64, slope: f64) -> f64 {
     let d = 1.0 + len * a.abs();
     -0.5 * len * len * len * a.signum() * slope / (d * d)
+}
+
+/// d/d(len) of [`predictor_weight`] at a fixed a: len(1 + ½len|a|)/(1 + len|a|)² (the rest of
+/// an impact step, whose length moves with the impact).
+fn predictor_weight_len_slope(len: f64, a: f64) -> f64 {
+    let d = 1.0 + len * a.abs();
+    len * (1.0 + 0.5 * len * a.abs()) / (d * d)
 }
 
 /// The factor 1/(1 + z²/12) of the Hermite correction of U, z = 2w·a the stiffness of the
@@ -387,6 +395,56 @@ impl Rhs {
             self.damping_slope(f.passes[1].up),
         ];
         self.advance_tangent_with(f, slopes, (du, dv, dg0), dpw, dknown)
+    }
+
+    /// The derivative of [`Rhs::advance`] from (u, v) = `start` when the step's length and its
+    /// weight of g at the end move as well (the rest of an impact step: its length (1 − θ)Δt
+    /// and its weights follow the impact's θ): along (δu, δv, δg0), δpw, δknown and
+    /// (δlen, δw). Returns (δU₁, δV₁).
+    #[allow(clippy::too_many_arguments)]
+    fn advance_tangent_moving(
+        &self,
+        f: &Free,
+        (_, v): (f64, f64),
+        (du, dv, dg0): (f64, f64, f64),
+        dpw: f64,
+        dknown: f64,
+        (dlen, dw): (f64, f64),
+    ) -> (f64, f64) {
+        let dup = du + dlen * v + f.len * dv + f.pw * dg0 + f.g0 * dpw;
+        let moving = (v, dlen, dw);
+        let first = self.pass_tangent_moving(f, &f.passes[0], moving, (du, dv, dg0), dup, dknown);
+        self.pass_tangent_moving(f, &f.passes[1], moving, (du, dv, dg0), first.0, dknown)
+    }
+
+    /// [`Rhs::pass_tangent`] with the length and the weight moving: `moving` = (v at the
+    /// start, δlen, δw). With inv = 1/(1 − w·a): δ(wa) = δw·a + w·δa,
+    /// δV₁ = inv·(δknown + δw·(F_r − ω²up) − wω²δup + V₁δ(wa)) (F_r − ω²up = g_r − aV₁),
+    /// δL = −L²(z/6)·2δ(wa), and U₁'s terms in len differentiated as well.
+    fn pass_tangent_moving(
+        &self,
+        f: &Free,
+        p: &Pass,
+        (v, dlen, dw): (f64, f64, f64),
+        (du, dv, dg0): (f64, f64, f64),
+        dup: f64,
+        dknown: f64,
+    ) -> (f64, f64) {
+        let da = self.damping_slope(p.up) * dup;
+        let dwa = dw * p.a + f.w * da;
+        let free_part = p.gr - p.a * p.v1;
+        let dv1 = p.inv * (dknown + dw * free_part - f.w * self.omega2 * dup + p.v1 * dwa);
+        let dgr = da * p.v1 + p.a * dv1 - self.omega2 * dup;
+        let z = 2.0 * f.w * p.a;
+        let dlim = -p.lim * p.lim * (z / 6.0) * 2.0 * dwa;
+        let c = f.len * f.len / 12.0;
+        let dc = f.len * dlen / 6.0;
+        let du1 = du
+            + 0.5 * dlen * (v + p.v1)
+            + 0.5 * f.len * (dv + dv1)
+            + dc * p.lim * (f.g0 - p.gr)
+            + c * (dlim * (f.g0 - p.gr) + p.lim * (dg0 - dgr));
+        (du1, dv1)
     }
 
     /// [`Rhs::advance_tangent`] with d(μP)/dU at the passes' up given.
