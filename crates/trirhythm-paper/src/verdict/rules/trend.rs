@@ -112,9 +112,18 @@ fn compare(a: &Measured, b: &Measured, direction: Direction) -> (f64, Measured, 
                     Pair::Bracket(0.0, Outcome::Neither),
                 );
             }
-            // one of the two is none: the change is infinite
+            // one of the two is none: the change is infinite where the other is bounded above
+            // (a one-sided [D, ∞) may itself be none: no change shown)
             if alo == f64::INFINITY || blo == f64::INFINITY {
                 let up = blo == f64::INFINITY;
+                let other_hi = if up { ahi } else { bhi };
+                if other_hi == f64::INFINITY {
+                    return (
+                        f64::NAN,
+                        Measured::exact(f64::NAN),
+                        Pair::Bracket(0.0, Outcome::Neither),
+                    );
+                }
                 let change = if up { f64::INFINITY } else { f64::NEG_INFINITY };
                 let outcome = if up == (s > 0.0) {
                     Outcome::For
