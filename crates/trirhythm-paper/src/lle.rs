@@ -23,7 +23,7 @@
 //! exponent is its eigenvalue's real part) and `tests/figures.rs`.
 
 use crate::notes::{caption, num, sig, symbol, table_notes, variant_line, Caption};
-use crate::requests::Model;
+use crate::requests::{Model, Named};
 use crate::table::Table;
 use crate::verdict::rules::{
     agrees_with_prediction, bracket, calls, rest_regime, significance, Bracket, Call, LleCurve,
@@ -32,8 +32,8 @@ use crate::verdict::rules::{
 use crate::{FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::lyapunov::{
-    attractor_starts, largest_lyapunov, phase_response, Attractor, AttractorSpec, LyapunovSpec,
-    PhaseSpec,
+    attractor_starts, largest_lyapunov, phase_response, Attractor, AttractorSpec, LyapunovMethod,
+    LyapunovSpec, PhaseSpec,
 };
 use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem};
 use trirhythm::maths;
@@ -118,20 +118,36 @@ impl Sizes {
         self.model.problem(params)
     }
 
-    /// One line for headings and notes.
+    /// One line for the figures' headings and notes: the method, the step and the impact
+    /// memory as set; the model is not named (the figures' own, Eq. 1 with the wall).
     pub fn describe(&self) -> String {
+        let method = match self.spec.method {
+            LyapunovMethod::TwoTrajectory => format!(
+                "two trajectories with whole-memory renormalisation (d0 = {}, every {} steps)",
+                num(self.spec.separation),
+                self.spec.renormalise_every
+            ),
+            LyapunovMethod::Tangent => format!(
+                "the tangent equation renormalised every {} steps",
+                self.spec.renormalise_every
+            ),
+        };
+        let step = match self.dt {
+            Some(dt) => num(dt),
+            None => format!(
+                "the largest of {{{}}} not above τ/10",
+                DT_LADDER[..5]
+                    .iter()
+                    .map(|&d| num(d))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        };
         format!(
-            "LLE with frozen noise, two trajectories with whole-memory renormalisation (d0 = {}, \
-             every {} steps), predictor-corrector with Δt = the largest of {{{}}} not above τ/10, \
-             restart impact memory; finite-time exponent over a window of {} after a transient \
-             of {}; mean ± standard error over {} noise realisations (seed {})",
-            num(self.spec.separation),
-            self.spec.renormalise_every,
-            DT_LADDER[..5]
-                .iter()
-                .map(|&d| num(d))
-                .collect::<Vec<_>>()
-                .join(", "),
+            "LLE with frozen noise, {method}, predictor-corrector with Δt = {step}, {} impact \
+             memory; finite-time exponent over a window of {} after a transient of {}; mean ± \
+             standard error over {} noise realisations (seed {})",
+            self.impact_memory.name(),
             num(self.spec.length),
             num(self.spec.transient),
             self.spec.paths,
