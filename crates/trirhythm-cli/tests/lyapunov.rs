@@ -354,6 +354,10 @@ fn bad_input_names_the_flag() {
         ),
         (vec!["critical-noise"], "--d-range"),
         (
+            vec!["critical-noise", "--noises", "0.1", "--points", "5"],
+            "--points",
+        ),
+        (
             vec!["critical-noise", "--noises", "0.1", "--dt", "1"],
             "--dt",
         ),

@@ -107,7 +107,7 @@ def test_sweep_records_a_rest_curve():
         (dict(d_range=(0.1, 1.0), points=-1), "invalid parameter points = -1"),
         (dict(noises=[0.1, 0.05]), "invalid parameter noises = 0.05: allowed range is above"),
         (dict(noises=[]), "invalid parameter noises = 0: allowed range is 1 to 1000 values"),
-        (dict(d_range=None), "give the noise intensities"),
+        (dict(d_range=(0.1, 1.0), noises=[0.1]), "either as noises or as d_range"),
         (dict(sweep=("D", [0.1])), "any parameter but D"),
         (dict(sweep=("lambda", [2.0])), "invalid parameter lambda = 2"),
         (dict(dt=1.0), "invalid parameter dt = 1: allowed range is [1e-4, 0.1]"),

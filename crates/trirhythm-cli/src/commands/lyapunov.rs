@@ -310,14 +310,9 @@ pub struct CriticalNoiseArgs {
     /// The noise range: LO:HI with 0 < LO < HI, --points values log-spaced (3 significant digits).
     #[arg(long = "d-range", value_name = "LO:HI", allow_hyphen_values = true)]
     pub d_range: Option<String>,
-    /// Values of D log-spaced over --d-range, ends included, 2 to 1000.
-    #[arg(
-        long,
-        default_value_t = 9,
-        allow_hyphen_values = true,
-        requires = "d_range"
-    )]
-    pub points: usize,
+    /// Values of D log-spaced over --d-range, ends included, 2 to 1000 (default 9).
+    #[arg(long, allow_hyphen_values = true)]
+    pub points: Option<usize>,
     /// The noise intensities, ascending, each > 0: D1,D2,… (instead of --d-range).
     #[arg(
         long,
@@ -441,10 +436,13 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
         ));
     }
     let base = args.params.resolve()?;
-    let noises = match (&args.d_range, &args.noises) {
-        (Some(r), _) => noises_of_range(r, args.points)?,
-        (None, Some(list)) => noises_of_list(list)?,
-        (None, None) => return bad("give the noise intensities: --d-range LO:HI or --noises"),
+    let noises = match (&args.d_range, &args.noises, args.points) {
+        (Some(r), None, points) => noises_of_range(r, points.unwrap_or(9))?,
+        (None, Some(list), None) => noises_of_list(list)?,
+        (None, Some(_), Some(_)) => {
+            return bad("--points: the values log-spaced over --d-range; --noises gives them all")
+        }
+        _ => return bad("give the noise intensities: --d-range LO:HI [--points N] or --noises"),
     };
     if let Some(dt) = args.dt {
         allowed((1e-4..=0.1).contains(&dt), "--dt", num(dt), "[1e-4, 0.1]")?;

@@ -630,7 +630,7 @@ _CRITICAL_DEFAULTS = dict(
 
 def critical_noise(
     params: Params,
-    d_range: tuple[float, float] | None = (0.002, 2.0),
+    d_range: tuple[float, float] | None = None,
     points: int = 9,
     paths: int = 8,
     t_end: float = 2000.0,
@@ -649,8 +649,8 @@ def critical_noise(
     The starts U(0) = the averaged theory's stable amplitudes, 1 and 0.01 are classified by the
     attractor their noise-free path reaches, and one curve is run per attractor (rest on the
     wall, inner / middle / outer cycle) at D = ``points`` values log-spaced over ``d_range``
-    (0 < lo < hi, rounded to 3 significant digits; the default is Fig. 19's grid) or at
-    ``noises`` (ascending, each > 0; then give ``d_range=None`` or leave it as it is). Each
+    (0 < lo < hi, rounded to 3 significant digits; ``None``: (0.002, 2), with 9 points Fig. 19's
+    grid) or at ``noises`` (ascending, each > 0; not with ``d_range``). Each
     point is called against δ = 1/``t_end``; each curve gets the bracket of D_c, a rest curve
     its pooled exponent and slope over D ≤ 1e-2, a cycle the phase-reduction coefficient c.
     The D of ``params`` is not used. ``sweep=(key, values)`` runs the curves at each value of
@@ -665,11 +665,12 @@ def critical_noise(
         raise ValueError(f"unknown argument(s) {sorted(unknown)}: expected {sorted(_CRITICAL_DEFAULTS)}")
     o = {**_CRITICAL_DEFAULTS, **options}
     if noises is not None:
+        if d_range is not None:
+            raise ValueError("give the noise intensities either as noises or as d_range (with points), not both")
         noises = [_finite("noises", d) for d in noises]
-        d_range = None
-    elif d_range is None:
-        raise ValueError("give the noise intensities: d_range=(lo, hi) with points, or noises=[D1, D2, …]")
     else:
+        if d_range is None:
+            d_range = (0.002, 2.0)
         try:
             lo, hi = d_range
         except (TypeError, ValueError):
