@@ -69,7 +69,7 @@ enum Command {
     Oscillation(oscillation::OscillationArgs),
     /// Largest Lyapunov exponent with frozen noise (JSON; with --sweep CSV per parameter value).
     Lyapunov(lyapunov::LyapunovArgs),
-    /// Critical noise D_c where the largest Lyapunov exponent changes sign (CSV KEY,D_c,D_c_lo,D_c_hi).
+    /// The largest Lyapunov exponent against D by regime (one curve per attractor) and each curve's D_c.
     CriticalNoise(lyapunov::CriticalNoiseArgs),
     /// Phase response Z(θ) of a stable cycle by small kicks, and c of λ ≈ −c·D under weak noise.
     PhaseResponse(phase::PhaseArgs),

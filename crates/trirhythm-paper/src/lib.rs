@@ -22,8 +22,9 @@
 //! figure's data as rows, what its CSV files hold).
 //!
 //! Beyond the figures: [`verdict`] (the paper's claims decided from the figures' data by stated
-//! rules) and [`views`] (the library's results as sentences and tables, what the command line
-//! prints and writes).
+//! rules), [`views`] (the library's results as sentences and tables, what the command line
+//! prints and writes) and [`critical`] (the critical noise by regime with the figures' rules,
+//! what `trirhythm critical-noise` and the Python `critical_noise` compute).
 //!
 //! # Example
 //! ```
@@ -48,6 +49,7 @@
 //! ```
 
 pub mod boundary;
+pub mod critical;
 pub mod lle;
 pub mod maps;
 pub mod montecarlo;

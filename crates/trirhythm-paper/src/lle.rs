@@ -23,6 +23,7 @@
 //! exponent is its eigenvalue's real part) and `tests/figures.rs`.
 
 use crate::notes::{caption, num, sig, symbol, table_notes, variant_line, Caption};
+use crate::requests::{Model, Named};
 use crate::table::Table;
 use crate::verdict::rules::{
     agrees_with_prediction, bracket, calls, rest_regime, significance, strong_noise, Bracket, Call,
@@ -32,7 +33,7 @@ use crate::{FigureOptions, Monitor};
 use serde::{Deserialize, Serialize};
 use trirhythm::analysis::lyapunov::{
     attractor_starts, largest_lyapunov, phase_response, well_escape, Attractor, AttractorSpec,
-    CriticalNoise, LyapunovSpec, NoisePoint, PhaseSpec, WellEscape,
+    LyapunovMethod, LyapunovSpec, PhaseSpec, WellEscape,
 };
 use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem};
 use trirhythm::maths;
@@ -57,10 +58,18 @@ pub fn dt_for(tau: f64) -> f64 {
         .unwrap_or(DT_LADDER[DT_LADDER.len() - 1])
 }
 
-/// Sizes of the runs behind one LLE.
+/// Sizes of the runs behind one LLE, and the model and integrator they run with.
+#[derive(Debug, Clone)]
 pub struct Sizes {
-    /// Paths, transient, window.
+    /// Paths, transient, window (and the method that follows the perturbation).
     pub spec: LyapunovSpec,
+    /// The equation, the wall and the memory (the figures: Eq. 1 with the wall, the
+    /// sum-of-exponentials memory at 1e-10).
+    pub model: Model,
+    /// The step Δt; `None`: the figures' rule, [`dt_for`] of each parameter set's τ.
+    pub dt: Option<f64>,
+    /// What the memory does at an impact (the figures: restart).
+    pub impact_memory: ImpactMemory,
 }
 
 impl Sizes {
@@ -77,40 +86,68 @@ impl Sizes {
         } else {
             (16, 200.0, full_window)
         };
-        Sizes {
-            spec: LyapunovSpec {
-                paths,
-                seed: 1,
-                transient,
-                length,
-                ..Default::default()
-            },
-        }
-    }
-
-    /// The integrator for correlation time `tau`: Δt from [`dt_for`], restart impact memory.
-    pub fn method(&self, tau: f64) -> PredictorCorrector {
-        PredictorCorrector {
-            impact_memory: ImpactMemory::Restart,
-            dt: dt_for(tau),
+        Sizes::of_spec(LyapunovSpec {
+            paths,
+            seed: 1,
+            transient,
+            length,
             ..Default::default()
+        })
+    }
+
+    /// The runs of `spec` with the figures' model and integrator: Eq. 1 with the wall, Δt by
+    /// [`dt_for`], restart impact memory.
+    pub fn of_spec(spec: LyapunovSpec) -> Sizes {
+        Sizes {
+            spec,
+            model: Model::default(),
+            dt: None,
+            impact_memory: ImpactMemory::Restart,
         }
     }
 
-    /// One line for headings and notes.
+    /// The integrator for correlation time `tau`: Δt given, else from [`dt_for`]; the
+    /// model's memory and the impact memory.
+    pub fn method(&self, tau: f64) -> PredictorCorrector {
+        self.model
+            .method(self.dt.unwrap_or_else(|| dt_for(tau)), self.impact_memory)
+    }
+
+    /// The problem of `params` with the model's equation and wall (start still to be set).
+    pub fn problem(&self, params: &Params) -> Result<Problem> {
+        self.model.problem(params)
+    }
+
+    /// One line for the figures' headings and notes: the method, the step and the impact
+    /// memory as set; the model is not named (the figures' own, Eq. 1 with the wall).
     pub fn describe(&self) -> String {
+        let method = match self.spec.method {
+            LyapunovMethod::TwoTrajectory => format!(
+                "two trajectories with whole-memory renormalisation (d0 = {}, every {} steps)",
+                num(self.spec.separation),
+                self.spec.renormalise_every
+            ),
+            LyapunovMethod::Tangent => format!(
+                "the tangent equation renormalised every {} steps",
+                self.spec.renormalise_every
+            ),
+        };
+        let step = match self.dt {
+            Some(dt) => num(dt),
+            None => format!(
+                "the largest of {{{}}} not above τ/10",
+                DT_LADDER[..5]
+                    .iter()
+                    .map(|&d| num(d))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        };
         format!(
-            "LLE with frozen noise, two trajectories with whole-memory renormalisation (d0 = {}, \
-             every {} steps), predictor-corrector with Δt = the largest of {{{}}} not above τ/10, \
-             restart impact memory; finite-time exponent over a window of {} after a transient \
-             of {}; mean ± standard error over {} noise realisations (seed {})",
-            num(self.spec.separation),
-            self.spec.renormalise_every,
-            DT_LADDER[..5]
-                .iter()
-                .map(|&d| num(d))
-                .collect::<Vec<_>>()
-                .join(", "),
+            "LLE with frozen noise, {method}, predictor-corrector with Δt = {step}, {} impact \
+             memory; finite-time exponent over a window of {} after a transient of {}; mean ± \
+             standard error over {} noise realisations (seed {})",
+            self.impact_memory.name(),
             num(self.spec.length),
             num(self.spec.transient),
             self.spec.paths,
@@ -169,15 +206,16 @@ pub struct RegimeStart {
     pub amplitude: f64,
 }
 
-/// One start per attractor of the noise-free system of `params` (D set to 0) with the step
-/// `method` ([`attractor_starts`]: the theory's stable amplitudes, 1 and 0.01 tried), and a
-/// note for each start that settled on nothing within the run.
+/// One start per attractor of the noise-free system of `params` (D set to 0) with the model
+/// and step of `sizes` ([`attractor_starts`]: the theory's stable amplitudes in `variant`, 1
+/// and 0.01 tried), and a note for each start that settled on nothing within the run.
 pub fn regime_starts(
     params: &Params,
-    method: &PredictorCorrector,
+    sizes: &Sizes,
     variant: Variant,
 ) -> Result<(Vec<RegimeStart>, Vec<String>)> {
-    let problem = Problem::from_params(&params.with("D", 0.0)?)?;
+    let method = &sizes.method(params.correlation_time);
+    let problem = sizes.problem(&params.with("D", 0.0)?)?;
     let spec = AttractorSpec {
         variant,
         ..Default::default()
@@ -553,16 +591,17 @@ impl CurveRegime {
 }
 
 /// The phase-reduction prediction of a cycle curve: c of λ ≈ −c·D from the phase response of
-/// the noise-free cycle through `u0` (64 phases, 24 periods followed), its uncertainty and a
-/// note (the reason where there is none: NaN).
+/// the noise-free cycle through `u0` (64 phases, 24 periods followed) with the model and step
+/// of `sizes`, its uncertainty and a note (the reason where there is none: NaN).
 pub fn phase_prediction(
     params: &Params,
-    method: &PredictorCorrector,
+    sizes: &Sizes,
     u0: f64,
     monitor: &dyn Monitor,
 ) -> Result<(f64, f64, String)> {
     monitor.check()?;
-    let problem = Problem::from_params(&params.with("D", 0.0)?)?;
+    let method = &sizes.method(params.correlation_time);
+    let problem = sizes.problem(&params.with("D", 0.0)?)?;
     let spec = PhaseSpec {
         phases: 64,
         periods: 24,
@@ -784,7 +823,7 @@ pub fn lle_point(
     sizes: &Sizes,
     what: &str,
 ) -> Result<(Point, Option<String>)> {
-    let problem = Problem::from_params(p)?.with_start(u0, 0.0)?;
+    let problem = sizes.problem(p)?.with_start(u0, 0.0)?;
     let method = sizes.method(p.correlation_time);
     let r = largest_lyapunov(&problem, &method, &sizes.spec, &OnlyCancel(monitor))?;
     let mut note = None;
@@ -870,6 +909,48 @@ impl PlannedCurve {
     }
 }
 
+/// The noise intensities a planned curve runs at: `noises` on every curve, `rest_below` added
+/// below them on rest-regime curves, and `extension` tried one at a time on cycle-regime curves
+/// with no chaotic point ([`run_curve`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NoiseGrid {
+    /// Every curve's D, ascending.
+    pub noises: Vec<f64>,
+    /// Added below `noises` on rest curves, ascending.
+    pub rest_below: Vec<f64>,
+    /// The D a cycle curve is extended to, ascending.
+    pub extension: Vec<f64>,
+}
+
+impl NoiseGrid {
+    /// The figures' grid: `noises`, with [`REST_EXTRA_NOISES`] below on rest curves and
+    /// [`CYCLE_EXTRA_NOISES`] as the extension of cycle curves unless `quick`.
+    pub fn figure(noises: &[f64], quick: bool) -> NoiseGrid {
+        NoiseGrid {
+            noises: noises.to_vec(),
+            rest_below: if quick {
+                vec![]
+            } else {
+                REST_EXTRA_NOISES.to_vec()
+            },
+            extension: if quick {
+                vec![]
+            } else {
+                CYCLE_EXTRA_NOISES.to_vec()
+            },
+        }
+    }
+
+    /// `noises` on every curve, nothing added.
+    pub fn only(noises: &[f64]) -> NoiseGrid {
+        NoiseGrid {
+            noises: noises.to_vec(),
+            rest_below: vec![],
+            extension: vec![],
+        }
+    }
+}
+
 /// Plan the curves of `values` of `key` on `base`: classify the starts (noise-free runs) and
 /// fix each curve's D grid; notes for starts that settled on nothing.
 pub fn plan_curves(
@@ -880,38 +961,55 @@ pub fn plan_curves(
     sizes: &Sizes,
     (variant, quick): (Variant, bool),
 ) -> Result<(Vec<PlannedCurve>, Vec<String>)> {
+    let grid = NoiseGrid::figure(noises, quick);
     let mut planned = Vec::new();
     let mut notes = Vec::new();
     for &v in values {
-        let p = base.with(key, v)?;
-        let method = sizes.method(p.correlation_time);
-        let (starts, n) = regime_starts(&p, &method, variant)?;
+        let (p, n) = plan_value(&base.with(key, v)?, v, &grid, sizes, variant)?;
+        planned.extend(p);
         notes.extend(n);
-        for start in starts {
+    }
+    Ok((planned, notes))
+}
+
+/// Plan the curves of the parameter set `p` (the swept parameter's `value`, NaN without one):
+/// one per attractor of its noise-free system ([`regime_starts`]), each with its D from
+/// `grid`; notes for starts that settled on nothing.
+pub fn plan_value(
+    p: &Params,
+    value: f64,
+    grid: &NoiseGrid,
+    sizes: &Sizes,
+    variant: Variant,
+) -> Result<(Vec<PlannedCurve>, Vec<String>)> {
+    let (starts, notes) = regime_starts(p, sizes, variant)?;
+    let planned: Vec<PlannedCurve> = starts
+        .into_iter()
+        .map(|start| {
             let mut d: Vec<f64> = Vec::new();
-            if start.kind == StartKind::Rest && !quick {
-                d.extend(REST_EXTRA_NOISES);
+            if start.kind == StartKind::Rest {
+                d.extend(&grid.rest_below);
             }
-            d.extend(noises);
-            let extension = if start.kind == StartKind::Cycle && !quick {
-                CYCLE_EXTRA_NOISES.to_vec()
+            d.extend(&grid.noises);
+            let extension = if start.kind == StartKind::Cycle {
+                grid.extension.clone()
             } else {
                 vec![]
             };
             let well = match start.kind {
-                StartKind::Cycle => cycle_well(&p, variant, start.amplitude)?,
+                StartKind::Cycle => cycle_well(p, variant, start.amplitude)?,
                 StartKind::Rest => None,
             };
-            planned.push(PlannedCurve {
-                value: v,
+            Ok(PlannedCurve {
+                value,
                 params: p.clone(),
                 start,
                 noises: d,
                 extension,
                 well,
-            });
-        }
-    }
+            })
+        })
+        .collect::<Result<_>>()?;
     Ok((planned, notes))
 }
 
@@ -929,7 +1027,8 @@ pub fn rest_start(kind: StartKind, u0: f64, d: f64) -> f64 {
 }
 
 /// Compute one planned curve: its points, its regime decision, its points' signs from the
-/// calls; `step` counts the progress over `total`.
+/// calls; `step` counts the progress over `total`. `key` names the parameter the curve's value
+/// sets (empty: none, the curve labelled by its attractor alone).
 pub fn run_curve(
     monitor: &dyn Monitor,
     what: &str,
@@ -946,9 +1045,8 @@ pub fn run_curve(
         *step += 1;
         let start = rest_start(c.start.kind, u0, d);
         let at = format!(
-            "{what}, {} = {}, {} from U(0) = {}, D = {}",
-            symbol(key),
-            num(c.value),
+            "{what}, {}{} from U(0) = {}, D = {}",
+            value_part(key, c.value),
             c.start.attractor,
             sig(start, 4),
             sig(d, 4)
@@ -963,7 +1061,7 @@ pub fn run_curve(
     }
     let method = sizes.method(c.params.correlation_time);
     let prediction = match c.start.kind {
-        StartKind::Cycle => Some(phase_prediction(&c.params, &method, u0, monitor)?),
+        StartKind::Cycle => Some(phase_prediction(&c.params, sizes, u0, monitor)?),
         StartKind::Rest => None,
     };
     let decide = |points: &[Point]| {
@@ -995,7 +1093,7 @@ pub fn run_curve(
         .unwrap_or("")
         .to_string();
     let mut curve = Curve {
-        label: format!("{} = {}, {name}", symbol(key), num(c.value)),
+        label: format!("{}{name}", value_part(key, c.value)),
         value: c.value,
         start: c.start.kind,
         u0,
@@ -1006,6 +1104,15 @@ pub fn run_curve(
     };
     mark_calls(&mut curve);
     Ok((curve, notes))
+}
+
+/// "`symbol(key)` = value, " for a curve's label and notes; empty without a key.
+fn value_part(key: &str, value: f64) -> String {
+    if key.is_empty() {
+        String::new()
+    } else {
+        format!("{} = {}, ", symbol(key), num(value))
+    }
 }
 
 /// Counts of a regime's calls and brackets over a panel's curves, for its verdict lines.
@@ -1212,7 +1319,9 @@ pub fn dt_check(figure: &LleNoiseFigure, sizes: &Sizes, monitor: &dyn Monitor) -
         num(v),
         num(d)
     );
-    let problem = Problem::from_params(&p)?.with_start(Problem::DEFAULT_START.0, 0.0)?;
+    let problem = sizes
+        .problem(&p)?
+        .with_start(Problem::DEFAULT_START.0, 0.0)?;
     let spec = LyapunovSpec {
         paths: if sizes.spec.paths > 2 {
             DT_CHECK_PATHS
@@ -1397,87 +1506,6 @@ pub fn lle_against_noise_figure(
         panels,
         dt_check: check,
     })
-}
-
-/// The LLE's sign over the evaluated D of a search without a sign change, D with a merged
-/// realisation aside.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Sign {
-    /// Negative at every D.
-    Negative,
-    /// Positive at every D.
-    Positive,
-    /// Negative at every D without a merged realisation.
-    NegativeOrMerged,
-    /// Positive at every D without a merged realisation.
-    PositiveOrMerged,
-    /// A realisation merged at every D.
-    AllMerged,
-}
-
-impl Sign {
-    /// The sign of a search's evaluated points.
-    pub fn of(c: &CriticalNoise) -> Self {
-        let signed: Vec<f64> = c
-            .evaluated
-            .iter()
-            .filter(|q| q.merged == 0)
-            .map(|q| q.lle.value)
-            .collect();
-        let merged = signed.len() < c.evaluated.len();
-        match (signed.is_empty(), signed.iter().all(|&v| v < 0.0), merged) {
-            (true, _, _) => Sign::AllMerged,
-            (false, true, false) => Sign::Negative,
-            (false, false, false) => Sign::Positive,
-            (false, true, true) => Sign::NegativeOrMerged,
-            (false, false, true) => Sign::PositiveOrMerged,
-        }
-    }
-
-    /// In a sentence: "LLE {words}".
-    pub fn words(self) -> &'static str {
-        match self {
-            Sign::Negative => "negative throughout",
-            Sign::Positive => "positive throughout",
-            Sign::NegativeOrMerged => "negative at every D without a merged realisation",
-            Sign::PositiveOrMerged => "positive at every D without a merged realisation",
-            Sign::AllMerged => "without a sign: a realisation merged at every D",
-        }
-    }
-
-    /// Short, for a figure's verdict line.
-    pub fn tag(self) -> &'static str {
-        match self {
-            Sign::Negative => "LLE < 0",
-            Sign::Positive => "LLE > 0",
-            Sign::NegativeOrMerged => "LLE < 0 or a realisation merged",
-            Sign::PositiveOrMerged => "LLE > 0 or a realisation merged",
-            Sign::AllMerged => "a realisation merged at every D",
-        }
-    }
-}
-
-/// The evaluated D of a critical-noise search at which a realisation merged, in words.
-pub fn merged_points_text(c: &CriticalNoise) -> Vec<String> {
-    c.evaluated
-        .iter()
-        .filter(|q| q.merged > 0)
-        .map(noise_point_text)
-        .collect()
-}
-
-/// An evaluated D of a critical-noise search in words: "D: LLE ± s.e.", or the merged count.
-pub fn noise_point_text(q: &NoisePoint) -> String {
-    if q.merged > 0 {
-        format!("{}: −∞ ({} merged)", sig(q.d, 4), q.merged)
-    } else {
-        format!(
-            "{}: {} ± {}",
-            sig(q.d, 4),
-            sig(q.lle.value, 3),
-            sig(q.lle.stderr, 2)
-        )
-    }
 }
 
 /// The table of panels: `panel,curve,start,u0,dt,x_key,x,y_key,y,y_lo,y_hi,se,n,sign,flag`;

@@ -221,13 +221,22 @@ fn trend_of_brackets_decides_by_overlap_and_undefined_values_stop_it() {
     );
     // none against a one-sided [30, ∞), which may itself be none: no change shown
     let above = |x: f64| (x, Measured::bracket(f64::NAN, 30.0, f64::INFINITY));
-    let d = trend(&[series("D_c", &[never(0.3), above(0.5)])], Direction::Increases);
+    let d = trend(
+        &[series("D_c", &[never(0.3), above(0.5)])],
+        Direction::Increases,
+    );
     assert!(matches!(d.verdict, Verdict::Undetermined { .. }), "{d:?}");
-    let d = trend(&[series("D_c", &[above(0.3), never(0.5)])], Direction::Decreases);
+    let d = trend(
+        &[series("D_c", &[above(0.3), never(0.5)])],
+        Direction::Decreases,
+    );
     assert!(matches!(d.verdict, Verdict::Undetermined { .. }), "{d:?}");
     // none after a bounded bracket, against the claimed direction: refuted
     let d = trend(
-        &[series("D_c", &[(0.1, Measured::bracket(19.0, 12.0, 30.0)), never(0.3)])],
+        &[series(
+            "D_c",
+            &[(0.1, Measured::bracket(19.0, 12.0, 30.0)), never(0.3)],
+        )],
         Direction::Decreases,
     );
     assert_eq!(tag(&d), "refuted");

@@ -17,13 +17,15 @@ use pyo3::types::PyDict;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 use trirhythm::analysis::ensemble::{self as ens, PathStats};
-use trirhythm::analysis::lyapunov::{self as lle, CriticalSearch, LyapunovSpec};
+use trirhythm::analysis::lyapunov::{self as lle, LyapunovSpec};
 use trirhythm::analysis::oscillation::{self as osc, Classifier, Search};
 use trirhythm::engine::{simulate_with, ImpactMemory, Options, System};
 use trirhythm::model::{self, Params};
 use trirhythm::monitor::{CancelFlag, Monitor};
 use trirhythm::theory::averaging::{Theory, Variant};
 use trirhythm::theory::bifurcation::{self as bif, Axis, What};
+use trirhythm_paper::critical::{critical_noise, log_noises, CriticalRequest};
+use trirhythm_paper::lle::Sizes;
 use trirhythm_paper::requests::{EnsembleRequest, MemoryKind, Model, Named};
 use trirhythm_paper::FigureOptions;
 
@@ -647,7 +649,7 @@ fn _ensemble_wells(
 
 /// The largest Lyapunov exponent (JSON of the library's result).
 #[pyfunction]
-#[pyo3(signature = (params, t_end, transient, dt, paths, seed, u0, impact_memory, method, renormalise_every, separation, system, barrier, memory, tolerance, d_range=None, grid=12, refinements=6, z=2.0, threads=None, progress=None))]
+#[pyo3(signature = (params, t_end, transient, dt, paths, seed, u0, impact_memory, method, renormalise_every, separation, system, barrier, memory, tolerance, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn _lyapunov(
     py: Python<'_>,
@@ -666,10 +668,6 @@ fn _lyapunov(
     barrier: bool,
     memory: &str,
     tolerance: f64,
-    d_range: Option<(f64, f64)>,
-    grid: usize,
-    refinements: usize,
-    z: f64,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
@@ -686,39 +684,94 @@ fn _lyapunov(
         length: t_end,
         renormalise_every,
         separation,
-        method: match method {
-            "tangent" => lle::LyapunovMethod::Tangent,
-            "two-trajectory" => lle::LyapunovMethod::TwoTrajectory,
-            _ => {
-                return Err(PyValueError::new_err(format!(
-                    "unknown method `{method}`: expected one of tangent, two-trajectory"
-                )))
-            }
-        },
+        method: lyapunov_method(method)?,
         ..Default::default()
     };
     spec.validate().map_err(py_err)?;
-    match d_range {
-        None => {
-            let r = long_call(py, threads, progress, |w| {
-                lle::largest_lyapunov(&problem, &pc, &spec, w)
-            })?;
-            serde_json::to_string(&r).map_err(json_err)
-        }
-        Some((d_lo, d_hi)) => {
-            let search = CriticalSearch {
-                d_lo,
-                d_hi,
-                grid,
-                refinements,
-                z,
-            };
-            let r = long_call(py, threads, progress, |w| {
-                lle::critical_noise(&problem, &pc, &spec, &search, w)
-            })?;
-            serde_json::to_string(&r).map_err(json_err)
-        }
+    let r = long_call(py, threads, progress, |w| {
+        lle::largest_lyapunov(&problem, &pc, &spec, w)
+    })?;
+    serde_json::to_string(&r).map_err(json_err)
+}
+
+/// `tangent` or `two-trajectory`.
+fn lyapunov_method(name: &str) -> PyResult<lle::LyapunovMethod> {
+    match name {
+        "tangent" => Ok(lle::LyapunovMethod::Tangent),
+        "two-trajectory" => Ok(lle::LyapunovMethod::TwoTrajectory),
+        _ => Err(PyValueError::new_err(format!(
+            "unknown method `{name}`: expected one of tangent, two-trajectory"
+        ))),
     }
+}
+
+/// The critical noise by regime, as `trirhythm critical-noise` (JSON of the paper crate's
+/// `critical::CriticalNoise`): the curves of the exponent against D (`noises`, or `points`
+/// values log-spaced over `d_range` as `--d-range`/`--points`), one per attractor of the
+/// noise-free system, for `params` or each value of `sweep` (key, values), each decided by the
+/// regime rules of Figs 17–19. `dt` None: the figures' rule (Δt ≤ τ/10). Everything is checked
+/// before any work, the step guard included (its warnings are in the document).
+#[pyfunction]
+#[pyo3(signature = (params, noises, d_range, points, sweep, t_end, transient, dt, paths, seed, impact_memory, method, renormalise_every, separation, system, barrier, memory, tolerance, variant, threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn _critical_noise(
+    py: Python<'_>,
+    params: &PyParams,
+    noises: Option<Vec<f64>>,
+    d_range: Option<(f64, f64)>,
+    points: usize,
+    sweep: Option<(String, Vec<f64>)>,
+    t_end: f64,
+    transient: f64,
+    dt: Option<f64>,
+    paths: usize,
+    seed: u64,
+    impact_memory: &str,
+    method: &str,
+    renormalise_every: u64,
+    separation: f64,
+    system: &str,
+    barrier: bool,
+    memory: &str,
+    tolerance: f64,
+    variant: &str,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<String> {
+    let spec = LyapunovSpec {
+        paths,
+        seed,
+        transient,
+        length: t_end,
+        renormalise_every,
+        separation,
+        method: lyapunov_method(method)?,
+        ..Default::default()
+    };
+    let noises = match (noises, d_range) {
+        (Some(d), None) => d,
+        (None, Some((lo, hi))) => log_noises(lo, hi, points).map_err(py_err)?,
+        _ => {
+            return Err(PyValueError::new_err(
+                "give the noise intensities either as noises or as d_range (with points)",
+            ))
+        }
+    };
+    let request = CriticalRequest {
+        base: params.0.clone(),
+        sweep,
+        noises,
+        sizes: Sizes {
+            model: model(system, barrier, memory, tolerance)?,
+            dt,
+            impact_memory: impact(impact_memory)?,
+            ..Sizes::of_spec(spec)
+        },
+        variant: self::variant(variant)?,
+    };
+    request.validate().map_err(py_err)?;
+    let r = long_call(py, threads, progress, |w| critical_noise(&request, w))?;
+    serde_json::to_string(&r).map_err(json_err)
 }
 
 /// The attractor of the noise-free path from (u0, 0) (JSON of the library's
@@ -970,6 +1023,7 @@ fn _trirhythm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_ensemble, m)?)?;
     m.add_function(wrap_pyfunction!(_ensemble_wells, m)?)?;
     m.add_function(wrap_pyfunction!(_lyapunov, m)?)?;
+    m.add_function(wrap_pyfunction!(_critical_noise, m)?)?;
     m.add_function(wrap_pyfunction!(_attractor, m)?)?;
     m.add_function(wrap_pyfunction!(_phase_response, m)?)?;
     m.add_function(wrap_pyfunction!(_oscillation_boundary, m)?)?;

@@ -84,7 +84,7 @@ impl<T: ?Sized> Monitor<T> for CancelFlag {
 }
 
 /// Forwards only the cancellation of a monitor of other pieces: what a driver hands to the
-/// inner calls it makes (one Lyapunov estimate of a critical-noise search, one simulation of a
+/// inner calls it makes (one Lyapunov estimate of a figure's curve, one simulation of a
 /// boundary search), so that the caller's stop reaches them while their own progress and
 /// pieces stay inside.
 #[derive(Clone, Copy)]

@@ -22,9 +22,7 @@ use std::time::{Duration, Instant};
 use trirhythm::analysis::ensemble::{
     self, run_ensemble, EnsembleResult, EnsembleSpec, PathStats, Wells,
 };
-use trirhythm::analysis::lyapunov::{
-    self, critical_noise, largest_lyapunov, CriticalSearch, LyapunovSpec, PathRun,
-};
+use trirhythm::analysis::lyapunov::{self, largest_lyapunov, LyapunovSpec, PathRun};
 use trirhythm::analysis::oscillation::{
     averaging_mu0, boundary, classify_plane, exact_mu0, growth_rate, margin, Classifier, Method,
     Plane as OscillationPlane, Search,
@@ -264,19 +262,6 @@ fn lyapunov_runs() -> Vec<PathRun> {
         lyapunov::run_paths(&problem(), &method(), &lyapunov_spec(), &[0, 1], &Silent).unwrap()
     })
     .clone()
-}
-
-/// `critical_noise` over D ∈ [0, 0.1], two grid points, no bisection, with `f`'s changes.
-fn critical(f: impl FnOnce(&mut CriticalSearch)) -> Result<(), Error> {
-    let mut search = CriticalSearch {
-        d_lo: 0.0,
-        d_hi: 0.1,
-        grid: 2,
-        refinements: 0,
-        z: 2.0,
-    };
-    f(&mut search);
-    critical_noise(&problem(), &method(), &lyapunov_spec(), &search, &Silent).map(|_| ())
 }
 
 /// The default parameters (D = 0) with the wall: an oscillation-boundary template.
@@ -1190,7 +1175,7 @@ fn rows() -> Vec<Row> {
                 ensemble::merge(&problem(), &method(), &spec, ensemble_stats()).map(|_| ())
             }
         ),
-        // ---- analysis::lyapunov: every field of the spec, Δt, the pieces, the critical noise
+        // ---- analysis::lyapunov: every field of the spec, Δt, the pieces
         row!(
             "largest_lyapunov (LyapunovSpec)",
             "lanes",
@@ -1318,68 +1303,6 @@ fn rows() -> Vec<Row> {
                     ..lyapunov_spec()
                 };
                 lyapunov::merge(&spec, lyapunov_runs()).map(|_| ())
-            }
-        ),
-        // D_lo = 0 (no noise) is allowed
-        row!(
-            "critical_noise (CriticalSearch)",
-            "d_lo",
-            "d_lo",
-            Real,
-            |v| (0.0..0.1).contains(&v),
-            |v| critical(|s| s.d_lo = v)
-        ),
-        row!(
-            "critical_noise (CriticalSearch)",
-            "d_hi",
-            "d_hi",
-            Real,
-            |v| v > 0.0 && v <= 1e6,
-            |v| critical(|s| s.d_hi = v)
-        ),
-        row!(
-            "critical_noise (CriticalSearch)",
-            "grid",
-            "grid",
-            Count,
-            |v| (2.0..=1e3).contains(&v),
-            |v| critical(|s| s.grid = count(v))
-        ),
-        // no bisection is allowed
-        row!(
-            "critical_noise (CriticalSearch)",
-            "refinements",
-            "refinements",
-            Count,
-            |v| v <= 60.0,
-            |v| critical(|s| s.refinements = count(v))
-        ),
-        // z = 0 is allowed (every nonzero LLE is significant)
-        row!(
-            "critical_noise (CriticalSearch)",
-            "z",
-            "z",
-            Real,
-            |v| (0.0..=10.0).contains(&v),
-            |v| critical(|s| s.z = v)
-        ),
-        row!(
-            "critical_noise (LyapunovSpec)",
-            "separation",
-            "separation",
-            Real,
-            |v| (1e-12..=1e-4).contains(&v),
-            |v| {
-                let spec = LyapunovSpec {
-                    separation: v,
-                    ..lyapunov_spec()
-                };
-                let search = CriticalSearch {
-                    grid: 2,
-                    refinements: 0,
-                    ..Default::default()
-                };
-                critical_noise(&problem(), &method(), &spec, &search, &Silent).map(|_| ())
             }
         ),
         // ---- analysis::oscillation: the plane, the classifier, the search, the drivers
@@ -1727,7 +1650,6 @@ fn valid_calls_of_the_table_succeed() {
         ("run", "steps", 10.0),
         ("run_ensemble (EnsembleSpec)", "burn_in", 0.5),
         ("largest_lyapunov (LyapunovSpec)", "transient", 0.5),
-        ("critical_noise (CriticalSearch)", "z", 2.0),
         ("growth_rate (Classifier)", "settle_periods", 1.0),
         ("boundary (Search)", "tolerance", 0.01),
         ("classify_plane", "y", 0.7),

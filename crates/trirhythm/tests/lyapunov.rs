@@ -12,11 +12,9 @@
 //!   a noisy case with the wall (λ = 0.998, Fig. 17(a)'s parameters, both impact memories) and a
 //!   fractional case without the wall (where, with no impact, the tangent is the exact
 //!   derivative of the step and the two agree path by path).
-//! - A family without a sign change (the linear oscillator) is reported as such by the
-//!   critical-noise search, never with a made-up D_c.
 
 use trirhythm::analysis::lyapunov::{
-    critical_noise, largest_lyapunov, CriticalSearch, LyapunovMethod, LyapunovResult, LyapunovSpec,
+    largest_lyapunov, LyapunovMethod, LyapunovResult, LyapunovSpec,
 };
 use trirhythm::analysis::lyapunov::{merge, run_paths, PathRun};
 use trirhythm::engine::{Barrier, ImpactMemory, PredictorCorrector, Problem, System};
@@ -186,36 +184,6 @@ fn one_thread_or_two_give_the_same_exponent() {
             .install(|| lle(&problem(&p, Barrier::On, 1.0), &spec))
     };
     assert_eq!(run(1), run(2));
-}
-
-#[test]
-fn no_sign_change_is_reported_as_such() {
-    let spec = LyapunovSpec {
-        paths: 2,
-        seed: SEED,
-        transient: 20.0,
-        length: 300.0,
-        ..Default::default()
-    };
-    let search = CriticalSearch {
-        d_lo: 0.0,
-        d_hi: 1.0,
-        grid: 3,
-        refinements: 2,
-        z: 2.0,
-    };
-    let c = critical_noise(
-        &problem(&linear(0.1, 0.0), Barrier::Off, 1.0),
-        &PredictorCorrector::default(),
-        &spec,
-        &search,
-        &Silent,
-    )
-    .unwrap();
-    assert!(!c.found());
-    assert!(c.d_c.is_nan() && c.d_c_lo.is_nan() && c.d_c_hi.is_nan());
-    assert_eq!(c.evaluated.len(), 3);
-    assert!(c.evaluated.iter().all(|q| q.lle.value < 0.0));
 }
 
 fn lle_with(p: &Problem, method: &PredictorCorrector, spec: &LyapunovSpec) -> LyapunovResult {
@@ -439,7 +407,7 @@ fn a_copy_that_merges_with_its_reference_gives_minus_infinity_with_its_time() {
 }
 
 #[test]
-fn a_cancelled_estimate_or_search_stops_with_cancelled() {
+fn a_cancelled_estimate_stops_with_cancelled() {
     let flag = CancelFlag::default();
     flag.cancel();
     let spec = LyapunovSpec {
@@ -453,8 +421,6 @@ fn a_cancelled_estimate_or_search_stops_with_cancelled() {
     let method = PredictorCorrector::default();
     let r = largest_lyapunov(&at, &method, &spec, &flag);
     assert!(matches!(r, Err(trirhythm::Error::Cancelled)), "{r:?}");
-    let c = critical_noise(&at, &method, &spec, &CriticalSearch::default(), &flag);
-    assert!(matches!(c, Err(trirhythm::Error::Cancelled)), "{c:?}");
 }
 
 #[test]

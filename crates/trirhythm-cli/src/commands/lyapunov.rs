@@ -1,28 +1,30 @@
 //! `trirhythm lyapunov`: the largest Lyapunov exponent with frozen noise (two trajectories or the tangent equation,
 //! whole-history renormalisation), optionally swept over a parameter; `trirhythm
-//! critical-noise`: the noise D_c where it changes sign. Keys, columns and flags are a
-//! contract: keep them.
+//! critical-noise`: the exponent against D by regime (one curve per attractor of the
+//! noise-free system) and each curve's D_c, by the rules of Figs 17–19. Keys, columns and flags
+//! are a contract: keep them.
 
 use crate::args::{
     guard_step, parse_axis, ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat,
 };
 use crate::error::{allowed, bad};
 use crate::io::progress::Bar;
-use crate::io::{emit, num, params_json, pretty, progress, Csv, Report};
+use crate::io::{emit, num, params_json, pretty, progress, Csv};
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
 use serde_json::{json, Value};
 use std::path::PathBuf;
 use trirhythm::analysis::lyapunov::LyapunovMethod as Lib;
-use trirhythm::analysis::lyapunov::{
-    critical_noise, largest_lyapunov, CriticalNoise, CriticalSearch, LyapunovResult, LyapunovSpec,
-};
+use trirhythm::analysis::lyapunov::{largest_lyapunov, LyapunovResult, LyapunovSpec};
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::model::Params;
 use trirhythm::monitor::Silent;
-use trirhythm_paper::lle::Sign;
-use trirhythm_paper::views::{self, CriticalOutcome, SweepPoint};
+use trirhythm_paper::critical::{
+    critical_noise, log_noises, starts_line, CriticalNoise, CriticalRequest, MAX_NOISES,
+};
+use trirhythm_paper::lle::Sizes;
+use trirhythm_paper::views::{self, SweepPoint};
 
 /// How the exponent is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -285,34 +287,6 @@ fn sweep_lyapunov(
     emit(args.out.as_deref(), &text)
 }
 
-/// Arguments of `critical-noise`.
-#[derive(Debug, Args)]
-pub struct CriticalNoiseArgs {
-    #[command(flatten)]
-    pub sim: LleArgs,
-    /// The noise range searched: LO:HI with 0 ≤ LO < HI.
-    #[arg(long = "d-range", value_name = "LO:HI", allow_hyphen_values = true)]
-    pub d_range: String,
-    /// Equally spaced D values evaluated first (ends included), 2 to 1000.
-    #[arg(long, default_value_t = 5, allow_hyphen_values = true)]
-    pub grid: usize,
-    /// Bisections of the first sign change, 0 to 60.
-    #[arg(long, default_value_t = 3, allow_hyphen_values = true)]
-    pub refinements: usize,
-    /// Standard errors that make an LLE significantly nonzero (for D_c_lo, D_c_hi), in [0, 10].
-    #[arg(long, default_value_t = 2.0, allow_hyphen_values = true)]
-    pub z: f64,
-    /// D_c for each value of a parameter: KEY=START:STOP:COUNT.
-    #[arg(long, value_name = "KEY=START:STOP:COUNT", allow_hyphen_values = true)]
-    pub sweep: Option<String>,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t = SimFormat::Csv)]
-    pub format: SimFormat,
-    /// Write to this file (atomically) instead of standard output.
-    #[arg(long)]
-    pub out: Option<PathBuf>,
-}
-
 /// The parameters at each value of the swept key (the base parameters alone without one).
 fn sweep_params(base: &Params, key: Option<&str>, values: &[f64]) -> Result<Vec<Params>> {
     let at = |v: f64| match key {
@@ -325,8 +299,79 @@ fn sweep_params(base: &Params, key: Option<&str>, values: &[f64]) -> Result<Vec<
         .collect::<trirhythm::Result<_>>()?)
 }
 
-/// Parse `LO:HI` for `--d-range` (the library checks 0 ≤ LO < HI).
-fn parse_range(s: &str) -> Result<(f64, f64)> {
+/// Arguments of `critical-noise`.
+#[derive(Debug, Args)]
+#[command(group = clap::ArgGroup::new("d").required(true).args(["d_range", "noises"]))]
+pub struct CriticalNoiseArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// The noise range: LO:HI with 0 < LO < HI, --points values log-spaced (3 significant digits).
+    #[arg(long = "d-range", value_name = "LO:HI", allow_hyphen_values = true)]
+    pub d_range: Option<String>,
+    /// Values of D log-spaced over --d-range, ends included, 2 to 1000 (default 9).
+    #[arg(long, allow_hyphen_values = true)]
+    pub points: Option<usize>,
+    /// The noise intensities, ascending, each > 0: D1,D2,… (instead of --d-range).
+    #[arg(
+        long,
+        value_name = "D1,D2,...",
+        allow_hyphen_values = true,
+        conflicts_with = "d_range"
+    )]
+    pub noises: Option<String>,
+    /// The curves for each value of a parameter: KEY=START:STOP:COUNT (COUNT 2 to 1000).
+    #[arg(long, value_name = "KEY=START:STOP:COUNT", allow_hyphen_values = true)]
+    pub sweep: Option<String>,
+    /// Measured window W after the transient (the finite-time exponent's T; the calls' margin
+    /// is δ = 1/W).
+    #[arg(long = "t-end", default_value_t = 2000.0, allow_hyphen_values = true)]
+    pub t_end: f64,
+    /// Time renormalised but not counted at the start of each path.
+    #[arg(long, default_value_t = 200.0, allow_hyphen_values = true)]
+    pub transient: f64,
+    /// Step Δt, in [1e-4, 0.1] (default: the figures' rule, the largest of 0.01, 0.005,
+    /// 0.0025, 0.002, 0.001, … not above τ/10).
+    #[arg(long, allow_hyphen_values = true)]
+    pub dt: Option<f64>,
+    /// Noise realisations per point (path i is noise stream i of the seed at every point),
+    /// 1 to 100000.
+    #[arg(long, default_value_t = 8, allow_hyphen_values = true)]
+    pub paths: usize,
+    /// Seed of the noise streams.
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
+    pub seed: u64,
+    /// What the memory does at an impact (the figures': `restart`).
+    #[arg(long = "impact-memory", value_enum, default_value_t = ImpactMemoryArg::Restart)]
+    pub impact_memory: ImpactMemoryArg,
+    /// How the exponent is computed (`tangent` ignores --separation).
+    #[arg(long, value_enum, default_value_t = LyapunovMethod::TwoTrajectory)]
+    pub method: LyapunovMethod,
+    /// Steps between renormalisations, 1 to 1000000 (at least two per window).
+    #[arg(
+        long = "renormalise-every",
+        default_value_t = 100,
+        allow_hyphen_values = true
+    )]
+    pub renormalise_every: u64,
+    /// Separation d₀ the perturbed copy is pulled back to, in [1e-12, 1e-4].
+    #[arg(long, default_value_t = 1e-8, allow_hyphen_values = true)]
+    pub separation: f64,
+    /// Paths stepped together: 1, 4 or 8 (the exponents are the same bits for every choice).
+    #[arg(long, allow_hyphen_values = true)]
+    pub lanes: Option<usize>,
+    /// Output format: CSV, a row per point with its curve's decision (default), or JSON.
+    #[arg(long, value_enum, default_value_t = SimFormat::Csv)]
+    pub format: SimFormat,
+    /// Write to this file (atomically) instead of standard output.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// Parse `LO:HI` for `--d-range`, and the `points` values log-spaced over it
+/// ([`log_noises`]: 0 < LO < HI, 2 to 1000 points, distinct at 3 significant digits).
+fn noises_of_range(s: &str, points: usize) -> Result<Vec<f64>> {
     let Some((lo, hi)) = s.split_once(':') else {
         return bad(format!("--d-range expects LO:HI, got `{s}`"));
     };
@@ -338,113 +383,180 @@ fn parse_range(s: &str) -> Result<(f64, f64)> {
             )),
         }
     };
-    Ok((parse(lo)?, parse(hi)?))
+    Ok(log_noises(parse(lo)?, parse(hi)?, points)?)
 }
 
-/// `critical-noise`.
+/// Parse `--noises D1,D2,…`: 1 to 1000 finite values, each > 0, ascending.
+fn noises_of_list(s: &str) -> Result<Vec<f64>> {
+    let mut d = Vec::new();
+    for t in s.split(',') {
+        match t.trim().parse::<f64>() {
+            Ok(v) if v.is_finite() => d.push(v),
+            _ => {
+                return bad(format!(
+                    "--noises: `{}` is not a finite number (in `{s}`)",
+                    t.trim()
+                ))
+            }
+        }
+    }
+    allowed(
+        d.len() <= MAX_NOISES,
+        "--noises",
+        format!("{} values", d.len()),
+        "1 to 1000 values",
+    )?;
+    for (k, &v) in d.iter().enumerate() {
+        allowed(v > 0.0, "--noises", num(v), "(0, ∞), each D > 0")?;
+        if k > 0 {
+            allowed(
+                v > d[k - 1],
+                "--noises",
+                num(v),
+                &format!("above {} (ascending, no repeats)", num(d[k - 1])),
+            )?;
+        }
+    }
+    Ok(d)
+}
+
+/// `critical-noise`: the largest Lyapunov exponent against D by regime, and each attractor's
+/// D_c, with the rules and the code of Figs 17–19 ([`trirhythm_paper::critical`]).
 pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
-    // D is the variable searched over --d-range: a value given for it would be ignored
+    // D is the abscissa of every curve: a value given for it would be ignored
     if let Some(kv) = args
-        .sim
         .params
         .params
         .iter()
         .find(|kv| kv.split_once('=').is_some_and(|(k, _)| k.trim() == "D"))
     {
         return bad(format!(
-            "--param {kv}: D is the noise intensity searched over --d-range; give its range \
-             there (--d-range START:STOP) instead"
+            "--param {kv}: D is the noise intensity of every curve's points; give its values \
+             with --d-range LO:HI (and --points) or --noises D1,D2,… instead"
         ));
     }
-    let (base, problem, method, spec) = args.sim.setup()?;
-    let (d_lo, d_hi) = parse_range(&args.d_range)?;
-    // the step is checked with the noise of the range's end (the τ rule needs D > 0)
-    let warnings = guard_step(&problem.with_params(&base.with("D", d_hi)?)?, &method)?;
-    // narrower than the library's [0, ∞)
-    if !(args.z >= 0.0 && args.z <= 10.0) {
-        return bad(format!("--z = {}: allowed range is [0, 10]", num(args.z)));
-    }
-    let search = CriticalSearch {
-        d_lo,
-        d_hi,
-        grid: args.grid,
-        refinements: args.refinements,
-        z: args.z,
+    let base = args.params.resolve()?;
+    let noises = match (&args.d_range, &args.noises, args.points) {
+        (Some(r), None, points) => noises_of_range(r, points.unwrap_or(9))?,
+        (None, Some(list), None) => noises_of_list(list)?,
+        (None, Some(_), Some(_)) => {
+            return bad("--points: the values log-spaced over --d-range; --noises gives them all")
+        }
+        _ => return bad("give the noise intensities: --d-range LO:HI [--points N] or --noises"),
     };
-    let (key, values) = match &args.sweep {
+    if let Some(dt) = args.dt {
+        allowed((1e-4..=0.1).contains(&dt), "--dt", num(dt), "[1e-4, 0.1]")?;
+    }
+    allowed(
+        (1e-12..=1e-4).contains(&args.separation),
+        "--separation",
+        num(args.separation),
+        "[1e-12, 1e-4]",
+    )?;
+    let tol = args.model.tolerance;
+    allowed(
+        tol > 0.0 && tol < 1e-2,
+        "--tolerance",
+        num(tol),
+        "(0, 1e-2)",
+    )?;
+    allowed(
+        (1..=1_000_000).contains(&args.renormalise_every),
+        "--renormalise-every",
+        args.renormalise_every,
+        "1 to 1000000 steps",
+    )?;
+    let sweep = match &args.sweep {
         Some(s) => {
             let (k, v) = parse_sweep(s)?;
             if k == "D" {
-                return bad("--sweep: D is what is searched; sweep another parameter");
+                return bad(
+                    "--sweep: D is every curve's abscissa (--d-range, --noises); sweep another \
+                     parameter",
+                );
             }
-            (Some(k), v)
+            Some((k, v))
         }
-        None => (None, vec![f64::NAN]),
+        None => None,
     };
-    let points = sweep_params(&base, key.as_deref(), &values)?;
-    let mut warnings = warnings;
-    if let Some(k) = &key {
-        for (p, v) in points.iter().zip(&values) {
-            let point = problem.with_params(&p.with("D", d_hi)?)?;
-            for w in guard_step(&point, &method)? {
-                warnings.push(format!("at {k} = {}: {w}", num(*v)));
-            }
-        }
+    let spec = LyapunovSpec {
+        paths: args.paths,
+        seed: args.seed,
+        transient: args.transient,
+        length: args.t_end,
+        renormalise_every: args.renormalise_every,
+        separation: args.separation,
+        method: args.method.into(),
+        lanes: crate::args::lanes(args.lanes)?,
+        ..Default::default()
+    };
+    let request = CriticalRequest {
+        base: base.clone(),
+        sweep,
+        noises,
+        sizes: Sizes {
+            model: args.model.model(),
+            dt: args.dt,
+            impact_memory: args.impact_memory.into(),
+            ..Sizes::of_spec(spec.clone())
+        },
+        variant: args.params.variant(),
+    };
+    // everything checked, and the step guard's warnings said, before any work
+    let warnings = request.validate()?;
+    for w in &warnings {
+        eprintln!("warning: {w}");
     }
-    let per_point = args.grid.saturating_add(args.refinements) as u64;
-    let bar = progress(
-        per_point.saturating_mul(points.len() as u64),
-        "critical noise",
-    );
-    let mut found: Vec<(f64, CriticalNoise)> = Vec::new();
-    for (i, p) in points.iter().enumerate() {
-        let offset = per_point.saturating_mul(i as u64);
-        let report = Report(|done: u64, _: u64| bar.set_position(offset + done));
-        let c = critical_noise(&problem.with_params(p)?, &method, &spec, &search, &report)?;
-        found.push((values[i], c));
-    }
-    bar.finish_and_clear();
-    for (v, c) in found.iter().filter(|(_, c)| !c.found()) {
-        eprintln!(
-            "{}: no sign change in range D ∈ [{}, {}] (LLE {})",
-            views::point_label(key.as_deref(), *v),
-            num(d_lo),
-            num(d_hi),
-            Sign::of(c).words()
-        );
+    let doc = critical_noise(&request, &Bar::new("critical noise"))?;
+    for line in views::critical_lines(&doc) {
+        eprintln!("{line}");
     }
     let text = match args.format {
         SimFormat::Csv => {
-            let mut header =
-                vec!["trirhythm critical-noise: D_c where the LLE changes sign".to_string()];
-            header.push(format!("params: {}", base.describe()));
+            let mut header = vec![
+                "trirhythm critical-noise: the largest Lyapunov exponent against D by regime \
+                 and each attractor's critical noise D_c"
+                    .to_string(),
+                format!("params: {}", base.describe()),
+                format!(
+                    "D: {} values: {} (the D of the params above is not used)",
+                    doc.noises.len(),
+                    doc.noises
+                        .iter()
+                        .map(|&d| num(d))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            ];
+            let [method, window] = views::lyapunov_spec(&spec);
+            header.push(method);
             header.push(format!(
-                "D: searched over [{}, {}] (the D of the params above is not used)",
-                num(d_lo),
-                num(d_hi)
+                "simulation: predictor-corrector {}, {}",
+                match args.dt {
+                    Some(dt) => format!("dt = {}", num(dt)),
+                    None => "dt = the largest of 0.01, 0.005, 0.0025, 0.002, 0.001, 0.0005, \
+                             0.00025, 0.0001 not above τ/10 (the figures' rule; each curve's dt \
+                             column)"
+                        .into(),
+                },
+                args.model.line(args.impact_memory)
             ));
-            header.extend(args.sim.describe(&spec));
-            header.extend(warnings.iter().map(|w| format!("warning: {w}")));
-            Csv::of(&views::critical_table(
-                &header,
-                &search,
-                key.as_deref(),
-                &found,
-            ))?
+            header.push(window);
+            header.push(starts_line(args.params.variant()));
+            Csv::of(&views::critical_table(&header, &doc))?
         }
-        SimFormat::Json => pretty(&json!({
-            "params": params_json(&base),
-            "method": args.sim.method.name(),
-            "window": spec.length,
-            "paths": spec.paths,
-            "d_range": [d_lo, d_hi],
-            "step_warnings": warnings,
-            "sweep": key,
-            "results": found
-                .iter()
-                .map(|(v, c)| CriticalOutcome::of(key.is_some().then_some(*v), c))
-                .collect::<Vec<_>>(),
-        }))?,
+        SimFormat::Json => pretty(&CriticalRun {
+            params: params_json(&base),
+            result: &doc,
+        })?,
     };
     emit(args.out.as_deref(), &text)
+}
+
+/// A `critical-noise` document: the parameters beside the library's result.
+#[derive(Serialize)]
+struct CriticalRun<'a> {
+    params: Value,
+    #[serde(flatten)]
+    result: &'a CriticalNoise,
 }

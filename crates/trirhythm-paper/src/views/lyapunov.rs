@@ -1,13 +1,12 @@
-//! Lyapunov exponents and critical-noise searches in words and tables.
+//! Lyapunov exponents and the critical noise by regime in words and tables.
 
 use super::cell;
-use crate::lle::{merged_points_text, Sign};
+use crate::critical::{call_name, CriticalNoise};
 use crate::notes::{num, sig};
 use crate::table::Table;
+use crate::verdict::rules::RestRegime;
 use serde::Serialize;
-use trirhythm::analysis::lyapunov::{
-    CriticalNoise, CriticalSearch, LyapunovMethod, LyapunovResult, LyapunovSpec,
-};
+use trirhythm::analysis::lyapunov::{LyapunovMethod, LyapunovResult, LyapunovSpec};
 
 /// A Lyapunov exponent with its standard error in words: −∞ and a missing standard error are
 /// explained, never printed as bare `-inf ± nan`.
@@ -51,38 +50,6 @@ pub struct SweepPoint<'a> {
     /// The exponent there.
     #[serde(flatten)]
     pub result: &'a LyapunovResult,
-}
-
-/// A critical-noise search in JSON: the library's result with its verdict in words, at the
-/// swept value (`None` without a sweep).
-#[derive(Serialize)]
-pub struct CriticalOutcome<'a> {
-    /// The swept parameter's value.
-    pub value: Option<f64>,
-    /// Whether the LLE changes sign in the range.
-    pub sign_change: bool,
-    /// "sign change", or why there is none.
-    pub verdict: String,
-    /// The search.
-    #[serde(flatten)]
-    pub search: &'a CriticalNoise,
-}
-
-impl<'a> CriticalOutcome<'a> {
-    /// The outcome of `search` at `value`.
-    pub fn of(value: Option<f64>, search: &'a CriticalNoise) -> Self {
-        let verdict = if search.found() {
-            "sign change".to_string()
-        } else {
-            format!("no sign change in range (LLE {})", Sign::of(search).words())
-        };
-        CriticalOutcome {
-            value,
-            sign_change: search.found(),
-            verdict,
-            search,
-        }
-    }
 }
 
 /// A Lyapunov run's running estimate `t,lle,stderr`, the exponent in the notes.
@@ -142,58 +109,126 @@ pub fn lle_sweep_table(notes: &[String], key: &str, rows: &[(f64, LyapunovResult
     t
 }
 
-/// Where a critical-noise search ran: "KEY = value", or "the parameters given" without a sweep.
-pub fn point_label(key: Option<&str>, v: f64) -> String {
-    match key {
-        Some(k) => format!("{k} = {}", num(v)),
-        None => "the parameters given".to_string(),
+/// Each curve's decision in a line: "[KEY = value: ]attractor (U(0) = …, Δt = …): the bracket,
+/// the rest regime's numbers or the prediction's agreement".
+pub fn critical_lines(doc: &CriticalNoise) -> Vec<String> {
+    let mut lines = Vec::new();
+    for r in &doc.results {
+        let at = match (&doc.sweep, r.value) {
+            (Some(k), Some(v)) => format!("{k} = {}: ", num(v)),
+            _ => String::new(),
+        };
+        for c in &r.curves {
+            lines.push(format!(
+                "{at}{} (U(0) = {}, Δt = {}): {}",
+                c.attractor,
+                sig(c.u0, 4),
+                num(c.dt),
+                c.decision
+            ));
+        }
     }
+    lines
 }
 
-/// Critical-noise searches `[KEY,]D_c,D_c_lo,D_c_hi`: the search, the searches without a
-/// sign change and the merged points in the notes.
-pub fn critical_table(
-    notes: &[String],
-    search: &CriticalSearch,
-    key: Option<&str>,
-    found: &[(f64, CriticalNoise)],
-) -> Table {
+/// The critical noise by regime as one table, a row per point of every curve:
+/// `[KEY,]attractor,regime,u0,dt,D,lle,se,n,merged,call,agrees` and the curve's decision
+/// repeated on each of its rows, `bracket,D_c_lo,D_c_hi,D_c_zero,rest_pooled,rest_pooled_se,
+/// rest_slope,rest_slope_se,rest_decades,c,c_uncertainty` (empty where undefined or not
+/// applicable); each curve's decision in words and the notes in `notes` and the comment lines.
+pub fn critical_table(notes: &[String], doc: &CriticalNoise) -> Table {
     let mut notes = notes.to_vec();
     notes.push(format!(
-        "search: D ∈ [{}, {}], {} grid points, {} bisections; D_c_lo/D_c_hi: the nearest \
-         evaluated D on each side whose LLE is {} standard errors from 0",
-        num(search.d_lo),
-        num(search.d_hi),
-        search.grid,
-        search.refinements,
-        num(search.z)
+        "rules (docs/verdicts.md, \"The Lyapunov claims by regime\"): a point is chaotic when the \
+         lower one-sided bound of the unmerged mean exceeds δ = 1/W = {}, not-chaotic when the \
+         upper bound lies below δ, synchronised when at least half the realisations merged, else \
+         undecided (Student's t, Bonferroni over the curve's points at 0.05); D_c in (D_c_lo, \
+         D_c_hi): the largest regular D below the smallest chaotic D (bracket located), D_c < \
+         D_c_hi (below: chaotic from the smallest D), D_c > D_c_lo (above: regular up to the \
+         largest D), no D_c at all (never: no chaotic point, the two largest D regular and the \
+         exponent falling significantly with log D over the last decade; D_c_lo the largest D) \
+         or not bracketed (undecided); rest curves: pooled exponent and slope per \
+         decade over D ≤ 0.01, D_c_zero = true when the pooled exponent exceeds δ, the slope is \
+         not significant and the points span at least 3 decades (chaotic as D → 0: D_c = 0); \
+         cycle curves: c of the phase reduction λ ≈ −c·D, agrees = the exponent equivalent to \
+         −c·D within δ (two one-sided t tests)",
+        num(doc.margin)
     ));
-    for (v, c) in found {
-        if !c.found() {
-            notes.push(format!(
-                "{}: no sign change in range (LLE {})",
-                point_label(key, *v),
-                Sign::of(c).words()
-            ));
-        }
-        let merged = merged_points_text(c);
-        if !merged.is_empty() {
-            notes.push(format!(
-                "{}: no sign at D = {} (realisations whose copy merged with its reference: LLE −∞)",
-                point_label(key, *v),
-                merged.join(", ")
-            ));
-        }
-    }
-    let mut columns: Vec<&str> = key.into_iter().collect();
-    columns.extend(["D_c", "D_c_lo", "D_c_hi"]);
+    notes.extend(critical_lines(doc));
+    notes.extend(doc.notes.iter().cloned());
+    notes.extend(doc.step_warnings.iter().map(|w| format!("warning: {w}")));
+    notes.push(
+        "columns: lle and se are the mean and standard error over the realisations that did not \
+         merge, n the realisations, merged those whose copy merged with its reference (exponent \
+         −∞); an empty cell is undefined or does not apply"
+            .into(),
+    );
+    let mut columns: Vec<&str> = doc.sweep.as_deref().into_iter().collect();
+    columns.extend([
+        "attractor",
+        "regime",
+        "u0",
+        "dt",
+        "D",
+        "lle",
+        "se",
+        "n",
+        "merged",
+        "call",
+        "agrees",
+        "bracket",
+        "D_c_lo",
+        "D_c_hi",
+        "D_c_zero",
+        "rest_pooled",
+        "rest_pooled_se",
+        "rest_slope",
+        "rest_slope_se",
+        "rest_decades",
+        "c",
+        "c_uncertainty",
+    ]);
     let mut t = Table::new(&notes, &columns);
-    for (v, c) in found.iter().filter(|(_, c)| c.found()) {
-        let lead = key.map(|_| num(*v));
-        t.row(
-            lead.into_iter()
-                .chain([num(c.d_c), num(c.d_c_lo), num(c.d_c_hi)]),
-        );
+    let opt = |x: Option<f64>| x.map_or(String::new(), cell);
+    for r in &doc.results {
+        for c in &r.curves {
+            let rest =
+                |f: fn(&RestRegime) -> f64| c.rest.as_ref().map_or(String::new(), |r| cell(f(r)));
+            for q in &c.points {
+                let lead = doc
+                    .sweep
+                    .as_ref()
+                    .map(|_| r.value.map_or(String::new(), num));
+                t.row(
+                    lead.into_iter().chain([
+                        c.attractor.clone(),
+                        c.regime.name().into(),
+                        num(c.u0),
+                        num(c.dt),
+                        num(q.d),
+                        cell(q.lle),
+                        cell(q.se),
+                        q.n.to_string(),
+                        q.merged.to_string(),
+                        call_name(q.call).into(),
+                        q.agrees.map_or(String::new(), |a| a.to_string()),
+                        c.bracket.kind.name().into(),
+                        opt(c.bracket.lo),
+                        opt(c.bracket.hi),
+                        c.rest
+                            .as_ref()
+                            .map_or(String::new(), |r| r.d_c_zero.to_string()),
+                        rest(|r| r.pooled),
+                        rest(|r| r.pooled_se),
+                        rest(|r| r.slope),
+                        rest(|r| r.slope_se),
+                        rest(|r| r.decades),
+                        opt(c.coefficient),
+                        opt(c.coefficient_uncertainty),
+                    ]),
+                );
+            }
+        }
     }
     t
 }

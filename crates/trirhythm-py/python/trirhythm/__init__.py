@@ -43,6 +43,12 @@ __all__ = [
     "EnsemblePaths",
     "lyapunov",
     "critical_noise",
+    "CriticalNoise",
+    "CriticalCurve",
+    "CriticalPoint",
+    "Bracket",
+    "RestRegime",
+    "WellEscape",
     "attractor",
     "attractor_starts",
     "Attractor",
@@ -421,34 +427,322 @@ def lyapunov(
     return json.loads(_native._lyapunov(**a, threads=threads, progress=_progress(progress)))
 
 
+@dataclass
+class CriticalPoint:
+    """One point of a critical-noise curve: ``D``; ``lle`` and ``se``, the mean exponent and its
+    standard error over the ``n - merged`` realisations that did not merge (NaN where
+    undefined); ``n`` realisations, ``merged`` of them whose copy merged with its reference
+    (exponent −∞); ``call`` against δ = 1/W: ``"chaotic"``, ``"not-chaotic"``,
+    ``"synchronised"`` (at least half merged) or ``"undecided"``; ``agrees`` whether the
+    exponent is equivalent to the phase reduction's −c·D within δ (``None`` where not tested)."""
+
+    D: float
+    lle: float
+    se: float
+    n: int
+    merged: int
+    call: str
+    agrees: bool | None
+
+
+@dataclass
+class Bracket:
+    """Where a curve's D_c lies: ``kind`` ``"located"`` (D_c in (``lo``, ``hi``): the largest
+    regular D below the smallest chaotic D), ``"below"`` (chaotic from the smallest D: D_c <
+    ``hi``, ``lo`` is ``None``), ``"above"`` (regular up to the largest D: D_c > ``lo``, ``hi``
+    is ``None``), ``"never"`` (no D_c at all: never chaotic, the exponent falling with D over
+    the last decade; ``lo`` the largest D, ``hi`` ``None``) or ``"undecided"`` (both
+    ``None``)."""
+
+    kind: str
+    lo: float | None
+    hi: float | None
+
+
+@dataclass
+class WellEscape:
+    """How many of the exponent's reference paths left the cycle's well (amplitude in
+    (``lo``, ``hi``), the averaged theory's neighbouring unstable cycles) at noise ``D`` within
+    the run of length ``run``: ``escaped`` of ``paths``, their median first exit time
+    ``median_time`` (NaN when none left). Where any left, the bracket depends on the window."""
+
+    D: float
+    lo: float
+    hi: float
+    paths: int
+    escaped: int
+    median_time: float
+    run: float
+
+
+@dataclass
+class RestRegime:
+    """The rest regime's rule over a rest curve's points at D ≤ 1e-2: the inverse-variance
+    ``pooled`` exponent (± ``pooled_se``), the weighted least-squares ``slope`` per decade of D
+    (± ``slope_se``), the ``decades`` spanned; ``d_c_zero``: chaotic as D → 0 (pooled above δ,
+    slope not significant, at least three decades), D_c = 0."""
+
+    pooled: float
+    pooled_se: float
+    slope: float
+    slope_se: float
+    decades: float
+    d_c_zero: bool
+
+
+def _float(x) -> float:
+    return float(_nonfinite(x))
+
+
+@dataclass
+class CriticalCurve:
+    """One curve of ``critical_noise``: the exponent against D from one start, named by the
+    attractor its noise-free path reaches. ``value`` is the swept parameter's (``None`` without
+    a sweep); ``attractor`` in words (``"rest"``, ``"outer cycle (A = 12.65)"``), ``regime``
+    ``"rest"`` or ``"cycle"``, ``u0`` the start, ``dt`` the step; ``points`` the
+    ``CriticalPoint`` s, D ascending; ``bracket`` the ``Bracket`` of D_c; ``rest`` the
+    ``RestRegime`` (rest curves; ``None`` on a cycle); ``coefficient`` c of the phase reduction
+    λ ≈ −c·D with ``coefficient_uncertainty`` (cycle curves; ``None`` on rest curves and where
+    undefined, the reason in ``prediction_note``); ``escape`` the ``WellEscape`` at the ends of
+    a located bracket on a cycle (empty otherwise); ``decision`` the rules' outcome in words."""
+
+    value: float | None
+    attractor: str
+    regime: str
+    u0: float
+    dt: float
+    points: list[CriticalPoint]
+    bracket: Bracket
+    rest: RestRegime | None
+    coefficient: float | None
+    coefficient_uncertainty: float | None
+    prediction_note: str
+    escape: list[WellEscape]
+    decision: str
+
+    @classmethod
+    def _of(cls, value, doc: dict) -> "CriticalCurve":
+        r = doc["rest"]
+        b = doc["bracket"]
+        return cls(
+            value=None if value is None else float(value),
+            attractor=doc["attractor"],
+            regime=doc["regime"],
+            u0=float(doc["u0"]),
+            dt=float(doc["dt"]),
+            points=[
+                CriticalPoint(
+                    D=float(q["d"]),
+                    lle=_float(q["lle"]),
+                    se=_float(q["se"]),
+                    n=int(q["n"]),
+                    merged=int(q["merged"]),
+                    call=q["call"],
+                    agrees=q["agrees"],
+                )
+                for q in doc["points"]
+            ],
+            bracket=Bracket(b["kind"], b["lo"], b["hi"]),
+            rest=None
+            if r is None
+            else RestRegime(
+                pooled=_float(r["pooled"]),
+                pooled_se=_float(r["pooled_se"]),
+                slope=_float(r["slope"]),
+                slope_se=_float(r["slope_se"]),
+                decades=_float(r["decades"]),
+                d_c_zero=bool(r["d_c_zero"]),
+            ),
+            coefficient=doc["coefficient"],
+            coefficient_uncertainty=doc["coefficient_uncertainty"],
+            prediction_note=doc["prediction_note"],
+            escape=[
+                WellEscape(
+                    D=float(e["d"]),
+                    lo=_float(e["escape"]["lo"]),
+                    hi=_float(e["escape"]["hi"]),
+                    paths=int(e["escape"]["paths"]),
+                    escaped=int(e["escape"]["escaped"]),
+                    median_time=_float(e["escape"]["median_time"]),
+                    run=_float(e["escape"]["run"]),
+                )
+                for e in doc.get("escape", [])
+            ],
+            decision=doc["decision"],
+        )
+
+    @property
+    def name(self) -> str:
+        """The attractor's short name: ``"rest"``, ``"inner"``, ``"middle"``, ``"outer"``, …"""
+        return self.attractor.split(" ")[0]
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        """The points as numpy arrays: ``D``, ``lle``, ``se``, ``n``, ``merged``, ``call``."""
+        return {
+            "D": np.array([q.D for q in self.points]),
+            "lle": np.array([q.lle for q in self.points]),
+            "se": np.array([q.se for q in self.points]),
+            "n": np.array([q.n for q in self.points]),
+            "merged": np.array([q.merged for q in self.points]),
+            "call": np.array([q.call for q in self.points]),
+        }
+
+
+@dataclass
+class CriticalNoise:
+    """The result of ``critical_noise``: ``curves`` (``CriticalCurve`` s, per parameter value
+    the rest curve first, then the cycles by amplitude), ``sweep`` (the swept parameter or
+    ``None``), ``noises`` (the D of every curve), ``margin`` δ = 1/W, ``step_warnings``,
+    ``notes`` (starts that settled on nothing, realisations that merged). ``to_dict()`` is the
+    document ``trirhythm critical-noise --format json`` writes (its ``params`` aside);
+    ``statistics()`` what ``sweep`` records."""
+
+    curves: list[CriticalCurve]
+    sweep: str | None
+    noises: np.ndarray
+    margin: float
+    step_warnings: list[str]
+    notes: list[str]
+    document: dict = field(repr=False)
+
+    @classmethod
+    def _of(cls, doc: dict) -> "CriticalNoise":
+        return cls(
+            curves=[CriticalCurve._of(r["value"], c) for r in doc["results"] for c in r["curves"]],
+            sweep=doc["sweep"],
+            noises=np.array([float(d) for d in doc["noises"]]),
+            margin=float(doc["margin"]),
+            step_warnings=list(doc["step_warnings"]),
+            notes=list(doc["notes"]),
+            document=doc,
+        )
+
+    def to_dict(self) -> dict:
+        return self.document
+
+    def statistics(self) -> dict[str, tuple[float, float]]:
+        """``{name: (value, stderr)}`` per curve, named by its attractor (``rest``, ``inner``,
+        …; suffix ``_i`` for the i-th value of a sweep): ``<name>_dc_lo``, ``<name>_dc_hi``
+        (the bracket's ends, NaN where open), on a rest curve ``<name>_pooled``,
+        ``<name>_slope`` with their standard errors and ``<name>_dc_zero`` (1 or 0), on a cycle
+        ``<name>_coefficient`` with its uncertainty."""
+        nan = float("nan")
+        values = []
+        for c in self.curves:
+            if c.value not in values:
+                values.append(c.value)
+        out = {}
+        for c in self.curves:
+            tag = c.name if len(values) == 1 else f"{c.name}_{values.index(c.value)}"
+            opt = lambda x: nan if x is None else float(x)  # noqa: E731
+            out[f"{tag}_dc_lo"] = (opt(c.bracket.lo), nan)
+            out[f"{tag}_dc_hi"] = (opt(c.bracket.hi), nan)
+            if c.rest is not None:
+                out[f"{tag}_pooled"] = (c.rest.pooled, c.rest.pooled_se)
+                out[f"{tag}_slope"] = (c.rest.slope, c.rest.slope_se)
+                out[f"{tag}_dc_zero"] = (float(c.rest.d_c_zero), nan)
+            if c.regime == "cycle":
+                out[f"{tag}_coefficient"] = (opt(c.coefficient), opt(c.coefficient_uncertainty))
+        return out
+
+
+_CRITICAL_DEFAULTS = dict(
+    transient=200.0,
+    dt=None,
+    impact_memory="restart",
+    method="two-trajectory",
+    renormalise_every=100,
+    separation=1e-8,
+    system="fractional",
+    barrier=True,
+    memory="soe",
+    tolerance=1e-10,
+    variant="paper",
+)
+
+
 def critical_noise(
     params: Params,
-    d_range: tuple[float, float] = (0.0, 0.5),
-    grid: int = 12,
-    refinements: int = 6,
-    z: float = 2.0,
+    d_range: tuple[float, float] | None = None,
+    points: int = 9,
     paths: int = 8,
     t_end: float = 2000.0,
     seed: int = 1,
     *,
+    noises: Sequence[float] | None = None,
+    sweep: tuple[str, Sequence[float]] | None = None,
     threads: int | None = None,
     progress=None,
     **options,
-) -> dict:
-    """The noise intensity D_c where the largest Lyapunov exponent changes sign
-    (``trirhythm critical-noise``): ``{d_c, d_c_lo, d_c_hi, rising, evaluated}``."""
-    a = _lle_args(params, paths, t_end, seed, options)
-    lo, hi = (_finite("d_range", x) for x in d_range)
-    r = _native._lyapunov(
-        **a,
-        d_range=(lo, hi),
-        grid=_count("grid", grid),
-        refinements=_count("refinements", refinements),
-        z=_finite("z", z),
+) -> CriticalNoise:
+    """The largest Lyapunov exponent against the noise intensity D by regime, and each
+    attractor's critical noise D_c, with the rules of Figs 17–19 (``trirhythm critical-noise``,
+    the same code and bits; docs/verdicts.md, "The Lyapunov claims by regime").
+
+    The starts U(0) = the averaged theory's stable amplitudes, 1 and 0.01 are classified by the
+    attractor their noise-free path reaches, and one curve is run per attractor (rest on the
+    wall, inner / middle / outer cycle) at D = ``points`` values log-spaced over ``d_range``
+    (0 < lo < hi, rounded to 3 significant digits; ``None``: (0.002, 2), with 9 points Fig. 19's
+    grid) or at ``noises`` (ascending, each > 0; not with ``d_range``). Each
+    point is called against δ = 1/``t_end``; each curve gets the bracket of D_c, a rest curve
+    its pooled exponent and slope over D ≤ 1e-2, a cycle the phase-reduction coefficient c.
+    The D of ``params`` is not used. ``sweep=(key, values)`` runs the curves at each value of
+    a parameter. Options and defaults are the command line's: ``transient=200``, ``dt=None``
+    (the figures' rule: the largest of 0.01, 0.005, 0.0025, 0.002, 0.001, … not above τ/10),
+    ``impact_memory="restart"``, ``method="two-trajectory"`` or ``"tangent"``,
+    ``renormalise_every=100``, ``separation=1e-8``, ``system``, ``barrier``, ``memory``,
+    ``tolerance``, ``variant="paper"``. Bad values raise ``ValueError`` naming the argument,
+    its value and the allowed range, before any work; the step guard's warnings are warned."""
+    unknown = set(options) - set(_CRITICAL_DEFAULTS)
+    if unknown:
+        raise ValueError(f"unknown argument(s) {sorted(unknown)}: expected {sorted(_CRITICAL_DEFAULTS)}")
+    o = {**_CRITICAL_DEFAULTS, **options}
+    if noises is not None:
+        if d_range is not None:
+            raise ValueError("give the noise intensities either as noises or as d_range (with points), not both")
+        noises = [_finite("noises", d) for d in noises]
+    else:
+        if d_range is None:
+            d_range = (0.002, 2.0)
+        try:
+            lo, hi = d_range
+        except (TypeError, ValueError):
+            raise ValueError(f"invalid parameter d_range = {d_range!r}: expected (lo, hi) with 0 < lo < hi") from None
+        d_range = (_finite("d_range", lo), _finite("d_range", hi))
+    if sweep is not None:
+        try:
+            key, values = sweep
+        except (TypeError, ValueError):
+            raise ValueError(f"invalid parameter sweep = {sweep!r}: expected (key, values)") from None
+        sweep = (str(key), [_finite(str(key), v) for v in values])
+    dt = o["dt"]
+    text = _native._critical_noise(
+        _check_params(params),
+        noises,
+        d_range,
+        _count("points", points),
+        sweep,
+        _finite("t_end", t_end),
+        _finite("transient", o["transient"]),
+        None if dt is None else _finite("dt", dt),
+        _count("paths", paths),
+        _count("seed", seed),
+        o["impact_memory"],
+        o["method"],
+        _count("renormalise_every", o["renormalise_every"]),
+        _finite("separation", o["separation"]),
+        o["system"],
+        bool(o["barrier"]),
+        o["memory"],
+        _finite("tolerance", o["tolerance"]),
+        o["variant"],
         threads=threads,
         progress=_progress(progress),
     )
-    return {k: _nonfinite(v) for k, v in json.loads(r).items()}
+    r = CriticalNoise._of(json.loads(text))
+    for w in r.step_warnings:
+        warnings.warn(f"critical_noise: {w}", RuntimeWarning, stacklevel=2)
+    return r
 
 
 _MODEL_DEFAULTS = dict(system="fractional", barrier=True, memory="soe", tolerance=1e-10)

@@ -56,12 +56,13 @@ def _number(x):
 def statistics(result: Any) -> dict[str, tuple[float, float]]:
     """The scalar statistics of a result as ``{name: (value, stderr)}`` (stderr NaN where the
     result gives none): an ``Ensemble``'s moments and occupancies, the ``{value, stderr}`` and
-    number fields of a dict (a Lyapunov exponent, a critical noise), a ``Path``'s summary, a
+    number fields of a dict (a Lyapunov exponent), a ``CriticalNoise``'s brackets, rest-regime
+    statistics and coefficients (``CriticalNoise.statistics``), a ``Path``'s summary, a
     number, a ``(value, stderr)`` pair, or a dict of those (what a custom function returns)."""
     import trirhythm
 
     nan = float("nan")
-    if isinstance(result, trirhythm.Ensemble):
+    if isinstance(result, (trirhythm.Ensemble, trirhythm.CriticalNoise)):
         return result.statistics()
     if isinstance(result, trirhythm.Path):
         result = result.summary

@@ -1,8 +1,8 @@
 //! Analyses of simulated paths: recurrence quantification (Eq. 6–7), ensembles with their
 //! stationary statistics and diagnosis, the averaged theory tested against them, oscillation
 //! (Hopf) boundaries by simulation, averaging and exact linearisation, and the largest Lyapunov
-//! exponent with frozen noise and the critical noise; the step guard at the amplitudes a run
-//! visits.
+//! exponent with frozen noise, the attractors of noise-free starts and the phase reduction; the
+//! step guard at the amplitudes a run visits.
 
 pub mod ensemble;
 pub mod lyapunov;
@@ -14,9 +14,7 @@ pub mod versus;
 pub use ensemble::{
     merge, run_ensemble, run_paths, EnsembleResult, EnsembleSpec, Estimate, PathStats, Wells,
 };
-pub use lyapunov::{
-    critical_noise, largest_lyapunov, CriticalNoise, CriticalSearch, LyapunovResult, LyapunovSpec,
-};
+pub use lyapunov::{largest_lyapunov, LyapunovResult, LyapunovSpec};
 pub use oscillation::{
     boundary, classify_plane, growth_rate, Boundary, BoundaryPoint, Classifier, Growth, Method,
     Plane, Search,

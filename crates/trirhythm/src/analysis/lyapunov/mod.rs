@@ -1,5 +1,5 @@
-//! The largest Lyapunov exponent (LLE) of the noisy system, with frozen noise, and the critical
-//! noise D_c where it changes sign (Figs 17–19).
+//! The largest Lyapunov exponent (LLE) of the noisy system, with frozen noise (Figs 17–19), the
+//! attractors of noise-free starts and the phase reduction of a cycle's exponent.
 //!
 //! # Definition
 //! For one realisation of the forcing η, the largest exponent of the random dynamical system
@@ -38,7 +38,6 @@
 //! the renormalisation is retried. The mean over realisations is then −∞;
 //! [`LyapunovResult::merged`] counts such realisations and [`LyapunovResult::unmerged`] gives
 //! the mean over the others, a statement about the realisations that did not synchronise.
-//! [`critical_noise`] gives no sign to a D at which a realisation merged.
 //!
 //! # Second method: the tangent (variational) equation
 //! [`LyapunovMethod::Tangent`] steps the variational equation with the reference in one pass
@@ -81,14 +80,9 @@
 //! the exponential phase dominates the whole window.
 //!
 //! # Critical noise
-//! [`critical_noise`] evaluates the LLE on a grid of D (the same seed at every D: common random
-//! numbers make LLE(D) smooth), takes the first sign change in ascending D among the D at which
-//! no realisation merged (there the mean is −∞, which says synchronisation, not a sign) and
-//! bisects it (stopping early if a midpoint has a merged realisation); D_c
-//! is the linear interpolation of the final bracket. Its uncertainty [D_c_lo, D_c_hi] runs from
-//! the largest evaluated D below D_c whose LLE differs from 0 by more than `z` standard errors
-//! with the sign below, to the smallest evaluated D above with the sign above (the range's end
-//! when there is none). No sign change in the range is reported as such, never as a value.
+//! The critical noise D_c is not decided here: `trirhythm_paper::critical` runs one curve of
+//! the exponent against D per attractor of the noise-free system and decides each with the
+//! regime rules of Figs 17–19 (`trirhythm critical-noise`, Python `critical_noise`).
 //!
 //! # Attractors and the phase reduction
 //! [`classify_start`] names a start by the attractor its noise-free path reaches (rest, or the
@@ -112,11 +106,10 @@
 //! # Tests
 //! `tests/lyapunov.rs`: the damped linear oscillator (P ≡ −1, no wall, λ = 1) has LLE = −μ0/2
 //! for every D; a stable deterministic limit cycle has LLE → 0; at λ = 1 Eq. (1) with the wall
-//! and Eq. (9) on the whole line give the same LLE; the thread count changes nothing; the
-//! critical noise of a family with a known sign change is bracketed; a copy that merges with its
-//! reference (Fig. 18(b)'s r = 0.8 at D = 0.29375, path 4, both stuck at t ≈ 67) gives −∞ with
-//! its merge time while the others keep finite exponents; `first_sign_change` skips D with merged
-//! realisations (unit test below). The tangent method: −μ0/2 for
+//! and Eq. (9) on the whole line give the same LLE; the thread count changes nothing; a copy
+//! that merges with its reference (Fig. 18(b)'s r = 0.8 at D = 0.29375, path 4, both stuck at
+//! t ≈ 67) gives −∞ with its merge time while the others keep finite exponents. The tangent
+//! method: −μ0/2 for
 //! the damped oscillator (error 7e-6); agreement with two trajectories (z = |Δ|/√(σ₁² + σ₂²) < 3;
 //! measured z ≤ 0.03) on an impacting limit cycle at λ = 1, on Fig. 17(a)'s parameters at
 //! λ = 0.998 with the wall (both impact memories) and on λ = 0.998, 0.95 without the wall (path by
@@ -146,7 +139,6 @@
 //! ```
 
 mod attractor;
-mod critical;
 mod escape;
 mod perturbation;
 mod phase;
@@ -155,9 +147,6 @@ mod spectrum;
 pub use attractor::{
     attractor_starts, classify_start, Attractor, AttractorSpec, CycleName, StartAttractor,
     MAX_RUN_TIME, REST_GAP_PERIODS,
-};
-pub use critical::{
-    critical_noise, CriticalNoise, CriticalSearch, NoisePoint, MAX_GRID, MAX_REFINEMENTS, MAX_Z,
 };
 pub use escape::{well_escape, WellEscape};
 pub use phase::{
@@ -319,8 +308,9 @@ impl LyapunovSpec {
     /// The spec and `method` checked ([`LyapunovSpec::validate`],
     /// [`PredictorCorrector::validate`], Δt in [1e-4, 0.1]), and the (transient, measured)
     /// steps: whole numbers of steps, at most [`crate::engine::MAX_STEPS`] in all, at least two
-    /// renormalisation intervals measured.
-    pub(crate) fn sizes(&self, method: &PredictorCorrector) -> Result<(u64, u64)> {
+    /// renormalisation intervals measured. Public so that a front end running many estimates
+    /// can refuse a bad spec before the first.
+    pub fn sizes(&self, method: &PredictorCorrector) -> Result<(u64, u64)> {
         let dt = method.dt;
         if !(DT_RANGE.0..=DT_RANGE.1).contains(&dt) {
             return Err(Error::invalid("dt", dt, "[1e-4, 0.1]"));
