@@ -327,12 +327,17 @@ impl<'a> Given<'a> {
         })
     }
 
-    /// Bad input for the first of `options` (`(id, flag)`) typed: "FLAG applies to WHAT
-    /// only; it would be ignored here: leave it out".
-    pub fn refuse(&self, options: &[(&str, &str)], applies_to: &str) -> Result<()> {
+    /// Bad input for the first of `options` (`(id, flag)`) typed: "FLAG applies to WHAT only
+    /// (WHY); leave it out (it would be ignored here)".
+    pub fn refuse(&self, options: &[(&str, &str)], applies_to: &str, why: &str) -> Result<()> {
         match options.iter().find(|(id, _)| self.typed(id)) {
             Some((_, flag)) => bad(format!(
-                "{flag} applies to {applies_to} only; it would be ignored here: leave it out"
+                "{flag} applies to {applies_to} only{}; leave it out (it would be ignored here)",
+                if why.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({why})")
+                }
             )),
             None => Ok(()),
         }

@@ -193,23 +193,24 @@ impl EnsembleArgs {
                     ("core_quantile", "--core-quantile"),
                 ],
                 "--method wells",
+                "",
             ),
             EstimatorArg::Wells => {
                 given.refuse(
                     &[("u0", "--u0")],
-                    "--method direct (--method wells starts one path in each of the theory's \
-                     wells, at its mode)",
+                    "--method direct",
+                    "--method wells starts one path in each of the theory's wells, at its mode",
                 )?;
                 given.refuse(
                     &[("lanes", "--lanes")],
-                    "--method direct (--method wells steps its paths one at a time)",
+                    "--method direct",
+                    "--method wells steps its paths one at a time",
                 )?;
-                if self.checkpoint.is_some() {
-                    return bad(
-                        "--checkpoint: not available with --method wells (its run is one piece)",
-                    );
-                }
-                Ok(())
+                given.refuse(
+                    &[("checkpoint", "--checkpoint")],
+                    "--method direct",
+                    "the well method's run is one piece, with no paths to save one by one",
+                )
             }
         }
     }

@@ -141,15 +141,15 @@ impl OscillationArgs {
                     ("impact_memory", "--impact-memory"),
                     ("lanes", "--lanes"),
                 ],
-                "--method simulation or all (the averaging and exact boundaries simulate \
-                 nothing)",
+                "--method simulation or all",
+                "the averaging and exact boundaries simulate nothing",
             )?;
         }
         if self.grid {
             given.refuse(
                 &[("tolerance", "--tolerance")],
-                "boundary mode, without --grid (the plane's points are classified, no \
-                 boundary is bracketed)",
+                "boundary mode, without --grid",
+                "with --grid each point is classified and no boundary is bracketed",
             )?;
         }
         Ok(())
