@@ -1327,17 +1327,17 @@ fn progress_moves_on_a_terminal_from_the_first_second() {
         "D=0:1:1000",
     ];
     for (args, needles) in [
-        (&critical[..], &["0/8", "none done yet"][..]),
+        (&critical[..], &["none done yet"][..]),
         (&sweep[..], &["preparing"][..]),
     ] {
         let Some(shown) = on_a_terminal(args, 3.5) else {
             return;
         };
-        for n in needles {
-            assert!(shown.contains(n), "{args:?}: {n} not shown:\n{shown}");
-        }
         for s in ["1s elapsed", "2s elapsed"] {
             assert!(shown.contains(s), "{args:?}: never showed {s}:\n{shown}");
+        }
+        for n in needles {
+            assert!(shown.contains(n), "{args:?}: {n} not shown:\n{shown}");
         }
     }
     // on a pipe: nothing drawn
