@@ -27,7 +27,7 @@ mod render;
 use commands::{ensemble, figure, lyapunov, maps, oscillation, phase, report, simulate, theory};
 
 use anyhow::{Context, Result};
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
@@ -101,19 +101,85 @@ impl Command {
             Command::Figure(_) | Command::Report(_) | Command::Presets => None,
         }
     }
+
+    /// The command's name as typed.
+    fn name(&self) -> &'static str {
+        match self {
+            Command::Equivalents(_) => "equivalents",
+            Command::Cycles(_) => "cycles",
+            Command::Drift(_) => "drift",
+            Command::Potential(_) => "potential",
+            Command::Barriers(_) => "barriers",
+            Command::Pdf(_) => "pdf",
+            Command::Simulate(_) => "simulate",
+            Command::Ensemble(_) => "ensemble",
+            Command::Map(_) => "map",
+            Command::Branches(_) => "branches",
+            Command::Oscillation(_) => "oscillation",
+            Command::Lyapunov(_) => "lyapunov",
+            Command::CriticalNoise(_) => "critical-noise",
+            Command::PhaseResponse(_) => "phase-response",
+            Command::Figure(_) => "figure",
+            Command::Report(_) => "report",
+            Command::Presets => "presets",
+        }
+    }
+
+    /// Refuse an option given on the command line that the chosen command or method does not
+    /// use (exit 2, naming it and what it applies to), before any work.
+    fn refuse_unused(&self, given: &args::Given) -> Result<()> {
+        match self {
+            Command::Ensemble(a) => a.refuse_unused(given),
+            Command::Oscillation(a) => a.refuse_unused(given),
+            // the tangent equation has no copy to pull back
+            Command::Lyapunov(lyapunov::LyapunovArgs { sim, .. })
+            | Command::CriticalNoise(lyapunov::CriticalNoiseArgs { sim, .. })
+                if sim.method == lyapunov::LyapunovMethod::Tangent =>
+            {
+                given.refuse(
+                    &[("separation", "--separation")],
+                    "--method two-trajectory",
+                    "the tangent method has no perturbed copy to pull back",
+                )
+            }
+            _ => Ok(()),
+        }
+    }
 }
 
-fn run(cli: Cli) -> Result<()> {
+fn run(cli: Cli, given: &args::Given) -> Result<()> {
     // an output that cannot be written (a directory, a missing or read-only directory) is
     // refused before any work starts, for every command
     if let Some(out) = cli.command.out() {
         io::files::check_writable(out, "--out")?;
     }
-    if let Command::Map(a) = &cli.command {
-        if let Some(f) = &a.folds_out {
-            io::files::check_destination(f, "--folds-out")?;
+    match &cli.command {
+        Command::Map(a) => {
+            if let Some(f) = &a.folds_out {
+                io::files::check_writable(f, "--folds-out")?;
+            }
         }
+        Command::Ensemble(a) => {
+            if let Some(dir) = &a.checkpoint {
+                io::files::check_dir_writable(dir, "--checkpoint")?;
+            }
+        }
+        Command::Figure(a) => io::files::check_dir_writable(&a.out_dir, "--out-dir")?,
+        _ => {}
     }
+    cli.command.refuse_unused(given)?;
+    if !matches!(cli.command, Command::Presets) {
+        io::progress::start_ticker(cli.command.name());
+    }
+    let done = dispatch(&cli);
+    io::progress::end_ticker();
+    done?;
+    std::io::stdout()
+        .flush()
+        .context("writing to standard output")
+}
+
+fn dispatch(cli: &Cli) -> Result<()> {
     match &cli.command {
         Command::Equivalents(a) => theory::equivalents(a),
         Command::Cycles(a) => theory::cycles(a),
@@ -132,16 +198,16 @@ fn run(cli: Cli) -> Result<()> {
         Command::Figure(a) => figure::figure(a),
         Command::Report(a) => report::report(a),
         Command::Presets => figure::presets(),
-    }?;
-    std::io::stdout()
-        .flush()
-        .context("writing to standard output")
+    }
 }
 
 fn main() -> ExitCode {
     io::files::install_signal_cleanup();
-    let cli = match Cli::try_parse() {
-        Ok(cli) => cli,
+    let parsed = Cli::command()
+        .try_get_matches()
+        .and_then(|m| Cli::from_arg_matches(&m).map(|cli| (cli, m)));
+    let (cli, matches) = match parsed {
+        Ok(parsed) => parsed,
         Err(e) => {
             let command = std::env::args().nth(1).unwrap_or_default();
             match error::clap_value_error(&command, &e) {
@@ -153,7 +219,8 @@ fn main() -> ExitCode {
             }
         }
     };
-    match run(cli) {
+    let given = args::Given::of(matches.subcommand().map(|(_, m)| m));
+    match run(cli, &given) {
         Ok(()) => ExitCode::SUCCESS,
         // the reader went away (`trirhythm simulate | head`): end quietly
         Err(e) if io::files::is_broken_pipe(&e) => ExitCode::SUCCESS,
@@ -172,7 +239,167 @@ fn main() -> ExitCode {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use clap::CommandFactory;
+
+    /// An option typed for another method is refused; at its default, or for its method, it
+    /// is not (the rules name argument ids that exist: a renamed field would disable them).
+    #[test]
+    fn options_another_method_uses_are_refused_only_when_typed() {
+        let check = |line: &[&str]| -> Result<()> {
+            let m = Cli::command().try_get_matches_from(line).unwrap();
+            let cli = Cli::from_arg_matches(&m).unwrap();
+            cli.command
+                .refuse_unused(&args::Given::of(m.subcommand().map(|(_, m)| m)))
+        };
+        for refused in [
+            &["trirhythm", "ensemble", "--clones", "8"][..],
+            &["trirhythm", "ensemble", "--max-excursion", "5"],
+            &["trirhythm", "ensemble", "--max-iterations", "5"],
+            &["trirhythm", "ensemble", "--separation", "5"],
+            &["trirhythm", "ensemble", "--core-quantile", "0.2"],
+            &["trirhythm", "ensemble", "--method", "wells", "--u0", "1"],
+            &["trirhythm", "ensemble", "--method", "wells", "--lanes", "1"],
+            &[
+                "trirhythm",
+                "ensemble",
+                "--method",
+                "wells",
+                "--checkpoint",
+                "x",
+            ],
+            &[
+                "trirhythm",
+                "oscillation",
+                "--x",
+                "r=0:1:2",
+                "--y",
+                "mu0=0:1",
+                "--method",
+                "exact",
+                "--dt",
+                "0.01",
+            ],
+            &[
+                "trirhythm",
+                "oscillation",
+                "--x",
+                "r=0:1:2",
+                "--y",
+                "mu0=0:1",
+                "--method",
+                "averaging",
+                "--impact-memory",
+                "restart",
+            ],
+            &[
+                "trirhythm",
+                "oscillation",
+                "--x",
+                "r=0:1:2",
+                "--y",
+                "mu0=0:1",
+                "--method",
+                "exact",
+                "--lanes",
+                "4",
+            ],
+            &[
+                "trirhythm",
+                "oscillation",
+                "--x",
+                "r=0:1:2",
+                "--y",
+                "mu0=0:1:2",
+                "--grid",
+                "--tolerance",
+                "0.01",
+            ],
+            &[
+                "trirhythm",
+                "lyapunov",
+                "--method",
+                "tangent",
+                "--separation",
+                "1e-8",
+            ],
+            &[
+                "trirhythm",
+                "critical-noise",
+                "--d-range",
+                "0:1",
+                "--method",
+                "tangent",
+                "--separation",
+                "1e-8",
+            ],
+        ] {
+            let e = check(refused).expect_err(&format!("{refused:?}"));
+            assert!(error::is_bad_input(&e), "{refused:?}: {e}");
+            assert!(e.to_string().contains("applies to"), "{refused:?}: {e}");
+        }
+        for accepted in [
+            &["trirhythm", "ensemble"][..],
+            &["trirhythm", "ensemble", "--u0", "1", "--lanes", "4"],
+            &[
+                "trirhythm",
+                "ensemble",
+                "--method",
+                "wells",
+                "--clones",
+                "8",
+                "--max-excursion",
+                "5",
+                "--max-iterations",
+                "5",
+                "--separation",
+                "5",
+                "--core-quantile",
+                "0.2",
+            ],
+            &[
+                "trirhythm",
+                "oscillation",
+                "--x",
+                "r=0:1:2",
+                "--y",
+                "mu0=0:1",
+                "--dt",
+                "0.01",
+                "--tolerance",
+                "0.01",
+                "--lanes",
+                "4",
+                "--impact-memory",
+                "restart",
+            ],
+            &[
+                "trirhythm",
+                "oscillation",
+                "--x",
+                "r=0:1:2",
+                "--y",
+                "mu0=0:1",
+                "--method",
+                "simulation",
+                "--dt",
+                "0.01",
+            ],
+            &[
+                "trirhythm",
+                "oscillation",
+                "--x",
+                "r=0:1:2",
+                "--y",
+                "mu0=0:1:2",
+                "--grid",
+                "--dt",
+                "0.01",
+            ],
+            &["trirhythm", "lyapunov", "--separation", "1e-8"],
+            &["trirhythm", "lyapunov", "--method", "tangent"],
+        ] {
+            check(accepted).unwrap_or_else(|e| panic!("{accepted:?}: {e}"));
+        }
+    }
 
     /// Every whole-number flag of every command has its range in the table, and clap's
     /// refusal of a negative, fractional or too large value is told with it.

@@ -579,3 +579,779 @@ fn closed_and_full_standard_output() {
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Issue 33: nothing lost, nothing pretended. One block per class of defect; every case failed
+// on main at ae3915a.
+
+/// The sorted entries of `dir`, hidden ones included.
+fn listing(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+/// Exit 2 with an `error:` naming `flag` (and each of `also`); the message.
+fn refused_naming(out: &std::process::Output, flag: &str, also: &[&str], what: &str) -> String {
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{what}: {err}");
+    assert!(
+        err.starts_with("error:") && err.contains(flag),
+        "{what}: {err}"
+    );
+    for a in also {
+        assert!(err.contains(a), "{what}: {a} not in {err}");
+    }
+    err
+}
+
+/// Whether this process runs as root (permission bits do not stop root).
+#[cfg(unix)]
+fn is_root() -> bool {
+    Command::new("id")
+        .arg("-u")
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim() == "0")
+        .unwrap_or(false)
+}
+
+/// `dir` made unwritable for this process until the value is dropped: mode 555 for a user,
+/// the immutable attribute (`chattr +i`) for root, whom modes do not stop. `None` (with the
+/// reason printed) where neither can be done here.
+#[cfg(unix)]
+struct Unwritable(std::path::PathBuf, bool);
+
+#[cfg(unix)]
+impl Unwritable {
+    fn make(dir: &Path) -> Option<Unwritable> {
+        if is_root() {
+            let ok = Command::new("chattr")
+                .args(["+i", dir.to_str().unwrap()])
+                .stderr(Stdio::null())
+                .status()
+                .is_ok_and(|s| s.success());
+            if !ok {
+                eprintln!(
+                    "skipped: running as root and `chattr +i` is not available here, so no \
+                     directory can be made unwritable"
+                );
+                return None;
+            }
+            Some(Unwritable(dir.to_path_buf(), true))
+        } else {
+            use std::os::unix::fs::PermissionsExt;
+            std::fs::set_permissions(dir, std::fs::Permissions::from_mode(0o555)).unwrap();
+            Some(Unwritable(dir.to_path_buf(), false))
+        }
+    }
+}
+
+#[cfg(unix)]
+impl Drop for Unwritable {
+    fn drop(&mut self) {
+        if self.1 {
+            let _ = Command::new("chattr")
+                .args(["-i", self.0.to_str().unwrap()])
+                .status();
+        } else {
+            use std::os::unix::fs::PermissionsExt;
+            let _ = std::fs::set_permissions(&self.0, std::fs::Permissions::from_mode(0o755));
+        }
+    }
+}
+
+/// A small figure data directory: Fig. 8's quick data (fast to compute and to draw).
+fn figure_data(scratch: &Path) -> std::path::PathBuf {
+    let data = scratch.join("data");
+    std::fs::create_dir_all(&data).unwrap();
+    ok_stdout(&[
+        "figure",
+        "8",
+        "--quick",
+        "--data",
+        "--out-dir",
+        data.to_str().unwrap(),
+    ]);
+    data
+}
+
+/// `report --from-data DATA --out-dir OUT`.
+fn report_from(data: &Path, out: &Path) -> std::process::Output {
+    run(&[
+        "report",
+        "--from-data",
+        data.to_str().unwrap(),
+        "--out-dir",
+        out.to_str().unwrap(),
+    ])
+}
+
+/// A process that never runs here: no `/proc/PID`.
+#[cfg(target_os = "linux")]
+fn dead_pid() -> u32 {
+    (400_000..u32::MAX)
+        .find(|p| !Path::new(&format!("/proc/{p}")).exists())
+        .unwrap()
+}
+
+/// A report that waits, under the test's control, while it works: its figure data is a named
+/// pipe (`mkfifo`) that the test serves once for the report's first reading (before its
+/// temporary directory exists) and, once [`Paused::resume`] is called, for every later one.
+/// Between the two the report has made its temporary directory and waits for the data: the
+/// test changes the destination meanwhile, with no race.
+#[cfg(target_os = "linux")]
+struct Paused {
+    child: std::process::Child,
+    gate: std::sync::mpsc::Sender<()>,
+    done: std::sync::Arc<std::sync::atomic::AtomicBool>,
+    server: Option<std::thread::JoinHandle<()>>,
+}
+
+#[cfg(target_os = "linux")]
+impl Paused {
+    /// Start `report --from-data FIFO_DIR --out-dir out` with `fig08.json` of `data` served
+    /// through a pipe in `fifo_dir`; returns once its temporary directory exists.
+    fn start(data: &Path, fifo_dir: &Path, out: &Path) -> Paused {
+        use std::sync::atomic::{AtomicBool, Ordering};
+        std::fs::create_dir_all(fifo_dir).unwrap();
+        let fifo = fifo_dir.join("fig08.json");
+        let _ = std::fs::remove_file(&fifo);
+        assert!(Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success());
+        let content = std::fs::read(data.join("fig08.json")).unwrap();
+        let child = Command::new(env!("CARGO_BIN_EXE_trirhythm"))
+            .args([
+                "report",
+                "--from-data",
+                fifo_dir.to_str().unwrap(),
+                "--out-dir",
+                out.to_str().unwrap(),
+            ])
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let pid = child.id();
+        let (gate, opened) = std::sync::mpsc::channel::<()>();
+        let done = std::sync::Arc::new(AtomicBool::new(false));
+        let stop = done.clone();
+        let server = std::thread::spawn(move || {
+            let mut served = 0;
+            while !stop.load(Ordering::Relaxed) {
+                if served == 1 && opened.recv_timeout(Duration::from_millis(20)).is_err() {
+                    continue;
+                }
+                if serve(&fifo, &content, pid, &stop) {
+                    served += 1;
+                }
+            }
+        });
+        let parent = out.parent().unwrap();
+        let name = format!(".{}.partial-", out.file_name().unwrap().to_string_lossy());
+        let t = Instant::now();
+        while !listing(parent).iter().any(|e| e.starts_with(&name)) {
+            assert!(
+                t.elapsed() < Duration::from_secs(60),
+                "no temporary directory"
+            );
+            std::thread::sleep(Duration::from_millis(10));
+        }
+        Paused {
+            child,
+            gate,
+            done,
+            server: Some(server),
+        }
+    }
+
+    /// Let the report go on; its exit status and standard error.
+    fn resume(mut self) -> (std::process::ExitStatus, String) {
+        let _ = self.gate.send(());
+        let (status, stderr) = wait_with_stderr(self.child);
+        self.done.store(true, std::sync::atomic::Ordering::Relaxed);
+        if let Some(s) = self.server.take() {
+            s.join().unwrap();
+        }
+        (status, stderr)
+    }
+
+    /// Kill the report with SIGKILL (it leaves its temporary directory).
+    fn kill(mut self) {
+        self.child.kill().unwrap();
+        self.child.wait().unwrap();
+        self.done.store(true, std::sync::atomic::Ordering::Relaxed);
+        if let Some(s) = self.server.take() {
+            s.join().unwrap();
+        }
+    }
+}
+
+/// Serve `content` once through the pipe `fifo` to process `pid`: wait for it to open the
+/// pipe, write, close, and wait until it has closed its end (so that the next serving is a
+/// reading of its own). False when stopped first.
+#[cfg(target_os = "linux")]
+fn serve(fifo: &Path, content: &[u8], pid: u32, stop: &std::sync::atomic::AtomicBool) -> bool {
+    use std::io::Write;
+    use std::os::unix::fs::OpenOptionsExt;
+    use std::sync::atomic::Ordering;
+    const O_NONBLOCK: i32 = 0o4000;
+    let mut f = loop {
+        if stop.load(Ordering::Relaxed) {
+            return false;
+        }
+        // a write end opens only while a reader has the pipe open
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .custom_flags(O_NONBLOCK)
+            .open(fifo)
+        {
+            Ok(f) => break f,
+            Err(_) => std::thread::sleep(Duration::from_millis(2)),
+        }
+    };
+    let mut off = 0;
+    while off < content.len() {
+        match f.write(&content[off..]) {
+            Ok(n) => off += n,
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {
+                if stop.load(Ordering::Relaxed) {
+                    return false;
+                }
+                std::thread::sleep(Duration::from_millis(1));
+            }
+            Err(_) => return false,
+        }
+    }
+    let target = std::fs::canonicalize(fifo).unwrap();
+    let holds = || {
+        std::fs::read_dir(format!("/proc/{pid}/fd"))
+            .map(|d| {
+                d.flatten()
+                    .any(|e| std::fs::read_link(e.path()).is_ok_and(|l| l == target))
+            })
+            .unwrap_or(false)
+    };
+    // the write end stays open until the reader's open has returned (it cannot see the end
+    // of the data before), then the reader is waited for until it has closed its end
+    while !holds() && !stop.load(Ordering::Relaxed) {
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    drop(f);
+    while holds() && !stop.load(Ordering::Relaxed) {
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    true
+}
+
+/// Class 1: the report never deletes or overwrites a file it did not write — a folder made at
+/// the destination during the run, a file added to a previous report during the run, a file
+/// inside a previous report's figures/ — and refuses with exit 2 naming `--out-dir`, leaving
+/// the folder as it was and no hidden copy beside it.
+#[cfg(target_os = "linux")]
+#[test]
+fn the_report_never_deletes_a_file_it_did_not_write() {
+    let scratch = scratch_dir("foreign-files");
+    let data = figure_data(&scratch);
+    let hidden = |name: &str| -> Vec<String> {
+        listing(&scratch)
+            .into_iter()
+            .filter(|e| e.starts_with(&format!(".{name}.")))
+            .collect()
+    };
+
+    // a folder with the user's file appears at the destination while the report works
+    let r = scratch.join("R");
+    let paused = Paused::start(&data, &scratch.join("fifo1"), &r);
+    std::fs::create_dir(&r).unwrap();
+    std::fs::write(r.join("thesis.tex"), "x").unwrap();
+    let (status, err) = paused.resume();
+    assert_eq!(status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--out-dir") && err.contains("thesis.tex"),
+        "{err}"
+    );
+    assert_eq!(listing(&r), ["thesis.tex"]);
+    assert_eq!(std::fs::read_to_string(r.join("thesis.tex")).unwrap(), "x");
+    assert!(hidden("R").is_empty(), "{:?}", hidden("R"));
+
+    // a file added to a previous report while the new one is computed
+    let p = scratch.join("P");
+    let out = report_from(&data, &p);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let before = listing(&p.join("figures"));
+    let verdicts = std::fs::read(p.join("verdicts.json")).unwrap();
+    let paused = Paused::start(&data, &scratch.join("fifo2"), &p);
+    std::fs::write(p.join("figures/mine.txt"), "mine").unwrap();
+    let (status, err) = paused.resume();
+    assert_eq!(status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--out-dir") && err.contains("figures/mine.txt"),
+        "{err}"
+    );
+    let mut expected = before.clone();
+    expected.push("mine.txt".into());
+    expected.sort();
+    assert_eq!(listing(&p.join("figures")), expected);
+    assert_eq!(std::fs::read(p.join("verdicts.json")).unwrap(), verdicts);
+    assert!(hidden("P").is_empty(), "{:?}", hidden("P"));
+
+    // the same file there from the start: refused before any work, nothing touched
+    let out = report_from(&data, &p);
+    refused_naming(
+        &out,
+        "--out-dir",
+        &["figures/mine.txt"],
+        "a foreign file in figures/",
+    );
+    assert_eq!(listing(&p.join("figures")), expected);
+    assert_eq!(std::fs::read(p.join("verdicts.json")).unwrap(), verdicts);
+
+    // without it the previous report is replaced, and nothing is left beside it
+    std::fs::remove_file(p.join("figures/mine.txt")).unwrap();
+    let out = report_from(&data, &p);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(listing(&p.join("figures")), before);
+    assert!(hidden("P").is_empty(), "{:?}", hidden("P"));
+    let _ = std::fs::remove_dir_all(&scratch);
+}
+
+/// Class 2: every destination that cannot be written is refused before any work, exit 2
+/// naming its flag — `--checkpoint`, `report --out-dir`, `figure --out-dir`, `--folds-out` —
+/// under a regular file, in `/proc` (which takes no file, even from root), and in a directory
+/// made unwritable (mode 555, or for root the immutable attribute).
+#[cfg(target_os = "linux")]
+#[test]
+fn unwritable_destinations_are_refused_naming_the_flag() {
+    let scratch = scratch_dir("unwritable");
+    let file = scratch.join("file");
+    std::fs::write(&file, "x").unwrap();
+    let under_file = file.join("x");
+    let s = |p: &Path| p.to_str().unwrap().to_string();
+    // minutes of work when the destination is accepted
+    let ensemble = ["ensemble", "--paths", "64", "--t-end", "20000"];
+    let map = [
+        "map",
+        "--preset",
+        "fig6",
+        "--x",
+        "gamma0=0:0.01:3",
+        "--y",
+        "delta0=1e-8:6e-7:3",
+    ];
+    let mut cases: Vec<(Vec<String>, &str)> = Vec::new();
+    for bad in [s(&under_file), "/proc/trirhythm-x".to_string()] {
+        let mut a: Vec<String> = ensemble.iter().map(|x| x.to_string()).collect();
+        a.extend(["--checkpoint".into(), bad.clone()]);
+        cases.push((a, "--checkpoint"));
+        cases.push((
+            vec![
+                "figure".into(),
+                "8".into(),
+                "--quick".into(),
+                "--out-dir".into(),
+                bad.clone(),
+            ],
+            "--out-dir",
+        ));
+        let mut a: Vec<String> = map.iter().map(|x| x.to_string()).collect();
+        a.extend(["--folds-out".into(), format!("{bad}.csv")]);
+        cases.push((a, "--folds-out"));
+    }
+    cases.push((
+        vec![
+            "report".into(),
+            "--quick".into(),
+            "--out-dir".into(),
+            "/proc/trirhythm-report".into(),
+        ],
+        "--out-dir",
+    ));
+    let ro = scratch.join("ro");
+    std::fs::create_dir(&ro).unwrap();
+    let guard = Unwritable::make(&ro);
+    if guard.is_some() {
+        for dest in [ro.clone(), ro.join("new")] {
+            let mut a: Vec<String> = ensemble.iter().map(|x| x.to_string()).collect();
+            a.extend(["--checkpoint".into(), s(&dest)]);
+            cases.push((a, "--checkpoint"));
+            cases.push((
+                vec![
+                    "figure".into(),
+                    "8".into(),
+                    "--quick".into(),
+                    "--out-dir".into(),
+                    s(&dest),
+                ],
+                "--out-dir",
+            ));
+        }
+        cases.push((
+            vec![
+                "report".into(),
+                "--quick".into(),
+                "--out-dir".into(),
+                s(&ro.join("report")),
+            ],
+            "--out-dir",
+        ));
+    }
+    for (args, flag) in &cases {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let t = Instant::now();
+        let out = run(&args);
+        refused_naming(&out, flag, &[], &format!("{args:?}"));
+        assert!(
+            t.elapsed() < Duration::from_secs(10),
+            "{args:?}: refused only after {:?}",
+            t.elapsed()
+        );
+    }
+    drop(guard);
+    assert_eq!(listing(&ro), Vec::<String>::new());
+    assert_eq!(listing(&scratch), ["file", "ro"]);
+    let _ = std::fs::remove_dir_all(&scratch);
+}
+
+/// Class 3: no hidden copy is left. A temporary of a killed run (SIGKILL) is removed by the
+/// next run on the same destination — a report's folder, an `--out` file — unless its process
+/// still runs; a previous report whose files cannot be removed is an error naming the path.
+#[cfg(target_os = "linux")]
+#[test]
+fn hidden_copies_are_cleaned_up_or_named() {
+    let scratch = scratch_dir("hidden-copies");
+    let data = figure_data(&scratch);
+    let hidden = |name: &str| -> Vec<String> {
+        listing(&scratch)
+            .into_iter()
+            .filter(|e| e.starts_with(&format!(".{name}.")))
+            .collect()
+    };
+
+    // a report killed while it works leaves its temporary: the next run removes it
+    let r = scratch.join("R");
+    Paused::start(&data, &scratch.join("fifo"), &r).kill();
+    assert_eq!(hidden("R").len(), 1, "{:?}", listing(&scratch));
+    // and a live process's temporary (this test's own id) is left alone
+    let live = scratch.join(format!(".R.partial-{}", std::process::id()));
+    std::fs::create_dir(&live).unwrap();
+    let out = report_from(&data, &r);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        hidden("R"),
+        [format!(".R.partial-{}", std::process::id())],
+        "the killed run's temporary is removed, the live one kept"
+    );
+    std::fs::remove_dir(&live).unwrap();
+
+    // an --out file's temporary of a killed run
+    let dead = dead_pid();
+    let csv = scratch.join("c.csv");
+    let stale = scratch.join(format!(".c.csv.partial-{dead}.csv"));
+    std::fs::write(&stale, "half a file").unwrap();
+    ok_stdout(&[
+        "cycles",
+        "--preset",
+        "fig11",
+        "--format",
+        "csv",
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(!stale.exists(), "{:?}", listing(&scratch));
+    assert!(csv.exists());
+
+    // a previous report whose files cannot be removed
+    let blocked = r.join("figures");
+    let guard = if is_root() {
+        let f = blocked.join("fig08.csv");
+        Command::new("chattr")
+            .args(["+i", f.to_str().unwrap()])
+            .stderr(Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success())
+            .then(|| Unwritable(f, true))
+    } else {
+        Unwritable::make(&blocked)
+    };
+    match guard {
+        None => eprintln!(
+            "skipped: a file that cannot be removed (running as root without `chattr +i`)"
+        ),
+        Some(guard) => {
+            let out = report_from(&data, &r);
+            let err = String::from_utf8_lossy(&out.stderr).into_owned();
+            assert_ne!(out.status.code(), Some(0), "{err}");
+            if is_root() {
+                // found only when removing: the new report is in place, the old one named
+                assert_eq!(out.status.code(), Some(1), "{err}");
+                let aside = hidden("R");
+                assert_eq!(aside.len(), 1, "{:?}", listing(&scratch));
+                assert!(aside[0].starts_with(".R.replaced-"), "{aside:?}");
+                assert!(err.contains(&aside[0]) && err.contains("by hand"), "{err}");
+                // the file moved with the previous report
+                drop(guard);
+                let moved = scratch.join(&aside[0]).join("figures/fig08.csv");
+                drop(Unwritable(moved, true));
+                std::fs::remove_dir_all(scratch.join(&aside[0])).unwrap();
+            } else {
+                // found before any work
+                refused_naming(
+                    &out,
+                    "--out-dir",
+                    &["cannot be replaced"],
+                    "read-only report",
+                );
+                drop(guard);
+            }
+        }
+    }
+    assert!(hidden("R").is_empty(), "{:?}", listing(&scratch));
+    let _ = std::fs::remove_dir_all(&scratch);
+}
+
+/// Class 4: an option typed for another method or mode is refused, naming it and what it
+/// applies to; left at its default it is not.
+#[test]
+fn options_that_would_be_ignored_are_refused() {
+    let ens = [
+        "ensemble", "--preset", "fig11", "--paths", "2", "--t-end", "10",
+    ];
+    let cases: &[(&[&str], &str, &str)] = &[
+        (
+            &["--max-excursion", "-1"],
+            "--max-excursion",
+            "--method wells",
+        ),
+        (&["--clones", "3"], "--clones", "--method wells"),
+        (
+            &["--core-quantile", "0.7"],
+            "--core-quantile",
+            "--method wells",
+        ),
+        (&["--separation", "nan"], "--separation", "--method wells"),
+        (
+            &["--max-iterations", "0"],
+            "--max-iterations",
+            "--method wells",
+        ),
+        (
+            &["--method", "wells", "--u0", "1,2"],
+            "--u0",
+            "--method direct",
+        ),
+        (
+            &["--method", "wells", "--lanes", "4"],
+            "--lanes",
+            "--method direct",
+        ),
+    ];
+    for (extra, flag, applies) in cases {
+        let mut args = ens.to_vec();
+        args.extend(extra.iter());
+        refused_naming(&run(&args), flag, &[applies], &format!("{args:?}"));
+    }
+    let others: &[(&[&str], &str, &str)] = &[
+        (
+            &[
+                "oscillation",
+                "--preset",
+                "fig15",
+                "--x",
+                "r=0.9:0.95:2",
+                "--y",
+                "mu0=0.001:0.3",
+                "--method",
+                "exact",
+                "--dt",
+                "0.02",
+            ],
+            "--dt",
+            "--method simulation",
+        ),
+        (
+            &[
+                "oscillation",
+                "--preset",
+                "fig15",
+                "--x",
+                "r=0.9:0.95:2",
+                "--y",
+                "mu0=0.01:0.1:3",
+                "--grid",
+                "--tolerance",
+                "0.01",
+            ],
+            "--tolerance",
+            "without --grid",
+        ),
+        (
+            &["lyapunov", "--method", "tangent", "--separation", "1e-6"],
+            "--separation",
+            "--method two-trajectory",
+        ),
+    ];
+    for (args, flag, applies) in others {
+        refused_naming(&run(args), flag, &[applies], &format!("{args:?}"));
+    }
+    // defaults are not "typed": the direct method runs with the wells' sizes at theirs
+    ok_stdout(&ens);
+}
+
+/// Class 5: where the well decomposition's weights are undetermined, no statistic of the
+/// mixture is computed from substituted weights: the distances and the simulated mode count
+/// are null like the density, and the CSV writes empty cells where the JSON has null (exit 0,
+/// not 1).
+#[test]
+fn undefined_stays_undefined() {
+    let args = [
+        "ensemble",
+        "--preset",
+        "fig11",
+        "--param",
+        "lambda=0.998",
+        "--method",
+        "wells",
+        "--paths",
+        "2",
+        "--t-end",
+        "200",
+        "--clones",
+        "10",
+        "--max-iterations",
+        "50",
+    ];
+    let doc: serde_json::Value = serde_json::from_str(&ok_stdout(&args)).unwrap();
+    let refusals = doc["decomposition"]["refusals"].to_string();
+    assert!(refusals.contains("weights are undetermined"), "{refusals}");
+    assert!(doc["amplitude"]["density"][0].is_null());
+    assert_eq!(doc["per_path_amplitude"], serde_json::json!([]));
+    for variant in ["paper", "consistent"] {
+        let t = &doc["theory"][variant];
+        for key in ["hellinger", "l1", "ks"] {
+            assert!(t[key]["value"].is_null(), "{variant} {key}: {}", t[key]);
+            assert!(t[key]["stderr"].is_null(), "{variant} {key}: {}", t[key]);
+        }
+        assert!(t["modes_mc"].is_null(), "{variant}: {}", t["modes_mc"]);
+        // the theory's own numbers stand
+        assert!(t["modes_theory"].is_u64() && t["mean_amplitude"].is_number());
+    }
+    let mut csv = args.to_vec();
+    csv.extend(["--format", "csv"]);
+    let text = ok_stdout(&csv);
+    assert!(text.contains("does not exist (JSON null)"), "{text}");
+    let rows = csv_rows(&text);
+    assert_eq!(rows[0], ["A_lo", "A_hi", "density", "stderr"]);
+    assert!(rows[1..].iter().all(|r| r[2].is_empty() && r[3].is_empty()));
+    assert!(
+        !text.contains("Hellinger"),
+        "a distance from substituted weights"
+    );
+}
+
+/// Run `command` on a pseudo-terminal (`script`) for `seconds`, then SIGINT: what the terminal
+/// showed. `None` where `script` or `timeout` is missing.
+#[cfg(target_os = "linux")]
+fn on_a_terminal(args: &[&str], seconds: f64) -> Option<String> {
+    let have = |tool: &str| {
+        Command::new("sh")
+            .args(["-c", &format!("command -v {tool}")])
+            .stdout(Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success())
+    };
+    if !have("script") || !have("timeout") {
+        eprintln!("skipped: `script` (util-linux) and `timeout` are needed for a pseudo-terminal");
+        return None;
+    }
+    let line = std::iter::once(env!("CARGO_BIN_EXE_trirhythm"))
+        .chain(args.iter().copied())
+        .map(|a| format!("'{a}'"))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let out = Command::new("script")
+        .args([
+            "-qfec",
+            &format!("timeout -s INT {seconds} {line}"),
+            "/dev/null",
+        ])
+        .env("TERM", "xterm")
+        .stdin(Stdio::null())
+        .stderr(Stdio::null())
+        .output()
+        .unwrap();
+    Some(String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+/// Classes 6 and 7: on a terminal the elapsed time moves at least once a second, from the
+/// first second — while no unit of work has finished, and during the set-up checks before the
+/// first bar — with a rate; on a pipe nothing is drawn.
+#[cfg(target_os = "linux")]
+#[test]
+fn progress_moves_on_a_terminal_from_the_first_second() {
+    // the first of 8 units takes far longer than the 3.5 s watched
+    let critical = [
+        "critical-noise",
+        "--d-range",
+        "0:1",
+        "--paths",
+        "100000",
+        "--t-end",
+        "1e8",
+    ];
+    // 1000 points' step checks before any bar (about 15 s)
+    let sweep = [
+        "lyapunov",
+        "--paths",
+        "100000",
+        "--t-end",
+        "1e8",
+        "--sweep",
+        "D=0:1:1000",
+    ];
+    for (args, needles) in [
+        (&critical[..], &["none done yet"][..]),
+        (&sweep[..], &["preparing"][..]),
+    ] {
+        let Some(shown) = on_a_terminal(args, 3.5) else {
+            return;
+        };
+        for s in ["1s elapsed", "2s elapsed"] {
+            assert!(shown.contains(s), "{args:?}: never showed {s}:\n{shown}");
+        }
+        for n in needles {
+            assert!(shown.contains(n), "{args:?}: {n} not shown:\n{shown}");
+        }
+    }
+    // on a pipe: nothing drawn
+    let child = Command::new(env!("CARGO_BIN_EXE_trirhythm"))
+        .args(sweep)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    let (_, stderr) = wait_with_stderr(child);
+    assert!(!stderr.contains("elapsed"), "{stderr}");
+}

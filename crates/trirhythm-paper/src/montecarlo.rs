@@ -631,15 +631,28 @@ pub fn amplitude_panel(
         let mut distances = Vec::new();
         for (v, c) in comparisons(params, &r, 1) {
             match c {
-                Ok(c) => distances.push(Distance {
+                Ok(TheoryComparison {
+                    modes_mc: Some(modes_mc),
+                    hellinger,
+                    l1,
+                    ks,
+                    modes_theory,
+                    ..
+                }) => distances.push(Distance {
                     variant: v.name().into(),
-                    hellinger: c.hellinger.value,
-                    hellinger_stderr: c.hellinger.stderr,
-                    l1: c.l1.value,
-                    ks: c.ks.value,
-                    modes_theory: c.modes_theory,
-                    modes_mc: c.modes_mc,
+                    hellinger: hellinger.value,
+                    hellinger_stderr: hellinger.stderr,
+                    l1: l1.value,
+                    ks: ks.value,
+                    modes_theory,
+                    modes_mc,
                 }),
+                // the shown result is a direct ensemble or an accepted decomposition, whose
+                // density exists; should it not, there is no distance to give
+                Ok(_) => notes.push(format!(
+                    "{caption}: {} theory: no distance, the simulated density does not exist",
+                    v.name()
+                )),
                 Err(e) => notes.push(format!("{caption}: {} theory: {e}", v.name())),
             }
         }

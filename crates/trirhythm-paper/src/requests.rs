@@ -390,6 +390,7 @@ impl EnsembleSetup {
             ensemble,
             estimator: "wells",
             decomposition: &result.wells,
+            bounds: montecarlo::WellsSummary::of(result, &self.params, wall_time_s).bounds,
         }
     }
 
@@ -443,6 +444,11 @@ pub struct WellsDocument<'a> {
     pub estimator: &'static str,
     /// What the well method adds (`decomposition`: the result's `wells` key holds the wells).
     pub decomposition: &'a WellsEstimate,
+    /// Where the conditional statistics are valid but the weights are not determined (the
+    /// mixture, its density and the distances to the theory are then null): the Hellinger
+    /// distance to each variant's theory over every weighting of the wells, as the figures
+    /// give it ([`montecarlo::Bounds`]); empty otherwise.
+    pub bounds: Vec<montecarlo::Bounds>,
 }
 
 /// The parameters as a JSON object in key order (a non-finite value, which validated

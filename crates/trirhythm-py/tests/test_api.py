@@ -136,6 +136,9 @@ def test_the_well_method_is_the_command_lines(cli):
         tr.ensemble(p, paths=2, t_end=300, method="splitting")
     with pytest.raises(ValueError, match="clones"):
         tr.ensemble(p, paths=2, t_end=300, clones=8)
+    # starts the well method would ignore are refused, as on the command line
+    with pytest.raises(ValueError, match="u0"):
+        tr.ensemble(p, paths=2, t_end=300, method="wells", u0=[1.0, 2.0])
 
 
 def test_figure_data_is_the_command_lines(cli, tmp_path):

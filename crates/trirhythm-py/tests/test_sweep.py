@@ -106,6 +106,20 @@ def test_a_custom_function_and_checkpoints_that_resume(base, tmp_path):
         tr.sweep(_custom, {"lambda": [0.5, 0.9], "r": [0.1, 0.2, 0.3]}, base=base, seed=3, checkpoint=d, scale=2.0)
 
 
+def _never_called(params, seed):
+    raise AssertionError("a sweep with an unwritable checkpoint must not start")
+
+
+def test_an_unwritable_checkpoint_is_refused_before_any_work(base, tmp_path):
+    # a checkpoint under a regular file cannot be created (root included)
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    with pytest.raises(ValueError, match="checkpoint.*not a directory"):
+        tr.sweep(_never_called, {"lambda": [0.5]}, base=base, checkpoint=blocker / "ck")
+    assert blocker.read_text() == "x"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
+
+
 def test_lyapunov_and_boundary_sweeps(base):
     lle = tr.sweep("lyapunov", {"D": [0.01, 0.05]}, base=base, seed=2, paths=2, t_end=20.0, transient=5.0)
     direct = tr.lyapunov(base.with_(D=0.05), paths=2, t_end=20.0, transient=5.0, seed=2)["lle"]

@@ -301,10 +301,47 @@ pub fn guard_step(problem: &Problem, method: &PredictorCorrector) -> Result<Vec<
     let warnings = trirhythm::analysis::check_step(problem, method)?
         .require()?
         .warnings();
+    crate::io::progress::count_check();
     for w in &warnings {
-        eprintln!("warning: {w}");
+        crate::io::progress::note(&format!("warning: {w}"));
     }
     Ok(warnings)
+}
+
+/// Which options the user typed: clap's record of where each value came from (the command
+/// line, or a default). A default is never refused; a value typed for an option that the
+/// chosen command or method does not use is ([`Given::refuse`]).
+pub struct Given<'a>(Option<&'a clap::ArgMatches>);
+
+impl<'a> Given<'a> {
+    /// The matches of the subcommand run (none: nothing typed).
+    pub fn of(matches: Option<&'a clap::ArgMatches>) -> Given<'a> {
+        Given(matches)
+    }
+
+    /// Whether the argument `id` (its field name) was typed on the command line.
+    pub fn typed(&self, id: &str) -> bool {
+        self.0.is_some_and(|m| {
+            m.try_contains_id(id).unwrap_or(false)
+                && m.value_source(id) == Some(clap::parser::ValueSource::CommandLine)
+        })
+    }
+
+    /// Bad input for the first of `options` (`(id, flag)`) typed: "FLAG applies to WHAT only
+    /// (WHY); leave it out (it would be ignored here)".
+    pub fn refuse(&self, options: &[(&str, &str)], applies_to: &str, why: &str) -> Result<()> {
+        match options.iter().find(|(id, _)| self.typed(id)) {
+            Some((_, flag)) => bad(format!(
+                "{flag} applies to {applies_to} only{}; leave it out (it would be ignored here)",
+                if why.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({why})")
+                }
+            )),
+            None => Ok(()),
+        }
+    }
 }
 
 /// `--lanes`: the paths or simulations stepped together, 1, 4 or 8 (none: the library's

@@ -12,8 +12,9 @@
 //! same command continues from them and gives a bit-identical result. Keys, columns and flags
 //! are a contract: keep them.
 
-use crate::args::{ImpactMemoryArg, ModelArgs, ParamArgs};
+use crate::args::{Given, ImpactMemoryArg, ModelArgs, ParamArgs};
 use crate::error::bad;
+use crate::io::progress::note;
 use crate::io::{emit, progress, Csv};
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
@@ -178,6 +179,41 @@ impl EnsembleArgs {
     pub fn setup(&self) -> Result<EnsembleSetup> {
         Ok(self.request()?.setup()?)
     }
+
+    /// Refuse, before any work, an option typed that the chosen method does not use: the
+    /// well method's sizes without `--method wells`; starts, lanes and a checkpoint with it.
+    pub fn refuse_unused(&self, given: &Given) -> Result<()> {
+        match self.method {
+            EstimatorArg::Direct => given.refuse(
+                &[
+                    ("clones", "--clones"),
+                    ("max_excursion", "--max-excursion"),
+                    ("max_iterations", "--max-iterations"),
+                    ("separation", "--separation"),
+                    ("core_quantile", "--core-quantile"),
+                ],
+                "--method wells",
+                "",
+            ),
+            EstimatorArg::Wells => {
+                given.refuse(
+                    &[("u0", "--u0")],
+                    "--method direct",
+                    "--method wells starts one path in each of the theory's wells, at its mode",
+                )?;
+                given.refuse(
+                    &[("lanes", "--lanes")],
+                    "--method direct",
+                    "--method wells steps its paths one at a time",
+                )?;
+                given.refuse(
+                    &[("checkpoint", "--checkpoint")],
+                    "--method direct",
+                    "the well method's run is one piece, with no paths to save one by one",
+                )
+            }
+        }
+    }
 }
 
 /// Open the checkpoint directory of a run (`run.txt` names the run, `path-<i>.json` hold
@@ -315,18 +351,15 @@ impl Monitor<PathStats> for Watch<'_> {
 
 /// Run `ensemble --method wells`.
 fn ensemble_wells(args: &EnsembleArgs, s: &EnsembleSetup) -> Result<()> {
-    if args.checkpoint.is_some() {
-        return bad("--checkpoint: not available with --method wells (its run is one piece)");
-    }
     let wspec = args.wells_spec();
     if let Some(out) = &args.out {
         crate::io::files::check_writable(out, "--out")?;
     }
     for c in &s.choices {
-        eprintln!("chosen: {c}");
+        note(&format!("chosen: {c}"));
     }
     for w in &s.step_warnings {
-        eprintln!("warning: {w}");
+        note(&format!("warning: {w}"));
     }
     let bar = progress(1000, "ensemble (wells)");
     let start = Instant::now();
@@ -394,17 +427,17 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
         None => (None, vec![]),
     };
     if !done.is_empty() {
-        eprintln!(
+        note(&format!(
             "checkpoint: {} of {} paths already done",
             done.len(),
             args.paths
-        );
+        ));
     }
     for c in &s.choices {
-        eprintln!("chosen: {c}");
+        note(&format!("chosen: {c}"));
     }
     for w in &s.step_warnings {
-        eprintln!("warning: {w}");
+        note(&format!("warning: {w}"));
     }
     let bar = progress(1000, "ensemble");
     let start = Instant::now();

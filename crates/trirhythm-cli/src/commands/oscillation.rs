@@ -129,6 +129,32 @@ struct Setup {
 }
 
 impl OscillationArgs {
+    /// Refuse, before any work, an option typed that the chosen mode or method does not use:
+    /// the simulations' step, impact memory and lanes with `--method averaging` or `exact`;
+    /// the bracket's `--tolerance` with `--grid` (each point is classified, no boundary
+    /// bracketed).
+    pub fn refuse_unused(&self, given: &crate::args::Given) -> Result<()> {
+        if matches!(self.method, Some(MethodArg::Averaging | MethodArg::Exact)) {
+            given.refuse(
+                &[
+                    ("dt", "--dt"),
+                    ("impact_memory", "--impact-memory"),
+                    ("lanes", "--lanes"),
+                ],
+                "--method simulation or all",
+                "the averaging and exact boundaries simulate nothing",
+            )?;
+        }
+        if self.grid {
+            given.refuse(
+                &[("tolerance", "--tolerance")],
+                "boundary mode, without --grid",
+                "with --grid each point is classified and no boundary is bracketed",
+            )?;
+        }
+        Ok(())
+    }
+
     /// Check and convert the flags (the checks the library does not make: a noise-free
     /// system, two different axes, the ranges this command is tested in).
     fn setup(&self) -> Result<Setup> {

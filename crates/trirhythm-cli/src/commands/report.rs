@@ -6,15 +6,21 @@
 //! ([`crate::render::paper`]), each collected in a `Figures` value; the claims are judged at once
 //! by `trirhythm_paper::verdict::claims::judge`; the page is [`crate::render::report::page`].
 //! Everything is built in a hidden sibling of `--out-dir` and renamed onto it at the end: an
-//! error or an interrupt leaves no partial report. Tested by `tests/report.rs`.
+//! error or an interrupt leaves no partial report. The destination is checked before any work
+//! (new, empty, or a previous report whose every file its `verdicts.json` lists; writable) and
+//! again at the end: a file that is not a report's own, there at the start or added during
+//! the run, is never replaced or deleted ([`report_entries`]). Tested by `tests/report.rs` and
+//! `tests/hostile.rs`.
 
 use crate::args::{Named, VariantArg};
 use crate::error::bad;
+use crate::io::files::{probe_dir, OwnEntries};
 use crate::io::{stdout_write, write_atomic, TemporaryDir};
 use crate::render::claims_table::claims_markdown;
 use crate::render::paper::{data_options, registry, Request};
 use crate::render::report::{page, Counts, FigureRun, Page, Provenance, Section, VerdictsFile};
 use anyhow::{Context, Result};
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use trirhythm_paper::verdict::claims::{judge, Figures};
@@ -32,7 +38,10 @@ const REPORT_ENTRIES: [&str; 4] = ["index.html", "verdicts.json", "claims.md", "
     DIR/figures` draws the report again without computing).\n\
     The report is built in a hidden sibling directory and renamed onto --out-dir when \
     complete. --out-dir must not exist, be empty, or hold a previous report (index.html, \
-    verdicts.json, claims.md, figures/ and nothing else), which is replaced."
+    verdicts.json, claims.md, figures/ with the files its verdicts.json lists, and nothing \
+    else), which is replaced; it is checked again before the replacement, and a file the \
+    report did not write, there or added during the run, is never replaced or deleted (exit 2, \
+    the folder left as it was)."
 )]
 pub struct ReportArgs {
     /// Directory of the report (created; a previous report there is replaced).
@@ -54,17 +63,26 @@ pub struct ReportArgs {
 pub fn report(args: &ReportArgs) -> Result<()> {
     let start = Instant::now();
     check_out_dir(&args.out_dir)?;
-    let (options, request) = match &args.from_data {
+    // with --from-data, the figures present in the data (each read once here)
+    let (options, request, present) = match &args.from_data {
         None => {
             let options = FigureOptions {
                 quick: args.quick,
                 variant: args.variant.into(),
             };
-            (options, Request::Compute(options))
+            (options, Request::Compute(options), None)
         }
-        Some(dir) => (data_dir_options(dir)?, Request::FromData(dir.as_path())),
+        Some(dir) => {
+            let (options, present) = data_dir_options(dir)?;
+            (options, Request::FromData(dir.as_path()), Some(present))
+        }
     };
-    let tmp = TemporaryDir::create(&args.out_dir)?;
+    let tmp = TemporaryDir::create(&args.out_dir).or_else(|e| {
+        bad(format!(
+            "--out-dir {}: cannot write beside it ({e:#})",
+            args.out_dir.display()
+        ))
+    })?;
     let figures_dir = tmp.path().join("figures");
     let mut figures = Figures {
         options,
@@ -74,10 +92,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let mut runs = Vec::new();
     for entry in registry() {
         let t = Instant::now();
-        let missing = match &args.from_data {
-            Some(dir) => data_options(dir, entry.number)?.is_none(),
-            None => false,
-        };
+        let missing = present.as_ref().is_some_and(|p| !p.contains(&entry.number));
         if missing {
             sections.push(Section {
                 number: entry.number,
@@ -153,7 +168,8 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         &tmp.path().join("claims.md"),
         claims_markdown(&verdicts, &source).as_bytes(),
     )?;
-    tmp.commit()?;
+    // the destination checked again: it may have changed while the report was computed
+    tmp.commit_replacing("--out-dir", &report_entries)?;
     eprintln!(
         "report: {} confirmed, {} refuted, {} undetermined ({} not decided by code, {} not \
          judged) in {:.1} s",
@@ -169,7 +185,8 @@ pub fn report(args: &ReportArgs) -> Result<()> {
 }
 
 /// Refuse an `--out-dir` the report may not take: a file, a path without a name (`.`, `/`), a
-/// directory in a missing parent, or a non-empty directory that is not a previous report.
+/// directory in a missing or unwritable parent, a non-empty directory that is not wholly a
+/// previous report ([`report_entries`]), or a previous report whose files cannot be removed.
 fn check_out_dir(dir: &Path) -> Result<()> {
     let shown = dir.display();
     let named = dir.file_name().is_some_and(|n| n != "." && n != "..");
@@ -189,6 +206,12 @@ fn check_out_dir(dir: &Path) -> Result<()> {
             parent.display()
         ));
     }
+    if let Err(e) = probe_dir(parent) {
+        return bad(format!(
+            "--out-dir {shown}: cannot write in its directory {} ({e})",
+            parent.display()
+        ));
+    }
     let Ok(meta) = std::fs::symlink_metadata(dir) else {
         return Ok(());
     };
@@ -197,51 +220,126 @@ fn check_out_dir(dir: &Path) -> Result<()> {
             "--out-dir {shown}: exists and is not a directory; give a new directory"
         ));
     }
-    let entries: Vec<String> = std::fs::read_dir(dir)
-        .with_context(|| format!("reading {shown}"))?
-        .filter_map(|e| e.ok())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .collect();
-    if entries.is_empty() {
-        return Ok(());
-    }
-    let foreign: Vec<&String> = entries
-        .iter()
-        .filter(|e| !REPORT_ENTRIES.contains(&e.as_str()))
-        .collect();
-    let previous = foreign.is_empty() && is_report(&dir.join("verdicts.json"));
-    if !previous {
-        let example = foreign
-            .first()
-            .map(|e| format!(" (it holds {e})"))
-            .unwrap_or_default();
-        return bad(format!(
-            "--out-dir {shown}: exists and is neither empty nor a previous report{example}; \
-             give a new or empty directory (a previous report — index.html, verdicts.json, \
-             claims.md, figures/ and nothing else — is replaced)"
-        ));
+    let entries = match report_entries(dir) {
+        Ok(e) => e,
+        Err(foreign) => {
+            return bad(format!(
+                "--out-dir {shown}: exists and is neither empty nor a previous report (it \
+                 holds {foreign}); give a new or empty directory (a previous report — \
+                 index.html, verdicts.json, claims.md, figures/ with the files its \
+                 verdicts.json lists, and nothing else — is replaced)"
+            ))
+        }
+    };
+    // a previous report is replaced: its files must be removable
+    if !entries.is_empty() {
+        for d in [dir.to_path_buf(), dir.join("figures")] {
+            if d.is_dir() {
+                if let Err(e) = probe_dir(&d) {
+                    return bad(format!(
+                        "--out-dir {shown}: the previous report there cannot be replaced: {} \
+                         takes no change ({e})",
+                        d.display()
+                    ));
+                }
+            }
+        }
     }
     Ok(())
 }
 
-/// Whether `path` is the `verdicts.json` of a report (an object with a `report` object naming
+/// What a report directory holds when all of it is a report's own: `index.html`,
+/// `verdicts.json` (a report's: [`is_report_value`]), `claims.md`, and in `figures/` only the files
+/// that `verdicts.json` lists as written (`report.figures[].files`), all regular files — the
+/// paths relative to `dir` in the order they are removed (files, then `figures`); empty for an
+/// empty directory. Otherwise the first entry that is not the report's, in words.
+fn report_entries(dir: &Path) -> OwnEntries {
+    let names = |d: &Path| -> std::result::Result<Vec<String>, String> {
+        let mut v: Vec<String> = std::fs::read_dir(d)
+            .map_err(|e| format!("{} (unreadable: {e})", d.display()))?
+            .filter_map(|e| e.ok())
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        Ok(v)
+    };
+    let top = names(dir)?;
+    if top.is_empty() {
+        return Ok(vec![]);
+    }
+    if let Some(f) = top.iter().find(|e| !REPORT_ENTRIES.contains(&e.as_str())) {
+        return Err(f.clone());
+    }
+    let Some(listed) = report_files(&dir.join("verdicts.json")) else {
+        return Err(format!(
+            "{} without a report's verdicts.json",
+            top.iter()
+                .find(|e| *e != "verdicts.json")
+                .cloned()
+                .unwrap_or_else(|| "verdicts.json".into())
+        ));
+    };
+    let is_file = |p: &Path| std::fs::symlink_metadata(p).is_ok_and(|m| m.is_file());
+    let is_dir = |p: &Path| std::fs::symlink_metadata(p).is_ok_and(|m| m.is_dir());
+    let mut own = Vec::new();
+    if top.iter().any(|e| e == "figures") {
+        let figures = dir.join("figures");
+        if !is_dir(&figures) {
+            return Err("figures (not a directory)".into());
+        }
+        for f in names(&figures)? {
+            let rel = format!("figures/{f}");
+            if !listed.contains(&rel) || !is_file(&dir.join(&rel)) {
+                return Err(rel);
+            }
+            own.push(PathBuf::from(rel));
+        }
+    }
+    for f in top.iter().filter(|e| *e != "figures") {
+        if !is_file(&dir.join(f)) {
+            return Err(format!("{f} (not a file)"));
+        }
+        own.push(PathBuf::from(f));
+    }
+    if top.iter().any(|e| e == "figures") {
+        own.push(PathBuf::from("figures"));
+    }
+    Ok(own)
+}
+
+/// The figure files a report's `verdicts.json` lists as written (`figures/NAME`), if it is a
+/// report's ([`is_report_value`]).
+fn report_files(path: &Path) -> Option<BTreeSet<String>> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let value = serde_json::from_str::<serde_json::Value>(&text).ok()?;
+    if !is_report_value(&value) {
+        return None;
+    }
+    let figures = value.get("report")?.get("figures")?.as_array()?;
+    Some(
+        figures
+            .iter()
+            .filter_map(|f| f.get("files").and_then(|f| f.as_array()))
+            .flatten()
+            .filter_map(|f| f.as_str())
+            .filter(|f| f.starts_with("figures/") && !f[8..].contains(['/', '\\']))
+            .map(str::to_string)
+            .collect(),
+    )
+}
+
+/// Whether a parsed `verdicts.json` is a report's (an object with a `report` object naming
 /// the trirhythm version).
-fn is_report(path: &Path) -> bool {
-    let Ok(text) = std::fs::read_to_string(path) else {
-        return false;
-    };
-    let Ok(value) = serde_json::from_str::<serde_json::Value>(&text) else {
-        return false;
-    };
+fn is_report_value(value: &serde_json::Value) -> bool {
     value
         .get("report")
         .and_then(|r| r.get("trirhythm"))
         .is_some_and(|v| v.is_string())
 }
 
-/// The options of the figure data in `dir`: every `figNN.json` there must share them; at least
-/// one must exist.
-fn data_dir_options(dir: &Path) -> Result<FigureOptions> {
+/// The options of the figure data in `dir`, and the figures it holds: every `figNN.json` there
+/// must share them; at least one must exist.
+fn data_dir_options(dir: &Path) -> Result<(FigureOptions, BTreeSet<u32>)> {
     if !dir.is_dir() {
         return bad(format!(
             "--from-data {}: not a directory (give the directory holding figNN.json, e.g. a \
@@ -278,7 +376,7 @@ fn data_dir_options(dir: &Path) -> Result<FigureOptions> {
             describe(o)
         ));
     }
-    Ok(options)
+    Ok((options, found.iter().map(|(n, _)| *n).collect()))
 }
 
 /// The command line as typed, with each path as a name relative to the report (no absolute

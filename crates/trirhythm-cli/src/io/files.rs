@@ -10,6 +10,15 @@
 //! - A destination that is a directory, an existing non-regular file (a device, a pipe), or
 //!   whose directory does not exist, is bad input, refused before any work starts
 //!   ([`check_destination`]).
+//! - A destination directory (`--out-dir`, `--checkpoint`) is checked the same way: it, or
+//!   the nearest existing directory above it, must take a new file ([`check_dir_writable`]).
+//! - A temporary left by a killed run (SIGKILL, a crash: `.NAME.partial-PID…`) is removed by
+//!   the next run on the same destination, when process PID no longer runs
+//!   ([`remove_stale_temporaries`]; on systems without `/proc` it is left alone).
+//! - A directory is replaced only when everything in it is this tool's own
+//!   ([`TemporaryDir::commit_replacing`]): checked before the replacement, and again after the
+//!   previous one is moved aside; its files are then removed by name, never with everything
+//!   in it, and a file that cannot be removed is an error naming the path.
 //! - A directory claimed by a run ([`DirLock`], `dir/lock` created with `create_new`) is
 //!   released like a temporary: when dropped and on SIGINT, SIGTERM or SIGHUP.
 //! - Standard output: a closed pipe ends the command quietly (exit 0); any other write error
@@ -17,7 +26,8 @@
 //!   error is seen.
 //!
 //! Tests: `tests/hostile.rs` (output onto a directory, into a missing directory, onto
-//! /dev/full, SIGINT and SIGTERM during long runs leave no temporary).
+//! /dev/full, SIGINT and SIGTERM during long runs leave no temporary; a report never deletes a
+//! file it did not write, unwritable destinations, stale temporaries of killed runs).
 
 use crate::error::bad;
 use anyhow::{Context, Result};
@@ -116,6 +126,124 @@ pub fn check_writable(path: &Path, flag: &str) -> Result<()> {
     }
 }
 
+/// Create and remove a hidden probe file in `dir`: whether `dir` takes a new file.
+pub fn probe_dir(dir: &Path) -> std::io::Result<()> {
+    let probe = dir.join(format!(".trirhythm-probe-{}", std::process::id()));
+    let f = OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)?;
+    drop(f);
+    std::fs::remove_file(&probe)
+}
+
+/// Refuse a destination directory that cannot be written, before any work: `dir` itself when
+/// it exists (it must be a directory), else the nearest existing directory above it (where it
+/// would be created). Bad input naming `flag`.
+pub fn check_dir_writable(dir: &Path, flag: &str) -> Result<()> {
+    let shown = dir.display();
+    if dir.as_os_str().is_empty() {
+        return bad(format!("{flag}: the directory name is empty"));
+    }
+    match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => {
+            return probe_dir(dir)
+                .or_else(|e| bad(format!("{flag} {shown}: cannot write in it ({e})")))
+        }
+        Ok(_) => {
+            return bad(format!(
+                "{flag} {shown}: exists and is not a directory; give a directory"
+            ))
+        }
+        Err(_) => {}
+    }
+    // the nearest existing ancestor, where the directory would be created
+    let mut up = dir.parent();
+    while let Some(p) = up {
+        let p = if p.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            p
+        };
+        match std::fs::metadata(p) {
+            Ok(m) if m.is_dir() => {
+                return probe_dir(p).or_else(|e| {
+                    bad(format!(
+                        "{flag} {shown}: cannot be created, {} takes no new file ({e})",
+                        p.display()
+                    ))
+                })
+            }
+            Ok(_) => {
+                return bad(format!(
+                    "{flag} {shown}: cannot be created, {} is not a directory",
+                    p.display()
+                ))
+            }
+            Err(_) => up = p.parent(),
+        }
+    }
+    bad(format!("{flag} {shown}: cannot be created"))
+}
+
+/// Whether process `pid` may still run: on a system with `/proc`, whether `/proc/PID` exists;
+/// elsewhere always (nothing is removed on a guess).
+fn may_run(pid: u32) -> bool {
+    !Path::new("/proc/self").exists() || Path::new(&format!("/proc/{pid}")).exists()
+}
+
+/// Remove the temporaries of `target` that killed runs left (`.NAME.partial-PID` and
+/// `.NAME.partial-PID.EXT`, files or directories being built), when process PID no longer
+/// runs (this process's own id counts as stale: it is about to be made afresh). A temporary
+/// that cannot be removed is named in a warning; one whose process runs is left alone.
+pub fn remove_stale_temporaries(target: &Path) {
+    let Some(name) = target.file_name().map(|n| n.to_string_lossy().into_owned()) else {
+        return;
+    };
+    let ext = target
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_default();
+    let parent = match target.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return;
+    };
+    let prefix = format!(".{name}.partial-");
+    for e in entries.flatten() {
+        let entry = e.file_name().to_string_lossy().into_owned();
+        let Some(rest) = entry.strip_prefix(&prefix) else {
+            continue;
+        };
+        let digits: String = rest.chars().take_while(|c| c.is_ascii_digit()).collect();
+        let tail = &rest[digits.len()..];
+        let Ok(pid) = digits.parse::<u32>() else {
+            continue;
+        };
+        if !(tail.is_empty() || tail == ext) {
+            continue;
+        }
+        if pid != std::process::id() && may_run(pid) {
+            continue;
+        }
+        let path = e.path();
+        let removed = match std::fs::symlink_metadata(&path) {
+            Ok(m) if m.is_dir() => std::fs::remove_dir_all(&path),
+            Ok(_) => std::fs::remove_file(&path),
+            Err(_) => Ok(()),
+        };
+        if let Err(err) = removed {
+            crate::io::progress::note(&format!(
+                "warning: {} was left by a killed run (process {pid}) and could not be \
+                 removed ({err}); remove it by hand",
+                path.display()
+            ));
+        }
+    }
+}
+
 /// `dir/.name.partial-PID.ext`: a hidden sibling keeping the extension (image encoders pick the
 /// format from it).
 fn temporary_sibling(path: &Path) -> PathBuf {
@@ -143,6 +271,7 @@ impl Temporary {
     /// create it themselves).
     pub fn reserve(target: &Path) -> Result<Temporary> {
         check_destination(target, "output")?;
+        remove_stale_temporaries(target);
         let path = temporary_sibling(target);
         TEMPORARIES
             .lock()
@@ -158,6 +287,7 @@ impl Temporary {
     /// Register and create the temporary of `target`, returning it with a buffered writer.
     pub fn create(target: &Path) -> Result<(Temporary, BufWriter<File>)> {
         check_destination(target, "output")?;
+        remove_stale_temporaries(target);
         let path = temporary_sibling(target);
         let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
         list.push(path.clone());
@@ -203,20 +333,25 @@ impl Drop for Temporary {
 
 /// A directory being built: a registered hidden sibling `.NAME.partial-PID` of its target,
 /// removed with everything in it when dropped uncommitted and on SIGINT, SIGTERM or SIGHUP, and
-/// renamed onto the target when complete ([`TemporaryDir::commit`]).
+/// renamed onto the target when complete ([`TemporaryDir::commit_replacing`]).
 pub struct TemporaryDir {
     path: PathBuf,
     target: PathBuf,
     committed: bool,
 }
 
+/// What a directory holds when all of it is this tool's own output: the paths relative to it,
+/// files before the directories that hold them (the order they are removed in), or the first
+/// entry that is not its own, in words.
+pub type OwnEntries = std::result::Result<Vec<PathBuf>, String>;
+
 impl TemporaryDir {
-    /// Create the temporary directory of `target` (whose parent must exist).
+    /// Create the temporary directory of `target` (whose parent must exist), removing the
+    /// temporaries of killed runs on the same target first.
     pub fn create(target: &Path) -> Result<TemporaryDir> {
+        remove_stale_temporaries(target);
         let path = temporary_sibling(target);
         let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
-        // a stale one of a killed run with the same process id: start afresh
-        remove(&path);
         list.push(path.clone());
         let made = std::fs::create_dir(&path);
         drop(list);
@@ -234,52 +369,149 @@ impl TemporaryDir {
         &self.path
     }
 
-    /// Rename the complete directory onto its target. A target that exists (the caller has
-    /// decided that it may be replaced) is moved aside first and removed after; a signal during
-    /// the renames waits for them and then removes what is left aside.
-    pub fn commit(mut self) -> Result<()> {
-        let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
-        let aside = self.target.exists().then(|| {
-            let name = self
-                .target
-                .file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_default();
-            self.target
-                .with_file_name(format!(".{name}.replaced-{}", std::process::id()))
-        });
-        let renamed = (|| -> Result<()> {
-            if let Some(aside) = &aside {
-                remove(aside);
-                std::fs::rename(&self.target, aside).with_context(|| {
-                    format!("moving the previous {} aside", self.target.display())
-                })?;
-                list.push(aside.clone());
-            }
-            std::fs::rename(&self.path, &self.target)
-                .with_context(|| format!("renaming to {}", self.target.display()))
-        })();
-        if renamed.is_err() {
-            // put the previous directory back
-            if let Some(aside) = &aside {
-                if !self.target.exists() {
-                    let _ = std::fs::rename(aside, &self.target);
+    /// Rename the complete directory onto its target, which is checked again now (it may have
+    /// changed while the directory was built): absent or empty, it is taken; a directory whose
+    /// every entry `own` recognises (a previous output of the same kind) is replaced. Anything
+    /// else — a file, a directory holding one entry `own` does not know — is bad input naming
+    /// `flag`, and the target is left as it was (the new directory is dropped). Replacing
+    /// moves the previous directory aside, checks it again there (an entry added in between
+    /// puts it back and refuses), renames the new one into place and removes the previous
+    /// one's entries by name; an entry that cannot be removed is an error naming the path.
+    /// The cleanup's lock is held throughout: a signal waits for the renames.
+    pub fn commit_replacing(mut self, flag: &str, own: &dyn Fn(&Path) -> OwnEntries) -> Result<()> {
+        let list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+        let shown = self.target.display().to_string();
+        let refuse = |why: String| -> Result<()> {
+            bad(format!(
+                "{flag} {shown}: {why}, which this run did not write (it appeared while the \
+                 run worked); nothing was replaced and the new output was not kept"
+            ))
+        };
+        let outcome = (|| -> Result<()> {
+            match std::fs::symlink_metadata(&self.target) {
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                    // a directory made meanwhile makes the rename fail unless it is empty
+                    return match std::fs::rename(&self.path, &self.target) {
+                        Ok(()) => Ok(()),
+                        Err(_) if self.target.exists() => self.replace(&refuse, own),
+                        Err(e) => Err(e).with_context(|| format!("renaming to {shown}")),
+                    };
                 }
+                Err(e) => return Err(e).with_context(|| format!("reading {shown}")),
+                Ok(m) if !m.is_dir() => {
+                    return refuse("it is now a file or a link".into());
+                }
+                Ok(_) => {}
             }
-        }
+            self.replace(&refuse, own)
+        })();
+        let mut list = list;
         list.retain(|p| p != &self.path);
-        if renamed.is_ok() {
+        drop(list);
+        if outcome.is_ok() {
             self.committed = true;
         }
-        drop(list);
-        if let Some(aside) = &aside {
-            let mut list = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
-            if renamed.is_ok() {
-                remove(aside);
-            }
-            list.retain(|p| p != aside);
+        outcome
+    }
+
+    /// [`TemporaryDir::commit_replacing`] onto an existing directory (the lock held).
+    fn replace(
+        &self,
+        refuse: &dyn Fn(String) -> Result<()>,
+        own: &dyn Fn(&Path) -> OwnEntries,
+    ) -> Result<()> {
+        let shown = self.target.display().to_string();
+        if !std::fs::symlink_metadata(&self.target).is_ok_and(|m| m.is_dir()) {
+            return refuse("it is now a file or a link".into());
         }
-        renamed
+        let entries = match own(&self.target) {
+            Ok(e) => e,
+            Err(foreign) => return refuse(format!("it holds {foreign}")),
+        };
+        if entries.is_empty() {
+            // an empty directory: replaced by the rename itself (it fails if a file appeared)
+            return match std::fs::rename(&self.path, &self.target) {
+                Ok(()) => Ok(()),
+                Err(_) => match own(&self.target) {
+                    Err(foreign) => refuse(format!("it holds {foreign}")),
+                    Ok(_) => Err(anyhow::anyhow!(
+                        "renaming to {shown}: the directory changed"
+                    )),
+                },
+            };
+        }
+        let name = self
+            .target
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let aside = self
+            .target
+            .with_file_name(format!(".{name}.replaced-{}", std::process::id()));
+        if aside.exists() {
+            return Err(anyhow::anyhow!(
+                "{} exists (a previous run of this process id); remove it by hand",
+                aside.display()
+            ));
+        }
+        std::fs::rename(&self.target, &aside)
+            .with_context(|| format!("moving the previous {shown} aside"))?;
+        let put_back = || {
+            if !self.target.exists() {
+                let _ = std::fs::rename(&aside, &self.target);
+            }
+        };
+        // checked again where it now is: an entry added between the check and the move
+        let entries = match own(&aside) {
+            Ok(e) => e,
+            Err(foreign) => {
+                put_back();
+                return refuse(format!("it holds {foreign}"));
+            }
+        };
+        if let Err(e) = std::fs::rename(&self.path, &self.target) {
+            put_back();
+            return Err(e).with_context(|| format!("renaming to {shown}"));
+        }
+        // the previous entries, by name: what is not its own stays (and is named)
+        for rel in &entries {
+            let p = aside.join(rel);
+            let removed = match std::fs::symlink_metadata(&p) {
+                Ok(m) if m.is_dir() => std::fs::remove_dir(&p),
+                Ok(_) => std::fs::remove_file(&p),
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+                Err(e) => Err(e),
+            };
+            removed.with_context(|| {
+                format!(
+                    "the new {shown} is in place, but the previous one, moved to {}, could not \
+                     be removed: {}; remove {} by hand",
+                    aside.display(),
+                    p.display(),
+                    aside.display()
+                )
+            })?;
+        }
+        std::fs::remove_dir(&aside).with_context(|| {
+            let left: Vec<String> = std::fs::read_dir(&aside)
+                .map(|d| {
+                    d.flatten()
+                        .map(|e| e.file_name().to_string_lossy().into_owned())
+                        .collect()
+                })
+                .unwrap_or_default();
+            format!(
+                "the new {shown} is in place, but the previous one, moved to {}, could not be \
+                 removed (it holds {}, which this run did not write and left alone); remove \
+                 it by hand",
+                aside.display(),
+                if left.is_empty() {
+                    "nothing".to_string()
+                } else {
+                    left.join(", ")
+                }
+            )
+        })
     }
 }
 

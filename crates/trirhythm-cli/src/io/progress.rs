@@ -1,12 +1,23 @@
-//! The progress bar: an indicatif bar on a terminal (hidden otherwise) moved by a library
-//! [`trirhythm::monitor::Monitor`].
+//! Progress on a terminal (nothing otherwise): an indicatif bar moved by a library
+//! [`trirhythm::monitor::Monitor`], and before the first bar a set-up ticker.
 //!
-//! Until the first unit of work (a path, a grid row) finishes the bar is a spinner with the
-//! elapsed time and no estimate: an estimate from no work done would be a guess (indicatif's
-//! own reads "0s" there). From then on the estimate is the elapsed time scaled by the work left,
-//! [`eta`]: elapsed · (total − done) / done. Tested by the unit tests below.
+//! - **The bar** redraws four times a second, whether or not a unit of work finishes: the
+//!   elapsed time, the rate (units per second, or one unit per so many seconds) and the
+//!   estimate are computed at each redraw ([`status`]), not when a unit finishes (a bar whose
+//!   first unit took minutes read "0s elapsed" for minutes). Until the first unit finishes it
+//!   is a spinner with the elapsed time and no estimate: an estimate from no work done would
+//!   be a guess. From then on the estimate is the elapsed time scaled by the work left,
+//!   [`eta`]: elapsed · (total − done) / done.
+//! - **The set-up ticker** ([`start_ticker`], from `main`): a spinner with the elapsed time,
+//!   and the step checks made so far with their rate ([`count_check`]), from half a second
+//!   after the start until the first bar appears or the command ends — the checks before the
+//!   first unit of work (every point of a sweep) took 20 s in silence. Lines written to
+//!   standard error meanwhile go through [`note`], which lifts the ticker out of their way.
+//!
+//! Tested by the unit tests below and `tests/hostile.rs` (on a pseudo-terminal).
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 /// A library call's monitor that hands its progress (done, total) to a closure (which moves a
@@ -29,48 +40,69 @@ pub fn eta(done: u64, total: u64, elapsed: Duration) -> Option<Duration> {
     Some(Duration::from_secs_f64(elapsed.as_secs_f64() * left))
 }
 
-/// The text after the bar: the elapsed time and, once a unit is done, the estimate.
+/// The rate of `done` units in `elapsed`: "2.5/s", or "one per 40s" below one a second;
+/// "none done yet" before the first.
+pub fn rate(done: u64, elapsed: Duration) -> String {
+    let secs = elapsed.as_secs_f64();
+    if done == 0 {
+        return "none done yet".into();
+    }
+    let per_second = done as f64 / secs.max(1e-9);
+    if per_second >= 1.0 {
+        format!("{per_second:.1}/s")
+    } else {
+        format!("one per {:.0}s", secs / done as f64)
+    }
+}
+
+/// The text after the bar: the elapsed time, the rate and, once a unit is done, the estimate.
 pub fn status(done: u64, total: u64, elapsed: Duration) -> String {
     let secs = |d: Duration| format!("{}s", d.as_secs());
     match eta(done, total, elapsed) {
         None => format!(
-            "{} elapsed, no estimate before the first unit finishes",
-            secs(elapsed)
+            "{} elapsed, {}, no estimate before the first unit finishes",
+            secs(elapsed),
+            rate(done, elapsed)
         ),
         // rounded up: work left never reads "0s"
         Some(left) => format!(
-            "{} elapsed, about {}s left",
+            "{} elapsed, {}, about {}s left",
             secs(elapsed),
+            rate(done, elapsed),
             left.as_secs_f64().ceil()
         ),
     }
 }
 
 /// A progress bar on a terminal (hidden otherwise): a spinner with the elapsed time until the
-/// first unit is done, then a bar with the estimate of [`eta`].
+/// first unit is done, then a bar with the estimate of [`eta`]; redrawn four times a second.
 pub struct Progress {
     bar: indicatif::ProgressBar,
     started: AtomicBool,
-    since: Instant,
 }
 
-const WAITING: &str = "{spinner} {prefix} {pos}/{len} ({msg})";
-const RUNNING: &str = "{prefix} [{bar:40}] {pos}/{len} ({msg})";
+const WAITING: &str = "{spinner} {prefix} {pos}/{len} ({status})";
+const RUNNING: &str = "{prefix} [{bar:40}] {pos}/{len} ({status})";
+
+/// The redraw interval of every bar and of the set-up ticker.
+const TICK: Duration = Duration::from_millis(250);
 
 fn style(template: &str) -> indicatif::ProgressStyle {
     indicatif::ProgressStyle::with_template(template)
         .expect("valid template")
+        .with_key(
+            "status",
+            |s: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                let _ = w.write_str(&status(s.pos(), s.len().unwrap_or(0), s.elapsed()));
+            },
+        )
         .progress_chars("=> ")
 }
 
 impl Progress {
     /// Move to `done` units of the bar's length.
     pub fn set_position(&self, done: u64) {
-        let total = self.bar.length().unwrap_or(0);
-        self.bar
-            .set_message(status(done, total, self.since.elapsed()));
         if done > 0 && !self.started.swap(true, Ordering::Relaxed) {
-            self.bar.disable_steady_tick();
             self.bar.set_style(style(RUNNING));
         }
         self.bar.set_position(done);
@@ -87,15 +119,16 @@ impl Progress {
     }
 }
 
-/// A progress bar of `len` units on a terminal, hidden otherwise.
+/// A progress bar of `len` units on a terminal, hidden otherwise. The set-up ticker, if it
+/// runs, ends here.
 pub fn progress(len: u64, message: &str) -> Progress {
     use std::io::IsTerminal;
+    end_ticker();
     let bar = if std::io::stderr().is_terminal() {
         let bar = indicatif::ProgressBar::new(len)
-            .with_message(status(0, len, Duration::ZERO))
             .with_prefix(message.to_string())
             .with_style(style(WAITING));
-        bar.enable_steady_tick(Duration::from_millis(250));
+        bar.enable_steady_tick(TICK);
         bar
     } else {
         indicatif::ProgressBar::hidden()
@@ -103,7 +136,103 @@ pub fn progress(len: u64, message: &str) -> Progress {
     Progress {
         bar,
         started: AtomicBool::new(false),
-        since: Instant::now(),
+    }
+}
+
+/// The set-up ticker's state: what runs, since when, and its spinner once shown.
+struct Ticker {
+    label: String,
+    since: Instant,
+    spinner: Option<indicatif::ProgressBar>,
+    ended: bool,
+}
+
+static TICKER: Mutex<Option<Ticker>> = Mutex::new(None);
+
+/// Step checks made during the set-up (see [`count_check`]).
+static CHECKS: AtomicU64 = AtomicU64::new(0);
+
+/// How long the set-up runs before its ticker appears (a quick command shows nothing).
+const TICKER_DELAY: Duration = Duration::from_millis(500);
+
+/// Start the set-up ticker of command `label` on a terminal (nothing otherwise): it appears
+/// after half a second unless a progress bar has begun or the command has ended.
+pub fn start_ticker(label: &str) {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return;
+    }
+    let since = Instant::now();
+    *TICKER.lock().unwrap_or_else(|e| e.into_inner()) = Some(Ticker {
+        label: label.to_string(),
+        since,
+        spinner: None,
+        ended: false,
+    });
+    std::thread::spawn(|| {
+        std::thread::sleep(TICKER_DELAY);
+        let mut t = TICKER.lock().unwrap_or_else(|e| e.into_inner());
+        let Some(t) = t.as_mut() else { return };
+        if t.ended {
+            return;
+        }
+        let since = t.since;
+        let spinner = indicatif::ProgressBar::new_spinner()
+            .with_prefix(t.label.clone())
+            .with_style(
+                indicatif::ProgressStyle::with_template("{spinner} {prefix}: {setup}")
+                    .expect("valid template")
+                    .with_key(
+                        "setup",
+                        move |_: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                            let _ = w.write_str(&setup_status(
+                                CHECKS.load(Ordering::Relaxed),
+                                since.elapsed(),
+                            ));
+                        },
+                    ),
+            );
+        spinner.enable_steady_tick(TICK);
+        t.spinner = Some(spinner);
+    });
+}
+
+/// The set-up ticker's text: "preparing, 3s elapsed" and, once checks are counted, "412 step
+/// checks, 137.3/s".
+pub fn setup_status(checks: u64, elapsed: Duration) -> String {
+    let mut s = format!("preparing, {}s elapsed", elapsed.as_secs());
+    if checks > 0 {
+        s.push_str(&format!(
+            ", {checks} step checks, {}",
+            rate(checks, elapsed)
+        ));
+    }
+    s
+}
+
+/// Count one step check of the set-up (shown by the ticker with its rate).
+pub fn count_check() {
+    CHECKS.fetch_add(1, Ordering::Relaxed);
+}
+
+/// End the set-up ticker (the first progress bar begins, or the command ends): its line is
+/// cleared and it does not appear again.
+pub fn end_ticker() {
+    let mut t = TICKER.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(t) = t.as_mut() {
+        t.ended = true;
+        if let Some(s) = t.spinner.take() {
+            s.finish_and_clear();
+        }
+    }
+}
+
+/// Write `line` to standard error, out of the set-up ticker's way when it is shown.
+pub fn note(line: &str) {
+    let t = TICKER.lock().unwrap_or_else(|e| e.into_inner());
+    match t.as_ref().and_then(|t| t.spinner.as_ref()) {
+        Some(s) => s.suspend(|| eprintln!("{line}")),
+        None => eprintln!("{line}"),
     }
 }
 
@@ -139,6 +268,7 @@ mod tests {
         assert_eq!(eta(0, 100, Duration::from_secs(3600)), None);
         let s = status(0, 100, Duration::from_secs(3600));
         assert!(s.contains("3600s elapsed"), "{s}");
+        assert!(s.contains("none done yet"), "{s}");
         assert!(s.contains("no estimate"), "{s}");
         assert!(!s.contains("(0s)") && !s.contains(" 0s left"), "{s}");
     }
@@ -152,12 +282,12 @@ mod tests {
         );
         assert_eq!(
             status(1, 4, Duration::from_secs(10)),
-            "10s elapsed, about 30s left"
+            "10s elapsed, one per 10s, about 30s left"
         );
         // a fraction of a second left reads 1 s, not 0 s
         assert_eq!(
             status(999, 1000, Duration::from_secs(5)),
-            "5s elapsed, about 1s left"
+            "5s elapsed, 199.8/s, about 1s left"
         );
         // done: nothing left; more done than the total (a rounded position) is not negative
         assert_eq!(eta(4, 4, Duration::from_secs(10)), Some(Duration::ZERO));
@@ -165,6 +295,26 @@ mod tests {
         // 750 of 1000 in 3 s: 1 s left
         let left = eta(750, 1000, Duration::from_secs(3)).unwrap();
         assert!((left.as_secs_f64() - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn the_rate_and_the_set_up_text() {
+        assert_eq!(rate(0, Duration::from_secs(5)), "none done yet");
+        assert_eq!(rate(10, Duration::from_secs(4)), "2.5/s");
+        assert_eq!(rate(1, Duration::from_secs(40)), "one per 40s");
+        // the text moves with the time even when no unit finishes
+        assert_ne!(
+            status(0, 8, Duration::from_secs(1)),
+            status(0, 8, Duration::from_secs(2))
+        );
+        assert_eq!(
+            setup_status(0, Duration::from_secs(3)),
+            "preparing, 3s elapsed"
+        );
+        assert_eq!(
+            setup_status(30, Duration::from_secs(3)),
+            "preparing, 3s elapsed, 30 step checks, 10.0/s"
+        );
     }
 
     #[test]

@@ -96,19 +96,28 @@ pub fn ensemble(r: &EnsembleResult, theory: &Comparisons, wall: f64) -> String {
     }
     for (v, c) in theory {
         match c {
-            Ok(c) => t.push_str(&format!(
-                "theory ({}): Hellinger {:.4} ± {:.4}, L1 {:.4}, KS {:.4}; modes {} (theory, \
-                 binned; {} exact) vs {} (simulation); occupancy {}\n",
-                v.name(),
-                c.hellinger.value,
-                c.hellinger.stderr,
-                c.l1.value,
-                c.ks.value,
-                c.modes_theory,
-                c.modes_theory_exact,
-                c.modes_mc,
-                list(&c.occupancy)
-            )),
+            Ok(c) => match c.modes_mc {
+                None => t.push_str(&format!(
+                    "theory ({}): no distance and no mode count: the simulated density does \
+                     not exist; modes {} (theory, binned; {} exact); occupancy {}\n",
+                    v.name(),
+                    c.modes_theory,
+                    c.modes_theory_exact,
+                    list(&c.occupancy)
+                )),
+                Some(modes_mc) => t.push_str(&format!(
+                    "theory ({}): Hellinger {:.4} ± {:.4}, L1 {:.4}, KS {:.4}; modes {} \
+                     (theory, binned; {} exact) vs {modes_mc} (simulation); occupancy {}\n",
+                    v.name(),
+                    c.hellinger.value,
+                    c.hellinger.stderr,
+                    c.l1.value,
+                    c.ks.value,
+                    c.modes_theory,
+                    c.modes_theory_exact,
+                    list(&c.occupancy)
+                )),
+            },
             Err(e) => t.push_str(&format!("theory ({}): {e}\n", v.name())),
         }
     }
@@ -172,10 +181,21 @@ pub fn wells(w: &WellsEstimate) -> String {
 }
 
 /// A histogram density `A_lo,A_hi,density,stderr`, one row per bin.
+///
+/// A density or standard error that does not exist (NaN: the mixture of a well decomposition
+/// whose weights are undetermined, a standard error from one unit) is an empty cell, as the
+/// JSON writes `null`, and a note says so.
 pub fn density_table(notes: &[String], d: &Density) -> Table {
-    let mut t = Table::new(notes, &["A_lo", "A_hi", "density", "stderr"]);
+    let mut notes = notes.to_vec();
+    let cell = |v: f64| if v.is_nan() { String::new() } else { num(v) };
+    if d.density.iter().chain(&d.stderr).any(|v| v.is_nan()) {
+        notes.push(
+            "an empty density or stderr cell is a value that does not exist (JSON null)".into(),
+        );
+    }
+    let mut t = Table::new(&notes, &["A_lo", "A_hi", "density", "stderr"]);
     for (i, w) in d.edges.windows(2).enumerate() {
-        t.row([w[0], w[1], d.density[i], d.stderr[i]].map(num));
+        t.row([num(w[0]), num(w[1]), cell(d.density[i]), cell(d.stderr[i])]);
     }
     t
 }

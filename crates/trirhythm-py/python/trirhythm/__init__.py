@@ -301,10 +301,15 @@ def ensemble(
     ``sample_every=1``. ``method="wells"`` estimates them by well decomposition, as
     ``trirhythm ensemble --method wells`` (``paths`` replicas of one path per well of ``t_end``;
     options ``clones=100``, ``max_excursion=10000``, ``max_iterations=2000``,
-    ``separation=10``, ``core_quantile=0.1``); the document adds ``estimator`` and
-    ``decomposition``."""
+    ``separation=10``, ``core_quantile=0.1``; ``u0`` is refused, the well method starts in each
+    of the theory's wells); the document adds ``estimator``, ``decomposition`` and ``bounds``."""
     method = options.pop("method", "direct")
     wells = {k: options.pop(k) for k in list(options) if k in _WELLS_DEFAULTS}
+    if method == "wells" and "u0" in options:
+        raise ValueError(
+            f"invalid parameter u0 = {options['u0']!r}: u0 applies to method='direct' only "
+            "(method='wells' starts one path in each of the theory's wells, at its mode)"
+        )
     args = _ensemble_args(params, paths, t_end, burn_in, seed, options)
     if method == "wells":
         w = {**_WELLS_DEFAULTS, **wells}

@@ -169,6 +169,28 @@ def _decode(d):
     return {k: (float(v), float(s)) for k, (v, s) in d.items()}
 
 
+def _check_writable(directory: str):
+    """Refuse, before any work, a checkpoint directory that cannot be written: the directory
+    itself when it exists, else the nearest existing directory above it (where it would be
+    created) must take a new file (a hidden probe file is created and removed at once)."""
+    where = os.path.abspath(directory)
+    while not os.path.exists(where):
+        up = os.path.dirname(where)
+        if up == where:
+            break
+        where = up
+    if not os.path.isdir(where):
+        raise ValueError(
+            f"invalid parameter checkpoint = {directory!r}: cannot be created, {where!r} is not a directory"
+        )
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".trirhythm-probe-", dir=where)
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as e:
+        raise ValueError(f"invalid parameter checkpoint = {directory!r}: cannot write in {where!r} ({e})") from None
+
+
 class _Checkpoint:
     """A directory of one file per finished point, with the sweep's fingerprint."""
 
@@ -176,6 +198,7 @@ class _Checkpoint:
         self.dir = os.fspath(directory)
         if os.path.exists(self.dir) and not os.path.isdir(self.dir):
             raise ValueError(f"invalid parameter checkpoint = {self.dir!r}: exists and is not a directory")
+        _check_writable(self.dir)
         os.makedirs(self.dir, exist_ok=True)
         tag = os.path.join(self.dir, "sweep.json")
         if os.path.exists(tag):

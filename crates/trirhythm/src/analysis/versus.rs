@@ -60,8 +60,10 @@ pub struct TheoryComparison {
     pub modes_theory: usize,
     /// Analytic maxima of P(A).
     pub modes_theory_exact: usize,
-    /// Modes of the simulated histogram by the prominence rule.
-    pub modes_mc: usize,
+    /// Modes of the simulated histogram by the prominence rule; `None` (JSON `null`) when the
+    /// simulated density does not exist (a well decomposition whose weights are undetermined:
+    /// then the distances are NaN too).
+    pub modes_mc: Option<usize>,
     /// The theory's mean density in each bin of the ensemble's histogram.
     pub density: Vec<f64>,
     /// ⟨A⟩ of the theory.
@@ -265,17 +267,26 @@ pub fn compare(
         .map(|(p, w)| p / (w[1] - w[0]))
         .collect();
     let units = &result.per_path_amplitude;
+    // the simulated side does not exist (a mixture whose weights are undetermined has a NaN
+    // density and no units): nothing is compared, nothing is substituted
+    let undefined = units.is_empty()
+        || result.amplitude.density.iter().any(|d| !d.is_finite())
+        || units.iter().flatten().all(|&c| c == 0);
     let mut total = vec![0u64; nb + 1];
     for u in units {
         for (t, c) in total.iter_mut().zip(u) {
             *t += c;
         }
     }
-    let (h, l1, ks) = distances(&probabilities(&total), &q);
+    let (h, l1, ks) = if undefined {
+        (f64::NAN, f64::NAN, f64::NAN)
+    } else {
+        distances(&probabilities(&total), &q)
+    };
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(0x7665_7273_7573); // "versus": a stream apart from every path's
     let mut boot = [Vec::new(), Vec::new(), Vec::new()];
-    if units.len() >= 2 {
+    if units.len() >= 2 && !undefined {
         for _ in 0..RESAMPLES {
             let mut s = vec![0u64; nb + 1];
             for _ in 0..units.len() {
@@ -303,7 +314,7 @@ pub fn compare(
         .iter()
         .map(|s| 3.0 * std::f64::consts::SQRT_2 * s)
         .collect();
-    let modes_mc = count_modes(&result.amplitude.density, &noise);
+    let modes_mc = (!undefined).then(|| count_modes(&result.amplitude.density, &noise));
     let modes_theory = count_modes(&density, &[]);
     let occupancy = match &result.wells {
         Some(w) => well_probabilities(&pdf, w),

@@ -207,7 +207,8 @@ pub struct EnsembleResult {
     pub sticking_steps: u64,
     /// Plain-language warnings (non-stationary, mass outside the histograms, few passages, …).
     pub warnings: Vec<String>,
-    /// Per path amplitude histograms (for the bootstrap of theory distances).
+    /// Per path amplitude histograms (for the bootstrap of theory distances); empty for a well
+    /// decomposition whose weights are undetermined (no mixture, no unit of it).
     pub per_path_amplitude: Vec<Vec<u64>>,
 }
 

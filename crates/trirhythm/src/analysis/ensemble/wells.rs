@@ -1139,29 +1139,33 @@ fn combine(
             paths: paths[r * nw..(r + 1) * nw].to_vec(),
         })
         .collect();
-    // each replica's own mixture as pseudo-counts (the theory comparison's units)
+    // each replica's own mixture as pseudo-counts (the theory comparison's units): a replica
+    // without weights of its own takes the pooled ones; where those are undetermined too there
+    // is no mixture, and no unit (no weights are substituted)
     let nb = spec.bins;
-    let pooled = pooled_weights.clone();
-    let per_path_amplitude: Vec<Vec<u64>> = units
-        .iter()
-        .zip(&replica_list)
-        .map(|(u, rep)| {
-            let w = if rep.weights.is_empty() {
-                pooled.clone().unwrap_or_else(|| vec![1.0 / nw as f64; nw])
-            } else {
-                rep.weights.clone()
-            };
-            let total: f64 = (0..nw).map(|i| u[off.samples(i)]).sum();
-            (0..=nb)
-                .map(|b| {
-                    let p: f64 = (0..nw)
-                        .map(|i| w[i] * ratio(u, off.amplitude(i) + b, off.samples(i)))
-                        .sum();
-                    (p * total).round() as u64
-                })
-                .collect()
-        })
-        .collect();
+    let per_path_amplitude: Vec<Vec<u64>> = match &pooled_weights {
+        None => vec![],
+        Some(pooled) => units
+            .iter()
+            .zip(&replica_list)
+            .map(|(u, rep)| {
+                let w = if rep.weights.is_empty() {
+                    pooled
+                } else {
+                    &rep.weights
+                };
+                let total: f64 = (0..nw).map(|i| u[off.samples(i)]).sum();
+                (0..=nb)
+                    .map(|b| {
+                        let p: f64 = (0..nw)
+                            .map(|i| w[i] * ratio(u, off.amplitude(i) + b, off.samples(i)))
+                            .sum();
+                        (p * total).round() as u64
+                    })
+                    .collect()
+            })
+            .collect(),
+    };
     let worst = |f: &dyn Fn(&Stationarity) -> f64| {
         conditional
             .iter()
