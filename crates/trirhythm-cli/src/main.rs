@@ -133,18 +133,25 @@ impl Command {
             Command::Oscillation(a) => a.refuse_unused(given),
             // the tangent equation has no copy to pull back
             Command::Lyapunov(lyapunov::LyapunovArgs { sim, .. })
-            | Command::CriticalNoise(lyapunov::CriticalNoiseArgs { sim, .. })
                 if sim.method == lyapunov::LyapunovMethod::Tangent =>
             {
-                given.refuse(
-                    &[("separation", "--separation")],
-                    "--method two-trajectory",
-                    "the tangent method has no perturbed copy to pull back",
-                )
+                refuse_separation(given)
+            }
+            Command::CriticalNoise(a) if a.method == lyapunov::LyapunovMethod::Tangent => {
+                refuse_separation(given)
             }
             _ => Ok(()),
         }
     }
+}
+
+/// `--separation` given with `--method tangent`: refused.
+fn refuse_separation(given: &args::Given) -> Result<()> {
+    given.refuse(
+        &[("separation", "--separation")],
+        "--method two-trajectory",
+        "the tangent method has no perturbed copy to pull back",
+    )
 }
 
 fn run(cli: Cli, given: &args::Given) -> Result<()> {
