@@ -8,8 +8,10 @@
 //! decision (`verdict::rules::regime`, docs/verdicts.md "The Lyapunov claims by regime"): every
 //! point called chaotic / not chaotic / synchronised / undecided against δ = 1/W (one-sided t on
 //! the unmerged realisations, Bonferroni over the curve's points, merged realisations kept); D_c
-//! only as a bracket (largest regular D below the smallest chaotic D), or one-sided (chaotic at
-//! the smallest D: below it; regular up to the largest: above it); on a rest curve the pooled
+//! only as a bracket (largest regular D below the smallest chaotic D), one-sided (chaotic at
+//! the smallest D: below it; regular up to the largest: above it) or none at all (never chaotic,
+//! the exponent falling at strong noise), a located bracket on a cycle with the escape of the
+//! reference paths from the cycle's well at its ends; on a rest curve the pooled
 //! exponent and slope over D ≤ 1e-2 ("chaotic as D → 0: D_c = 0" when positive, flat and over
 //! at least three decades); on a cycle the phase-reduction prediction λ ≈ −c·D and each point's
 //! equivalence with it.
