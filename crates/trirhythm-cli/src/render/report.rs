@@ -1,16 +1,23 @@
-//! The report's page: one static HTML5 document (inline CSS, no network, a few lines of
-//! script that only mark on `<body>` whether every picture loaded) giving the verdict on each
-//! of the paper's claims with its numbers, each figure with its caption and verdicts, and the
-//! provenance of the run; and `verdicts.json`, the same verdicts as data.
+//! The report's page: one static HTML5 document (inline CSS, no network) rendered from the
+//! template `report.html` beside this file — the counts, the claims table (one line per claim,
+//! its details folded in its row, filters by verdict and figure), each rule once, the paper,
+//! each figure's picture (which carries its caption) and verdicts, the provenance — and the
+//! data files `verdicts.json` (at most [`CHECKS_KEPT`] checks a claim) and `checks.json`
+//! (every check). The page's script marks on `<body>` whether every picture loaded, runs the
+//! filters and opens the details an anchor points to; without it the page reads the same,
+//! unfiltered.
 //!
 //! Method: everything shown is a value computed elsewhere — the claims and their decisions
-//! ([`Verdicts`] from `trirhythm_paper::verdict::claims::judge`), the figures' headings
-//! (their captions), the run's [`Provenance`]. Every text inserted is HTML-escaped
-//! ([`escape`]); undefined numbers are written "undefined", never `NaN`; paths are relative to
-//! the report's directory.
+//! ([`Verdicts`] from `trirhythm_paper::verdict::claims::judge`), the figures' headings, the
+//! run's [`Provenance`] — gathered into plain view structs and rendered by `minijinja`, whose
+//! automatic escaping HTML-escapes every inserted value ([`escape`]). Undefined numbers are
+//! written "undefined", never `NaN`, and decimals in sentences to significant digits
+//! ([`tidy_numbers`]); paths are relative to the report's directory, or the pictures are
+//! inside the page (`--single-file`).
 //!
-//! Tests: the unit tests below (escaping, number formatting, one row per claim) and
-//! `tests/report.rs` (the page of a real run parsed back, loaded in a headless browser).
+//! Tests: the unit tests below (escaping, number formatting, short reasons, one row per claim)
+//! and `tests/report.rs` (the page of a real run parsed back and loaded in headless Chromium:
+//! its length folded, its filters, the single-file page).
 
 use crate::render::plot::Heading;
 use anyhow::{Context, Result};
