@@ -1,8 +1,11 @@
 //! `trirhythm report`: the page of a real quick run read back (every claim once with a valid
-//! verdict, the counts equal to verdicts.json, every picture present, no NaN), loaded in a
-//! headless Chromium (no console error, every image decoded, a screenshot that is not blank),
-//! a figure's data edited so that its verdict flips, and the refusals (an occupied
-//! directory, bad flags, an interrupt) leaving nothing behind.
+//! verdict, the counts equal to verdicts.json, every picture present, no NaN, every check in
+//! checks.json), loaded in a headless Chromium (no console error, every image decoded, a
+//! screenshot that is not blank; with the details folded the claims and the rules fit in three
+//! screens of 1400 × 900 before the figures; the filters hide the rows they should; the
+//! `--single-file` page shows its pictures alone), a figure's data edited so that its verdict
+//! flips, and the refusals (an occupied directory, bad flags, an interrupt) leaving nothing
+//! behind.
 
 mod common;
 
@@ -192,7 +195,8 @@ fn quick_report_lists_every_claim_once_with_the_counts_of_its_json() {
     // every element the page opens it closes (void elements aside), once per body and html
     for name in [
         "html", "head", "body", "table", "thead", "tbody", "tr", "td", "th", "section", "ul", "li",
-        "p", "a", "figure", "span", "code", "h2", "h3", "script", "style",
+        "p", "a", "figure", "span", "code", "h2", "h3", "script", "style", "details", "summary",
+        "div", "form", "label", "select", "option",
     ] {
         let opened =
             html.matches(&format!("<{name}>")).count() + html.matches(&format!("<{name} ")).count();
@@ -203,6 +207,37 @@ fn quick_report_lists_every_claim_once_with_the_counts_of_its_json() {
         );
     }
     assert_eq!(html.matches("<body").count(), 1);
+    // the details start folded; each claim's row carries its figure for the filter
+    assert!(!html.contains("<details open"));
+    for tag in start_tags(&html, "tr") {
+        if let (Some(id), Some(fig)) = (attr(tag, "data-claim"), attr(tag, "data-figure")) {
+            if let Some(n) = id.strip_prefix("fig").and_then(|r| r.get(..2)) {
+                assert_eq!(fig, n.trim_start_matches('0'), "{id}");
+            }
+        }
+    }
+    // numbers to significant digits: no binary-float noise such as 0.9844999999999999
+    for noise in ["99999999", "00000000"] {
+        assert!(!html.contains(noise), "{noise} in the page");
+    }
+    // verdicts.json keeps at most 50 checks a claim; checks.json has them all
+    let checks: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("checks.json")).unwrap()).unwrap();
+    let all = checks["claims"].as_array().unwrap();
+    let kept = json["claims"].as_array().unwrap();
+    assert_eq!(all.len(), kept.len());
+    for (a, k) in all.iter().zip(kept) {
+        assert_eq!(a["id"], k["claim"]["id"]);
+        let (a, k) = (
+            a["checks"].as_array().unwrap(),
+            k["decision"]["checks"].as_array().unwrap(),
+        );
+        assert!(k.len() <= 50 && k.len() <= a.len());
+        assert!(k.iter().all(|c| a.contains(c)));
+        if a.len() <= 50 {
+            assert_eq!(a, k);
+        }
+    }
     assert_eq!(json["report"]["quick"], true);
     assert_eq!(json["report"]["figures"].as_array().unwrap().len(), 19);
     // the report leaves nothing beside itself
@@ -324,6 +359,159 @@ fn the_page_loads_in_a_headless_browser() {
     assert!(colours.len() > 50, "{} distinct colours", colours.len());
     // the verdict colours are drawn (the table's confirmed and refuted cells)
     assert!(colours.contains(&[0xe3, 0xf0, 0xf8]) || colours.contains(&[0xfb, 0xe9, 0xde]));
+}
+
+/// The browser, or `None` (with a note) where there is none and none is required.
+fn browser_or_skip() -> Option<PathBuf> {
+    let browser = chromium();
+    if browser.is_none() {
+        let why = "no Chromium at /usr/bin/chromium or $TRIRHYTHM_CHROMIUM";
+        assert!(
+            std::env::var_os("TRIRHYTHM_REQUIRE_BROWSER").is_none(),
+            "TRIRHYTHM_REQUIRE_BROWSER is set but {why}"
+        );
+        eprintln!("skipped: {why}");
+    }
+    browser
+}
+
+#[test]
+fn folded_the_page_is_three_screens_before_the_figures() {
+    let Some(browser) = browser_or_skip() else {
+        return;
+    };
+    let (out, _) = quick_report();
+    let scratch = scratch_dir("report-length");
+    // the page as written, with a script that writes on <body> where the figures start
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let measure = "<script>window.addEventListener('load',function(){var f=document.\
+        getElementById('figures');document.body.setAttribute('data-figures-at',String(Math.\
+        ceil(f.getBoundingClientRect().top+window.scrollY)));document.body.setAttribute(\
+        'data-open',String(document.querySelectorAll('details[open]').length));});</script>";
+    let page = scratch.join("measured.html");
+    std::fs::write(&page, html.replace("</body>", &format!("{measure}</body>"))).unwrap();
+    let url = format!("file://{}", page.display());
+    let (dom, log) = headless(
+        &browser,
+        &url,
+        &["--window-size=1400,900", "--dump-dom"],
+        &scratch,
+    );
+    let body = start_tags(&dom, "body")[0];
+    let at: f64 = attr(body, "data-figures-at")
+        .unwrap_or_else(|| panic!("no measure: {body}\n{log}"))
+        .parse()
+        .unwrap();
+    assert_eq!(
+        attr(body, "data-open").as_deref(),
+        Some("0"),
+        "details open"
+    );
+    eprintln!(
+        "the figures start at {at} px: {:.2} screens of 900",
+        at / 900.0
+    );
+    assert!(at <= 3.0 * 900.0, "the figures start at {at} px");
+}
+
+#[test]
+fn the_filters_hide_the_rows_they_should() {
+    let Some(browser) = browser_or_skip() else {
+        return;
+    };
+    let (out, _) = quick_report();
+    let scratch = scratch_dir("report-filter");
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let all: Vec<(String, String, String)> = start_tags(&html, "tr")
+        .iter()
+        .filter_map(|t| {
+            Some((
+                attr(t, "data-claim")?,
+                attr(t, "data-verdict")?,
+                attr(t, "data-figure")?,
+            ))
+        })
+        .collect();
+    assert_eq!(all.len(), registry().len() + not_computable().len());
+    let index = out.join("index.html");
+    for (verdict, figure) in [("refuted", "4"), ("undetermined", ""), ("", "7")] {
+        let mut query = Vec::new();
+        if !verdict.is_empty() {
+            query.push(format!("verdict={verdict}"));
+        }
+        if !figure.is_empty() {
+            query.push(format!("figure={figure}"));
+        }
+        let url = format!("file://{}?{}", index.display(), query.join("&"));
+        let (dom, log) = headless(&browser, &url, &["--dump-dom"], &scratch);
+        let mut shown = BTreeSet::new();
+        let mut hidden = BTreeSet::new();
+        for tag in start_tags(&dom, "tr") {
+            if let Some(id) = attr(tag, "data-claim") {
+                if attr(tag, "hidden").is_some() {
+                    hidden.insert(id);
+                } else {
+                    shown.insert(id);
+                }
+            }
+        }
+        let expected: BTreeSet<String> = all
+            .iter()
+            .filter(|(_, v, f)| {
+                (verdict.is_empty() || v == verdict) && (figure.is_empty() || f == figure)
+            })
+            .map(|(id, _, _)| id.clone())
+            .collect();
+        assert!(!expected.is_empty(), "{query:?} selects nothing");
+        assert_eq!(shown, expected, "{query:?}\n{log}");
+        assert_eq!(shown.len() + hidden.len(), all.len(), "{query:?}");
+        assert!(
+            dom.contains(&format!("{} of {} claims shown", expected.len(), all.len())),
+            "{query:?}: the status line"
+        );
+    }
+}
+
+#[test]
+fn a_single_file_page_shows_its_pictures_alone() {
+    let (out, _) = quick_report();
+    let scratch = scratch_dir("report-single");
+    let single = scratch.join("single");
+    let o = run(&[
+        "report",
+        "--from-data",
+        out.join("figures").to_str().unwrap(),
+        "--single-file",
+        "--out-dir",
+        single.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let html = std::fs::read_to_string(single.join("index.html")).unwrap();
+    let imgs: Vec<String> = start_tags(&html, "img")
+        .iter()
+        .map(|t| attr(t, "src").unwrap())
+        .collect();
+    assert_eq!(imgs.len(), 19);
+    assert!(imgs.iter().all(|s| s.starts_with("data:image/png;base64,")));
+    // no link out of the page
+    for tag in start_tags(&html, "a") {
+        let href = attr(tag, "href").unwrap();
+        assert!(href.starts_with('#'), "{href}");
+    }
+    assert!(html.contains("--single-file"));
+    // the page alone, moved away from its figures/, shows every picture
+    let Some(browser) = browser_or_skip() else {
+        return;
+    };
+    let alone = scratch.join("alone");
+    std::fs::create_dir_all(&alone).unwrap();
+    std::fs::copy(single.join("index.html"), alone.join("page.html")).unwrap();
+    let url = format!("file://{}", alone.join("page.html").display());
+    let (dom, log) = headless(&browser, &url, &["--dump-dom"], &scratch);
+    assert!(
+        dom.contains("data-images=\"loaded\"") && dom.contains("data-image-count=\"19\""),
+        "{log}"
+    );
 }
 
 #[test]
@@ -495,7 +683,16 @@ fn occupied_directories_and_bad_flags_are_refused_with_nothing_written() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(
         listing(&target),
-        BTreeSet::from(["index.html", "verdicts.json", "claims.md", "figures"].map(String::from))
+        BTreeSet::from(
+            [
+                "index.html",
+                "verdicts.json",
+                "checks.json",
+                "claims.md",
+                "figures",
+            ]
+            .map(String::from)
+        )
     );
     assert_eq!(
         listing(&scratch),

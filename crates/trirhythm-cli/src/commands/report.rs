@@ -1,6 +1,6 @@
 //! `trirhythm report`: every figure computed (or read from figure data), every claim of the
-//! paper judged, and one self-contained HTML page with the verdicts, the figures and the
-//! provenance.
+//! paper judged, and one HTML page with the verdicts, the figures and the provenance (linking
+//! the pictures in `figures/`, or holding them with `--single-file`).
 //!
 //! Method: the figures are made one after the other by the same code as `trirhythm figure`
 //! ([`crate::render::paper`]), each collected in a `Figures` value; the claims are judged at once
@@ -18,7 +18,9 @@ use crate::io::files::{probe_dir, OwnEntries};
 use crate::io::{stdout_write, write_atomic, TemporaryDir};
 use crate::render::claims_table::claims_markdown;
 use crate::render::paper::{data_options, registry, Request};
-use crate::render::report::{page, Counts, FigureRun, Page, Provenance, Section, VerdictsFile};
+use crate::render::report::{
+    page, summarised, ChecksFile, Counts, FigureRun, Page, Provenance, Section, VerdictsFile,
+};
 use anyhow::{Context, Result};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -27,18 +29,26 @@ use trirhythm_paper::verdict::claims::{judge, Figures};
 use trirhythm_paper::FigureOptions;
 
 /// The entries a report directory holds.
-const REPORT_ENTRIES: [&str; 4] = ["index.html", "verdicts.json", "claims.md", "figures"];
+const REPORT_ENTRIES: [&str; 5] = [
+    "index.html",
+    "verdicts.json",
+    "checks.json",
+    "claims.md",
+    "figures",
+];
 
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Files, in --out-dir: index.html (the page: the paper, the rules, the counts, \
-    one row per claim with its verdict and deciding numbers, one section per figure, the \
-    provenance), verdicts.json (the verdicts as data, with the counts and the provenance), \
-    claims.md (the claims table in Markdown) and figures/ (each figure's CSV, PNG, SVG and figNN.json, so that `report --from-data \
+    after_help = "Files, in --out-dir: index.html (the page: the counts, the claims table — one \
+    line per claim with its verdict and deciding number, filters by verdict and figure, the \
+    details of each claim folded in its row —, the rules, the paper, one section per figure, \
+    the provenance; it links the pictures in figures/, or holds them with --single-file), \
+    verdicts.json (the verdicts as data, with the counts and the provenance; at most 50 checks \
+    a claim), checks.json (every check of every claim), claims.md (the claims table in Markdown) and figures/ (each figure's CSV, PNG, SVG and figNN.json, so that `report --from-data \
     DIR/figures` draws the report again without computing).\n\
     The report is built in a hidden sibling directory and renamed onto --out-dir when \
     complete. --out-dir must not exist, be empty, or hold a previous report (index.html, \
-    verdicts.json, claims.md, figures/ with the files its verdicts.json lists, and nothing \
+    verdicts.json, checks.json, claims.md, figures/ with the files its verdicts.json lists, and nothing \
     else), which is replaced; it is checked again before the replacement, and a file the \
     report did not write, there or added during the run, is never replaced or deleted (exit 2, \
     the folder left as it was)."
@@ -57,6 +67,10 @@ pub struct ReportArgs {
     /// figures/) instead of computing; a missing figure is reported as not in the data.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["quick", "variant"])]
     pub from_data: Option<PathBuf>,
+    /// Put the pictures inside index.html (PNG as data: URIs), so that the page alone shows
+    /// everything; the data files stay in figures/, named but not linked.
+    #[arg(long)]
+    pub single_file: bool,
 }
 
 /// `report`: compute or read every figure, judge every claim, write the page.
@@ -147,15 +161,19 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let json = serde_json::to_string_pretty(&VerdictsFile {
         report: &provenance,
         counts,
-        verdicts: &verdicts,
+        verdicts: &summarised(&verdicts),
     })
     .context("serialising the verdicts")?;
     write_atomic(&tmp.path().join("verdicts.json"), json.as_bytes())?;
+    let checks = serde_json::to_string(&ChecksFile::of(&verdicts, &provenance))
+        .context("serialising the checks")?;
+    write_atomic(&tmp.path().join("checks.json"), checks.as_bytes())?;
     let html = page(&Page {
         verdicts: &verdicts,
         sections: &sections,
         provenance: &provenance,
-    });
+        inline_from: args.single_file.then_some(figures_dir.as_path()),
+    })?;
     write_atomic(&tmp.path().join("index.html"), html.as_bytes())?;
     let source = format!(
         "trirhythm {}, commit {}, {} quality, {} variant",
@@ -226,7 +244,7 @@ fn check_out_dir(dir: &Path) -> Result<()> {
             return bad(format!(
                 "--out-dir {shown}: exists and is neither empty nor a previous report (it \
                  holds {foreign}); give a new or empty directory (a previous report — \
-                 index.html, verdicts.json, claims.md, figures/ with the files its \
+                 index.html, verdicts.json, checks.json, claims.md, figures/ with the files its \
                  verdicts.json lists, and nothing else — is replaced)"
             ))
         }
@@ -249,7 +267,7 @@ fn check_out_dir(dir: &Path) -> Result<()> {
 }
 
 /// What a report directory holds when all of it is a report's own: `index.html`,
-/// `verdicts.json` (a report's: [`is_report_value`]), `claims.md`, and in `figures/` only the files
+/// `verdicts.json` (a report's: [`is_report_value`]), `checks.json`, `claims.md`, and in `figures/` only the files
 /// that `verdicts.json` lists as written (`report.figures[].files`), all regular files — the
 /// paths relative to `dir` in the order they are removed (files, then `figures`); empty for an
 /// empty directory. Otherwise the first entry that is not the report's, in words.
@@ -409,6 +427,9 @@ fn command_line(args: &ReportArgs) -> String {
                 .unwrap_or_else(|| name(dir));
             line.push_str(&format!(" --from-data {shown}"));
         }
+    }
+    if args.single_file {
+        line.push_str(" --single-file");
     }
     line
 }

@@ -50,9 +50,11 @@ impl NonFinite {
     }
 }
 
-/// A CSV document: `#` comment lines, a header row, rows of numbers.
+/// A CSV document: `#` comment lines, a header row, rows of numbers; the records written by
+/// the `csv` crate ([`writer`]).
 pub struct Csv {
-    text: String,
+    comments: String,
+    records: csv::Writer<Vec<u8>>,
     columns: Vec<String>,
     rows: usize,
     nonfinite: NonFinite,
@@ -61,14 +63,16 @@ pub struct Csv {
 impl Csv {
     /// Start with comment lines (each prefixed by `# `) and the column names.
     pub fn new(comments: &[String], columns: &[&str]) -> Csv {
-        let mut text: String = comments
+        let comments: String = comments
             .iter()
             .flat_map(|c| c.lines())
             .map(|l| format!("# {l}\n"))
             .collect();
-        text.push_str(&record(columns.iter().copied()));
+        let mut records = writer();
+        write(&mut records, columns.iter().copied());
         Csv {
-            text,
+            comments,
+            records,
             columns: columns.iter().map(|c| c.to_string()).collect(),
             rows: 0,
             nonfinite: NonFinite::default(),
@@ -87,14 +91,18 @@ impl Csv {
         let cells: Vec<String> = cells.into_iter().collect();
         self.rows += 1;
         self.nonfinite.scan(&self.columns, self.rows, &cells);
-        self.text
-            .push_str(&record(cells.iter().map(String::as_str)));
+        write(&mut self.records, cells.iter().map(String::as_str));
     }
 
     /// The document, or an error naming the first non-finite cell.
     pub fn finish(self) -> Result<String> {
         self.nonfinite.check()?;
-        Ok(self.text)
+        let bytes = self
+            .records
+            .into_inner()
+            .map_err(|e| anyhow::anyhow!("writing CSV to memory: {}", e.error()))?;
+        let records = String::from_utf8(bytes).expect("CSV of UTF-8 fields is UTF-8");
+        Ok(self.comments + &records)
     }
 
     /// A library [`Table`] as a document: its notes as `#` lines, refused like any other.
@@ -111,21 +119,22 @@ impl Csv {
     }
 }
 
-/// One CSV record with its line end (RFC 4180): a field holding a comma, a double quote or a
-/// line break is quoted, its quotes doubled (the panel names of several figures hold commas).
-fn record<'a>(fields: impl Iterator<Item = &'a str>) -> String {
-    let mut line = fields
-        .map(|f| {
-            if f.contains([',', '"', '\n', '\r']) {
-                format!("\"{}\"", f.replace('"', "\"\""))
-            } else {
-                f.to_string()
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(",");
-    line.push('\n');
-    line
+/// A writer of CSV records into memory (RFC 4180, `\n` line ends): a field holding a comma, a
+/// double quote, a line break or `#` (the files' comment character, which a reader skipping `#`
+/// lines would take for a comment where it starts a row) is quoted, its quotes doubled (the
+/// panel names of several figures hold commas). Rows are written as given, of any length.
+fn writer() -> csv::Writer<Vec<u8>> {
+    csv::WriterBuilder::new()
+        .terminator(csv::Terminator::Any(b'\n'))
+        .comment(Some(b'#'))
+        .flexible(true)
+        .from_writer(Vec::new())
+}
+
+/// Append one record to `w` (writing to memory cannot fail).
+fn write<'a>(w: &mut csv::Writer<Vec<u8>>, fields: impl Iterator<Item = &'a str>) {
+    w.write_record(fields)
+        .expect("writing a CSV record to memory cannot fail");
 }
 
 /// Numbers for CSV cells (round-trip): the paper crate's.
@@ -173,7 +182,14 @@ pub fn reading(t: &Table) -> Result<String> {
 
 #[cfg(test)]
 mod tests {
-    use super::record;
+    use super::{write, writer};
+
+    /// One record as the documents write it.
+    fn record<'a>(fields: impl Iterator<Item = &'a str>) -> String {
+        let mut w = writer();
+        write(&mut w, fields);
+        String::from_utf8(w.into_inner().unwrap()).unwrap()
+    }
 
     #[test]
     fn fields_with_commas_quotes_or_line_breaks_are_quoted() {
@@ -183,5 +199,6 @@ mod tests {
             "\"(a) μ0 = 0.005, r = 0.99\",\"say \"\"hi\"\"\",x\n"
         );
         assert_eq!(record(["a\nb"].into_iter()), "\"a\nb\"\n");
+        assert_eq!(record(["#1", "x#"].into_iter()), "\"#1\",\"x#\"\n");
     }
 }

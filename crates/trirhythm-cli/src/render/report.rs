@@ -1,22 +1,31 @@
-//! The report's page: one static HTML5 document (inline CSS, no network, a few lines of
-//! script that only mark on `<body>` whether every picture loaded) giving the verdict on each
-//! of the paper's claims with its numbers, each figure with its caption and verdicts, and the
-//! provenance of the run; and `verdicts.json`, the same verdicts as data.
+//! The report's page: one static HTML5 document (inline CSS, no network) rendered from the
+//! template `report.html` beside this file — the counts, the claims table (one line per claim,
+//! its details folded in its row, filters by verdict and figure), each rule once, the paper,
+//! each figure's picture (which carries its caption) and verdicts, the provenance — and the
+//! data files `verdicts.json` (at most [`CHECKS_KEPT`] checks a claim) and `checks.json`
+//! (every check). The page's script marks on `<body>` whether every picture loaded, runs the
+//! filters and opens the details an anchor points to; without it the page reads the same,
+//! unfiltered.
 //!
 //! Method: everything shown is a value computed elsewhere — the claims and their decisions
-//! ([`Verdicts`] from `trirhythm_paper::verdict::claims::judge`), the figures' headings
-//! (their captions), the run's [`Provenance`]. Every text inserted is HTML-escaped
-//! ([`escape`]); undefined numbers are written "undefined", never `NaN`; paths are relative to
-//! the report's directory.
+//! ([`Verdicts`] from `trirhythm_paper::verdict::claims::judge`), the figures' headings, the
+//! run's [`Provenance`] — gathered into plain view structs and rendered by `minijinja`, whose
+//! automatic escaping HTML-escapes every inserted value ([`escape`]). Undefined numbers are
+//! written "undefined", never `NaN`, and decimals in sentences to significant digits
+//! ([`tidy_numbers`]); paths are relative to the report's directory, or the pictures are
+//! inside the page (`--single-file`).
 //!
-//! Tests: the unit tests below (escaping, number formatting, one row per claim) and
-//! `tests/report.rs` (the page of a real run parsed back, loaded in a headless browser).
+//! Tests: the unit tests below (escaping, number formatting, short reasons, one row per claim)
+//! and `tests/report.rs` (the page of a real run parsed back and loaded in headless Chromium:
+//! its length folded, its filters, the single-file page).
 
 use crate::render::plot::Heading;
+use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
+use std::path::Path;
 use trirhythm_paper::notes::sig;
 use trirhythm_paper::verdict::claims::{ClaimVerdict, Verdicts};
-use trirhythm_paper::verdict::Verdict;
+use trirhythm_paper::verdict::{Check, Verdict};
 
 /// The paper the report judges.
 pub const PAPER_TITLE: &str = "Managing trirhythmicity and bifurcation in the fractional \
@@ -85,19 +94,6 @@ impl Counts {
     }
 }
 
-/// `verdicts.json`: the verdicts (the `Verdicts` value, flattened), their counts and the
-/// provenance.
-#[derive(Serialize)]
-pub struct VerdictsFile<'a> {
-    /// What produced the verdicts.
-    pub report: &'a Provenance,
-    /// The counts the page shows.
-    pub counts: Counts,
-    /// The claims, their verdicts and numbers.
-    #[serde(flatten)]
-    pub verdicts: &'a Verdicts,
-}
-
 /// One figure's section of the page.
 pub struct Section {
     /// The paper's figure number.
@@ -116,10 +112,96 @@ pub struct Page<'a> {
     pub sections: &'a [Section],
     /// The run.
     pub provenance: &'a Provenance,
+    /// `--single-file`: the directory holding the figures' PNGs, each put in the page as a
+    /// `data:` URI; `None`: the page links `figures/figNN.png`.
+    pub inline_from: Option<&'a Path>,
+}
+
+/// How many checks a claim keeps in `verdicts.json`: all where it has at most this many, else
+/// its first deciding ones ([`Decision::deciding`](trirhythm_paper::verdict::Decision)); every
+/// check is in `checks.json`.
+pub const CHECKS_KEPT: usize = 50;
+
+/// `verdicts.json`: the verdicts (the `Verdicts` value, flattened, each claim's checks cut to
+/// [`CHECKS_KEPT`] by [`summarised`]), their counts and the provenance.
+#[derive(Serialize)]
+pub struct VerdictsFile<'a> {
+    /// What produced the verdicts.
+    pub report: &'a Provenance,
+    /// The counts the page shows.
+    pub counts: Counts,
+    /// The claims, their verdicts and numbers.
+    #[serde(flatten)]
+    pub verdicts: &'a Verdicts,
+}
+
+/// The verdicts with each claim's checks cut to its first [`CHECKS_KEPT`] deciding ones where
+/// it has more (the tallies still count all of them).
+pub fn summarised(verdicts: &Verdicts) -> Verdicts {
+    let mut out = verdicts.clone();
+    for c in &mut out.claims {
+        if c.decision.checks.len() > CHECKS_KEPT {
+            c.decision.checks = c
+                .decision
+                .deciding(CHECKS_KEPT)
+                .into_iter()
+                .cloned()
+                .collect();
+        }
+    }
+    out
+}
+
+/// `checks.json`: every check of every claim (`verdicts.json` keeps at most [`CHECKS_KEPT`] a
+/// claim).
+#[derive(Serialize)]
+pub struct ChecksFile<'a> {
+    /// The trirhythm version and commit of the report.
+    pub report: ChecksSource<'a>,
+    /// One entry per judged claim, in the order of `verdicts.json`.
+    pub claims: Vec<ClaimChecks<'a>>,
+}
+
+/// What wrote a `checks.json`.
+#[derive(Serialize)]
+pub struct ChecksSource<'a> {
+    /// The version of trirhythm.
+    pub trirhythm: &'a str,
+    /// The git commit it was built from.
+    pub commit: &'a str,
+}
+
+/// One claim's checks.
+#[derive(Serialize)]
+pub struct ClaimChecks<'a> {
+    /// The claim's id.
+    pub id: &'a str,
+    /// All its checks.
+    pub checks: &'a [Check],
+}
+
+impl<'a> ChecksFile<'a> {
+    /// Every check of `verdicts`, with the source of `provenance`.
+    pub fn of(verdicts: &'a Verdicts, provenance: &'a Provenance) -> ChecksFile<'a> {
+        ChecksFile {
+            report: ChecksSource {
+                trirhythm: &provenance.trirhythm,
+                commit: &provenance.commit,
+            },
+            claims: verdicts
+                .claims
+                .iter()
+                .map(|c| ClaimChecks {
+                    id: &c.claim.id,
+                    checks: &c.decision.checks,
+                })
+                .collect(),
+        }
+    }
 }
 
 /// `text` with `&`, `<`, `>`, `"` and `'` escaped (safe in element content and in quoted
-/// attributes).
+/// attributes): the page's automatic escaping ([`environment`]).
 pub fn escape(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
@@ -167,16 +249,88 @@ pub fn spell_undefined(text: &str) -> String {
     out
 }
 
-/// `figures/fig04.png`-style anchor of figure `n`.
+/// Most significant digits a decimal in a sentence keeps on the page: past this a decimal is
+/// the noise of binary floating point (`0.9844999999999999`), written again to this many
+/// significant digits with its trailing zeros dropped (`0.9845`).
+const PROSE_DIGITS: usize = 10;
+
+/// `text` with every decimal number of more than [`PROSE_DIGITS`] significant digits written to
+/// that many (`λ = 0.9844999999999999` → `λ = 0.9845`); shorter numbers, integers and numbers
+/// in exponent notation are left as they are.
+pub fn tidy_numbers(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    while i < chars.len() {
+        let starts = chars[i].is_ascii_digit()
+            && !(i > 0 && (chars[i - 1].is_alphanumeric() || chars[i - 1] == '.'));
+        if !starts {
+            out.push(chars[i]);
+            i += 1;
+            continue;
+        }
+        let mut j = i;
+        while j < chars.len() && chars[j].is_ascii_digit() {
+            j += 1;
+        }
+        let decimal = j + 1 < chars.len() && chars[j] == '.' && chars[j + 1].is_ascii_digit();
+        if decimal {
+            j += 1;
+            while j < chars.len() && chars[j].is_ascii_digit() {
+                j += 1;
+            }
+        }
+        let token: String = chars[i..j].iter().collect();
+        let exponent = chars.get(j).is_some_and(|c| *c == 'e' || *c == 'E');
+        let significant = token
+            .chars()
+            .filter(char::is_ascii_digit)
+            .skip_while(|c| *c == '0')
+            .count();
+        match token.parse::<f64>() {
+            Ok(v) if decimal && !exponent && significant > PROSE_DIGITS => {
+                out.push_str(&sig(v, PROSE_DIGITS));
+            }
+            _ => out.push_str(&token),
+        }
+        i = j;
+    }
+    out
+}
+
+/// A text of the library as the page shows it: undefined numbers in words, decimals to
+/// significant digits.
+fn prose(text: &str) -> String {
+    tidy_numbers(&spell_undefined(text))
+}
+
+/// `fig-04`-style anchor of figure `n`.
 fn fig_id(n: u32) -> String {
     format!("fig-{n:02}")
 }
 
-/// The rules, each with its anchor and one paragraph (the texts of docs/verdicts.md, shortened).
-const RULES: &[(&str, &str, &str)] = &[
+/// The figure a claim id or a place names first (`fig05-…`, "Figs 10, 12, Eq. 36–37").
+fn figure_named(text: &str) -> Option<u32> {
+    if let Some(rest) = text.strip_prefix("fig") {
+        return rest.get(..2).and_then(|d| d.parse().ok());
+    }
+    let at = text.find("Fig")?;
+    let digits: String = text[at..]
+        .chars()
+        .skip_while(|c| !c.is_ascii_digit())
+        .take_while(char::is_ascii_digit)
+        .collect();
+    digits.parse().ok()
+}
+
+/// The rules, each with its anchor, its name, one line and one paragraph (the texts of
+/// docs/verdicts.md, shortened). A rule a claim names that is not here gets a section of its
+/// own with the statistic as its claims state it.
+const RULES: &[(&str, &str, &str, &str)] = &[
     (
         "trend",
         "Trend",
+        "a claimed monotone change; every step and the change across the range tested",
         "A claimed monotone change (\"the trirhythmic zone shrinks as r drops\"). Each step \
          between neighbouring values, and the change across the whole plotted range, is a test. \
          With standard errors the statistic is z = Δ/√(se₁² + se₂²) (Student's t with \
@@ -193,6 +347,7 @@ const RULES: &[(&str, &str, &str)] = &[
     (
         "count",
         "Count",
+        "claimed counts (roots, peaks, wells, barriers) against computed ones",
         "Claimed counts (roots of f, peaks of P(A), wells, barriers) against computed ones. \
          Exact counts (Sturm-certified roots, extrema of a theory function, the classes of a \
          grid) and mode counts of a stationary Monte Carlo histogram (a mode needs a prominence \
@@ -203,6 +358,7 @@ const RULES: &[(&str, &str, &str)] = &[
     (
         "regime",
         "The Lyapunov claims by regime",
+        "each attractor of Figs 17–19 on its own; D_c bracketed against the margin δ = 1/W",
         "Each curve of Figs 17–19 is one attractor of the noise-free system (rest on the wall, \
          or an inner / middle / outer cycle), found by following the starts without noise. A \
          point is called against the margin δ = 1/W (W the window: below it no e-fold within \
@@ -222,6 +378,7 @@ const RULES: &[(&str, &str, &str)] = &[
     (
         "sign_change",
         "Sign change of the largest Lyapunov exponent (data of earlier versions)",
+        "past a critical noise the exponent turns positive, on each curve",
         "\"Past a critical noise D_c the LLE turns positive\", on each curve of a panel. Every \
          point is tested with t = LLE/se and realisations − 1 degrees of freedom, two-sided, \
          Holm–Bonferroni at α = 0.05 over all points of the claim; a point whose exponent is not \
@@ -234,6 +391,7 @@ const RULES: &[(&str, &str, &str)] = &[
     (
         "agreement",
         "Agreement of theory and Monte Carlo",
+        "the Hellinger distance of P(A) against its finite-sample floor",
         "The averaged theory's P(A) against an ensemble's amplitude histogram by the Hellinger \
          distance H, with its bootstrap standard error over paths. Even the exact density gives \
          H > 0 for a finite sample: the floor is √(bins/(8·ESS)). Confirmed when \
@@ -244,6 +402,7 @@ const RULES: &[(&str, &str, &str)] = &[
     (
         "closeness",
         "Closeness",
+        "a relative difference within 5 %",
         "\"Align closely\", \"change very slightly\": the relative difference \
          |a − b|/max(|a|, |b|) below 5 % (the paper gives no number; 5 % is a stated choice, \
          the same for every closeness claim, and each check prints the difference). With \
@@ -253,367 +412,515 @@ const RULES: &[(&str, &str, &str)] = &[
     ),
 ];
 
-const STYLE: &str = "
-body{font-family:DejaVu Sans,Verdana,sans-serif;line-height:1.45;margin:0 auto;max-width:72rem;\
-padding:1rem 1.5rem;color:#222;background:#fff}
-h1{font-size:1.6rem;margin-bottom:.2rem}h2{margin-top:2.2rem;border-bottom:1px solid #ccc}
-code{font-size:.9em}
-table{border-collapse:collapse;width:100%;font-size:.88rem}
-th,td{border:1px solid #ccc;padding:.3rem .4rem;vertical-align:top;text-align:left}
-th{background:#f2f2f2}
-col.claim{width:27%}col.verdict{width:17%}col.rule{width:18%}col.fig{width:6%}
-tr[data-verdict=confirmed] td.verdict{background:#e3f0f8;color:#005f93}
-tr[data-verdict=refuted] td.verdict{background:#fbe9de;color:#a64700}
-tr[data-verdict=undetermined] td.verdict{background:#eee;color:#444}
-.confirmed{color:#0072b2;font-weight:bold}.refuted{color:#d55e00;font-weight:bold}
-.undetermined{color:#5a5a5a;font-weight:bold}
-.counts span{font-size:1.3rem;font-weight:bold}
-ul.checks{margin:.2rem 0;padding-left:1.1rem}
-figure{margin:1rem 0}figure img{max-width:100%;height:auto;border:1px solid #ddd}
-.caption li{font-size:.9rem}
-.muted{color:#666;font-size:.85rem}
-section.figure{border-top:1px solid #eee;padding-top:.5rem}
-";
+/// Longest short reason the claims table shows (the details hold the whole).
+const SHORT_REASON: usize = 70;
 
-const SCRIPT: &str = "window.addEventListener('load',function(){var im=document.images,bad=0;\
-for(var i=0;i<im.length;i++){if(!im[i].complete||im[i].naturalWidth===0){bad++;}}\
-document.body.setAttribute('data-images',bad===0?'loaded':'broken '+bad);\
-document.body.setAttribute('data-image-count',String(im.length));});";
+/// `text` cut at a word to at most `max` characters, with "…" where cut.
+fn shorten(text: &str, max: usize) -> String {
+    let text = text.trim();
+    if text.chars().count() <= max {
+        return text.to_string();
+    }
+    let cut: String = text.chars().take(max).collect();
+    let at = cut.rfind(' ').filter(|&i| i > max / 2).unwrap_or(cut.len());
+    format!("{}…", cut[..at].trim_end_matches([',', ';', ':', ' ']))
+}
+
+/// `text` split on `sep` outside parentheses and brackets.
+fn split_top(text: &str, sep: &str) -> Vec<String> {
+    let mut parts = Vec::new();
+    let mut depth = 0i32;
+    let mut start = 0;
+    let mut i = 0;
+    while i < text.len() {
+        let c = text[i..].chars().next().unwrap_or(' ');
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            _ => {}
+        }
+        if depth == 0 && text[i..].starts_with(sep) {
+            parts.push(text[start..i].to_string());
+            start = i + sep.len();
+            i = start;
+            continue;
+        }
+        i += c.len_utf8();
+    }
+    parts.push(text[start..].to_string());
+    parts
+}
+
+/// `text` without its parenthesised asides.
+fn without_asides(text: &str) -> String {
+    let mut out = String::new();
+    let mut depth = 0i32;
+    for c in text.chars() {
+        match c {
+            '(' => depth += 1,
+            ')' => depth = (depth - 1).max(0),
+            c if depth == 0 => out.push(c),
+            _ => {}
+        }
+    }
+    out.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// The reason of an undetermined verdict in a few words for the claims table: of each part
+/// (`; `-separated, asides in parentheses left out) the clause after its label (`(b1) …: not
+/// stationary` → `not stationary`), the distinct ones kept, the first shown ("…" when more),
+/// at most [`SHORT_REASON`] characters.
+pub fn short_reason(why: &str) -> String {
+    let mut heads: Vec<String> = Vec::new();
+    for part in split_top(why, "; ") {
+        let part = without_asides(&part);
+        let head = match part.split_once(": ") {
+            Some((_, rest)) => rest.split(": ").next().unwrap_or(rest).to_string(),
+            None => part,
+        };
+        let head = head.trim().trim_end_matches(['.', ',']).to_string();
+        if !head.is_empty() && !heads.contains(&head) {
+            heads.push(head);
+        }
+    }
+    let Some(first) = heads.first() else {
+        return shorten(why, SHORT_REASON);
+    };
+    let text = if heads.len() > 1 {
+        format!("{first}; …")
+    } else {
+        first.clone()
+    };
+    shorten(&prose(&text), SHORT_REASON)
+}
+
+/// A check in one line for the claims table: the statistic against its threshold first, then
+/// what was compared.
+fn one_number(c: &Check) -> String {
+    prose(&format!(
+        "{} = {} vs {} · {}",
+        c.statistic,
+        number(c.statistic_value),
+        number(c.threshold),
+        c.what
+    ))
+}
+
+/// How many deciding checks a claim's details list.
+const DETAIL_CHECKS: usize = 5;
+
+/// One row of the claims table, with its details.
+#[derive(Serialize)]
+struct Row {
+    id: String,
+    /// The figure's number as text (`""`: none).
+    figure: String,
+    fig_anchor: String,
+    words: String,
+    place: String,
+    verdict: &'static str,
+    /// The reason in a few words (undetermined only).
+    short: String,
+    /// The whole reason (undetermined only).
+    why: String,
+    /// One deciding number.
+    number: String,
+    /// The rule's anchor (`""`: none).
+    rule: String,
+    rule_name: String,
+    checks: Vec<String>,
+    tally: String,
+    tally_data: String,
+}
+
+impl Row {
+    fn judged(c: &ClaimVerdict) -> Row {
+        let d = &c.decision;
+        let why = match &d.verdict {
+            Verdict::Undetermined { why } => why.as_str(),
+            _ => "",
+        };
+        let deciding = d.deciding(DETAIL_CHECKS);
+        let [f, a, n, u] = d.tally;
+        let mut tally = format!("checks: {f} for, {a} against, {n} neither, {u} undefined");
+        if d.tests > 0 {
+            tally.push_str(&format!("; {} stochastic tests", d.tests));
+        }
+        if let Some(alpha) = d.alpha {
+            tally.push_str(&format!(", α = {}", number(alpha)));
+        }
+        let shown = deciding.len();
+        let all = f + a + n + u;
+        if all > shown {
+            tally.push_str(&format!("; {shown} of them below, all in checks.json"));
+        }
+        Row {
+            id: c.claim.id.clone(),
+            figure: c.claim.figure.to_string(),
+            fig_anchor: fig_id(c.claim.figure),
+            words: prose(&c.claim.words),
+            place: c.claim.place.clone(),
+            verdict: d.verdict.tag(),
+            short: if why.is_empty() {
+                String::new()
+            } else {
+                short_reason(why)
+            },
+            why: prose(why),
+            number: deciding
+                .first()
+                .map(|c| one_number(c))
+                .unwrap_or_else(|| "—".into()),
+            rule: d.rule.clone(),
+            rule_name: rule_name(&d.rule),
+            checks: deciding.iter().map(|c| prose(&c.describe())).collect(),
+            tally,
+            tally_data: format!("{f} {a} {n} {u}"),
+        }
+    }
+
+    fn other(
+        id: &str,
+        figure: Option<u32>,
+        words: &str,
+        place: &str,
+        why: &str,
+        short: &str,
+    ) -> Row {
+        Row {
+            id: id.into(),
+            figure: figure.map(|n| n.to_string()).unwrap_or_default(),
+            fig_anchor: figure.map(fig_id).unwrap_or_default(),
+            words: prose(words),
+            place: place.into(),
+            verdict: "undetermined",
+            short: short.into(),
+            why: prose(why),
+            number: "—".into(),
+            rule: String::new(),
+            rule_name: String::new(),
+            checks: vec![],
+            tally: String::new(),
+            tally_data: String::new(),
+        }
+    }
+}
+
+/// The name of rule `id` ([`RULES`]; the id itself for another).
+fn rule_name(id: &str) -> String {
+    RULES
+        .iter()
+        .find(|r| r.0 == id)
+        .map(|r| r.1.to_string())
+        .unwrap_or_else(|| id.to_string())
+}
+
+/// One rule of the page: its text and the statistics its claims state.
+#[derive(Serialize)]
+struct Rule {
+    id: String,
+    name: String,
+    gist: String,
+    text: String,
+    applied: Vec<Applied>,
+}
+
+/// One statistic sentence and the claims that state it.
+#[derive(Serialize)]
+struct Applied {
+    statistic: String,
+    claims: Vec<String>,
+}
+
+fn rules(verdicts: &Verdicts) -> Vec<Rule> {
+    let mut out: Vec<Rule> = RULES
+        .iter()
+        .map(|(id, name, gist, text)| Rule {
+            id: id.to_string(),
+            name: name.to_string(),
+            gist: gist.to_string(),
+            text: text.to_string(),
+            applied: vec![],
+        })
+        .collect();
+    for c in &verdicts.claims {
+        let d = &c.decision;
+        let i = match out.iter().position(|r| r.id == d.rule) {
+            Some(i) => i,
+            None => {
+                out.push(Rule {
+                    id: d.rule.clone(),
+                    name: d.rule.clone(),
+                    gist: String::new(),
+                    text: String::new(),
+                    applied: vec![],
+                });
+                out.len() - 1
+            }
+        };
+        let statistic = prose(&d.statistic);
+        let applied = &mut out[i].applied;
+        match applied.iter_mut().find(|a| a.statistic == statistic) {
+            Some(a) => a.claims.push(c.claim.id.clone()),
+            None => applied.push(Applied {
+                statistic,
+                claims: vec![c.claim.id.clone()],
+            }),
+        }
+    }
+    out
+}
+
+/// A claim's verdict in a figure's section.
+#[derive(Serialize)]
+struct Mention {
+    id: String,
+    verdict: &'static str,
+}
+
+/// A data file of a figure: its name, and its link (none in a single-file page).
+#[derive(Serialize)]
+struct DataFile {
+    name: String,
+    href: Option<String>,
+}
+
+/// One figure's section.
+#[derive(Serialize)]
+struct Figure {
+    number: u32,
+    anchor: String,
+    data_name: String,
+    title: String,
+    present: bool,
+    src: String,
+    svg: Option<String>,
+    alt: String,
+    claims: Vec<Mention>,
+    data: Vec<DataFile>,
+    run: String,
+}
+
+/// One figure of the provenance table.
+#[derive(Serialize)]
+struct RunRow {
+    number: u32,
+    anchor: String,
+    status: String,
+    seconds: String,
+    seeds: Vec<String>,
+}
+
+/// The provenance as the page shows it.
+#[derive(Serialize)]
+struct Origin {
+    trirhythm: String,
+    commit: String,
+    figures: &'static str,
+    command: String,
+    total: String,
+    per_figure: Vec<RunRow>,
+}
+
+/// Everything the template reads.
+#[derive(Serialize)]
+struct View {
+    paper: &'static str,
+    trirhythm: String,
+    quality: &'static str,
+    quality_words: &'static str,
+    variant: String,
+    single_file: bool,
+    counts: Counts,
+    filter_figures: Vec<u32>,
+    rows: Vec<Row>,
+    rules: Vec<Rule>,
+    sections: Vec<Figure>,
+    prov: Origin,
+}
+
+/// The page's template (`report.html` beside this file).
+const TEMPLATE: &str = include_str!("report.html");
+
+/// The template environment: HTML escaping of every inserted value ([`escape`]: `/` is left as
+/// it is, so that paths and `data:` URIs read plainly), strict about undefined names.
+fn environment() -> Result<minijinja::Environment<'static>> {
+    let mut env = minijinja::Environment::new();
+    env.set_undefined_behavior(minijinja::UndefinedBehavior::Strict);
+    env.set_formatter(|out, state, value| {
+        let html = matches!(state.auto_escape(), minijinja::AutoEscape::Html);
+        if html && !value.is_safe() && !value.is_undefined() && !value.is_none() {
+            let text = match value.as_str() {
+                Some(s) => escape(s),
+                None => escape(&value.to_string()),
+            };
+            out.write_str(&text).map_err(|_| {
+                minijinja::Error::new(minijinja::ErrorKind::WriteFailure, "writing the page")
+            })
+        } else {
+            minijinja::escape_formatter(out, state, value)
+        }
+    });
+    env.add_template("report.html", TEMPLATE)
+        .context("the report's page template")?;
+    Ok(env)
+}
 
 /// The page.
-pub fn page(p: &Page) -> String {
-    let mut h = String::new();
+pub fn page(p: &Page) -> Result<String> {
     let prov = p.provenance;
-    let quality = if prov.quick {
-        "quick (coarse grids, few and short paths: for previews; its Monte Carlo verdicts are \
-         mostly undetermined by construction)"
-    } else {
-        "full (the paper's grids and run sizes)"
-    };
-    h.push_str(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
-         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n",
-    );
-    h.push_str(&format!(
-        "<title>trirhythm report: {}</title>\n<style>{STYLE}</style>\n</head>\n\
-         <body data-images=\"pending\">\n",
-        escape(PAPER_TITLE)
-    ));
-    // title and the paper
-    h.push_str(&format!(
-        "<h1>The paper's claims, decided from its figures</h1>\n<p class=\"muted\">trirhythm \
-         {} report, {} quality, {} formula variant</p>\n",
-        escape(&prov.trirhythm),
-        if prov.quick { "quick" } else { "full" },
-        escape(&prov.variant)
-    ));
-    h.push_str(&format!(
-        "<h2 id=\"paper\">The paper</h2>\n<p>“{}” studies a fractional-order vibro-impact \
-         oscillator with several coexisting limit cycles (trirhythmicity), driven by correlated \
-         noise (the paper's Eq. 1): D<sup>1+λ</sup>U − μ0 P(U) U̇ + ω0² U = η(t) for U &gt; 0, \
-         with impacts U̇₊ = −r U̇₋ at the wall U = 0, the polynomial \
-         P(U) = 1 − U² + α0U⁴ − β0U⁶ + γ0U⁸ − δ0U¹⁰, a Caputo derivative of order 1 + λ, \
-         λ ∈ (0, 1], and η an Ornstein–Uhlenbeck noise with ⟨η(t)η(s)⟩ = (D/τ)e<sup>−|t−s|/τ</sup>. \
-         Its claims concern the number of limit cycles (roots of the averaged drift, Eq. 18), \
-         the pseudo-potential and its barriers, P-bifurcations of the stationary amplitude \
-         density, the oscillation boundary and the largest Lyapunov exponent against the \
-         noise.</p>\n",
-        escape(PAPER_TITLE)
-    ));
-    h.push_str(
-        "<h2 id=\"method\">What trirhythm is, and how the verdicts are decided</h2>\n\
-         <p>trirhythm is a Rust library and command-line tool that reproduces the paper's 19 \
-         figures: the stochastic averaging (as printed and corrected), the fractional system \
-         itself (a predictor–corrector with a verified sum-of-exponentials memory and exact \
-         impacts), Monte Carlo ensembles with error bars and stationarity checks, bifurcation \
-         maps, oscillation boundaries and Lyapunov exponents. Each checkable claim of the paper \
-         is decided from the figures' data by one of the stated rules below — never by typed \
-         text: change a figure's data and the verdict follows. A verdict is <span \
-         class=\"confirmed\">confirmed</span>, <span class=\"refuted\">refuted</span> or <span \
-         class=\"undetermined\">undetermined</span> (with the reason: not stationary, not \
-         significant, a parameter the paper does not print, …). Numbers carry their \
-         uncertainty: exact (deterministic), a standard error (± se) or a bracket ([lo, hi]); \
-         an undefined number is never read as a value.</p>\n",
-    );
-    for (id, name, text) in RULES {
-        h.push_str(&format!(
-            "<p id=\"rule-{id}\"><strong>{}</strong> (<code>{id}</code>). {}</p>\n",
-            escape(name),
-            escape(text)
-        ));
-    }
-    // counts
     let counts = Counts::of(p.verdicts);
-    h.push_str(&format!(
-        "<h2 id=\"summary\">Summary</h2>\n<p class=\"counts\"><span class=\"confirmed\" \
-         data-count=\"confirmed\">{}</span> confirmed · <span class=\"refuted\" \
-         data-count=\"refuted\">{}</span> refuted · <span class=\"undetermined\" \
-         data-count=\"undetermined\">{}</span> undetermined by their rule</p>\n\
-         <p>Also undetermined: <span data-count=\"not-computable\">{}</span> claims no code \
-         decides yet, and <span data-count=\"not-judged\">{}</span> claims whose figure is not \
-         in the data. Quality of the run: <strong data-quality=\"{}\">{}</strong>.</p>\n",
-        counts.confirmed,
-        counts.refuted,
-        counts.undetermined,
-        counts.not_computable,
-        counts.not_judged,
-        if prov.quick { "quick" } else { "full" },
-        escape(quality)
-    ));
-    // claims table
-    h.push_str(
-        "<h2 id=\"claims\">The claims</h2>\n<table>\n<colgroup><col class=\"claim\">\
-         <col class=\"verdict\"><col class=\"rule\"><col><col class=\"fig\"></colgroup>\n<thead><tr><th>Claim</th><th>Verdict</th>\
-         <th>Rule and statistic</th><th>Deciding numbers</th><th>Figure</th></tr></thead>\n\
-         <tbody>\n",
-    );
-    for c in &p.verdicts.claims {
-        h.push_str(&claim_row(c));
-    }
+    let mut rows: Vec<Row> = p.verdicts.claims.iter().map(Row::judged).collect();
     for id in &p.verdicts.not_judged {
-        let figure = p
-            .sections
-            .iter()
-            .find(|s| id.starts_with(&format!("fig{:02}", s.number)))
-            .map(|s| s.number);
-        h.push_str(&format!(
-            "<tr data-claim=\"{}\" data-verdict=\"undetermined\"><td><code>{}</code></td>\
-             <td class=\"verdict\">undetermined<br>not judged: its figure is not in the data</td>\
-             <td></td><td></td><td>{}</td></tr>\n",
-            escape(id),
-            escape(id),
-            figure
-                .map(|n| format!("<a href=\"#{}\">Fig. {n}</a>", fig_id(n)))
-                .unwrap_or_default()
+        rows.push(Row::other(
+            id,
+            figure_named(id),
+            id,
+            "",
+            "not judged: its figure is not in the data",
+            "not in the data",
         ));
     }
     for n in &p.verdicts.not_computable {
-        h.push_str(&format!(
-            "<tr data-claim=\"{}\" data-verdict=\"undetermined\"><td><code>{}</code><br>{}<br>\
-             <span class=\"muted\">{}</span></td><td class=\"verdict\">undetermined<br>not \
-             decided by code: {}</td><td></td><td></td><td>{}</td></tr>\n",
-            escape(&n.id),
-            escape(&n.id),
-            escape(&n.words),
-            escape(&n.place),
-            escape(&n.needs),
-            escape(&n.place)
+        rows.push(Row::other(
+            &n.id,
+            figure_named(&n.place),
+            &n.words,
+            &n.place,
+            &format!("not decided by code: {}", n.needs),
+            "not decided by code",
         ));
     }
-    h.push_str("</tbody>\n</table>\n");
-    // figures
-    h.push_str("<h2 id=\"figures\">The figures</h2>\n");
+    let mut sections = Vec::new();
     for s in p.sections {
-        h.push_str(&section(s, p));
+        sections.push(figure(s, p)?);
     }
-    // provenance
-    h.push_str(&provenance(p));
-    h.push_str(&format!("<script>{SCRIPT}</script>\n</body>\n</html>\n"));
-    h
-}
-
-/// The verdict's tag and, when undetermined, why.
-fn verdict_cell(v: &Verdict) -> String {
-    let tag = v.tag();
-    match v {
-        Verdict::Undetermined { why } => format!(
-            "<span class=\"{tag}\">{tag}</span><br>{}",
-            escape(&spell_undefined(why))
-        ),
-        _ => format!("<span class=\"{tag}\">{tag}</span>"),
-    }
-}
-
-/// The deciding checks (at most three), the tally, the tests and α.
-fn numbers_cell(c: &ClaimVerdict) -> String {
-    let d = &c.decision;
-    let mut h = String::from("<ul class=\"checks\">");
-    for check in d.deciding(3) {
-        h.push_str(&format!("<li>{}</li>", escape(&check.describe())));
-    }
-    h.push_str("</ul>");
-    let [f, a, n, u] = d.tally;
-    h.push_str(&format!(
-        "<span class=\"muted\" data-tally=\"{f} {a} {n} {u}\">checks: {f} for, {a} against, \
-         {n} neither, {u} undefined; {} tests{}</span>",
-        d.tests,
-        d.alpha
-            .map(|a| format!(", α = {}", number(a)))
-            .unwrap_or_default()
-    ));
-    h
-}
-
-fn claim_row(c: &ClaimVerdict) -> String {
-    let d = &c.decision;
-    let rule = escape(&d.rule);
-    format!(
-        "<tr data-claim=\"{id}\" data-verdict=\"{tag}\"><td><code>{id}</code><br>{words}<br>\
-         <span class=\"muted\">{place}</span></td><td class=\"verdict\">{verdict}</td>\
-         <td><a href=\"#rule-{rule}\">{rule}</a><br><span class=\"muted\">{statistic}</span></td>\
-         <td>{numbers}</td><td><a href=\"#{fig}\">Fig. {n}</a></td></tr>\n",
-        id = escape(&c.claim.id),
-        tag = d.verdict.tag(),
-        words = escape(&c.claim.words),
-        place = escape(&c.claim.place),
-        verdict = verdict_cell(&d.verdict),
-        statistic = escape(&d.statistic),
-        numbers = numbers_cell(c),
-        fig = fig_id(c.claim.figure),
-        n = c.claim.figure,
-    )
-}
-
-fn section(s: &Section, p: &Page) -> String {
-    let id = fig_id(s.number);
-    let run = p.provenance.figures.iter().find(|f| f.figure == s.number);
-    let mut h = format!("<section class=\"figure\" id=\"{id}\">\n");
-    let Some(heading) = &s.heading else {
-        h.push_str(&format!(
-            "<h3>Fig. {}: {}</h3>\n<p data-missing=\"{}\">Not in the data: \
-             <code>fig{:02}.json</code> is not in the figure-data directory; the claims on this \
-             figure are not judged.</p>\n</section>\n",
-            s.number,
-            escape(&s.title),
-            s.number,
-            s.number
-        ));
-        return h;
+    let view = View {
+        paper: PAPER_TITLE,
+        trirhythm: prov.trirhythm.clone(),
+        quality: if prov.quick { "quick" } else { "full" },
+        quality_words: if prov.quick {
+            "quick (coarse grids, few and short paths: for previews; its Monte Carlo verdicts \
+             are mostly undetermined by construction)"
+        } else {
+            "full (the paper's grids and run sizes)"
+        },
+        variant: prov.variant.clone(),
+        single_file: p.inline_from.is_some(),
+        counts,
+        filter_figures: p.sections.iter().map(|s| s.number).collect(),
+        rows,
+        rules: rules(p.verdicts),
+        sections,
+        prov: origin(p),
     };
-    h.push_str(&format!("<h3>{}</h3>\n", escape(&heading.title)));
-    h.push_str("<ul class=\"caption\">");
-    for line in &heading.lines {
-        h.push_str(&format!("<li>{}</li>", escape(line)));
-    }
-    h.push_str("</ul>\n");
+    let env = environment()?;
+    let template = env.get_template("report.html")?;
+    template
+        .render(minijinja::value::Serde(&view))
+        .context("rendering the report's page")
+}
+
+/// The section of figure `s`.
+fn figure(s: &Section, p: &Page) -> Result<Figure> {
     let stem = format!("figures/fig{:02}", s.number);
-    h.push_str(&format!(
-        "<figure><a href=\"{stem}.svg\"><img src=\"{stem}.png\" alt=\"{}\"></a>\
-         <figcaption class=\"muted\">{} (click for the SVG)</figcaption></figure>\n",
-        escape(&heading.title),
-        escape(&s.title)
-    ));
-    let mine: Vec<&ClaimVerdict> = p
+    let run = p.provenance.figures.iter().find(|f| f.figure == s.number);
+    let mut out = Figure {
+        number: s.number,
+        anchor: fig_id(s.number),
+        data_name: format!("fig{:02}.json", s.number),
+        title: s.title.clone(),
+        present: s.heading.is_some(),
+        src: String::new(),
+        svg: None,
+        alt: String::new(),
+        claims: vec![],
+        data: vec![],
+        run: String::new(),
+    };
+    let Some(heading) = &s.heading else {
+        return Ok(out);
+    };
+    out.alt = prose(
+        &std::iter::once(heading.title.as_str())
+            .chain(heading.lines.iter().map(String::as_str))
+            .collect::<Vec<_>>()
+            .join(" "),
+    );
+    match p.inline_from {
+        Some(dir) => {
+            use base64::Engine;
+            let png = dir.join(format!("fig{:02}.png", s.number));
+            let bytes = std::fs::read(&png)
+                .with_context(|| format!("reading {} into the page", png.display()))?;
+            out.src = format!(
+                "data:image/png;base64,{}",
+                base64::engine::general_purpose::STANDARD.encode(bytes)
+            );
+        }
+        None => {
+            out.src = format!("{stem}.png");
+            out.svg = Some(format!("{stem}.svg"));
+        }
+    }
+    out.claims = p
         .verdicts
         .claims
         .iter()
         .filter(|c| c.claim.figure == s.number)
+        .map(|c| Mention {
+            id: c.claim.id.clone(),
+            verdict: c.decision.verdict.tag(),
+        })
         .collect();
-    if mine.is_empty() {
-        h.push_str("<p>No claim of the registry rests on this figure.</p>\n");
-    } else {
-        h.push_str("<ul>");
-        for c in mine {
-            let tag = c.decision.verdict.tag();
-            h.push_str(&format!(
-                "<li><code>{}</code>: <span class=\"{tag}\">{tag}</span> {}</li>",
-                escape(&c.claim.id),
-                escape(&detail(c))
-            ));
-        }
-        h.push_str("</ul>\n");
-    }
     if let Some(run) = run {
-        let data: Vec<String> = run
+        out.data = run
             .files
             .iter()
             .filter(|f| f.ends_with(".csv") || f.ends_with(".json"))
-            .map(|f| {
-                let name = f.rsplit('/').next().unwrap_or(f);
-                format!("<a href=\"{}\">{}</a>", escape(f), escape(name))
+            .map(|f| DataFile {
+                name: f.rsplit('/').next().unwrap_or(f).to_string(),
+                href: p.inline_from.is_none().then(|| f.clone()),
             })
             .collect();
-        h.push_str(&format!(
-            "<p class=\"muted\">Data: {}. {} in {} s.</p>\n",
-            data.join(", "),
-            escape(&run.status),
-            number(run.seconds)
-        ));
+        out.run = format!("{} in {} s.", run.status, number(run.seconds));
     }
-    h.push_str("</section>\n");
-    h
+    Ok(out)
 }
 
-/// `ClaimVerdict::summary(2)` after the tag: why when undetermined, then the deciding
-/// numbers, with undefined numbers spelled out.
-fn detail(c: &ClaimVerdict) -> String {
-    let d = &c.decision;
-    let mut parts = Vec::new();
-    if let Verdict::Undetermined { why } = &d.verdict {
-        parts.push(format!("({})", spell_undefined(why)));
-    }
-    let shown: Vec<String> = d.deciding(2).into_iter().map(|c| c.describe()).collect();
-    if !shown.is_empty() {
-        parts.push(shown.join("; "));
-    }
-    parts.join(" ")
-}
-
-fn provenance(p: &Page) -> String {
+fn origin(p: &Page) -> Origin {
     let prov = p.provenance;
-    let mut h = String::from("<h2 id=\"provenance\">Provenance</h2>\n<table>\n");
-    let row = |k: &str, v: String| format!("<tr><th>{}</th><td>{v}</td></tr>\n", escape(k));
-    h.push_str(&row("trirhythm", escape(&prov.trirhythm)));
-    h.push_str(&row(
-        "git commit",
-        format!("<code>{}</code>", escape(&prov.commit)),
-    ));
-    h.push_str(&row(
-        "quality",
-        if prov.quick { "quick" } else { "full" }.into(),
-    ));
-    h.push_str(&row("formula variant", escape(&prov.variant)));
-    h.push_str(&row(
-        "figures",
-        if prov.from_data {
-            "read from figure data (figNN.json)".into()
+    Origin {
+        trirhythm: prov.trirhythm.clone(),
+        commit: prov.commit.clone(),
+        figures: if prov.from_data {
+            "read from figure data (figNN.json)"
         } else {
-            "computed by this run".into()
+            "computed by this run"
         },
-    ));
-    h.push_str(&row(
-        "command",
-        format!("<code>{}</code>", escape(&prov.command)),
-    ));
-    h.push_str(&row(
-        "total run time",
-        format!("{} s", number(prov.total_seconds)),
-    ));
-    h.push_str(&row(
-        "verdicts as data",
-        "<a href=\"verdicts.json\">verdicts.json</a>".into(),
-    ));
-    h.push_str("</table>\n");
-    // seeds and run times per figure
-    h.push_str(
-        "<h3>Per figure</h3>\n<p class=\"muted\">Seeds and run sizes are stated in each \
-         figure's caption; the lines naming seeds are repeated here.</p>\n<table>\n<thead><tr>\
-         <th>Figure</th><th>Status</th><th>Time (s)</th><th>Seeds</th></tr></thead>\n<tbody>\n",
-    );
-    for s in p.sections {
-        let run = prov.figures.iter().find(|f| f.figure == s.number);
-        let seeds: Vec<String> = s
-            .heading
+        command: prov.command.clone(),
+        total: number(prov.total_seconds),
+        per_figure: p
+            .sections
             .iter()
-            .flat_map(|h| h.lines.iter())
-            .filter(|l| l.to_lowercase().contains("seed"))
-            .map(|l| escape(l))
-            .collect();
-        h.push_str(&format!(
-            "<tr><td><a href=\"#{}\">Fig. {}</a></td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-            fig_id(s.number),
-            s.number,
-            run.map(|r| escape(&r.status)).unwrap_or_default(),
-            run.map(|r| number(r.seconds)).unwrap_or_default(),
-            if seeds.is_empty() {
-                "—".to_string()
-            } else {
-                seeds.join("<br>")
-            }
-        ));
+            .map(|s| {
+                let run = prov.figures.iter().find(|f| f.figure == s.number);
+                RunRow {
+                    number: s.number,
+                    anchor: fig_id(s.number),
+                    status: run.map(|r| r.status.clone()).unwrap_or_default(),
+                    seconds: run.map(|r| number(r.seconds)).unwrap_or_default(),
+                    seeds: s
+                        .heading
+                        .iter()
+                        .flat_map(|h| h.lines.iter())
+                        .filter(|l| l.to_lowercase().contains("seed"))
+                        .map(|l| prose(l))
+                        .collect(),
+                }
+            })
+            .collect(),
     }
-    h.push_str("</tbody>\n</table>\n");
-    h
 }
 
 #[cfg(test)]
@@ -638,6 +945,62 @@ mod tests {
         assert_eq!(
             spell_undefined("D_c: nan in [nan, 0.5] → NaN; resonance, nanometre"),
             "D_c: undefined in [undefined, 0.5] → undefined; resonance, nanometre"
+        );
+    }
+
+    #[test]
+    fn float_noise_in_prose_is_cut_to_significant_digits() {
+        assert_eq!(
+            tidy_numbers("λ = 0.984375 → λ = 0.9844999999999999: 0.03073 → 0.02954"),
+            "λ = 0.984375 → λ = 0.9845: 0.03073 → 0.02954"
+        );
+        assert_eq!(tidy_numbers("r = 0.40800000000000003,"), "r = 0.408,");
+        // integers, short decimals, exponents and words are left alone
+        assert_eq!(
+            tidy_numbers("Fig. 13(b2), 12345678901234 paths, 1.23456789012345e-5, x2.5"),
+            "Fig. 13(b2), 12345678901234 paths, 1.23456789012345e-5, x2.5"
+        );
+    }
+
+    #[test]
+    fn undetermined_reasons_are_short_in_the_table() {
+        let why = "(b1) μ0 = 0.2, r = 0.999, MC of Eq. 1 (direct; the well decomposition \
+                   refused), paper formulas: not stationary (R̂ = 3190); (b2) μ0 = 0.2, r = \
+                   0.95, MC of Eq. 1 (direct), paper formulas: not stationary (R̂ = 252)";
+        assert_eq!(short_reason(why), "not stationary");
+        assert_eq!(
+            short_reason(
+                "trirhythmic: not significant: the change across the range is not \
+                 significantly negative in every series"
+            ),
+            "not significant"
+        );
+        assert_eq!(
+            short_reason(
+                "τ is not printed in the paper; τ = 5 chosen, and the inner well exists only \
+                 for τ ≳ 3 (with the values chosen: confirmed)"
+            ),
+            "τ is not printed in the paper; …"
+        );
+        let long = "a reason without any structure that goes on and on well past the width \
+                    of one line of the table";
+        let short = short_reason(long);
+        assert!(short.chars().count() <= SHORT_REASON + 1 && short.ends_with('…'));
+    }
+
+    #[test]
+    fn values_are_escaped_by_the_template() {
+        let env = environment().unwrap();
+        let t = env
+            .template_from_named_str("t.html", "<p title=\"{{ x }}\">{{ x }}</p>")
+            .unwrap();
+        let out = t
+            .render(minijinja::context! { x => "<b>R&D's \"x\"</b> figures/fig01.png" })
+            .unwrap();
+        assert_eq!(
+            out,
+            "<p title=\"&lt;b&gt;R&amp;D&#39;s &quot;x&quot;&lt;/b&gt; figures/fig01.png\">\
+             &lt;b&gt;R&amp;D&#39;s &quot;x&quot;&lt;/b&gt; figures/fig01.png</p>"
         );
     }
 
@@ -667,8 +1030,12 @@ mod tests {
             verdicts: &verdicts,
             sections: &sections,
             provenance: &prov,
-        });
+            inline_from: None,
+        })
+        .unwrap();
         assert_eq!(html.matches("data-claim=\"fig04-roots\"").count(), 1);
+        assert!(html.contains("data-figure=\"4\""));
+        assert!(!html.contains("<details open"));
         for n in not_computable() {
             assert_eq!(html.matches(&format!("data-claim=\"{}\"", n.id)).count(), 1);
         }
