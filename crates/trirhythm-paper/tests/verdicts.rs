@@ -816,7 +816,10 @@ fn separate_maxima_count_peaks_not_rings_or_shoulders() {
         separate_maxima(&density(64, &speck(0.05), None), PEAK_FLOOR, PEAK_DIP),
         2
     );
-    assert_eq!(separate_maxima(&vec![vec![0.0; 4]; 4], PEAK_FLOOR, PEAK_DIP), 0);
+    assert_eq!(
+        separate_maxima(&vec![vec![0.0; 4]; 4], PEAK_FLOOR, PEAK_DIP),
+        0
+    );
 }
 
 // ---- the claims, computed ----

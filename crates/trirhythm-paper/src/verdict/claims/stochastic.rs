@@ -717,7 +717,8 @@ pub(super) fn fig14_crater(f: &Fig14) -> Decision {
                 r_hat: p.r_hat,
             },
         });
-        if !(p.mc_outside <= WINDOW_MASS_TOL) {
+        // NaN (unknown) counts as outside
+        if p.mc_outside.is_nan() || p.mc_outside > WINDOW_MASS_TOL {
             outside.push(format!(
                 "r = {r}: {} % of the Monte Carlo samples lie outside the plotted window",
                 crate::notes::sig(100.0 * p.mc_outside, 3)

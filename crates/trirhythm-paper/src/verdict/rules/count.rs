@@ -165,10 +165,9 @@ pub fn separate_maxima(density: &[Vec<f64>], floor: f64, dip: f64) -> usize {
     }
     // components never joined to a higher one (the highest, and those cut off by the floor)
     let mut tops = std::collections::BTreeSet::new();
-    for idx in 0..nu * nv {
-        if seen[idx] {
-            tops.insert(root(&mut parent, idx));
-        }
+    let joined: Vec<usize> = (0..nu * nv).filter(|&i| seen[i]).collect();
+    for idx in joined {
+        tops.insert(root(&mut parent, idx));
     }
     separate + tops.len()
 }
