@@ -2,7 +2,7 @@
 //! its harmonic-balance equivalent (Eq. 5), side by side, with their recurrence plots
 //! (Eq. 6–7, ε = 0.1, Euclidean norm) and the recurrence rate and determinism of each.
 //!
-//! Both start at the turning point U = A01, U̇ = 0 of the smallest stable cycle of the averaged
+//! Both start at the turning point U = A02 (A01 is unstable at the paper's parameters), U̇ = 0 of the smallest stable cycle of the averaged
 //! theory (Eq. 18), as the paper's text says ("around the attractor's minimum amplitude").
 //!
 //! Method: [`simulate`] with the predictor–corrector for both systems, the last 15 time units
@@ -158,7 +158,7 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig01> {
         .map(|c| c.amplitude)
     else {
         return Err(Error::Undefined {
-            what: "figure 1's start A01",
+            what: "figure 1's start A02",
             why: "the averaged theory has no stable cycle for these parameters".into(),
         });
     };
@@ -253,6 +253,13 @@ fn texts(
     sampling: &[(f64, f64)],
     (free_amplitude, restart_amplitude): (f64, f64),
 ) -> (Vec<String>, Vec<String>) {
+    // the start's name: the roots of f at r = 1 by increasing amplitude (A_01 is the smallest
+    // root, stable or not; at the paper's parameters an unstable A_01 lies below it)
+    let name = preset("fig1")
+        .ok()
+        .and_then(|pre| Theory::new(&pre.params, ctx.variant).ok())
+        .and_then(|th| th.limit_cycles().iter().position(|c| c.stable))
+        .map_or("A_0?".to_string(), |k| format!("A_0{}", k + 1));
     let sampling_text = |k: usize| {
         format!(
             "sampled every {} time units, phase-plane step ≤ {:.3} (ε/2 = {})",
@@ -263,7 +270,7 @@ fn texts(
     };
     let notes = vec![
         format!(
-            "start: U(0) = A_01 = {a02:.6} (smallest stable cycle of Eq. 18, {} variant), U'(0) = 0; barrier on, r = 1, D = 0",
+            "start: U(0) = {name} = {a02:.6} (smallest stable cycle of Eq. 18, {} variant), U'(0) = 0; barrier on, r = 1, D = 0",
             ctx.variant.name()
         ),
         format!(
@@ -290,7 +297,7 @@ fn texts(
     ];
     let heading_lines = vec![
         format!(
-            "start U(0) = A_01 = {a02:.4}, dU/dt(0) = 0 (smallest stable cycle of Eq. 18); predictor–corrector Δt = {dt}, T = {t_end}; last {window} time units shown"
+            "start U(0) = {name} = {a02:.4}, dU/dt(0) = 0 (smallest stable cycle of Eq. 18); predictor–corrector Δt = {dt}, T = {t_end}; last {window} time units shown"
         ),
         format!(
             "(a) impact memory: continuous (lower terminal kept at t = 0), amplitude {:.3}; the restart convention gives {:.3}, Eq. (5) {:.3}",

@@ -9,8 +9,10 @@ use trirhythm_paper::verdict::claims::{
     judge, Figures, FIG04_CLAIMED_ROOTS, JUDGED_FIGURES, THEORY_FIGURES,
 };
 use trirhythm_paper::verdict::rules::{
-    agreement, closeness, count, locate, sign_change, significance, trend, Comparison, Count,
-    CountSource, Direction, LleCurve, LlePoint, Located, PointSign, Series, CLOSENESS_REL_TOL,
+    agreement, closeness, count, curve_distance, dependence, directed_distance, locate,
+    separate_maxima, sign_change, significance, trend, Comparison, Count, CountSource, CurveSets,
+    Direction, LleCurve, LlePoint, Located, PointSign, Series, CLOSENESS_REL_TOL, CURVE_TOL,
+    PEAK_DIP, PEAK_FLOOR,
 };
 use trirhythm_paper::verdict::{Decision, Measured, Outcome, Uncertainty, Verdict};
 use trirhythm_paper::FigureOptions;
@@ -644,6 +646,182 @@ fn closeness_below_the_stated_tolerance() {
     ));
 }
 
+// ---- dependence ----
+
+#[test]
+fn dependence_needs_a_change_beyond_the_tolerance_and_its_margin() {
+    let exact = |v: &[f64]| {
+        series(
+            "interval",
+            &v.iter()
+                .enumerate()
+                .map(|(i, &x)| (i as f64, Measured::exact(x)))
+                .collect::<Vec<_>>(),
+        )
+    };
+    // 0.0016 → 0.95: depends
+    let d = dependence(&[exact(&[0.0016, 0.016, 0.95])], CLOSENESS_REL_TOL);
+    assert_eq!(tag(&d), "confirmed");
+    assert!((d.checks[0].statistic_value - (0.95 - 0.0016) / 0.95).abs() < 1e-12);
+    // every value within 5 % of the largest: no dependence the claim could mean
+    let d = dependence(&[exact(&[1.0, 1.02, 0.98])], CLOSENESS_REL_TOL);
+    assert_eq!(tag(&d), "refuted");
+    assert_eq!(d.checks[0].outcome, Outcome::Against);
+    // one series against, one for: refuted (the claim holds at every place it names)
+    let d = dependence(
+        &[exact(&[1.0, 2.0]), exact(&[1.0, 1.01])],
+        CLOSENESS_REL_TOL,
+    );
+    assert_eq!(tag(&d), "refuted");
+    // brackets: a change of 10 % that the brackets' half-widths could make 4 %: undetermined
+    let wide = series(
+        "boundary",
+        &[
+            (0.9, Measured::bracket(1.0, 0.97, 1.03)),
+            (0.3, Measured::bracket(0.9, 0.87, 0.93)),
+        ],
+    );
+    assert!(matches!(
+        dependence(&[wide], CLOSENESS_REL_TOL).verdict,
+        Verdict::Undetermined { .. }
+    ));
+    // the same change with narrow brackets: confirmed
+    let narrow = series(
+        "boundary",
+        &[
+            (0.9, Measured::bracket(1.0, 0.999, 1.001)),
+            (0.3, Measured::bracket(0.9, 0.899, 0.901)),
+        ],
+    );
+    assert_eq!(tag(&dependence(&[narrow], CLOSENESS_REL_TOL)), "confirmed");
+    // an undefined value stops it
+    let d = dependence(&[exact(&[1.0, f64::NAN, 3.0])], CLOSENESS_REL_TOL);
+    assert!(matches!(d.verdict, Verdict::Undetermined { .. }));
+    assert_eq!(d.checks[0].outcome, Outcome::Undefined);
+}
+
+// ---- curve distance ----
+
+#[test]
+fn curve_distance_needs_each_set_near_the_other() {
+    let line = |x: f64| (0..=100).map(|k| (x, k as f64 / 100.0)).collect::<Vec<_>>();
+    // the distance from a point to a segment, not just to vertices
+    let seg = vec![vec![(0.0, 0.0), (1.0, 0.0)]];
+    assert!((directed_distance(&[vec![(0.5, 0.3)]], &seg) - 0.3).abs() < 1e-12);
+    assert_eq!(directed_distance(&[], &seg), 0.0);
+    assert_eq!(directed_distance(&seg, &[]), f64::INFINITY);
+    let sets = |tested: Vec<Vec<(f64, f64)>>, reference: Vec<Vec<(f64, f64)>>| CurveSets {
+        what: "panel".into(),
+        tested,
+        reference,
+        cell: 0.0025,
+    };
+    // the same curves, one 0.01 of the plane off: confirmed
+    let d = curve_distance(
+        &[sets(
+            vec![line(0.51), line(0.8)],
+            vec![line(0.5), line(0.8)],
+        )],
+        CURVE_TOL,
+    );
+    assert_eq!(tag(&d), "confirmed");
+    assert!((d.checks[0].statistic_value - 0.01).abs() < 1e-12);
+    // a curve 0.1 off: refuted
+    let d = curve_distance(&[sets(vec![line(0.6)], vec![line(0.5)])], CURVE_TOL);
+    assert_eq!(tag(&d), "refuted");
+    // a reference curve the tested set misses: refuted, though every tested point lies on
+    // the reference
+    let d = curve_distance(
+        &[sets(vec![line(0.5)], vec![line(0.5), line(0.9)])],
+        CURVE_TOL,
+    );
+    assert_eq!(tag(&d), "refuted");
+    assert!((d.checks[0].statistic_value - 0.4).abs() < 1e-12);
+    // nothing to compare
+    let d = curve_distance(&[sets(vec![], vec![])], CURVE_TOL);
+    assert!(matches!(d.verdict, Verdict::Undetermined { .. }));
+}
+
+// ---- separate maxima of a 2-D density ----
+
+/// A density on an n × n grid of [−1, 1]²: Gaussian bumps (centre, width, height) plus a ring
+/// (radius, width, height) when given.
+fn density(
+    n: usize,
+    bumps: &[(f64, f64, f64, f64)],
+    ring: Option<(f64, f64, f64)>,
+) -> Vec<Vec<f64>> {
+    let at = |i: usize| -1.0 + 2.0 * (i as f64 + 0.5) / n as f64;
+    (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|k| {
+                    let (x, y) = (at(i), at(k));
+                    let mut v: f64 = bumps
+                        .iter()
+                        .map(|&(cx, cy, w, h)| {
+                            h * (-((x - cx).powi(2) + (y - cy).powi(2)) / (2.0 * w * w)).exp()
+                        })
+                        .sum();
+                    if let Some((r0, w, h)) = ring {
+                        v += h * (-((x.hypot(y) - r0).powi(2)) / (2.0 * w * w)).exp();
+                    }
+                    v
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn separate_maxima_count_peaks_not_rings_or_shoulders() {
+    let four = [
+        (0.5, 0.5, 0.1, 1.0),
+        (-0.5, 0.5, 0.1, 0.8),
+        (0.5, -0.5, 0.1, 0.6),
+        (-0.5, -0.5, 0.1, 0.9),
+    ];
+    assert_eq!(
+        separate_maxima(&density(64, &four, None), PEAK_FLOOR, PEAK_DIP),
+        4
+    );
+    // a ring (a crater's rim) is one maximum
+    assert_eq!(
+        separate_maxima(
+            &density(64, &[], Some((0.6, 0.05, 1.0))),
+            PEAK_FLOOR,
+            PEAK_DIP
+        ),
+        1
+    );
+    // two bumps whose valley stays above half the lower one: one peak with a shoulder
+    let close = [(0.0, 0.1, 0.15, 1.0), (0.0, -0.1, 0.15, 0.9)];
+    assert_eq!(
+        separate_maxima(&density(64, &close, None), PEAK_FLOOR, PEAK_DIP),
+        1
+    );
+    // pulled apart, they separate
+    let apart = [(0.0, 0.5, 0.15, 1.0), (0.0, -0.5, 0.15, 0.9)];
+    assert_eq!(
+        separate_maxima(&density(64, &apart, None), PEAK_FLOOR, PEAK_DIP),
+        2
+    );
+    // a speck below the floor (1 % of the largest) is not a peak; above it, it is
+    let speck = |h: f64| [(0.0, 0.0, 0.1, 1.0), (0.8, 0.8, 0.03, h)];
+    assert_eq!(
+        separate_maxima(&density(64, &speck(0.005), None), PEAK_FLOOR, PEAK_DIP),
+        1
+    );
+    assert_eq!(
+        separate_maxima(&density(64, &speck(0.05), None), PEAK_FLOOR, PEAK_DIP),
+        2
+    );
+    assert_eq!(
+        separate_maxima(&vec![vec![0.0; 4]; 4], PEAK_FLOOR, PEAK_DIP),
+        0
+    );
+}
+
 // ---- the claims, computed ----
 
 #[test]
@@ -723,6 +901,25 @@ fn theory_claims_in_quick_mode_with_their_numbers() {
         v.get("fig08-four-barriers").unwrap().decision.verdict,
         Verdict::Undetermined { .. }
     ));
+    // Fig. 5: the trirhythmic interval's length changes with μ0; its lower end sits at
+    // (1 − r)/μ0 = π/2 in every panel where it lies inside the range (the rescaling)
+    let interval = v.get("fig05-interval-mu0").unwrap();
+    assert_eq!(interval.decision.verdict, Verdict::Confirmed);
+    assert_eq!(interval.decision.rule, "dependence");
+    assert!(
+        interval.decision.checks[0].what.matches("= 1.5708").count() >= 3,
+        "{}",
+        interval.decision.checks[0].what
+    );
+    // Eq. 36–37 as printed: far from the exact P-bifurcation curves on every Fig. 10 and 12 panel
+    let eq37 = v.get("fig10-eq37-misprint").unwrap();
+    assert_eq!(eq37.decision.verdict, Verdict::Refuted);
+    assert_eq!(eq37.decision.checks.len(), 8);
+    assert!(eq37
+        .decision
+        .checks
+        .iter()
+        .all(|c| c.statistic_value > 2.0 * CURVE_TOL));
     // every theory claim is judged, none of the Monte Carlo ones
     assert!(v.get("fig13a-agreement").is_none());
     assert!(v.not_judged.iter().any(|id| id == "fig13a-agreement"));

@@ -10,7 +10,7 @@
 mod stochastic;
 mod theory;
 
-pub use stochastic::FIG13_CLAIMED_PEAKS;
+pub use stochastic::{FIG13_CLAIMED_PEAKS, FIG14_CLAIMED_MAXIMA};
 pub use theory::FIG04_CLAIMED_ROOTS;
 
 use super::rules::{closeness, Direction, CLOSENESS_REL_TOL};
@@ -69,8 +69,10 @@ pub struct Figures {
     pub fig19: Option<Fig19>,
 }
 
-/// The figures that claims are computed from (Figs 14 and 15 carry none yet).
-pub const JUDGED_FIGURES: [u32; 17] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 16, 17, 18, 19];
+/// The figures that claims are computed from.
+pub const JUDGED_FIGURES: [u32; 19] = [
+    1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19,
+];
 
 /// The theory figures, cheap and deterministic (seconds in quick mode).
 pub const THEORY_FIGURES: [u32; 11] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12];
@@ -310,6 +312,14 @@ fn specs() -> Vec<Spec> {
             judge: |f| f.fig05.as_ref().map(fig05_tri_all_r),
         },
         Spec {
+            id: "fig05-interval-mu0",
+            figure: 5,
+            place: "Fig. 5, Sec. 3",
+            words: "the trirhythmic interval in r depends on μ0 (paraphrase of the text on Fig. 5(a)–(e); averaged theory, Eq. 18)",
+            rule: "dependence",
+            judge: |f| f.fig05.as_ref().map(fig05_interval_mu0),
+        },
+        Spec {
             id: "fig06-mono-grows",
             figure: 6,
             place: "Fig. 6, Sec. 3",
@@ -406,6 +416,23 @@ fn specs() -> Vec<Spec> {
             },
         },
         Spec {
+            id: "fig10-eq37-misprint",
+            figure: 10,
+            place: "Figs 10, 12, Eq. 35–37, Sec. 4",
+            words: "Eq. 36–37 (as printed) give the P-bifurcation set of the averaged theory's P(A) (the dashed curves against the exact m1 = ∂m1/∂A = 0; Fig. 12's panels join when its data is given)",
+            rule: "curve_distance",
+            judge: |f| {
+                f.fig10.as_ref().map(|x| {
+                    let mut sets: Vec<(&str, &[crate::maps::MapPanel])> =
+                        vec![("Fig. 10", &x.0.panels[..])];
+                    if let Some(y) = &f.fig12 {
+                        sets.push(("Fig. 12", &y.0.panels[..]));
+                    }
+                    eq37_curves(&sets)
+                })
+            },
+        },
+        Spec {
             id: "fig11b-agreement",
             figure: 11,
             place: "Fig. 11(b), Sec. 4",
@@ -452,6 +479,30 @@ fn specs() -> Vec<Spec> {
             words: "\"P_r(A) exhibits three peaks at r = 0.99 … when r = 0.97 or 0.96, we notice two peaks … when r = 0.84 … only one peak\"",
             rule: "count",
             judge: |f| f.fig13.as_ref().map(fig13_peaks),
+        },
+        Spec {
+            id: "eq26-28-misprints",
+            figure: 13,
+            place: "Eq. 26–28, Sec. 4 (Fig. 13)",
+            words: "Eq. 26–28 as printed (m1, σ1 of Eq. 26; P(A) of Eq. 27–28) give the stationary amplitude density of Eq. 5 with coloured noise and impacts (the project's derivation, docs/theory.md, corrects σ1 for coloured noise and the impact term's (1+τ²))",
+            rule: "agreement",
+            judge: |f| f.fig13.as_ref().map(eq26_28),
+        },
+        Spec {
+            id: "fig14-crater",
+            figure: 14,
+            place: "Fig. 14, Sec. 4",
+            words: "the joint density P(U, dU/dt) turns from \"a vast crater\" (r = 0.92) into \"four separate peaks\" (r = 0.999)",
+            rule: "count",
+            judge: |f| f.fig14.as_ref().map(fig14_crater),
+        },
+        Spec {
+            id: "fig15-omega",
+            figure: 15,
+            place: "Fig. 15, Sec. 5",
+            words: "\"with decreasing ω0 the separation between oscillation and no oscillation changes significantly\" (the simulated boundary of Eq. 1)",
+            rule: "dependence",
+            judge: |f| f.fig15.as_ref().map(fig15_omega),
         },
         Spec {
             id: "fig16-rest-grows",
@@ -581,24 +632,9 @@ fn claim_of(s: &Spec) -> Claim {
 
 /// The claims of the paper that the figure data cannot decide yet, with what each needs.
 pub fn not_computable() -> Vec<NotComputable> {
-    let n = |id: &str, place: &str, words: &str, needs: &str| NotComputable {
-        id: id.into(),
-        place: place.into(),
-        words: words.into(),
-        needs: needs.into(),
-    };
-    vec![
-        n("fig05-interval-mu0", "Fig. 5", "the trirhythmic interval in r depends on μ0",
-          "a stated statistic for \"depends on\" (e.g. the trirhythmic r-interval per panel with the fold positions as exact numbers); the fold points are in the data, the rule is not"),
-        n("fig10-eq37-misprint", "Figs 10, 12, Eq. 36–37", "Eq. 36–37 give the P-bifurcation set",
-          "a distance between the printed Eq. 36–37 curves and the exact fold curves (both are in the map data as polylines; a curve-distance rule with a tolerance is not written yet)"),
-        n("fig14-crater", "Fig. 14", "the joint PDF turns from a crater into four separate peaks",
-          "a peak count of the 2-D joint densities (theory and Monte Carlo) with a prominence rule, and the Monte Carlo standard errors per cell; the data holds the densities, the Hellinger distance without its standard error, and R̂"),
-        n("fig15-omega", "Fig. 15", "the oscillation boundary changes significantly with ω0",
-          "a stated effect size for \"changes significantly\"; the simulated boundaries and their brackets are in the data"),
-        n("eq26-28-misprints", "Eq. 26–28, theory", "Eq. 26–28 as printed (coloured noise, impact term)",
-          "not figure data: a derivation (σ1 for coloured noise, the (1+τ²) factor); decided in docs/theory.md"),
-    ]
+    // every claim of the registry has a rule now (issue 34); the list stays for claims a
+    // later reading of the paper finds and no rule decides yet
+    Vec::new()
 }
 
 /// Decide every registry claim whose figure is in `figures`.

@@ -3,12 +3,15 @@
 //! agreement, count, sign-change and trend rules.
 
 use super::super::rules::{
-    agreement, count, sign_change, trend, Bracket, Comparison, Count, CountSource, Direction,
-    LleCurve, Located, Series, Weightings,
+    agreement, count, dependence, separate_maxima, sign_change, trend, Bracket, Comparison, Count,
+    CountSource, Direction, LleCurve, Located, Series, Weightings, AGREEMENT_K, CLOSENESS_REL_TOL,
+    PEAK_DIP, PEAK_FLOOR, WINDOW_MASS_TOL,
 };
-use super::super::{all_of, Decision, Measured, Verdict};
+use super::super::{all_of, Decision, Measured, Outcome, Verdict};
 use crate::boundary::Panel as BoundaryPanel;
 use crate::fig13_pdf_restitution::Fig13;
+use crate::fig14_joint_pdf::Fig14;
+use crate::fig15_oscillation_boundaries::{Fig15, OMEGAS as FIG15_OMEGAS};
 use crate::fig19_critical_noise::Fig19;
 use crate::lle::{Panel as LlePanel, StartKind};
 use crate::montecarlo::{AmplitudePanel, McRun};
@@ -619,4 +622,215 @@ pub(super) fn fig16_averaged(p: &BoundaryPanel) -> Vec<(String, Measured, Measur
             (what, sm, am)
         })
         .collect()
+}
+
+/// Fig. 15: the simulated boundary of Eq. 1 at each abscissa, one series over ω0 per abscissa
+/// and kind of panel (against λ: a, c, e; against r: b, d, f), where all three are located
+/// inside the searched μ0 interval.
+pub(super) fn fig15_omega(f: &Fig15) -> Decision {
+    let mut series = Vec::new();
+    let mut skipped = 0;
+    for rows in [[0usize, 2, 4], [1, 3, 5]] {
+        let panels: Vec<&BoundaryPanel> = rows.iter().filter_map(|&i| f.panels.get(i)).collect();
+        if panels.len() != 3 {
+            continue;
+        }
+        let sims: Vec<_> = panels
+            .iter()
+            .filter_map(|p| {
+                p.curves
+                    .iter()
+                    .find(|c| c.member.is_none() && c.method == "simulation")
+            })
+            .collect();
+        if sims.len() != 3 {
+            continue;
+        }
+        let n = sims.iter().map(|c| c.points.len()).min().unwrap_or(0);
+        for j in 0..n {
+            let pts: Vec<_> = sims.iter().map(|c| &c.points[j]).collect();
+            if pts.iter().any(|q| q.side != Side::Boundary) {
+                skipped += 1;
+                continue;
+            }
+            series.push(Series {
+                label: format!(
+                    "Eq. 1 (simulation), panels {}: boundary μ0 at {} = {}",
+                    panels
+                        .iter()
+                        .map(|p| p.label.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    panels[0].x_desc,
+                    crate::notes::num(pts[0].x)
+                ),
+                x_name: "ω0".into(),
+                points: pts
+                    .iter()
+                    .zip(FIG15_OMEGAS)
+                    .map(|(q, w)| (w, Measured::bracket(q.y, q.y_lo, q.y_hi)))
+                    .collect(),
+            });
+        }
+    }
+    let mut d = dependence(&series, CLOSENESS_REL_TOL);
+    if skipped > 0 {
+        d.statistic.push_str(&format!(
+            "; {skipped} abscissae where a boundary lies outside the searched μ0 interval are not tested"
+        ));
+    }
+    d
+}
+
+/// The count Fig. 14's text gives: "four separate peaks" at r = 0.999. (Its "vast crater" at
+/// r = 0.92 is a shape, not a count: a ring-shaped rim around a lower centre, which the count
+/// of separate maxima cannot tell from one compact peak; it is not tested.)
+pub const FIG14_CLAIMED_MAXIMA: [(f64, u32); 1] = [(0.999, 4)];
+
+/// Fig. 14: the separate maxima of the joint density at r = 0.999, of the averaged theory (Eq. 30–31, on
+/// the fine grid the figure draws) and of Monte Carlo of Eq. 1 (stationary ensembles, with the
+/// plotted window holding the density), against the text's counts.
+pub(super) fn fig14_crater(f: &Fig14) -> Decision {
+    let mut theory = Vec::new();
+    let mut mc = Vec::new();
+    let mut outside = Vec::new();
+    for (r, claimed) in FIG14_CLAIMED_MAXIMA {
+        let Some(p) = f.panels.iter().find(|p| (p.r - r).abs() < 1e-9) else {
+            continue;
+        };
+        theory.push(Count {
+            what: format!("averaged theory (Eq. 30–31), r = {r}: separate maxima of P(U, dU/dt)"),
+            claimed,
+            computed: separate_maxima(&p.theory_fine, PEAK_FLOOR, PEAK_DIP) as u32,
+            source: CountSource::Exact,
+        });
+        mc.push(Count {
+            what: format!(
+                "Eq. 1 (Monte Carlo, {}), r = {r}: separate maxima of the joint histogram ({} % of the samples outside the window)",
+                p.estimator,
+                crate::notes::sig(100.0 * p.mc_outside, 3)
+            ),
+            claimed,
+            computed: separate_maxima(&p.mc, PEAK_FLOOR, PEAK_DIP) as u32,
+            source: CountSource::Ensemble {
+                stationary: p.stationary,
+                r_hat: p.r_hat,
+            },
+        });
+        // NaN (unknown) counts as outside
+        if p.mc_outside.is_nan() || p.mc_outside > WINDOW_MASS_TOL {
+            outside.push(format!(
+                "r = {r}: {} % of the Monte Carlo samples lie outside the plotted window",
+                crate::notes::sig(100.0 * p.mc_outside, 3)
+            ));
+        }
+    }
+    let mut simulated = count(&mc);
+    if !outside.is_empty() && !matches!(simulated.verdict, Verdict::Undetermined { .. }) {
+        simulated = simulated.undetermined_because(&format!(
+            "the window does not hold the density (more than {} % outside: {})",
+            100.0 * WINDOW_MASS_TOL,
+            outside.join("; ")
+        ));
+    } else if !outside.is_empty() {
+        if let Verdict::Undetermined { why } = &mut simulated.verdict {
+            why.push_str(&format!("; {}", outside.join("; ")));
+        }
+    }
+    all_of(
+        "count",
+        vec![
+            ("averaged theory (Eq. 30–31)".into(), count(&theory)),
+            ("Eq. 1 (Monte Carlo)".into(), simulated),
+        ],
+    )
+}
+
+/// Eq. 26–28: which of the printed and the corrected formulas' P(A) Monte Carlo of Eq. 5 (the
+/// equation they are derived from) follows, on every ensemble of Fig. 13, by the agreement rule
+/// applied to each: an ensemble that agrees with the corrected formulas and not with the
+/// printed ones is against the printed formulas, the reverse for them; both or neither
+/// agreeing does not tell them apart (where the two coincide, or where the averaging itself
+/// fails); an ensemble undetermined for either is undefined.
+pub(super) fn eq26_28(f: &Fig13) -> Decision {
+    let comparison = |p: &AmplitudePanel, r: &McRun, variant: &str, words: &str| {
+        r.distances
+            .iter()
+            .find(|d| d.variant == variant)
+            .map(|d| Comparison {
+                what: format!("{}, MC of Eq. 5{}, {words}", p.caption, estimator_of(r)),
+                hellinger: d.hellinger,
+                se: d.hellinger_stderr,
+                bins: r.edges.len().saturating_sub(1),
+                ess: r.ess,
+                stationary: r.stationary,
+                r_hat: r.r_hat,
+                weightings: weightings_of(r, variant),
+            })
+    };
+    let mut checks = Vec::new();
+    let mut open = Vec::new();
+    for p in &f.panels {
+        for r in p.runs.iter().filter(|r| r.system == "Eq. 5") {
+            let (Some(printed), Some(corrected)) = (
+                comparison(p, r, "paper", "printed formulas"),
+                comparison(p, r, "consistent", "corrected formulas"),
+            ) else {
+                continue;
+            };
+            let dp = agreement(std::slice::from_ref(&printed));
+            let dc = agreement(std::slice::from_ref(&corrected));
+            let Some(mut check) = dp.checks.first().cloned() else {
+                continue;
+            };
+            let corrected_words = dc
+                .checks
+                .first()
+                .map(|c| {
+                    format!(
+                        "corrected formulas: H = {} against {} ({})",
+                        crate::notes::sig(c.statistic_value, 3),
+                        crate::notes::sig(c.threshold, 3),
+                        dc.verdict.tag()
+                    )
+                })
+                .unwrap_or_default();
+            check.what = format!("{}; {corrected_words}", check.what);
+            check.outcome = match (&dp.verdict, &dc.verdict) {
+                (Verdict::Refuted, Verdict::Confirmed) => Outcome::Against,
+                (Verdict::Confirmed, Verdict::Refuted) => Outcome::For,
+                (Verdict::Undetermined { why }, _) | (_, Verdict::Undetermined { why }) => {
+                    open.push(format!("{}: {why}", p.caption));
+                    Outcome::Undefined
+                }
+                _ => Outcome::Neither,
+            };
+            checks.push(check);
+        }
+    }
+    let has = |o: Outcome| checks.iter().any(|c| c.outcome == o);
+    let verdict = match (has(Outcome::Against), has(Outcome::For)) {
+        (true, false) => Verdict::Refuted,
+        (false, true) => Verdict::Confirmed,
+        (true, true) => Verdict::undetermined(
+            "some ensembles follow the printed formulas and others the corrected ones",
+        ),
+        (false, false) => Verdict::undetermined(if open.is_empty() {
+            "no ensemble tells the printed from the corrected formulas (both or neither agree)"
+                .to_string()
+        } else {
+            format!(
+                "no ensemble tells the printed from the corrected formulas; {}",
+                open.join("; ")
+            )
+        }),
+    };
+    Decision::new(
+        verdict,
+        "agreement",
+        format!("the agreement rule on the printed and on the corrected formulas' P(A) against each ensemble of MC of Eq. 5 (H ≤ √(bins/(8·ESS)) + {AGREEMENT_K}·se(H), stationary ensembles only); an ensemble that agrees with one variant and not the other follows it; refuted when an ensemble follows the corrected formulas and none the printed ones"),
+        0,
+        None,
+        checks,
+    )
 }

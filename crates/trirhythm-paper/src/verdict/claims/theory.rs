@@ -2,7 +2,8 @@
 //! from noise-free simulations, decided by the count, trend and closeness rules.
 
 use super::super::rules::{
-    closeness, count, trend, Count, CountSource, Direction, Series, CLOSENESS_REL_TOL,
+    closeness, count, curve_distance, dependence, trend, Count, CountSource, CurveSets, Direction,
+    Polyline, Series, CLOSENESS_REL_TOL, CURVE_TOL,
 };
 use super::super::{all_of, Decision, Measured};
 use crate::fig01_phase_recurrence::Fig01;
@@ -343,4 +344,109 @@ pub(super) fn fig12_omega(panels: &[MapPanel], order: [&str; 2], direction: Dire
             .collect(),
     };
     trend(&[series], direction)
+}
+
+/// The trirhythmic interval of a branch diagram: the length of the set of r in the panel where
+/// three stable branches coexist, and its lower end, from the exact fold and birth points
+/// (the stable count changes only there). Where the set reaches an end of the panel's range
+/// short of the physical range r ∈ [0, 1], the interval may continue beyond it: a bracket up to
+/// that bound.
+pub(super) fn trirhythmic_interval(bd: &BranchDiagram) -> (Measured, f64) {
+    let (start, stop) = (bd.start.min(bd.stop), bd.start.max(bd.stop));
+    let mut cuts: Vec<f64> = vec![start, stop];
+    cuts.extend(bd.folds.iter().map(|f| f.0));
+    cuts.extend(bd.hopf.iter().copied());
+    cuts.retain(|c| c.is_finite() && (start..=stop).contains(c));
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    let (mut len, mut lower) = (0.0, f64::NAN);
+    let (mut at_start, mut at_stop) = (false, false);
+    for w in cuts.windows(2) {
+        if stable_at(bd, 0.5 * (w[0] + w[1])) == 3 {
+            len += w[1] - w[0];
+            if lower.is_nan() {
+                lower = w[0];
+            }
+            at_start |= w[0] == start;
+            at_stop |= w[1] == stop;
+        }
+    }
+    let more = if at_start { start.max(0.0) } else { 0.0 }
+        + if at_stop { (1.0 - stop).max(0.0) } else { 0.0 };
+    let m = if more > 0.0 {
+        Measured::bracket(len, len, len + more)
+    } else {
+        Measured::exact(len)
+    };
+    (m, lower)
+}
+
+pub(super) fn fig05_interval_mu0(f: &Fig05) -> Decision {
+    let mut ends = Vec::new();
+    let points = f
+        .panels
+        .iter()
+        .map(|(label, mu0, bd)| {
+            let (m, lower) = trirhythmic_interval(bd);
+            ends.push(if lower == bd.start.min(bd.stop) {
+                format!(
+                    "({label}) below the panel's r = {}",
+                    crate::notes::num(lower)
+                )
+            } else {
+                format!(
+                    "({label}) r = {}, (1 − r)/μ0 = {}",
+                    crate::notes::sig(lower, 6),
+                    crate::notes::sig((1.0 - lower) / mu0, 5)
+                )
+            });
+            (*mu0, m)
+        })
+        .collect();
+    let series = Series {
+        label: format!(
+            "averaged theory (Eq. 18): length in r of the trirhythmic interval (three stable cycles; lower ends {})",
+            ends.join(", ")
+        ),
+        x_name: "μ0".into(),
+        points,
+    };
+    dependence(&[series], CLOSENESS_REL_TOL)
+}
+
+/// The curves of a fold set in the panel's plane scaled to the unit square.
+fn scaled(p: &MapPanel, folds: &trirhythm::theory::bifurcation::Folds) -> Vec<Polyline> {
+    let (x, y) = (&p.x.grid, &p.y.grid);
+    let sx = |v: f64| (v - x.start) / (x.stop - x.start);
+    let sy = |v: f64| (v - y.start) / (y.stop - y.start);
+    folds
+        .curves
+        .iter()
+        .map(|c| c.points.iter().map(|q| (sx(q.x), sy(q.y))).collect())
+        .collect()
+}
+
+/// The printed Eq. 36–37 curves against the exact P-bifurcation set (m1 = ∂m1/∂A = 0), panel
+/// by panel, of every map panel that holds both (the paper variant's maps).
+pub(super) fn eq37_curves(figures: &[(&str, &[MapPanel])]) -> Decision {
+    let mut items = Vec::new();
+    for (fig, panels) in figures {
+        for p in panels.iter() {
+            let Some(printed) = &p.printed else { continue };
+            let n = p.x.grid.count.max(p.y.grid.count).max(2) - 1;
+            items.push(CurveSets {
+                what: format!("{fig} ({}) {}", p.label, p.caption),
+                tested: scaled(p, printed),
+                reference: scaled(p, &p.folds),
+                cell: 1.0 / n as f64,
+            });
+        }
+    }
+    let mut d = curve_distance(&items, CURVE_TOL);
+    if items.is_empty() {
+        d.verdict = super::super::Verdict::undetermined(
+            "the maps hold no printed Eq. 36–37 curves (they are drawn for the paper variant only)",
+        );
+    }
+    d
 }

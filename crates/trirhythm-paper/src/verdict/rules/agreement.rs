@@ -227,6 +227,39 @@ pub fn agreement(items: &[Comparison]) -> Decision {
     )
 }
 
+/// The difference of two numbers with how far it may be off.
+pub(super) struct Gap {
+    /// |a − b|.
+    pub diff: f64,
+    /// max(|a|, |b|).
+    pub scale: f64,
+    /// Combined standard error of a − b (0 where none).
+    pub se: f64,
+    /// 2 s.e. plus the half-widths of brackets.
+    pub margin: f64,
+}
+
+/// |a − b| and its margin: 2 s.e., plus the half-widths of brackets (a bracket is certain, its
+/// midpoint is off by at most half its width). A bracket without a point value (half-open)
+/// gives a NaN difference.
+pub(super) fn gap(a: &Measured, b: &Measured) -> Gap {
+    let se_of = |m: &Measured| match m.uncertainty {
+        Uncertainty::StdErr { se, .. } => se,
+        _ => 0.0,
+    };
+    let half_width = |m: &Measured| match m.uncertainty {
+        Uncertainty::Bracket { lo, hi } => (hi - lo) / 2.0,
+        _ => 0.0,
+    };
+    let se = se_of(a).hypot(se_of(b));
+    Gap {
+        diff: (a.value - b.value).abs(),
+        scale: a.value.abs().max(b.value.abs()),
+        se,
+        margin: 2.0 * se + half_width(a) + half_width(b),
+    }
+}
+
 /// **Closeness**: |a − b| / max(|a|, |b|) below `tol` ([`CLOSENESS_REL_TOL`] for "align
 /// closely" and "change very slightly").
 ///
@@ -240,20 +273,12 @@ pub fn agreement(items: &[Comparison]) -> Decision {
 pub fn closeness(pairs: &[(String, Measured, Measured)], tol: f64) -> Decision {
     let mut checks = Vec::new();
     for (what, a, b) in pairs {
-        let scale = a.value.abs().max(b.value.abs());
-        let diff = (a.value - b.value).abs();
-        let se_of = |m: &Measured| match m.uncertainty {
-            Uncertainty::StdErr { se, .. } => se,
-            _ => 0.0,
-        };
-        let half_width = |m: &Measured| match m.uncertainty {
-            Uncertainty::Bracket { lo, hi } => (hi - lo) / 2.0,
-            _ => 0.0,
-        };
-        let se = se_of(a).hypot(se_of(b));
-        // how far the difference may be off: 2 s.e., plus the half-widths of brackets (a
-        // bracket is certain, its midpoint is off by at most half its width)
-        let margin = 2.0 * se + half_width(a) + half_width(b);
+        let Gap {
+            diff,
+            scale,
+            se,
+            margin,
+        } = gap(a, b);
         let rel = if scale > 0.0 { diff / scale } else { 0.0 };
         let outcome = if !(rel.is_finite() && margin.is_finite()) {
             Outcome::Undefined

@@ -91,3 +91,83 @@ pub fn count(items: &[Count]) -> Decision {
         checks,
     )
 }
+
+/// The number of separate maxima of a density on a grid (`density[i][k]`, rows and columns of
+/// cells), as a reader of a heat map counts them: local maxima over the eight neighbours among
+/// cells at least `floor` times the largest density (what the colour scale shows), each
+/// counted when the highest path from it to a higher maximum — through cells above the floor —
+/// dips to at most `dip` times its own height (a maximum joined to a higher one by a ridge
+/// higher than that is a shoulder of it, not a separate peak). The highest maximum always
+/// counts; a maximum cut off from every higher one by the floor counts. Plateaus count once.
+pub fn separate_maxima(density: &[Vec<f64>], floor: f64, dip: f64) -> usize {
+    let nu = density.len();
+    let nv = density.first().map_or(0, Vec::len);
+    let top = density
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|v| v.is_finite())
+        .fold(0.0, f64::max);
+    if top <= 0.0 {
+        return 0;
+    }
+    let mut cells: Vec<(usize, f64)> = density
+        .iter()
+        .flatten()
+        .copied()
+        .enumerate()
+        .filter(|(_, v)| v.is_finite() && *v >= floor * top && *v > 0.0)
+        .collect();
+    cells.sort_by(|a, b| b.1.total_cmp(&a.1));
+    // union-find over cells by decreasing height; each component keeps its peak height
+    let mut parent: Vec<usize> = (0..nu * nv).collect();
+    let mut peak = vec![f64::NAN; nu * nv];
+    let mut seen = vec![false; nu * nv];
+    fn root(parent: &mut [usize], mut a: usize) -> usize {
+        while parent[a] != a {
+            parent[a] = parent[parent[a]];
+            a = parent[a];
+        }
+        a
+    }
+    let mut separate = 0;
+    for (idx, h) in cells {
+        let (i, k) = (idx / nv, idx % nv);
+        seen[idx] = true;
+        peak[idx] = h;
+        let mut roots: Vec<usize> = Vec::new();
+        for di in -1i64..=1 {
+            for dk in -1i64..=1 {
+                let (j, l) = (i as i64 + di, k as i64 + dk);
+                if (di, dk) == (0, 0) || j < 0 || l < 0 || j >= nu as i64 || l >= nv as i64 {
+                    continue;
+                }
+                let n = j as usize * nv + l as usize;
+                if seen[n] {
+                    let r = root(&mut parent, n);
+                    if !roots.contains(&r) {
+                        roots.push(r);
+                    }
+                }
+            }
+        }
+        roots.sort_by(|a, b| peak[*b].total_cmp(&peak[*a]));
+        if let Some(&highest) = roots.first() {
+            parent[idx] = highest;
+            // every lower component meets higher ground here, at height h
+            for &r in &roots[1..] {
+                if h <= dip * peak[r] {
+                    separate += 1;
+                }
+                parent[r] = highest;
+            }
+        }
+    }
+    // components never joined to a higher one (the highest, and those cut off by the floor)
+    let mut tops = std::collections::BTreeSet::new();
+    let joined: Vec<usize> = (0..nu * nv).filter(|&i| seen[i]).collect();
+    for idx in joined {
+        tops.insert(root(&mut parent, idx));
+    }
+    separate + tops.len()
+}
