@@ -132,26 +132,22 @@ impl Command {
             Command::Ensemble(a) => a.refuse_unused(given),
             Command::Oscillation(a) => a.refuse_unused(given),
             // the tangent equation has no copy to pull back
-            Command::Lyapunov(lyapunov::LyapunovArgs { sim, .. })
-                if sim.method == lyapunov::LyapunovMethod::Tangent =>
+            Command::Lyapunov(lyapunov::LyapunovArgs {
+                sim: lyapunov::LleArgs { exponent, .. },
+                ..
+            })
+            | Command::CriticalNoise(lyapunov::CriticalNoiseArgs { exponent, .. })
+                if exponent.method == lyapunov::LyapunovMethod::Tangent =>
             {
-                refuse_separation(given)
-            }
-            Command::CriticalNoise(a) if a.method == lyapunov::LyapunovMethod::Tangent => {
-                refuse_separation(given)
+                given.refuse(
+                    &[("separation", "--separation")],
+                    "--method two-trajectory",
+                    "the tangent method has no perturbed copy to pull back",
+                )
             }
             _ => Ok(()),
         }
     }
-}
-
-/// `--separation` given with `--method tangent`: refused.
-fn refuse_separation(given: &args::Given) -> Result<()> {
-    given.refuse(
-        &[("separation", "--separation")],
-        "--method two-trajectory",
-        "the tangent method has no perturbed copy to pull back",
-    )
 }
 
 fn run(cli: Cli, given: &args::Given) -> Result<()> {

@@ -44,6 +44,74 @@ impl LyapunovMethod {
     }
 }
 
+/// How the exponent is computed: the flags `lyapunov` and `critical-noise` share.
+#[derive(Debug, Args)]
+pub struct ExponentArgs {
+    /// How the exponent is computed (`tangent` has no copy to pull back: --separation is
+    /// refused with it; README, "Lyapunov exponents").
+    #[arg(long, value_enum, default_value_t = LyapunovMethod::TwoTrajectory)]
+    pub method: LyapunovMethod,
+    /// Steps between renormalisations, 1 to 1000000 (at least two per window).
+    #[arg(
+        long = "renormalise-every",
+        default_value_t = 100,
+        allow_hyphen_values = true
+    )]
+    pub renormalise_every: u64,
+    /// Separation d₀ the perturbed copy is pulled back to, in [1e-12, 1e-4].
+    #[arg(long, default_value_t = 1e-8, allow_hyphen_values = true)]
+    pub separation: f64,
+    /// Paths stepped together: 1 (one after the other), 4 or 8 (default the fastest measured:
+    /// 8 for the reference and its copy, 4 for each path with its tangent). The exponents are
+    /// the same bits for every choice.
+    #[arg(long, allow_hyphen_values = true)]
+    pub lanes: Option<usize>,
+}
+
+impl ExponentArgs {
+    /// The library's spec for `paths` realisations of `seed` over `t_end` after `transient`,
+    /// these flags and the model's `tolerance` checked first (narrower than the library's
+    /// ranges: a copy pulled back to below 1e-12 merges with its reference in rounding; the
+    /// library's `2 × renormalise_every` overflows past 2⁶³).
+    fn spec(
+        &self,
+        (paths, seed): (usize, u64),
+        (transient, t_end): (f64, f64),
+        tolerance: f64,
+    ) -> Result<LyapunovSpec> {
+        let d0 = self.separation;
+        allowed(
+            (1e-12..=1e-4).contains(&d0),
+            "--separation",
+            num(d0),
+            "[1e-12, 1e-4]",
+        )?;
+        allowed(
+            tolerance > 0.0 && tolerance < 1e-2,
+            "--tolerance",
+            num(tolerance),
+            "(0, 1e-2)",
+        )?;
+        allowed(
+            (1..=1_000_000).contains(&self.renormalise_every),
+            "--renormalise-every",
+            self.renormalise_every,
+            "1 to 1000000 steps",
+        )?;
+        Ok(LyapunovSpec {
+            paths,
+            seed,
+            transient,
+            length: t_end,
+            renormalise_every: self.renormalise_every,
+            separation: self.separation,
+            method: self.method.into(),
+            lanes: crate::args::lanes(self.lanes)?,
+            ..Default::default()
+        })
+    }
+}
+
 /// The simulation shared by `lyapunov` and `critical-noise`.
 #[derive(Debug, Args)]
 pub struct LleArgs {
@@ -72,24 +140,8 @@ pub struct LleArgs {
     /// What the memory does at an impact (the ensembles' default, `restart`).
     #[arg(long = "impact-memory", value_enum, default_value_t = ImpactMemoryArg::Restart)]
     pub impact_memory: ImpactMemoryArg,
-    /// How the exponent is computed (`tangent` ignores --separation; README, "Lyapunov exponents").
-    #[arg(long, value_enum, default_value_t = LyapunovMethod::TwoTrajectory)]
-    pub method: LyapunovMethod,
-    /// Steps between renormalisations, 1 to 1000000 (at least two per window).
-    #[arg(
-        long = "renormalise-every",
-        default_value_t = 100,
-        allow_hyphen_values = true
-    )]
-    pub renormalise_every: u64,
-    /// Separation d₀ the perturbed copy is pulled back to, in [1e-12, 1e-4].
-    #[arg(long, default_value_t = 1e-8, allow_hyphen_values = true)]
-    pub separation: f64,
-    /// Paths stepped together: 1 (one after the other), 4 or 8 (default the fastest measured:
-    /// 8 for the reference and its copy, 4 for each path with its tangent). The exponents are
-    /// the same bits for every choice.
-    #[arg(long, allow_hyphen_values = true)]
-    pub lanes: Option<usize>,
+    #[command(flatten)]
+    pub exponent: ExponentArgs,
 }
 
 impl LleArgs {
@@ -103,41 +155,12 @@ impl LleArgs {
             num(self.dt),
             "[1e-4, 0.1]",
         )?;
-        // narrower than the library's ranges (separation (0, 1e-3], tolerance (1e-15, 1)): a
-        // copy pulled back to below 1e-12 merges with its reference in rounding
-        let d0 = self.separation;
-        allowed(
-            (1e-12..=1e-4).contains(&d0),
-            "--separation",
-            num(d0),
-            "[1e-12, 1e-4]",
-        )?;
-        let tol = self.model.tolerance;
-        allowed(
-            tol > 0.0 && tol < 1e-2,
-            "--tolerance",
-            num(tol),
-            "(0, 1e-2)",
-        )?;
-        // the library's `2 × renormalise_every` overflows past 2⁶³: bounded here
-        allowed(
-            (1..=1_000_000).contains(&self.renormalise_every),
-            "--renormalise-every",
-            self.renormalise_every,
-            "1 to 1000000 steps",
-        )?;
         let method = self.model.method(self.dt, self.impact_memory);
-        let spec = LyapunovSpec {
-            paths: self.paths,
-            seed: self.seed,
-            transient: self.transient,
-            length: self.t_end,
-            renormalise_every: self.renormalise_every,
-            separation: self.separation,
-            method: self.method.into(),
-            lanes: crate::args::lanes(self.lanes)?,
-            ..Default::default()
-        };
+        let spec = self.exponent.spec(
+            (self.paths, self.seed),
+            (self.transient, self.t_end),
+            self.model.tolerance,
+        )?;
         let problem = self.model.problem(&params)?.with_start(self.u0, 0.0)?;
         Ok((params, problem, method, spec))
     }
@@ -223,7 +246,7 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
         SimFormat::Csv => Csv::of(&views::lle_table(&header, &r))?,
         SimFormat::Json => pretty(&Run {
             params: params_json(&base),
-            method: args.sim.method.name(),
+            method: args.sim.exponent.method.name(),
             system: args.sim.model.system.name(),
             barrier: args.sim.model.barrier.name(),
             impact_memory: args.sim.impact_memory.name(),
@@ -271,7 +294,7 @@ fn sweep_lyapunov(
         SimFormat::Csv => Csv::of(&views::lle_sweep_table(&header, &key, &rows))?,
         SimFormat::Json => pretty(&json!({
             "params": params_json(base),
-            "method": args.sim.method.name(),
+            "method": args.sim.exponent.method.name(),
             "sweep": key,
             "window": spec.length,
             "step_warnings": header
@@ -345,22 +368,8 @@ pub struct CriticalNoiseArgs {
     /// What the memory does at an impact (the figures': `restart`).
     #[arg(long = "impact-memory", value_enum, default_value_t = ImpactMemoryArg::Restart)]
     pub impact_memory: ImpactMemoryArg,
-    /// How the exponent is computed (`tangent` ignores --separation).
-    #[arg(long, value_enum, default_value_t = LyapunovMethod::TwoTrajectory)]
-    pub method: LyapunovMethod,
-    /// Steps between renormalisations, 1 to 1000000 (at least two per window).
-    #[arg(
-        long = "renormalise-every",
-        default_value_t = 100,
-        allow_hyphen_values = true
-    )]
-    pub renormalise_every: u64,
-    /// Separation d₀ the perturbed copy is pulled back to, in [1e-12, 1e-4].
-    #[arg(long, default_value_t = 1e-8, allow_hyphen_values = true)]
-    pub separation: f64,
-    /// Paths stepped together: 1, 4 or 8 (the exponents are the same bits for every choice).
-    #[arg(long, allow_hyphen_values = true)]
-    pub lanes: Option<usize>,
+    #[command(flatten)]
+    pub exponent: ExponentArgs,
     /// Output format: CSV, a row per point with its curve's decision (default), or JSON.
     #[arg(long, value_enum, default_value_t = SimFormat::Csv)]
     pub format: SimFormat,
@@ -447,25 +456,6 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
     if let Some(dt) = args.dt {
         allowed((1e-4..=0.1).contains(&dt), "--dt", num(dt), "[1e-4, 0.1]")?;
     }
-    allowed(
-        (1e-12..=1e-4).contains(&args.separation),
-        "--separation",
-        num(args.separation),
-        "[1e-12, 1e-4]",
-    )?;
-    let tol = args.model.tolerance;
-    allowed(
-        tol > 0.0 && tol < 1e-2,
-        "--tolerance",
-        num(tol),
-        "(0, 1e-2)",
-    )?;
-    allowed(
-        (1..=1_000_000).contains(&args.renormalise_every),
-        "--renormalise-every",
-        args.renormalise_every,
-        "1 to 1000000 steps",
-    )?;
     let sweep = match &args.sweep {
         Some(s) => {
             let (k, v) = parse_sweep(s)?;
@@ -479,17 +469,11 @@ pub fn critical(args: &CriticalNoiseArgs) -> Result<()> {
         }
         None => None,
     };
-    let spec = LyapunovSpec {
-        paths: args.paths,
-        seed: args.seed,
-        transient: args.transient,
-        length: args.t_end,
-        renormalise_every: args.renormalise_every,
-        separation: args.separation,
-        method: args.method.into(),
-        lanes: crate::args::lanes(args.lanes)?,
-        ..Default::default()
-    };
+    let spec = args.exponent.spec(
+        (args.paths, args.seed),
+        (args.transient, args.t_end),
+        args.model.tolerance,
+    )?;
     let request = CriticalRequest {
         base: base.clone(),
         sweep,
