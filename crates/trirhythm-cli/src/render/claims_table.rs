@@ -55,7 +55,7 @@ pub fn claims_markdown(verdicts: &Verdicts, source: &str) -> String {
             "| `{}`: {} | {} | {} | {} |\n",
             cell(&v.claim.id),
             cell(&v.claim.words),
-            cell(&v.claim.place),
+            cell(&v.claim.place_and_model()),
             cell(&verdict),
             if numbers.is_empty() {
                 "—".to_string()

@@ -726,6 +726,7 @@ mod tests {
                 place: "Fig. 4".into(),
                 words: "words".into(),
                 rule: rule.into(),
+                model: "averaged theory (Eq. 18)".into(),
             },
             decision: Decision {
                 verdict,

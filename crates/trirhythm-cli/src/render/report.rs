@@ -559,7 +559,7 @@ impl Row {
             figure: c.claim.figure.to_string(),
             fig_anchor: fig_id(c.claim.figure),
             words: prose(&c.claim.words),
-            place: c.claim.place.clone(),
+            place: c.claim.place_and_model(),
             verdict: d.verdict.tag(),
             short: if why.is_empty() {
                 String::new()

@@ -177,6 +177,23 @@ pub struct Claim {
     pub words: String,
     /// The rule that decides it (`trend`, `count`, `sign_change`, `agreement`, `closeness`).
     pub rule: String,
+    /// The model the verdict holds for: the averaged theory (with its equation), Eq. 5 (the
+    /// equivalent integer-order system) or Eq. 1 (the fractional system, simulated), or two
+    /// of them compared.
+    #[serde(default)]
+    pub model: String,
+}
+
+impl Claim {
+    /// Where the paper makes the claim and the model its verdict holds for, in one line
+    /// (`Fig. 5, Sec. 3 · averaged theory (Eq. 18)`).
+    pub fn place_and_model(&self) -> String {
+        if self.model.is_empty() {
+            self.place.clone()
+        } else {
+            format!("{} · {}", self.place, self.model)
+        }
+    }
 }
 
 /// A claim with its decision.
@@ -262,6 +279,7 @@ struct Spec {
     place: &'static str,
     words: &'static str,
     rule: &'static str,
+    model: &'static str,
     judge: Judge,
 }
 
@@ -273,6 +291,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 1, Sec. 2",
             words: "\"The approximative solution seems to align closely with the results of the numerical predictor-corrector simulations\"",
             rule: "closeness",
+            model: "Eq. 1 against Eq. 5 (both by the predictor–corrector)",
             judge: |f| f.fig01.as_ref().map(fig01_align),
         },
         Spec {
@@ -281,6 +300,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 2(ii), Sec. 3",
             words: "mono-, bi- and trirhythmic regions in the (γ0, δ0) plane (paraphrase: \"displaying trirhythmicity depicted in Fig.2(ii)\")",
             rule: "count",
+            model: "averaged theory (Eq. 18)",
             judge: |f| f.fig02.as_ref().map(|x| fig02_regions(&x.0.panels)),
         },
         Spec {
@@ -289,6 +309,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 3, Sec. 3",
             words: "\"a decreasing value of r reduces the trirhythmic zone\"",
             rule: "trend",
+            model: "averaged theory (Eq. 18)",
             judge: |f| {
                 f.fig03
                     .as_ref()
@@ -301,6 +322,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 4, Sec. 3",
             words: "\"we detect five roots\" (r ≈ 1); \"the roots are still five\" (r = 0.98); \"three roots\" (r = 0.96); \"the number of roots is zero\" (r = 0.90)",
             rule: "count",
+            model: "averaged theory (Eq. 18)",
             judge: |f| f.fig04.as_ref().map(fig04_roots),
         },
         Spec {
@@ -309,6 +331,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 5, Sec. 3",
             words: "trirhythmic for all r at μ0 = 0.7 (paraphrase of the text on Fig. 5(e))",
             rule: "count",
+            model: "averaged theory (Eq. 18)",
             judge: |f| f.fig05.as_ref().map(fig05_tri_all_r),
         },
         Spec {
@@ -317,6 +340,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 5, Sec. 3",
             words: "the trirhythmic interval in r depends on μ0 (paraphrase of the text on Fig. 5(a)–(e); averaged theory, Eq. 18)",
             rule: "dependence",
+            model: "averaged theory (Eq. 18)",
             judge: |f| f.fig05.as_ref().map(fig05_interval_mu0),
         },
         Spec {
@@ -325,6 +349,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 6, Sec. 3",
             words: "\"the monorhythmic zone expands when λ drops\"",
             rule: "trend",
+            model: "averaged theory (Eq. 18)",
             judge: |f| {
                 f.fig06.as_ref().map(|x| {
                     share_trend(&x.0.panels, &FIG06_LAMBDA, "λ", 1, Direction::Increases)
@@ -337,6 +362,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 6, Sec. 3",
             words: "\"whereas the birhythmic and trirhythmic zones reduce\"",
             rule: "trend",
+            model: "averaged theory (Eq. 18)",
             judge: |f| {
                 f.fig06.as_ref().map(|x| {
                     all_of(
@@ -361,6 +387,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 7, Sec. 3",
             words: "\"when r decreases, the potential well in A01 tends to disappear … the quasi-same phenomena is observed with the variation of λ\"",
             rule: "trend",
+            model: "averaged theory (Eq. 23)",
             judge: |f| f.fig07.as_ref().map(|x| fig07_depths(x, true)),
         },
         Spec {
@@ -369,6 +396,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 7, Sec. 3",
             words: "\"that one in A05 increases in depth\" (as r, and λ, decrease)",
             rule: "trend",
+            model: "averaged theory (Eq. 23)",
             judge: |f| f.fig07.as_ref().map(|x| fig07_depths(x, false)),
         },
         Spec {
@@ -377,6 +405,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 7, Sec. 3",
             words: "\"the amplitudes A01, A03 and A05 change very slightly when r or λ increases\"",
             rule: "closeness",
+            model: "averaged theory (Eq. 23)",
             judge: |f| f.fig07.as_ref().map(fig07_wells_move),
         },
         Spec {
@@ -385,6 +414,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 8, Sec. 3",
             words: "four energy barriers ΔU1–ΔU4 of U_eff at D = 0.24 (Fig. 8)",
             rule: "count",
+            model: "averaged theory (Eq. 23)",
             judge: |f| f.fig08.as_ref().map(fig08_barriers),
         },
         Spec {
@@ -393,6 +423,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 9, Sec. 3",
             words: "\"for the increasing value of λ, ΔU1, ΔU3, ΔU4 are increasing while ΔU2 is decreasing. This is found for all values of correlation time\"",
             rule: "trend",
+            model: "averaged theory (Eq. 23)",
             judge: |f| f.fig09.as_ref().map(fig09_lambda),
         },
         Spec {
@@ -401,6 +432,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 9, Sec. 3",
             words: "\"excluding ΔU3, the energy is lowered when r falls\"",
             rule: "trend",
+            model: "averaged theory (Eq. 23)",
             judge: |f| f.fig09.as_ref().map(fig09_r),
         },
         Spec {
@@ -409,6 +441,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 10, Sec. 4",
             words: "\"The trirhythmic region in the parameters (λ, τ)-plane decreases with increasing correlated noise\"",
             rule: "trend",
+            model: "averaged theory (Eq. 26–28, 35)",
             judge: |f| {
                 f.fig10
                     .as_ref()
@@ -421,6 +454,7 @@ fn specs() -> Vec<Spec> {
             place: "Figs 10, 12, Eq. 35–37, Sec. 4",
             words: "Eq. 36–37 (as printed) give the P-bifurcation set of the averaged theory's P(A) (the dashed curves against the exact m1 = ∂m1/∂A = 0; Fig. 12's panels join when its data is given)",
             rule: "curve_distance",
+            model: "averaged theory (Eq. 35–37 against the exact fold of Eq. 27)",
             judge: |f| {
                 f.fig10.as_ref().map(|x| {
                     let mut sets: Vec<(&str, &[crate::maps::MapPanel])> =
@@ -438,6 +472,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 11(b), Sec. 4",
             words: "the averaged theory's P(A) (Eq. 27, as printed) agrees with Monte Carlo of Eq. 1 as λ varies",
             rule: "agreement",
+            model: "averaged theory (Eq. 27) against Eq. 1 (Monte Carlo)",
             judge: |f| f.fig11.as_ref().map(|x| agreement_of(&x.panels, "Eq. 1", "paper")),
         },
         Spec {
@@ -446,6 +481,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 12(a, b), Sec. 4",
             words: "\"decreasing ω0 decreases the trirhythmic section in the variable plane (μ0, r)\"",
             rule: "trend",
+            model: "averaged theory (Eq. 26–28, 35)",
             judge: |f| f.fig12.as_ref().map(|x| fig12_omega(&x.0.panels, ["b", "a"], Direction::Decreases)),
         },
         Spec {
@@ -454,6 +490,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 12(c, d), Sec. 4",
             words: "\"and increases the trirhythmic portion in the parameter plane (λ, r)\"",
             rule: "trend",
+            model: "averaged theory (Eq. 26–28, 35)",
             judge: |f| f.fig12.as_ref().map(|x| fig12_omega(&x.0.panels, ["d", "c"], Direction::Increases)),
         },
         Spec {
@@ -462,6 +499,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 13(a), Sec. 4, Eq. 26–27",
             words: "the theory's P(A) (as printed) agrees with Monte Carlo of Eq. 1 at μ0 = 0.005, r = 0.99, 0.97, 0.96, 0.84",
             rule: "agreement",
+            model: "averaged theory (Eq. 27) against Eq. 1 (Monte Carlo)",
             judge: |f| f.fig13.as_ref().map(|x| agreement_of(&x.panels[..4.min(x.panels.len())], "Eq. 1", "paper")),
         },
         Spec {
@@ -470,6 +508,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 13(b), Sec. 4",
             words: "the same at μ0 = 0.2, r between 0.7 and 0.999",
             rule: "agreement",
+            model: "averaged theory (Eq. 27) against Eq. 1 (Monte Carlo)",
             judge: |f| f.fig13.as_ref().map(|x| agreement_of(x.panels.get(4..).unwrap_or(&[]), "Eq. 1", "paper")),
         },
         Spec {
@@ -478,6 +517,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 13(a), Sec. 4",
             words: "\"P_r(A) exhibits three peaks at r = 0.99 … when r = 0.97 or 0.96, we notice two peaks … when r = 0.84 … only one peak\"",
             rule: "count",
+            model: "Eq. 1 (Monte Carlo)",
             judge: |f| f.fig13.as_ref().map(fig13_peaks),
         },
         Spec {
@@ -486,6 +526,7 @@ fn specs() -> Vec<Spec> {
             place: "Eq. 26–28, Sec. 4 (Fig. 13)",
             words: "Eq. 26–28 as printed (m1, σ1 of Eq. 26; P(A) of Eq. 27–28) give the stationary amplitude density of Eq. 5 with coloured noise and impacts (the project's derivation, docs/theory.md, corrects σ1 for coloured noise and the impact term's (1+τ²))",
             rule: "agreement",
+            model: "averaged theory (Eq. 26–28) against Eq. 5 (Monte Carlo)",
             judge: |f| f.fig13.as_ref().map(eq26_28),
         },
         Spec {
@@ -494,6 +535,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 14, Sec. 4",
             words: "the joint density P(U, dU/dt) turns from \"a vast crater\" (r = 0.92) into \"four separate peaks\" (r = 0.999)",
             rule: "count",
+            model: "averaged theory (Eq. 30–31) and Eq. 1 (Monte Carlo)",
             judge: |f| f.fig14.as_ref().map(fig14_crater),
         },
         Spec {
@@ -502,6 +544,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 15, Sec. 5",
             words: "\"with decreasing ω0 the separation between oscillation and no oscillation changes significantly\" (the simulated boundary of Eq. 1)",
             rule: "dependence",
+            model: "Eq. 1 (simulation)",
             judge: |f| f.fig15.as_ref().map(fig15_omega),
         },
         Spec {
@@ -510,6 +553,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 16(b, d), Sec. 5",
             words: "the rest (no-oscillation) region grows as r and λ decrease (\"This emphasizes the impact of λ and r on these domains\"; paraphrase of the figure)",
             rule: "trend",
+            model: "Eq. 1 (simulation)",
             judge: |f| {
                 f.fig16.as_ref().map(|x| {
                     let parts = x
@@ -528,6 +572,7 @@ fn specs() -> Vec<Spec> {
             place: "Figs 15–16 (Fig. 16(a, c)), Sec. 5",
             words: "the averaged amplitude equation gives the boundary between oscillation and rest (paraphrase: the Hopf boundary f′(0) = 0 of Eq. 18 drawn as the demarcation)",
             rule: "closeness",
+            model: "averaged theory (Eq. 18) against Eq. 1 (simulation)",
             judge: |f| {
                 f.fig16.as_ref().map(|x| {
                     let pairs: Vec<_> = x
@@ -546,6 +591,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 17(a), Sec. 5",
             words: "\"When the noise level reaches the critical value D_c, the maximum Lyapunov exponent turns positive\" (μ0 varied)",
             rule: "sign_change",
+            model: "Eq. 1 (simulation)",
             judge: |f| f.fig17.as_ref().and_then(|x| x.0.panels.first().map(lle_sign_change)),
         },
         Spec {
@@ -554,6 +600,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 17(b), Sec. 5",
             words: "the same, τ varied",
             rule: "sign_change",
+            model: "Eq. 1 (simulation)",
             judge: |f| f.fig17.as_ref().and_then(|x| x.0.panels.get(1).map(lle_sign_change)),
         },
         Spec {
@@ -562,6 +609,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 18(a), Sec. 5",
             words: "the same, λ varied",
             rule: "sign_change",
+            model: "Eq. 1 (simulation)",
             judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.first().map(lle_sign_change)),
         },
         Spec {
@@ -570,6 +618,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 18(b), Sec. 5",
             words: "the same, r varied",
             rule: "sign_change",
+            model: "Eq. 1 (simulation)",
             judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(lle_sign_change)),
         },
         Spec {
@@ -578,6 +627,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 18(b), Sec. 5",
             words: "more impact loss (smaller r) makes chaos likelier: the LLE grows as r falls (paraphrase)",
             rule: "trend",
+            model: "Eq. 1 (simulation)",
             judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(fig18_impact_loss)),
         },
         Spec {
@@ -586,6 +636,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 19(a), Sec. 5",
             words: "\"the critical value decreases with higher nonlinear parameter\"",
             rule: "trend",
+            model: "Eq. 1 (simulation)",
             judge: |f| f.fig19.as_ref().map(|x| fig19_trend(x, 0)),
         },
         Spec {
@@ -594,6 +645,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 19(b), Sec. 5",
             words: "\"and increases with rising correlation time\"",
             rule: "trend",
+            model: "Eq. 1 (simulation)",
             judge: |f| f.fig19.as_ref().map(|x| fig19_trend(x, 1)),
         },
         Spec {
@@ -602,6 +654,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 19(c), Sec. 5",
             words: "\"fractional-order\" (D_c increases with λ)",
             rule: "trend",
+            model: "Eq. 1 (simulation)",
             judge: |f| f.fig19.as_ref().map(|x| fig19_trend(x, 2)),
         },
         Spec {
@@ -610,6 +663,7 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 19(d), Sec. 5",
             words: "D_c increases with r (the same sentence)",
             rule: "trend",
+            model: "Eq. 1 (simulation)",
             judge: |f| f.fig19.as_ref().map(|x| fig19_trend(x, 3)),
         },
     ]
@@ -627,6 +681,7 @@ fn claim_of(s: &Spec) -> Claim {
         place: s.place.into(),
         words: s.words.into(),
         rule: s.rule.into(),
+        model: s.model.into(),
     }
 }
 
