@@ -502,7 +502,7 @@ pub(super) fn fig11b_peaks(f: &Fig11, variant: Variant) -> Decision {
         for k in 1..=3 {
             theory_parts.push(Count {
                 what: format!(
-                    "averaged theory (Eq. 27): λ in [0.9, 1] where P(A) shows {k} peak{} ({}; exact modes, roots of m1: {})",
+                    "Eq. 27 over λ in [0.9, 1]: P(A) shows {k} peak{} ({}; exact modes, roots of m1: {})",
                     if k == 1 { "" } else { "s" },
                     seen[k].map_or("none".into(), |l| format!("first at λ = {}", sig(l, 4))),
                     exact[k].map_or("none".into(), |l| format!("first at λ = {}", sig(l, 4)))
@@ -529,7 +529,7 @@ pub(super) fn fig11b_peaks(f: &Fig11, variant: Variant) -> Decision {
             .collect();
         mc.push(Count {
             what: format!(
-                "Monte Carlo of Eq. 1: panels with {k} peak{} ({})",
+                "panels with {k} peak{} ({})",
                 if k == 1 { "" } else { "s" },
                 if at.is_empty() {
                     "none".into()

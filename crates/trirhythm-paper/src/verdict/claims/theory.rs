@@ -1,5 +1,22 @@
 //! The theory claims (Figs 1–10, 12): deterministic numbers from the averaged theory and
 //! from noise-free simulations, decided by the count, trend and closeness rules.
+//!
+//! # Equations
+//! The averaged drift f(A) of Eq. 18 (stable cycles: roots with df/dA < 0), the
+//! pseudo-potential U_eff of Eq. 23 and the P(A) of Eq. 27 (modes: roots of m1 with m1′ < 0).
+//!
+//! # Method
+//! Counts and shares from the maps and branch diagrams; the (γ0, δ0) zone areas of Figs 3 and
+//! 6 between the exact fold polylines, line by line ([`exact_share`]: each line cut at the fold
+//! crossings, each piece classified by the theory's count, 400 and 800 lines for the bracket);
+//! the A01 well of Fig. 7 by its floor below U_eff(0).
+//!
+//! # Reference
+//! docs/verdicts.md, "The rules" and "The claims".
+//!
+//! # Test
+//! `tests/verdicts.rs`: `theory_claims_in_quick_mode_with_their_numbers` and the edited-data
+//! flips (`editing_the_theory_figures_flips_the_issue_34_rows`).
 
 use super::super::rules::{
     closeness, count, curve_distance, dependence, trend, Count, CountSource, CurveSets, Direction,
@@ -92,6 +109,8 @@ pub(super) fn fig02_regions(panels: &[MapPanel]) -> Decision {
         computed: distinct.len() as u32,
         source: CountSource::Exact,
     });
+    // the lines first: the sentence's subject
+    items.rotate_right(1);
     count(&items)
 }
 
@@ -351,14 +370,20 @@ pub(super) fn fig07_depths(f: &Fig07, inner: bool) -> Decision {
             }
         })
         .collect();
-    trend(
+    let mut d = trend(
         &series,
         if inner {
             Direction::Decreases
         } else {
             Direction::Increases
         },
-    )
+    );
+    // the change across the plotted range decides a confirmation: shown first
+    if d.verdict == super::super::Verdict::Confirmed {
+        d.checks
+            .sort_by_key(|c| !c.what.contains("across the range"));
+    }
+    d
 }
 
 /// "The amplitudes A01, A03 and A05 change very slightly": each well's amplitude on every
