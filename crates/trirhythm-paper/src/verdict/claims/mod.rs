@@ -7,9 +7,11 @@
 //! ([`not_computable`]). Nothing here is typed text about the outcome: change a figure's data
 //! and the verdict follows (tested in `tests/verdicts.rs`).
 
+mod sequences;
 mod stochastic;
 mod theory;
 
+pub use sequences::{visible_peaks, FIG05_EXCEPTED_MU0, SETTLED_SPREAD};
 pub use stochastic::{FIG13_CLAIMED_PEAKS, FIG14_CLAIMED_MAXIMA};
 pub use theory::FIG04_CLAIMED_ROOTS;
 
@@ -35,6 +37,7 @@ use crate::fig17_lle_noise::Fig17;
 use crate::fig18_lle_noise_fractional::Fig18;
 use crate::fig19_critical_noise::Fig19;
 use crate::{Figure, FigureOptions, Monitor};
+use sequences::*;
 use serde::{Deserialize, Serialize};
 use stochastic::*;
 use theory::*;
@@ -298,7 +301,7 @@ fn specs() -> Vec<Spec> {
             id: "fig02-regions",
             figure: 2,
             place: "Fig. 2(ii), Sec. 3",
-            words: "mono-, bi- and trirhythmic regions in the (γ0, δ0) plane (paraphrase: \"displaying trirhythmicity depicted in Fig.2(ii)\")",
+            words: "\"The saddle-node bifurcations correspond to L1, L2, and L3 in Figs.2 (i) and (ii) that enclose the birhythmic and trirhythmic areas\" (Fig. 2(ii): \"displaying trirhythmicity\")",
             rule: "count",
             model: "averaged theory (Eq. 18)",
             judge: |f| f.fig02.as_ref().map(|x| fig02_regions(&x.0.panels)),
@@ -313,8 +316,17 @@ fn specs() -> Vec<Spec> {
             judge: |f| {
                 f.fig03
                     .as_ref()
-                    .map(|x| share_trend(&x.0.panels, &FIG03_R, "r", 3, Direction::Decreases))
+                    .map(|x| exact_share_trend(&x.0.panels, "fig3", &FIG03_R, "r", 3, Direction::Decreases, f.options.variant))
             },
+        },
+        Spec {
+            id: "fig03-birhythmic",
+            figure: 3,
+            place: "Fig. 3, Sec. 3",
+            words: "\"and if this coefficient reaches a certain value, the system evolves into birhythmic\"",
+            rule: "count",
+            model: "averaged theory (Eq. 18)",
+            judge: |f| f.fig03.as_ref().map(|x| fig03_birhythmic(x, f.options.variant)),
         },
         Spec {
             id: "fig04-roots",
@@ -344,6 +356,15 @@ fn specs() -> Vec<Spec> {
             judge: |f| f.fig05.as_ref().map(fig05_interval_mu0),
         },
         Spec {
+            id: "fig05-tri-bi-mono",
+            figure: 5,
+            place: "Fig. 5, Sec. 3",
+            words: "\"the system has progressed from trirhythmic to birhythmic and, subsequently, to monorhythmic with decreasing r\" (every panel but (e), which the text excepts)",
+            rule: "count",
+            model: "averaged theory (Eq. 18)",
+            judge: |f| f.fig05.as_ref().map(|x| fig05_sequence(x, f.options.variant)),
+        },
+        Spec {
             id: "fig06-mono-grows",
             figure: 6,
             place: "Fig. 6, Sec. 3",
@@ -352,7 +373,7 @@ fn specs() -> Vec<Spec> {
             model: "averaged theory (Eq. 18)",
             judge: |f| {
                 f.fig06.as_ref().map(|x| {
-                    share_trend(&x.0.panels, &FIG06_LAMBDA, "λ", 1, Direction::Increases)
+                    exact_share_trend(&x.0.panels, "fig6", &FIG06_LAMBDA, "λ", 1, Direction::Increases, f.options.variant)
                 })
             },
         },
@@ -370,11 +391,11 @@ fn specs() -> Vec<Spec> {
                         vec![
                             (
                                 "birhythmic".into(),
-                                share_trend(&x.0.panels, &FIG06_LAMBDA, "λ", 2, Direction::Decreases),
+                                exact_share_trend(&x.0.panels, "fig6", &FIG06_LAMBDA, "λ", 2, Direction::Decreases, f.options.variant),
                             ),
                             (
                                 "trirhythmic".into(),
-                                share_trend(&x.0.panels, &FIG06_LAMBDA, "λ", 3, Direction::Decreases),
+                                exact_share_trend(&x.0.panels, "fig6", &FIG06_LAMBDA, "λ", 3, Direction::Decreases, f.options.variant),
                             ),
                         ],
                     )
@@ -406,7 +427,7 @@ fn specs() -> Vec<Spec> {
             words: "\"the amplitudes A01, A03 and A05 change very slightly when r or λ increases\"",
             rule: "closeness",
             model: "averaged theory (Eq. 23)",
-            judge: |f| f.fig07.as_ref().map(fig07_wells_move),
+            judge: |f| f.fig07.as_ref().map(|x| fig07_wells_move(x, f.options.variant)),
         },
         Spec {
             id: "fig08-four-barriers",
@@ -482,6 +503,35 @@ fn specs() -> Vec<Spec> {
             rule: "agreement",
             model: "averaged theory (Eq. 27) against Eq. 1 (Monte Carlo)",
             judge: |f| f.fig11.as_ref().map(|x| agreement_of(&x.panels, "Eq. 1", "paper")),
+        },
+        Spec {
+            id: "fig11a-amplitudes",
+            figure: 11,
+            place: "Fig. 11(a), Sec. 4",
+            words: "the averaged theory's limit-cycle amplitudes (solid) against the predictor–corrector simulations of Eq. 1 (dotted) as λ varies (\"we discover that the number of limit cycles alters with the shift of λ\"; the agreement is the abstract's \"strong alignment between the theoretical and numerical solutions obtained from the predictor-corrector algorithm\")",
+            rule: "closeness",
+            model: "averaged theory (Eq. 18) against Eq. 1 (predictor–corrector, no noise)",
+            judge: |f| f.fig11.as_ref().map(|x| fig11a_amplitudes(x, f.options.variant)),
+        },
+        Spec {
+            id: "fig11b-peaks",
+            figure: 11,
+            place: "Fig. 11(b), Sec. 4",
+            words: "\"The PDF … for amplitude may have one, two, or three peak levels, demonstrating the shift between one peak and three peaks with modifying λ\"",
+            rule: "count",
+            model: "averaged theory (Eq. 27) and Eq. 1 (Monte Carlo)",
+            judge: |f| f.fig11.as_ref().map(|x| fig11b_peaks(x, f.options.variant)),
+        },
+        Spec {
+            id: "abstract-lambda-r-alone",
+            figure: 12,
+            place: "Abstract (Fig. 12)",
+            words: "\"Simply altering the fractional order or restriction variable causes the probability density function to move between unimodal, bimodal, and trimodal distributions\"",
+            rule: "count",
+            model: "averaged theory (Eq. 27, exact P-bifurcation maps)",
+            judge: |f| {
+                f.fig12.as_ref().map(|x| lambda_or_r_alone(&x.0.panels))
+            },
         },
         Spec {
             id: "fig12-omega-mu0-r",
@@ -575,10 +625,19 @@ fn specs() -> Vec<Spec> {
             },
         },
         Spec {
+            id: "sec5-supercritical-hopf",
+            figure: 16,
+            place: "Sec. V (Figs 15–16)",
+            words: "\"a supercritical Hopf bifurcation is defined by a stable limit cycle emerging from zero amplitude and increasing in magnitude\" (at the boundary between rest and oscillation)",
+            rule: "count",
+            model: "averaged theory (Eq. 18, at its boundary f′(0) = 0)",
+            judge: |f| f.fig16.as_ref().map(|x| hopf_supercritical(x, f.options.variant)),
+        },
+        Spec {
             id: "fig16-averaged-boundary",
             figure: 16,
-            place: "Figs 15–16 (Fig. 16(a, c)), Sec. 5",
-            words: "the averaged amplitude equation gives the boundary between oscillation and rest (paraphrase: the Hopf boundary f′(0) = 0 of Eq. 18 drawn as the demarcation)",
+            place: "Abstract, judged on Figs 15–16 (Fig. 16(a, c))",
+            words: "\"The strong alignment between the theoretical and numerical solutions obtained from the predictor-corrector algorithm … confirms the accuracy of our conclusions\", at the boundary between oscillation and rest: the averaged f′(0) = 0 of Eq. 18 against the simulated boundary of Eq. 1",
             rule: "closeness",
             model: "averaged theory (Eq. 18) against Eq. 1 (simulation)",
             judge: |f| {

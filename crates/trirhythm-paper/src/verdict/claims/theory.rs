@@ -1,5 +1,22 @@
 //! The theory claims (Figs 1–10, 12): deterministic numbers from the averaged theory and
 //! from noise-free simulations, decided by the count, trend and closeness rules.
+//!
+//! # Equations
+//! The averaged drift f(A) of Eq. 18 (stable cycles: roots with df/dA < 0), the
+//! pseudo-potential U_eff of Eq. 23 and the P(A) of Eq. 27 (modes: roots of m1 with m1′ < 0).
+//!
+//! # Method
+//! Counts and shares from the maps and branch diagrams; the (γ0, δ0) zone areas of Figs 3 and
+//! 6 between the exact fold polylines, line by line ([`exact_share`]: each line cut at the fold
+//! crossings, each piece classified by the theory's count, 400 and 800 lines for the bracket);
+//! the A01 well of Fig. 7 by its floor below U_eff(0).
+//!
+//! # Reference
+//! docs/verdicts.md, "The rules" and "The claims".
+//!
+//! # Test
+//! `tests/verdicts.rs`: `theory_claims_in_quick_mode_with_their_numbers` and the edited-data
+//! flips (`editing_the_theory_figures_flips_the_issue_34_rows`).
 
 use super::super::rules::{
     closeness, count, curve_distance, dependence, trend, Count, CountSource, CurveSets, Direction,
@@ -13,6 +30,7 @@ use crate::fig07_pseudo_potential::{Curve as UeffCurve, Fig07};
 use crate::fig08_barriers::Fig08;
 use crate::fig09_barrier_surfaces::Fig09;
 use crate::maps::MapPanel;
+use trirhythm::theory::averaging::Variant;
 use trirhythm::theory::bifurcation::BranchDiagram;
 
 pub(super) fn fig01_align(f: &Fig01) -> Decision {
@@ -40,26 +58,60 @@ pub(super) fn share(p: &MapPanel, k: usize) -> f64 {
     p.share(k)
 }
 
+/// Fig. 2: "L1, L2, and L3 in Figs.2 (i) and (ii) … enclose the birhythmic and trirhythmic
+/// areas": the birhythmic area of (i) (three positive roots in (α0, β0) at γ0 = δ0 = 0), the bi-
+/// and trirhythmic areas of (ii), and the three saddle-node lines, named as the paper names
+/// them (L1 the outer cycle's fold, L3 the inner one's, L2 between), over both panels.
 pub(super) fn fig02_regions(panels: &[MapPanel]) -> Decision {
-    let Some(p) = panels.iter().find(|p| p.label == "ii").or(panels.get(1)) else {
-        return count(&[]);
-    };
-    let items: Vec<Count> = [(1, "monorhythmic"), (2, "birhythmic"), (3, "trirhythmic")]
-        .into_iter()
-        .map(|(k, name)| Count {
-            what: format!(
-                "{name} region present in panel {} ({:.1} % of the grid)",
-                p.label,
-                share(p, k)
-            ),
-            claimed: 1,
-            computed: u32::from(share(p, k) > 0.0),
-            source: CountSource::Exact,
+    let mut items = Vec::new();
+    for (label, ks) in [("i", &[2usize][..]), ("ii", &[2, 3][..])] {
+        let Some(p) = panels.iter().find(|p| p.label == label) else {
+            continue;
+        };
+        for &k in ks {
+            let name = if k == 2 { "birhythmic" } else { "trirhythmic" };
+            items.push(Count {
+                what: format!(
+                    "{name} area present in panel ({label}) ({} % of the grid)",
+                    crate::notes::sig(share(p, k), 3)
+                ),
+                claimed: 1,
+                computed: u32::from(share(p, k) > 0.0),
+                source: CountSource::Exact,
+            });
+        }
+    }
+    let mut names: Vec<String> = panels
+        .iter()
+        .flat_map(|p| {
+            p.fold_names
+                .iter()
+                .filter_map(|(_, n)| n.split_whitespace().next())
+                .map(|n| format!("{n} ({})", p.label))
         })
         .collect();
-    count(&items).undetermined_because(
-        "λ and r are not printed for Fig. 2; λ = 1, r = 1 chosen, and a monorhythmic region appears for λ < 1 or r < 1 (Figs 3, 6)",
-    )
+    names.sort();
+    let mut distinct: Vec<&str> = names
+        .iter()
+        .filter_map(|n| n.split_whitespace().next())
+        .collect();
+    distinct.dedup();
+    items.push(Count {
+        what: format!(
+            "saddle-node lines L1–L3 traced exactly in panels (i) and (ii) (found: {})",
+            if names.is_empty() {
+                "none".to_string()
+            } else {
+                names.join(", ")
+            }
+        ),
+        claimed: 3,
+        computed: distinct.len() as u32,
+        source: CountSource::Exact,
+    });
+    // the lines first: the sentence's subject
+    items.rotate_right(1);
+    count(&items)
 }
 
 pub(super) fn share_trend(
@@ -77,6 +129,115 @@ pub(super) fn share_trend(
             .iter()
             .zip(xs)
             .map(|(p, &x)| (x, share_measured(p, k)))
+            .collect(),
+    };
+    trend(&[series], direction)
+}
+
+/// Rows of the line-by-line area of [`exact_share`] (and twice as many for its error).
+pub const EXACT_SHARE_ROWS: usize = 400;
+
+/// The share (per cent of the window) of a map panel where the averaged theory has `k` stable
+/// cycles, measured between the exact fold polylines rather than on the grid: along each of
+/// `rows` horizontal lines (midpoint rule in y) the line is cut where it crosses a fold curve,
+/// each piece is classified by the count at its quarter, middle and three-quarter points
+/// (pieces whose points disagree, a crossing the polylines missed, are split by bisection on
+/// the count), and the lengths of the pieces with count `k` are summed. None where the
+/// panel's parameters cannot be read.
+pub(super) fn exact_share(
+    p: &MapPanel,
+    preset_name: &str,
+    k: usize,
+    variant: Variant,
+    rows: usize,
+) -> Option<f64> {
+    let base = super::sequences::panel_params(preset_name, &p.params)?;
+    let (xa, xb) = (p.x.grid.start, p.x.grid.stop);
+    let (ya, yb) = (p.y.grid.start, p.y.grid.stop);
+    let count_at = |x: f64, y: f64| {
+        base.with(&p.x.grid.key, x)
+            .and_then(|q| q.with(&p.y.grid.key, y))
+            .and_then(|q| trirhythm::theory::averaging::Theory::new(&q, variant))
+            .map_or(usize::MAX, |t| t.stable_count_fast())
+    };
+    // the length of [a, b] with count k on the line at y
+    fn piece(count_at: &dyn Fn(f64) -> usize, a: f64, b: f64, k: usize, depth: u32) -> f64 {
+        let c: Vec<usize> = [0.25, 0.5, 0.75]
+            .iter()
+            .map(|t| count_at(a + t * (b - a)))
+            .collect();
+        if c.iter().all(|&x| x == c[0]) || depth == 0 {
+            return if c[1] == k { b - a } else { 0.0 };
+        }
+        let m = 0.5 * (a + b);
+        piece(count_at, a, m, k, depth - 1) + piece(count_at, m, b, k, depth - 1)
+    }
+    let mut total = 0.0;
+    for j in 0..rows {
+        let y = ya + (yb - ya) * (j as f64 + 0.5) / rows as f64;
+        let mut cuts = vec![xa, xb];
+        for c in &p.folds.curves {
+            for w in c.points.windows(2) {
+                let (y1, y2) = (w[0].y, w[1].y);
+                if (y1 - y) * (y2 - y) < 0.0 {
+                    let x = w[0].x + (y - y1) * (w[1].x - w[0].x) / (y2 - y1);
+                    if x > xa && x < xb {
+                        cuts.push(x);
+                    }
+                }
+            }
+        }
+        cuts.sort_by(f64::total_cmp);
+        let line = |x: f64| count_at(x, y);
+        for w in cuts.windows(2) {
+            total += piece(&line, w[0], w[1], k, 12);
+        }
+    }
+    Some(100.0 * total / ((xb - xa) * rows as f64))
+}
+
+/// [`exact_share`] with `EXACT_SHARE_ROWS` and twice as many rows: the finer value in a bracket
+/// widened by the difference (the midpoint rule's error).
+pub(super) fn exact_share_measured(
+    p: &MapPanel,
+    preset_name: &str,
+    k: usize,
+    variant: Variant,
+) -> Measured {
+    match (
+        exact_share(p, preset_name, k, variant, EXACT_SHARE_ROWS),
+        exact_share(p, preset_name, k, variant, 2 * EXACT_SHARE_ROWS),
+    ) {
+        (Some(a), Some(b)) => {
+            let e = (a - b).abs().max(1e-9 * b.abs());
+            Measured::bracket(b, b - e, b + e)
+        }
+        _ => Measured::exact(f64::NAN),
+    }
+}
+
+/// A share trend on the area between the exact fold polylines ([`exact_share_measured`]).
+pub(super) fn exact_share_trend(
+    panels: &[MapPanel],
+    preset_name: &str,
+    xs: &[f64],
+    x_name: &str,
+    k: usize,
+    direction: Direction,
+    variant: Variant,
+) -> Decision {
+    let label = ["zero", "one", "two", "three"][k.min(3)];
+    let series = Series {
+        label: format!(
+            "area with count {label} between the exact fold curves (% of the window; bracket: {} against {} rows)",
+            EXACT_SHARE_ROWS,
+            2 * EXACT_SHARE_ROWS
+        ),
+        x_name: x_name.into(),
+        points: panels
+            .iter()
+            .zip(xs)
+            .map(|(p, &x)| (x, exact_share_measured(p, preset_name, k, variant)))
             .collect(),
     };
     trend(&[series], direction)
@@ -140,28 +301,38 @@ pub(super) fn fig05_tri_all_r(f: &Fig05) -> Decision {
     count(&items)
 }
 
-/// (inner A01 well depth, outer well depth, well amplitudes) of a U_eff curve: the depth to
-/// the crest beside the well; the inner depth is 0 where U_eff has fewer than three wells
-/// (the A01 well has disappeared).
+/// (inner A01 well depth, outer well depth, well amplitudes) of a U_eff curve. The inner
+/// depth is the well's floor below U_eff(0), the rest state it forms beside (Fig. 7 is drawn at
+/// D = 0, where U_eff(0) = 0 is a maximum): 0 where the A01 well has disappeared (fewer than
+/// three wells, or A01 merged into the rest state), NaN where the curve has no value at
+/// A = 0. The outer depth is the depth to the crest beside the outer well.
 fn wells(cv: &UeffCurve) -> (f64, Option<f64>, Vec<f64>) {
-    let ex: Vec<_> = cv.extrema.iter().filter(|e| e.amplitude > 0.0).collect();
-    let minima: Vec<f64> = ex
+    let positive: Vec<_> = cv.extrema.iter().filter(|e| e.amplitude > 0.0).collect();
+    let minima: Vec<f64> = positive
         .iter()
         .filter(|e| e.minimum)
         .map(|e| e.amplitude)
         .collect();
-    let depth = |i: usize, j: Option<usize>| {
-        j.and_then(|j| ex.get(j))
-            .filter(|c| !c.minimum)
-            .map(|c| c.potential - ex[i].potential)
+    let rest = cv
+        .extrema
+        .iter()
+        .find(|e| e.amplitude == 0.0)
+        .map_or(f64::NAN, |e| e.potential);
+    let inner = if minima.len() >= 3 {
+        positive
+            .iter()
+            .find(|e| e.minimum)
+            .map_or(0.0, |e| (rest - e.potential).max(0.0))
+    } else {
+        0.0
     };
-    let first = ex.iter().position(|e| e.minimum);
-    let last = ex.iter().rposition(|e| e.minimum);
-    let inner = first
-        .filter(|_| minima.len() >= 3)
-        .and_then(|i| depth(i, Some(i + 1)))
-        .unwrap_or(0.0);
-    let outer = last.and_then(|i| depth(i, i.checked_sub(1)));
+    let last = positive.iter().rposition(|e| e.minimum);
+    let outer = last.and_then(|i| {
+        i.checked_sub(1)
+            .and_then(|j| positive.get(j))
+            .filter(|c| !c.minimum)
+            .map(|c| c.potential - positive[i].potential)
+    });
     (inner, outer, minima)
 }
 
@@ -177,9 +348,13 @@ pub(super) fn fig07_depths(f: &Fig07, inner: bool) -> Decision {
             let pick = |q: &(f64, f64)| if by_r { q.0 } else { q.1 };
             Series {
                 label: format!(
-                    "panel {}: depth of the {} well",
+                    "panel {}: {}",
                     p.id,
-                    if inner { "inner (A01)" } else { "outer" }
+                    if inner {
+                        "floor of the A01 well below U_eff(0)"
+                    } else {
+                        "depth of the outer well"
+                    }
                 ),
                 x_name: x_name.into(),
                 points: p
@@ -195,17 +370,28 @@ pub(super) fn fig07_depths(f: &Fig07, inner: bool) -> Decision {
             }
         })
         .collect();
-    trend(
+    let mut d = trend(
         &series,
         if inner {
             Direction::Decreases
         } else {
             Direction::Increases
         },
-    )
+    );
+    // the change across the plotted range decides a confirmation: shown first
+    if d.verdict == super::super::Verdict::Confirmed {
+        d.checks
+            .sort_by_key(|c| !c.what.contains("across the range"));
+    }
+    d
 }
 
-pub(super) fn fig07_wells_move(f: &Fig07) -> Decision {
+/// "The amplitudes A01, A03 and A05 change very slightly": each well's amplitude on every
+/// curve against the first (largest r or λ), and, where the averaged theory's f′(0) changes
+/// sign within 0.02 below the panel's smallest r (λ), A01 at that point, where the inner well
+/// has merged with the rest state (A01 = 0: relative change 1). The checks against the claim
+/// come first, the largest first.
+pub(super) fn fig07_wells_move(f: &Fig07, variant: Variant) -> Decision {
     let mut pairs = Vec::new();
     for p in &f.panels {
         let all: Vec<Vec<f64>> = p.curves.iter().map(|c| wells(c).2).collect();
@@ -222,8 +408,35 @@ pub(super) fn fig07_wells_move(f: &Fig07) -> Decision {
                 ));
             }
         }
+        // where the A01 well vanishes: the averaged Hopf point just below the plotted range
+        let by_r = p.id == "a";
+        let (key, name) = if by_r { ("r", "r") } else { ("lambda", "λ") };
+        let pick = |q: &(f64, f64)| if by_r { q.0 } else { q.1 };
+        let (Some(q0), Some(a01)) = (p.params.first(), first.first()) else {
+            continue;
+        };
+        let smallest = p.params.iter().map(pick).fold(f64::INFINITY, f64::min);
+        let base = super::sequences::panel_params(
+            if by_r { "fig7a" } else { "fig7b" },
+            &format!("r={} lambda={}", q0.0, q0.1),
+        );
+        let vanish = base.and_then(|b| {
+            super::sequences::hopf_point(&b, key, smallest - 0.02, smallest, variant)
+        });
+        if let Some(v) = vanish {
+            pairs.push((
+                format!(
+                    "panel {}, well 1 (A01) vanishes at {name} = {} (f′(0) = 0, just below the plotted {name} = {}): A01 = 0",
+                    p.id,
+                    crate::notes::sig(v, 5),
+                    crate::notes::sig(smallest, 4)
+                ),
+                Measured::exact(0.0),
+                Measured::exact(*a01),
+            ));
+        }
     }
-    closeness(&pairs, CLOSENESS_REL_TOL)
+    super::sequences::strongest_first(closeness(&pairs, CLOSENESS_REL_TOL))
 }
 
 pub(super) fn fig08_barriers(f: &Fig08) -> Decision {
