@@ -3,9 +3,9 @@
 //! agreement, count, sign-change and trend rules.
 
 use super::super::rules::{
-    agreement, count, dependence, separate_maxima, separate_maxima_significant, sign_change,
-    trend, Bracket, Comparison, Count, CountSource, Direction, LleCurve, Located, Series,
-    Weightings, AGREEMENT_K, CLOSENESS_REL_TOL, PEAK_DIP, PEAK_FLOOR, PEAK_SE_K, WINDOW_MASS_TOL,
+    agreement, count, dependence, separate_maxima, separate_maxima_significant, sign_change, trend,
+    Bracket, Comparison, Count, CountSource, Direction, LleCurve, Located, Series, Weightings,
+    AGREEMENT_K, CLOSENESS_REL_TOL, PEAK_DIP, PEAK_FLOOR, PEAK_SE_K, WINDOW_MASS_TOL,
 };
 use super::super::{all_of, Decision, Measured, Outcome, Verdict};
 use crate::boundary::Panel as BoundaryPanel;
@@ -88,8 +88,7 @@ pub(super) fn agreement_of(panels: &[AmplitudePanel], system: &str, variant: &st
 pub const FIG13_CLAIMED_PEAKS: [u32; 4] = [3, 2, 2, 1];
 
 pub(super) fn fig13_peaks(f: &Fig13) -> Decision {
-    let claimed: Vec<(&AmplitudePanel, u32)> =
-        f.panels.iter().zip(FIG13_CLAIMED_PEAKS).collect();
+    let claimed: Vec<(&AmplitudePanel, u32)> = f.panels.iter().zip(FIG13_CLAIMED_PEAKS).collect();
     peak_counts(&claimed)
 }
 
@@ -108,9 +107,7 @@ pub(super) fn fig13b_peaks(f: &Fig13) -> Decision {
 
 /// Local maxima of a drawn theory curve (its analytic modes, to the curve's grid).
 fn curve_maxima(d: &[f64]) -> usize {
-    d.windows(3)
-        .filter(|w| w[1] > w[0] && w[1] >= w[2])
-        .count()
+    d.windows(3).filter(|w| w[1] > w[0] && w[1] >= w[2]).count()
 }
 
 /// Peaks of P(A) per panel against the text's counts, by the prominence rule of
@@ -942,7 +939,13 @@ pub(super) fn fig14_shift(f: &Fig14) -> Decision {
     let open: Vec<String> = panels
         .iter()
         .filter(|p| !p.stationary)
-        .map(|p| format!("r = {}: not stationary (R̂ = {})", p.r, crate::notes::sig(p.r_hat, 3)))
+        .map(|p| {
+            format!(
+                "r = {}: not stationary (R̂ = {})",
+                p.r,
+                crate::notes::sig(p.r_hat, 3)
+            )
+        })
         .collect();
     if mc_points.len() < panels.len() {
         simulated = simulated.undetermined_because("no Monte Carlo Var U̇ in the data");

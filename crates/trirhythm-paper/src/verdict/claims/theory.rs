@@ -33,7 +33,10 @@ pub(super) fn fig01_recurrence(f: &Fig01) -> Decision {
     let pairs: Vec<(String, Measured, Measured)> = match (f.panels.first(), f.panels.get(1)) {
         (Some(a), Some(b)) => vec![
             (
-                format!("recurrence rate RR (ε = {}), Eq. 1 against Eq. 5", f.epsilon),
+                format!(
+                    "recurrence rate RR (ε = {}), Eq. 1 against Eq. 5",
+                    f.epsilon
+                ),
                 Measured::exact(a.rr),
                 Measured::exact(b.rr),
             ),
