@@ -131,13 +131,13 @@ fn peak_counts(panels: &[(&AmplitudePanel, u32)]) -> Decision {
                 .map(|t| curve_maxima(&t.2));
             theory.push(Count {
                 what: format!(
-                    "peaks of the averaged theory's P(A) (Eq. 27 as printed){}, {}",
+                    "{}: visible peaks of P(A) as printed{}",
+                    p.caption,
                     analytic
                         .map(|n| format!(
-                            "; its analytic maxima: {n}, those less prominent than 1 % of the largest density not visible"
+                            " (analytic maxima: {n}; those less prominent than 1 % of the largest density are not visible)"
                         ))
-                        .unwrap_or_default(),
-                    p.caption
+                        .unwrap_or_default()
                 ),
                 claimed,
                 computed: d.modes_theory as u32,
@@ -146,11 +146,7 @@ fn peak_counts(panels: &[(&AmplitudePanel, u32)]) -> Decision {
         }
         if let Some(d) = r.distances.first() {
             mc.push(Count {
-                what: format!(
-                    "peaks of the Monte Carlo P(A) of Eq. 1{}, {}",
-                    estimator_of(r),
-                    p.caption
-                ),
+                what: format!("{}: peaks of the histogram{}", p.caption, estimator_of(r)),
                 claimed,
                 computed: d.modes_mc as u32,
                 source: CountSource::Ensemble {
@@ -757,7 +753,7 @@ pub(super) fn fig14_crater(f: &Fig14) -> Decision {
             continue;
         };
         theory.push(Count {
-            what: format!("averaged theory (Eq. 30–31), r = {r}: separate maxima of P(U, dU/dt)"),
+            what: format!("r = {r}: separate maxima of P(U, dU/dt)"),
             claimed,
             computed: separate_maxima(&p.theory_fine, PEAK_FLOOR, PEAK_DIP) as u32,
             source: CountSource::Exact,
@@ -766,7 +762,7 @@ pub(super) fn fig14_crater(f: &Fig14) -> Decision {
         let stationary = p.stationary && !p.mc_stderr.is_empty();
         mc.push(Count {
             what: format!(
-                "Eq. 1 (Monte Carlo, {}), r = {r}: separate maxima of the joint histogram, dips significant at {PEAK_SE_K} s.e. ({} % of the samples outside the window{})",
+                "r = {r}: separate maxima of the joint histogram ({} estimator), dips significant at {PEAK_SE_K} s.e. ({} % of the samples outside the window{})",
                 p.estimator,
                 crate::notes::sig(100.0 * p.mc_outside, 3),
                 if p.mc_stderr.is_empty() { "; no standard errors in the data" } else { "" }
@@ -912,7 +908,7 @@ pub(super) fn fig14_shift(f: &Fig14) -> Decision {
     panels.sort_by(|a, b| a.r.total_cmp(&b.r));
     let theory = trend(
         &[Series {
-            label: "averaged theory (Eq. 30–31): ⟨U̇²⟩ = ω1²⟨A²⟩/2".into(),
+            label: "⟨U̇²⟩ = ω1²⟨A²⟩/2".into(),
             x_name: "r".into(),
             points: panels
                 .iter()
@@ -930,7 +926,7 @@ pub(super) fn fig14_shift(f: &Fig14) -> Decision {
         .collect();
     let mut simulated = trend(
         &[Series {
-            label: "Eq. 1 (Monte Carlo): Var U̇".into(),
+            label: "Var U̇".into(),
             x_name: "r".into(),
             points: mc_points.clone(),
         }],
