@@ -48,7 +48,7 @@ pub struct JointPanel {
     /// The Monte Carlo histogram.
     pub mc: Vec<Vec<f64>>,
     /// Standard error of each cell of the Monte Carlo histogram (jackknife over the paths;
-    /// empty in data written before it was stored).
+    /// empty in data written before it was stored, or where a standard error is undefined).
     #[serde(default)]
     pub mc_stderr: Vec<Vec<f64>>,
     /// The Monte Carlo variance of U̇ (the distribution's extent in Z = U̇) and its standard
@@ -193,7 +193,13 @@ impl Figure for Fig14 {
                 theory_outside: (1.0 - q_in).max(0.0),
                 mc_outside: j.outside,
                 mc: j.density.clone(),
-                mc_stderr: j.stderr.clone(),
+                // undefined standard errors (a single unit) are not stored: without them the
+                // verdicts count no Monte Carlo maxima
+                mc_stderr: if j.stderr.iter().flatten().all(|x| x.is_finite()) {
+                    j.stderr.clone()
+                } else {
+                    Vec::new()
+                },
                 mc_velocity_variance: vec![res.var_v.value, res.var_v.stderr],
                 theory_velocity_variance,
                 hellinger,
@@ -271,7 +277,7 @@ impl Figure for Fig14 {
     }
 
     fn validate(&self) -> crate::validate::Valid {
-        use crate::validate::{density_matrix, edges, scalar};
+        use crate::validate::{density_matrix, edges, len, scalar};
         for (i, p) in self.panels.iter().enumerate() {
             let f = format!("panels[{i}]");
             scalar(&format!("{f}.r"), p.r)?;
@@ -281,6 +287,22 @@ impl Figure for Fig14 {
             let of = format!("{nu} × {nv} cells of u_edges, v_edges");
             density_matrix(&format!("{f}.theory"), &p.theory, nu, nv, &of)?;
             density_matrix(&format!("{f}.mc"), &p.mc, nu, nv, &of)?;
+            // the cells' standard errors: none (earlier data) or one per cell
+            if !p.mc_stderr.is_empty() {
+                let se = format!("{f}.mc_stderr");
+                len(&se, p.mc_stderr.len(), nu, &of)?;
+                for (k, row) in p.mc_stderr.iter().enumerate() {
+                    len(&format!("{se}[{k}]"), row.len(), nv, &of)?;
+                }
+            }
+            if !p.mc_velocity_variance.is_empty() {
+                len(
+                    &format!("{f}.mc_velocity_variance"),
+                    p.mc_velocity_variance.len(),
+                    2,
+                    "[value, standard error]",
+                )?;
+            }
             let fine = format!("{} × {} cells, {FINE} times finer", nu * FINE, nv * FINE);
             density_matrix(
                 &format!("{f}.theory_fine"),

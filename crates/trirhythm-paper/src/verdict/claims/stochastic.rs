@@ -736,6 +736,22 @@ pub(super) fn fig15_omega(f: &Fig15) -> Decision {
     d
 }
 
+/// Why a Fig. 14 ensemble decides nothing: its R̂ and, where the well decomposition was
+/// tried, its first refusal.
+fn fig14_not_stationary(p: &crate::fig14_joint_pdf::JointPanel) -> String {
+    let refusal = p
+        .wells
+        .as_ref()
+        .and_then(|w| w.refusals.first())
+        .map(|r| format!("; the well decomposition refused: {r}"))
+        .unwrap_or_default();
+    format!(
+        "r = {}: not stationary (R̂ = {}{refusal})",
+        p.r,
+        crate::notes::sig(p.r_hat, 3)
+    )
+}
+
 /// The count Fig. 14's text gives: "four separate peaks" at r = 0.999. (Its "vast crater" at
 /// r = 0.92 is a shape, not a count: a ring-shaped rim around a lower centre, which the count
 /// of separate maxima cannot tell from one compact peak; it is not tested.)
@@ -788,6 +804,17 @@ pub(super) fn fig14_crater(f: &Fig14) -> Decision {
         }
     }
     let mut simulated = count(&mc);
+    if let Verdict::Undetermined { why } = &mut simulated.verdict {
+        let reasons: Vec<String> = FIG14_CLAIMED_MAXIMA
+            .iter()
+            .filter_map(|(r, _)| f.panels.iter().find(|p| (p.r - r).abs() < 1e-9))
+            .filter(|p| !p.stationary)
+            .map(fig14_not_stationary)
+            .collect();
+        if !reasons.is_empty() {
+            *why = reasons.join("; ");
+        }
+    }
     if !outside.is_empty() && !matches!(simulated.verdict, Verdict::Undetermined { .. }) {
         simulated = simulated.undetermined_because(&format!(
             "the window does not hold the density (more than {} % outside: {})",
