@@ -252,6 +252,73 @@ fn quick_report_lists_every_claim_once_with_the_counts_of_its_json() {
     assert_eq!(beside, vec![std::ffi::OsString::from("report")]);
 }
 
+/// `text` with the entities that the page's templates and the SVG writer use decoded.
+fn unescape(text: &str) -> String {
+    text.replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&quot;", "\"")
+        .replace("&#x27;", "'")
+        .replace("&#39;", "'")
+        .replace("&apos;", "'")
+        .replace("&#x2f;", "/")
+        .replace("&amp;", "&")
+}
+
+/// One source of truth: every rendering of a verdict — the verdict line drawn in its figure,
+/// its row of claims.md, its row of the page and its entry in verdicts.json — comes from the
+/// same decision: the same verdict and the same deciding number (the strongest check's
+/// statistic against its threshold, in the words of `Check::statistic_words`).
+#[test]
+fn every_rendering_of_a_verdict_quotes_the_same_deciding_number() {
+    use trirhythm_paper::verdict::claims::ClaimVerdict;
+    let (out, _) = quick_report();
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let md = std::fs::read_to_string(out.join("claims.md")).unwrap();
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("verdicts.json")).unwrap()).unwrap();
+    let mut svgs = BTreeMap::new();
+    for c in json["claims"].as_array().unwrap() {
+        let v: ClaimVerdict = serde_json::from_value(c.clone()).expect("a claim verdict");
+        let (id, tag) = (&v.claim.id, v.decision.verdict.tag());
+        // a decision without checks (a quick figure with nothing to decide from) is
+        // undetermined and quotes no number anywhere
+        let Some(number) = v.decision.decisive().map(|c| c.statistic_words()) else {
+            assert_eq!(tag, "undetermined", "{id}: {tag} without a deciding number");
+            continue;
+        };
+        let line = md
+            .lines()
+            .find(|l| l.starts_with(&format!("| `{id}`")))
+            .unwrap_or_else(|| panic!("{id}: no row in claims.md"));
+        assert!(line.contains(&format!("**{tag}**")), "{id}: {line}");
+        assert!(
+            line.contains(&number),
+            "{id}: claims.md lacks {number:?}: {line}"
+        );
+        let start = html
+            .find(&format!("<tr data-claim=\"{id}\""))
+            .unwrap_or_else(|| panic!("{id}: no row on the page"));
+        let row = unescape(&html[start..start + html[start..].find("</tr>").unwrap()]);
+        assert!(row.contains(&format!("data-verdict=\"{tag}\"")), "{id}");
+        assert!(
+            row.contains(&number),
+            "{id}: the page lacks {number:?}: {row}"
+        );
+        let n = v.claim.figure;
+        let svg = svgs.entry(n).or_insert_with(|| {
+            unescape(&std::fs::read_to_string(out.join(format!("figures/fig{n:02}.svg"))).unwrap())
+        });
+        let drawn = svg
+            .lines()
+            .find(|l| l.contains(&format!("{id} — ")))
+            .unwrap_or_else(|| panic!("{id}: no verdict line in Fig. {n}"));
+        assert!(
+            drawn.contains(&format!("{id} — {tag} ({number}")),
+            "{id}: Fig. {n} draws {drawn:?}, claims.md says {tag} ({number})"
+        );
+    }
+}
+
 /// Chromium: `TRIRHYTHM_CHROMIUM`, else `/usr/bin/chromium`.
 fn chromium() -> Option<PathBuf> {
     let path = std::env::var_os("TRIRHYTHM_CHROMIUM")

@@ -50,7 +50,7 @@ pub fn claims_markdown(verdicts: &Verdicts, source: &str) -> String {
             }
             other => format!("**{}**", other.tag()),
         };
-        let numbers: Vec<String> = d.deciding(1).into_iter().map(|c| c.describe()).collect();
+        let numbers: Vec<String> = d.decisive().into_iter().map(|c| c.describe()).collect();
         out.push_str(&format!(
             "| `{}`: {} | {} | {} | {} |\n",
             cell(&v.claim.id),

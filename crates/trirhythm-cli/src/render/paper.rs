@@ -267,9 +267,19 @@ pub const VERDICT_CHARS: usize = 190;
 fn verdict_text(v: &ClaimVerdict) -> String {
     use trirhythm_paper::verdict::Verdict;
     let d = &v.decision;
-    let mut head = format!("{} — {}", v.claim.id, d.verdict.tag());
+    // the deciding number in the words claims.md and the page quote (first, so that a long
+    // line never cuts it), then the reason when undetermined
+    let mut notes: Vec<String> = d
+        .decisive()
+        .map(|c| c.statistic_words())
+        .into_iter()
+        .collect();
     if let Verdict::Undetermined { why } = &d.verdict {
-        head.push_str(&format!(" ({})", first_clause(&shorten(why))));
+        notes.push(first_clause(&shorten(why)));
+    }
+    let mut head = format!("{} — {}", v.claim.id, d.verdict.tag());
+    if !notes.is_empty() {
+        head.push_str(&format!(" ({})", notes.join("; ")));
     }
     let items = match d.rule.as_str() {
         "count" => count_items(d),
@@ -762,7 +772,7 @@ mod tests {
         assert_eq!(lines[0].tag, "refuted");
         assert_eq!(
             lines[0].text,
-            "fig04-roots — refuted: positive roots of f: 3, 2, 2, 0 against the paper's 5, 5, 3, 0"
+            "fig04-roots — refuted (count = 2 against 5): positive roots of f: 3, 2, 2, 0 against the paper's 5, 5, 3, 0"
         );
     }
 
@@ -784,7 +794,7 @@ mod tests {
         let lines = verdict_lines(&[verdict("fig13a-peaks", "count", Verdict::Refuted, checks)]);
         assert_eq!(
             lines[0].text,
-            "fig13a-peaks — refuted: peaks: (1), 1 against the paper's 3, 2 (in parentheses: not \
+            "fig13a-peaks — refuted (count = 1 against 2): peaks: (1), 1 against the paper's 3, 2 (in parentheses: not \
              deciding)"
         );
     }
@@ -805,7 +815,7 @@ mod tests {
         )]);
         assert_eq!(
             lines[0].text,
-            "fig11b-agreement — refuted: (b1) λ = 0.93: H = 0.24 ± 0.002 against 0.05 + 2 s.e. (paper variant)"
+            "fig11b-agreement — refuted (H = 0.24 against 0.054): (b1) λ = 0.93: H = 0.24 ± 0.002 against 0.05 + 2 s.e. (paper variant)"
         );
     }
 
@@ -826,7 +836,7 @@ mod tests {
         let text = &verdict_lines(&[v])[0].text;
         assert!(
             text.starts_with(
-                "fig02-regions — undetermined (λ and r are not printed for Fig. 2…): tri share (%): 3.353 → 2.469 (r = 1 → r = 0.0)"
+                "fig02-regions — undetermined (relative change = -0.26 against 1e-9; λ and r are not printed for Fig. 2…): tri share (%): 3.353 → 2.469 (r = 1 → r = 0.0)"
             ),
             "{text}"
         );

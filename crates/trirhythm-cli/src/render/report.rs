@@ -497,13 +497,7 @@ pub fn short_reason(why: &str) -> String {
 /// A check in one line for the claims table: the statistic against its threshold first, then
 /// what was compared.
 fn one_number(c: &Check) -> String {
-    prose(&format!(
-        "{} = {} vs {} · {}",
-        c.statistic,
-        number(c.statistic_value),
-        number(c.threshold),
-        c.what
-    ))
+    prose(&format!("{} · {}", c.statistic_words(), c.what))
 }
 
 /// How many deciding checks a claim's details list.
@@ -567,10 +561,7 @@ impl Row {
                 short_reason(why)
             },
             why: prose(why),
-            number: deciding
-                .first()
-                .map(|c| one_number(c))
-                .unwrap_or_else(|| "—".into()),
+            number: d.decisive().map(one_number).unwrap_or_else(|| "—".into()),
             rule: d.rule.clone(),
             rule_name: rule_name(&d.rule),
             checks: deciding.iter().map(|c| prose(&c.describe())).collect(),

@@ -213,6 +213,27 @@ pub struct Check {
 }
 
 impl Check {
+    /// How far the statistic lies past its threshold, relative to the threshold: |s − t|/|t|
+    /// (a z of 6 against 2.5 gives 1.4, a count of 3 against 5 gives 0.4, a Hellinger
+    /// distance of 0.55 against a floor of 0.011 gives 49), or |s − t| when the threshold is
+    /// 0 (a gap between brackets); 0 when either is undefined. The measure by which
+    /// [`Decision::deciding`] names the strongest evidence first.
+    pub fn margin(&self) -> f64 {
+        let (s, t) = (self.statistic_value, self.threshold);
+        if s.is_nan() || t.is_nan() {
+            return 0.0;
+        }
+        let gap = (s - t).abs();
+        if gap.is_nan() {
+            // both infinite with the same sign: no distance to speak of
+            0.0
+        } else if t == 0.0 || t.is_infinite() {
+            gap
+        } else {
+            gap / t.abs()
+        }
+    }
+
     /// The check in words: what, the value with its uncertainty, the statistic against its
     /// threshold ("r = 1 → 0.99: Δ = −0.0081 (exact), relative change = −0.25, threshold 1e-9").
     pub fn describe(&self) -> String {
@@ -224,9 +245,17 @@ impl Check {
             }
             Uncertainty::Bracket { .. } => self.value.bracket_words(3),
         };
+        format!("{}: {value}, {}", self.what, self.statistic_words())
+    }
+
+    /// The statistic against its threshold, to three significant digits (`count = 2 against
+    /// 5`, `z = 52.7 against 2.5`): the words every rendering of a verdict quotes for its
+    /// deciding number (the figure's verdict line, claims.md, the report page), so that they
+    /// cannot differ (tested in the CLI's `tests/report.rs`).
+    pub fn statistic_words(&self) -> String {
+        use crate::notes::sig;
         format!(
-            "{}: {value}, {} = {} against {}",
-            self.what,
+            "{} = {} against {}",
             self.statistic,
             sig(self.statistic_value, 3),
             sig(self.threshold, 3)
@@ -277,25 +306,38 @@ impl Decision {
         }
     }
 
-    /// At most `n` checks that decided the verdict: those against the claim when refuted,
-    /// for it when confirmed, else the undefined and not significant ones (the first checks
-    /// when none is of that kind).
+    /// At most `n` checks that decided the verdict, the strongest evidence first: those
+    /// against the claim when refuted, for it when confirmed, each kind ordered by its
+    /// [`Check::margin`] (largest first; ties keep the rule's order) — except under the
+    /// regime rule, whose checks are brackets on D_c listed by the rule in order of
+    /// strength; for an undetermined verdict the undefined and not significant ones in the
+    /// rule's order (the first checks when none is of that kind).
     pub fn deciding(&self, n: usize) -> Vec<&Check> {
-        let wanted: &[Outcome] = match self.verdict {
-            Verdict::Refuted => &[Outcome::Against],
-            Verdict::Confirmed => &[Outcome::For],
-            Verdict::Undetermined { .. } => &[Outcome::Undefined, Outcome::Neither],
+        let (wanted, by_margin): (&[Outcome], bool) = match self.verdict {
+            Verdict::Refuted => (&[Outcome::Against], true),
+            Verdict::Confirmed => (&[Outcome::For], true),
+            Verdict::Undetermined { .. } => (&[Outcome::Undefined, Outcome::Neither], false),
         };
         let mut picked: Vec<&Check> = self
             .checks
             .iter()
             .filter(|c| wanted.contains(&c.outcome))
-            .take(n)
             .collect();
+        if by_margin && self.rule != "regime" {
+            // a stable sort: equal margins keep the order the rule gave
+            picked.sort_by(|a, b| b.margin().total_cmp(&a.margin()));
+        }
+        picked.truncate(n);
         if picked.is_empty() {
             picked = self.checks.iter().take(n).collect();
         }
         picked
+    }
+
+    /// The number that decides the verdict: the first of [`Decision::deciding`] (the
+    /// strongest evidence); `None` for a decision without checks.
+    pub fn decisive(&self) -> Option<&Check> {
+        self.deciding(1).into_iter().next()
     }
 
     /// The same numbers, undetermined for `why` (e.g. a parameter the paper does not print):

@@ -460,19 +460,27 @@ fn specs() -> Vec<Spec> {
         Spec {
             id: "fig10-eq37-misprint",
             figure: 10,
-            place: "Figs 10, 12, Eq. 35–37, Sec. 4",
-            words: "Eq. 36–37 (as printed) give the P-bifurcation set of the averaged theory's P(A) (the dashed curves against the exact m1 = ∂m1/∂A = 0; Fig. 12's panels join when its data is given)",
+            place: "Fig. 10, Eq. 35–37, Sec. 4",
+            words: "Eq. 36–37 (as printed) give the P-bifurcation set of the averaged theory's P(A) in the (λ, τ) plane (the dashed curves against the exact m1 = ∂m1/∂A = 0)",
             rule: "curve_distance",
             model: "averaged theory (Eq. 35–37 against the exact fold of Eq. 27)",
             judge: |f| {
-                f.fig10.as_ref().map(|x| {
-                    let mut sets: Vec<(&str, &[crate::maps::MapPanel])> =
-                        vec![("Fig. 10", &x.0.panels[..])];
-                    if let Some(y) = &f.fig12 {
-                        sets.push(("Fig. 12", &y.0.panels[..]));
-                    }
-                    eq37_curves(&sets)
-                })
+                f.fig10
+                    .as_ref()
+                    .map(|x| eq37_curves(&[("Fig. 10", &x.0.panels[..])]))
+            },
+        },
+        Spec {
+            id: "fig12-eq37-misprint",
+            figure: 12,
+            place: "Fig. 12, Eq. 35–37, Sec. 4",
+            words: "the same in the (μ0, r) and (λ, r) planes (\"From equations (36) and (37) we find … the areas of the parameter plane (r, μ0), (λ, r)\")",
+            rule: "curve_distance",
+            model: "averaged theory (Eq. 35–37 against the exact fold of Eq. 27)",
+            judge: |f| {
+                f.fig12
+                    .as_ref()
+                    .map(|x| eq37_curves(&[("Fig. 12", &x.0.panels[..])]))
             },
         },
         Spec {
