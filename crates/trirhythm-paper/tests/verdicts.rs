@@ -1116,7 +1116,7 @@ fn noise_disorder_needs_the_exponent_to_rise_with_d_on_every_curve() {
             fig17: Some(Fig17(data)),
             ..Default::default()
         })
-        .get("sec5-disorder")
+        .get("fig17-disorder")
         .unwrap()
         .decision
         .clone()
