@@ -47,6 +47,17 @@ pub struct JointPanel {
     pub mc_outside: f64,
     /// The Monte Carlo histogram.
     pub mc: Vec<Vec<f64>>,
+    /// Standard error of each cell of the Monte Carlo histogram (jackknife over the paths;
+    /// empty in data written before it was stored, or where a standard error is undefined).
+    #[serde(default)]
+    pub mc_stderr: Vec<Vec<f64>>,
+    /// The Monte Carlo variance of U̇ (the distribution's extent in Z = U̇) and its standard
+    /// error, [value, se] (empty in data written before it was stored).
+    #[serde(default, with = "trirhythm::non_finite::vec")]
+    pub mc_velocity_variance: Vec<f64>,
+    /// The theory's ⟨U̇²⟩ = ω1²⟨A²⟩/2 over its P(A) (Eq. 30–31: U̇ = ω1A sin φ, φ uniform).
+    #[serde(default = "nan", with = "trirhythm::non_finite")]
+    pub theory_velocity_variance: f64,
     /// Hellinger distance between them over the cells.
     pub hellinger: f64,
     /// Passed the stationarity check.
@@ -61,6 +72,16 @@ pub struct JointPanel {
     #[serde(default)]
     pub wells: Option<crate::montecarlo::WellsSummary>,
 }
+
+fn nan() -> f64 {
+    f64::NAN
+}
+
+/// Half-width of the U̇ axis as a multiple of ω1·A_max: the simulated outer cycle is a
+/// relaxation oscillation whose fast returns reach |U̇| ≈ 24 (99th percentile of one path at
+/// r = 0.999) against ω1·A_max ≈ 16, which left 8–24 % of the samples outside ±ω1·A_max; twice
+/// that holds more than 99 %.
+pub const VELOCITY_FACTOR: f64 = 2.0;
 
 /// Fig. 14's data.
 #[derive(Serialize, Deserialize)]
@@ -80,11 +101,14 @@ impl Figure for Fig14 {
     fn compute(options: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig14> {
         let ctx = options;
         let pre = preset("fig14")?;
-        let sz = Sizes::of(ctx.quick);
+        let sz = Sizes {
+            joint_velocity_factor: VELOCITY_FACTOR,
+            ..Sizes::of(ctx.quick)
+        };
         let bins = if ctx.quick { 32 } else { 64 };
         let mut notes: Vec<String> = pre.notes.iter().map(|s| s.to_string()).collect();
         notes.push(format!(
-            "Monte Carlo of Eq. 1: {}; joint histogram {bins} × {bins} on U ∈ [0, A_max], dU/dt ∈ ±ω1·A_max",
+            "Monte Carlo of Eq. 1: {}; joint histogram {bins} × {bins} on U ∈ [0, A_max], dU/dt ∈ ±{VELOCITY_FACTOR}·ω1·A_max",
             sz.describe()
         ));
         notes.push("theory: Eq. 31, P(U, dU/dt) = P(A)/(πω1A) on U ≥ 0 with A² = U² + (dU/dt)²/ω1², averaged over each cell exactly: in polar form its mass is P(A)dA·dφ/π, so each of 4000 amplitude slices (mass from the quadrature of P(A)) is spread over 720 angles of its half-ellipse".into());
@@ -129,6 +153,16 @@ impl Figure for Fig14 {
                 + ((1.0 - q_in).max(0.0) * (1.0 - p_in).max(0.0)).sqrt();
             let hellinger = (1.0 - bc).max(0.0).sqrt();
             let st = &res.stationarity;
+            // ⟨U̇²⟩ of Eq. 31: ω1²⟨A²⟩/2, ⟨A²⟩ by slices of P(A) up to the window's amplitude
+            let a_top = *j.u_edges.last().unwrap_or(&1.0);
+            let theory_velocity_variance = 0.5
+                * res.omega1.powi(2)
+                * (0..20_000)
+                    .map(|k| {
+                        let (a, b) = (a_top * k as f64 / 2e4, a_top * (k + 1) as f64 / 2e4);
+                        pdf.probability(a, b) * (0.5 * (a + b)).powi(2)
+                    })
+                    .sum::<f64>();
             if let Some(&outer) = pdf.modes.last() {
                 notes.push(format!(
                     "r = {r}: at the theory's outer mode A = {outer:.2} the damping is μ0|P(A)| = {:.0} against ω0 = {}: the simulated outer cycle is a relaxation oscillation (a slow creep near U ≈ A with dU/dt ≈ 0, the bright cells, and fast returns), which the averaging's uniform-phase ring of Eq. 31 cannot represent",
@@ -159,6 +193,15 @@ impl Figure for Fig14 {
                 theory_outside: (1.0 - q_in).max(0.0),
                 mc_outside: j.outside,
                 mc: j.density.clone(),
+                // undefined standard errors (a single unit) are not stored: without them the
+                // verdicts count no Monte Carlo maxima
+                mc_stderr: if j.stderr.iter().flatten().all(|x| x.is_finite()) {
+                    j.stderr.clone()
+                } else {
+                    Vec::new()
+                },
+                mc_velocity_variance: vec![res.var_v.value, res.var_v.stderr],
+                theory_velocity_variance,
                 hellinger,
                 stationary: st.stationary,
                 r_hat: st.r_hat,
@@ -176,7 +219,7 @@ impl Figure for Fig14 {
                 .join(", ")
         };
         let window = format!(
-            "mass outside the window U ∈ [0, A_max], dU/dt ∈ ±ω1·A_max, per r: Monte Carlo {}; theory {} (not drawn, counted as one more cell in H)",
+            "mass outside the window U ∈ [0, A_max], dU/dt ∈ ±{VELOCITY_FACTOR}·ω1·A_max, per r: Monte Carlo {}; theory {} (not drawn, counted as one more cell in H)",
             outside(|p| p.mc_outside),
             outside(|p| p.theory_outside)
         );
@@ -189,6 +232,7 @@ impl Figure for Fig14 {
             vec![
                 format!("Monte Carlo: {}; one logarithmic colour scale per r (three decades; white below)", sz.describe()),
                 format!("stationarity check passed by {passed} of {} ensembles", panels.len()),
+                decides_line(&panels),
                 window,
                 format!("theory drawn on a grid {FINE} times finer per axis than the Monte Carlo cells (its rings are thin); H compares both on the Monte Carlo cells"),
             ],
@@ -233,7 +277,7 @@ impl Figure for Fig14 {
     }
 
     fn validate(&self) -> crate::validate::Valid {
-        use crate::validate::{density_matrix, edges, scalar};
+        use crate::validate::{density_matrix, edges, len, scalar};
         for (i, p) in self.panels.iter().enumerate() {
             let f = format!("panels[{i}]");
             scalar(&format!("{f}.r"), p.r)?;
@@ -243,6 +287,22 @@ impl Figure for Fig14 {
             let of = format!("{nu} × {nv} cells of u_edges, v_edges");
             density_matrix(&format!("{f}.theory"), &p.theory, nu, nv, &of)?;
             density_matrix(&format!("{f}.mc"), &p.mc, nu, nv, &of)?;
+            // the cells' standard errors: none (earlier data) or one per cell
+            if !p.mc_stderr.is_empty() {
+                let se = format!("{f}.mc_stderr");
+                len(&se, p.mc_stderr.len(), nu, &of)?;
+                for (k, row) in p.mc_stderr.iter().enumerate() {
+                    len(&format!("{se}[{k}]"), row.len(), nv, &of)?;
+                }
+            }
+            if !p.mc_velocity_variance.is_empty() {
+                len(
+                    &format!("{f}.mc_velocity_variance"),
+                    p.mc_velocity_variance.len(),
+                    2,
+                    "[value, standard error]",
+                )?;
+            }
             let fine = format!("{} × {} cells, {FINE} times finer", nu * FINE, nv * FINE);
             density_matrix(
                 &format!("{f}.theory_fine"),
@@ -260,6 +320,33 @@ impl Figure for Fig14 {
             }
         }
         Ok(())
+    }
+}
+
+/// What the Monte Carlo maps can decide: every ensemble stationary, or, plainly, that they
+/// decide nothing and why (the wells' exchange rates that no window in the budget resolves).
+fn decides_line(panels: &[JointPanel]) -> String {
+    let open: Vec<String> = panels
+        .iter()
+        .filter(|p| !p.stationary)
+        .map(|p| {
+            let why = p
+                .wells
+                .as_ref()
+                .and_then(|w| w.refusals.first().cloned())
+                .unwrap_or_else(|| format!("R̂ = {}", crate::notes::sig(p.r_hat, 3)));
+            format!("r = {}: {why}", p.r)
+        })
+        .collect();
+    if open.is_empty() {
+        "every Monte Carlo map is stationary: its peaks and shift in dU/dt decide".into()
+    } else {
+        format!(
+            "the Monte Carlo maps of {} of {} r DECIDE NOTHING (not stationary, and the well decomposition refused: its weights, and so the density, are undetermined): {}",
+            open.len(),
+            panels.len(),
+            open.join("; ")
+        )
     }
 }
 

@@ -38,6 +38,14 @@ pub struct Sizes {
     pub t_end: f64,
     /// Bins of the amplitude histogram.
     pub bins: usize,
+    /// Half-width of the joint histogram's U̇ axis as a multiple of ω1·A_max (1 for Figs 11
+    /// and 13; Fig. 14's relaxation oscillation needs 2 to hold 99 % of its samples).
+    #[serde(default = "one")]
+    pub joint_velocity_factor: f64,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 impl Sizes {
@@ -50,6 +58,7 @@ impl Sizes {
                 burn_in: 10.0,
                 t_end: 100.0,
                 bins: 50,
+                joint_velocity_factor: 1.0,
             }
         } else {
             Sizes {
@@ -57,6 +66,7 @@ impl Sizes {
                 burn_in: 500.0,
                 t_end: 150_000.0,
                 bins: 80,
+                joint_velocity_factor: 1.0,
             }
         }
     }
@@ -511,6 +521,7 @@ pub fn ensemble(
         length: sizes.t_end,
         bins: sizes.bins,
         joint_bins,
+        joint_velocity_factor: sizes.joint_velocity_factor,
         amplitude_max: layout.amplitude_max,
         wells: layout.wells,
         ..Default::default()
@@ -557,6 +568,7 @@ pub fn wells_ensemble(
         length,
         bins: sizes.bins,
         joint_bins,
+        joint_velocity_factor: sizes.joint_velocity_factor,
         amplitude_max: layout.amplitude_max,
         wells: layout.wells,
         ..Default::default()

@@ -341,3 +341,34 @@ fn every_preset_passes_the_step_guard_at_its_figure_step() {
         );
     }
 }
+
+/// Fig. 14's plotted window holds the Monte Carlo density (at most `WINDOW_MASS_TOL` of the
+/// samples outside, the share stored per panel and printed in the caption), its cells carry
+/// standard errors, and ⟨U̇²⟩ is stored for both models; the caption says whether the maps
+/// decide anything.
+#[test]
+fn fig14_window_holds_the_monte_carlo_mass() {
+    use trirhythm_paper::verdict::rules::WINDOW_MASS_TOL;
+    let f = fig14_joint_pdf::Fig14::compute(&QUICK, &Silent).unwrap();
+    for p in &f.panels {
+        assert!(
+            p.mc_outside <= WINDOW_MASS_TOL,
+            "r = {}: {} of the samples outside the window",
+            p.r,
+            p.mc_outside
+        );
+        let v_max = p.v_edges.last().copied().unwrap();
+        let u_max = p.u_edges.last().copied().unwrap();
+        // the U̇ axis reaches twice the harmonic cycle's ±ω1·A_max (ω1 ≈ 1 here)
+        assert!(v_max > 1.9 * u_max, "U̇ axis ±{v_max} for A_max = {u_max}");
+        assert_eq!(p.mc_stderr.len(), p.mc.len());
+        assert_eq!(p.mc_velocity_variance.len(), 2);
+        assert!(p.theory_velocity_variance > 0.0);
+    }
+    let lines = f.caption.lines.join("\n");
+    assert!(lines.contains("mass outside the window"), "{lines}");
+    assert!(
+        lines.contains("DECIDE NOTHING") || lines.contains("every Monte Carlo map is stationary"),
+        "{lines}"
+    );
+}

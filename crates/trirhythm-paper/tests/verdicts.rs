@@ -10,9 +10,9 @@ use trirhythm_paper::verdict::claims::{
 };
 use trirhythm_paper::verdict::rules::{
     agreement, closeness, count, curve_distance, dependence, directed_distance, locate,
-    separate_maxima, sign_change, significance, trend, Comparison, Count, CountSource, CurveSets,
-    Direction, LleCurve, LlePoint, Located, PointSign, Series, CLOSENESS_REL_TOL, CURVE_TOL,
-    PEAK_DIP, PEAK_FLOOR,
+    separate_maxima, separate_maxima_significant, sign_change, significance, trend, Comparison,
+    Count, CountSource, CurveSets, Direction, LleCurve, LlePoint, Located, PointSign, Series,
+    CLOSENESS_REL_TOL, CURVE_TOL, PEAK_DIP, PEAK_FLOOR, PEAK_SE_K,
 };
 use trirhythm_paper::verdict::{Decision, Measured, Outcome, Uncertainty, Verdict};
 use trirhythm_paper::FigureOptions;
@@ -820,6 +820,367 @@ fn separate_maxima_count_peaks_not_rings_or_shoulders() {
         separate_maxima(&vec![vec![0.0; 4]; 4], PEAK_FLOOR, PEAK_DIP),
         0
     );
+}
+
+#[test]
+fn separate_maxima_of_a_histogram_need_dips_beyond_their_standard_errors() {
+    let four = [
+        (0.5, 0.5, 0.1, 1.0),
+        (-0.5, 0.5, 0.1, 0.8),
+        (0.5, -0.5, 0.1, 0.6),
+        (-0.5, -0.5, 0.1, 0.9),
+    ];
+    let d = density(64, &four, None);
+    let se = |s: f64| vec![vec![s; 64]; 64];
+    // standard errors small against the dips: the four peaks stand
+    assert_eq!(
+        separate_maxima_significant(&d, &se(0.01), PEAK_FLOOR, PEAK_DIP, PEAK_SE_K),
+        4
+    );
+    // standard errors as large as the peaks: only the highest counts
+    assert_eq!(
+        separate_maxima_significant(&d, &se(0.5), PEAK_FLOOR, PEAK_DIP, PEAK_SE_K),
+        1
+    );
+    // peaks cut off from each other by the floor count when 3 s.e. above zero: the weakest
+    // (0.54 in its cell) falls below 3 × 0.22 = 0.66, the next (0.73) stays
+    assert_eq!(
+        separate_maxima_significant(&d, &se(0.22), PEAK_FLOOR, PEAK_DIP, PEAK_SE_K),
+        3
+    );
+    // a peak joined to a higher one: its dip must be significant as well as deep
+    let apart = density(64, &[(0.0, 0.25, 0.1, 1.0), (0.0, -0.25, 0.1, 0.9)], None);
+    assert_eq!(
+        separate_maxima_significant(&apart, &se(0.01), PEAK_FLOOR, PEAK_DIP, PEAK_SE_K),
+        2
+    );
+    assert_eq!(
+        separate_maxima_significant(&apart, &se(0.2), PEAK_FLOOR, PEAK_DIP, PEAK_SE_K),
+        1
+    );
+}
+
+// ---- the Monte Carlo claims on constructed data ----
+
+/// A Fig. 13 panel with one ensemble of Eq. 1: the theory's (binned) and the histogram's mode
+/// counts, its stationarity, and a drawn theory curve with `analytic` maxima.
+fn amplitude_panel(
+    caption: &str,
+    modes_theory: usize,
+    modes_mc: usize,
+    stationary: bool,
+    analytic: usize,
+) -> trirhythm_paper::montecarlo::AmplitudePanel {
+    use trirhythm_paper::montecarlo::{AmplitudePanel, Distance, McRun};
+    let a: Vec<f64> = (0..200).map(|i| i as f64 * 0.05).collect();
+    let curve: Vec<f64> = a
+        .iter()
+        .map(|&x| {
+            (1.0 + (std::f64::consts::PI * analytic as f64 * x / 10.0)
+                .sin()
+                .powi(2))
+                * 0.1
+        })
+        .collect();
+    AmplitudePanel {
+        caption: caption.into(),
+        theory: vec![("paper".into(), a, curve)],
+        runs: vec![McRun {
+            system: "Eq. 1".into(),
+            edges: vec![0.0, 1.0],
+            density: vec![1.0],
+            stderr: vec![0.0],
+            beyond: 0.0,
+            stationary,
+            r_hat: if stationary { 1.0 } else { 5.0 },
+            ess: 1e4,
+            distances: vec![Distance {
+                variant: "paper".into(),
+                hellinger: 0.0,
+                hellinger_stderr: 0.0,
+                l1: 0.0,
+                ks: 0.0,
+                modes_theory,
+                modes_mc,
+            }],
+            step_warnings: vec![],
+            estimator: "direct".into(),
+            wells: None,
+        }],
+    }
+}
+
+fn judge_fig13(panels: Vec<trirhythm_paper::montecarlo::AmplitudePanel>) -> Figures {
+    use trirhythm_paper::fig13_pdf_restitution::Fig13;
+    use trirhythm_paper::notes::Caption;
+    Figures {
+        fig13: Some(Fig13 {
+            caption: Caption {
+                title: String::new(),
+                lines: vec![],
+            },
+            notes: vec![],
+            panels,
+        }),
+        ..Default::default()
+    }
+}
+
+#[test]
+fn fig13_peaks_are_decided_by_the_theory_first_then_stationary_ensembles() {
+    use trirhythm_paper::verdict::claims::{FIG13B_CLAIMED_PEAKS, FIG13_CLAIMED_PEAKS};
+    let a = |theory: [usize; 4], mc: [usize; 4], stationary: bool| {
+        (0..4)
+            .map(|i| {
+                amplitude_panel(
+                    &format!("(a{})", i + 1),
+                    theory[i],
+                    mc[i],
+                    stationary,
+                    FIG13_CLAIMED_PEAKS[i] as usize,
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    let claimed = FIG13_CLAIMED_PEAKS.map(|c| c as usize);
+    // theory and stationary ensembles as the text says: confirmed
+    let v = judge(&judge_fig13(a(claimed, claimed, true)));
+    assert_eq!(tag(&v.get("fig13a-peaks").unwrap().decision), "confirmed");
+    // the theory's visible peaks 2/1/1/1 (the full-quality data): refuted, and the first
+    // deciding check is the theory's, whatever the ensembles
+    let v = judge(&judge_fig13(a([2, 1, 1, 1], claimed, false)));
+    let d = &v.get("fig13a-peaks").unwrap().decision;
+    assert_eq!(tag(d), "refuted");
+    let first = d.deciding(1)[0];
+    assert!(first.what.starts_with("averaged theory"), "{}", first.what);
+    assert!(first.what.contains("analytic maxima"), "{}", first.what);
+    // theory as claimed, ensembles not stationary: undetermined
+    let v = judge(&judge_fig13(a(claimed, [1, 1, 1, 1], false)));
+    assert_eq!(
+        tag(&v.get("fig13a-peaks").unwrap().decision),
+        "undetermined"
+    );
+    // (b1)–(b4): "the three peaks endure"
+    let b = |theory: usize, mc: usize, stationary: bool| {
+        let mut p = a(claimed, claimed, true);
+        p.extend((1..=4).map(|i| amplitude_panel(&format!("(b{i})"), theory, mc, stationary, 3)));
+        judge(&judge_fig13(p))
+    };
+    let three = FIG13B_CLAIMED_PEAKS as usize;
+    assert_eq!(
+        tag(&b(three, three, true).get("fig13b-peaks").unwrap().decision),
+        "confirmed"
+    );
+    assert_eq!(
+        tag(&b(1, three, false).get("fig13b-peaks").unwrap().decision),
+        "refuted"
+    );
+    assert_eq!(
+        tag(&b(three, 1, false).get("fig13b-peaks").unwrap().decision),
+        "undetermined"
+    );
+    assert_eq!(
+        tag(&b(three, 2, true).get("fig13b-peaks").unwrap().decision),
+        "refuted"
+    );
+}
+
+/// A Fig. 14 panel: four bumps (or a ring) as both densities, the Monte Carlo's cell standard
+/// errors, its mass outside the window, ⟨U̇²⟩ of both, stationarity.
+fn joint_panel(
+    r: f64,
+    rings: bool,
+    stationary: bool,
+    outside: f64,
+    var_theory: f64,
+    var_mc: f64,
+) -> trirhythm_paper::fig14_joint_pdf::JointPanel {
+    let four = [
+        (0.5, 0.5, 0.1, 1.0),
+        (-0.5, 0.5, 0.1, 0.8),
+        (0.5, -0.5, 0.1, 0.6),
+        (-0.5, -0.5, 0.1, 0.9),
+    ];
+    let d = density(32, &four, None);
+    let theory_fine = if rings {
+        density(128, &[], Some((0.6, 0.05, 1.0)))
+    } else {
+        density(128, &four, None)
+    };
+    let edges: Vec<f64> = (0..=32).map(|i| i as f64 / 32.0).collect();
+    trirhythm_paper::fig14_joint_pdf::JointPanel {
+        r,
+        u_edges: edges.clone(),
+        v_edges: edges,
+        theory: d.clone(),
+        theory_fine,
+        theory_outside: 0.0,
+        mc_outside: outside,
+        mc: d,
+        mc_stderr: vec![vec![0.01; 32]; 32],
+        mc_velocity_variance: vec![var_mc, 0.5],
+        theory_velocity_variance: var_theory,
+        hellinger: 0.0,
+        stationary,
+        r_hat: if stationary { 1.0 } else { 2.0 },
+        estimator: "direct".into(),
+        wells: None,
+    }
+}
+
+fn judge_fig14(
+    panels: Vec<trirhythm_paper::fig14_joint_pdf::JointPanel>,
+) -> trirhythm_paper::verdict::claims::Verdicts {
+    use trirhythm_paper::fig14_joint_pdf::Fig14;
+    use trirhythm_paper::notes::Caption;
+    judge(&Figures {
+        fig14: Some(Fig14 {
+            caption: Caption {
+                title: String::new(),
+                lines: vec![],
+            },
+            notes: vec![],
+            panels,
+        }),
+        ..Default::default()
+    })
+}
+
+#[test]
+fn fig14_shift_and_peaks_per_model() {
+    // ⟨U̇²⟩ falling as r grows in both models, ensembles stationary: confirmed
+    let rs = [0.999, 0.96, 0.92, 0.86];
+    let panels_of = |rings: bool, theory: [f64; 4], mc: [f64; 4], stationary: bool, outside| {
+        (0..4)
+            .map(|i| joint_panel(rs[i], rings, stationary, outside, theory[i], mc[i]))
+            .collect::<Vec<_>>()
+    };
+    let panels =
+        |theory, mc, stationary, outside| panels_of(false, theory, mc, stationary, outside);
+    let falling = [80.0, 82.0, 84.0, 86.0];
+    let v = judge_fig14(panels(falling, falling, true, 0.0));
+    assert_eq!(tag(&v.get("fig14-shift").unwrap().decision), "confirmed");
+    // the theory's rising with r (the full-quality 82.7 → 83.6): refuted whatever the ensembles
+    let rising = [83.58, 83.37, 83.14, 82.73];
+    let v = judge_fig14(panels(rising, falling, false, 0.0));
+    assert_eq!(tag(&v.get("fig14-shift").unwrap().decision), "refuted");
+    // the theory as claimed, the ensembles not stationary: undetermined
+    let v = judge_fig14(panels(falling, rising, false, 0.0));
+    assert_eq!(tag(&v.get("fig14-shift").unwrap().decision), "undetermined");
+    // peaks: four in both models, the ensemble stationary and holding its mass: confirmed,
+    // the Monte Carlo count with significant dips
+    let crater = |rings, stationary, outside| {
+        judge_fig14(panels_of(rings, falling, falling, stationary, outside))
+            .get("fig14-crater")
+            .unwrap()
+            .decision
+            .clone()
+    };
+    let d = crater(false, true, 0.0);
+    assert_eq!(tag(&d), "confirmed");
+    let mc: Vec<_> = d
+        .checks
+        .iter()
+        .filter(|c| c.what.starts_with("Eq. 1"))
+        .collect();
+    assert_eq!(mc[0].statistic_value, 4.0);
+    // 5 % of the samples outside the window, or not stationary: the Monte Carlo part decides
+    // nothing
+    assert_eq!(tag(&crater(false, true, 0.05)), "undetermined");
+    assert_eq!(tag(&crater(false, false, 0.0)), "undetermined");
+    // the theory's rings (Eq. 30–31 depends on the amplitude alone): one maximum, refuted
+    assert_eq!(tag(&crater(true, true, 0.0)), "refuted");
+}
+
+#[test]
+fn noise_disorder_needs_the_exponent_to_rise_with_d_on_every_curve() {
+    use trirhythm_paper::fig17_lle_noise::Fig17;
+    use trirhythm_paper::lle::{DtCheck, LleAgainstNoise, StartKind};
+    use trirhythm_paper::notes::Caption;
+    let judge17 = |curves: &[(StartKind, &[f64])]| {
+        let data = LleAgainstNoise {
+            caption: Caption {
+                title: String::new(),
+                lines: vec![],
+            },
+            notes: vec![],
+            panels: vec![lle_panel("(a)", curves)],
+            dt_check: DtCheck {
+                what: String::new(),
+                panel: "a".into(),
+                dt_rule: 0.005,
+                points: vec![],
+            },
+        };
+        judge(&Figures {
+            fig17: Some(Fig17(data)),
+            ..Default::default()
+        })
+        .get("fig17-disorder")
+        .unwrap()
+        .decision
+        .clone()
+    };
+    let rising: &[f64] = &[-0.05, -0.04, 0.05, 0.06];
+    // synchronisation on a cycle: the exponent falls with D (the full-quality μ0 = 0.05 curves)
+    let falling: &[f64] = &[0.0, -0.005, -0.03, -0.055];
+    let flat: &[f64] = &[0.01, 0.011, 0.01, 0.011];
+    assert_eq!(tag(&judge17(&[(StartKind::Rest, rising)])), "confirmed");
+    assert_eq!(
+        tag(&judge17(&[
+            (StartKind::Rest, rising),
+            (StartKind::Cycle, falling)
+        ])),
+        "refuted"
+    );
+    assert_eq!(
+        tag(&judge17(&[
+            (StartKind::Rest, rising),
+            (StartKind::Cycle, flat)
+        ])),
+        "undetermined"
+    );
+}
+
+#[test]
+fn fig01_recurrence_is_closeness_of_rr_and_det() {
+    use trirhythm_paper::fig01_phase_recurrence::{Fig01, Panel};
+    use trirhythm_paper::notes::Caption;
+    let fig = |rr: [f64; 2], det: [f64; 2]| {
+        let panel = |k: usize| Panel {
+            title: String::new(),
+            phase: vec![],
+            t: vec![],
+            u: vec![],
+            v: vec![],
+            rr: rr[k],
+            det: det[k],
+            amplitude: 1.0,
+        };
+        judge(&Figures {
+            fig01: Some(Fig01 {
+                caption: Caption {
+                    title: String::new(),
+                    lines: vec![],
+                },
+                notes: vec![],
+                panels: vec![panel(0), panel(1)],
+                start: 0.0,
+                epsilon: 0.1,
+            }),
+            ..Default::default()
+        })
+        .get("fig01-recurrence")
+        .unwrap()
+        .decision
+        .clone()
+    };
+    assert_eq!(tag(&fig([0.0100, 0.0101], [1.0, 1.0])), "confirmed");
+    // the full-quality RR 0.0086 against 0.0100: 14 % apart
+    let d = fig([0.0086, 0.0100], [1.0, 1.0]);
+    assert_eq!(tag(&d), "refuted");
+    assert!(d.deciding(1)[0].what.starts_with("recurrence rate"));
+    assert_eq!(tag(&fig([0.0100, 0.0100], [0.8, 1.0])), "refuted");
 }
 
 // ---- the claims, computed ----

@@ -200,6 +200,7 @@ fn ensemble_spec() -> EnsembleSpec {
         sample_every: 1,
         bins: 4,
         joint_bins: 2,
+        joint_velocity_factor: 1.0,
         amplitude_max: 10.0,
         batches: 4,
         wells: None,
@@ -1078,6 +1079,14 @@ fn rows() -> Vec<Row> {
             Real,
             |v| v > 0.0 && v <= 1e6,
             |v| ens(|s| s.amplitude_max = v)
+        ),
+        row!(
+            "run_ensemble (EnsembleSpec)",
+            "joint_velocity_factor",
+            "joint_velocity_factor",
+            Real,
+            |v| v > 0.0 && v <= 1e3,
+            |v| ens(|s| s.joint_velocity_factor = v)
         ),
         row!(
             "run_ensemble (EnsembleSpec)",

@@ -12,7 +12,7 @@ mod stochastic;
 mod theory;
 
 pub use sequences::{visible_peaks, FIG05_EXCEPTED_MU0, SETTLED_SPREAD};
-pub use stochastic::{FIG13_CLAIMED_PEAKS, FIG14_CLAIMED_MAXIMA};
+pub use stochastic::{FIG13B_CLAIMED_PEAKS, FIG13_CLAIMED_PEAKS, FIG14_CLAIMED_MAXIMA};
 pub use theory::FIG04_CLAIMED_ROOTS;
 
 use super::rules::{closeness, Direction, CLOSENESS_REL_TOL};
@@ -298,6 +298,15 @@ fn specs() -> Vec<Spec> {
             judge: |f| f.fig01.as_ref().map(fig01_align),
         },
         Spec {
+            id: "fig01-recurrence",
+            figure: 1,
+            place: "Fig. 1, Sec. 2",
+            words: "the recurrence plots of Eq. 1 and Eq. 5 align closely (\"the phase portraits and recurrence plots are presented … The approximative solution seems to align closely\"): their recurrence rate RR and determinism DET",
+            rule: "closeness",
+            model: "Eq. 1 against Eq. 5 (both by the predictor–corrector)",
+            judge: |f| f.fig01.as_ref().map(fig01_recurrence),
+        },
+        Spec {
             id: "fig02-regions",
             figure: 2,
             place: "Fig. 2(ii), Sec. 3",
@@ -575,8 +584,17 @@ fn specs() -> Vec<Spec> {
             place: "Fig. 13(a), Sec. 4",
             words: "\"P_r(A) exhibits three peaks at r = 0.99 … when r = 0.97 or 0.96, we notice two peaks … when r = 0.84 … only one peak\"",
             rule: "count",
-            model: "Eq. 1 (Monte Carlo)",
+            model: "averaged theory (Eq. 27) and Eq. 1 (Monte Carlo)",
             judge: |f| f.fig13.as_ref().map(fig13_peaks),
+        },
+        Spec {
+            id: "fig13b-peaks",
+            figure: 13,
+            place: "Fig. 13(b), Sec. 4",
+            words: "\"when μ0 = 0.2, we change r between 0.7 and 0.999 and we note that the three peaks endure\"",
+            rule: "count",
+            model: "averaged theory (Eq. 27) and Eq. 1 (Monte Carlo)",
+            judge: |f| f.fig13.as_ref().map(fig13b_peaks),
         },
         Spec {
             id: "eq26-28-misprints",
@@ -595,6 +613,15 @@ fn specs() -> Vec<Spec> {
             rule: "count",
             model: "averaged theory (Eq. 30–31) and Eq. 1 (Monte Carlo)",
             judge: |f| f.fig14.as_ref().map(fig14_crater),
+        },
+        Spec {
+            id: "fig14-shift",
+            figure: 14,
+            place: "Fig. 14, Sec. 4",
+            words: "\"a greater restitution coefficient causes the distribution to move to a lower Z value for a given number of enzyme molecules U\"",
+            rule: "trend",
+            model: "averaged theory (Eq. 30–31) and Eq. 1 (Monte Carlo)",
+            judge: |f| f.fig14.as_ref().map(fig14_shift),
         },
         Spec {
             id: "fig15-omega",
@@ -696,6 +723,36 @@ fn specs() -> Vec<Spec> {
             rule: "trend",
             model: "Eq. 1 (simulation)",
             judge: |f| f.fig18.as_ref().and_then(|x| x.0.panels.get(1).map(fig18_impact_loss)),
+        },
+        Spec {
+            id: "fig17-disorder",
+            figure: 17,
+            place: "Sec. V (Fig. 17)",
+            words: "\"As correlated noise intensity increases, it is evident that the model experiences a progressive increases in disorder\" (the exponents of Fig. 17)",
+            rule: "trend",
+            model: "Eq. 1 (simulation)",
+            judge: |f| {
+                f.fig17.as_ref().map(|x| {
+                    let panels: Vec<(&str, &crate::lle::Panel)> =
+                        x.0.panels.iter().map(|p| ("Fig. 17", p)).collect();
+                    noise_disorder(&panels)
+                })
+            },
+        },
+        Spec {
+            id: "fig18-disorder",
+            figure: 18,
+            place: "Sec. V (Fig. 18)",
+            words: "the same sentence, on the exponents of Fig. 18",
+            rule: "trend",
+            model: "Eq. 1 (simulation)",
+            judge: |f| {
+                f.fig18.as_ref().map(|x| {
+                    let panels: Vec<(&str, &crate::lle::Panel)> =
+                        x.0.panels.iter().map(|p| ("Fig. 18", p)).collect();
+                    noise_disorder(&panels)
+                })
+            },
         },
         Spec {
             id: "fig19a-dc-mu0",

@@ -3,9 +3,9 @@
 //! agreement, count, sign-change and trend rules.
 
 use super::super::rules::{
-    agreement, count, dependence, separate_maxima, sign_change, trend, Bracket, Comparison, Count,
-    CountSource, Direction, LleCurve, Located, Series, Weightings, AGREEMENT_K, CLOSENESS_REL_TOL,
-    PEAK_DIP, PEAK_FLOOR, WINDOW_MASS_TOL,
+    agreement, count, dependence, separate_maxima, separate_maxima_significant, sign_change, trend,
+    Bracket, Comparison, Count, CountSource, Direction, LleCurve, Located, Series, Weightings,
+    AGREEMENT_K, CLOSENESS_REL_TOL, PEAK_DIP, PEAK_FLOOR, PEAK_SE_K, WINDOW_MASS_TOL,
 };
 use super::super::{all_of, Decision, Measured, Outcome, Verdict};
 use crate::boundary::Panel as BoundaryPanel;
@@ -88,27 +88,81 @@ pub(super) fn agreement_of(panels: &[AmplitudePanel], system: &str, variant: &st
 pub const FIG13_CLAIMED_PEAKS: [u32; 4] = [3, 2, 2, 1];
 
 pub(super) fn fig13_peaks(f: &Fig13) -> Decision {
-    let mut items = Vec::new();
-    for (p, claimed) in f.panels.iter().zip(FIG13_CLAIMED_PEAKS) {
-        if let Some(r) = p.runs.iter().find(|r| r.system == "Eq. 1") {
-            if let Some(d) = r.distances.first() {
-                items.push(Count {
-                    what: format!(
-                        "peaks of the Monte Carlo P(A) of Eq. 1{}, {}",
-                        estimator_of(r),
-                        p.caption
-                    ),
-                    claimed,
-                    computed: d.modes_mc as u32,
-                    source: CountSource::Ensemble {
-                        stationary: r.stationary,
-                        r_hat: r.r_hat,
-                    },
-                });
-            }
+    let claimed: Vec<(&AmplitudePanel, u32)> = f.panels.iter().zip(FIG13_CLAIMED_PEAKS).collect();
+    peak_counts(&claimed)
+}
+
+/// The peak count the text gives for Fig. 13 (b1)–(b4): "the three peaks endure" at μ0 = 0.2.
+pub const FIG13B_CLAIMED_PEAKS: u32 = 3;
+
+pub(super) fn fig13b_peaks(f: &Fig13) -> Decision {
+    let claimed: Vec<(&AmplitudePanel, u32)> = f
+        .panels
+        .iter()
+        .skip(4)
+        .map(|p| (p, FIG13B_CLAIMED_PEAKS))
+        .collect();
+    peak_counts(&claimed)
+}
+
+/// Local maxima of a drawn theory curve (its analytic modes, to the curve's grid).
+fn curve_maxima(d: &[f64]) -> usize {
+    d.windows(3).filter(|w| w[1] > w[0] && w[1] >= w[2]).count()
+}
+
+/// Peaks of P(A) per panel against the text's counts, by the prominence rule of
+/// `analysis::versus` (a local maximum standing more than 1 % of the largest density above the
+/// way to a higher one; for a histogram also three standard errors): first the averaged
+/// theory's P(A) as printed, binned as the histogram (exact: the peaks a reader of the curve
+/// sees), then Monte Carlo of Eq. 1 (stationary ensembles only). The theory's checks come
+/// first: they are exact and decide whatever the ensembles' stationarity.
+fn peak_counts(panels: &[(&AmplitudePanel, u32)]) -> Decision {
+    let mut theory = Vec::new();
+    let mut mc = Vec::new();
+    for &(p, claimed) in panels {
+        let Some(r) = p.runs.iter().find(|r| r.system == "Eq. 1") else {
+            continue;
+        };
+        if let Some(d) = r.distances.iter().find(|d| d.variant == "paper") {
+            let analytic = p
+                .theory
+                .iter()
+                .find(|t| t.0 == "paper")
+                .map(|t| curve_maxima(&t.2));
+            theory.push(Count {
+                what: format!(
+                    "{}: visible peaks of P(A) as printed{}",
+                    p.caption,
+                    analytic
+                        .map(|n| format!(
+                            " (analytic maxima: {n}; those less prominent than 1 % of the largest density are not visible)"
+                        ))
+                        .unwrap_or_default()
+                ),
+                claimed,
+                computed: d.modes_theory as u32,
+                source: CountSource::Exact,
+            });
+        }
+        if let Some(d) = r.distances.first() {
+            mc.push(Count {
+                what: format!("{}: peaks of the histogram{}", p.caption, estimator_of(r)),
+                claimed,
+                computed: d.modes_mc as u32,
+                source: CountSource::Ensemble {
+                    stationary: r.stationary,
+                    r_hat: r.r_hat,
+                },
+            });
         }
     }
-    count(&items)
+    all_of(
+        "count",
+        vec![
+            ("averaged theory (Eq. 27)".into(), count(&theory)),
+            ("Eq. 1 (Monte Carlo)".into(), count(&mc)),
+        ],
+    )
 }
 
 /// A claim on an LLE panel decided per start ([`StartKind`]) and combined with
@@ -682,6 +736,22 @@ pub(super) fn fig15_omega(f: &Fig15) -> Decision {
     d
 }
 
+/// Why a Fig. 14 ensemble decides nothing: its R̂ and, where the well decomposition was
+/// tried, its first refusal.
+fn fig14_not_stationary(p: &crate::fig14_joint_pdf::JointPanel) -> String {
+    let refusal = p
+        .wells
+        .as_ref()
+        .and_then(|w| w.refusals.first())
+        .map(|r| format!("; the well decomposition refused: {r}"))
+        .unwrap_or_default();
+    format!(
+        "r = {}: not stationary (R̂ = {}{refusal})",
+        p.r,
+        crate::notes::sig(p.r_hat, 3)
+    )
+}
+
 /// The count Fig. 14's text gives: "four separate peaks" at r = 0.999. (Its "vast crater" at
 /// r = 0.92 is a shape, not a count: a ring-shaped rim around a lower centre, which the count
 /// of separate maxima cannot tell from one compact peak; it is not tested.)
@@ -699,21 +769,29 @@ pub(super) fn fig14_crater(f: &Fig14) -> Decision {
             continue;
         };
         theory.push(Count {
-            what: format!("averaged theory (Eq. 30–31), r = {r}: separate maxima of P(U, dU/dt)"),
+            what: format!("r = {r}: separate maxima of P(U, dU/dt)"),
             claimed,
             computed: separate_maxima(&p.theory_fine, PEAK_FLOOR, PEAK_DIP) as u32,
             source: CountSource::Exact,
         });
+        // the Monte Carlo count needs the cells' standard errors (significant dips only)
+        let stationary = p.stationary && !p.mc_stderr.is_empty();
         mc.push(Count {
             what: format!(
-                "Eq. 1 (Monte Carlo, {}), r = {r}: separate maxima of the joint histogram ({} % of the samples outside the window)",
+                "r = {r}: separate maxima of the joint histogram ({} estimator), dips significant at {PEAK_SE_K} s.e. ({} % of the samples outside the window{})",
                 p.estimator,
-                crate::notes::sig(100.0 * p.mc_outside, 3)
+                crate::notes::sig(100.0 * p.mc_outside, 3),
+                if p.mc_stderr.is_empty() { "; no standard errors in the data" } else { "" }
             ),
             claimed,
-            computed: separate_maxima(&p.mc, PEAK_FLOOR, PEAK_DIP) as u32,
+            computed: if p.mc_stderr.is_empty() {
+                separate_maxima(&p.mc, PEAK_FLOOR, PEAK_DIP) as u32
+            } else {
+                separate_maxima_significant(&p.mc, &p.mc_stderr, PEAK_FLOOR, PEAK_DIP, PEAK_SE_K)
+                    as u32
+            },
             source: CountSource::Ensemble {
-                stationary: p.stationary,
+                stationary,
                 r_hat: p.r_hat,
             },
         });
@@ -726,6 +804,17 @@ pub(super) fn fig14_crater(f: &Fig14) -> Decision {
         }
     }
     let mut simulated = count(&mc);
+    if let Verdict::Undetermined { why } = &mut simulated.verdict {
+        let reasons: Vec<String> = FIG14_CLAIMED_MAXIMA
+            .iter()
+            .filter_map(|(r, _)| f.panels.iter().find(|p| (p.r - r).abs() < 1e-9))
+            .filter(|p| !p.stationary)
+            .map(fig14_not_stationary)
+            .collect();
+        if !reasons.is_empty() {
+            *why = reasons.join("; ");
+        }
+    }
     if !outside.is_empty() && !matches!(simulated.verdict, Verdict::Undetermined { .. }) {
         simulated = simulated.undetermined_because(&format!(
             "the window does not hold the density (more than {} % outside: {})",
@@ -833,4 +922,106 @@ pub(super) fn eq26_28(f: &Fig13) -> Decision {
         None,
         checks,
     )
+}
+
+/// Fig. 14's text: "a greater restitution coefficient causes the distribution to move to a
+/// lower Z value" (Z the velocity axis). What a reader of the maps sees move is the density's
+/// extent along U̇: measured as ⟨U̇²⟩ over each panel's density (for the theory ω1²⟨A²⟩/2,
+/// exact; for Monte Carlo of Eq. 1 the ensemble's Var U̇ with its standard error, stationary
+/// ensembles only), one series per model over r in increasing order, decided by the trend rule
+/// (decreases).
+pub(super) fn fig14_shift(f: &Fig14) -> Decision {
+    let mut panels: Vec<&crate::fig14_joint_pdf::JointPanel> = f.panels.iter().collect();
+    panels.sort_by(|a, b| a.r.total_cmp(&b.r));
+    let theory = trend(
+        &[Series {
+            label: "⟨U̇²⟩ = ω1²⟨A²⟩/2".into(),
+            x_name: "r".into(),
+            points: panels
+                .iter()
+                .map(|p| (p.r, Measured::exact(p.theory_velocity_variance)))
+                .collect(),
+        }],
+        Direction::Decreases,
+    );
+    let mc_points: Vec<(f64, Measured)> = panels
+        .iter()
+        .filter_map(|p| match p.mc_velocity_variance.as_slice() {
+            [v, se] => Some((p.r, Measured::with_se(*v, *se))),
+            _ => None,
+        })
+        .collect();
+    let mut simulated = trend(
+        &[Series {
+            label: "Var U̇".into(),
+            x_name: "r".into(),
+            points: mc_points.clone(),
+        }],
+        Direction::Decreases,
+    );
+    let open: Vec<String> = panels
+        .iter()
+        .filter(|p| !p.stationary)
+        .map(|p| {
+            format!(
+                "r = {}: not stationary (R̂ = {})",
+                p.r,
+                crate::notes::sig(p.r_hat, 3)
+            )
+        })
+        .collect();
+    if mc_points.len() < panels.len() {
+        simulated = simulated.undetermined_because("no Monte Carlo Var U̇ in the data");
+    } else if !open.is_empty() {
+        simulated = simulated.undetermined_because(&open.join("; "));
+    }
+    all_of(
+        "trend",
+        vec![
+            ("averaged theory (Eq. 30–31)".into(), theory),
+            ("Eq. 1 (Monte Carlo)".into(), simulated),
+        ],
+    )
+}
+
+/// Sec. V: "as correlated noise intensity increases, the model experiences a progressive
+/// increase in disorder". Disorder as Sec. V measures it: the largest Lyapunov exponent (the
+/// section's "past this threshold, disorder disrupts the system, leading to unpredictability …
+/// the maximum Lyapunov exponent turns positive"), against D on every curve of Figs 17 and 18
+/// (each regime of each parameter value: rest, inner, middle, outer cycle), decided by the
+/// trend rule (increases; Student's t with realisations − 1 degrees of freedom, Holm over every
+/// step and range of all curves). Points without a finite exponent (realisations merged: no
+/// separation to measure) are left out and counted in the statistic.
+pub(super) fn noise_disorder(panels: &[(&str, &LlePanel)]) -> Decision {
+    let mut series = Vec::new();
+    let mut left_out = 0;
+    for (figure, p) in panels {
+        for c in &p.curves {
+            let lc = crate::lle::lle_curve(c);
+            let points: Vec<(f64, Measured)> = lc
+                .points
+                .iter()
+                .filter(|q| {
+                    let ok = q.lle.is_finite() && q.se.is_finite();
+                    left_out += usize::from(!ok);
+                    ok
+                })
+                .map(|q| (q.d, Measured::with_se_dof(q.lle, q.se, q.dof)))
+                .collect();
+            if points.len() >= 2 {
+                series.push(Series {
+                    label: format!("{figure}, {}: largest Lyapunov exponent", c.label),
+                    x_name: "D".into(),
+                    points,
+                });
+            }
+        }
+    }
+    let mut d = trend(&series, Direction::Increases);
+    if left_out > 0 {
+        d.statistic.push_str(&format!(
+            "; {left_out} points without a finite exponent (merged realisations) left out"
+        ));
+    }
+    d
 }

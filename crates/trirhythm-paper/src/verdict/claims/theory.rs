@@ -45,6 +45,30 @@ pub(super) fn fig01_align(f: &Fig01) -> Decision {
     closeness(&pairs, CLOSENESS_REL_TOL)
 }
 
+/// Fig. 1's recurrence plots: the recurrence rate RR and the determinism DET of Eq. 1 against
+/// Eq. 5 (same threshold ε, same window), by closeness.
+pub(super) fn fig01_recurrence(f: &Fig01) -> Decision {
+    let pairs: Vec<(String, Measured, Measured)> = match (f.panels.first(), f.panels.get(1)) {
+        (Some(a), Some(b)) => vec![
+            (
+                format!(
+                    "recurrence rate RR (ε = {}), Eq. 1 against Eq. 5",
+                    f.epsilon
+                ),
+                Measured::exact(a.rr),
+                Measured::exact(b.rr),
+            ),
+            (
+                format!("determinism DET (ε = {}), Eq. 1 against Eq. 5", f.epsilon),
+                Measured::exact(a.det),
+                Measured::exact(b.det),
+            ),
+        ],
+        _ => Vec::new(),
+    };
+    closeness(&pairs, CLOSENESS_REL_TOL)
+}
+
 /// The share of count `k` with what the grid resolves of it: a bracket from the region's
 /// interior to its closure on the grid ([`MapPanel::share_bracket`]), so that a trend decides
 /// only on changes larger than the grid's resolution.

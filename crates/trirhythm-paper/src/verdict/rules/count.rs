@@ -100,6 +100,32 @@ pub fn count(items: &[Count]) -> Decision {
 /// higher than that is a shoulder of it, not a separate peak). The highest maximum always
 /// counts; a maximum cut off from every higher one by the floor counts. Plateaus count once.
 pub fn separate_maxima(density: &[Vec<f64>], floor: f64, dip: f64) -> usize {
+    maxima(density, None, floor, dip)
+}
+
+/// [`separate_maxima`] of a Monte Carlo histogram with standard errors per cell (`stderr`, the
+/// shape of `density`): a maximum counts only where its dip is also **significant**, the
+/// height of the maximum above the highest way to a higher one more than `k` standard errors
+/// of their difference (√(se_peak² + se_pass²), the cells taken as independent); a maximum cut
+/// off by the floor counts when its height is `k` standard errors above zero. The highest
+/// maximum always counts. The same test as the prominence rule of the 1-D mode count (three
+/// standard errors, `analysis::versus`).
+pub fn separate_maxima_significant(
+    density: &[Vec<f64>],
+    stderr: &[Vec<f64>],
+    floor: f64,
+    dip: f64,
+    k: f64,
+) -> usize {
+    maxima(density, Some((stderr, k)), floor, dip)
+}
+
+fn maxima(density: &[Vec<f64>], se: Option<(&[Vec<f64>], f64)>, floor: f64, dip: f64) -> usize {
+    let se_of = |idx: usize, nv: usize| -> f64 {
+        se.and_then(|(s, _)| s.get(idx / nv).and_then(|row| row.get(idx % nv)).copied())
+            .unwrap_or(0.0)
+    };
+    let k_se = se.map_or(0.0, |(_, k)| k);
     let nu = density.len();
     let nv = density.first().map_or(0, Vec::len);
     let top = density
@@ -119,7 +145,9 @@ pub fn separate_maxima(density: &[Vec<f64>], floor: f64, dip: f64) -> usize {
         .filter(|(_, v)| v.is_finite() && *v >= floor * top && *v > 0.0)
         .collect();
     cells.sort_by(|a, b| b.1.total_cmp(&a.1));
-    // union-find over cells by decreasing height; each component keeps its peak height
+    // union-find over cells by decreasing height; each component keeps its peak height, and
+    // its root is its peak's cell (a component is founded by its highest cell and joins a
+    // higher one's root)
     let mut parent: Vec<usize> = (0..nu * nv).collect();
     let mut peak = vec![f64::NAN; nu * nv];
     let mut seen = vec![false; nu * nv];
@@ -156,7 +184,8 @@ pub fn separate_maxima(density: &[Vec<f64>], floor: f64, dip: f64) -> usize {
             parent[idx] = highest;
             // every lower component meets higher ground here, at height h
             for &r in &roots[1..] {
-                if h <= dip * peak[r] {
+                let pass = k_se * (se_of(r, nv).powi(2) + se_of(idx, nv).powi(2)).sqrt();
+                if h <= dip * peak[r] && peak[r] - h > pass {
                     separate += 1;
                 }
                 parent[r] = highest;
@@ -169,5 +198,13 @@ pub fn separate_maxima(density: &[Vec<f64>], floor: f64, dip: f64) -> usize {
     for idx in joined {
         tops.insert(root(&mut parent, idx));
     }
-    separate + tops.len()
+    let highest = tops
+        .iter()
+        .copied()
+        .max_by(|a, b| peak[*a].total_cmp(&peak[*b]));
+    let isolated = tops
+        .iter()
+        .filter(|&&t| Some(t) == highest || peak[t] > k_se * se_of(t, nv))
+        .count();
+    separate + isolated
 }

@@ -21,7 +21,7 @@ mod sign_change;
 mod trend;
 
 pub use agreement::{agreement, closeness, Comparison, Weightings, MIN_WEIGHTING_REPLICAS};
-pub use count::{count, separate_maxima, Count, CountSource};
+pub use count::{count, separate_maxima, separate_maxima_significant, Count, CountSource};
 pub use curves::{curve_distance, directed_distance, CurveSets, Polyline};
 pub use dependence::dependence;
 pub use regime::{
@@ -58,6 +58,10 @@ pub const PEAK_FLOOR: f64 = 1e-2;
 /// A maximum is separate when the highest path to a higher one dips to at most this fraction
 /// of its height (resolved at half maximum).
 pub const PEAK_DIP: f64 = 0.5;
+
+/// Standard errors by which a Monte Carlo maximum must stand above the highest way to a higher
+/// one to count as separate (the prominence rule's three standard errors of the 1-D mode count).
+pub const PEAK_SE_K: f64 = 3.0;
 
 /// Largest fraction of a Monte Carlo density outside a plotted window for a count of its
 /// maxima on that window to stand for the density.

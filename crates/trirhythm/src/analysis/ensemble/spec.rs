@@ -138,6 +138,9 @@ pub struct EnsembleSpec {
     pub bins: usize,
     /// Bins per axis of the joint (U, U̇) histogram.
     pub joint_bins: usize,
+    /// Half-width of the joint histogram's U̇ axis, as a multiple of ω1·`amplitude_max` (1: the
+    /// harmonic cycle's ±ω1·A; a relaxation oscillation's fast returns need more).
+    pub joint_velocity_factor: f64,
     /// Histogram range of A: [0, amplitude_max]; U in [0 or −max, max], U̇ in ±ω1·max, H up to
     /// ω1²·max²/2.
     pub amplitude_max: f64,
@@ -160,6 +163,7 @@ impl Default for EnsembleSpec {
             sample_every: 1,
             bins: 100,
             joint_bins: 48,
+            joint_velocity_factor: 1.0,
             amplitude_max: 15.0,
             batches: 20,
             wells: None,
@@ -179,7 +183,8 @@ pub(super) struct Sizes {
 impl EnsembleSpec {
     /// Check the spec, before any work, by every driver that takes it: `paths` 1 to
     /// [`MAX_PATHS`], `bins` 2 to [`MAX_BINS`], `joint_bins` 2 to [`MAX_JOINT_BINS`], `batches`
-    /// 4 to [`MAX_BATCHES`], `amplitude_max` in (0, [`MAX_AMPLITUDE`]], the wells
+    /// 4 to [`MAX_BATCHES`], `amplitude_max` in (0, [`MAX_AMPLITUDE`]], `joint_velocity_factor` in
+    /// (0, 1000], the wells
     /// ([`Wells::validate`]), the statistics of all paths at most [`MAX_STATISTICS_BYTES`],
     /// `sample_every` ≥ 1, `burn_in` ≥ 0 and `length` > 0 finite, `lanes` 1, 4 or 8 when given. The steps are checked against
     /// the method's Δt by the drivers.
@@ -218,6 +223,13 @@ impl EnsembleSpec {
                 "amplitude_max",
                 self.amplitude_max,
                 format!("(0, {MAX_AMPLITUDE:e}] (beyond it the energy's range overflows)"),
+            ));
+        }
+        if !(self.joint_velocity_factor > 0.0 && self.joint_velocity_factor <= 1e3) {
+            return Err(Error::invalid(
+                "joint_velocity_factor",
+                self.joint_velocity_factor,
+                "(0, 1e3] (a multiple of ω1·amplitude_max)",
             ));
         }
         if let Some(w) = &self.wells {
