@@ -200,7 +200,8 @@ pub fn agreement(items: &[Comparison]) -> Decision {
                     crate::notes::sig(r.h_max_se, 2)
                 )
             };
-            let mut range = range_of(&w.range());
+            let range = range_of(&w.range());
+            let mut halves = String::new();
             if let (Some([early, late]), Some([oe, ol])) = (w.halves, w.half_outcomes(c.bins)) {
                 let word = |o: Outcome| match o {
                     Outcome::Against => "no weighting agrees",
@@ -208,7 +209,7 @@ pub fn agreement(items: &[Comparison]) -> Decision {
                     Outcome::Neither => "neither",
                     Outcome::Undefined => "undefined",
                 };
-                range.push_str(&format!(
+                halves = format!(
                     "; a well's conditional statistics drift between the window's halves, so \
                      each half alone (floors of half the ESS, between {} and {}): first half {} \
                      ({}), second half {} ({})",
@@ -218,25 +219,25 @@ pub fn agreement(items: &[Comparison]) -> Decision {
                     word(oe),
                     range_of(&late),
                     word(ol)
-                ));
+                );
             }
             match outcome {
                 Outcome::Undefined => open.push(format!(
                     "{}: weights undetermined and no standard error of H over the weightings \
-                     from at least {MIN_WEIGHTING_REPLICAS} replicas ({} here; {range})",
+                     from at least {MIN_WEIGHTING_REPLICAS} replicas ({} here; {range}{halves})",
                     c.what, w.replicas
                 )),
                 Outcome::Neither if w.range().outcome(largest, smallest) != Outcome::Neither => {
                     open.push(format!(
                         "{}: weights undetermined; {range} for every weighting of the wells: \
-                         the whole window and its halves do not give the same decision",
+                         the whole window and its halves do not give the same decision{halves}",
                         c.what
                     ))
                 }
                 Outcome::Neither => open.push(format!(
                     "{}: weights undetermined; {range} for every weighting of the wells, \
                      neither beyond the largest floor {} (minus {AGREEMENT_K} s.e.) nor within \
-                     the smallest {} (plus {AGREEMENT_K} s.e.)",
+                     the smallest {} (plus {AGREEMENT_K} s.e.){halves}",
                     c.what,
                     crate::notes::sig(largest, 3),
                     crate::notes::sig(smallest, 3)
@@ -250,7 +251,7 @@ pub fn agreement(items: &[Comparison]) -> Decision {
             checks.push(Check {
                 what: format!(
                     "{} (weights undetermined: {range} for every weighting of the wells; \
-                     floor √(bins/(8·ESS)) between {} and {}, bins {}, ESS per well ≥ {})",
+                     floor √(bins/(8·ESS)) between {} and {}, bins {}, ESS per well ≥ {}{halves})",
                     c.what,
                     crate::notes::sig(smallest, 3),
                     crate::notes::sig(largest, 3),
