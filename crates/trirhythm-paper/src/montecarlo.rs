@@ -166,6 +166,11 @@ pub struct WellsSummary {
     /// (then `bounds` holds the distances for every weighting).
     #[serde(default)]
     pub conditional_valid: bool,
+    /// Every refusal is about the rates and weights or a well's conditional statistics
+    /// drifting between the window's halves (the replicas agreeing): `bounds` holds the
+    /// distances for every weighting and `bounds_halves` those of each half alone.
+    #[serde(default)]
+    pub conditional_drifting: bool,
     /// Each well's conditional density P_i (on the run's edges) with its standard errors.
     #[serde(default)]
     pub conditional: Vec<Conditional>,
@@ -173,6 +178,10 @@ pub struct WellsSummary {
     /// conditional statistics are valid but the decomposition was refused.
     #[serde(default)]
     pub bounds: Vec<Bounds>,
+    /// Where the conditional statistics drift: the same for the window's first half and its
+    /// second half alone (`[half]`, each with both variants).
+    #[serde(default)]
+    pub bounds_halves: Vec<Vec<Bounds>>,
     /// Independent replicas behind the standard errors.
     #[serde(default)]
     pub replicas: usize,
@@ -241,22 +250,46 @@ impl WellsSummary {
     /// distances to each variant's theory of `params` over every weighting.
     pub fn of(w: &WellsResult, params: &Params, wall_time_s: f64) -> Self {
         let e = &w.wells;
-        let bounds = if e.conditional_valid && !e.valid {
-            [Variant::Paper, Variant::Consistent]
+        let of = |b: trirhythm::analysis::ensemble::HellingerBounds| Bounds {
+            variant: b.variant,
+            h_min: b.h_min.value,
+            h_min_stderr: b.h_min.stderr,
+            weights_min: b.weights_min,
+            h_max: b.h_max.value,
+            h_max_stderr: b.h_max.stderr,
+            per_well: b.per_well,
+        };
+        let variants = [Variant::Paper, Variant::Consistent];
+        let bounds = if (e.conditional_valid || e.conditional_drifting) && !e.valid {
+            variants
                 .into_iter()
                 .filter_map(|v| {
                     let b = Theory::new(params, v)
                         .and_then(|th| trirhythm::analysis::versus::wells_bounds(w, &th))
                         .ok()?;
-                    Some(Bounds {
-                        variant: b.variant,
-                        h_min: b.h_min.value,
-                        h_min_stderr: b.h_min.stderr,
-                        weights_min: b.weights_min,
-                        h_max: b.h_max.value,
-                        h_max_stderr: b.h_max.stderr,
-                        per_well: b.per_well,
-                    })
+                    Some(of(b))
+                })
+                .collect()
+        } else {
+            vec![]
+        };
+        let bounds_halves = if e.conditional_drifting && !e.valid {
+            let per_variant: Vec<Vec<Bounds>> = variants
+                .into_iter()
+                .filter_map(|v| {
+                    let h = Theory::new(params, v)
+                        .and_then(|th| trirhythm::analysis::versus::wells_bounds_halves(w, &th))
+                        .ok()?;
+                    Some(h.into_iter().map(&of).collect())
+                })
+                .collect();
+            // [variant][half] → [half][variant]
+            (0..2)
+                .map(|h| {
+                    per_variant
+                        .iter()
+                        .filter_map(|v| v.get(h).cloned())
+                        .collect()
                 })
                 .collect()
         } else {
@@ -264,6 +297,8 @@ impl WellsSummary {
         };
         WellsSummary {
             conditional_valid: e.conditional_valid,
+            conditional_drifting: e.conditional_drifting,
+            bounds_halves,
             conditional: e
                 .conditional
                 .iter()
@@ -312,24 +347,57 @@ impl WellsSummary {
             .filter(|(_, (_, b))| !b.is_finite())
             .map(|((i, j), (r, _))| format!("k{i}→{j} = {}", crate::notes::sig(*r, 3)))
             .collect();
-        Some(format!(
-            "weights undetermined (rates {}{}); {}",
-            if bounded.is_empty() {
-                "too few exits".to_string()
-            } else {
-                bounded.join(", ")
-            },
-            if resolved.is_empty() {
-                String::new()
-            } else {
-                format!("; resolved {}", resolved.join(", "))
-            },
-            self.bounds
-                .iter()
-                .map(|b| format!("{}: {}", b.variant, b.line()))
+        Some(
+            format!(
+                "weights undetermined (rates {}{}); {}",
+                if bounded.is_empty() {
+                    "too few exits".to_string()
+                } else {
+                    bounded.join(", ")
+                },
+                if resolved.is_empty() {
+                    String::new()
+                } else {
+                    format!("; resolved {}", resolved.join(", "))
+                },
+                self.bounds
+                    .iter()
+                    .map(|b| format!("{}: {}", b.variant, b.line()))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            ) + &self.halves_line(),
+        )
+    }
+
+    /// Where the conditional statistics drift: "; a well's statistics drift: first half paper
+    /// H ∈ […], …; second half …" (empty otherwise).
+    fn halves_line(&self) -> String {
+        if self.bounds_halves.is_empty() {
+            return String::new();
+        }
+        let half = |h: &[Bounds]| {
+            h.iter()
+                .map(|b| {
+                    format!(
+                        "{} H ∈ [{} ± {}, {} ± {}]",
+                        b.variant,
+                        crate::notes::sig(b.h_min, 3),
+                        crate::notes::sig(b.h_min_stderr, 2),
+                        crate::notes::sig(b.h_max, 3),
+                        crate::notes::sig(b.h_max_stderr, 2)
+                    )
+                })
                 .collect::<Vec<_>>()
-                .join("; ")
-        ))
+                .join(", ")
+        };
+        format!(
+            "; a well's conditional statistics drift between the halves, so each half alone: \
+             first half {}; second half {}",
+            self.bounds_halves
+                .first()
+                .map_or(String::new(), |h| half(h)),
+            self.bounds_halves.get(1).map_or(String::new(), |h| half(h))
+        )
     }
 
     /// One line: weights, rates, the diagnostic and the cost.
@@ -424,7 +492,7 @@ impl McRun {
         if let Some(w) = self
             .wells
             .as_ref()
-            .filter(|w| w.conditional_valid && !w.valid)
+            .filter(|w| (w.conditional_valid || w.conditional_drifting) && !w.valid)
         {
             let nb = self.edges.len().saturating_sub(1);
             let same = w.conditional.iter().all(|c| c.density.len() == nb);

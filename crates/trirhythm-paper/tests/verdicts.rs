@@ -519,6 +519,159 @@ fn agreement_within_the_floor_plus_k_standard_errors_on_stationary_ensembles() {
     ));
 }
 
+/// Counts `[replica][well]` over 80 bins and the count beyond: well i has `per_bin` samples
+/// in each of `bins[i]` (a replica moves one sample per bin by its index, so the replicas
+/// differ and the jackknife has something to measure).
+fn well_counts(
+    bins: &[std::ops::Range<usize>],
+    replicas: usize,
+    per_bin: u64,
+) -> Vec<Vec<Vec<u64>>> {
+    (0..replicas)
+        .map(|r| {
+            bins.iter()
+                .map(|range| {
+                    (0..81)
+                        .map(|b| {
+                            if range.contains(&b) {
+                                per_bin + if b % 2 == 0 { r as u64 } else { 0 }
+                            } else {
+                                0
+                            }
+                        })
+                        .collect()
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Replica-wise sum of two halves' counts (the whole window).
+fn whole_of(a: &[Vec<Vec<u64>>], b: &[Vec<Vec<u64>>]) -> Vec<Vec<Vec<u64>>> {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| {
+            x.iter()
+                .zip(y)
+                .map(|(u, v)| u.iter().zip(v).map(|(p, q)| p + q).collect())
+                .collect()
+        })
+        .collect()
+}
+
+/// The rule over every weighting, end to end: counts per replica and well on each half of the
+/// window, the library's H range over the simplex with its jackknife, and the agreement rule;
+/// a well's statistics drift, so the halves are given.
+fn drifting(
+    q: &[f64],
+    early: &[Vec<Vec<u64>>],
+    late: &[Vec<Vec<u64>>],
+) -> (Comparison, trirhythm::analysis::ensemble::HellingerBounds) {
+    use trirhythm::analysis::ensemble::hellinger_bounds;
+    use trirhythm_paper::verdict::rules::{WeightingRange, Weightings};
+    let range = |c: &[Vec<Vec<u64>>]| {
+        let b = hellinger_bounds("paper", q, c);
+        (
+            WeightingRange {
+                h_min: b.h_min.value,
+                h_min_se: b.h_min.stderr,
+                h_max: b.h_max.value,
+                h_max_se: b.h_max.stderr,
+            },
+            b,
+        )
+    };
+    let (whole, bounds) = range(&whole_of(early, late));
+    let nw = early[0].len();
+    let c = Comparison {
+        weightings: Some(Weightings {
+            h_min: whole.h_min,
+            h_min_se: whole.h_min_se,
+            h_max: whole.h_max,
+            h_max_se: whole.h_max_se,
+            // ESS 1000 per well: largest floor 0.1 on the whole window, 0.141 on a half
+            ess_min: 1000.0,
+            ess_sum: 1000.0 * nw as f64,
+            replicas: early.len(),
+            halves: Some([range(early).0, range(late).0]),
+        }),
+        ..comparison(f64::NAN, f64::NAN, f64::NAN, false)
+    };
+    (c, bounds)
+}
+
+#[test]
+fn agreement_over_every_weighting_of_drifting_wells_needs_each_half() {
+    use trirhythm::analysis::ensemble::hellinger_of_mixture;
+    use trirhythm_paper::verdict::rules::Weightings;
+    // the theory: all its mass on bins 60..70 (the outer cycle), none beyond
+    let mut q = vec![0.0; 81];
+    for x in &mut q[60..70] {
+        *x = 0.1;
+    }
+    let replicas = 16;
+    // three wells; the outer one sits two bins below the theory's peak and drifts by a bin
+    let early = well_counts(&[5..15, 30..40, 57..67], replicas, 1000);
+    let late = well_counts(&[5..15, 30..40, 58..68], replicas, 1000);
+    let (c, bounds) = drifting(&q, &early, &late);
+    // every weighting disagrees, on the whole window and on each half: refuted
+    let d = agreement(std::slice::from_ref(&c));
+    assert_eq!(tag(&d), "refuted", "{:?}", d.checks[0].what);
+    assert!(
+        d.checks[0].what.contains("first half"),
+        "{}",
+        d.checks[0].what
+    );
+    // the bound is one: no weighting of a grid over the simplex comes nearer than H_min
+    let whole = whole_of(&early, &late);
+    let p: Vec<Vec<f64>> = (0..3)
+        .map(|i| {
+            let t: Vec<f64> = (0..81)
+                .map(|b| whole.iter().map(|r| r[i][b] as f64).sum())
+                .collect();
+            let s: f64 = t.iter().sum();
+            t.into_iter().map(|x| x / s).collect()
+        })
+        .collect();
+    let threshold = 0.1;
+    for a in 0..=20 {
+        for b in 0..=(20 - a) {
+            let pi = [a as f64 / 20.0, b as f64 / 20.0, (20 - a - b) as f64 / 20.0];
+            let h = hellinger_of_mixture(&q, &p, &pi);
+            assert!(
+                h >= bounds.h_min.value - 1e-9 && h > threshold,
+                "{pi:?}: {h}"
+            );
+        }
+    }
+    // the outer well on the theory's bins: that mixture agrees, others do not: undetermined
+    let early = well_counts(&[5..15, 30..40, 60..70], replicas, 1000);
+    let (c, _) = drifting(&q, &early, &early);
+    let d = agreement(&[c]);
+    assert!(
+        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("for every weighting of the wells")),
+        "{:?}",
+        d.verdict
+    );
+    // the whole window disagrees for every weighting but the late half agrees: the drift
+    // decides, and the rule does not pick the whole window's answer
+    let early = well_counts(&[5..15, 30..40, 20..30], replicas, 1000);
+    let late = well_counts(&[5..15, 30..40, 60..70], replicas, 1000);
+    let (c, bounds) = drifting(&q, &early, &late);
+    assert!(bounds.h_min.value > 0.3, "{}", bounds.h_min.value);
+    let whole_only = Comparison {
+        weightings: c.weightings.map(|w| Weightings { halves: None, ..w }),
+        ..c.clone()
+    };
+    assert_eq!(tag(&agreement(&[whole_only])), "refuted");
+    let d = agreement(&[c]);
+    assert!(
+        matches!(d.verdict, Verdict::Undetermined { ref why } if why.contains("do not give the same decision")),
+        "{:?}",
+        d.verdict
+    );
+}
+
 #[test]
 fn agreement_for_every_weighting_of_wells_whose_weights_are_undetermined() {
     use trirhythm_paper::verdict::rules::{Weightings, MIN_WEIGHTING_REPLICAS};
@@ -533,6 +686,7 @@ fn agreement_for_every_weighting_of_wells_whose_weights_are_undetermined() {
             ess_min: 1000.0,
             ess_sum: 8000.0,
             replicas,
+            halves: None,
         }),
         ..comparison(f64::NAN, f64::NAN, f64::NAN, false)
     };

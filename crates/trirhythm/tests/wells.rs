@@ -400,6 +400,21 @@ fn a_rate_below_resolution_is_bounded_and_refused_where_it_matters() {
         "{:?}",
         w.wells.refusals
     );
+    // the halves' counts are the window's counts split in two: they add up, replica by
+    // replica and well by well, and each half has samples
+    let halves = &w.wells.conditional_counts_halves;
+    assert_eq!(halves.len(), 2);
+    for (r, wells) in w.wells.conditional_counts.iter().enumerate() {
+        for (i, counts) in wells.iter().enumerate() {
+            let (a, b) = (&halves[0][r][i], &halves[1][r][i]);
+            let sum: Vec<u64> = a.iter().zip(b).map(|(x, y)| x + y).collect();
+            assert_eq!(&sum, counts, "replica {r}, well {i}");
+            assert!(a.iter().sum::<u64>() > 0 && b.iter().sum::<u64>() > 0);
+        }
+    }
+    // drifting only where every refusal is about the weights or a well's drift, and never
+    // together with valid conditional statistics
+    assert!(!(w.wells.conditional_valid && w.wells.conditional_drifting));
     // H over every weighting of the wells: brackets every mixture of the pooled conditional
     // counts, its ends each well alone or better
     let theory = Theory::new(&p, Variant::Paper).unwrap();

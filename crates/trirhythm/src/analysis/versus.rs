@@ -374,10 +374,38 @@ pub fn binned(pdf: &AmplitudePdf, edges: &[f64]) -> Vec<f64> {
 /// statistics are valid but whose weights are undetermined. Errors when the replicas' counts
 /// do not match the result's bins.
 pub fn wells_bounds(result: &WellsResult, theory: &Theory) -> crate::Result<HellingerBounds> {
+    bounds_of_counts(result, theory, &result.wells.conditional_counts)
+}
+
+/// [`wells_bounds`] on each half of the wells' windows alone (first, second;
+/// `conditional_counts_halves`): where a well's conditional statistics drift, a statement over
+/// every weighting stands only when it holds on both.
+pub fn wells_bounds_halves(
+    result: &WellsResult,
+    theory: &Theory,
+) -> crate::Result<Vec<HellingerBounds>> {
+    let halves = &result.wells.conditional_counts_halves;
+    if halves.len() != 2 {
+        return Err(Error::invalid(
+            "conditional_counts_halves",
+            halves.len() as f64,
+            "two halves",
+        ));
+    }
+    halves
+        .iter()
+        .map(|c| bounds_of_counts(result, theory, c))
+        .collect()
+}
+
+fn bounds_of_counts(
+    result: &WellsResult,
+    theory: &Theory,
+    counts: &[Vec<Vec<u64>>],
+) -> crate::Result<HellingerBounds> {
     let pdf = theory.amplitude_pdf()?;
     let edges = &result.result.amplitude.edges;
     let q = binned(&pdf, edges);
-    let counts = &result.wells.conditional_counts;
     let nw = result.wells.conditional.len();
     if counts.len() < 2 {
         return Err(Error::invalid(

@@ -4,8 +4,8 @@
 
 use super::super::rules::{
     agreement, count, dependence, separate_maxima, separate_maxima_significant, sign_change, trend,
-    Bracket, Comparison, Count, CountSource, Direction, LleCurve, Located, Series, Weightings,
-    AGREEMENT_K, CLOSENESS_REL_TOL, PEAK_DIP, PEAK_FLOOR, PEAK_SE_K, WINDOW_MASS_TOL,
+    Bracket, Comparison, Count, CountSource, Direction, LleCurve, Located, Series, WeightingRange,
+    Weightings, AGREEMENT_K, CLOSENESS_REL_TOL, PEAK_DIP, PEAK_FLOOR, PEAK_SE_K, WINDOW_MASS_TOL,
 };
 use super::super::{all_of, Decision, Measured, Outcome, Verdict};
 use crate::boundary::Panel as BoundaryPanel;
@@ -32,19 +32,43 @@ fn estimator_of(r: &McRun) -> String {
         Some(w) if w.conditional_valid && !w.bounds.is_empty() => {
             " (well decomposition: valid conditional densities, weights undetermined)".into()
         }
+        Some(w) if w.conditional_drifting && !w.bounds.is_empty() => {
+            " (well decomposition: weights undetermined, a well's conditional densities drift)"
+                .into()
+        }
         Some(_) => " (direct; the well decomposition refused: the figure's notes say why)".into(),
         None => String::new(),
     }
 }
 
 /// H over every weighting of the wells, where the run's well decomposition has valid
-/// conditional densities but undetermined weights.
+/// conditional densities but undetermined weights, or conditional densities that drift
+/// between the window's halves (then each half's range too).
 fn weightings_of(r: &McRun, variant: &str) -> Option<Weightings> {
     let w = r
         .wells
         .as_ref()
-        .filter(|w| w.conditional_valid && !w.valid)?;
+        .filter(|w| (w.conditional_valid || w.conditional_drifting) && !w.valid)?;
+    let range = |b: &crate::montecarlo::Bounds| WeightingRange {
+        h_min: b.h_min,
+        h_min_se: b.h_min_stderr,
+        h_max: b.h_max,
+        h_max_se: b.h_max_stderr,
+    };
     let b = w.bounds.iter().find(|b| b.variant == variant)?;
+    let halves = if w.conditional_drifting {
+        // drifting statistics without each half's range decide nothing over the weightings
+        let half = |h: usize| {
+            w.bounds_halves
+                .get(h)?
+                .iter()
+                .find(|b| b.variant == variant)
+                .map(range)
+        };
+        Some([half(0)?, half(1)?])
+    } else {
+        None
+    };
     let ess: Vec<f64> = w.conditional.iter().map(|c| c.ess).collect();
     Some(Weightings {
         h_min: b.h_min,
@@ -54,6 +78,7 @@ fn weightings_of(r: &McRun, variant: &str) -> Option<Weightings> {
         ess_min: ess.iter().copied().fold(f64::INFINITY, f64::min),
         ess_sum: ess.iter().sum(),
         replicas: w.replicas,
+        halves,
     })
 }
 

@@ -4,7 +4,8 @@
 //! Agreement: H within the finite-sample floor √(bins/(8·ESS)) plus k standard errors,
 //! stationary ensembles only; where the well decomposition's weights are undetermined but its
 //! conditional densities are valid, the range of H over every weighting of the wells against
-//! the floors the weighting allows. Closeness: the relative difference, widened by 2 s.e. and the
+//! the floors the weighting allows; where a well's conditional statistics drift, only what the
+//! whole window and each of its halves give alike. Closeness: the relative difference, widened by 2 s.e. and the
 //! half-widths of brackets, against the tolerance. Reference: docs/verdicts.md, "Agreement of
 //! theory and Monte Carlo" and "Closeness". Tested by `tests/verdicts.rs`.
 
@@ -33,7 +34,7 @@ pub struct Comparison {
     pub weightings: Option<Weightings>,
 }
 
-/// The Hellinger distance over every weighting of a well decomposition's valid conditional
+/// The Hellinger distance over every weighting of a well decomposition's conditional
 /// densities (the stationary density is Σ π_i P_i for some unknown π on the simplex).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Weightings {
@@ -54,6 +55,23 @@ pub struct Weightings {
     pub ess_sum: f64,
     /// Independent replicas behind the standard errors (their jackknife).
     pub replicas: usize,
+    /// Where a well's conditional statistics drift between the window's halves: the same
+    /// range on the first half and on the second half alone. The decision over every
+    /// weighting then stands only where the whole window and each half give it.
+    pub halves: Option<[WeightingRange; 2]>,
+}
+
+/// H over every weighting on part of the window: min and max with their standard errors.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WeightingRange {
+    /// min over the weights of H.
+    pub h_min: f64,
+    /// Its standard error.
+    pub h_min_se: f64,
+    /// max over the weights of H.
+    pub h_max: f64,
+    /// Its standard error.
+    pub h_max_se: f64,
 }
 
 /// Fewest replicas whose delete-one jackknife standard error a decision over the weightings
@@ -61,13 +79,16 @@ pub struct Weightings {
 /// two-standard-error margin to mean what it says.
 pub const MIN_WEIGHTING_REPLICAS: usize = 8;
 
-impl Weightings {
-    /// The decision for every weighting: refuted when H_min − k·se exceeds the largest floor a
-    /// weighting can have (no weighting agrees), confirmed when H_max + k·se is within the
-    /// smallest (every weighting agrees), else neither; and the two floors (largest, smallest).
-    pub fn outcome(&self, bins: usize) -> (Outcome, f64, f64) {
-        let floor = |ess: f64| (bins as f64 / (8.0 * ess)).sqrt();
-        let (largest, smallest) = (floor(self.ess_min), floor(self.ess_sum));
+/// The floor √(bins/(8·ESS)).
+fn floor_of(bins: usize, ess: f64) -> f64 {
+    (bins as f64 / (8.0 * ess)).sqrt()
+}
+
+impl WeightingRange {
+    /// Refuted when H_min − k·se exceeds `largest` (no weighting agrees), confirmed when
+    /// H_max + k·se is within `smallest` (every weighting agrees), else neither; undefined
+    /// where a number is not finite.
+    fn outcome(&self, largest: f64, smallest: f64) -> Outcome {
         let usable = [
             self.h_min,
             self.h_min_se,
@@ -78,7 +99,7 @@ impl Weightings {
         ]
         .iter()
         .all(|x| x.is_finite());
-        let outcome = if !usable || self.replicas < MIN_WEIGHTING_REPLICAS {
+        if !usable {
             Outcome::Undefined
         } else if self.h_min - AGREEMENT_K * self.h_min_se > largest {
             Outcome::Against
@@ -86,6 +107,53 @@ impl Weightings {
             Outcome::For
         } else {
             Outcome::Neither
+        }
+    }
+}
+
+impl Weightings {
+    /// The whole window's range.
+    pub fn range(&self) -> WeightingRange {
+        WeightingRange {
+            h_min: self.h_min,
+            h_min_se: self.h_min_se,
+            h_max: self.h_max,
+            h_max_se: self.h_max_se,
+        }
+    }
+
+    /// Each half's outcome, against the floors of half the effective sample sizes (the ESS
+    /// grows with the window at a fixed relaxation time), where the statistics drift.
+    pub fn half_outcomes(&self, bins: usize) -> Option<[Outcome; 2]> {
+        let (largest, smallest) = (
+            floor_of(bins, self.ess_min / 2.0),
+            floor_of(bins, self.ess_sum / 2.0),
+        );
+        self.halves.map(|h| h.map(|r| r.outcome(largest, smallest)))
+    }
+
+    /// The decision for every weighting: refuted when H_min − k·se exceeds the largest floor a
+    /// weighting can have (no weighting agrees), confirmed when H_max + k·se is within the
+    /// smallest (every weighting agrees), else neither; where the conditional statistics
+    /// drift, only what the whole window and each half alone give alike. And the two floors
+    /// (largest, smallest) of the whole window.
+    pub fn outcome(&self, bins: usize) -> (Outcome, f64, f64) {
+        let (largest, smallest) = (floor_of(bins, self.ess_min), floor_of(bins, self.ess_sum));
+        if self.replicas < MIN_WEIGHTING_REPLICAS {
+            return (Outcome::Undefined, largest, smallest);
+        }
+        let whole = self.range().outcome(largest, smallest);
+        let outcome = match self.half_outcomes(bins) {
+            None => whole,
+            Some(halves) => {
+                if whole == Outcome::Undefined || halves.contains(&Outcome::Undefined) {
+                    Outcome::Undefined
+                } else if halves.iter().all(|&h| h == whole) {
+                    whole
+                } else {
+                    Outcome::Neither
+                }
+            }
         };
         (outcome, largest, smallest)
     }
@@ -97,7 +165,7 @@ impl Comparison {
     /// E\[H²\] ≈ (bins − 1)/(8n) for multinomial counts, the mass beyond the last edge as one
     /// more bin).
     pub fn floor(&self) -> f64 {
-        (self.bins as f64 / (8.0 * self.ess)).sqrt()
+        floor_of(self.bins, self.ess)
     }
 }
 
@@ -110,8 +178,10 @@ impl Comparison {
 /// densities but undetermined weights ([`Comparison::weightings`]) is decided for every
 /// weighting of the wells ([`Weightings::outcome`]): refuted when H_min − k·se(H_min) exceeds
 /// the largest floor any weighting has, confirmed when H_max + k·se(H_max) is within the
-/// smallest, else undetermined. The claim: refuted when a comparison is, confirmed when every one is, else
-/// undetermined.
+/// smallest, else undetermined; where a well's conditional statistics drift between the
+/// window's halves ([`Weightings::halves`]), refuted or confirmed only when each half alone
+/// (floors of half the ESS) gives the same, else undetermined. The claim: refuted when a
+/// comparison is, confirmed when every one is, else undetermined.
 pub fn agreement(items: &[Comparison]) -> Decision {
     let mut checks = Vec::new();
     let mut open = Vec::new();
@@ -121,23 +191,53 @@ pub fn agreement(items: &[Comparison]) -> Decision {
         let usable = c.hellinger.is_finite() && c.se.is_finite() && floor.is_finite();
         if let (false, Some(w)) = (c.stationary, &c.weightings) {
             let (outcome, largest, smallest) = w.outcome(c.bins);
-            let range = format!(
-                "H ∈ [{} ± {}, {} ± {}]",
-                crate::notes::sig(w.h_min, 3),
-                crate::notes::sig(w.h_min_se, 2),
-                crate::notes::sig(w.h_max, 3),
-                crate::notes::sig(w.h_max_se, 2)
-            );
+            let range_of = |r: &WeightingRange| {
+                format!(
+                    "H ∈ [{} ± {}, {} ± {}]",
+                    crate::notes::sig(r.h_min, 3),
+                    crate::notes::sig(r.h_min_se, 2),
+                    crate::notes::sig(r.h_max, 3),
+                    crate::notes::sig(r.h_max_se, 2)
+                )
+            };
+            let range = range_of(&w.range());
+            let mut halves = String::new();
+            if let (Some([early, late]), Some([oe, ol])) = (w.halves, w.half_outcomes(c.bins)) {
+                let word = |o: Outcome| match o {
+                    Outcome::Against => "no weighting agrees",
+                    Outcome::For => "every weighting agrees",
+                    Outcome::Neither => "neither",
+                    Outcome::Undefined => "undefined",
+                };
+                halves = format!(
+                    "; a well's conditional statistics drift between the window's halves, so \
+                     each half alone (floors of half the ESS, between {} and {}): first half {} \
+                     ({}), second half {} ({})",
+                    crate::notes::sig(floor_of(c.bins, w.ess_sum / 2.0), 3),
+                    crate::notes::sig(floor_of(c.bins, w.ess_min / 2.0), 3),
+                    range_of(&early),
+                    word(oe),
+                    range_of(&late),
+                    word(ol)
+                );
+            }
             match outcome {
                 Outcome::Undefined => open.push(format!(
                     "{}: weights undetermined and no standard error of H over the weightings \
-                     from at least {MIN_WEIGHTING_REPLICAS} replicas ({} here; {range})",
+                     from at least {MIN_WEIGHTING_REPLICAS} replicas ({} here; {range}{halves})",
                     c.what, w.replicas
                 )),
+                Outcome::Neither if w.range().outcome(largest, smallest) != Outcome::Neither => {
+                    open.push(format!(
+                        "{}: weights undetermined; {range} for every weighting of the wells: \
+                         the whole window and its halves do not give the same decision{halves}",
+                        c.what
+                    ))
+                }
                 Outcome::Neither => open.push(format!(
                     "{}: weights undetermined; {range} for every weighting of the wells, \
                      neither beyond the largest floor {} (minus {AGREEMENT_K} s.e.) nor within \
-                     the smallest {} (plus {AGREEMENT_K} s.e.)",
+                     the smallest {} (plus {AGREEMENT_K} s.e.){halves}",
                     c.what,
                     crate::notes::sig(largest, 3),
                     crate::notes::sig(smallest, 3)
@@ -151,7 +251,7 @@ pub fn agreement(items: &[Comparison]) -> Decision {
             checks.push(Check {
                 what: format!(
                     "{} (weights undetermined: {range} for every weighting of the wells; \
-                     floor √(bins/(8·ESS)) between {} and {}, bins {}, ESS per well ≥ {})",
+                     floor √(bins/(8·ESS)) between {} and {}, bins {}, ESS per well ≥ {}{halves})",
                     c.what,
                     crate::notes::sig(smallest, 3),
                     crate::notes::sig(largest, 3),

@@ -20,7 +20,9 @@ mod regime;
 mod sign_change;
 mod trend;
 
-pub use agreement::{agreement, closeness, Comparison, Weightings, MIN_WEIGHTING_REPLICAS};
+pub use agreement::{
+    agreement, closeness, Comparison, WeightingRange, Weightings, MIN_WEIGHTING_REPLICAS,
+};
 pub use count::{count, separate_maxima, separate_maxima_significant, Count, CountSource};
 pub use curves::{curve_distance, directed_distance, CurveSets, Polyline};
 pub use dependence::dependence;

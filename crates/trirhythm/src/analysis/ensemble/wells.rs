@@ -64,7 +64,12 @@
 //!   direct diagnosis (R̂ over the replicas, drift), or when the mean residence time
 //!   1/Σ_j k_ij of a well is not at least `separation` times its relaxation time (sampled time
 //!   over the effective sample size of A): the rates must be slow against the relaxation inside
-//!   the wells for P_i to be the quasi-stationary density.
+//!   the wells for P_i to be the quasi-stationary density. Where every refusal is about the
+//!   rates and weights the conditional densities stand (`conditional_valid`); where the only
+//!   other refusal is a well's drift between the window's halves with its replicas agreeing
+//!   (`conditional_drifting`), each half's per-replica counts are kept
+//!   (`conditional_counts_halves`) so that a statement over every weighting can be checked on
+//!   each half alone.
 //!
 //! # Cost
 //! The paths cost replicas × wells × (burn-in + length); an AMS needs about
@@ -198,6 +203,11 @@ pub struct WellsEstimate {
     /// the count beyond the last edge): the replicas' own conditional densities.
     #[serde(default)]
     pub conditional_counts: Vec<Vec<Vec<u64>>>,
+    /// The same counts of the window's first and second halves (`[half][replica][well]`):
+    /// where a well's conditional statistics drift, a statement over every weighting is made
+    /// only when it holds on each half alone.
+    #[serde(default)]
+    pub conditional_counts_halves: Vec<Vec<Vec<Vec<u64>>>>,
     /// The decomposition passed its validity diagnostic.
     pub valid: bool,
     /// The conditional statistics passed the diagnostic (every refusal, if any, is about the
@@ -206,6 +216,13 @@ pub struct WellsEstimate {
     /// ([`super::hellinger_bounds`] over every weighting).
     #[serde(default)]
     pub conditional_valid: bool,
+    /// Every refusal, if any, is about the rates and weights or about a well's conditional
+    /// statistics drifting between the window's halves (R̂ over the replicas within 1.1): the
+    /// conditional densities are estimates of a distribution that may still move, and a
+    /// statement over every weighting is made only where it holds on each half
+    /// ([`WellsEstimate::conditional_counts_halves`]).
+    #[serde(default)]
+    pub conditional_drifting: bool,
     /// Why not, in words (empty when valid).
     pub refusals: Vec<String>,
     /// Rates below the method's resolution (taken as 0), in words.
@@ -768,8 +785,13 @@ impl Offsets {
 
 /// Sum of a path's quarters.
 fn quarters(q: &[Vec<u64>]) -> Vec<u64> {
+    quarters_in(q, 0..QUARTERS)
+}
+
+/// The counts of the quarters in `range` summed.
+fn quarters_in(q: &[Vec<u64>], range: std::ops::Range<usize>) -> Vec<u64> {
     let mut s = vec![0u64; q[0].len()];
-    for h in q.iter().take(QUARTERS) {
+    for h in q.iter().take(range.end).skip(range.start) {
         for (x, y) in s.iter_mut().zip(h) {
             *x += y;
         }
@@ -1077,8 +1099,13 @@ fn combine(
             ));
         }
     }
+    let mut drift_refusals = 0usize;
     for (i, c) in conditional.iter().enumerate() {
         if !c.stationarity.stationary {
+            // only the drift between the halves failed, the replicas agree (R̂ ≤ 1.1)
+            if c.stationarity.r_hat.is_nan() || c.stationarity.r_hat <= 1.1 {
+                drift_refusals += 1;
+            }
             refusals.push(format!(
                 "well {i}: its conditional statistics are not stationary (R̂ = {:.3}, drift \
                  {:.1} s.e.): the path does not settle in the well",
@@ -1131,6 +1158,8 @@ fn combine(
     }
     let valid = refusals.is_empty();
     let conditional_valid = refusals.len() == weight_refusals;
+    let conditional_drifting =
+        drift_refusals > 0 && refusals.len() == weight_refusals + drift_refusals;
     let replica_list: Vec<Replica> = (0..replicas)
         .map(|r| Replica {
             replica: r as u64,
@@ -1261,8 +1290,21 @@ fn combine(
                         .collect()
                 })
                 .collect(),
+            conditional_counts_halves: [0..QUARTERS / 2, QUARTERS / 2..QUARTERS]
+                .into_iter()
+                .map(|half| {
+                    (0..replicas)
+                        .map(|r| {
+                            (0..nw)
+                                .map(|i| quarters_in(&stats[r * nw + i].amplitude, half.clone()))
+                                .collect()
+                        })
+                        .collect()
+                })
+                .collect(),
             valid,
             conditional_valid,
+            conditional_drifting,
             refusals,
             notes,
             replicas: replica_list,
