@@ -58,7 +58,8 @@ pub enum Request<'a> {
 pub struct Made {
     /// The paths written, in order (JSON, CSV, PNG, SVG).
     pub files: Vec<PathBuf>,
-    /// The picture's heading: title and caption lines (parameters, variant, choices).
+    /// The picture's heading: title, caption lines (parameters, variant, choices) and the
+    /// verdicts drawn under it.
     pub heading: Heading,
 }
 
@@ -190,8 +191,12 @@ fn write_files<F: Slot + Picture>(
         files.push(write_table(stem, &table, &csv)?);
     }
     let (data, verdicts) = judge_figure(file.data, options);
-    files.extend(save(&data, verdict_lines(&verdicts), stem)?);
-    let heading = data.heading();
+    let verdicts = verdict_lines(&verdicts);
+    files.extend(save(&data, verdicts.clone(), stem)?);
+    let heading = Heading {
+        verdicts,
+        ..data.heading()
+    };
     Ok((files, (data, heading)))
 }
 

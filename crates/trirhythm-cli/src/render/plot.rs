@@ -1,9 +1,12 @@
 //! Pictures: an embedded font, PNG + SVG output of one drawing, chart helpers, colours.
 //!
 //! A figure implements [`Picture`] once, generically over the plotters backend, and
-//! [`save`] renders it to both formats through temporary files and renames. Every picture
-//! states on itself what it shows: [`save`] draws its [`Heading`] (title, parameters, formula
-//! variant, the values chosen where the paper is silent) above it.
+//! [`save`] renders it to both formats through temporary files and renames. One style for
+//! every figure (Rougier et al., "Ten simple rules for better figures"): [`save`] draws the
+//! [`Heading`]'s title on one line above the picture and one one-line verdict badge per claim
+//! below it; the explanations (parameters, formula variant, the values chosen where the paper
+//! is silent, the verdicts' details) are the caption: the heading's lines, written to the
+//! figure's CSV notes, the report page and the contact sheet, never drawn inside the plot.
 //!
 //! Print size: [`save`] sets a scale from the canvas width ([`ScaleGuard`], [`scale_for`]) so
 //! that, printed 7 in (504 pt) wide, the smallest text ([`TICK`]) is 7 pt: an em (plotters'
@@ -55,16 +58,17 @@ fn init_fonts() {
     });
 }
 
-/// What a picture says about itself, drawn above it: a title, then lines giving the
-/// parameters, the formula variant and the choices the project made.
+/// What a picture says about itself: a title (drawn above it, one line), then the caption's
+/// lines giving the parameters, the formula variant and the choices the project made (not
+/// drawn: the CSV notes, the report and the contact sheet carry them).
 #[derive(Clone, Serialize, Deserialize)]
 pub struct Heading {
     /// "Fig. N: what it shows".
     pub title: String,
-    /// Parameters, variant, choices (wrapped to the picture's width).
+    /// Parameters, variant, choices: the caption.
     pub lines: Vec<String>,
-    /// The verdicts on the paper's claims that rest on the figure, drawn below the lines in
-    /// the verdict's colour.
+    /// The verdicts on the paper's claims that rest on the figure, drawn below the picture in
+    /// the verdict's colour, one line each.
     pub verdicts: Vec<VerdictLine>,
 }
 
@@ -89,63 +93,60 @@ impl VerdictLine {
 }
 
 impl Heading {
-    /// The lines, then the verdicts, wrapped at word boundaries to `width` pixels, each
-    /// with its colour.
-    fn wrapped(&self, width: u32) -> Vec<(String, RGBColor)> {
-        let plain = RGBColor(40, 40, 40);
-        let all = self.lines.iter().map(|l| (l.clone(), plain)).chain(
-            self.verdicts
-                .iter()
-                .map(|v| (format!("Verdict {}", v.text), v.colour())),
-        );
-        let room = width.saturating_sub(2 * px(12));
-        all.flat_map(|(line, colour)| {
-            wrap(&line, room, HEADING_LINE)
-                .into_iter()
-                .map(move |l| (l, colour))
-        })
-        .collect()
-    }
-
     fn line_height() -> u32 {
         font_px(HEADING_LINE) * 5 / 4
     }
 
-    /// The title wrapped to `width` pixels.
-    fn title_lines(&self, width: u32) -> Vec<String> {
-        wrap(&self.title, width.saturating_sub(2 * px(12)), HEADING_TITLE)
+    /// The height of the title strip above the picture: one line.
+    fn height(&self) -> u32 {
+        px(8) + font_px(HEADING_TITLE) * 5 / 4 + px(6)
     }
 
-    fn height(&self, width: u32) -> u32 {
-        px(14)
-            + font_px(HEADING_TITLE) * 5 / 4 * self.title_lines(width).len() as u32
-            + Self::line_height() * self.wrapped(width).len() as u32
-            + px(6)
+    /// The title, on one line: cut with "…" should it not fit in `width` pixels.
+    fn title_line(&self, width: u32) -> String {
+        one_line(&self.title, width.saturating_sub(2 * px(12)), HEADING_TITLE)
     }
 
     fn draw<DB: Backend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
         let width = area.dim_in_pixel().0;
-        let left = px(12) as i32;
         let title_h = font_px(HEADING_TITLE) * 5 / 4;
-        let titles = self.title_lines(width);
-        for (k, line) in titles.iter().enumerate() {
-            rich_text(
-                area,
-                line,
-                (left, (px(8) + title_h * k as u32 + title_h / 2) as i32),
-                Pos::new(HPos::Left, VPos::Center),
-                HEADING_TITLE,
-                BLACK,
-                false,
-            )?;
+        rich_text(
+            area,
+            &self.title_line(width),
+            (px(12) as i32, (px(8) + title_h / 2) as i32),
+            Pos::new(HPos::Left, VPos::Center),
+            HEADING_TITLE,
+            BLACK,
+            false,
+        )
+    }
+
+    /// The verdict badges, one line each (cut with "…" to `width` pixels), in their colours.
+    fn badges(&self, width: u32) -> Vec<(String, RGBColor)> {
+        let room = width.saturating_sub(2 * px(12));
+        self.verdicts
+            .iter()
+            .map(|v| (one_line(&v.text, room, HEADING_LINE), v.colour()))
+            .collect()
+    }
+
+    /// The height of the badge strip below the picture (nothing without verdicts).
+    fn badges_height(&self) -> u32 {
+        if self.verdicts.is_empty() {
+            0
+        } else {
+            px(6) + Self::line_height() * self.verdicts.len() as u32 + px(6)
         }
-        let top = px(14) + title_h * titles.len() as u32;
-        for (i, (line, colour)) in self.wrapped(width).into_iter().enumerate() {
-            let y = top + Self::line_height() * i as u32 + Self::line_height() / 2;
+    }
+
+    fn draw_badges<DB: Backend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
+        let width = area.dim_in_pixel().0;
+        let h = Self::line_height();
+        for (i, (line, colour)) in self.badges(width).into_iter().enumerate() {
             rich_text(
                 area,
                 &line,
-                (left, y as i32),
+                (px(12) as i32, (px(6) + h * i as u32 + h / 2) as i32),
                 Pos::new(HPos::Left, VPos::Center),
                 HEADING_LINE,
                 colour,
@@ -156,37 +157,26 @@ impl Heading {
     }
 }
 
-/// `line` wrapped at word boundaries to `width` pixels at font size `base` (continuations
-/// indented), measured with the embedded font. A unit sign (`%`) stays with its number.
-pub fn wrap(line: &str, width: u32, base: u32) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut cur = String::new();
-    let mut words: Vec<String> = Vec::new();
-    for word in line.split(' ') {
-        match words.last_mut() {
-            Some(last) if word.starts_with('%') && !last.is_empty() => {
-                last.push(' ');
-                last.push_str(word);
-            }
-            _ => words.push(word.to_string()),
+/// `line` on one line of at most `width` pixels at font size `base`: whole, or cut at a
+/// character boundary and ended with "…".
+pub fn one_line(line: &str, width: u32, base: u32) -> String {
+    if rich_width(line, base) <= width {
+        return line.to_string();
+    }
+    let chars: Vec<char> = line.chars().collect();
+    let (mut lo, mut hi) = (0, chars.len());
+    // the longest prefix that fits with the ellipsis
+    while lo < hi {
+        let mid = (lo + hi).div_ceil(2);
+        let cut: String = chars[..mid].iter().collect();
+        if rich_width(&format!("{}…", cut.trim_end()), base) <= width {
+            lo = mid;
+        } else {
+            hi = mid - 1;
         }
     }
-    for word in &words {
-        let candidate = if cur.is_empty() {
-            word.to_string()
-        } else {
-            format!("{cur} {word}")
-        };
-        if !cur.trim().is_empty() && rich_width(&candidate, base) > width {
-            out.push(std::mem::take(&mut cur));
-            cur.push_str("    ");
-            cur.push_str(word);
-        } else {
-            cur = candidate;
-        }
-    }
-    out.push(cur);
-    out
+    let cut: String = chars[..lo].iter().collect();
+    format!("{}…", cut.trim_end())
 }
 
 // ---------------------------------------------------------------------------------------
@@ -427,18 +417,20 @@ pub fn save(
     let (w, h) = picture.size();
     let mut heading = picture.heading();
     heading.verdicts = verdicts;
-    let hh = heading.height(w);
-    let size = (w, h + hh);
+    let (hh, bh) = (heading.height(), heading.badges_height());
+    let size = (w, hh + h + bh);
     fn render<DB: Backend>(
         root: DrawingArea<DB, Shift>,
         heading: &Heading,
-        hh: u32,
+        (hh, h): (u32, u32),
         picture: &impl Picture,
     ) -> Result<()> {
         root.fill(&WHITE).map_err(pe)?;
-        let (top, body) = root.split_vertically(hh);
+        let (top, rest) = root.split_vertically(hh);
+        let (body, bottom) = rest.split_vertically(h);
         heading.draw(&top)?;
         picture.draw(&body)?;
+        heading.draw_badges(&bottom)?;
         root.present().map_err(pe)
     }
     let png = stem.with_extension("png");
@@ -447,7 +439,7 @@ pub fn save(
     render(
         BitMapBackend::new(&tmp, size).into_drawing_area(),
         &heading,
-        hh,
+        (hh, h),
         picture,
     )
     .with_context(|| format!("drawing {}", png.display()))?;
@@ -457,7 +449,7 @@ pub fn save(
     render(
         SVGBackend::with_string(&mut text, size).into_drawing_area(),
         &heading,
-        hh,
+        (hh, h),
         picture,
     )
     .with_context(|| format!("drawing {}", svg.display()))?;
@@ -524,18 +516,55 @@ pub fn tick_formatter(range: &Range<f64>, ticks: usize) -> impl Fn(&f64) -> Stri
             return "0".into();
         }
         if exponent {
-            let s = format!("{v:.2e}");
-            // 2.50e-7 → 2.5e-7
-            match s.split_once('e') {
-                Some((m, e)) if m.contains('.') => {
-                    format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
-                }
-                _ => s,
-            }
+            times_ten(v, 3)
         } else {
             format!("{v:.decimals$}")
         }
     }
+}
+
+/// `v` as `m×10ⁿ` with at most `digits` significant digits (`2.5×10⁻⁷`, `10⁻⁶` for a mantissa
+/// of one), the exponent in superscript digits.
+pub fn times_ten(v: f64, digits: usize) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let s = format!("{v:.*e}", digits.saturating_sub(1));
+    let Some((m, e)) = s.split_once('e') else {
+        return s;
+    };
+    let m = if m.contains('.') {
+        m.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        m
+    };
+    let e = superscript(e);
+    match m {
+        "1" => format!("10{e}"),
+        "-1" => format!("-10{e}"),
+        _ => format!("{m}×10{e}"),
+    }
+}
+
+/// An integer's digits and sign in superscript (`-7` → `⁻⁷`).
+pub fn superscript(digits: &str) -> String {
+    digits
+        .chars()
+        .map(|c| match c {
+            '-' => '⁻',
+            '0' => '⁰',
+            '1' => '¹',
+            '2' => '²',
+            '3' => '³',
+            '4' => '⁴',
+            '5' => '⁵',
+            '6' => '⁶',
+            '7' => '⁷',
+            '8' => '⁸',
+            '9' => '⁹',
+            other => other,
+        })
+        .collect()
 }
 
 /// A chart in `area` with a caption, axis ranges and axis descriptions, mesh drawn.
@@ -560,15 +589,13 @@ pub enum ChartSize {
     Inset,
 }
 
-/// The lines of a chart caption wrapped to `width` pixels.
+/// A chart caption as the panel title it is drawn as: one line of at most `width` pixels
+/// (cut with "…"; the figure's caption carries the details).
 fn caption_lines(caption: &str, width: u32) -> Vec<String> {
     if caption.is_empty() {
         return Vec::new();
     }
-    wrap(caption, width, CAPTION)
-        .into_iter()
-        .map(|l| l.trim_start().to_string())
-        .collect()
+    vec![one_line(caption, width, CAPTION)]
 }
 
 /// The height of a chart caption's strip (its lines, wrapped to `width` pixels, and the gap
@@ -831,12 +858,5 @@ mod tests {
             assert!(sub_size(font_px(CAPTION)) as f64 / 1.24 >= width as f64 / 72.0);
         }
         assert_eq!(scale(), 1.0, "the guard restores the scale");
-    }
-
-    #[test]
-    fn a_per_cent_sign_stays_with_its_number() {
-        let lines = wrap("theory: 0.0 % out of the window", 1, TICK);
-        assert!(lines.iter().any(|l| l.trim() == "0.0 %"), "{lines:?}");
-        assert!(!lines.iter().any(|l| l.trim() == "%"), "{lines:?}");
     }
 }
