@@ -532,7 +532,7 @@ fn layout_defects(name: &str, svg: &str) -> Vec<String> {
 }
 
 /// The figures not yet redrawn for print (issue 35): their defects are listed, not failed.
-const PENDING: &[u32] = &[2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 19];
+const PENDING: &[u32] = &[2, 3, 4, 5, 6, 7, 8, 9, 10, 12, 14, 15, 16, 19];
 
 /// The layout of every figure of `figure all --quick` (or of the SVGs in the directory
 /// `TRIRHYTHM_PICTURES`, to check a full-quality set): no text over text or data points, at
@@ -566,7 +566,9 @@ fn every_picture_is_laid_out_for_print() {
         if PENDING.contains(&n) && given.is_none() {
             // reported, not failed, until the figure is redrawn; a pending figure found
             // clean must leave the list
-            assert!(!defects.is_empty(), "{name} is clean: take it off PENDING");
+            if defects.is_empty() {
+                all.push(format!("{name} is clean: take it off PENDING"));
+            }
             eprintln!(
                 "pending ({} defects):\n{}",
                 defects.len(),

@@ -580,6 +580,33 @@ pub fn chart<'a, DB: Backend>(
     framed(area, caption, (x, y), (x_desc, y_desc), ChartSize::Panel)
 }
 
+/// [`chart`] whose y coordinate is log10 of the value drawn (`y` a range of exponents), its
+/// ticks at whole decades labelled with the value itself (`10⁻²`), the others unlabelled.
+pub fn chart_log_y<'a, DB: Backend>(
+    area: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+    x: Range<f64>,
+    y: Range<f64>,
+    x_desc: &str,
+    y_desc: &str,
+) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>> {
+    let pow = |v: &f64| {
+        if (v - v.round()).abs() < 1e-6 {
+            format!("10{}", superscript(&format!("{}", v.round() as i64)))
+        } else {
+            String::new()
+        }
+    };
+    framed_with(
+        area,
+        caption,
+        (x, y),
+        (x_desc, y_desc),
+        ChartSize::Panel,
+        Some(&pow),
+    )
+}
+
 /// How large a chart's text and label areas are.
 #[derive(Clone, Copy, PartialEq)]
 pub enum ChartSize {
@@ -619,20 +646,42 @@ pub fn framed<'a, DB: Backend>(
     (x_desc, y_desc): (&str, &str),
     size: ChartSize,
 ) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>> {
+    framed_with(area, caption, (x, y), (x_desc, y_desc), size, None)
+}
+
+/// [`framed`] with the y tick labels written by `y_labels` where given.
+fn framed_with<'a, DB: Backend>(
+    area: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+    (x, y): (Range<f64>, Range<f64>),
+    (x_desc, y_desc): (&str, &str),
+    size: ChartSize,
+    y_labels: Option<&dyn Fn(&f64) -> String>,
+) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>> {
     init_fonts();
     let inset = size == ChartSize::Inset;
     let ticks = if inset { 4 } else { 8 };
-    let (fx, fy) = (tick_formatter(&x, ticks), tick_formatter(&y, ticks));
+    let fx = tick_formatter(&x, ticks);
+    let plain_y = tick_formatter(&y, ticks);
+    let fy: &dyn Fn(&f64) -> String = match y_labels {
+        Some(f) => f,
+        None => &plain_y,
+    };
     let tick = font_px(TICK);
     let desc = font_px(AXIS_DESC);
     let widest = |f: &dyn Fn(&f64) -> String, r: &Range<f64>| {
+        // samples across the range, and its whole numbers (a log axis labels only those)
+        let whole = (r.start.ceil() as i64..=r.end.floor() as i64)
+            .take(64)
+            .map(|v| v as f64);
         (0..=20)
             .map(|k| r.start + (r.end - r.start) * k as f64 / 20.0)
+            .chain(whole)
             .map(|v| text_width(&f(&v), tick))
             .max()
             .unwrap_or(0)
     };
-    let y_tick_w = widest(&fy, &y);
+    let y_tick_w = widest(fy, &y);
     let x_tick_w = widest(&fx, &x);
     // no more x ticks than fit, each label with a label's width of room
     let room = area.dim_in_pixel().0.saturating_sub(y_tick_w + px(80));
@@ -648,7 +697,9 @@ pub fn framed<'a, DB: Backend>(
         .dim_in_pixel()
         .1
         .saturating_sub(cap + x_area + 2 * margin);
-    let y_ticks = (y_room / (2 * tick).max(1)).clamp(2, ticks as u32) as usize;
+    // (plotters keeps to 1-2-5 steps and at most the count asked: asking for one label a
+    // line and a bit gives at least four on any range)
+    let y_ticks = (y_room / (tick * 9 / 8).max(1)).clamp(2, ticks as u32) as usize;
     let mut c = ChartBuilder::on(area)
         .margin(margin)
         .margin_top(margin + cap)
