@@ -79,6 +79,10 @@ pub struct VerdictLine {
     pub tag: String,
     /// The line: the claim, the verdict, the deciding numbers.
     pub text: String,
+    /// How many characters of `text` open it as `{claim} — {verdict} ({deciding number})`:
+    /// the badge never cuts them.
+    #[serde(default)]
+    pub head: usize,
 }
 
 impl VerdictLine {
@@ -102,40 +106,66 @@ impl Heading {
         px(8) + font_px(HEADING_TITLE) * 5 / 4 + px(6)
     }
 
-    /// The title, on one line: cut with "…" should it not fit in `width` pixels.
-    fn title_line(&self, width: u32) -> String {
-        one_line(&self.title, width.saturating_sub(2 * px(12)), HEADING_TITLE)
+    /// The title on one line of `width` pixels, and its font size: whole at the title's
+    /// size, else whole at a panel title's, else cut there at the last clause that fits
+    /// (", ", ": ", "; "), else with "…" (the contact sheet and the CSV notes have it whole).
+    fn title_line(&self, width: u32) -> (String, u32) {
+        let room = width.saturating_sub(2 * px(12));
+        for base in [HEADING_TITLE, CAPTION] {
+            if rich_width(&self.title, base) <= room {
+                return (self.title.clone(), base);
+            }
+        }
+        (fit_title(&self.title, room, CAPTION), CAPTION)
     }
 
     fn draw<DB: Backend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
         let width = area.dim_in_pixel().0;
         let title_h = font_px(HEADING_TITLE) * 5 / 4;
+        let (title, base) = self.title_line(width);
         rich_text(
             area,
-            &self.title_line(width),
+            &title,
             (px(12) as i32, (px(8) + title_h / 2) as i32),
             Pos::new(HPos::Left, VPos::Center),
-            HEADING_TITLE,
+            base,
             BLACK,
             false,
         )
     }
 
-    /// The verdict badges, one line each (cut with "…" to `width` pixels), in their colours.
+    /// The verdict badges in their colours: one line each, cut with "…" to `width` pixels
+    /// after the claim, the verdict and the deciding number, which are never cut (a head
+    /// longer than the line goes on over a second, the rest cut there).
     fn badges(&self, width: u32) -> Vec<(String, RGBColor)> {
         let room = width.saturating_sub(2 * px(12));
-        self.verdicts
-            .iter()
-            .map(|v| (one_line(&v.text, room, HEADING_LINE), v.colour()))
-            .collect()
+        let mut out = Vec::new();
+        for v in &self.verdicts {
+            let head: String = v.text.chars().take(v.head).collect();
+            if rich_width(&head, HEADING_LINE) <= room {
+                out.push((one_line(&v.text, room, HEADING_LINE), v.colour()));
+                continue;
+            }
+            // the longest run of whole words that fits, then the rest on one line
+            let words: Vec<&str> = v.text.split(' ').collect();
+            let mut k = 1;
+            while k < words.len() && rich_width(&words[..=k].join(" "), HEADING_LINE) <= room {
+                k += 1;
+            }
+            out.push((words[..k].join(" "), v.colour()));
+            let rest = format!("    {}", words[k..].join(" "));
+            out.push((one_line(&rest, room, HEADING_LINE), v.colour()));
+        }
+        out
     }
 
-    /// The height of the badge strip below the picture (nothing without verdicts).
-    fn badges_height(&self) -> u32 {
+    /// The height of the badge strip below the picture, `width` pixels wide (nothing without
+    /// verdicts).
+    fn badges_height(&self, width: u32) -> u32 {
         if self.verdicts.is_empty() {
             0
         } else {
-            px(6) + Self::line_height() * self.verdicts.len() as u32 + px(6)
+            px(6) + Self::line_height() * self.badges(width).len() as u32 + px(6)
         }
     }
 
@@ -154,6 +184,24 @@ impl Heading {
             )?;
         }
         Ok(())
+    }
+}
+
+/// A title on one line of at most `width` pixels at font size `base`: whole, else cut at
+/// the last clause that fits (before ", ", ": " or "; ", keeping more than its label), else
+/// with "…". The caption carries it whole.
+pub fn fit_title(title: &str, width: u32, base: u32) -> String {
+    if rich_width(title, base) <= width {
+        return title.to_string();
+    }
+    let clause = [", ", ": ", "; "]
+        .iter()
+        .flat_map(|sep| title.match_indices(sep).map(|(i, _)| i))
+        .filter(|&i| i > 12 && rich_width(&title[..i], base) <= width)
+        .max();
+    match clause {
+        Some(i) => title[..i].to_string(),
+        None => one_line(title, width, base),
     }
 }
 
@@ -417,7 +465,7 @@ pub fn save(
     let (w, h) = picture.size();
     let mut heading = picture.heading();
     heading.verdicts = verdicts;
-    let (hh, bh) = (heading.height(), heading.badges_height());
+    let (hh, bh) = (heading.height(), heading.badges_height(w));
     let size = (w, hh + h + bh);
     fn render<DB: Backend>(
         root: DrawingArea<DB, Shift>,
@@ -502,10 +550,14 @@ const EMBEDDED_FAMILY: &str = "DejaVu Sans";
 pub fn tick_formatter(range: &Range<f64>, ticks: usize) -> impl Fn(&f64) -> String {
     let span = (range.end - range.start).abs();
     let big = range.start.abs().max(range.end.abs());
-    // plotters puts about ten ticks on 1-2-5 steps: the spacing is about span / 10
-    let step = span / ticks as f64;
-    let decimals = if step > 0.0 {
-        (-step.log10().floor()).max(0.0) as usize
+    // the step plotters takes for at most `ticks` ticks, and the decimals it needs
+    let step = key_step(
+        range.start.min(range.end),
+        range.start.max(range.end),
+        ticks,
+    );
+    let decimals = if step > 0.0 && step.is_finite() {
+        (-step.log10() - 1e-9).ceil().max(0.0) as usize
     } else {
         0
     };
@@ -521,6 +573,45 @@ pub fn tick_formatter(range: &Range<f64>, ticks: usize) -> impl Fn(&f64) -> Stri
             format!("{v:.decimals$}")
         }
     }
+}
+
+/// The spacing of the ticks plotters puts on `[lo, hi]` when asked for at most `max`: the
+/// largest of the steps 10ᵏ × {1, 0.5, 0.2} that it refines to (as its
+/// `compute_f64_key_points`).
+fn key_step(lo: f64, hi: f64, max: usize) -> f64 {
+    let span = hi - lo;
+    if span.is_nan() || span <= 0.0 || max == 0 {
+        return 0.0;
+    }
+    let rem = |a: f64, b: f64| {
+        let r = a - (a / b).floor() * b;
+        if (r - b).abs() < f64::EPSILON {
+            0.0
+        } else {
+            r
+        }
+    };
+    let mut scale = 10f64.powf(span.log10().floor());
+    if 1 + (span / scale).floor() as usize > max {
+        scale *= 10.0;
+    }
+    for _ in 0..64 {
+        let old = scale;
+        for nxt in [2.0, 5.0, 10.0] {
+            let mut left = lo - rem(lo, old / nxt);
+            if left < lo {
+                left += old / nxt;
+            }
+            let right = hi - rem(hi, old / nxt);
+            let n = 1.0 + (right - left) / old * nxt;
+            if n.round() as usize > max {
+                return scale;
+            }
+            scale = old / nxt;
+        }
+        scale = old / 10.0;
+    }
+    scale
 }
 
 /// `v` as `m×10ⁿ` with at most `digits` significant digits (`2.5×10⁻⁷`, `10⁻⁶` for a mantissa
@@ -622,7 +713,7 @@ fn caption_lines(caption: &str, width: u32) -> Vec<String> {
     if caption.is_empty() {
         return Vec::new();
     }
-    vec![one_line(caption, width, CAPTION)]
+    vec![fit_title(caption, width, CAPTION)]
 }
 
 /// The height of a chart caption's strip (its lines, wrapped to `width` pixels, and the gap
@@ -661,12 +752,6 @@ fn framed_with<'a, DB: Backend>(
     init_fonts();
     let inset = size == ChartSize::Inset;
     let ticks = if inset { 4 } else { 8 };
-    let fx = tick_formatter(&x, ticks);
-    let plain_y = tick_formatter(&y, ticks);
-    let fy: &dyn Fn(&f64) -> String = match y_labels {
-        Some(f) => f,
-        None => &plain_y,
-    };
     let tick = font_px(TICK);
     let desc = font_px(AXIS_DESC);
     let widest = |f: &dyn Fn(&f64) -> String, r: &Range<f64>| {
@@ -681,25 +766,32 @@ fn framed_with<'a, DB: Backend>(
             .max()
             .unwrap_or(0)
     };
-    let y_tick_w = widest(fy, &y);
-    let x_tick_w = widest(&fx, &x);
-    // no more x ticks than fit, each label with a label's width of room
-    let room = area.dim_in_pixel().0.saturating_sub(y_tick_w + px(80));
-    let x_ticks = (room / (2 * x_tick_w.max(1))).clamp(2, ticks as u32) as usize;
     let has = |d: &str| !d.is_empty();
-    let y_area = y_tick_w + px(10) + if has(y_desc) { desc * 5 / 4 } else { 0 };
     let x_area = tick + px(10) + if has(x_desc) { desc * 5 / 4 } else { 0 };
     let margin = px(if inset { 4 } else { 8 });
     let width = area.dim_in_pixel().0;
     let cap = caption_height(caption, width.saturating_sub(2 * margin));
-    // no more y ticks than fit, each label with a label's height of room
+    // no more y ticks than fit, each label with a label's height of room (plotters keeps to
+    // 1-2-5 steps and at most the count asked: asking for one label a line and a bit gives
+    // at least four on any range)
     let y_room = area
         .dim_in_pixel()
         .1
         .saturating_sub(cap + x_area + 2 * margin);
-    // (plotters keeps to 1-2-5 steps and at most the count asked: asking for one label a
-    // line and a bit gives at least four on any range)
     let y_ticks = (y_room / (tick * 9 / 8).max(1)).clamp(2, ticks as u32) as usize;
+    let plain_y = tick_formatter(&y, y_ticks);
+    let fy: &dyn Fn(&f64) -> String = match y_labels {
+        Some(f) => f,
+        None => &plain_y,
+    };
+    let y_tick_w = widest(fy, &y);
+    // no more x ticks than fit, each label with half a label's width of room beside it
+    let room = width.saturating_sub(y_tick_w + px(80));
+    let x_tick_w = widest(&tick_formatter(&x, ticks), &x);
+    let x_ticks = (room / (x_tick_w.max(1) * 3 / 2)).clamp(2, ticks as u32) as usize;
+    let fx = tick_formatter(&x, x_ticks);
+    let x_tick_w = widest(&fx, &x);
+    let y_area = y_tick_w + px(10) + if has(y_desc) { desc * 5 / 4 } else { 0 };
     let mut c = ChartBuilder::on(area)
         .margin(margin)
         .margin_top(margin + cap)
