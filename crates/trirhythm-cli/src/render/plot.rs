@@ -785,10 +785,11 @@ fn framed_with<'a, DB: Backend>(
         None => &plain_y,
     };
     let y_tick_w = widest(fy, &y);
-    // no more x ticks than fit, each label with half a label's width of room beside it
+    // no more x ticks than fit, each label with a quarter of a label's width of room beside
+    // it
     let room = width.saturating_sub(y_tick_w + px(80));
     let x_tick_w = widest(&tick_formatter(&x, ticks), &x);
-    let x_ticks = (room / (x_tick_w.max(1) * 3 / 2)).clamp(2, ticks as u32) as usize;
+    let x_ticks = (room / (x_tick_w.max(1) * 5 / 4)).clamp(2, ticks as u32) as usize;
     let fx = tick_formatter(&x, x_ticks);
     let x_tick_w = widest(&fx, &x);
     let y_area = y_tick_w + px(10) + if has(y_desc) { desc * 5 / 4 } else { 0 };
@@ -906,7 +907,9 @@ pub fn colour_bar<DB: Backend>(
     lo: f64,
     hi: f64,
 ) -> Result<()> {
-    let fx = tick_formatter(&(lo..hi), 5);
+    // ticks as dense as the bar's width allows (at least four labelled)
+    let n = (area.dim_in_pixel().0 / px(110)).clamp(5, 10) as usize;
+    let fx = tick_formatter(&(lo..hi), n);
     let (tick, desc) = (font_px(TICK), font_px(AXIS_DESC));
     let edge = text_width(&fx(&hi), tick) / 2 + px(4);
     let x_area = tick + px(10) + desc * 5 / 4;
@@ -920,7 +923,7 @@ pub fn colour_bar<DB: Backend>(
     c.configure_mesh()
         .disable_y_axis()
         .disable_mesh()
-        .x_labels(5)
+        .x_labels(n)
         .x_label_formatter(&fx)
         .label_style((FONT, tick))
         .draw()
