@@ -188,16 +188,27 @@ impl Heading {
 }
 
 /// A title on one line of at most `width` pixels at font size `base`: whole, else cut at
-/// the last clause that fits (before ", ", ": " or "; ", keeping more than its label), else
+/// the last clause that fits (before ", ", ": " or "; " outside parentheses, keeping more
+/// than its label), else
 /// with "…". The caption carries it whole.
 pub fn fit_title(title: &str, width: u32, base: u32) -> String {
     if rich_width(title, base) <= width {
         return title.to_string();
     }
-    let clause = [", ", ": ", "; "]
-        .iter()
-        .flat_map(|sep| title.match_indices(sep).map(|(i, _)| i))
-        .filter(|&i| i > 12 && rich_width(&title[..i], base) <= width)
+    // the separators outside parentheses
+    let mut depth = 0i32;
+    let mut clauses = Vec::new();
+    for (i, c) in title.char_indices() {
+        match c {
+            '(' | '[' | '{' => depth += 1,
+            ')' | ']' | '}' => depth -= 1,
+            ',' | ':' | ';' if depth == 0 && title[i + 1..].starts_with(' ') => clauses.push(i),
+            _ => {}
+        }
+    }
+    let clause = clauses
+        .into_iter()
+        .filter(|&i| i > 5 && rich_width(&title[..i], base) <= width)
         .max();
     match clause {
         Some(i) => title[..i].to_string(),
