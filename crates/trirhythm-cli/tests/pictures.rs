@@ -396,7 +396,16 @@ fn layout_defects(name: &str, svg: &str) -> Vec<String> {
         let hidden: usize = lines
             .iter()
             .filter(|(stroke, p)| !(stroke == "#000000" && p.len() == 2))
-            .filter(|(_, p)| p.iter().any(|&q| !inset.contains(q)))
+            // (its own curves are clamped to its edges: outside is beyond them)
+            .filter(|(_, p)| {
+                let grown = Rect {
+                    l: inset.l - 2.0,
+                    t: inset.t - 2.0,
+                    r: inset.r + 2.0,
+                    b: inset.b + 2.0,
+                };
+                p.iter().any(|&q| !grown.contains(q))
+            })
             .map(|(_, p)| p.iter().filter(|&&q| inset.contains(q)).count())
             .sum();
         if hidden > 0 {
