@@ -59,12 +59,25 @@ pub struct PanelAxis {
 }
 
 impl PanelAxis {
-    /// The axis' name with its unit.
+    /// The axis' name with its unit: `β0 (×10⁻³)` for values read in thousandths.
     pub fn desc(&self) -> String {
         if self.scale == 1.0 {
-            self.label.clone()
-        } else {
-            format!("{} / {:e}", self.label, self.scale)
+            return self.label.clone();
+        }
+        let e = format!("{:e}", self.scale);
+        match e.split_once('e') {
+            Some(("1", exp)) => {
+                let sup: String = exp
+                    .chars()
+                    .map(|c| match c {
+                        '-' => '⁻',
+                        d => ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹']
+                            [d.to_digit(10).unwrap_or(0) as usize],
+                    })
+                    .collect();
+                format!("{} (×10{sup})", self.label)
+            }
+            _ => format!("{} (×{e})", self.label),
         }
     }
 }

@@ -3,8 +3,9 @@
 
 use crate::args::VariantArg;
 use crate::error::bad;
-use crate::io::stdout_write;
+use crate::io::{stdout_write, write_atomic};
 use crate::render::paper::{registry, Request};
+use crate::render::plot::Heading;
 use anyhow::Result;
 use std::path::PathBuf;
 use trirhythm_paper::FigureOptions;
@@ -12,7 +13,8 @@ use trirhythm_paper::FigureOptions;
 #[derive(Debug, clap::Args)]
 #[command(
     after_help = "Files, in --out-dir: figNN.csv (the data, parameters and notes in `#` \
-    lines), figNN.png and figNN.svg; the map figures also figNN_folds.csv.\n\
+    lines), figNN.png and figNN.svg; the map figures also figNN_folds.csv; `figure all` also \
+    index.html, the contact sheet: every picture at print width with its caption.\n\
     With --data also figNN.json: {\"figure\", \"trirhythm\" (version), \"variant\", \"quick\", \
     \"data\"}, the value the CSV and pictures are drawn from. `figure N --from-data DIR` draws \
     them again from DIR/figNN.json without computing (byte-identical files)."
@@ -77,9 +79,15 @@ pub fn figure(args: &FigureArgs) -> Result<()> {
         }),
         Some(dir) => Request::FromData(dir.as_path()),
     };
+    let all = args.figure == "all";
+    let mut sheet = Vec::new();
     for entry in selected {
         let start = std::time::Instant::now();
-        let files = (entry.make)(&request, &args.out_dir, args.data, None)?.files;
+        let made = (entry.make)(&request, &args.out_dir, args.data, None)?;
+        let files = made.files;
+        if all {
+            sheet.push((entry.number, made.heading));
+        }
         eprintln!(
             "figure {} ({}): {:.1} s",
             entry.number,
@@ -89,7 +97,46 @@ pub fn figure(args: &FigureArgs) -> Result<()> {
         let text: String = files.iter().map(|f| format!("{}\n", f.display())).collect();
         stdout_write(text.as_bytes())?;
     }
+    if all {
+        let path = args.out_dir.join("index.html");
+        write_atomic(&path, contact_sheet(&sheet).as_bytes())?;
+        stdout_write(format!("{}\n", path.display()).as_bytes())?;
+    }
     Ok(())
+}
+
+/// The contact sheet of `figure all`: every picture at print width (7 in) with its caption
+/// (title, parameters, variant, choices) and its verdicts, to look at the whole set at once.
+fn contact_sheet(figures: &[(u32, Heading)]) -> String {
+    let esc = |s: &str| {
+        s.replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;")
+    };
+    let mut html = String::from(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <title>trirhythm: the paper's figures</title><style>\
+         body{font-family:sans-serif;max-width:7.4in;margin:auto}\
+         figure{margin:0 0 3em 0;break-inside:avoid}img{width:7in;border:1px solid #ccc}\
+         figcaption{font-size:9pt}p{margin:.2em 0}</style></head><body>\n",
+    );
+    for (n, h) in figures {
+        html.push_str(&format!(
+            "<figure id=\"fig{n:02}\"><img src=\"fig{n:02}.png\" alt=\"{}\">\
+             <figcaption><p><b>{}</b></p>",
+            esc(&h.title),
+            esc(&h.title)
+        ));
+        for l in &h.lines {
+            html.push_str(&format!("<p>{}</p>", esc(l)));
+        }
+        for v in &h.verdicts {
+            html.push_str(&format!("<p><i>{}</i>: {}</p>", esc(&v.tag), esc(&v.text)));
+        }
+        html.push_str("</figcaption></figure>\n");
+    }
+    html.push_str("</body></html>\n");
+    html
 }
 
 /// `presets`: the parameter sets with their notes.

@@ -29,6 +29,8 @@ pub enum Symbol {
     /// A series' line (its colour and dash) with its marker, as [`draw_line`] and
     /// [`draw_markers`] draw it.
     Series(SeriesStyle),
+    /// A character a panel title carries (`†`), explained by the entry.
+    Mark(char),
 }
 
 impl Symbol {
@@ -71,6 +73,18 @@ impl Symbol {
                 )?;
                 marker(area, m, s.marker, s.colour)
             }
+            Symbol::Mark(c) => crate::render::plot::rich_text(
+                area,
+                &c.to_string(),
+                m,
+                plotters::style::text_anchor::Pos::new(
+                    plotters::style::text_anchor::HPos::Center,
+                    plotters::style::text_anchor::VPos::Center,
+                ),
+                crate::render::plot::CAPTION,
+                RGBColor(0, 0, 0),
+                false,
+            ),
         }
     }
 }

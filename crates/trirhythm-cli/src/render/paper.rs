@@ -58,7 +58,8 @@ pub enum Request<'a> {
 pub struct Made {
     /// The paths written, in order (JSON, CSV, PNG, SVG).
     pub files: Vec<PathBuf>,
-    /// The picture's heading: title and caption lines (parameters, variant, choices).
+    /// The picture's heading: title, caption lines (parameters, variant, choices) and the
+    /// verdicts drawn under it.
     pub heading: Heading,
 }
 
@@ -190,8 +191,12 @@ fn write_files<F: Slot + Picture>(
         files.push(write_table(stem, &table, &csv)?);
     }
     let (data, verdicts) = judge_figure(file.data, options);
-    files.extend(save(&data, verdict_lines(&verdicts), stem)?);
-    let heading = data.heading();
+    let verdicts = verdict_lines(&verdicts);
+    files.extend(save(&data, verdicts.clone(), stem)?);
+    let heading = Heading {
+        verdicts,
+        ..data.heading()
+    };
     Ok((files, (data, heading)))
 }
 
@@ -253,9 +258,13 @@ fn publish(files: &[PathBuf], dir: &Path) -> Result<Vec<PathBuf>> {
 pub fn verdict_lines(verdicts: &[ClaimVerdict]) -> Vec<VerdictLine> {
     verdicts
         .iter()
-        .map(|v| VerdictLine {
-            tag: v.decision.verdict.tag().to_string(),
-            text: verdict_text(v),
+        .map(|v| {
+            let (text, head) = verdict_text(v);
+            VerdictLine {
+                tag: v.decision.verdict.tag().to_string(),
+                text,
+                head,
+            }
         })
         .collect()
 }
@@ -264,7 +273,8 @@ pub fn verdict_lines(verdicts: &[ClaimVerdict]) -> Vec<VerdictLine> {
 /// picture.
 pub const VERDICT_CHARS: usize = 190;
 
-fn verdict_text(v: &ClaimVerdict) -> String {
+/// The verdict line and how many characters open it as `{claim} — {verdict} ({number})`.
+fn verdict_text(v: &ClaimVerdict) -> (String, usize) {
     use trirhythm_paper::verdict::Verdict;
     let d = &v.decision;
     // the deciding number in the words claims.md and the page quote (first, so that a long
@@ -278,8 +288,11 @@ fn verdict_text(v: &ClaimVerdict) -> String {
         notes.push(first_clause(&shorten(why)));
     }
     let mut head = format!("{} — {}", v.claim.id, d.verdict.tag());
+    let mut kept = head.chars().count();
     if !notes.is_empty() {
         head.push_str(&format!(" ({})", notes.join("; ")));
+        // the deciding number, with its parenthesis when it comes alone
+        kept += 2 + notes[0].chars().count() + usize::from(notes.len() == 1);
     }
     let items = match d.rule.as_str() {
         "count" => count_items(d),
@@ -295,7 +308,7 @@ fn verdict_text(v: &ClaimVerdict) -> String {
         }
         _ => String::new(),
     };
-    fit(&head, &items, &tail, VERDICT_CHARS)
+    (fit(&head, &items, &tail, VERDICT_CHARS), kept)
 }
 
 /// `head: item; item…tail`, with as many items as fit in `max` characters (at least the

@@ -686,6 +686,8 @@ struct Figure {
     present: bool,
     src: String,
     svg: Option<String>,
+    /// The caption: the picture's lines (parameters, method, seeds), shown under it.
+    caption: Vec<String>,
     alt: String,
     claims: Vec<Mention>,
     data: Vec<DataFile>,
@@ -824,6 +826,7 @@ fn figure(s: &Section, p: &Page) -> Result<Figure> {
         present: s.heading.is_some(),
         src: String::new(),
         svg: None,
+        caption: vec![],
         alt: String::new(),
         claims: vec![],
         data: vec![],
@@ -832,6 +835,7 @@ fn figure(s: &Section, p: &Page) -> Result<Figure> {
     let Some(heading) = &s.heading else {
         return Ok(out);
     };
+    out.caption = heading.lines.iter().map(|l| prose(l)).collect();
     out.alt = prose(
         &std::iter::once(heading.title.as_str())
             .chain(heading.lines.iter().map(String::as_str))

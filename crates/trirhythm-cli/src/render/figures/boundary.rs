@@ -60,11 +60,14 @@ pub fn draw_panel<DB: Backend>(
         .map(|q| q.y)
         .fold(0.0f64, f64::max);
     let (y0, y1) = (0.0, (1.12 * top).min(panel.y_range.1).max(1e-3));
+    // the axes a little beyond the data, so that no mark at a corner (the exact boundary at
+    // λ = 1, μ0 = 0) sits on the ticks
+    let pad = 0.02 * (panel.x_range.1 - panel.x_range.0);
     let mut c = chart(
         area,
         &panel.caption,
-        panel.x_range.0..panel.x_range.1,
-        y0..y1,
+        panel.x_range.0 - pad..panel.x_range.1 + pad,
+        y0 - 0.03 * (y1 - y0)..y1,
         &panel.x_desc,
         "μ0",
     )?;

@@ -6,10 +6,9 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig04_drift`].
 
 use crate::render::plot::{
-    chart, framed, padded_range, pe, pxi, rich_text, Backend, ChartSize, LegendStrip, Symbol, LABEL,
+    chart, padded_range, pe, pxi, rich_text, times_ten, Backend, LegendStrip, Symbol, LABEL,
 };
 use anyhow::Result;
-use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use trirhythm_paper::fig04_drift::{cycle_names, Fig04, Panel};
@@ -41,11 +40,20 @@ const UP: RGBColor = RGBColor(250, 200, 200);
 const DOWN: RGBColor = RGBColor(200, 215, 250);
 const GREY: RGBColor = RGBColor(120, 120, 120);
 
-picture!(Fig04, |self, root| size (1400, 1000 + key().height(1400)), draw {
-    let h = root.dim_in_pixel().1;
-    let (panels, strip) = root.split_vertically(h - key().height(1400));
+/// Height of a row of panels.
+const ROW: u32 = 500;
+
+// The four panels in two rows, a third row with the zooms on the small-amplitude part where a
+// panel's scale flattens it, and the key below.
+picture!(Fig04, |self, root| size {
+    let zooms = self.panels.iter().filter(|p| zoom_end(p).is_some()).count();
+    (1400, ROW * (2 + u32::from(zooms > 0)) + key().height(1400))
+}, draw {
+    let zoomed: Vec<&Panel> = self.panels.iter().filter(|p| zoom_end(p).is_some()).collect();
+    let rows = 2 + usize::from(!zoomed.is_empty());
+    let (panels, strip) = root.split_vertically(ROW * rows as u32);
     key().draw(&strip)?;
-    let areas = panels.split_evenly((2, 2));
+    let areas = panels.split_evenly((rows, 2));
     // roots are named after the r = 1 panel's (see `cycle_names`)
     let reference = self
         .panels
@@ -55,6 +63,9 @@ picture!(Fig04, |self, root| size (1400, 1000 + key().height(1400)), draw {
     for (area, p) in areas.iter().zip(&self.panels) {
         draw_panel(area, p, &cycle_names(reference, &p.cycles))?;
     }
+    for (area, p) in areas[4..].iter().zip(zoomed) {
+        draw_zoom(area, p)?;
+    }
     Ok(())
 });
 
@@ -63,16 +74,11 @@ fn x_end(p: &Panel) -> f64 {
     (p.outermost_at_r1 * 1.06).min(14.0)
 }
 
-/// One panel: f(A0) with its zones, the r = 1 reference, the cycles, a zoom on the inner roots.
-fn draw_panel<DB: Backend>(
-    area: &DrawingArea<DB, plotters::coord::Shift>,
-    p: &Panel,
-    names: &[String],
-) -> Result<()> {
+/// A panel's range: A0 to just beyond the outermost root at r = 1, f around the roots'
+/// neighbourhood (the steep fall beyond cut at four times the largest |f| met before the
+/// outermost root).
+fn frame(p: &Panel) -> (f64, std::ops::Range<f64>) {
     let x_end = x_end(p);
-    let x = 0.0..x_end;
-    // The range shows the roots' neighbourhood; the steep fall beyond is cut at four
-    // times the largest |f| met before the outermost root.
     let shown_vals = p
         .curve
         .iter()
@@ -82,11 +88,42 @@ fn draw_panel<DB: Backend>(
         .clone()
         .filter(|c| c.0 <= x_end / 1.06)
         .fold(0.0f64, |m, c| m.max(c.1.abs()));
-    let y = padded_range(shown_vals.map(|c| c.1.max(-4.0 * inner)));
-    let [a0, b0, g0, d0] = p.cp;
+    (
+        x_end,
+        padded_range(shown_vals.map(|c| c.1.max(-4.0 * inner))),
+    )
+}
+
+/// Where the small-amplitude part of a panel is flattened by the scale of the steep fall:
+/// the A0 up to which |f| stays under a tenth of the panel's range, when that is a stretch
+/// of the panel worth a zoom.
+fn zoom_end(p: &Panel) -> Option<f64> {
+    let (x_end, y) = frame(p);
+    let span = y.end - y.start;
+    let end = p
+        .curve
+        .iter()
+        .find(|c| c.1.abs() > 0.1 * span)
+        .map_or(x_end, |c| c.0);
+    (end > 0.4 * x_end && end < x_end).then_some(end)
+}
+
+/// One panel: f(A0) with its zones, the r = 1 reference, the cycles, a zoom on the inner roots.
+fn draw_panel<DB: Backend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    p: &Panel,
+    names: &[String],
+) -> Result<()> {
+    let (x_end, y) = frame(p);
+    let x = 0.0..x_end;
+    // (α0, β0 are the same in every panel: the caption gives them)
+    let [_, _, g0, d0] = p.cp;
     let caption = format!(
-        "({}) r = {}, (α0,β0,γ0,δ0) = ({a0}, {b0}, {g0:e}, {d0:e})",
-        p.label, p.r
+        "({}) r = {}, γ0 = {}, δ0 = {}",
+        p.label,
+        p.r,
+        times_ten(g0, 4),
+        times_ten(d0, 4)
     );
     let shown = |pts: &[(f64, f64)]| -> Vec<(f64, f64)> {
         pts.iter()
@@ -163,93 +200,30 @@ fn draw_panel<DB: Backend>(
     let (bx, by) = area.get_base_pixel();
     for (cy, name) in p.cycles.iter().zip(names) {
         let (x, y) = c.backend_coord(&(cy.amplitude, 0.0));
+        // in the quadrant the curve leaves free: it falls through a stable root (up-left to
+        // down-right), so the name goes up-right; it rises through an unstable one
+        let (dx, h) = if cy.stable {
+            (pxi(7), HPos::Left)
+        } else {
+            (-pxi(7), HPos::Right)
+        };
         rich_text(
             area,
             name,
-            (x - bx, y - by - pxi(9)),
-            Pos::new(HPos::Center, VPos::Bottom),
+            (x - bx + dx, y - by - pxi(7)),
+            Pos::new(h, VPos::Bottom),
             LABEL,
             BLACK,
             false,
         )?;
     }
-    draw_zoom(area, &c, p, &y, x_end)
+    Ok(())
 }
 
-/// Where the small-amplitude part is flattened by the scale of the steep fall (the panel's
-/// range `y`), an inset shows it at its own scale (roots there, or their absence, visible).
-/// It goes where it hides least of the panel: of the plotting area's corners and the middles
-/// of its top and bottom, the place covering the fewest points of the curves, no root and no
-/// root's name.
-fn draw_zoom<DB: Backend>(
-    area: &DrawingArea<DB, plotters::coord::Shift>,
-    c: &ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
-    p: &Panel,
-    y: &std::ops::Range<f64>,
-    x_end: f64,
-) -> Result<()> {
-    let span = y.end - y.start;
-    let zoom_end = p
-        .curve
-        .iter()
-        .find(|c| c.1.abs() > 0.1 * span)
-        .map_or(x_end, |c| c.0);
-    if zoom_end > 0.4 * x_end && zoom_end < x_end {
-        let (rx, ry) = c.plotting_area().get_pixel_range();
-        let w = ((rx.end - rx.start) as f64 * 0.5) as i32;
-        // the tallest inset (of three heights) that hides no root, else the shortest
-        let mut best = None;
-        for share in [0.48, 0.4, 0.34] {
-            let h = ((ry.end - ry.start) as f64 * share) as i32;
-            let gap = pxi(6);
-            let (left, right) = (rx.start + gap, rx.end - gap - w);
-            let (top, bottom) = (ry.start + gap, ry.end - gap - h);
-            let middle = (rx.start + rx.end - w) / 2;
-            let places = [
-                (left, bottom),
-                (right, bottom),
-                (middle, bottom),
-                (left, top),
-                (right, top),
-                (middle, top),
-            ];
-            let cost = |&(x0, y0): &(i32, i32)| -> u64 {
-                let m = pxi(4);
-                let hit = |(x, y): (i32, i32)| {
-                    x >= x0 - m && x <= x0 + w + m && y >= y0 - m && y <= y0 + h + m
-                };
-                let curves = p
-                    .curve
-                    .iter()
-                    .chain(p.reference.iter().flatten())
-                    .filter(|q| q.0 <= x_end && y.contains(&q.1))
-                    .filter(|q| hit(c.backend_coord(q)))
-                    .count() as u64;
-                let roots = p
-                    .cycles
-                    .iter()
-                    .filter(|cy| {
-                        let (x, y) = c.backend_coord(&(cy.amplitude, 0.0));
-                        hit((x, y)) || hit((x, y - pxi(30)))
-                    })
-                    .count() as u64;
-                curves + 10_000 * roots
-            };
-            if let Some((place, cost)) = places.iter().map(|q| (*q, cost(q))).min_by_key(|q| q.1) {
-                best = Some((place, h));
-                if cost < 10_000 {
-                    break;
-                }
-            }
-        }
-        let Some(((ax, ay), h)) = best else {
-            return Ok(());
-        };
-        let (bx, by) = area.get_base_pixel();
-        let inset = area
-            .clone()
-            .shrink((ax - bx, ay - by), (w as u32, h as u32));
-        inset.fill(&WHITE).map_err(pe)?;
+/// The zoom on panel `p`'s small-amplitude part ([`zoom_end`]), at its own scale (its roots,
+/// or their absence, visible), as a panel of its own.
+fn draw_zoom<DB: Backend>(area: &DrawingArea<DB, plotters::coord::Shift>, p: &Panel) -> Result<()> {
+    if let Some(zoom_end) = zoom_end(p) {
         let pts: Vec<(f64, f64)> = p
             .curve
             .iter()
@@ -257,12 +231,13 @@ fn draw_zoom<DB: Backend>(
             .filter(|c| c.0 <= zoom_end)
             .collect();
         let yz = padded_range(pts.iter().map(|c| c.1).chain([0.0]));
-        let mut z = framed(
-            &inset,
-            &format!("zoom: A_0 ≤ {zoom_end:.1}"),
-            (0.0..zoom_end, yz),
-            ("", ""),
-            ChartSize::Inset,
+        let mut z = chart(
+            area,
+            &format!("({}) zoomed: A_0 ≤ {zoom_end:.1}", p.label),
+            0.0..zoom_end,
+            yz,
+            "A_0",
+            "f(A_0)",
         )?;
         z.draw_series(LineSeries::new(
             [(0.0, 0.0), (zoom_end, 0.0)],
@@ -278,8 +253,8 @@ fn draw_zoom<DB: Backend>(
                 .map(|cy| {
                     let fill = if cy.stable { BLACK } else { WHITE };
                     EmptyElement::at((cy.amplitude, 0.0))
-                        + Circle::new((0, 0), 5, fill.filled())
-                        + Circle::new((0, 0), 5, BLACK.stroke_width(2))
+                        + Circle::new((0, 0), pxi(5), fill.filled())
+                        + Circle::new((0, 0), pxi(5), BLACK.stroke_width(2))
                 }),
         )
         .map_err(pe)?;

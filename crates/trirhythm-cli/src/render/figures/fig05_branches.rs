@@ -29,8 +29,9 @@ pub(super) fn runs(
     out
 }
 
-picture!(Fig05, |self, root| size (1500, 960), draw {
-    let areas = root.split_evenly((2, 3));
+// Three rows of two panels (each 3.5 in wide printed 7 in), the legend in the sixth cell.
+picture!(Fig05, |self, root| size (1500, 1380), draw {
+    let areas = root.split_evenly((3, 2));
     for (area, (label, mu0, bd)) in areas.iter().zip(&self.panels) {
         let amax = bd
             .branches
@@ -42,7 +43,8 @@ picture!(Fig05, |self, root| size (1500, 960), draw {
             area,
             &format!("({label}) μ0 = {mu0}"),
             bd.start..bd.stop,
-            0.0..amax * 1.08,
+            // below zero, so that the births at A0 = 0 sit above the axis
+            -0.05 * amax..amax * 1.08,
             "r",
             "A0",
         )?;

@@ -1,10 +1,11 @@
-//! Fig. 7: the pseudo-potential U_eff(A0) (Eq. 23) for several r (a) and several λ (b).
+//! Fig. 7: the pseudo-potential U_eff(A0) (Eq. 23) for several r (a) and several λ (b), each
+//! with a second panel below it zoomed on the inner well.
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig07_pseudo_potential`].
 
 use crate::render::plot::{
-    chart, draw_line, framed, padded_range, pe, pxi, series, stroke, Backend, ChartSize,
-    LegendStrip, Marker, SeriesStyle, Symbol,
+    chart, draw_line, padded_range, pe, pxi, series, stroke, Backend, LegendStrip, Marker,
+    SeriesStyle, Symbol,
 };
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
@@ -89,57 +90,56 @@ fn legend_of(panel: &Panel) -> LegendStrip {
     }
 }
 
-/// Height of the picture above the legend strips.
-const CHARTS: u32 = 620;
+/// Heights of the main charts, and of the zooms on the inner well below them.
+const CHARTS: u32 = 460;
+const ZOOMS: u32 = 380;
 
+/// Where the zoom on the inner well ends: beyond the first crest past the inner well of any
+/// curve; `None` where there is nothing to zoom on.
+fn zoom_end(curves: &[Curve]) -> Option<f64> {
+    let end = curves
+        .iter()
+        .filter_map(|cv| {
+            let well = cv.extrema.iter().find(|e| e.minimum && e.amplitude > 0.0)?;
+            cv.extrema
+                .iter()
+                .find(|e| !e.minimum && e.amplitude > well.amplitude)
+                .map(|e| e.amplitude)
+        })
+        .fold(0.0f64, f64::max)
+        * 1.15;
+    (end > 0.0 && end < 14.0).then_some(end)
+}
+
+// The two panels side by side, each with its zoom on the inner well below it (the well
+// A01 is ~10⁻³ deep against ~1 for the outer ones: invisible at the main scale), and each
+// column's legend below.
 picture!(Fig07, |self, root| size {
     let w = 1400;
     let strip = self.panels.iter().map(|p| legend_of(p).height(w / 2)).max().unwrap_or(0);
-    (w, CHARTS + strip)
+    (w, CHARTS + ZOOMS + strip)
 }, draw {
-    let (charts, strips) = root.split_vertically(CHARTS);
+    let (charts, rest) = root.split_vertically(CHARTS);
+    let (zooms, strips) = rest.split_vertically(ZOOMS);
     let areas = charts.split_evenly((1, 2));
+    let zoom_areas = zooms.split_evenly((1, 2));
     for (strip, p) in strips.split_evenly((1, 2)).iter().zip(&self.panels) {
         legend_of(p).draw(strip)?;
     }
-    for (
-        area,
-        Panel {
-            caption, curves, ..
-        },
-    ) in areas.iter().zip(&self.panels)
-    {
+    for (k, (area, Panel { caption, curves, .. })) in areas.iter().zip(&self.panels).enumerate() {
         let (y, clipped) = frame(curves, 14.0);
         let mut c = chart(area, caption, 0.0..14.0, y, "A0", "U_eff(A0)")?;
         draw_curves(&mut c, &clipped)?;
-        // The inner well A01 is ~1e-3 deep against ~1 for the outer ones: an inset zooms
-        // on it, up to the first crest beyond it.
-        let zoom_end = curves
-            .iter()
-            .filter_map(|cv| {
-                let well = cv.extrema.iter().find(|e| e.minimum && e.amplitude > 0.0)?;
-                cv.extrema
-                    .iter()
-                    .find(|e| !e.minimum && e.amplitude > well.amplitude)
-                    .map(|e| e.amplitude)
-            })
-            .fold(0.0f64, f64::max)
-            * 1.15;
-        if zoom_end > 0.0 && zoom_end < 14.0 {
-            let (w, h) = area.dim_in_pixel();
-            // below the curves, where the main panel is empty
-            let inset = area.clone().shrink(
-                (100, (0.5 * h as f64) as u32),
-                ((0.45 * w as f64) as u32, (0.4 * h as f64) as u32),
-            );
-            inset.fill(&WHITE).map_err(pe)?;
-            let (yz, zoomed) = frame(curves, zoom_end);
-            let mut z = framed(
-                &inset,
-                &format!("zoom on the inner well: A0 ≤ {zoom_end:.1}"),
-                (0.0..zoom_end, yz),
-                ("", ""),
-                ChartSize::Inset,
+        if let Some(end) = zoom_end(curves) {
+            let (yz, zoomed) = frame(curves, end);
+            let label = caption.split(' ').next().unwrap_or("");
+            let mut z = chart(
+                &zoom_areas[k],
+                &format!("{label} zoomed on the inner well, A0 ≤ {end:.1}"),
+                0.0..end,
+                yz,
+                "A0",
+                "U_eff(A0)",
             )?;
             draw_curves(&mut z, &zoomed)?;
         }

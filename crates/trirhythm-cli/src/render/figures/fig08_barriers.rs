@@ -3,14 +3,14 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig08_barriers`].
 
 use super::fig07_pseudo_potential::{draw_curves, frame};
-use crate::render::plot::{chart, pe, pxi, rich_text, rich_width, Backend, AXIS_DESC};
+use crate::render::plot::{chart, font_px, pe, pxi, rich_text, Backend, AXIS_DESC};
 use anyhow::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use trirhythm::theory::averaging::{Barrier, Side};
 use trirhythm_paper::fig08_barriers::Fig08;
 
-/// The inner wells' right end: the first crest beyond the first well, with margin.
+/// The inner well's right end: the first crest beyond the first well, with margin.
 fn zoom_end(fig: &Fig08) -> f64 {
     let crest = fig
         .barriers
@@ -71,25 +71,18 @@ fn draw_panel<DB: Backend>(
             c.draw_series([EmptyElement::at((xa, yv)) + Circle::new((0, 0), 3, color.filled())])
                 .map_err(pe)?;
         }
-        let (x, y) = c.backend_coord(&(xa, 0.5 * (u_well + u_crest)));
+        // above its bar's top, clear of the curve (which runs through the crest below and
+        // the well at the bar's foot); neighbouring labels on alternate rows
+        let (x, y) = c.backend_coord(&(xa, u_crest));
         let (bx, by) = area.get_base_pixel();
-        // right of its bar, unless another bar stands within the label's width there
         let name = format!("ΔU_{}", i + 1);
-        let room = rich_width(&name, AXIS_DESC) as i32 + pxi(10);
-        let crowded = shown.iter().any(|&other| {
-            let ox = c.backend_coord(&(other, 0.0)).0;
-            ox > x && ox - x < room
-        });
-        let (dx, h) = if crowded {
-            (-pxi(6), HPos::Right)
-        } else {
-            (pxi(6), HPos::Left)
-        };
+        let row = shown.iter().take_while(|&&other| other != xa).count() % 2;
+        let lift = pxi(8) + row as i32 * (font_px(AXIS_DESC) as i32 * 6 / 5);
         rich_text(
             area,
             &name,
-            (x - bx + dx, y - by),
-            Pos::new(h, VPos::Center),
+            (x - bx, y - by - lift),
+            Pos::new(HPos::Center, VPos::Bottom),
             AXIS_DESC,
             color,
             false,
@@ -103,7 +96,7 @@ picture!(Fig08, |self, root| size (1400, 620), draw {
     draw_panel(
         self,
         &areas[1],
-        "(b) zoom on the inner wells",
+        "(b) zoom on the inner well",
         zoom_end(self),
     )?;
     Ok(())

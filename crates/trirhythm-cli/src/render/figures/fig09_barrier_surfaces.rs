@@ -1,5 +1,6 @@
 //! Fig. 9: energy barriers ΔU1…ΔU4 of U_eff (Eq. 23) over the (τ, λ) plane for r = 0.998 and
 //! r = 0.990, as heat maps; blank where U_eff does not have the three wells the labels refer to.
+//! One row per barrier (both r side by side, one colour bar below them).
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig09_barrier_surfaces`].
 
@@ -7,9 +8,13 @@ use crate::render::plot::{chart, colour_bar, colour_bar_height, pe, viridis};
 use plotters::prelude::*;
 use trirhythm_paper::fig09_barrier_surfaces::Fig09;
 
-picture!(Fig09, |self, root| size (1400, 1000), draw {
-    let h = root.dim_in_pixel().1;
-    let (rest, bars) = root.split_vertically(h - colour_bar_height());
+/// Height of one heat map, and the gap under its row's colour bar.
+const MAP: u32 = 360;
+const GAP: u32 = 30;
+
+// One row per barrier, its two r side by side (each 3.5 in wide printed 7 in) and its colour
+// bar, shared by both, below them.
+picture!(Fig09, |self, root| size (1400, 4 * (MAP + colour_bar_height() + GAP)), draw {
     // one colour scale per barrier, shared by both r: the rows can be compared
     let scales: Vec<(f64, f64)> = (0..4)
         .map(|k| {
@@ -22,13 +27,17 @@ picture!(Fig09, |self, root| size (1400, 1000), draw {
             })
         })
         .collect();
-    for (k, bar) in bars.split_evenly((1, 4)).iter().enumerate() {
+    let rows = root.split_evenly((4, 1));
+    let mut areas = Vec::new();
+    for (k, row) in rows.iter().enumerate() {
+        let (maps, bar) = row.split_vertically(MAP);
+        let (bar, _) = bar.split_vertically(colour_bar_height());
+        areas.extend(maps.split_evenly((1, 2)));
         let (lo, hi) = scales[k];
         if lo < hi {
-            colour_bar(bar, &format!("ΔU_{} (both r)", k + 1), lo, hi)?;
+            colour_bar(&bar, &format!("ΔU_{} (both r; blank: undefined)", k + 1), lo, hi)?;
         }
     }
-    let areas = rest.split_evenly((2, 4));
     for (row, s) in self.surfaces.iter().enumerate() {
         let (nx, ny) = (s.x.count, s.y.count);
         let hx = (s.x.stop - s.x.start) / (nx - 1) as f64;
@@ -54,7 +63,7 @@ picture!(Fig09, |self, root| size (1400, 1000), draw {
                     here.1
                 )
             };
-            let area = &areas[row * 4 + k];
+            let area = &areas[k * 2 + row];
             let mut c = chart(
                 area,
                 &caption,

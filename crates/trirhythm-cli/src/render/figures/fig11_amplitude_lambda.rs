@@ -1,20 +1,27 @@
 //! Fig. 11: (a) limit-cycle amplitude against λ — the averaging's branches (f = 0, Eq. 18, at
 //! D = 0) against long noise-free simulations of Eq. (1) from several initial amplitudes;
 //! (b) the stationary P(A) for four λ — theory (both variants) against Monte Carlo of Eq. (1)
-//! and Eq. (5), with error bars, distances and stationarity verdicts.
+//! and Eq. (5), with error bars, distances and stationarity verdicts: (a) across the top with
+//! its key beside it, (b) as a 2 × 2 grid on one A axis below, one legend under all.
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig11_amplitude_lambda`].
 
 use super::fig05_branches::runs;
-use super::montecarlo::{amplitude_legend, draw_amplitude_panel, two_rows_of_four, PANEL};
+use super::montecarlo::{a_max, amplitude_legend, draw_amplitude_panel, two_columns, PANEL};
 use crate::render::plot::{chart, pe, PALETTE};
 use plotters::prelude::*;
 use trirhythm_paper::fig11_amplitude_lambda::Fig11;
 
-picture!(Fig11, |self, root| size two_rows_of_four(&self.panels), draw {
+/// Width of panel (a), the rest of its row being its key.
+const A_WIDTH: u32 = 2 * PANEL.0 * 3 / 4;
+
+picture!(Fig11, |self, root| size {
+    let (w, h) = two_columns(&self.panels);
+    (w, h + PANEL.1)
+}, draw {
     let (top, rest) = root.split_vertically(PANEL.1);
-    let (bottom, strip) = rest.split_vertically(PANEL.1);
-    let (a_area, _) = top.split_horizontally(3 * PANEL.0);
+    let (bottom, strip) = rest.split_vertically(self.panels.len().div_ceil(2) as u32 * PANEL.1);
+    let (a_area, key) = top.split_horizontally(A_WIDTH);
     let amax = self
         .branches
         .branches
@@ -25,8 +32,12 @@ picture!(Fig11, |self, root| size two_rows_of_four(&self.panels), draw {
     let mut c = chart(
         &a_area,
         "(a) limit-cycle amplitude against λ (D = 0)",
-        self.branches.start..self.branches.stop,
-        0.0..amax * 1.08,
+        // padded, so that no marker sits on an axis
+        {
+            let pad = 0.02 * (self.branches.stop - self.branches.start);
+            self.branches.start - pad..self.branches.stop + pad
+        },
+        -0.04 * amax..amax * 1.08,
         "λ",
         "A",
     )?;
@@ -48,7 +59,6 @@ picture!(Fig11, |self, root| size two_rows_of_four(&self.panels), draw {
     )
     .map_err(pe)?;
     // panel (a)'s key, beside it
-    let (_, key) = top.split_horizontally(3 * PANEL.0);
     crate::render::plot::LegendStrip {
         entries: vec![
             (
@@ -66,8 +76,11 @@ picture!(Fig11, |self, root| size two_rows_of_four(&self.panels), draw {
         ],
     }
     .draw(&key.margin(crate::render::plot::px(20), 0, 0, 0))?;
-    for (area, p) in bottom.split_evenly((1, 4)).iter().zip(&self.panels) {
-        draw_amplitude_panel(area, p)?;
+    // (b): the four λ as a 2 × 2 grid, by rows
+    let cells = bottom.split_evenly((self.panels.len().div_ceil(2), 2));
+    let x_max = self.panels.iter().map(a_max).fold(1.0f64, f64::max);
+    for (area, p) in cells.iter().zip(&self.panels) {
+        draw_amplitude_panel(area, p, x_max)?;
     }
     amplitude_legend(&self.panels).draw(&strip)
 });

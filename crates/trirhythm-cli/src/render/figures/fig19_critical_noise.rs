@@ -8,7 +8,8 @@
 
 use super::lle::{CHART_HEIGHT, PANEL_WIDTH};
 use crate::render::plot::{
-    font_px, pe, px, Backend, LegendStrip, Symbol, AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
+    font_px, pe, px, superscript, times_ten, Backend, LegendStrip, Symbol, AXIS_DESC, CAPTION,
+    FONT, PALETTE, TICK,
 };
 use anyhow::{anyhow, Result};
 use plotters::coord::Shift;
@@ -16,7 +17,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use trirhythm_paper::fig19_critical_noise::{Fig19, SignMap};
 use trirhythm_paper::lle::Curve;
-use trirhythm_paper::notes::{num, sig};
+use trirhythm_paper::notes::num;
 use trirhythm_paper::verdict::rules::Bracket;
 
 /// The attractors in the order of their slots in a column, with their colours.
@@ -130,7 +131,8 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
     // the rows outside the searched range, 0.7 decades beyond its ends
     let (zero_row, never_row) = (lo - 0.7, hi + 0.7);
     let (below_edge, above_edge) = (lo - 0.35, hi + 0.35);
-    let y = (lo - 1.0)..(hi + 1.0);
+    // room beyond the rows, so that their markers stay inside the plotting area
+    let y = (lo - 1.2)..(hi + 1.2);
     let caption = panel
         .caption
         .split(' ')
@@ -153,10 +155,15 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
             String::new()
         }
     };
-    // D ticks inside the searched range; the two rows are named beside the axis
+    // D ticks inside the searched range: at the whole decades, as 10ⁿ, where it spans four
+    // or more, else every tick as m×10ⁿ; the two rows are named beside the axis
+    let decades = (hi + 1e-9).floor() - (lo - 1e-9).ceil() + 1.0;
     let yf = |v: &f64| {
-        if *v >= lo - 1e-9 && *v <= hi + 1e-9 {
-            sig(10f64.powf(*v), 2)
+        let inside = *v >= lo - 1e-9 && *v <= hi + 1e-9;
+        if inside && (v - v.round()).abs() < 1e-6 {
+            format!("10{}", superscript(&format!("{}", v.round() as i64)))
+        } else if inside && decades < 4.0 {
+            times_ten(10f64.powf(*v), 2)
         } else {
             String::new()
         }
@@ -165,7 +172,7 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
         .x_desc(panel.x_desc.as_str())
         .y_desc("critical noise (log scale)")
         .x_labels(values.len() * 2 + 1)
-        .y_labels(8)
+        .y_labels(16)
         .x_label_formatter(&xf)
         .y_label_formatter(&yf)
         .disable_x_mesh()

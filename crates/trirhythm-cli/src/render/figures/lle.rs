@@ -1,22 +1,21 @@
 //! What Figs 17–19 share: panels of the largest Lyapunov exponent against D on a log axis with
 //! error bars, one colour per value of the panel's parameter, filled markers for the rest
 //! regime and open markers for the cycle regime.
-//! Each panel keeps its legend in a strip below its chart, so no legend covers data.
+//! Each panel keeps its legend in a strip below its chart, so no legend covers data; the
+//! panel's verdict details are in the caption (the CSV notes), and the y range is the data's.
 //!
 //! Drawing only: the runs and verdicts are [`trirhythm_paper::lle`].
 
 use crate::render::plot::{
-    font_px, padded_range, pe, px, tick_formatter, Backend, LegendStrip, Symbol, AXIS_DESC,
-    CAPTION, FONT, PALETTE, TICK,
+    font_px, padded_range, pe, px, pxi, tick_formatter, times_ten, Backend, LegendStrip, Symbol,
+    AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
 };
 use anyhow::{anyhow, Result};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::ops::Range;
 use trirhythm_paper::lle::{Flag, LleAgainstNoise, Panel, StartKind};
-use trirhythm_paper::notes::sig;
 
 /// Height of the chart part of a panel.
 pub const CHART_HEIGHT: u32 = 440;
@@ -90,7 +89,7 @@ fn log_x_chart<'a, DB: Backend>(
         .y_label_area_size(px(70))
         .build_cartesian_2d(x, y.clone())
         .map_err(|e| anyhow!("{e}"))?;
-    let pow = |v: &f64| sig(10f64.powf(*v), 2);
+    let pow = |v: &f64| times_ten(10f64.powf(*v), 2);
     let plain = tick_formatter(&y, 10);
     c.configure_mesh()
         .x_desc(x_desc)
@@ -107,62 +106,8 @@ fn log_x_chart<'a, DB: Backend>(
     Ok(c)
 }
 
-/// The fraction of a chart's height that `lines` verdict lines take ([`verdict_text`]).
-fn text_fraction(lines: usize) -> f64 {
-    0.035 + LINE_STEP * lines as f64
-}
-
-/// How much to extend a data range upward (as a fraction of it) so that `lines` verdict lines
-/// sit above the data: t/(1 − t) for a text fraction t.
-fn text_room(lines: usize) -> f64 {
-    let t = text_fraction(lines).min(0.8);
-    t / (1.0 - t)
-}
-
-/// The step between verdict lines, as a fraction of the chart's height.
-const LINE_STEP: f64 = 0.065;
-
-/// A panel's verdict lines wrapped to the plotting width of a chart drawn in `area` (the
-/// area less the y label area and the margins).
-fn panel_lines<DB: Backend>(area: &DrawingArea<DB, Shift>, verdicts: &[String]) -> Vec<String> {
-    let width = area
-        .dim_in_pixel()
-        .0
-        .saturating_sub(px(70) + px(10) + px(26) + px(20));
-    verdicts
-        .iter()
-        .flat_map(|v| crate::render::plot::wrap(v, width, TICK))
-        .collect()
-}
-
-/// Draw `lines` at the top left of chart `c` (drawn in `area`), subscripts rendered.
-fn verdict_text<DB: Backend>(
-    area: &DrawingArea<DB, Shift>,
-    c: &Chart<DB>,
-    lines: &[String],
-) -> Result<()> {
-    let (x, y) = (c.x_range(), c.y_range());
-    let base = area.get_base_pixel();
-    for (k, v) in lines.iter().enumerate() {
-        let at = c.backend_coord(&(
-            x.start + 0.02 * (x.end - x.start),
-            y.end - (0.02 + LINE_STEP * k as f64) * (y.end - y.start),
-        ));
-        crate::render::plot::rich_text(
-            area,
-            v,
-            (at.0 - base.0, at.1 - base.1),
-            Pos::new(HPos::Left, VPos::Top),
-            TICK,
-            BLACK,
-            false,
-        )?;
-    }
-    Ok(())
-}
-
 /// Draw one LLE-against-D panel: log D axis, error bars, zero line, filled (rest regime) and
-/// open (cycle regime) markers, verdicts, legend strip below. Merged points are drawn as
+/// open (cycle regime) markers, legend strip below. Merged points are drawn as
 /// crosses on the lower edge.
 pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> Result<()> {
     let (top, bottom) = area.split_vertically(CHART_HEIGHT);
@@ -181,10 +126,8 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
         .flat_map(|q| [q.lo, q.hi, q.y])
         .collect();
     ys.push(0.0);
-    let mut y = padded_range(ys);
-    // room at the top for the verdict lines, wrapped to the plotting width
-    let lines = panel_lines(&top, &panel.verdicts);
-    y.end += (y.end - y.start) * text_room(lines.len());
+    // the range is the data's (the panel's verdicts are in the caption, not over the data)
+    let y = padded_range(ys);
     let mut c = log_x_chart(
         &top,
         &panel.caption,
@@ -229,12 +172,18 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
                 PathElement::new([(xq - cap, q.hi), (xq + cap, q.hi)], colour.stroke_width(1)),
             ])
             .map_err(pe)?;
-            let marker = if open {
-                Circle::new((xq, q.y), 4, colour.stroke_width(2))
+            // open: a white disc in a thick ring; filled: a solid disc (apart in greyscale)
+            let r = pxi(5);
+            if open {
+                c.draw_series([
+                    Circle::new((xq, q.y), r, WHITE.filled()),
+                    Circle::new((xq, q.y), r, colour.stroke_width(2)),
+                ])
+                .map_err(pe)?;
             } else {
-                Circle::new((xq, q.y), 4, colour.filled())
-            };
-            c.draw_series(std::iter::once(marker)).map_err(pe)?;
+                c.draw_series(std::iter::once(Circle::new((xq, q.y), r, colour.filled())))
+                    .map_err(pe)?;
+            }
         }
     }
     // the predictions: −c·D on a cycle (dashed, over its D), the rest regime's D-independent
@@ -264,7 +213,6 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
                 .map_err(pe)?;
         }
     }
-    verdict_text(&top, &c, &lines)?;
     strip(panel).draw(&bottom)
 }
 

@@ -168,23 +168,63 @@ fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Resul
         c.draw_series(DashedLineSeries::new(pts, 7, 5, PRINTED.stroke_width(2)))
             .map_err(pe)?;
     }
+    // the inset (and the outline of the box it zooms on) first: the names go over it
+    if p.what == What::Rhythmicity {
+        draw_inset(area, &mut c, p)?;
+    }
+    // the fold curves in backend pixels, for placing the names off them
+    let fold_px: Vec<(i32, i32)> = p
+        .folds
+        .curves
+        .iter()
+        .chain(p.printed.iter().flat_map(|f| &f.curves))
+        .flat_map(|cv| cv.points.iter())
+        .map(|q| c.backend_coord(&(q.x / sx, q.y / sy)))
+        .collect();
+    let (rx, ry) = c.plotting_area().get_pixel_range();
     for (i, name) in &p.fold_names {
         let curve = &p.folds.curves[*i];
         let q = &curve.points[curve.points.len() / 2];
-        // on a white box: red on green, blue or black is hard to read
+        let (x, y) = c.backend_coord(&(q.x / sx, q.y / sy));
+        // on a white box: red on green, blue or black is hard to read; beside its curve's
+        // middle, on the side (right, left, above, below) its box covers the fewest points
+        // of the fold curves, inside the plotting area
         let w = rich_width(name, LABEL) as i32 + pxi(8);
         let h = font_px(LABEL) as i32 * 3 / 4;
-        c.draw_series(std::iter::once(
-            EmptyElement::at((q.x / sx, q.y / sy))
-                + Rectangle::new([(pxi(6), -h), (pxi(6) + w, h)], WHITE.mix(0.85).filled()),
+        let gap = pxi(8);
+        let places = [
+            (x + gap, y - h),
+            (x - gap - w, y - h),
+            (x - w / 2, y - gap - 2 * h),
+            (x - w / 2, y + gap),
+            (x + gap, y - gap - 2 * h),
+            (x + gap, y + gap),
+            (x - gap - w, y - gap - 2 * h),
+            (x - gap - w, y + gap),
+        ];
+        let cost = |&(x0, y0): &(i32, i32)| -> usize {
+            let outside = x0 < rx.start || x0 + w > rx.end || y0 < ry.start || y0 + 2 * h > ry.end;
+            let hits = fold_px
+                .iter()
+                .filter(|&&(px_, py)| px_ >= x0 && px_ <= x0 + w && py >= y0 && py <= y0 + 2 * h)
+                .count();
+            hits + if outside { 1_000_000 } else { 0 }
+        };
+        let (x0, y0) = places
+            .iter()
+            .copied()
+            .min_by_key(cost)
+            .unwrap_or((x + gap, y - h));
+        let (bx, by) = area.get_base_pixel();
+        area.draw(&Rectangle::new(
+            [(x0 - bx, y0 - by), (x0 - bx + w, y0 - by + 2 * h)],
+            WHITE.mix(0.85).filled(),
         ))
         .map_err(pe)?;
-        let (x, y) = c.backend_coord(&(q.x / sx, q.y / sy));
-        let (bx, by) = area.get_base_pixel();
         rich_text(
             area,
             name,
-            (x - bx + pxi(10), y - by),
+            (x0 - bx + pxi(4), y0 - by + h),
             Pos::new(HPos::Left, VPos::Center),
             LABEL,
             FOLD,
@@ -204,9 +244,6 @@ fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Resul
                 + Cross::new((0, 0), 7, MARK.stroke_width(2)),
         ))
         .map_err(pe)?;
-    }
-    if p.what == What::Rhythmicity {
-        draw_inset(area, &mut c, p)?;
     }
     Ok(())
 }

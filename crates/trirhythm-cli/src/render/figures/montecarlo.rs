@@ -5,7 +5,8 @@
 //! Drawing only: the ensembles and their comparison with the theory are [`trirhythm_paper::montecarlo`].
 
 use crate::render::plot::{
-    chart, draw_line, draw_markers, series, Backend, Dash, Marker, SeriesStyle, Symbol, PALETTE,
+    chart, chart_log_y, draw_line, draw_markers, series, Backend, Dash, Marker, SeriesStyle,
+    Symbol, PALETTE,
 };
 use anyhow::Result;
 use plotters::coord::Shift;
@@ -60,17 +61,32 @@ fn mc_style(k: usize) -> SeriesStyle {
     }
 }
 
-/// Draw one amplitude panel.
-pub fn draw_amplitude_panel<DB: Backend>(
-    area: &DrawingArea<DB, Shift>,
-    p: &AmplitudePanel,
-) -> Result<()> {
-    let x_max = p
-        .runs
+/// The right end of an amplitude panel's A axis: its histograms' and theory's last edge.
+pub fn a_max(p: &AmplitudePanel) -> f64 {
+    p.runs
         .iter()
         .filter_map(|r| r.edges.last().copied())
         .chain(p.theory.iter().filter_map(|t| t.1.last().copied()))
-        .fold(1.0f64, f64::max);
+        .fold(1.0f64, f64::max)
+}
+
+/// The marks a panel title puts after a system: its ensemble is not stationary, its density
+/// is estimated by wells, its step is coarse (the notes say where).
+pub const NOT_STATIONARY: char = '†';
+/// See [`NOT_STATIONARY`].
+pub const BY_WELLS: char = '‡';
+/// See [`NOT_STATIONARY`].
+pub const COARSE_STEP: char = '§';
+
+/// Draw one amplitude panel over A ∈ [0, `x_max`] (shared by the panels of a column). The y
+/// range holds every histogram with its error bars and the theory's peaks, none cut: on a
+/// log axis where a theory peak stands over three times the histograms; the title is the
+/// panel's label with each system's marks ([`NOT_STATIONARY`] …), the details in the caption.
+pub fn draw_amplitude_panel<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
+    p: &AmplitudePanel,
+    x_max: f64,
+) -> Result<()> {
     let finite_max =
         |it: &mut dyn Iterator<Item = f64>| it.filter(|v| v.is_finite()).fold(0.0f64, f64::max);
     let shown: Vec<(Shown, bool)> = p.runs.iter().map(McRun::shown_density).collect();
@@ -78,55 +94,48 @@ pub fn draw_amplitude_panel<DB: Backend>(
         density.iter().zip(stderr).map(|(d, s)| d + s.max(0.0))
     }));
     let theory_max = finite_max(&mut p.theory.iter().flat_map(|t| t.2.iter().copied()));
-    // a theory spike far above the histograms would flatten them: it is cut, and its height
-    // given in the caption
-    let cut = theory_max > 3.0 * mc_max && mc_max > 0.0;
-    let y_max = if cut {
-        1.5 * mc_max
-    } else {
-        theory_max.max(mc_max)
-    }
-    .max(1e-3);
-    let stationary = p.runs.iter().all(|r| r.stationary);
-    // (a run by the well decomposition is stationary by that method's diagnostic)
-    // the badges go into the panel's title, never over the data
+    let y_max = theory_max.max(mc_max).max(1e-3);
     let mut caption = p.caption.clone();
-    if cut {
-        caption.push_str(&format!("; theory peak {theory_max:.1} cut"));
-    }
-    let mixtures: Vec<&str> = p
+    // each system's flags as marks the legend explains: † not stationary, ‡ by wells
+    let marks: Vec<String> = p
         .runs
         .iter()
         .zip(&shown)
-        .filter(|(_, (_, m))| *m)
-        .map(|(r, _)| r.system.as_str())
+        .filter_map(|(r, (_, mixture))| {
+            let mut m = String::new();
+            if !mixture && !r.stationary {
+                m.push(NOT_STATIONARY);
+            }
+            if *mixture || r.estimator == "wells" {
+                m.push(BY_WELLS);
+            }
+            if !r.step_warnings.is_empty() {
+                m.push(COARSE_STEP);
+            }
+            (!m.is_empty()).then(|| format!("{}{m}", r.system))
+        })
         .collect();
-    if mixtures.is_empty() {
-        if !stationary {
-            caption.push_str("; MC NOT stationary");
-        }
+    if !marks.is_empty() {
+        caption.push_str(&format!(" · {}", marks.join(", ")));
+    }
+    // a theory peak far above the histograms: a log axis shows both, none cut
+    let log = theory_max > 3.0 * mc_max && mc_max > 0.0;
+    let floor = y_max * 1e-4;
+    let yv = |v: f64| if log { v.max(floor).log10() } else { v };
+    let c = if log {
+        chart_log_y(
+            area,
+            &caption,
+            0.0..x_max,
+            floor.log10()..(y_max * 1.5).log10(),
+            "A",
+            "P(A) (log scale)",
+        )?
     } else {
-        caption.push_str(&format!("; {}: wells at H_min", mixtures.join(", ")));
-        let others: Vec<&str> = p
-            .runs
-            .iter()
-            .zip(&shown)
-            .filter(|(r, (_, m))| !*m && !r.stationary)
-            .map(|(r, _)| r.system.as_str())
-            .collect();
-        if !others.is_empty() {
-            caption.push_str(&format!("; {} NOT stationary", others.join(", ")));
-        }
-    }
-    for r in p.runs.iter().filter(|r| r.estimator == "wells") {
-        caption.push_str(&format!("; {} by wells", r.system));
-    }
-    if p.runs.iter().any(|r| !r.step_warnings.is_empty()) {
-        caption.push_str("; Δt coarse (notes)");
-    }
-    let c = chart(area, &caption, 0.0..x_max, 0.0..y_max * 1.08, "A", "P(A)")?;
+        chart(area, &caption, 0.0..x_max, 0.0..y_max * 1.05, "A", "P(A)")?
+    };
     for (i, (_, xs, ys)) in p.theory.iter().enumerate() {
-        let pts: Vec<(f64, f64)> = xs.iter().copied().zip(ys.iter().copied()).collect();
+        let pts: Vec<(f64, f64)> = xs.iter().zip(ys).map(|(&x, &y)| (x, yv(y))).collect();
         draw_line(&c, &pts, theory_style(i), 2)?;
     }
     for (k, (r, ((density, stderr), _))) in p.runs.iter().zip(&shown).enumerate() {
@@ -135,11 +144,11 @@ pub fn draw_amplitude_panel<DB: Backend>(
             .edges
             .windows(2)
             .zip(density.iter().zip(stderr))
-            .filter(|(_, (d, _))| **d > 0.0)
+            .filter(|(_, (d, _))| **d > 0.0 && (!log || **d >= floor))
             .map(|(w, (&d, &s))| (0.5 * (w[0] + w[1]), d, if s.is_finite() { s } else { 0.0 }))
             .collect();
         for &(x, d, s) in &mids {
-            let bar = [(x, (d - s).max(0.0)), (x, d + s)];
+            let bar = [(x, yv((d - s).max(0.0))), (x, yv(d + s))];
             draw_line(
                 &c,
                 &bar,
@@ -150,33 +159,38 @@ pub fn draw_amplitude_panel<DB: Backend>(
                 1,
             )?;
         }
-        let centres: Vec<(f64, f64)> = mids.iter().map(|&(x, d, _)| (x, d)).collect();
+        let centres: Vec<(f64, f64)> = mids.iter().map(|&(x, d, _)| (x, yv(d))).collect();
         draw_markers(&c, &centres, style)?;
     }
     Ok(())
 }
 
-/// A grid of amplitude panels with one legend strip below them.
-pub fn draw_amplitude_grid<DB: Backend>(
-    root: &DrawingArea<DB, Shift>,
+/// The amplitude panels in a grid of `columns` columns, filled column by column (a
+/// column holds one series of the figure), each column on one A axis.
+pub fn draw_amplitude_columns<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
     panels: &[AmplitudePanel],
-    layout: (usize, usize),
-    panel_height: u32,
+    columns: usize,
 ) -> Result<()> {
-    let (area, strip) = root.split_vertically(panel_height * layout.0 as u32);
-    for (a, p) in area.split_evenly(layout).iter().zip(panels) {
-        draw_amplitude_panel(a, p)?;
+    let rows = panels.len().div_ceil(columns.max(1));
+    let cells = area.split_evenly((rows, columns));
+    for (k, p) in panels.iter().enumerate() {
+        let (col, row) = (k / rows, k % rows);
+        let column = &panels[col * rows..((col + 1) * rows).min(panels.len())];
+        let x_max = column.iter().map(a_max).fold(1.0f64, f64::max);
+        draw_amplitude_panel(&cells[row * columns + col], p, x_max)?;
     }
-    amplitude_legend(panels).draw(&strip)
+    Ok(())
 }
 
-/// Size of one amplitude panel in pixels (Figs 11 and 13).
-pub const PANEL: (u32, u32) = (360, 440);
+/// Size of one amplitude panel in pixels (Figs 11 and 13): two to a row of a 7 in page.
+pub const PANEL: (u32, u32) = (720, 400);
 
-/// Size of a figure of two rows of four amplitude panels with the legend strip below.
-pub fn two_rows_of_four(panels: &[AmplitudePanel]) -> (u32, u32) {
-    let w = 4 * PANEL.0;
-    (w, 2 * PANEL.1 + amplitude_legend(panels).height(w))
+/// Size of a figure of amplitude panels in two columns with the legend strip below.
+pub fn two_columns(panels: &[AmplitudePanel]) -> (u32, u32) {
+    let w = 2 * PANEL.0;
+    let rows = panels.len().div_ceil(2) as u32;
+    (w, rows * PANEL.1 + amplitude_legend(panels).height(w))
 }
 
 /// The legend of amplitude panels: both theories and every simulated system.
@@ -185,7 +199,19 @@ pub fn amplitude_legend(panels: &[AmplitudePanel]) -> crate::render::plot::Legen
         .first()
         .map(|p| p.runs.iter().map(|r| r.system.as_str()).collect())
         .unwrap_or_default();
-    crate::render::plot::LegendStrip {
-        entries: legend_entries(&systems),
+    let mut entries = legend_entries(&systems);
+    let runs = || panels.iter().flat_map(|p| p.runs.iter());
+    if runs().any(|r| !r.stationary) {
+        entries.push((
+            Symbol::Mark(NOT_STATIONARY),
+            "ensemble not stationary".into(),
+        ));
     }
+    if runs().any(|r| r.estimator == "wells" || r.shown_density().1) {
+        entries.push((Symbol::Mark(BY_WELLS), "density by wells (H_min)".into()));
+    }
+    if runs().any(|r| !r.step_warnings.is_empty()) {
+        entries.push((Symbol::Mark(COARSE_STEP), "Δt coarse (notes)".into()));
+    }
+    crate::render::plot::LegendStrip { entries }
 }
