@@ -72,13 +72,18 @@ picture!(Fig14, |self, root| size (4 * PANEL.0, 2 * PANEL.1 + colour_bar_height(
         )?;
         heat(
             &bottom_area,
-            &format!(
-                "MC{}: H = {:.2}, {:.1} % out{}",
-                if p.estimator == "wells" { " (wells)" } else { "" },
-                p.hellinger,
-                100.0 * p.mc_outside,
-                if p.stationary { "" } else { ", not stationary" }
-            ),
+            // a non-stationary map decides nothing: its title says only that (H and the share
+            // outside the window are in the caption)
+            &if p.stationary {
+                format!(
+                    "MC{}: H = {:.2}, {:.1} % out",
+                    if p.estimator == "wells" { " (wells)" } else { "" },
+                    p.hellinger,
+                    100.0 * p.mc_outside
+                )
+            } else {
+                "MC NOT STATIONARY".to_string()
+            },
             (&p.u_edges, &p.v_edges),
             &p.mc,
             top,
