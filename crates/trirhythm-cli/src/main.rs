@@ -206,11 +206,7 @@ impl Command {
     fn refuse_unused(&self, given: &args::Given) -> Result<()> {
         if self.model_file().is_some() {
             given.refuse(
-                &[
-                    ("barrier", "--barrier"),
-                    ("u0", "--u0"),
-                    ("v0", "--v0"),
-                ],
+                &[("barrier", "--barrier"), ("u0", "--u0"), ("v0", "--v0")],
                 "runs without --model",
                 "the model file says the wall and the start",
             )?;

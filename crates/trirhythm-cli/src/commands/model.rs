@@ -84,5 +84,12 @@ fn check(a: &CheckArgs) -> Result<()> {
         ),
         Err(e) => format!("valid, but not stepped yet: {e}"),
     };
-    stdout_write(format!("{}: a valid model file (format {}); {engine}\n", a.file.display(), trirhythm::model::FORMAT).as_bytes())
+    stdout_write(
+        format!(
+            "{}: a valid model file (format {}); {engine}\n",
+            a.file.display(),
+            trirhythm::model::FORMAT
+        )
+        .as_bytes(),
+    )
 }
