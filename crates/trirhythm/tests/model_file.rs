@@ -129,7 +129,8 @@ fn malformed_files_are_refused_with_the_field_named() {
 #[test]
 fn terms_the_engine_does_not_step_are_refused_by_name() {
     let base = Model::from_toml_str(BASE).unwrap();
-    let cases: Vec<(&str, Box<dyn Fn(&mut Model)>)> = vec![
+    type Change = Box<dyn Fn(&mut Model)>;
+    let cases: Vec<(&str, Change)> = vec![
         (
             "damping.rayleigh.1",
             Box::new(|m| m.damping.rayleigh = vec![0.0, 0.1]),

@@ -76,10 +76,12 @@ fn check(a: &CheckArgs) -> Result<()> {
         Ok(f) => format!(
             "the engine steps it (the paper's family, {}, {} noise): simulate, ensemble, lyapunov, critical-noise, oscillation take it with --model",
             if f.wall { "wall at U = 0" } else { "no wall" },
-            match (f.params.noise_intensity, f.params.correlation_time) {
-                (d, _) if d == 0.0 => "no",
-                (_, t) if t == 0.0 => "white",
-                _ => "Ornstein-Uhlenbeck",
+            if f.params.noise_intensity == 0.0 {
+                "no"
+            } else if f.params.correlation_time == 0.0 {
+                "white"
+            } else {
+                "Ornstein-Uhlenbeck"
             }
         ),
         Err(e) => format!("valid, but not stepped yet: {e}"),
