@@ -283,3 +283,19 @@ fn the_model_file_steps_the_same_bits_as_the_preset() {
         }
     }
 }
+
+/// r(v) = r_fast + (r0 − r_fast)e^{−v/speed}: r0 at grazing, r_fast at fast impacts, r0 − (r0 −
+/// r_fast)(1 − 1/e) at v = speed; a constant r is constant.
+#[test]
+fn the_speed_dependent_restitution_is_its_documented_form() {
+    let law = Restitution::Speed(SpeedRestitution {
+        r0: 0.9,
+        r_fast: 0.5,
+        speed: 2.0,
+    });
+    assert_eq!(law.at(0.0), 0.9);
+    assert!((law.at(2.0) - (0.5 + 0.4 / std::f64::consts::E)).abs() < 1e-15);
+    assert_eq!(law.at(-2.0), law.at(2.0));
+    assert!((law.at(1e3) - 0.5).abs() < 1e-15);
+    assert_eq!(Restitution::Constant(0.7).at(5.0), 0.7);
+}

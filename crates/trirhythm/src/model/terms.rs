@@ -248,7 +248,9 @@ impl Restitution {
     pub fn at(&self, speed: f64) -> f64 {
         match *self {
             Restitution::Constant(r) => r,
-            Restitution::Speed(s) => s.r_fast + (s.r0 - s.r_fast) * (-speed.abs() / s.speed).exp(),
+            Restitution::Speed(s) => {
+                s.r_fast + (s.r0 - s.r_fast) * crate::maths::exp(-speed.abs() / s.speed)
+            }
         }
     }
 
