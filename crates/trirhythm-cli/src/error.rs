@@ -38,6 +38,8 @@ pub fn is_bad_input(err: &anyhow::Error) -> bool {
                     trirhythm::Error::InvalidParameter { .. }
                         | trirhythm::Error::Unknown { .. }
                         | trirhythm::Error::Undefined { .. }
+                        | trirhythm::Error::Malformed { .. }
+                        | trirhythm::Error::NotApplicable { .. }
                 )
             )
     })

@@ -24,7 +24,9 @@ mod error;
 mod io;
 mod render;
 
-use commands::{ensemble, figure, lyapunov, maps, oscillation, phase, report, simulate, theory};
+use commands::{
+    ensemble, figure, lyapunov, maps, model, oscillation, phase, report, simulate, theory,
+};
 
 use anyhow::{Context, Result};
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
@@ -79,6 +81,9 @@ enum Command {
     Report(report::ReportArgs),
     /// List the parameter presets (one per figure panel) with their notes.
     Presets,
+    /// Model files: `model show --preset NAME` prints one, `model check FILE` validates one.
+    #[command(subcommand)]
+    Model(model::ModelCommand),
 }
 
 impl Command {
@@ -98,7 +103,7 @@ impl Command {
             Command::Lyapunov(a) => a.out.as_deref(),
             Command::CriticalNoise(a) => a.out.as_deref(),
             Command::PhaseResponse(a) => a.out.as_deref(),
-            Command::Figure(_) | Command::Report(_) | Command::Presets => None,
+            Command::Figure(_) | Command::Report(_) | Command::Presets | Command::Model(_) => None,
         }
     }
 
@@ -122,12 +127,90 @@ impl Command {
             Command::Figure(_) => "figure",
             Command::Report(_) => "report",
             Command::Presets => "presets",
+            Command::Model(_) => "model",
         }
+    }
+
+    /// The `--model FILE` of a command that takes one.
+    fn model_file(&self) -> Option<&args::ModelFileArg> {
+        match self {
+            Command::Simulate(a) => Some(&a.file),
+            Command::Ensemble(a) => Some(&a.file),
+            Command::Lyapunov(a) => Some(&a.sim.file),
+            Command::CriticalNoise(a) => Some(&a.file),
+            Command::Oscillation(a) => Some(&a.file),
+            _ => None,
+        }
+        .filter(|f| f.model.is_some())
+    }
+
+    /// Read `--model FILE` (bad input naming the field if it is malformed, or naming the term
+    /// the engine does not step yet) and put its parameters, wall and start in the command's
+    /// arguments, so that the run and its header lines are those of the file.
+    fn apply_model_file(&mut self) -> Result<()> {
+        let Some(family) = self.model_file().map(|f| f.load()).transpose()?.flatten() else {
+            return Ok(());
+        };
+        let barrier = args::on_off(family.wall);
+        let (u0, v0) = family.start;
+        let at_rest = |command: &str| {
+            if v0 != 0.0 {
+                error::bad(format!(
+                    "--model: start.v0 = {v0}: {command} starts its paths at rest; set start.v0 = 0"
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        match self {
+            Command::Simulate(a) => {
+                a.params.base = Some(family.params);
+                a.model.barrier = barrier;
+                (a.u0, a.v0) = (u0, v0);
+            }
+            Command::Ensemble(a) => {
+                at_rest("ensemble")?;
+                a.params.base = Some(family.params);
+                a.model.barrier = barrier;
+                a.u0 = vec![u0];
+            }
+            Command::Lyapunov(a) => {
+                at_rest("lyapunov")?;
+                a.sim.params.base = Some(family.params);
+                a.sim.model.barrier = barrier;
+                a.sim.u0 = u0;
+            }
+            // critical-noise starts on each regime's cycle, oscillation searches: no start
+            Command::CriticalNoise(a) => {
+                a.params.base = Some(family.params);
+                a.model.barrier = barrier;
+            }
+            Command::Oscillation(a) => {
+                if family.params.noise_intensity != 0.0 {
+                    return error::bad(format!(
+                        "--model: noise.additive.intensity = {}: the oscillation boundary is that \
+                         of the noise-free system; allowed: 0 (or no [noise.additive])",
+                        family.params.noise_intensity
+                    ));
+                }
+                a.params.base = Some(family.params);
+                a.barrier = barrier;
+            }
+            _ => {}
+        }
+        Ok(())
     }
 
     /// Refuse an option given on the command line that the chosen command or method does not
     /// use (exit 2, naming it and what it applies to), before any work.
     fn refuse_unused(&self, given: &args::Given) -> Result<()> {
+        if self.model_file().is_some() {
+            given.refuse(
+                &[("barrier", "--barrier"), ("u0", "--u0"), ("v0", "--v0")],
+                "runs without --model",
+                "the model file says the wall and the start",
+            )?;
+        }
         match self {
             Command::Ensemble(a) => a.refuse_unused(given),
             Command::Oscillation(a) => a.refuse_unused(given),
@@ -150,7 +233,7 @@ impl Command {
     }
 }
 
-fn run(cli: Cli, given: &args::Given) -> Result<()> {
+fn run(mut cli: Cli, given: &args::Given) -> Result<()> {
     // an output that cannot be written (a directory, a missing or read-only directory) is
     // refused before any work starts, for every command
     if let Some(out) = cli.command.out() {
@@ -171,7 +254,8 @@ fn run(cli: Cli, given: &args::Given) -> Result<()> {
         _ => {}
     }
     cli.command.refuse_unused(given)?;
-    if !matches!(cli.command, Command::Presets) {
+    cli.command.apply_model_file()?;
+    if !matches!(cli.command, Command::Presets | Command::Model(_)) {
         io::progress::start_ticker(cli.command.name());
     }
     let done = dispatch(&cli);
@@ -201,6 +285,7 @@ fn dispatch(cli: &Cli) -> Result<()> {
         Command::Figure(a) => figure::figure(a),
         Command::Report(a) => report::report(a),
         Command::Presets => figure::presets(),
+        Command::Model(a) => model::model(a),
     }
 }
 

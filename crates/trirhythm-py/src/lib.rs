@@ -38,9 +38,11 @@ fn py_err(e: trirhythm::Error) -> PyErr {
     use trirhythm::Error as E;
     match e {
         E::Cancelled => PyKeyboardInterrupt::new_err("cancelled"),
-        E::InvalidParameter { .. } | E::Unknown { .. } | E::Undefined { .. } => {
-            PyValueError::new_err(e.to_string())
-        }
+        E::InvalidParameter { .. }
+        | E::Unknown { .. }
+        | E::Undefined { .. }
+        | E::Malformed { .. }
+        | E::NotApplicable { .. } => PyValueError::new_err(e.to_string()),
         _ => PyRuntimeError::new_err(e.to_string()),
     }
 }
@@ -268,6 +270,139 @@ fn presets() -> Vec<(String, String, Vec<String>)> {
             )
         })
         .collect()
+}
+
+/// A Python value as JSON for the model's serde form; `at` is its dotted field, named in the
+/// error when the value is not a number, string, boolean, list or dict with string keys, or a
+/// number that is not finite (JSON has no NaN: the field is refused here, by name).
+fn to_json(v: &Bound<'_, PyAny>, at: &str) -> PyResult<serde_json::Value> {
+    use pyo3::types::{PyBool, PyFloat, PyInt, PyList, PyString, PyTuple};
+    use serde_json::Value;
+    let field = |name: &str| {
+        if at.is_empty() {
+            name.to_string()
+        } else {
+            format!("{at}.{name}")
+        }
+    };
+    Ok(if v.is_instance_of::<PyBool>() {
+        Value::Bool(v.extract()?)
+    } else if v.is_instance_of::<PyInt>() {
+        Value::from(v.extract::<i64>()?)
+    } else if v.is_instance_of::<PyString>() {
+        Value::String(v.extract()?)
+    } else if v.is_instance_of::<PyFloat>() || v.hasattr("__float__")? {
+        let x: f64 = v.extract()?;
+        serde_json::Number::from_f64(x)
+            .map(Value::Number)
+            .ok_or_else(|| {
+                PyValueError::new_err(format!(
+                    "invalid parameter {at} = {x}: allowed range is a finite number"
+                ))
+            })?
+    } else if let Ok(d) = v.cast::<PyDict>() {
+        let mut map = serde_json::Map::new();
+        for (k, x) in d.iter() {
+            let key: String = k
+                .extract()
+                .map_err(|_| PyValueError::new_err(format!("model: {at}: keys are strings")))?;
+            let value = to_json(&x, &field(&key))?;
+            map.insert(key, value);
+        }
+        Value::Object(map)
+    } else if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
+        let mut out = Vec::new();
+        for (i, x) in v.try_iter()?.enumerate() {
+            out.push(to_json(&x?, &field(&i.to_string()))?);
+        }
+        Value::Array(out)
+    } else {
+        return Err(PyValueError::new_err(format!(
+            "model: {at}: {} is not a number, string, list or dict",
+            v.repr()?
+        )));
+    })
+}
+
+/// One oscillator of the class (`trirhythm.Model`): the keyword arguments are the model
+/// file's tables (`leading={"lambda": 0.998}`, `damping={"mu0": 0.005}`, …), validated; a bad
+/// field raises `ValueError` naming the dotted field. `Model.load(path)` reads a file,
+/// `to_toml()` writes one, `Model.from_params(params)` is the paper's Eq. 1 of a `Params`.
+#[pyclass(name = "Model", module = "trirhythm", frozen, eq)]
+#[derive(Clone, PartialEq)]
+struct PyModel(model::Model);
+
+#[pymethods]
+impl PyModel {
+    #[new]
+    #[pyo3(signature = (**tables))]
+    fn new(tables: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let value = match tables {
+            Some(t) => to_json(t.as_any(), "")?,
+            None => serde_json::Value::Object(Default::default()),
+        };
+        Ok(PyModel(model::Model::from_tables(value).map_err(py_err)?))
+    }
+
+    /// The model of a model file's text.
+    #[staticmethod]
+    fn from_toml(text: &str) -> PyResult<Self> {
+        Ok(PyModel(model::Model::from_toml_str(text).map_err(py_err)?))
+    }
+
+    /// The model of the model file at `path`.
+    #[staticmethod]
+    fn load(path: std::path::PathBuf) -> PyResult<Self> {
+        let text = std::fs::read_to_string(&path).map_err(|e| {
+            PyValueError::new_err(format!(
+                "model file {}: cannot read it: {e}",
+                path.display()
+            ))
+        })?;
+        Self::from_toml(&text)
+    }
+
+    /// The paper's Eq. (1) of `params` (the wall at 0, additive noise, the start (1, 0)).
+    #[staticmethod]
+    fn from_params(params: &PyParams) -> Self {
+        PyModel(model::Model::from(&params.0))
+    }
+
+    /// The model file's text (`format = 1`, commented; reads back to the same model).
+    fn to_toml(&self) -> String {
+        self.0.to_toml()
+    }
+
+    /// The tables as a dict (what `Model(**d)` takes back).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let text = serde_json::to_string(&self.0).map_err(json_err)?;
+        py.import("json")?.call_method1("loads", (text,))
+    }
+
+    /// The paper family's `Params`, or `None` when the model has a term outside it.
+    fn paper_params(&self) -> Option<PyParams> {
+        self.0.paper_params().map(PyParams)
+    }
+
+    /// `(params, barrier, u0, v0)` of the model as the engine steps it today; `ValueError`
+    /// naming the term it does not step yet.
+    fn _engine(&self) -> PyResult<(PyParams, bool, f64, f64)> {
+        let f = self.0.paper_family("the engine").map_err(py_err)?;
+        Ok((PyParams(f.params), f.wall, f.start.0, f.start.1))
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Model.from_toml({:?})", self.0.to_toml())
+    }
+
+    /// Pickled as its file text.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
+        let f = py
+            .import("trirhythm._trirhythm")?
+            .getattr("Model")?
+            .getattr("from_toml")?;
+        Ok((f, (self.0.to_toml(),)))
+    }
 }
 
 /// The averaged theory of a parameter set in one formula variant.
@@ -1016,6 +1151,7 @@ fn version() -> &'static str {
 fn _trirhythm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyParams>()?;
     m.add_class::<PyTheory>()?;
+    m.add_class::<PyModel>()?;
     m.add_function(wrap_pyfunction!(preset, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(_params_from_dict, m)?)?;

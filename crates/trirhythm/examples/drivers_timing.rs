@@ -90,7 +90,7 @@ fn main() {
     let rounds: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(3);
     let scale: f64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(1.0);
     let only = args.get(3).cloned();
-    let wanted = |case: &str| only.as_deref().map_or(true, |o| o == case);
+    let wanted = |case: &str| only.as_deref().is_none_or(|o| o == case);
     let isa = if std::arch::is_x86_feature_detected!("avx2") {
         "AVX2"
     } else {

@@ -90,6 +90,26 @@ pub enum Error {
         /// What went wrong on it.
         error: Box<Error>,
     },
+    /// A model file (or the tables of a model) that does not read as the model's form: a
+    /// syntax error, a missing or unknown field, a value of the wrong type.
+    #[error("model file: {field}: {detail}")]
+    Malformed {
+        /// The dotted field (`damping.mu0`, `wall.0.restitution`), or `(syntax)`.
+        field: String,
+        /// What is wrong with it.
+        detail: String,
+    },
+    /// A method applied to a model outside its assumptions: which method, the assumption it
+    /// makes, and why the model does not meet it (the term named by its dotted field).
+    #[error("{method} does not apply to this model: it assumes {assumption}; {reason}")]
+    NotApplicable {
+        /// The method or routine refusing (`the engine`, `the averaged theory`).
+        method: String,
+        /// The assumption it makes (`restoring.cubic = 0`).
+        assumption: String,
+        /// Why the model does not meet it, naming the term.
+        reason: String,
+    },
     /// The caller's [`crate::monitor::Monitor`] asked the run to stop.
     #[error("cancelled")]
     Cancelled,

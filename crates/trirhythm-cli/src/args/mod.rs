@@ -3,7 +3,7 @@
 //! [`crate::error`] only.
 
 use crate::error::bad;
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 use trirhythm::engine::{
@@ -123,14 +123,18 @@ pub struct ParamArgs {
     /// Formula variant of the averaged theory.
     #[arg(long, value_enum, default_value_t = VariantArg::Paper)]
     pub variant: VariantArg,
+    /// The parameters of a model file (`--model`), in place of a preset's.
+    #[arg(skip)]
+    pub base: Option<Params>,
 }
 
 impl ParamArgs {
     /// The validated parameters.
     pub fn resolve(&self) -> Result<Params> {
-        let mut p = match &self.preset {
-            Some(name) => preset(name)?.params,
-            None => Params::default(),
+        let mut p = match (&self.base, &self.preset) {
+            (Some(base), _) => base.clone(),
+            (None, Some(name)) => preset(name)?.params,
+            (None, None) => Params::default(),
         };
         for kv in &self.params {
             let Some((k, v)) = kv.split_once('=') else {
@@ -151,6 +155,41 @@ impl ParamArgs {
     /// The variant as the library's type.
     pub fn variant(&self) -> Variant {
         self.variant.into()
+    }
+}
+
+/// `--model FILE`: a model file (`docs/model-file.md`) in place of `--preset`, `--barrier` and
+/// the start flags.
+#[derive(Debug, Clone, Args)]
+pub struct ModelFileArg {
+    /// A model file (`trirhythm model show` prints one): the equation, the wall and the start,
+    /// in place of --preset, --barrier and --u0/--v0; --param KEY=VALUE still overrides its
+    /// parameters. The engine steps the paper's family today; other terms are refused.
+    #[arg(long = "model", value_name = "FILE", conflicts_with = "preset")]
+    pub model: Option<PathBuf>,
+}
+
+impl ModelFileArg {
+    /// The file's model as the engine steps it today (none without `--model`): read,
+    /// validated, and refused by name where it has a term the engine does not step.
+    pub fn load(&self) -> Result<Option<trirhythm::model::PaperFamily>> {
+        let Some(path) = &self.model else {
+            return Ok(None);
+        };
+        let model = crate::io::files::read_model(path, "--model")?;
+        let family = model
+            .paper_family("the engine")
+            .with_context(|| format!("--model {}", path.display()))?;
+        Ok(Some(family))
+    }
+}
+
+/// `on` for a wall, `off` for none.
+pub fn on_off(wall: bool) -> OnOff {
+    if wall {
+        OnOff::On
+    } else {
+        OnOff::Off
     }
 }
 

@@ -12,7 +12,7 @@
 //! same command continues from them and gives a bit-identical result. Keys, columns and flags
 //! are a contract: keep them.
 
-use crate::args::{Given, ImpactMemoryArg, ModelArgs, ParamArgs};
+use crate::args::{Given, ImpactMemoryArg, ModelArgs, ModelFileArg, ParamArgs};
 use crate::error::bad;
 use crate::io::progress::note;
 use crate::io::{emit, progress, Csv};
@@ -54,6 +54,8 @@ pub struct EnsembleArgs {
     pub params: ParamArgs,
     #[command(flatten)]
     pub model: ModelArgs,
+    #[command(flatten)]
+    pub file: ModelFileArg,
     /// Number of paths (path i is noise stream i of the seed).
     #[arg(long, default_value_t = 8, allow_hyphen_values = true)]
     pub paths: usize,

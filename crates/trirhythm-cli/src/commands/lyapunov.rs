@@ -5,7 +5,7 @@
 //! are a contract: keep them.
 
 use crate::args::{
-    guard_step, parse_axis, ImpactMemoryArg, ModelArgs, Named, ParamArgs, SimFormat,
+    guard_step, parse_axis, ImpactMemoryArg, ModelArgs, ModelFileArg, Named, ParamArgs, SimFormat,
 };
 use crate::error::{allowed, bad};
 use crate::io::progress::Bar;
@@ -119,6 +119,8 @@ pub struct LleArgs {
     pub params: ParamArgs,
     #[command(flatten)]
     pub model: ModelArgs,
+    #[command(flatten)]
+    pub file: ModelFileArg,
     /// Measured window after the transient (the finite-time exponent's T).
     #[arg(long = "t-end", default_value_t = 2000.0, allow_hyphen_values = true)]
     pub t_end: f64,
@@ -330,6 +332,8 @@ pub struct CriticalNoiseArgs {
     pub params: ParamArgs,
     #[command(flatten)]
     pub model: ModelArgs,
+    #[command(flatten)]
+    pub file: ModelFileArg,
     /// The noise range: LO:HI with 0 < LO < HI, --points values log-spaced (3 significant digits).
     #[arg(long = "d-range", value_name = "LO:HI", allow_hyphen_values = true)]
     pub d_range: Option<String>,

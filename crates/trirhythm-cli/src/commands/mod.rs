@@ -6,6 +6,7 @@ pub mod ensemble;
 pub mod figure;
 pub mod lyapunov;
 pub mod maps;
+pub mod model;
 pub mod oscillation;
 pub mod phase;
 pub mod report;

@@ -2,7 +2,7 @@
 //! oscillation (Hopf boundary), by simulation, by averaging (f′(0) = 0 of Eq. 18) and by the
 //! exact linearisation; or, with `--grid`, a whole plane classified.
 
-use crate::args::{parse_axis, ImpactMemoryArg, Named, OnOff, ParamArgs, SimFormat};
+use crate::args::{parse_axis, ImpactMemoryArg, ModelFileArg, Named, OnOff, ParamArgs, SimFormat};
 use crate::error::{allowed, bad};
 use crate::io::progress::Bar;
 use crate::io::{emit, jnum, num, params_json, pretty, progress, Csv, Report};
@@ -36,6 +36,8 @@ pub enum MethodArg {
 pub struct OscillationArgs {
     #[command(flatten)]
     pub params: ParamArgs,
+    #[command(flatten)]
+    pub file: ModelFileArg,
     /// Abscissae: KEY=START:STOP:COUNT (COUNT = 1 with START = STOP for one abscissa).
     #[arg(long, value_name = "KEY=START:STOP:COUNT", allow_hyphen_values = true)]
     pub x: String,

@@ -5,7 +5,7 @@
 //! header lines and the summary on standard error, or one JSON object with the summary and the
 //! columns. Flags, keys and column names are a contract: keep them.
 
-use crate::args::{guard_step, ImpactMemoryArg, ModelArgs, ParamArgs, SimFormat};
+use crate::args::{guard_step, ImpactMemoryArg, ModelArgs, ModelFileArg, ParamArgs, SimFormat};
 use crate::error::bad;
 use crate::io::{emit, jvec, num, params_json, progress, Report, Stream};
 use anyhow::{Context, Result};
@@ -28,6 +28,8 @@ pub struct SimulateArgs {
     pub params: ParamArgs,
     #[command(flatten)]
     pub model: ModelArgs,
+    #[command(flatten)]
+    pub file: ModelFileArg,
     /// End time T.
     #[arg(long = "t-end", default_value_t = 200.0, allow_hyphen_values = true)]
     pub t_end: f64,

@@ -525,6 +525,16 @@ impl Drop for TemporaryDir {
     }
 }
 
+/// Read and validate a model file named by `flag` (a file that cannot be read is bad input).
+pub fn read_model(path: &Path, flag: &str) -> Result<trirhythm::model::Model> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(text) => text,
+        Err(e) => return bad(format!("{flag} {}: cannot read it: {e}", path.display())),
+    };
+    trirhythm::model::Model::from_toml_str(&text)
+        .with_context(|| format!("{flag} {}", path.display()))
+}
+
 /// Write a whole file atomically: complete under its name, or nothing.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let (tmp, mut w) = Temporary::create(path)?;

@@ -27,9 +27,10 @@ from typing import Iterable, Sequence
 import numpy as np
 
 from . import _trirhythm as _native
-from ._trirhythm import Params, Theory, preset, version
+from ._trirhythm import Model, Params, Theory, preset, version
 
 __all__ = [
+    "Model",
     "Params",
     "Theory",
     "preset",
@@ -113,6 +114,25 @@ def _check_params(params) -> Params:
     return params
 
 
+def _from_model(model, params, given):
+    """``(params, barrier, u0, v0)`` of ``model`` as the engine steps it today (``ValueError``
+    naming a term it does not step yet); ``given`` holds the run's arguments that the model
+    file says instead (wall, start), refused when not ``None``."""
+    if not isinstance(model, Model):
+        raise ValueError(
+            f"invalid parameter model = {model!r}: expected a trirhythm.Model (Model(**tables) or Model.load(path))"
+        )
+    if params is not None:
+        raise ValueError("give params or model=, not both (the model holds the parameters)")
+    for name, value in given.items():
+        if value is not None:
+            raise ValueError(
+                f"invalid parameter {name} = {value!r}: the model says the wall and the start "
+                "(its wall and start tables); leave it out with model="
+            )
+    return model._engine()
+
+
 @dataclass
 class Path:
     """One simulated path: numpy arrays ``t``, ``u``, ``v`` (and ``eta``, the noise, when
@@ -126,26 +146,35 @@ class Path:
 
 
 def simulate(
-    params: Params,
+    params: Params | None = None,
     t_end: float = 200.0,
     dt: float = 0.01,
-    u0: float = 1.0,
-    v0: float = 0.0,
+    u0: float | None = None,
+    v0: float | None = None,
     seed: int = 1,
     path: int = 0,
     every: int = 1,
     system: str = "fractional",
-    barrier: bool = True,
+    barrier: bool | None = None,
     impact_memory: str = "continuous",
     memory: str = "soe",
     tolerance: float = 1e-10,
     threads: int | None = None,
     progress=None,
+    *,
+    model: Model | None = None,
 ) -> Path:
     """One path of Eq. 1 (``system="fractional"``) or of Eq. 5 / Eq. 9 (``"equivalent"``,
     ``"zhuravlev"``), recorded every ``every`` steps: bit-identical to ``trirhythm simulate``
     with the same arguments. ``path`` picks noise stream ``path`` of ``seed`` (0: the
-    command line's path)."""
+    command line's path). ``u0=1``, ``v0=0``, ``barrier=True`` unless given. ``model=`` (a
+    ``trirhythm.Model``) in place of ``params``: its parameters, wall and start, as
+    ``trirhythm simulate --model FILE``."""
+    if model is not None:
+        params, barrier, u0, v0 = _from_model(model, params, dict(u0=u0, v0=v0, barrier=barrier))
+    u0 = 1.0 if u0 is None else u0
+    v0 = 0.0 if v0 is None else v0
+    barrier = True if barrier is None else barrier
     _check_params(params)
     d = _native._simulate(
         params,
@@ -282,7 +311,7 @@ def _ensemble_args(params, paths, t_end, burn_in, seed, options):
 
 
 def ensemble(
-    params: Params,
+    params: Params | None = None,
     paths: int = 8,
     t_end: float = 1000.0,
     burn_in: float = 100.0,
@@ -290,6 +319,7 @@ def ensemble(
     *,
     threads: int | None = None,
     progress=None,
+    model: Model | None = None,
     **options,
 ) -> Ensemble:
     """``paths`` paths (path i is noise stream i of ``seed``), each ``burn_in`` discarded then
@@ -302,7 +332,18 @@ def ensemble(
     ``trirhythm ensemble --method wells`` (``paths`` replicas of one path per well of ``t_end``;
     options ``clones=100``, ``max_excursion=10000``, ``max_iterations=2000``,
     ``separation=10``, ``core_quantile=0.1``; ``u0`` is refused, the well method starts in each
-    of the theory's wells); the document adds ``estimator``, ``decomposition`` and ``bounds``."""
+    of the theory's wells); the document adds ``estimator``, ``decomposition`` and ``bounds``.
+    ``model=`` (a ``trirhythm.Model``) in place of ``params``: its parameters, wall and start
+    (paths start at rest at ``start.u0``), as ``trirhythm ensemble --model FILE``."""
+    if model is not None:
+        params, barrier, u0, v0 = _from_model(
+            model, params, dict(u0=options.get("u0"), barrier=options.get("barrier"))
+        )
+        if v0 != 0.0:
+            raise ValueError(f"invalid parameter start.v0 = {v0!r}: ensemble starts its paths at rest; set start.v0 = 0")
+        options = {**options, "barrier": barrier}
+        if options.get("method", "direct") == "direct":
+            options["u0"] = [u0]
     method = options.pop("method", "direct")
     wells = {k: options.pop(k) for k in list(options) if k in _WELLS_DEFAULTS}
     if method == "wells" and "u0" in options:

@@ -8,7 +8,7 @@
 use super::memory::{Memory, DEFAULT_WINDOW};
 use super::noise::Noise;
 use crate::error::{Error, Exact, Result};
-use crate::model::{Equivalents, Params};
+use crate::model::{Equivalents, Model, Params};
 
 /// What the memory does at an impact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -213,6 +213,36 @@ impl Problem {
     /// [`Problem::new`] of the validated parameters.
     pub fn from_params(params: &Params) -> Result<Self> {
         Ok(Problem::new(Oscillator::new(params)?))
+    }
+
+    /// The problem a model file describes: its equation, its wall and its start, for the
+    /// models the engine steps today ([`Model::paper_family`]: the paper's Eq. 1 with the wall
+    /// at 0 or none, additive white or OU noise). Every other term is refused with
+    /// [`Error::NotApplicable`] naming it, never dropped. For `Model::from(&p)` this is
+    /// `Problem::from_params(&p)` (the same value, hence the same paths: `tests/model_file.rs`).
+    ///
+    /// ```
+    /// use trirhythm::engine::{Barrier, Problem};
+    /// use trirhythm::model::{preset, Model};
+    ///
+    /// let p = preset("fig13a")?.params;
+    /// let model = Model::from_toml_str(&Model::from(&p).to_toml())?;
+    /// assert_eq!(Problem::from_model(&model)?, Problem::from_params(&p)?);
+    /// let mut duffing = model.clone();
+    /// duffing.restoring.cubic = 0.5;
+    /// assert!(Problem::from_model(&duffing).is_err()); // not stepped yet: refused, named
+    /// # Ok::<(), trirhythm::Error>(())
+    /// ```
+    pub fn from_model(model: &Model) -> Result<Self> {
+        let family = model.paper_family("the engine (Problem::from_model)")?;
+        let (u0, v0) = family.start;
+        Problem::from_params(&family.params)?
+            .with_barrier(if family.wall {
+                Barrier::On
+            } else {
+                Barrier::Off
+            })?
+            .with_start(u0, v0)
     }
 
     /// The same problem for other parameters (a sweep's point), validated.

@@ -1,4 +1,5 @@
-//! The model: parameters of Eq. (1), their validation, and the paper's parameter sets.
+//! The model: parameters of Eq. (1), their validation, and the paper's parameter sets; the
+//! model description of the whole class ([`Model`], its terms in [`terms`], its TOML file).
 //!
 //! Equation (Eq. 1 of the paper):
 //! D^{1+λ}U − μ0 P(U) U̇ + ω0² U = η(t) for U > 0, U̇₊ = −r U̇₋ at U = 0,
@@ -13,9 +14,18 @@
 //! invalid value is rejected, the message names the parameter and its range) and the unit tests
 //! below (keys round-trip, presets validate).
 
+mod class;
 mod equivalents;
+mod file;
+pub mod terms;
 
+pub use class::{Model, PaperFamily};
 pub use equivalents::Equivalents;
+pub use file::FORMAT;
+pub use terms::{
+    Dissipation, Fractional, Harmonic, Keep, Leading, NoiseTerm, Noises, Restitution, Restoring,
+    SpeedRestitution, Start, Wall,
+};
 
 use crate::error::{Error, Result};
 

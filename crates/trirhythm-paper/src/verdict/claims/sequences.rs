@@ -377,9 +377,7 @@ pub(super) fn fig11a_amplitudes(f: &Fig11, variant: Variant) -> Decision {
             } else {
                 let mut best = if rest_stable { Some(0.0) } else { None };
                 for &c in &cycles {
-                    if best.map_or(true, |b: f64| {
-                        (c - s.amplitude).abs() < (b - s.amplitude).abs()
-                    }) {
+                    if best.is_none_or(|b: f64| (c - s.amplitude).abs() < (b - s.amplitude).abs()) {
                         best = Some(c);
                     }
                 }
@@ -599,7 +597,7 @@ fn best_line(panels: &[(&str, &MapPanel)], key: &str) -> Option<(u32, String)> {
         for line in 0..lines {
             let met = line_counts(p, along_x, line);
             let n = met[1..].iter().filter(|&&m| m).count() as u32;
-            if best.as_ref().map_or(true, |b| n > b.0) {
+            if best.as_ref().is_none_or(|b| n > b.0) {
                 let v = fixed.grid.value(line);
                 let ks: Vec<String> = (1..=3).filter(|&k| met[k]).map(|k| k.to_string()).collect();
                 best = Some((

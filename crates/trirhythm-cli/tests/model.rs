@@ -1,0 +1,205 @@
+//! `trirhythm model show/check` and `--model FILE`: the show → check round trip for every
+//! preset, the same output as `--preset` for every command that takes a model, and malformed
+//! files each refused (exit 2, the dotted field named, no output file written).
+
+mod common;
+use common::{ok_stdout, run, scratch_dir};
+
+include!("../../trirhythm/tests/data/malformed_models.rs");
+
+fn write(dir: &std::path::Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+#[test]
+fn show_then_check_is_a_round_trip_for_every_preset() {
+    let dir = scratch_dir("model-show");
+    for preset in trirhythm::model::presets() {
+        let text = ok_stdout(&["model", "show", "--preset", preset.name]);
+        assert!(text.contains("format = 1"), "{}", preset.name);
+        let file = write(&dir, &format!("{}.toml", preset.name), &text);
+        let said = ok_stdout(&["model", "check", &file]);
+        assert!(
+            said.contains("the engine steps it"),
+            "{}: {said}",
+            preset.name
+        );
+        // the printed file is the preset's model, bit for bit, and prints back the same
+        let model = trirhythm::model::Model::from_toml_str(&text).unwrap();
+        assert_eq!(model.paper_params().as_ref(), Some(&preset.params));
+        assert!(text.ends_with(&model.to_toml()), "{}", preset.name);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn model_files_give_the_presets_output() {
+    let dir = scratch_dir("model-same");
+    let file = write(
+        &dir,
+        "fig13a.toml",
+        &ok_stdout(&["model", "show", "--preset", "fig13a"]),
+    );
+    let common = ["--t-end", "20"];
+    let by_preset = ok_stdout(&[&["simulate", "--preset", "fig13a"][..], &common].concat());
+    let by_model = ok_stdout(&[&["simulate", "--model", file.as_str()][..], &common].concat());
+    assert!(by_preset == by_model, "the outputs differ");
+    // the wall and the start come from the file
+    let off = write(
+        &dir,
+        "off.toml",
+        &BASE
+            .replace(
+                "[[wall]]\nposition = 0.0\nkeep = \"above\"\nrestitution = 0.99\n",
+                "",
+            )
+            .replace("u0 = 1.0", "u0 = -0.5"),
+    );
+    let by_flags = ok_stdout(
+        &[
+            &[
+                "simulate",
+                "--preset",
+                "fig13a",
+                "--barrier",
+                "off",
+                "--u0",
+                "-0.5",
+            ][..],
+            &common,
+        ]
+        .concat(),
+    );
+    let by_model = ok_stdout(&[&["simulate", "--model", off.as_str()][..], &common].concat());
+    // no wall: the parameters' r is 1 (unused), the preset's 0.99 — the path is the same
+    let rows = |s: &str| -> Vec<String> {
+        s.lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(str::to_string)
+            .collect()
+    };
+    assert!(rows(&by_flags) == rows(&by_model), "the paths differ");
+    assert!(by_model.contains("barrier=off") && by_model.contains("u0=-0.5"));
+    // every other command takes the file (small runs; the wall-clock fields differ)
+    for args in [
+        &[
+            "ensemble",
+            "--paths",
+            "2",
+            "--t-end",
+            "10",
+            "--burn-in",
+            "2",
+        ][..],
+        &[
+            "lyapunov",
+            "--paths",
+            "1",
+            "--t-end",
+            "10",
+            "--transient",
+            "2",
+        ],
+    ] {
+        let a = ok_stdout(&[args, &["--model", file.as_str(), "--format", "json"]].concat());
+        let b = ok_stdout(
+            &[
+                args,
+                &["--preset", "fig13a", "--u0", "1", "--format", "json"],
+            ]
+            .concat(),
+        );
+        let strip = |s: &str| {
+            let mut v: serde_json::Value = serde_json::from_str(s).unwrap();
+            v.as_object_mut()
+                .unwrap()
+                .retain(|k, _| !k.contains("time"));
+            v
+        };
+        assert_eq!(strip(&a), strip(&b), "{args:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn malformed_model_files_are_refused_with_the_field_named_and_no_output() {
+    let dir = scratch_dir("model-malformed");
+    assert!(MALFORMED.len() >= 20);
+    for (i, (field, _, _)) in MALFORMED.iter().enumerate() {
+        let file = write(&dir, &format!("bad{i}.toml"), &malformed(i));
+        for command in ["simulate", "ensemble", "lyapunov"] {
+            let out_path = dir.join(format!("out{i}-{command}"));
+            let out = run(&[
+                command,
+                "--model",
+                &file,
+                "--out",
+                out_path.to_str().unwrap(),
+            ]);
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "case {i} {command}: {stderr}");
+            assert!(stderr.contains(field), "case {i} {command}: {stderr}");
+            assert!(!out_path.exists(), "case {i} {command}: output written");
+        }
+        let out = run(&["model", "check", &file]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "case {i} check: {stderr}");
+        assert!(stderr.contains(field), "case {i} check: {stderr}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn terms_the_engine_does_not_step_are_refused_by_name() {
+    let dir = scratch_dir("model-refused");
+    for (field, text) in [
+        (
+            "restoring.cubic",
+            BASE.replace("omega0 = 1.0", "omega0 = 1.0\ncubic = 0.5"),
+        ),
+        (
+            "wall.0.position",
+            BASE.replace("position = 0.0", "position = -0.5"),
+        ),
+        (
+            "noise.multiplicative.intensity",
+            format!("{BASE}[noise.multiplicative]\nintensity = 0.01\n"),
+        ),
+    ] {
+        let file = write(&dir, "term.toml", &text);
+        // the file is valid: check says so, and says what the engine does not step
+        let said = ok_stdout(&["model", "check", &file]);
+        assert!(
+            said.contains("not stepped yet") && said.contains(field),
+            "{said}"
+        );
+        let out_path = dir.join("out.csv");
+        let out = run(&[
+            "simulate",
+            "--model",
+            &file,
+            "--out",
+            out_path.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{field}: {stderr}");
+        assert!(
+            stderr.contains(field) && stderr.contains("does not step it yet"),
+            "{stderr}"
+        );
+        assert!(!out_path.exists());
+    }
+    // the wall and the start are the file's: the flags are refused beside it
+    let file = write(&dir, "base.toml", BASE);
+    for flags in [
+        &["--barrier", "off"][..],
+        &["--u0", "2"],
+        &["--preset", "fig1"],
+    ] {
+        let out = run(&[&["simulate", "--model", file.as_str()][..], flags].concat());
+        assert_eq!(out.status.code(), Some(2), "{flags:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,322 @@
+//! The model description: one value of the class of stochastic (fractional) vibro-impact
+//! oscillators, of which the paper's Eq. (1) is one value.
+//!
+//! Equation:
+//! D^{1+λ}U + Σ_{j≤2} K_j D^{α_j}U − h(U, U̇)·U̇ + k(U) = F cos(Ωt + φ) + η_a(t) + U·η_m(t),
+//! h = μ0·P(U) + Σ_{k≥1} d_k U̇^{2k}, k(U) = ω0²U + k3U³ + k5U⁵, walls none, one at δ or two
+//! at δ1 < δ2 (the terms: [`super::terms`]).
+//!
+//! Method: [`Model`] is plain data whose serde form is the model file (`docs/model-file.md`,
+//! [`super::file`]); [`Model::validate`] runs every term's range checks and the cross-field
+//! ones (two walls ordered and facing each other, the start on the allowed side of every wall,
+//! a correlation only between noises of one correlation time). The paper family's
+//! [`Params`] converts losslessly: `Model::from(&params).paper_params() == Some(params)`.
+//! [`Model::paper_family`] says which part of the class the engine steps today and refuses
+//! every other term by name ([`Error::NotApplicable`]).
+//!
+//! Reference: the paper's Eq. (1) and issue 36's class; `docs/model-file.md`.
+//!
+//! Tests: `tests/model_file.rs` (presets → file → model bit for bit, the round trip, malformed
+//! files refused with the field named, terms the engine does not step refused, and
+//! `Problem::from_params(p)` against `Problem::from_model(file of p)`: identical paths).
+
+use super::terms::{
+    Dissipation, Fractional, Harmonic, Keep, Leading, Noises, Restitution, Restoring, Start, Wall,
+    MAX_FRACTIONAL, MAX_WALLS,
+};
+use super::{Damping, Params};
+use crate::error::{Error, Exact, Result};
+use serde::{Deserialize, Serialize};
+
+/// One oscillator of the class; its serde form is the model file (without `format`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Model {
+    /// D^{1+λ}U.
+    pub leading: Leading,
+    /// h = μ0·P(U) + Σ d_k U̇^{2k}.
+    pub damping: Dissipation,
+    /// k(U) = ω0²U + k3U³ + k5U⁵.
+    pub restoring: Restoring,
+    /// K_j D^{α_j}U, at most two; default none.
+    #[serde(default)]
+    pub fractional: Vec<Fractional>,
+    /// None, one wall, or two (lower keeping above, then upper keeping below); default none.
+    #[serde(default, rename = "wall")]
+    pub walls: Vec<Wall>,
+    /// F cos(Ωt + φ); default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub forcing: Option<Harmonic>,
+    /// η_a, η_m and their correlation; default none.
+    #[serde(default)]
+    pub noise: Noises,
+    /// (U(0), U̇(0)); default (1, 0).
+    #[serde(default)]
+    pub start: Start,
+}
+
+/// The part of a model the engine steps today: the paper family's parameters and whether the
+/// wall at U = 0 is present (see [`Model::paper_family`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PaperFamily {
+    /// μ0, ω0, λ, P(U), D, τ, and r (1 when there is no wall).
+    pub params: Params,
+    /// Whether the wall at U = 0 (keeping U ≥ 0) is present.
+    pub wall: bool,
+    /// The start (U(0), U̇(0)).
+    pub start: (f64, f64),
+}
+
+impl From<&Params> for Model {
+    /// The paper's Eq. (1) of `p`: the wall at 0 with constant r, additive noise (D, τ) (kept
+    /// even at D = 0, so that τ survives), the default start (1, 0). Lossless:
+    /// `Model::from(&p).paper_params() == Some(p)`.
+    fn from(p: &Params) -> Self {
+        Model {
+            leading: Leading { lambda: p.lambda },
+            damping: Dissipation {
+                mu0: p.mu0,
+                coefficients: p.damping.coefficients.clone(),
+                rayleigh: Vec::new(),
+            },
+            restoring: Restoring {
+                omega0: p.omega0,
+                cubic: 0.0,
+                quintic: 0.0,
+            },
+            fractional: Vec::new(),
+            walls: vec![Wall {
+                position: 0.0,
+                keep: Keep::Above,
+                restitution: Restitution::Constant(p.restitution),
+            }],
+            forcing: None,
+            noise: Noises {
+                additive: Some(super::terms::NoiseTerm {
+                    intensity: p.noise_intensity,
+                    correlation_time: p.correlation_time,
+                }),
+                multiplicative: None,
+                correlation: 0.0,
+            },
+            start: Start::default(),
+        }
+    }
+}
+
+impl Model {
+    /// Every term's ranges, then the cross-field checks; the error names the dotted field,
+    /// its value and the allowed range.
+    pub fn validate(&self) -> Result<()> {
+        self.leading.validate()?;
+        self.damping.validate()?;
+        self.restoring.validate()?;
+        if self.fractional.len() > MAX_FRACTIONAL {
+            return Err(Error::invalid(
+                "fractional",
+                self.fractional.len() as f64,
+                format!("at most {MAX_FRACTIONAL} terms"),
+            ));
+        }
+        for (j, f) in self.fractional.iter().enumerate() {
+            f.validate(j)?;
+        }
+        if self.walls.len() > MAX_WALLS {
+            return Err(Error::invalid(
+                "wall",
+                self.walls.len() as f64,
+                format!("at most {MAX_WALLS} walls"),
+            ));
+        }
+        for (i, w) in self.walls.iter().enumerate() {
+            w.validate(i)?;
+        }
+        if let [lower, upper] = self.walls.as_slice() {
+            if lower.keep != Keep::Above {
+                return Err(Error::Malformed {
+                    field: "wall.0.keep".into(),
+                    detail: "\"below\": with two walls the first is the lower one and keeps \
+                             U above it (keep = \"above\")"
+                        .into(),
+                });
+            }
+            if upper.keep != Keep::Below {
+                return Err(Error::Malformed {
+                    field: "wall.1.keep".into(),
+                    detail: "\"above\": with two walls the second is the upper one and keeps \
+                             U below it (keep = \"below\")"
+                        .into(),
+                });
+            }
+            if upper.position <= lower.position {
+                return Err(Error::invalid(
+                    "wall.1.position",
+                    upper.position,
+                    format!("({}, 1e6] (above wall.0.position)", Exact(lower.position)),
+                ));
+            }
+        }
+        if let Some(f) = &self.forcing {
+            f.validate()?;
+        }
+        self.noise.validate()?;
+        self.start.validate()?;
+        for (i, w) in self.walls.iter().enumerate() {
+            if !w.allows(self.start.u0) {
+                let side = match w.keep {
+                    Keep::Above => format!("[{}, ∞)", Exact(w.position)),
+                    Keep::Below => format!("(−∞, {}]", Exact(w.position)),
+                };
+                return Err(Error::invalid(
+                    "start.u0",
+                    self.start.u0,
+                    format!(
+                        "{side}: wall.{i} at {} keeps U {}",
+                        Exact(w.position),
+                        w.keep.name()
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The paper family's parameters, when the model is one of Eq. (1) with the wall at 0 or
+    /// none (no wall: r = 1 in the parameters, which then do not use it).
+    pub fn paper_params(&self) -> Option<Params> {
+        self.paper_family("the paper's parameters")
+            .ok()
+            .map(|f| f.params)
+    }
+
+    /// The model as the engine steps it today: h = μ0P(U), k = ω0²U, the wall at 0 keeping
+    /// U ≥ 0 with a constant r or no wall, additive white or OU noise, no fractional term, no
+    /// forcing. Any other term is refused by name with [`Error::NotApplicable`] for `method`:
+    /// never dropped. Terms present with a zero coefficient are absent.
+    pub fn paper_family(&self, method: &str) -> Result<PaperFamily> {
+        self.validate()?;
+        let refuse = |assumption: &str, reason: String| Error::NotApplicable {
+            method: method.to_string(),
+            assumption: assumption.to_string(),
+            reason,
+        };
+        let not_yet = "the engine does not step it yet";
+        if let Some(k) = self.damping.rayleigh.iter().position(|&d| d != 0.0) {
+            return Err(refuse(
+                "h = μ0·P(U) (no Rayleigh term)",
+                format!(
+                    "damping.rayleigh.{k} = {} is a Rayleigh term d·U̇^{}: {not_yet}",
+                    Exact(self.damping.rayleigh[k]),
+                    2 * (k + 1)
+                ),
+            ));
+        }
+        for (name, v, power) in [
+            ("restoring.cubic", self.restoring.cubic, 3),
+            ("restoring.quintic", self.restoring.quintic, 5),
+        ] {
+            if v != 0.0 {
+                return Err(refuse(
+                    "k(U) = ω0²U",
+                    format!(
+                        "{name} = {} is a restoring term in U^{power}: {not_yet}",
+                        Exact(v)
+                    ),
+                ));
+            }
+        }
+        if let Some(j) = self.fractional.iter().position(|f| f.coefficient != 0.0) {
+            return Err(refuse(
+                "no fractional term K·D^α U",
+                format!(
+                    "fractional.{j}.coefficient = {} is a term K·D^{}U: {not_yet}",
+                    Exact(self.fractional[j].coefficient),
+                    Exact(self.fractional[j].order)
+                ),
+            ));
+        }
+        let mut restitution = 1.0;
+        let wall = match self.walls.as_slice() {
+            [] => false,
+            [w] => {
+                if w.position != 0.0 {
+                    return Err(refuse(
+                        "a wall at U = 0 or none",
+                        format!(
+                            "wall.0.position = {} is a wall off 0: {not_yet}",
+                            Exact(w.position)
+                        ),
+                    ));
+                }
+                if w.keep != Keep::Above {
+                    return Err(refuse(
+                        "a wall at U = 0 keeping U ≥ 0",
+                        format!("wall.0.keep = \"below\": {not_yet}"),
+                    ));
+                }
+                match w.restitution {
+                    Restitution::Constant(r) => restitution = r,
+                    Restitution::Speed(_) => {
+                        return Err(refuse(
+                            "a constant restitution coefficient",
+                            format!("wall.0.restitution is speed-dependent: {not_yet}"),
+                        ))
+                    }
+                }
+                true
+            }
+            _ => {
+                return Err(refuse(
+                    "a wall at U = 0 or none",
+                    format!("wall has two walls: {not_yet}"),
+                ))
+            }
+        };
+        if let Some(f) = self.forcing.filter(|f| f.amplitude != 0.0) {
+            return Err(refuse(
+                "no forcing",
+                format!(
+                    "forcing.amplitude = {} is a harmonic forcing F cos(Ωt + φ): {not_yet}",
+                    Exact(f.amplitude)
+                ),
+            ));
+        }
+        if let Some(m) = self.noise.multiplicative.filter(|m| m.intensity != 0.0) {
+            return Err(refuse(
+                "additive noise only",
+                format!(
+                    "noise.multiplicative.intensity = {} is a multiplicative noise U·η_m: {not_yet}",
+                    Exact(m.intensity)
+                ),
+            ));
+        }
+        let (noise_intensity, correlation_time) = self
+            .noise
+            .additive
+            .map_or((0.0, 0.0), |a| (a.intensity, a.correlation_time));
+        let params = Params {
+            mu0: self.damping.mu0,
+            omega0: self.restoring.omega0,
+            lambda: self.leading.lambda,
+            restitution,
+            damping: Damping {
+                coefficients: self.damping.coefficients.clone(),
+            },
+            noise_intensity,
+            correlation_time,
+        };
+        params.validate()?;
+        Ok(PaperFamily {
+            params,
+            wall,
+            start: (self.start.u0, self.start.v0),
+        })
+    }
+
+    /// The damping polynomial P(U) of h = μ0·P(U) + ….
+    pub fn polynomial(&self) -> Damping {
+        Damping {
+            coefficients: self.damping.coefficients.clone(),
+        }
+    }
+}
