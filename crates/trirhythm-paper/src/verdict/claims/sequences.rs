@@ -28,6 +28,7 @@ use super::super::rules::{
     closeness, count, Count, CountSource, CLOSENESS_REL_TOL, PEAK_DIP, PEAK_FLOOR,
 };
 use super::super::{all_of, Decision, Measured, Outcome};
+use super::theory::stable_at;
 use crate::fig03_restitution_planes::Fig03;
 use crate::fig05_branches::Fig05;
 use crate::fig11_amplitude_lambda::Fig11;
@@ -174,24 +175,6 @@ fn grid_counts(
         }
     }
     (n3, n2, nx * ny)
-}
-
-/// Stable branches of a branch diagram crossing parameter value `x`.
-pub(super) fn stable_at(bd: &BranchDiagram, x: f64) -> u32 {
-    let mut n = 0;
-    for b in &bd.branches {
-        for w in b.points.windows(2) {
-            let (lo, hi) = if w[0].param <= w[1].param {
-                (w[0].param, w[1].param)
-            } else {
-                (w[1].param, w[0].param)
-            };
-            if lo <= x && x < hi && w[0].stable && w[1].stable {
-                n += 1;
-            }
-        }
-    }
-    n
 }
 
 /// The stable counts of a branch diagram between its exact folds and births, from the

@@ -286,7 +286,7 @@ pub(super) fn fig04_roots(f: &Fig04) -> Decision {
 }
 
 /// Stable branches of a branch diagram crossing parameter value `x`.
-fn stable_at(bd: &BranchDiagram, x: f64) -> u32 {
+pub(super) fn stable_at(bd: &BranchDiagram, x: f64) -> u32 {
     let mut n = 0;
     for b in &bd.branches {
         for w in b.points.windows(2) {
