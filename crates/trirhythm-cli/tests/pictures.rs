@@ -572,7 +572,7 @@ fn layout_defects(name: &str, svg: &str) -> Vec<String> {
 }
 
 /// The figures not yet redrawn for print (issue 35): their defects are listed, not failed.
-const PENDING: &[u32] = &[2, 3, 4, 6, 14];
+const PENDING: &[u32] = &[];
 
 /// The layout of every figure of `figure all --quick` (or of the SVGs in the directory
 /// `TRIRHYTHM_PICTURES`, to check a full-quality set): no text over text or data points, at

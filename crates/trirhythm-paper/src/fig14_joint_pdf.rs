@@ -1,5 +1,5 @@
 //! Fig. 14: the joint density P(U, U̇) for four restitution coefficients — the averaged
-//! theory's Eq. (30–31) (top row) against the Monte Carlo histogram of Eq. (1) (bottom row),
+//! theory's Eq. (30–31) (left) against the Monte Carlo histogram of Eq. (1) (right), a row per r,
 //! as heat maps with one colour scale per r, the Hellinger distance between them and the
 //! stationarity verdict of each ensemble.
 //!
@@ -225,7 +225,7 @@ impl Figure for Fig14 {
         );
         let caption = caption(
             14,
-            "joint density P(U, dU/dt) for four r: theory (top) against Monte Carlo of Eq. 1 (bottom)",
+            "joint density P(U, dU/dt) for four r: theory (left) against Monte Carlo of Eq. 1 (right)",
             ctx,
             &pre.params,
             &["r"],

@@ -105,7 +105,8 @@ pub struct MapPanel {
     pub printed: Option<Folds>,
     /// A parameter point to mark (x, y, label), e.g. the paper's standard values.
     pub mark: Option<(f64, f64, String)>,
-    /// Names of saddle-node lines drawn on the picture: (index of the curve, name).
+    /// The name of every saddle-node line (L1 outer, L2 middle, L3 inner cycle's fold): (index
+    /// of the curve, name).
     pub fold_names: Vec<(usize, String)>,
 }
 
@@ -186,14 +187,70 @@ impl MapPanel {
         }
         b
     }
+
+    /// The thin regions of the map: connected sets of grid points of one count (4-neighbour
+    /// connectivity) at least `min_cells` points large whose bounding box spans at most
+    /// `thin` of the grid along one axis but more than that along the other — a feature a
+    /// picture at the plane's scale shows as a line (Fig. 12 (a): the bimodal band at
+    /// r ≳ 0.998). Each as (count, bounding box as [`MapPanel::bounding_box`]), largest first.
+    pub fn slivers(
+        &self,
+        min_cells: usize,
+        thin: f64,
+    ) -> Vec<(u8, ((usize, usize), (usize, usize)))> {
+        let (nx, ny) = (self.x.grid.count, self.y.grid.count);
+        let mut seen = vec![false; self.counts.len()];
+        let mut out = Vec::new();
+        for start in 0..self.counts.len() {
+            if seen[start] {
+                continue;
+            }
+            let k = self.counts[start];
+            let (mut size, mut stack) = (0usize, vec![start]);
+            seen[start] = true;
+            let (mut x0, mut x1, mut y0, mut y1) = (nx, 0, ny, 0);
+            while let Some(i) = stack.pop() {
+                size += 1;
+                let (ix, iy) = (i % nx, i / nx);
+                (x0, x1, y0, y1) = (x0.min(ix), x1.max(ix), y0.min(iy), y1.max(iy));
+                let mut push = |j: usize| {
+                    if !seen[j] && self.counts[j] == k {
+                        seen[j] = true;
+                        stack.push(j);
+                    }
+                };
+                if ix > 0 {
+                    push(i - 1);
+                }
+                if ix + 1 < nx {
+                    push(i + 1);
+                }
+                if iy > 0 {
+                    push(i - nx);
+                }
+                if iy + 1 < ny {
+                    push(i + nx);
+                }
+            }
+            let (wx, wy) = (
+                (x1 - x0 + 1) as f64 / nx as f64,
+                (y1 - y0 + 1) as f64 / ny as f64,
+            );
+            if size >= min_cells && (wx <= thin) != (wy <= thin) {
+                out.push((size, k, ((x0, x1), (y0, y1))));
+            }
+        }
+        out.sort_by(|a, b| b.0.cmp(&a.0));
+        out.into_iter().map(|(_, k, b)| (k, b)).collect()
+    }
 }
 
 /// The paper's names of the saddle-node lines (Sec. 3: "L1 … the saddle-node bifurcation of
 /// the outer limit cycle …, L3 … of the inner limit cycle"): at the middle of each curve, the
 /// double root is the outermost positive root of f (L1), the innermost (L3) or between (L2).
-/// The longest curve of each name is labelled.
+/// Every curve is named (a fold curve the theory cannot be evaluated on is left out).
 fn name_folds(base: &Params, plane: &Plane, folds: &Folds) -> Vec<(usize, String)> {
-    let mut best: Vec<(usize, String, usize)> = Vec::new();
+    let mut names = Vec::new();
     for (i, curve) in folds.curves.iter().enumerate() {
         let Some(q) = curve.points.get(curve.points.len() / 2) else {
             continue;
@@ -222,14 +279,9 @@ fn name_folds(base: &Params, plane: &Plane, folds: &Folds) -> Vec<(usize, String
             (0, _) => "L3 (inner cycle)",
             _ => "L2 (middle cycle)",
         };
-        let len = curve.points.len();
-        match best.iter_mut().find(|b| b.1 == name) {
-            Some(b) if b.2 < len => *b = (i, name.to_string(), len),
-            Some(_) => {}
-            None => best.push((i, name.to_string(), len)),
-        }
+        names.push((i, name.to_string()));
     }
-    best.into_iter().map(|(i, n, _)| (i, n)).collect()
+    names
 }
 
 /// Grid points per axis: quick or paper quality.
@@ -548,6 +600,24 @@ mod tests {
             mark: None,
             fold_names: Vec::new(),
         }
+    }
+
+    #[test]
+    fn a_thin_band_is_a_sliver_and_a_wide_region_is_not() {
+        // 40 × 40: count 3 everywhere, a band of count 2 one row high and 20 wide at the top,
+        // a 15 × 15 block of count 1
+        let mut p = panel(40, vec![3u8; 1600]);
+        for ix in 5..25 {
+            p.counts[39 * 40 + ix] = 2;
+        }
+        for iy in 0..15 {
+            for ix in 0..15 {
+                p.counts[iy * 40 + ix] = 1;
+            }
+        }
+        assert_eq!(p.slivers(10, 0.05), vec![(2, ((5, 24), (39, 39)))]);
+        // a band too small to matter is left out
+        assert!(p.slivers(21, 0.05).is_empty());
     }
 
     #[test]

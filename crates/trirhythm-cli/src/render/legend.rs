@@ -31,6 +31,8 @@ pub enum Symbol {
     Series(SeriesStyle),
     /// A character a panel title carries (`†`), explained by the entry.
     Mark(char),
+    /// A square of the first colour outlined in the second: a box drawn on a map.
+    Framed(RGBColor, RGBColor),
 }
 
 impl Symbol {
@@ -44,6 +46,17 @@ impl Symbol {
                     c.filled(),
                 ))
                 .map_err(pe),
+            Symbol::Framed(fill, line) => {
+                let corners = [(m.0 - pxi(8), m.1 - pxi(8)), (m.0 + pxi(8), m.1 + pxi(8))];
+                area.draw(&Rectangle::new(corners, fill.filled()))
+                    .map_err(pe)?;
+                let inner = [
+                    (corners[0].0 + pxi(3), corners[0].1 + pxi(3)),
+                    (corners[1].0 - pxi(3), corners[1].1 - pxi(3)),
+                ];
+                area.draw(&Rectangle::new(inner, line.stroke_width(w2)))
+                    .map_err(pe)
+            }
             Symbol::Line(c) => area
                 .draw(&PathElement::new(
                     [(m.0 - h, m.1), (m.0 + h, m.1)],

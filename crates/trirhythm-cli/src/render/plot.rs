@@ -806,7 +806,12 @@ fn framed_with<'a, DB: Backend>(
     let y_area = y_tick_w + px(10) + if has(y_desc) { desc * 5 / 4 } else { 0 };
     let mut c = ChartBuilder::on(area)
         .margin(margin)
-        .margin_top(margin + cap)
+        // (without a caption, room for half of the top y tick label, centred on the top edge)
+        .margin_top(if cap == 0 {
+            margin.max(tick / 2 + px(2))
+        } else {
+            margin + cap
+        })
         // room for half of the last x tick label, which is centred on the right edge
         .margin_right(margin.max(x_tick_w / 2 + px(4)))
         .x_label_area_size(x_area)
@@ -961,6 +966,63 @@ pub fn colour_bar<DB: Backend>(
         AXIS_DESC,
         BLACK,
         false,
+    )
+}
+
+/// A vertical colour bar filling `area`: the viridis scale from `lo` (bottom) to `hi` (top),
+/// its ticks left of it, `label` reading upwards on its right.
+pub fn colour_bar_vertical<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
+    label: &str,
+    lo: f64,
+    hi: f64,
+) -> Result<()> {
+    let (_, height) = area.dim_in_pixel();
+    let (tick, desc) = (font_px(TICK), font_px(AXIS_DESC));
+    // ticks as dense as the bar's height allows (at least four labelled)
+    let n = (height / (tick * 2)).clamp(5, 10) as usize;
+    let fy = tick_formatter(&(lo..hi), n);
+    let widest = (0..=20)
+        .map(|k| text_width(&fy(&(lo + (hi - lo) * k as f64 / 20.0)), tick))
+        .max()
+        .unwrap_or(0);
+    let mut c = ChartBuilder::on(area)
+        .margin_top(tick)
+        .margin_bottom(tick)
+        .margin_right(desc * 3 / 2)
+        .y_label_area_size(widest + px(12))
+        .build_cartesian_2d(0.0..1.0, lo..hi)
+        .map_err(pe)?;
+    c.configure_mesh()
+        .disable_x_axis()
+        .disable_mesh()
+        .y_labels(n)
+        .y_label_formatter(&fy)
+        .label_style((FONT, tick))
+        .draw()
+        .map_err(pe)?;
+    let steps = 64;
+    c.draw_series((0..steps).map(|i| {
+        let (a, b) = (i as f64 / steps as f64, (i + 1) as f64 / steps as f64);
+        Rectangle::new(
+            [(0.0, lo + a * (hi - lo)), (1.0, lo + b * (hi - lo))],
+            viridis((i as f64 + 0.5) / steps as f64).filled(),
+        )
+    }))
+    .map_err(pe)?;
+    let (rx, ry) = c.plotting_area().get_pixel_range();
+    let (bx, by) = area.get_base_pixel();
+    rich_text(
+        area,
+        label,
+        (
+            rx.end - bx + (desc * 3 / 4) as i32,
+            (ry.start + ry.end) / 2 - by,
+        ),
+        Pos::new(HPos::Center, VPos::Center),
+        AXIS_DESC,
+        BLACK,
+        true,
     )
 }
 

@@ -1,5 +1,6 @@
 //! Fig. 1: phase portraits (U, U̇) of the fractional system (Eq. 1, predictor–corrector) and of
-//! its harmonic-balance equivalent (Eq. 5), side by side, with their recurrence plots
+//! its harmonic-balance equivalent (Eq. 5), side by side on the same axes (each with the other's
+//! orbit dashed beneath it), with their recurrence plots
 //! (Eq. 6–7, ε = 0.1, Euclidean norm) and the recurrence rate and determinism of each.
 //!
 //! Both start at the turning point U = A01, U̇ = 0 of the smallest stable cycle of the averaged
@@ -7,7 +8,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig01_phase_recurrence`].
 
-use crate::render::plot::{chart, padded_range, pe};
+use crate::render::plot::{chart, padded_range, pe, stroke, LegendStrip, Symbol};
 use plotters::prelude::*;
 use trirhythm::analysis::{RecurrenceMatrix, RecurrenceThreshold};
 use trirhythm_paper::fig01_phase_recurrence::Fig01;
@@ -16,25 +17,61 @@ use trirhythm_paper::fig01_phase_recurrence::Fig01;
 /// samples in it recurs (the plot stays legible and the SVG small; RR and DET use every pair).
 const DISPLAY_CELLS: usize = 520;
 
-picture!(Fig01, |self, root| size (1300, 1300), draw {
-    let areas = root.split_evenly((2, 2));
+/// The other panel's orbit, drawn under each phase portrait for comparison.
+const OTHER: RGBColor = RGBColor(150, 150, 150);
+
+/// The flights between impacts of a phase portrait (the jumps at the wall are not drawn).
+fn flights(phase: &[(f64, f64)]) -> Vec<&[(f64, f64)]> {
+    let vmax = phase.iter().fold(0.0f64, |m, q| m.max(q.1.abs()));
+    let mut out = Vec::new();
+    let mut start = 0;
+    for i in 1..=phase.len() {
+        if i == phase.len() || (phase[i].1 - phase[i - 1].1).abs() > 0.5 * vmax {
+            out.push(&phase[start..i]);
+            start = i;
+        }
+    }
+    out
+}
+
+fn key() -> LegendStrip {
+    LegendStrip {
+        entries: vec![
+            (Symbol::Line(BLACK), "the panel's equation".into()),
+            (
+                Symbol::Dashed(OTHER),
+                "the other panel's equation (same start)".into(),
+            ),
+        ],
+    }
+}
+
+picture!(Fig01, |self, root| size (1300, 1300 + key().height(1300)), draw {
+    let (grid, strip) = root.split_vertically(1300);
+    let areas = grid.split_evenly((2, 2));
     let ur = padded_range(self.panels.iter().flat_map(|p| p.u.iter().copied()));
     let vr = padded_range(self.panels.iter().flat_map(|p| p.v.iter().copied()));
     for (k, p) in self.panels.iter().enumerate() {
         let caption = format!("({}) {}", ["a", "b"][k], p.title);
         let mut c = chart(&areas[k], &caption, ur.clone(), vr.clone(), "U", "dU/dt")?;
-        // one polyline per flight between impacts (the jumps are not drawn)
-        let vmax = p.phase.iter().fold(0.0f64, |m, q| m.max(q.1.abs()));
-        let mut start = 0;
-        for i in 1..=p.phase.len() {
-            if i == p.phase.len() || (p.phase[i].1 - p.phase[i - 1].1).abs() > 0.5 * vmax {
-                c.draw_series(LineSeries::new(
-                    p.phase[start..i].iter().copied(),
-                    BLACK.stroke_width(2),
+        // the other equation's orbit under this one's, on the same axes
+        for other in self.panels.iter().enumerate().filter(|(j, _)| *j != k) {
+            for flight in flights(&other.1.phase) {
+                c.draw_series(DashedLineSeries::new(
+                    flight.iter().copied(),
+                    9,
+                    6,
+                    OTHER.stroke_width(stroke(2)),
                 ))
                 .map_err(pe)?;
-                start = i;
             }
+        }
+        for flight in flights(&p.phase) {
+            c.draw_series(LineSeries::new(
+                flight.iter().copied(),
+                BLACK.stroke_width(2),
+            ))
+            .map_err(pe)?;
         }
         let recurrence = RecurrenceMatrix::new(&p.u, &p.v, RecurrenceThreshold(self.epsilon))?;
         let n = recurrence.len();
@@ -50,8 +87,8 @@ picture!(Fig01, |self, root| size (1300, 1300), draw {
             &caption,
             0.0..tmax,
             0.0..tmax,
-            "t_i - t0",
-            "t_j - t0",
+            "t_i - t_0",
+            "t_j - t_0",
         )?;
         let block = n.div_ceil(DISPLAY_CELLS).max(1);
         let cells_n = n.div_ceil(block);
@@ -79,5 +116,5 @@ picture!(Fig01, |self, root| size (1300, 1300), draw {
         }
         c.draw_series(cells).map_err(pe)?;
     }
-    Ok(())
+    key().draw(&strip)
 });

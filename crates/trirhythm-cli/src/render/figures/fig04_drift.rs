@@ -6,7 +6,8 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig04_drift`].
 
 use crate::render::plot::{
-    chart, padded_range, pe, pxi, rich_text, times_ten, Backend, LegendStrip, Symbol, LABEL,
+    chart, font_px, padded_range, pe, pxi, rich_text, rich_width, times_ten, Backend, LegendStrip,
+    Symbol, LABEL,
 };
 use anyhow::Result;
 use plotters::prelude::*;
@@ -196,22 +197,79 @@ fn draw_panel<DB: Backend>(
         .map_err(pe)?
         .label("unstable cycle")
         .legend(|(x, y)| Circle::new((x + 7, y), 5, BLACK.stroke_width(2)));
-    // the roots' names, just above each root
+    // the roots' names beside each root, each in a quadrant (up-right, up-left, down-right,
+    // down-left; near, or a line further out), the quadrants chosen together so that the boxes cover the fewest points of
+    // the curves, no box covers another and all stay inside the plotting area
     let (bx, by) = area.get_base_pixel();
-    for (cy, name) in p.cycles.iter().zip(names) {
-        let (x, y) = c.backend_coord(&(cy.amplitude, 0.0));
-        // in the quadrant the curve leaves free: it falls through a stable root (up-left to
-        // down-right), so the name goes up-right; it rises through an unstable one
-        let (dx, h) = if cy.stable {
-            (pxi(7), HPos::Left)
-        } else {
-            (-pxi(7), HPos::Right)
-        };
+    let (rx, ry) = c.plotting_area().get_pixel_range();
+    let curve_px: Vec<(i32, i32)> = shown(&p.curve)
+        .iter()
+        .chain(shown(p.reference.as_deref().unwrap_or(&[])).iter())
+        .filter(|q| q.1 <= y.end)
+        .map(|q| c.backend_coord(q))
+        .collect();
+    let (pad, h) = (pxi(7), font_px(LABEL) as i32);
+    let boxes: Vec<[[i32; 4]; 8]> = p
+        .cycles
+        .iter()
+        .zip(names)
+        .map(|(cy, name)| {
+            let (x, y) = c.backend_coord(&(cy.amplitude, 0.0));
+            let w = rich_width(name, LABEL) as i32;
+            // each quadrant near the root, then a line further out
+            [
+                (x + pad, y - pad - h),
+                (x - pad - w, y - pad - h),
+                (x + pad, y + pad),
+                (x - pad - w, y + pad),
+                (x + pad, y - pad - 2 * h),
+                (x - pad - w, y - pad - 2 * h),
+                (x + pad, y + pad + h),
+                (x - pad - w, y + pad + h),
+            ]
+            .map(|(l, t)| [l, t, l + w, t + h])
+        })
+        .collect();
+    let cost = |b: &[i32; 4]| {
+        let outside = b[0] < rx.start || b[2] > rx.end || b[1] < ry.start || b[3] > ry.end;
+        let hits = curve_px
+            .iter()
+            .filter(|&&(qx, qy)| {
+                qx >= b[0] - 2 && qx <= b[2] + 2 && qy >= b[1] - 2 && qy <= b[3] + 2
+            })
+            .count();
+        hits + if outside { 100_000 } else { 0 }
+    };
+    let costs: Vec<[usize; 8]> = boxes.iter().map(|b| b.each_ref().map(cost)).collect();
+    let n = boxes.len().min(5);
+    let mut best = (usize::MAX, vec![0usize; n]);
+    for code in 0..8usize.pow(n as u32) {
+        let pick: Vec<usize> = (0..n).map(|i| code / 8usize.pow(i as u32) % 8).collect();
+        let chosen: Vec<&[i32; 4]> = pick.iter().zip(&boxes).map(|(&k, b)| &b[k]).collect();
+        // (the far places only where the near ones are taken)
+        let mut total: usize = pick
+            .iter()
+            .zip(&costs)
+            .map(|(&k, c)| c[k] + usize::from(k >= 4))
+            .sum();
+        for (i, a) in chosen.iter().enumerate() {
+            for o in &chosen[i + 1..] {
+                if o[0] < a[2] && a[0] < o[2] && o[1] < a[3] && a[1] < o[3] {
+                    total += 10_000;
+                }
+            }
+        }
+        if total < best.0 {
+            best = (total, pick);
+        }
+    }
+    for ((k, b), name) in best.1.iter().zip(&boxes).zip(names) {
+        let [l, _, _, bottom] = b[*k];
         rich_text(
             area,
             name,
-            (x - bx + dx, y - by - pxi(7)),
-            Pos::new(h, VPos::Bottom),
+            (l - bx, bottom - by),
+            Pos::new(HPos::Left, VPos::Bottom),
             LABEL,
             BLACK,
             false,

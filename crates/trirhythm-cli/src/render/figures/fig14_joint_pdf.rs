@@ -1,17 +1,19 @@
 //! Fig. 14: the joint density P(U, U̇) for four restitution coefficients — the averaged
-//! theory's Eq. (30–31) (top row) against the Monte Carlo histogram of Eq. (1) (bottom row),
+//! theory's Eq. (30–31) (left) against the Monte Carlo histogram of Eq. (1) (right), a row per r,
 //! as heat maps with one colour scale per r, the Hellinger distance between them and the
 //! stationarity verdict of each ensemble.
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig14_joint_pdf`].
 
-use crate::render::plot::{chart, colour_bar, colour_bar_height, pe, viridis, Backend};
+use crate::render::plot::{chart, colour_bar_vertical, pe, viridis, Backend};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use trirhythm_paper::fig14_joint_pdf::{refine, Fig14, FINE};
 
-const PANEL: (u32, u32) = (360, 380);
+/// A row (one r): the theory's map, the Monte Carlo map, the row's colour bar.
+const PANEL: (u32, u32) = (610, 400);
+const BAR: u32 = 180;
 /// Decades of the logarithmic colour scale.
 const DECADES: f64 = 3.0;
 
@@ -42,14 +44,16 @@ fn heat<DB: Backend>(
     Ok(())
 }
 
-picture!(Fig14, |self, root| size (4 * PANEL.0, 2 * PANEL.1 + colour_bar_height()), draw {
-    let columns = root.split_evenly((1, 4));
-    for (col, (p, label)) in columns
+// One row per r: theory left, Monte Carlo right (the same axes), the row's colour scale on
+// the right.
+picture!(Fig14, |self, root| size (2 * PANEL.0 + BAR, 4 * PANEL.1), draw {
+    let rows = root.split_evenly((4, 1));
+    for (row, (p, label)) in rows
         .iter()
         .zip(self.panels.iter().zip(["a", "b", "c", "d"]))
     {
-        let (maps, bar) = col.split_vertically(2 * PANEL.1);
-        let (top_area, bottom_area) = maps.split_vertically(PANEL.1);
+        let (maps, bar) = row.split_horizontally(2 * PANEL.0);
+        let (left, right) = maps.split_horizontally(PANEL.0);
         let top = p
             .theory
             .iter()
@@ -60,7 +64,7 @@ picture!(Fig14, |self, root| size (4 * PANEL.0, 2 * PANEL.1 + colour_bar_height(
             .max(1e-300);
         let fine = (refine(&p.u_edges, FINE), refine(&p.v_edges, FINE));
         heat(
-            &top_area,
+            &left,
             &format!(
                 "({label}) r = {}, theory: {:.1} % out",
                 p.r,
@@ -71,24 +75,24 @@ picture!(Fig14, |self, root| size (4 * PANEL.0, 2 * PANEL.1 + colour_bar_height(
             top,
         )?;
         heat(
-            &bottom_area,
+            &right,
             // a non-stationary map decides nothing: its title says only that (H and the share
             // outside the window are in the caption)
             &if p.stationary {
                 format!(
-                    "MC{}: H = {:.2}, {:.1} % out",
+                    "({label}) MC{}: H = {:.2}, {:.1} % out",
                     if p.estimator == "wells" { " (wells)" } else { "" },
                     p.hellinger,
                     100.0 * p.mc_outside
                 )
             } else {
-                "MC NOT STATIONARY".to_string()
+                format!("({label}) r = {}, MC NOT STATIONARY", p.r)
             },
             (&p.u_edges, &p.v_edges),
             &p.mc,
             top,
         )?;
-        colour_bar(
+        colour_bar_vertical(
             &bar,
             "log10 P(U, dU/dt)",
             top.log10() - DECADES,

@@ -60,13 +60,31 @@ fn legend(fig: &MapFigure) -> LegendStrip {
         .filter(|&k| counts[k] > 0)
         .map(|k| (Symbol::Swatch(count_colour(k as u8)), names[k].to_string()))
         .collect();
+    // the fold names drawn beside the lines: L1 the outer cycle's fold, L3 the inner one's
+    let named: Vec<String> = [("L1", "outer"), ("L2", "middle"), ("L3", "inner")]
+        .into_iter()
+        .filter(|(n, _)| {
+            fig.panels
+                .iter()
+                .any(|p| p.fold_names.iter().any(|(_, m)| short_name(m) == *n))
+        })
+        .map(|(n, what)| format!("{n} the {what}"))
+        .collect();
     if fig.panels.iter().any(|p| !p.folds.curves.is_empty()) {
         let name = if modes {
-            "P-bifurcation (m1 = m1' = 0)"
+            "P-bifurcation (m1 = m1' = 0)".to_string()
+        } else if named.is_empty() {
+            "saddle-node (f = f' = 0)".to_string()
         } else {
-            "saddle-node (f = f' = 0)"
+            format!("saddle-node (f = f' = 0), {} cycle's", named.join(", "))
         };
-        entries.push((Symbol::Line(FOLD), name.into()));
+        entries.push((Symbol::Line(FOLD), name));
+    }
+    if fig.panels.iter().any(|p| inset_ranges(p).is_some()) {
+        entries.push((
+            Symbol::Framed(count_colour(2), WHITE),
+            "enlarged in the inset".into(),
+        ));
     }
     if fig
         .panels
@@ -168,9 +186,33 @@ fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Resul
         c.draw_series(DashedLineSeries::new(pts, 7, 5, PRINTED.stroke_width(2)))
             .map_err(pe)?;
     }
-    // the inset (and the outline of the box it zooms on) first: the names go over it
-    if p.what == What::Rhythmicity {
-        draw_inset(area, &mut c, p)?;
+    // the inset (and the outline of the box it zooms on) first: the names go beside them
+    let mut taken: Vec<PixelBox> = Vec::new();
+    {
+        if let Some((inset, zoom)) = draw_inset(area, &mut c, p)? {
+            taken.push(inset);
+            // the zoom box's four edges (a name may sit inside the box, not on its outline)
+            let t = pxi(3);
+            taken.extend([
+                [zoom[0], zoom[1] - t, zoom[2], zoom[1] + t],
+                [zoom[0], zoom[3] - t, zoom[2], zoom[3] + t],
+                [zoom[0] - t, zoom[1], zoom[0] + t, zoom[3]],
+                [zoom[2] - t, zoom[1], zoom[2] + t, zoom[3]],
+            ]);
+        }
+    }
+    let mark = |x: f64, y: f64, r: i32| {
+        let (x, y) = c.backend_coord(&(x, y));
+        [x - r, y - r, x + r, y + r]
+    };
+    taken.extend(
+        p.folds
+            .cusps
+            .iter()
+            .map(|q| mark(q.x / sx, q.y / sy, pxi(8))),
+    );
+    if let Some((mx, my, _)) = &p.mark {
+        taken.push(mark(mx / sx, my / sy, pxi(9)));
     }
     // the fold curves in backend pixels, for placing the names off them
     let fold_px: Vec<(i32, i32)> = p
@@ -182,50 +224,30 @@ fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Resul
         .map(|q| c.backend_coord(&(q.x / sx, q.y / sy)))
         .collect();
     let (rx, ry) = c.plotting_area().get_pixel_range();
+    let plot = [rx.start, ry.start, rx.end, ry.end];
+    let (bx, by) = area.get_base_pixel();
     for (i, name) in &p.fold_names {
-        let curve = &p.folds.curves[*i];
-        let q = &curve.points[curve.points.len() / 2];
-        let (x, y) = c.backend_coord(&(q.x / sx, q.y / sy));
-        // on a white box: red on green, blue or black is hard to read; beside its curve's
-        // middle, on the side (right, left, above, below) its box covers the fewest points
-        // of the fold curves, inside the plotting area
-        let w = rich_width(name, LABEL) as i32 + pxi(8);
-        let h = font_px(LABEL) as i32 * 3 / 4;
-        let gap = pxi(8);
-        let places = [
-            (x + gap, y - h),
-            (x - gap - w, y - h),
-            (x - w / 2, y - gap - 2 * h),
-            (x - w / 2, y + gap),
-            (x + gap, y - gap - 2 * h),
-            (x + gap, y + gap),
-            (x - gap - w, y - gap - 2 * h),
-            (x - gap - w, y + gap),
-        ];
-        let cost = |&(x0, y0): &(i32, i32)| -> usize {
-            let outside = x0 < rx.start || x0 + w > rx.end || y0 < ry.start || y0 + 2 * h > ry.end;
-            let hits = fold_px
-                .iter()
-                .filter(|&&(px_, py)| px_ >= x0 && px_ <= x0 + w && py >= y0 && py <= y0 + 2 * h)
-                .count();
-            hits + if outside { 1_000_000 } else { 0 }
-        };
-        let (x0, y0) = places
+        let curve: Vec<(i32, i32)> = p.folds.curves[*i]
+            .points
             .iter()
-            .copied()
-            .min_by_key(cost)
-            .unwrap_or((x + gap, y - h));
-        let (bx, by) = area.get_base_pixel();
+            .map(|q| c.backend_coord(&(q.x / sx, q.y / sy)))
+            .collect();
+        let name = short_name(name);
+        let Some([x0, y0, x1, y1]) = place_name(name, &curve, &fold_px, &taken, plot) else {
+            continue;
+        };
+        taken.push([x0, y0, x1, y1]);
+        // on a white box: red on green, blue or black is hard to read
         area.draw(&Rectangle::new(
-            [(x0 - bx, y0 - by), (x0 - bx + w, y0 - by + 2 * h)],
+            [(x0 - bx, y0 - by), (x1 - bx, y1 - by)],
             WHITE.mix(0.85).filled(),
         ))
         .map_err(pe)?;
         rich_text(
             area,
             name,
-            (x0 - bx + pxi(4), y0 - by + h),
-            Pos::new(HPos::Left, VPos::Center),
+            ((x0 + x1) / 2 - bx, (y0 + y1) / 2 - by),
+            Pos::new(HPos::Center, VPos::Center),
             LABEL,
             FOLD,
             false,
@@ -248,20 +270,92 @@ fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Resul
     Ok(())
 }
 
+/// A box in backend pixels: left, top, right, bottom.
+type PixelBox = [i32; 4];
+
+/// The short name a fold is labelled with on the map ("L1"); the legend says what it means.
+fn short_name(name: &str) -> &str {
+    name.split_whitespace().next().unwrap_or(name)
+}
+
+/// Where the name of a fold curve (`curve`, backend pixels) goes: a box beside one of its
+/// points (from its middle outwards), on the side that covers no point of any fold curve
+/// (`folds`), no box `taken` (the inset, the zoom box's edges, marks, other names) and stays
+/// inside the plotting area `plot`; the one nearest the curve's middle among the best. None
+/// for a curve too short to name (under two names' widths long).
+fn place_name(
+    name: &str,
+    curve: &[(i32, i32)],
+    folds: &[(i32, i32)],
+    taken: &[PixelBox],
+    plot: PixelBox,
+) -> Option<PixelBox> {
+    let w = rich_width(name, LABEL) as i32 + pxi(8);
+    let h = font_px(LABEL) as i32 * 5 / 4;
+    let span = |a: (i32, i32), b: (i32, i32)| {
+        (((a.0 - b.0) as f64).powi(2) + ((a.1 - b.1) as f64).powi(2)).sqrt()
+    };
+    let length: f64 = curve.windows(2).map(|s| span(s[0], s[1])).sum();
+    if curve.len() < 2 || length < 2.0 * w as f64 {
+        return None;
+    }
+    let gap = pxi(6);
+    let overlaps =
+        |a: &PixelBox, b: &PixelBox| a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+    let mut best: Option<(u64, PixelBox)> = None;
+    // anchors from the middle outwards: 1/2, 2/5, 3/5, 3/10, 7/10, …
+    for (rank, tenth) in [5usize, 4, 6, 3, 7, 2, 8, 1, 9].into_iter().enumerate() {
+        let (x, y) = curve[(curve.len() - 1) * tenth / 10];
+        let places = [
+            (x + gap, y - h / 2),
+            (x - gap - w, y - h / 2),
+            (x - w / 2, y - gap - h),
+            (x - w / 2, y + gap),
+            (x + gap, y - gap - h),
+            (x + gap, y + gap),
+            (x - gap - w, y - gap - h),
+            (x - gap - w, y + gap),
+        ];
+        for (side, &(l, t)) in places.iter().enumerate() {
+            let b = [l, t, l + w, t + h];
+            let outside = b[0] < plot[0] || b[2] > plot[2] || b[1] < plot[1] || b[3] > plot[3];
+            let hits = folds
+                .iter()
+                .filter(|&&(px_, py)| {
+                    px_ >= b[0] - 2 && px_ <= b[2] + 2 && py >= b[1] - 2 && py <= b[3] + 2
+                })
+                .count() as u64;
+            let blocked = taken.iter().filter(|o| overlaps(o, &b)).count() as u64;
+            let cost = 1_000_000 * u64::from(outside)
+                + 10_000 * blocked
+                + 1_000 * hits
+                + 8 * rank as u64
+                + side as u64;
+            if best.is_none_or(|(c, _)| cost < c) {
+                best = Some((cost, b));
+            }
+        }
+    }
+    best.map(|(_, b)| b)
+}
+
 /// A panel's title: its label and caption, and for a panel of stable cycles the shares of
-/// the grid with one, two and three cycles (per cent, one decimal; a no-break space before
-/// each % keeps a share on one line when the title wraps).
+/// the grid with one, two and three cycles (per cent, one decimal; a share the grid does not
+/// meet is left out, one under 0.05 % reads "< 0.1 %"; the caption names all three).
 fn panel_title(p: &MapPanel) -> String {
     let title = format!("({}) {}", p.label, p.caption);
     if p.what != What::Rhythmicity {
         return title;
     }
-    format!(
-        "{title}: mono {:.1}\u{a0}%, bi {:.1}\u{a0}%, tri {:.1}\u{a0}%",
-        p.share(1),
-        p.share(2),
-        p.share(3)
-    )
+    let shares: Vec<String> = [(1, "mono"), (2, "bi"), (3, "tri")]
+        .into_iter()
+        .filter(|&(k, _)| p.share(k) > 0.0)
+        .map(|(k, name)| match p.share(k) {
+            s if s < 0.05 => format!("{name} <\u{a0}0.1\u{a0}%"),
+            s => format!("{name} {s:.1}\u{a0}%"),
+        })
+        .collect();
+    format!("{title}: {}", shares.join(", "))
 }
 
 /// The largest share of the plane (per cent) the trirhythmic region may cover and still be
@@ -270,17 +364,32 @@ const INSET_BELOW: f64 = 20.0;
 /// The inset's size as a fraction of the plotting area's width and height.
 const INSET_FRACTION: f64 = 0.5;
 
-/// The data ranges (display units) an inset zooms on: the bounding box of the trirhythmic
-/// cells, padded by a tenth of its size and at least one cell on each side, within the plane.
+/// The data ranges (display units) an inset zooms on: on a map of stable cycles, the bounding
+/// box of the trirhythmic cells (where they cover at most [`INSET_BELOW`] % of the plane); on
+/// a map of modes, the largest thin region ([`MapPanel::slivers`]: a band under
+/// [`SLIVER`] of an axis, of at least a thousandth of the grid), which the plane's scale shows
+/// as a line. Padded by a tenth of its size and at least one cell on each side (a band by
+/// twice its width, so that what borders it shows), within the plane.
 fn inset_ranges(p: &MapPanel) -> Option<(std::ops::Range<f64>, std::ops::Range<f64>)> {
-    if p.share(3) == 0.0 || p.share(3) > INSET_BELOW {
-        return None;
-    }
-    let ((ix0, ix1), (iy0, iy1)) = p.bounding_box(3)?;
+    let (((ix0, ix1), (iy0, iy1)), pad_cells) = if p.what == What::Rhythmicity {
+        if p.share(3) == 0.0 || p.share(3) > INSET_BELOW {
+            return None;
+        }
+        (p.bounding_box(3)?, 1.0)
+    } else {
+        let min_cells = (p.counts.len() / 1000).max(8);
+        let (_, b) = p.slivers(min_cells, SLIVER).into_iter().next()?;
+        (b, 2.0)
+    };
     let zoom = |g: &trirhythm::theory::bifurcation::Axis, s: f64, i0: usize, i1: usize| {
         let h = (g.stop - g.start) / (g.count - 1) as f64 / s;
         let (a, b) = (g.value(i0) / s - h / 2.0, g.value(i1) / s + h / 2.0);
-        let pad = (0.1 * (b - a)).max(h);
+        let thin = (i1 + 1 - i0) as f64 <= SLIVER * g.count as f64;
+        let pad = if thin && pad_cells > 1.0 {
+            pad_cells * (b - a)
+        } else {
+            (0.1 * (b - a)).max(h)
+        };
         let (lo, hi) = (g.start / s, g.stop / s);
         (a - pad).max(lo)..(b + pad).min(hi)
     };
@@ -290,18 +399,21 @@ fn inset_ranges(p: &MapPanel) -> Option<(std::ops::Range<f64>, std::ops::Range<f
     ))
 }
 
+/// The largest extent (fraction of an axis) of a region an inset enlarges on a map of modes.
+const SLIVER: f64 = 0.02;
+
 type MapChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// Draw the inset zooming on the trirhythmic region (where [`inset_ranges`] gives one): the
-/// zoomed box outlined on the panel, the inset in the corner of the plotting area whose cover
-/// hides the least.
+/// zoomed box outlined on the panel, the inset where in the plotting area its cover hides the
+/// least (a corner where one hides as little as any other place). Returns the inset's box and the zoomed box (backend pixels).
 fn draw_inset<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
     c: &mut MapChart<'_, DB>,
     p: &MapPanel,
-) -> Result<()> {
+) -> Result<Option<(PixelBox, PixelBox)>> {
     let Some((zx, zy)) = inset_ranges(p) else {
-        return Ok(());
+        return Ok(None);
     };
     let (rx, ry) = c.plotting_area().get_pixel_range();
     let (iw, ih) = (
@@ -309,21 +421,31 @@ fn draw_inset<DB: Backend>(
         ((ry.end - ry.start) as f64 * INSET_FRACTION) as i32,
     );
     let gap = pxi(6);
-    let corners = [
-        (rx.end - gap - iw, ry.start + gap),
-        (rx.start + gap, ry.start + gap),
-        (rx.end - gap - iw, ry.end - gap - ih),
-        (rx.start + gap, ry.end - gap - ih),
-    ];
+    // the corners first, then every position on a grid of eighths of the free room (a corner
+    // wins a tie)
+    let (free_x, free_y) = (
+        rx.end - rx.start - iw - 2 * gap,
+        ry.end - ry.start - ih - 2 * gap,
+    );
+    let places: Vec<(i32, i32)> = [(8, 0), (0, 0), (8, 8), (0, 8)]
+        .into_iter()
+        .chain((0..=8).flat_map(|i| (0..=8).map(move |j| (i, j))))
+        .map(|(i, j)| {
+            (
+                rx.start + gap + free_x * i / 8,
+                ry.start + gap + free_y * j / 8,
+            )
+        })
+        .collect();
     let zoom_box = [
         c.backend_coord(&(zx.start, zy.end)),
         c.backend_coord(&(zx.end, zy.start)),
     ];
-    let Some(&(ax, ay)) = corners
+    let Some(&(ax, ay)) = places
         .iter()
         .min_by_key(|&&corner| cover_cost(c, p, corner, (iw, ih), zoom_box))
     else {
-        return Ok(());
+        return Ok(None);
     };
     // the zoomed box on the panel
     c.draw_series(std::iter::once(Rectangle::new(
@@ -379,6 +501,15 @@ fn draw_inset<DB: Backend>(
         let pts: Vec<(f64, f64)> = curve.points.iter().map(|q| (q.x / sx, q.y / sy)).collect();
         draw_line(&z, &pts, fold, 2)?;
     }
+    let printed = SeriesStyle {
+        colour: PRINTED,
+        dash: Dash::Dashed,
+        marker: Marker::None,
+    };
+    for curve in p.printed.iter().flat_map(|f| &f.curves) {
+        let pts: Vec<(f64, f64)> = curve.points.iter().map(|q| (q.x / sx, q.y / sy)).collect();
+        draw_line(&z, &pts, printed, 2)?;
+    }
     let inside = |x: f64, y: f64| zx.contains(&x) && zy.contains(&y);
     z.draw_series(
         p.folds
@@ -399,7 +530,11 @@ fn draw_inset<DB: Backend>(
             BLACK.stroke_width(stroke(1)),
         ))
         .map_err(pe)?;
-    Ok(())
+    let [a, b] = zoom_box;
+    Ok(Some((
+        [ax, ay, ax + iw, ay + ih],
+        [a.0.min(b.0), a.1.min(b.1), a.0.max(b.0), a.1.max(b.1)],
+    )))
 }
 
 /// What an inset at `corner` (backend pixels, top left) of `size` would hide on the panel:
@@ -431,7 +566,13 @@ fn cover_cost<DB: Backend>(
     }
     let inside: u64 = counts.iter().sum();
     let commonest = counts.iter().copied().max().unwrap_or(0);
-    let mut cost = 1000 * counts[3] + (inside - commonest);
+    // (the trirhythmic cells an inset of a map of stable cycles enlarges)
+    let enlarged = if p.what == What::Rhythmicity {
+        counts[3]
+    } else {
+        0
+    };
+    let mut cost = 1000 * enlarged + (inside - commonest);
     let overlaps = |[a, b]: [(i32, i32); 2]| {
         a.0.max(b.0) >= corner.0
             && a.0.min(b.0) <= corner.0 + w
@@ -441,7 +582,12 @@ fn cover_cost<DB: Backend>(
     if overlaps(zoom_box) {
         cost += 1_000_000;
     }
-    for curve in &p.folds.curves {
+    for curve in p
+        .folds
+        .curves
+        .iter()
+        .chain(p.printed.iter().flat_map(|f| &f.curves))
+    {
         let n = curve
             .points
             .iter()
@@ -452,15 +598,6 @@ fn cover_cost<DB: Backend>(
     for q in &p.folds.cusps {
         if hit(c.backend_coord(&(q.x / sx, q.y / sy))) {
             cost += 10_000;
-        }
-    }
-    for (i, name) in &p.fold_names {
-        let curve = &p.folds.curves[*i];
-        let q = &curve.points[curve.points.len() / 2];
-        let (x, y) = c.backend_coord(&(q.x / sx, q.y / sy));
-        let w = rich_width(name, LABEL) as i32 + pxi(10);
-        if overlaps([(x, y - pxi(8)), (x + w, y + pxi(8))]) {
-            cost += 100_000;
         }
     }
     if let Some((mx, my, _)) = &p.mark {

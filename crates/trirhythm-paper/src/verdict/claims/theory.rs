@@ -115,6 +115,8 @@ pub(super) fn fig02_regions(panels: &[MapPanel]) -> Decision {
         })
         .collect();
     names.sort();
+    // (a name once per panel, however many curves carry it)
+    names.dedup();
     let mut distinct: Vec<&str> = names
         .iter()
         .filter_map(|n| n.split_whitespace().next())
