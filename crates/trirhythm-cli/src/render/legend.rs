@@ -31,6 +31,8 @@ pub enum Symbol {
     Series(SeriesStyle),
     /// A character a panel title carries (`†`), explained by the entry.
     Mark(char),
+    /// A cross in a circle: a single exact value.
+    CircledCross(RGBColor),
     /// A square of the first colour outlined in the second: a box drawn on a map.
     Framed(RGBColor, RGBColor),
 }
@@ -72,6 +74,12 @@ impl Symbol {
             Symbol::Cross(c) => area
                 .draw(&Cross::new(m, pxi(7) as u32, c.stroke_width(w2)))
                 .map_err(pe),
+            Symbol::CircledCross(c) => {
+                area.draw(&Cross::new(m, pxi(7) as u32, c.stroke_width(w3)))
+                    .map_err(pe)?;
+                area.draw(&Circle::new(m, pxi(9) as u32, c.stroke_width(w2)))
+                    .map_err(pe)
+            }
             Symbol::Dot(c) => area
                 .draw(&Circle::new(m, pxi(6) as u32, c.filled()))
                 .map_err(pe),

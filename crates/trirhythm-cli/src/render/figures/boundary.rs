@@ -151,7 +151,7 @@ fn legend_entries(panel: &Panel) -> Vec<(Symbol, String)> {
             .count();
         let symbol = match points {
             0 => continue,
-            1 => Symbol::Cross(colour(curve)),
+            1 => Symbol::CircledCross(colour(curve)),
             _ => Symbol::Series(style(curve)),
         };
         entries.push((symbol, curve.label.clone()));
@@ -169,7 +169,22 @@ fn legend_entries(panel: &Panel) -> Vec<(Symbol, String)> {
             plain(Dash::Dashed, Marker::None),
             "dashed: averaging".into(),
         ));
-        entries.push((Symbol::Ring(BLACK), "○ / ×: exact".into()));
+        // the exact boundaries: dotted with rings, or a cross where a curve has one point
+        let exact_points = |many: bool| {
+            panel.curves.iter().any(|c| {
+                let n = c.points.iter().filter(|q| q.side == Side::Boundary).count();
+                !matches!(c.method.as_str(), "simulation" | "averaging") && n > 0 && (n > 1) == many
+            })
+        };
+        if exact_points(true) {
+            entries.push((
+                plain(Dash::Dotted, Marker::Circle),
+                "dotted with rings: exact".into(),
+            ));
+        }
+        if exact_points(false) {
+            entries.push((Symbol::CircledCross(BLACK), "exact (one point)".into()));
+        }
     }
     entries
 }
