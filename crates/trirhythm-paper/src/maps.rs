@@ -172,7 +172,7 @@ impl MapPanel {
 
     /// The grid-index bounding box `((ix0, ix1), (iy0, iy1))`, inclusive, of the grid points
     /// with count `k` (`k ≥ 4`: four or more); `None` when there are none.
-    pub fn bounding_box(&self, k: u8) -> Option<((usize, usize), (usize, usize))> {
+    pub fn bounding_box(&self, k: u8) -> Option<GridBox> {
         let nx = self.x.grid.count;
         let mut b: Option<((usize, usize), (usize, usize))> = None;
         for (i, &c) in self.counts.iter().enumerate() {
@@ -197,7 +197,7 @@ impl MapPanel {
         &self,
         min_cells: usize,
         thin: f64,
-    ) -> Vec<(u8, ((usize, usize), (usize, usize)))> {
+    ) -> Vec<(u8, GridBox)> {
         let (nx, ny) = (self.x.grid.count, self.y.grid.count);
         let mut seen = vec![false; self.counts.len()];
         let mut out = Vec::new();
@@ -240,10 +240,13 @@ impl MapPanel {
                 out.push((size, k, ((x0, x1), (y0, y1))));
             }
         }
-        out.sort_by(|a, b| b.0.cmp(&a.0));
+        out.sort_by_key(|c| std::cmp::Reverse(c.0));
         out.into_iter().map(|(_, k, b)| (k, b)).collect()
     }
 }
+
+/// A box of grid indices `((ix0, ix1), (iy0, iy1))`, inclusive.
+pub type GridBox = ((usize, usize), (usize, usize));
 
 /// The paper's names of the saddle-node lines (Sec. 3: "L1 … the saddle-node bifurcation of
 /// the outer limit cycle …, L3 … of the inner limit cycle"): at the middle of each curve, the

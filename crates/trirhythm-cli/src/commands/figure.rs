@@ -131,7 +131,7 @@ fn contact_sheet(figures: &[(u32, Heading)]) -> String {
             html.push_str(&format!("<p>{}</p>", esc(l)));
         }
         for v in &h.verdicts {
-            html.push_str(&format!("<p><i>{}</i>: {}</p>", esc(&v.tag), esc(&v.text)));
+            html.push_str(&format!("<p><i>{}</i>: {}</p>", esc(&v.tag), esc(&v.full)));
         }
         html.push_str("</figcaption></figure>\n");
     }

@@ -267,23 +267,6 @@ pub struct Temporary {
 }
 
 impl Temporary {
-    /// Register the temporary of `target` (without creating it: encoders that write by path
-    /// create it themselves).
-    pub fn reserve(target: &Path) -> Result<Temporary> {
-        check_destination(target, "output")?;
-        remove_stale_temporaries(target);
-        let path = temporary_sibling(target);
-        TEMPORARIES
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .push(path.clone());
-        Ok(Temporary {
-            path,
-            target: target.to_path_buf(),
-            committed: false,
-        })
-    }
-
     /// Register and create the temporary of `target`, returning it with a buffered writer.
     pub fn create(target: &Path) -> Result<(Temporary, BufWriter<File>)> {
         check_destination(target, "output")?;

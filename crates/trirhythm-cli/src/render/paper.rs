@@ -259,10 +259,11 @@ pub fn verdict_lines(verdicts: &[ClaimVerdict]) -> Vec<VerdictLine> {
     verdicts
         .iter()
         .map(|v| {
-            let (text, head) = verdict_text(v);
+            let (text, full, head) = verdict_text(v);
             VerdictLine {
                 tag: v.decision.verdict.tag().to_string(),
                 text,
+                full,
                 head,
             }
         })
@@ -273,8 +274,9 @@ pub fn verdict_lines(verdicts: &[ClaimVerdict]) -> Vec<VerdictLine> {
 /// picture.
 pub const VERDICT_CHARS: usize = 190;
 
-/// The verdict line and how many characters open it as `{claim} — {verdict} ({number})`.
-fn verdict_text(v: &ClaimVerdict) -> (String, usize) {
+/// The verdict line, the same uncut (every deciding check), and how many characters open
+/// them as `{claim} — {verdict} ({number})`.
+fn verdict_text(v: &ClaimVerdict) -> (String, String, usize) {
     use trirhythm_paper::verdict::Verdict;
     let d = &v.decision;
     // the deciding number in the words claims.md and the page quote (first, so that a long
@@ -308,7 +310,11 @@ fn verdict_text(v: &ClaimVerdict) -> (String, usize) {
         }
         _ => String::new(),
     };
-    (fit(&head, &items, &tail, VERDICT_CHARS), kept)
+    (
+        fit(&head, &items, &tail, VERDICT_CHARS),
+        fit(&head, &items, &tail, usize::MAX),
+        kept,
+    )
 }
 
 /// `head: item; item…tail`, with as many items as fit in `max` characters (at least the

@@ -23,7 +23,7 @@
 //! SVG: the same DejaVu Sans the PNGs use is embedded in each SVG as a web font
 //! ([`embed_font`]), so the two render alike on any machine.
 
-use crate::io::{write_atomic, Temporary};
+use crate::io::write_atomic;
 use anyhow::{anyhow, Context, Result};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -77,8 +77,12 @@ pub struct Heading {
 pub struct VerdictLine {
     /// `confirmed`, `refuted` or `undetermined` (sets the colour).
     pub tag: String,
-    /// The line: the claim, the verdict, the deciding numbers.
+    /// The line: the claim, the verdict, the deciding numbers (at most
+    /// [`crate::render::paper::VERDICT_CHARS`] characters, for the picture's badge).
     pub text: String,
+    /// The same with every deciding check, uncut (for the caption).
+    #[serde(default)]
+    pub full: String,
     /// How many characters of `text` open it as `{claim} — {verdict} ({deciding number})`:
     /// the badge never cuts them.
     #[serde(default)]
@@ -492,17 +496,6 @@ pub fn save(
         heading.draw_badges(&bottom)?;
         root.present().map_err(pe)
     }
-    let png = stem.with_extension("png");
-    let reserved = Temporary::reserve(&png)?;
-    let tmp = reserved.path().to_path_buf();
-    render(
-        BitMapBackend::new(&tmp, size).into_drawing_area(),
-        &heading,
-        (hh, h),
-        picture,
-    )
-    .with_context(|| format!("drawing {}", png.display()))?;
-    reserved.commit()?;
     let svg = stem.with_extension("svg");
     let mut text = String::new();
     render(
@@ -512,8 +505,72 @@ pub fn save(
         picture,
     )
     .with_context(|| format!("drawing {}", svg.display()))?;
+    // rectangles (map cells, heat-map cells, swatches) edge to edge: without anti-aliased
+    // edges, or every shared edge shows as a faint seam
+    let text = text.replace("<rect ", "<rect shape-rendering=\"crispEdges\" ");
+    let text = true_font_sizes(&text);
+    // the PNG is the SVG rasterised: the same picture, at print resolution
+    let png = stem.with_extension("png");
+    let bytes = rasterise(&text).with_context(|| format!("drawing {}", png.display()))?;
+    write_atomic(&png, &bytes)?;
     write_atomic(&svg, embed_font(&text).as_bytes())?;
     Ok(vec![png, svg])
+}
+
+/// DejaVu Sans' height (ascender − descender, 1901 + 483 font units) per em (2048 units).
+const FONT_HEIGHT_PER_EM: f64 = 2384.0 / 2048.0;
+
+/// The SVG with every `font-size` the em the text was laid out with. plotters measures and
+/// places text with a font scaled to a height (ascender − descender) of its size, an em of
+/// size / 1.164 for DejaVu Sans, but writes `font-size` as size / 1.24: as written, every
+/// text would render 6 % narrower than the room it was given (a subscript drifting off its
+/// symbol, a centred label off centre).
+fn true_font_sizes(svg: &str) -> String {
+    let mut out = String::with_capacity(svg.len());
+    let mut rest = svg;
+    while let Some(at) = rest.find("font-size=\"") {
+        let (head, tail) = rest.split_at(at + "font-size=\"".len());
+        out.push_str(head);
+        let end = tail.find('"').unwrap_or(0);
+        match tail[..end].parse::<f64>() {
+            Ok(v) => out.push_str(&format!("{}", v * 1.24 / FONT_HEIGHT_PER_EM)),
+            Err(_) => out.push_str(&tail[..end]),
+        }
+        rest = &tail[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The width of every PNG in pixels: 7 in at 300 dpi.
+pub const PNG_WIDTH: u32 = 2100;
+
+/// An SVG drawn by [`save`] as a PNG [`PNG_WIDTH`] pixels wide (white background), its text
+/// in the DejaVu Sans faces the SVG embeds.
+pub fn rasterise(svg: &str) -> Result<Vec<u8>> {
+    use resvg::{tiny_skia, usvg};
+    let mut options = usvg::Options::default();
+    {
+        let fonts = options.fontdb_mut();
+        fonts.load_font_data(dejavu::sans::regular().to_vec());
+        fonts.load_font_data(dejavu::sans::bold().to_vec());
+        fonts.load_font_data(dejavu::sans::oblique().to_vec());
+        fonts.set_sans_serif_family(EMBEDDED_FAMILY);
+    }
+    let tree = usvg::Tree::from_str(svg, &options).map_err(|e| anyhow!("the SVG: {e}"))?;
+    let zoom = PNG_WIDTH as f32 / tree.size().width();
+    let height = (tree.size().height() * zoom).round() as u32;
+    let mut pixmap = tiny_skia::Pixmap::new(PNG_WIDTH, height)
+        .ok_or_else(|| anyhow!("a picture of {PNG_WIDTH} × {height} pixels"))?;
+    pixmap.fill(tiny_skia::Color::WHITE);
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(zoom, zoom),
+        &mut pixmap.as_mut(),
+    );
+    pixmap
+        .encode_png()
+        .map_err(|e| anyhow!("encoding the PNG: {e}"))
 }
 
 /// Embed the DejaVu Sans faces an SVG uses as base64 web fonts (`@font-face`), so that it

@@ -37,8 +37,8 @@ fn key() -> LegendStrip {
     }
 }
 
-const UP: RGBColor = RGBColor(250, 200, 200);
-const DOWN: RGBColor = RGBColor(200, 215, 250);
+const UP: RGBColor = RGBColor(253, 222, 218);
+const DOWN: RGBColor = RGBColor(150, 180, 225);
 const GREY: RGBColor = RGBColor(120, 120, 120);
 
 /// Height of a row of panels.
@@ -64,8 +64,9 @@ picture!(Fig04, |self, root| size {
     for (area, p) in areas.iter().zip(&self.panels) {
         draw_panel(area, p, &cycle_names(reference, &p.cycles))?;
     }
-    for (area, p) in areas[4..].iter().zip(zoomed) {
-        draw_zoom(area, p)?;
+    // the zooms continue the lettering: (e), (f)
+    for ((area, p), letter) in areas[4..].iter().zip(zoomed).zip(["e", "f"]) {
+        draw_zoom(area, p, letter)?;
     }
     Ok(())
 });
@@ -280,7 +281,11 @@ fn draw_panel<DB: Backend>(
 
 /// The zoom on panel `p`'s small-amplitude part ([`zoom_end`]), at its own scale (its roots,
 /// or their absence, visible), as a panel of its own.
-fn draw_zoom<DB: Backend>(area: &DrawingArea<DB, plotters::coord::Shift>, p: &Panel) -> Result<()> {
+fn draw_zoom<DB: Backend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    p: &Panel,
+    letter: &str,
+) -> Result<()> {
     if let Some(zoom_end) = zoom_end(p) {
         let pts: Vec<(f64, f64)> = p
             .curve
@@ -291,7 +296,7 @@ fn draw_zoom<DB: Backend>(area: &DrawingArea<DB, plotters::coord::Shift>, p: &Pa
         let yz = padded_range(pts.iter().map(|c| c.1).chain([0.0]));
         let mut z = chart(
             area,
-            &format!("({}) zoomed: A_0 ≤ {zoom_end:.1}", p.label),
+            &format!("({letter}) ({}) enlarged: A_0 ≤ {zoom_end:.1}", p.label),
             0.0..zoom_end,
             yz,
             "A_0",

@@ -133,9 +133,11 @@ picture!(Fig07, |self, root| size {
         if let Some(end) = zoom_end(curves) {
             let (yz, zoomed) = frame(curves, end);
             let label = caption.split(' ').next().unwrap_or("");
+            // the zooms continue the lettering: (c), (d)
+            let letter = ["(c)", "(d)"][k.min(1)];
             let mut z = chart(
                 &zoom_areas[k],
-                &format!("{label} zoomed on the inner well, A0 ≤ {end:.1}"),
+                &format!("{letter} {label} enlarged: inner well, A0 ≤ {end:.1}"),
                 0.0..end,
                 yz,
                 "A0",

@@ -50,8 +50,9 @@ picture!(Fig14, |self, root| size (2 * PANEL.0 + BAR, 4 * PANEL.1), draw {
     let rows = root.split_evenly((4, 1));
     for (row, (p, label)) in rows
         .iter()
-        .zip(self.panels.iter().zip(["a", "b", "c", "d"]))
+        .zip(self.panels.iter().zip([("a", "b"), ("c", "d"), ("e", "f"), ("g", "h")]))
     {
+        let (label, mc_label) = label;
         let (maps, bar) = row.split_horizontally(2 * PANEL.0);
         let (left, right) = maps.split_horizontally(PANEL.0);
         let top = p
@@ -80,13 +81,13 @@ picture!(Fig14, |self, root| size (2 * PANEL.0 + BAR, 4 * PANEL.1), draw {
             // outside the window are in the caption)
             &if p.stationary {
                 format!(
-                    "({label}) MC{}: H = {:.2}, {:.1} % out",
+                    "({mc_label}) MC{}: H = {:.2}, {:.1} % out",
                     if p.estimator == "wells" { " (wells)" } else { "" },
                     p.hellinger,
                     100.0 * p.mc_outside
                 )
             } else {
-                format!("({label}) r = {}, MC NOT STATIONARY", p.r)
+                format!("({mc_label}) r = {}, MC NOT STATIONARY", p.r)
             },
             (&p.u_edges, &p.v_edges),
             &p.mc,
