@@ -193,11 +193,7 @@ impl MapPanel {
     /// `thin` of the grid along one axis but more than that along the other — a feature a
     /// picture at the plane's scale shows as a line (Fig. 12 (a): the bimodal band at
     /// r ≳ 0.998). Each as (count, bounding box as [`MapPanel::bounding_box`]), largest first.
-    pub fn slivers(
-        &self,
-        min_cells: usize,
-        thin: f64,
-    ) -> Vec<(u8, GridBox)> {
+    pub fn slivers(&self, min_cells: usize, thin: f64) -> Vec<(u8, GridBox)> {
         let (nx, ny) = (self.x.grid.count, self.y.grid.count);
         let mut seen = vec![false; self.counts.len()];
         let mut out = Vec::new();

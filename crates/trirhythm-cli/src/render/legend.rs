@@ -31,6 +31,8 @@ pub enum Symbol {
     Series(SeriesStyle),
     /// A character a panel title carries (`†`), explained by the entry.
     Mark(char),
+    /// A series' marker on a vertical error bar: points with standard errors.
+    Points(SeriesStyle),
     /// A cross in a circle: a single exact value.
     CircledCross(RGBColor),
     /// A square of the first colour outlined in the second: a box drawn on a map.
@@ -74,6 +76,14 @@ impl Symbol {
             Symbol::Cross(c) => area
                 .draw(&Cross::new(m, pxi(7) as u32, c.stroke_width(w2)))
                 .map_err(pe),
+            Symbol::Points(s) => {
+                area.draw(&PathElement::new(
+                    [(m.0, m.1 - pxi(10)), (m.0, m.1 + pxi(10))],
+                    s.colour.stroke_width(stroke(1)),
+                ))
+                .map_err(pe)?;
+                marker(area, m, s.marker, s.colour)
+            }
             Symbol::CircledCross(c) => {
                 area.draw(&Cross::new(m, pxi(7) as u32, c.stroke_width(w3)))
                     .map_err(pe)?;

@@ -446,6 +446,17 @@ pub fn rich_text<DB: Backend>(
             (at.0 + along, at.1 + across)
         };
         let w = text_width(&text, s) as i32;
+        // a space at either end of a run as a no-break space: an SVG reader drops plain ones
+        // there (the run after a subscript would touch it)
+        let text = match (text.strip_prefix(' '), text.ends_with(' ')) {
+            (None, false) => text,
+            _ => {
+                let inner = text.trim_matches(' ');
+                let lead = text.len() - text.trim_start_matches(' ').len();
+                let trail = text.len() - text.trim_end_matches(' ').len();
+                format!("{}{inner}{}", "\u{a0}".repeat(lead), "\u{a0}".repeat(trail))
+            }
+        };
         area.draw(&Text::new(text, point, style)).map_err(pe)?;
         along += w;
     }

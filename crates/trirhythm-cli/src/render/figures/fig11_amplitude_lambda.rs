@@ -2,12 +2,13 @@
 //! D = 0) against long noise-free simulations of Eq. (1) from several initial amplitudes;
 //! (b) the stationary P(A) for four λ — theory (both variants) against Monte Carlo of Eq. (1)
 //! and Eq. (5), with error bars, distances and stationarity verdicts: (a) across the top with
-//! its key beside it, (b) as a 2 × 2 grid on one A axis below, one legend under all.
+//! its key beside it, (b) as a 2 × 2 grid below (each panel on the part of the A axis where
+//! its densities are), one legend under all.
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig11_amplitude_lambda`].
 
 use super::fig05_branches::runs;
-use super::montecarlo::{a_max, amplitude_legend, draw_amplitude_panel, two_columns, PANEL};
+use super::montecarlo::{a_range, amplitude_legend, draw_amplitude_panel, two_columns, PANEL};
 use crate::render::plot::{chart, pe, PALETTE};
 use plotters::prelude::*;
 use trirhythm_paper::fig11_amplitude_lambda::Fig11;
@@ -78,9 +79,9 @@ picture!(Fig11, |self, root| size {
     .draw(&key.margin(crate::render::plot::px(20), 0, 0, 0))?;
     // (b): the four λ as a 2 × 2 grid, by rows
     let cells = bottom.split_evenly((self.panels.len().div_ceil(2), 2));
-    let x_max = self.panels.iter().map(a_max).fold(1.0f64, f64::max);
+    // each λ on the part of the A axis where its densities are
     for (area, p) in cells.iter().zip(&self.panels) {
-        draw_amplitude_panel(area, p, x_max)?;
+        draw_amplitude_panel(area, p, a_range(p))?;
     }
     amplitude_legend(&self.panels).draw(&strip)
 });

@@ -33,13 +33,9 @@ pub fn legend_entries(systems: &[&str]) -> Vec<(Symbol, String)> {
         ),
     ];
     for (i, s) in systems.iter().enumerate() {
-        let style = mc_style(i);
         e.push((
-            Symbol::Series(SeriesStyle {
-                dash: Dash::Solid,
-                ..style
-            }),
-            format!("Monte Carlo of {s} (± 1 s.e.)"),
+            Symbol::Points(mc_style(i)),
+            format!("Monte Carlo of {s} (bar: ± 1 s.e.)"),
         ));
     }
     e
@@ -61,13 +57,49 @@ fn mc_style(k: usize) -> SeriesStyle {
     }
 }
 
-/// The right end of an amplitude panel's A axis: its histograms' and theory's last edge.
-pub fn a_max(p: &AmplitudePanel) -> f64 {
-    p.runs
+/// The part of the A axis where a panel's densities are: the bins of its histograms with
+/// a density, and the theory, where they stand above a ten-thousandth of the panel's highest
+/// density (the floor of a log axis), padded by 5 % (never below A = 0).
+pub fn a_range(p: &AmplitudePanel) -> (f64, f64) {
+    let shown: Vec<Vec<f64>> = p.runs.iter().map(|r| r.shown_density().0 .0).collect();
+    let top = shown
         .iter()
-        .filter_map(|r| r.edges.last().copied())
-        .chain(p.theory.iter().filter_map(|t| t.1.last().copied()))
-        .fold(1.0f64, f64::max)
+        .flatten()
+        .chain(p.theory.iter().flat_map(|t| t.2.iter()))
+        .copied()
+        .filter(|y| y.is_finite())
+        .fold(0.0f64, f64::max);
+    let seen = |y: f64| y.is_finite() && y > 0.0 && y >= 1e-4 * top;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (r, density) in p.runs.iter().zip(&shown) {
+        for (w, &d) in r.edges.windows(2).zip(density) {
+            if seen(d) {
+                (lo, hi) = (lo.min(w[0]), hi.max(w[1]));
+            }
+        }
+    }
+    for (_, xs, ys) in &p.theory {
+        for (&x, &y) in xs.iter().zip(ys) {
+            if seen(y) {
+                (lo, hi) = (lo.min(x), hi.max(x));
+            }
+        }
+    }
+    if lo >= hi {
+        return (0.0, 1.0);
+    }
+    let pad = 0.05 * (hi - lo);
+    ((lo - pad).max(0.0), hi + pad)
+}
+
+/// The union of panels' [`a_range`]s: one A axis for them all.
+pub fn a_range_of<'a>(panels: impl IntoIterator<Item = &'a AmplitudePanel>) -> (f64, f64) {
+    panels
+        .into_iter()
+        .map(a_range)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
+            (a.min(c), b.max(d))
+        })
 }
 
 /// The marks a panel title puts after a system: its ensemble is not stationary, its density
@@ -78,14 +110,15 @@ pub const BY_WELLS: char = '‡';
 /// See [`NOT_STATIONARY`].
 pub const COARSE_STEP: char = '§';
 
-/// Draw one amplitude panel over A ∈ [0, `x_max`] (shared by the panels of a column). The y
+/// Draw one amplitude panel over A ∈ `x` (where the densities are, [`a_range`]). The y
 /// range holds every histogram with its error bars and the theory's peaks, none cut: on a
-/// log axis where a theory peak stands over three times the histograms; the title is the
+/// log axis where a theory peak stands over three times the histograms, the theory drawn only
+/// above the axis' floor (a density below it is not drawn along the axis); the title is the
 /// panel's label with each system's marks ([`NOT_STATIONARY`] …), the details in the caption.
 pub fn draw_amplitude_panel<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
     p: &AmplitudePanel,
-    x_max: f64,
+    (x_min, x_max): (f64, f64),
 ) -> Result<()> {
     let finite_max =
         |it: &mut dyn Iterator<Item = f64>| it.filter(|v| v.is_finite()).fold(0.0f64, f64::max);
@@ -126,17 +159,29 @@ pub fn draw_amplitude_panel<DB: Backend>(
         chart_log_y(
             area,
             &caption,
-            0.0..x_max,
+            x_min..x_max,
             floor.log10()..(y_max * 1.5).log10(),
             "A",
             "P(A) (log scale)",
         )?
     } else {
-        chart(area, &caption, 0.0..x_max, 0.0..y_max * 1.05, "A", "P(A)")?
+        chart(area, &caption, x_min..x_max, 0.0..y_max * 1.05, "A", "P(A)")?
     };
+    let in_view = |x: f64| x >= x_min && x <= x_max;
     for (i, (_, xs, ys)) in p.theory.iter().enumerate() {
-        let pts: Vec<(f64, f64)> = xs.iter().zip(ys).map(|(&x, &y)| (x, yv(y))).collect();
-        draw_line(&c, &pts, theory_style(i), 2)?;
+        // the runs of points inside the view (and above the floor of a log axis)
+        let mut run: Vec<(f64, f64)> = Vec::new();
+        for (&x, &y) in xs.iter().zip(ys) {
+            if in_view(x) && y.is_finite() && (!log || y >= floor) {
+                run.push((x, yv(y)));
+            } else if !run.is_empty() {
+                draw_line(&c, &run, theory_style(i), 2)?;
+                run.clear();
+            }
+        }
+        if !run.is_empty() {
+            draw_line(&c, &run, theory_style(i), 2)?;
+        }
     }
     for (k, (r, ((density, stderr), _))) in p.runs.iter().zip(&shown).enumerate() {
         let style = mc_style(k);
@@ -144,7 +189,9 @@ pub fn draw_amplitude_panel<DB: Backend>(
             .edges
             .windows(2)
             .zip(density.iter().zip(stderr))
-            .filter(|(_, (d, _))| **d > 0.0 && (!log || **d >= floor))
+            .filter(|(w, (d, _))| {
+                **d > 0.0 && (!log || **d >= floor) && in_view(0.5 * (w[0] + w[1]))
+            })
             .map(|(w, (&d, &s))| (0.5 * (w[0] + w[1]), d, if s.is_finite() { s } else { 0.0 }))
             .collect();
         for &(x, d, s) in &mids {
@@ -177,8 +224,7 @@ pub fn draw_amplitude_columns<DB: Backend>(
     for (k, p) in panels.iter().enumerate() {
         let (col, row) = (k / rows, k % rows);
         let column = &panels[col * rows..((col + 1) * rows).min(panels.len())];
-        let x_max = column.iter().map(a_max).fold(1.0f64, f64::max);
-        draw_amplitude_panel(&cells[row * columns + col], p, x_max)?;
+        draw_amplitude_panel(&cells[row * columns + col], p, a_range_of(column))?;
     }
     Ok(())
 }
