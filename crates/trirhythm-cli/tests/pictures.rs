@@ -246,7 +246,9 @@ fn labels(svg: &str) -> Vec<Label> {
                 .replace("&amp;", "&")
                 .replace("&lt;", "<")
                 .replace("&gt;", ">")
-                .replace("&quot;", "\"");
+                .replace("&quot;", "\"")
+                .replace("&apos;", "'")
+                .replace("&#39;", "'");
             let size = num(tag, "font-size");
             let (x, y) = (num(tag, "x"), num(tag, "y"));
             let anchor = attr(tag, "text-anchor").unwrap_or("start").to_string();

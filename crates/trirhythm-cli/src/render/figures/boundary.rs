@@ -62,12 +62,12 @@ pub fn draw_panel<DB: Backend>(
     let (y0, y1) = (0.0, (1.12 * top).min(panel.y_range.1).max(1e-3));
     // the axes a little beyond the data, so that no mark at a corner (the exact boundary at
     // λ = 1, μ0 = 0) sits on the ticks
-    let pad = 0.02 * (panel.x_range.1 - panel.x_range.0);
+    let pad = 0.06 * (panel.x_range.1 - panel.x_range.0);
     let mut c = chart(
         area,
         &panel.caption,
         panel.x_range.0 - pad..panel.x_range.1 + pad,
-        y0 - 0.03 * (y1 - y0)..y1,
+        y0 - 0.06 * (y1 - y0)..y1,
         &panel.x_desc,
         "μ0",
     )?;
@@ -107,10 +107,12 @@ fn style(curve: &Curve) -> SeriesStyle {
             dash: Dash::Solid,
             marker: curve.member.map_or(Marker::None, |i| series(i).marker),
         },
+        // (a family member's averaging line carries its member's marker too: the dashed
+        // lines part in greyscale)
         "averaging" => SeriesStyle {
             colour,
             dash: Dash::Dashed,
-            marker: Marker::None,
+            marker: curve.member.map_or(Marker::None, |i| series(i).marker),
         },
         _ => SeriesStyle {
             colour,
@@ -222,6 +224,11 @@ fn draw_curve<'a, DB: Backend + 'a>(
                 .map_err(pe)?;
         }
         (_, Marker::None) => {}
+        // (an averaging line's markers at every other point: its line stays readable)
+        ("averaging", _) => {
+            let every: Vec<(f64, f64)> = pts.iter().copied().skip(1).step_by(2).collect();
+            draw_markers(c, &every, st)?
+        }
         _ => draw_markers(c, &pts, st)?,
     }
     Ok(())

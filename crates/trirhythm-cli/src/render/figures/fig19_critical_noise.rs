@@ -6,12 +6,13 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig19_critical_noise`].
 
-use super::lle::{CHART_HEIGHT, PANEL_WIDTH};
+use super::lle::{outline, CHART_HEIGHT, PANEL_WIDTH};
 use crate::render::plot::{
-    font_px, pe, px, superscript, times_ten, Backend, LegendStrip, Symbol, AXIS_DESC, CAPTION,
-    FONT, PALETTE, TICK,
+    font_px, pe, px, pxi, stroke, superscript, times_ten, Backend, Dash, LegendStrip, Marker,
+    SeriesStyle, Symbol, AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
 };
 use anyhow::{anyhow, Result};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -21,6 +22,15 @@ use trirhythm_paper::notes::num;
 use trirhythm_paper::verdict::rules::Bracket;
 
 /// The attractors in the order of their slots in a column, with their colours.
+/// Each attractor's marker shape (filled: a located D_c or D_c = 0; open: no D_c), so that
+/// they part in greyscale too.
+const SHAPES: [Marker; 4] = [
+    Marker::Circle,
+    Marker::Square,
+    Marker::Triangle,
+    Marker::Diamond,
+];
+
 const ATTRACTORS: [(&str, RGBColor); 4] = [
     ("rest", RGBColor(0, 0, 0)),
     ("inner", PALETTE[1]),
@@ -78,9 +88,14 @@ fn mark_of(c: &Curve) -> Mark {
 fn strip() -> LegendStrip {
     let mut entries: Vec<(Symbol, String)> = ATTRACTORS
         .iter()
-        .map(|(n, c)| {
+        .zip(SHAPES)
+        .map(|((n, c), marker)| {
             (
-                Symbol::Line(*c),
+                Symbol::Series(SeriesStyle {
+                    colour: *c,
+                    dash: Dash::Solid,
+                    marker,
+                }),
                 if *n == "rest" {
                     "rest regime".to_string()
                 } else {
@@ -99,11 +114,34 @@ fn strip() -> LegendStrip {
             "row \"none\": never chaotic, no D_c".into(),
         ),
         (
+            Symbol::Mark('▲'),
+            "bar up to the row \"none\": regular at its foot, not chaotic up to the largest D".into(),
+        ),
+        (
             Symbol::Cross(RGBColor(0, 0, 0)),
             "undecided: no bracket".into(),
         ),
     ]);
     LegendStrip { entries }
+}
+
+/// Draw attractor `k`'s marker at (`x`, `y`): its shape, filled or open (white inside).
+fn draw_shape<DB: Backend>(
+    c: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    (x, y): (f64, f64),
+    k: usize,
+    colour: RGBColor,
+    filled: bool,
+) -> Result<()> {
+    let ring = outline(SHAPES[k % SHAPES.len()], pxi(5));
+    let fill = if filled { colour } else { WHITE };
+    c.draw_series(std::iter::once(
+        EmptyElement::at((x, y))
+            + Polygon::new(ring.clone(), fill.filled())
+            + PathElement::new(ring, colour.stroke_width(stroke(2))),
+    ))
+    .map_err(pe)?;
+    Ok(())
 }
 
 /// One panel: columns of the parameter's values, log D upward, the rows "no D_c" above and
@@ -224,8 +262,7 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
                 let (a, b) = (a.log10(), b.log10());
                 c.draw_series(bar(a, b)).map_err(pe)?;
                 let m = 0.5 * (a + b);
-                c.draw_series(std::iter::once(Circle::new((x, m), 5, colour.filled())))
-                    .map_err(pe)?;
+                draw_shape(&mut c, (x, m), k, colour, true)?;
                 located[k].push((x, m));
             }
             Mark::Above(d) => {
@@ -241,20 +278,10 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
                 c.draw_series(bar(below_edge, d.log10())).map_err(pe)?;
             }
             Mark::Never => {
-                c.draw_series(std::iter::once(Circle::new(
-                    (x, never_row),
-                    6,
-                    colour.stroke_width(3),
-                )))
-                .map_err(pe)?;
+                draw_shape(&mut c, (x, never_row), k, colour, false)?;
             }
             Mark::Zero => {
-                c.draw_series(std::iter::once(Circle::new(
-                    (x, zero_row),
-                    6,
-                    colour.filled(),
-                )))
-                .map_err(pe)?;
+                draw_shape(&mut c, (x, zero_row), k, colour, true)?;
             }
             Mark::Undecided => {
                 c.draw_series(std::iter::once(Cross::new(

@@ -1,14 +1,14 @@
 //! What Figs 17–19 share: panels of the largest Lyapunov exponent against D on a log axis with
-//! error bars, one colour per value of the panel's parameter, filled markers for the rest
-//! regime and open markers for the cycle regime.
+//! error bars, one colour and one marker shape per value of the panel's parameter (apart in
+//! greyscale), filled markers for the rest regime and open markers for the cycle regime.
 //! Each panel keeps its legend in a strip below its chart, so no legend covers data; the
 //! panel's verdict details are in the caption (the CSV notes), and the y range is the data's.
 //!
 //! Drawing only: the runs and verdicts are [`trirhythm_paper::lle`].
 
 use crate::render::plot::{
-    font_px, padded_range, pe, px, pxi, tick_formatter, times_ten, Backend, LegendStrip, Symbol,
-    AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
+    font_px, padded_range, pe, px, pxi, stroke, tick_formatter, times_ten, Backend, Dash,
+    LegendStrip, Marker, SeriesStyle, Symbol, AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
 };
 use anyhow::{anyhow, Result};
 use plotters::coord::types::RangedCoordf64;
@@ -33,9 +33,43 @@ fn values(panel: &Panel) -> Vec<f64> {
     v
 }
 
+fn index_of(panel: &Panel, value: f64) -> usize {
+    values(panel).iter().position(|&v| v == value).unwrap_or(0)
+}
+
 fn colour_of(panel: &Panel, value: f64) -> RGBColor {
-    let i = values(panel).iter().position(|&v| v == value).unwrap_or(0);
-    PALETTE[i % PALETTE.len()]
+    PALETTE[index_of(panel, value) % PALETTE.len()]
+}
+
+/// The marker shapes of a panel's values, in order (each can be filled or open).
+const SHAPES: [Marker; 4] = [
+    Marker::Circle,
+    Marker::Square,
+    Marker::Triangle,
+    Marker::Diamond,
+];
+
+fn shape_of(panel: &Panel, value: f64) -> Marker {
+    SHAPES[index_of(panel, value) % SHAPES.len()]
+}
+
+/// The outline of a marker `shape` of radius `r` around the origin (pixels), closed.
+pub(super) fn outline(shape: Marker, r: i32) -> Vec<(i32, i32)> {
+    let q = r + r / 4;
+    match shape {
+        Marker::Square => vec![(-r, -r), (r, -r), (r, r), (-r, r), (-r, -r)],
+        Marker::Triangle => vec![(0, -q), (q, r * 3 / 4), (-q, r * 3 / 4), (0, -q)],
+        Marker::Diamond => vec![(0, -q), (q, 0), (0, q), (-q, 0), (0, -q)],
+        _ => (0..=24)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 24.0;
+                (
+                    (r as f64 * a.cos()).round() as i32,
+                    (r as f64 * a.sin()).round() as i32,
+                )
+            })
+            .collect(),
+    }
 }
 
 fn strip(panel: &Panel) -> LegendStrip {
@@ -47,17 +81,34 @@ fn strip(panel: &Panel) -> LegendStrip {
         }
         seen.push(c.value);
         let name = c.label.split(',').next().unwrap_or("").to_string();
-        entries.push((Symbol::Line(colour_of(panel, c.value)), name));
+        entries.push((
+            Symbol::Series(SeriesStyle {
+                colour: colour_of(panel, c.value),
+                dash: Dash::Solid,
+                marker: shape_of(panel, c.value),
+            }),
+            name,
+        ));
     }
-    entries.push((
-        Symbol::Swatch(RGBColor(0, 0, 0)),
-        "filled: rest regime".into(),
-    ));
-    entries.push((Symbol::Ring(RGBColor(0, 0, 0)), "open: cycle regime".into()));
-    entries.push((
-        Symbol::Line(RGBColor(120, 120, 120)),
-        "dashed: prediction".into(),
-    ));
+    let black = RGBColor(0, 0, 0);
+    entries.push((Symbol::Dot(black), "filled: rest regime".into()));
+    entries.push((Symbol::Ring(black), "open: cycle regime".into()));
+    entries.push((Symbol::Dashed(RGBColor(120, 120, 120)), "prediction".into()));
+    let flagged = |f: Flag| {
+        panel
+            .curves
+            .iter()
+            .any(|c| c.points.iter().any(|q| q.flag == f))
+    };
+    if flagged(Flag::Merged) {
+        entries.push((
+            Symbol::Cross(black),
+            "× at the bottom: copies merged (−∞)".into(),
+        ));
+    }
+    if flagged(Flag::Undefined) {
+        entries.push((Symbol::Cross(black), "× at the bottom: no value".into()));
+    }
     LegendStrip { entries }
 }
 
@@ -172,18 +223,15 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
                 PathElement::new([(xq - cap, q.hi), (xq + cap, q.hi)], colour.stroke_width(1)),
             ])
             .map_err(pe)?;
-            // open: a white disc in a thick ring; filled: a solid disc (apart in greyscale)
-            let r = pxi(5);
-            if open {
-                c.draw_series([
-                    Circle::new((xq, q.y), r, WHITE.filled()),
-                    Circle::new((xq, q.y), r, colour.stroke_width(2)),
-                ])
-                .map_err(pe)?;
-            } else {
-                c.draw_series(std::iter::once(Circle::new((xq, q.y), r, colour.filled())))
-                    .map_err(pe)?;
-            }
+            // the value's shape, open (white inside a thick outline) or filled
+            let ring = outline(shape_of(panel, curve.value), pxi(5));
+            let fill = if open { WHITE } else { colour };
+            c.draw_series(std::iter::once(
+                EmptyElement::at((xq, q.y))
+                    + Polygon::new(ring.clone(), fill.filled())
+                    + PathElement::new(ring, colour.stroke_width(stroke(2))),
+            ))
+            .map_err(pe)?;
         }
     }
     // the predictions: −c·D on a cycle (dashed, over its D), the rest regime's D-independent
