@@ -984,59 +984,6 @@ pub fn viridis(t: f64) -> RGBColor {
     )
 }
 
-/// A horizontal colour bar for values in [lo, hi] with its ticks and its label (rich text).
-pub fn colour_bar<DB: Backend>(
-    area: &DrawingArea<DB, Shift>,
-    label: &str,
-    lo: f64,
-    hi: f64,
-) -> Result<()> {
-    // ticks as dense as the bar's width allows (at least four labelled)
-    let n = (area.dim_in_pixel().0 / px(110)).clamp(5, 10) as usize;
-    let fx = tick_formatter(&(lo..hi), n);
-    let (tick, desc) = (font_px(TICK), font_px(AXIS_DESC));
-    let edge = text_width(&fx(&hi), tick) / 2 + px(4);
-    let x_area = tick + px(10) + desc * 5 / 4;
-    let mut c = ChartBuilder::on(area)
-        .margin_left(px(70).max(edge))
-        .margin_right(px(20).max(edge))
-        .margin_top(px(8))
-        .x_label_area_size(x_area)
-        .build_cartesian_2d(lo..hi, 0.0..1.0)
-        .map_err(pe)?;
-    c.configure_mesh()
-        .disable_y_axis()
-        .disable_mesh()
-        .x_labels(n)
-        .x_label_formatter(&fx)
-        .label_style((FONT, tick))
-        .draw()
-        .map_err(pe)?;
-    let n = 64;
-    c.draw_series((0..n).map(|i| {
-        let (a, b) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
-        Rectangle::new(
-            [(lo + a * (hi - lo), 0.0), (lo + b * (hi - lo), 1.0)],
-            viridis((i as f64 + 0.5) / n as f64).filled(),
-        )
-    }))
-    .map_err(pe)?;
-    let (rx, ry) = c.plotting_area().get_pixel_range();
-    let (bx, by) = area.get_base_pixel();
-    rich_text(
-        area,
-        label,
-        (
-            (rx.start + rx.end) / 2 - bx,
-            ry.end - by + (x_area - desc / 2) as i32 - pxi(2),
-        ),
-        Pos::new(HPos::Center, VPos::Center),
-        AXIS_DESC,
-        BLACK,
-        false,
-    )
-}
-
 /// A vertical colour bar filling `area`: the viridis scale from `lo` (bottom) to `hi` (top),
 /// its ticks left of it, `label` reading upwards on its right.
 pub fn colour_bar_vertical<DB: Backend>(
@@ -1092,11 +1039,6 @@ pub fn colour_bar_vertical<DB: Backend>(
         BLACK,
         true,
     )
-}
-
-/// The height a [`colour_bar`] needs, at the current scale.
-pub fn colour_bar_height() -> u32 {
-    px(8) + px(20) + font_px(TICK) + px(10) + font_px(AXIS_DESC) * 5 / 4 + px(4)
 }
 
 #[cfg(test)]

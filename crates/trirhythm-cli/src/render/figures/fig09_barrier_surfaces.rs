@@ -1,20 +1,21 @@
 //! Fig. 9: energy barriers ΔU1…ΔU4 of U_eff (Eq. 23) over the (τ, λ) plane for r = 0.998 and
 //! r = 0.990, as heat maps; blank where U_eff does not have the three wells the labels refer to.
-//! One row per barrier (both r side by side, one colour bar below them).
+//! One row per barrier: both r side by side, and the row's colour scale (shared by both) on
+//! their right.
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig09_barrier_surfaces`].
 
-use crate::render::plot::{chart, colour_bar, colour_bar_height, pe, viridis};
+use crate::render::plot::{chart, colour_bar_vertical, pe, viridis};
 use plotters::prelude::*;
 use trirhythm_paper::fig09_barrier_surfaces::Fig09;
 
-/// Height of one heat map, and the gap under its row's colour bar.
-const MAP: u32 = 360;
-const GAP: u32 = 30;
+/// A heat map's size, and the width of a row's colour bar.
+const MAP: (u32, u32) = (610, 360);
+const BAR: u32 = 180;
 
-// One row per barrier, its two r side by side (each 3.5 in wide printed 7 in) and its colour
-// bar, shared by both, below them.
-picture!(Fig09, |self, root| size (1400, 4 * (MAP + colour_bar_height() + GAP)), draw {
+// One row per barrier: its two r side by side (each 3 in wide printed 7 in) and its colour
+// bar, shared by both, on their right.
+picture!(Fig09, |self, root| size (2 * MAP.0 + BAR, 4 * MAP.1), draw {
     // one colour scale per barrier, shared by both r: the rows can be compared
     let scales: Vec<(f64, f64)> = (0..4)
         .map(|k| {
@@ -30,12 +31,11 @@ picture!(Fig09, |self, root| size (1400, 4 * (MAP + colour_bar_height() + GAP)),
     let rows = root.split_evenly((4, 1));
     let mut areas = Vec::new();
     for (k, row) in rows.iter().enumerate() {
-        let (maps, bar) = row.split_vertically(MAP);
-        let (bar, _) = bar.split_vertically(colour_bar_height());
+        let (maps, bar) = row.split_horizontally(2 * MAP.0);
         areas.extend(maps.split_evenly((1, 2)));
         let (lo, hi) = scales[k];
         if lo < hi {
-            colour_bar(&bar, &format!("ΔU_{} (both r; blank: undefined)", k + 1), lo, hi)?;
+            colour_bar_vertical(&bar, &format!("ΔU_{}", k + 1), lo, hi)?;
         }
     }
     for (row, s) in self.surfaces.iter().enumerate() {
@@ -52,10 +52,10 @@ picture!(Fig09, |self, root| size (1400, 4 * (MAP + colour_bar_height() + GAP)),
             let (lo, hi) = scales[k];
             let label = ["a", "b", "c", "d"][k];
             let caption = if vals.is_empty() {
-                format!("({label}{}) ΔU{}, r = {}: undefined", row + 1, k + 1, s.r)
+                format!("({label}{}) ΔU_{}, r = {}: undefined", row + 1, k + 1, s.r)
             } else {
                 format!(
-                    "({label}{}) ΔU{}, r = {}: [{:.3}, {:.3}]",
+                    "({label}{}) ΔU_{}, r = {}: [{:.3}, {:.3}]",
                     row + 1,
                     k + 1,
                     s.r,

@@ -13,14 +13,15 @@ use crate::render::plot::{chart, pe, PALETTE};
 use plotters::prelude::*;
 use trirhythm_paper::fig11_amplitude_lambda::Fig11;
 
-/// Width of panel (a), the rest of its row being its key.
+/// Width of panel (a), the rest of its row being its key, and its height.
 const A_WIDTH: u32 = 2 * PANEL.0 * 3 / 4;
+const A_HEIGHT: u32 = 400;
 
 picture!(Fig11, |self, root| size {
     let (w, h) = two_columns(&self.panels);
-    (w, h + PANEL.1)
+    (w, h + A_HEIGHT)
 }, draw {
-    let (top, rest) = root.split_vertically(PANEL.1);
+    let (top, rest) = root.split_vertically(A_HEIGHT);
     let (bottom, strip) = rest.split_vertically(self.panels.len().div_ceil(2) as u32 * PANEL.1);
     let (a_area, key) = top.split_horizontally(A_WIDTH);
     let amax = self

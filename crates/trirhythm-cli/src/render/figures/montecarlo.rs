@@ -230,7 +230,7 @@ pub fn draw_amplitude_columns<DB: Backend>(
 }
 
 /// Size of one amplitude panel in pixels (Figs 11 and 13): two to a row of a 7 in page.
-pub const PANEL: (u32, u32) = (720, 400);
+pub const PANEL: (u32, u32) = (720, 350);
 
 /// Size of a figure of amplitude panels in two columns with the legend strip below.
 pub fn two_columns(panels: &[AmplitudePanel]) -> (u32, u32) {
