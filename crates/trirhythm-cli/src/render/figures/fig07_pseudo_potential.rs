@@ -3,6 +3,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig07_pseudo_potential`].
 
+use super::lle::outline;
 use crate::render::plot::{
     chart, draw_line, padded_range, pe, pxi, series, stroke, Backend, LegendStrip, Marker,
     SeriesStyle, Symbol,
@@ -51,7 +52,18 @@ pub(super) fn curve_style(i: usize) -> SeriesStyle {
     }
 }
 
-/// Draw curves (each in [`curve_style`]) with their wells (filled) and crests (open) marked.
+/// The marker shape of curve `i`'s extrema (apart in greyscale).
+fn shape(i: usize) -> Marker {
+    [
+        Marker::Circle,
+        Marker::Square,
+        Marker::Triangle,
+        Marker::Diamond,
+    ][i % 4]
+}
+
+/// Draw curves (each in [`curve_style`]) with their wells (filled) and crests (open) marked,
+/// each curve's in its own shape.
 pub(super) fn draw_curves<'a, DB: Backend + 'a>(
     c: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     curves: &[Curve],
@@ -63,6 +75,7 @@ pub(super) fn draw_curves<'a, DB: Backend + 'a>(
         let color = style.colour;
         draw_line(c, &cv.points, style, 2)?;
         let inside = |e: &&Extremum| x.contains(&e.amplitude) && y.contains(&e.potential);
+        let ring = outline(shape(i), pxi(5));
         c.draw_series(cv.extrema.iter().filter(inside).map(|e| {
             let fill = if e.minimum {
                 color.filled()
@@ -70,24 +83,33 @@ pub(super) fn draw_curves<'a, DB: Backend + 'a>(
                 WHITE.filled()
             };
             EmptyElement::at((e.amplitude, e.potential))
-                + Circle::new((0, 0), pxi(5), fill)
-                + Circle::new((0, 0), pxi(5), color.stroke_width(stroke(2)))
+                + Polygon::new(ring.clone(), fill)
+                + PathElement::new(ring.clone(), color.stroke_width(stroke(2)))
         }))
         .map_err(pe)?;
     }
     Ok(())
 }
 
-/// A panel's legend, in a strip below it: each curve's colour and dash with its label.
+/// A panel's legend, in a strip below it: each curve's colour, dash and marker with its
+/// label, and what filled and open markers mean.
 fn legend_of(panel: &Panel) -> LegendStrip {
-    LegendStrip {
-        entries: panel
-            .curves
-            .iter()
-            .enumerate()
-            .map(|(i, cv)| (Symbol::Series(curve_style(i)), cv.label.clone()))
-            .collect(),
-    }
+    let mut entries: Vec<(Symbol, String)> = panel
+        .curves
+        .iter()
+        .enumerate()
+        .map(|(i, cv)| {
+            let style = SeriesStyle {
+                marker: shape(i),
+                ..curve_style(i)
+            };
+            (Symbol::Series(style), cv.label.clone())
+        })
+        .collect();
+    let black = RGBColor(0, 0, 0);
+    entries.push((Symbol::Dot(black), "filled: well (stable cycle)".into()));
+    entries.push((Symbol::Ring(black), "open: crest (unstable cycle)".into()));
+    LegendStrip { entries }
 }
 
 /// Heights of the main charts, and of the zooms on the inner well below them.

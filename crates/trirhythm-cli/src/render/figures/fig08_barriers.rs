@@ -3,7 +3,9 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig08_barriers`].
 
 use super::fig07_pseudo_potential::{draw_curves, frame};
-use crate::render::plot::{chart, font_px, pe, pxi, rich_text, Backend, AXIS_DESC};
+use crate::render::plot::{
+    chart, font_px, pe, pxi, rich_text, Backend, LegendStrip, Symbol, AXIS_DESC,
+};
 use anyhow::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -54,7 +56,7 @@ fn draw_panel<DB: Backend>(
             .unwrap_or(0.0);
         let u_crest = u_well + b.height;
         let xa = bar_x(b);
-        let color = RGBColor(200, 30, 30);
+        let color = BARRIER;
         c.draw_series(DashedLineSeries::new(
             [(b.crest, u_crest), (xa, u_crest)],
             4,
@@ -74,6 +76,10 @@ fn draw_panel<DB: Backend>(
         // above its bar's top, clear of the curve (which runs through the crest below and
         // the well at the bar's foot); neighbouring labels on alternate rows
         let (x, y) = c.backend_coord(&(xa, u_crest));
+        // a bar too short to see at this scale is not named here (the zoom shows it)
+        if c.backend_coord(&(xa, u_well)).1 - y < pxi(6) {
+            continue;
+        }
         let (bx, by) = area.get_base_pixel();
         let name = format!("ΔU_{}", i + 1);
         let row = shown.iter().take_while(|&&other| other != xa).count() % 2;
@@ -90,8 +96,27 @@ fn draw_panel<DB: Backend>(
     }
     Ok(())
 }
-picture!(Fig08, |self, root| size (1400, 620), draw {
-    let areas = root.split_evenly((1, 2));
+/// Barrier colour.
+const BARRIER: RGBColor = RGBColor(200, 30, 30);
+
+fn key() -> LegendStrip {
+    let black = RGBColor(0, 0, 0);
+    LegendStrip {
+        entries: vec![
+            (Symbol::Line(black), "U_eff(A0)".into()),
+            (Symbol::Dot(black), "filled: well (stable cycle)".into()),
+            (Symbol::Ring(black), "open: crest (unstable cycle)".into()),
+            (
+                Symbol::Line(BARRIER),
+                "ΔU_i: from a well up to its crest".into(),
+            ),
+        ],
+    }
+}
+
+picture!(Fig08, |self, root| size (1400, 620 + key().height(1400)), draw {
+    let (panels, strip) = root.split_vertically(620);
+    let areas = panels.split_evenly((1, 2));
     draw_panel(self, &areas[0], "(a) U_eff and its barriers ΔU_i", 14.0)?;
     draw_panel(
         self,
@@ -99,5 +124,5 @@ picture!(Fig08, |self, root| size (1400, 620), draw {
         "(b) zoom on the inner well",
         zoom_end(self),
     )?;
-    Ok(())
+    key().draw(&strip)
 });
