@@ -191,8 +191,30 @@ fn refuse_undefined(th: &Theory) -> Result<()> {
         return Err(Error::Undefined {
             what: "stationary amplitude PDF",
             why: format!(
-                "needs noise: D = {} gives σ1 = 0",
+                "needs additive noise: D = {} gives σ1 = 0",
                 th.params.noise_intensity
+            ),
+        });
+    }
+    if th.multiplicative > 0.0 || th.correction != 0.0 {
+        return Err(Error::NotApplicable {
+            method: "the stationary amplitude PDF".into(),
+            assumption: "additive noise only (a constant diffusion σ1)".into(),
+            reason: "noise.multiplicative makes the diffusion b(A) = σ1 + b_1A² depend on A: \
+                     its P(A) is not implemented (the drift, the diffusion and the extrema of \
+                     P(A) are)"
+                .into(),
+        });
+    }
+    if th.g.leading() >= 0.0 && th.model.is_some() {
+        return Err(Error::Undefined {
+            what: "stationary amplitude PDF",
+            why: format!(
+                "P(A) is not normalisable: f(A) must tend to −∞ for large A, which needs the \
+                 highest power of A in f (from damping.coefficients and damping.rayleigh) to \
+                 have a negative coefficient; here it is {} A^{}",
+                crate::error::Readable(th.g.leading()),
+                2 * th.g.degree() + 1
             ),
         });
     }
