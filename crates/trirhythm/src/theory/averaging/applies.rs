@@ -134,7 +134,10 @@ pub fn applies(model: &Model, variant: Variant) -> Result<Vec<Assumption>> {
         ));
     }
     let both = model.noise.additive.is_some_and(|a| a.intensity != 0.0)
-        && model.noise.multiplicative.is_some_and(|m| m.intensity != 0.0);
+        && model
+            .noise
+            .multiplicative
+            .is_some_and(|m| m.intensity != 0.0);
     if wall.is_some() && both && model.noise.correlation != 0.0 {
         return Err(refuse(
             "independent noises with a wall",

@@ -175,7 +175,6 @@ pub(super) fn average(model: &Model, variant: Variant, wall: Option<f64>) -> Res
         w1k *= w1 * w1;
         gc[k + 1] += b2 * d * w1k * phase_average(0, k + 2);
     }
-    gc[0] -= loss_rate;
     let additive = match model.noise.additive {
         None => 0.0,
         Some(a) => match wall {
