@@ -1,6 +1,6 @@
 //! Commands of the averaged theory: equivalents, cycles, drift, potential, barriers, pdf.
 
-use crate::args::{Format, Grid, OutputArgs, ParamArgs};
+use crate::args::{Format, Grid, OutputArgs, ParamArgs, TheoryModelArg};
 use crate::error::bad;
 use crate::io::{emit, jlimit, jnum, jvec, params_json, pretty, reading, Csv};
 use anyhow::Result;
@@ -16,20 +16,33 @@ pub struct TheoryArgs {
     #[command(flatten)]
     pub params: ParamArgs,
     #[command(flatten)]
+    pub file: TheoryModelArg,
+    #[command(flatten)]
     pub output: OutputArgs,
 }
 
 impl TheoryArgs {
+    /// The theory of `--model FILE` (by quadrature, or its refusal), else of the parameters.
     fn theory(&self) -> Result<Theory> {
+        if let Some(th) = self.file.theory(&self.params)? {
+            return Ok(th);
+        }
         Ok(Theory::new(&self.params.resolve()?, self.params.variant())?)
     }
 }
 
-/// A theory document: the parameters, the variant, the equivalents (Eq. 5), then `rest`.
+/// A theory document: the parameters (or the model and the assumptions measured on it), the
+/// variant, the equivalents (Eq. 5), then `rest`.
 fn doc<'a>(th: &Theory, rest: impl IntoIterator<Item = (&'a str, Value)>) -> Result<String> {
     let mut m = serde_json::Map::new();
-    m.insert("params".into(), params_json(th.params()));
+    match th.model() {
+        None => m.insert("params".into(), params_json(th.params())),
+        Some(model) => m.insert("model".into(), json!(model)),
+    };
     m.insert("variant".into(), json!(th.variant().name()));
+    if !th.assumptions().is_empty() {
+        m.insert("assumptions".into(), json!(th.assumptions()));
+    }
     m.insert("equivalents".into(), json!(th.equivalents()));
     m.extend(rest.into_iter().map(|(k, v)| (k.to_string(), v)));
     pretty(&m)
@@ -44,7 +57,17 @@ pub fn equivalents(args: &TheoryArgs) -> Result<()> {
             [
                 ("sigma1", jnum(th.diffusion())),
                 ("loss_rate", jnum(th.loss_rate())),
-            ],
+            ]
+            .into_iter()
+            .chain(th.model().map(|_| {
+                (
+                    "multiplicative",
+                    json!({
+                        "diffusion_b1": jnum(th.multiplicative_diffusion()),
+                        "drift_correction_q": jnum(th.multiplicative_correction()),
+                    }),
+                )
+            })),
         )?,
         Format::Csv => Csv::of(&views::equivalents_table(&th))?,
         Format::Table => reading(&Table {

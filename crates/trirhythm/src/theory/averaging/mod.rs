@@ -343,6 +343,11 @@ impl Theory {
         self.multiplicative
     }
 
+    /// q of the multiplicative noise's drift correction qA (0 without it).
+    pub fn multiplicative_correction(&self) -> f64 {
+        self.correction
+    }
+
     /// m_c(A) = σ1/(2A) + qA, the drift correction of the noise (+∞ at A = 0 with σ1 > 0).
     pub fn drift_correction(&self, a: f64) -> f64 {
         let additive = if self.sigma1 > 0.0 {
