@@ -262,7 +262,8 @@ impl TheoryModelArg {
         };
         // the theory must apply before anything is swept
         if let Err(e) = trirhythm::theory::averaging::applies(&model, params.variant()) {
-            return Err(anyhow::Error::new(e)).with_context(|| format!("--model {}", path.display()));
+            return Err(anyhow::Error::new(e))
+                .with_context(|| format!("--model {}", path.display()));
         }
         match model.paper_family(&format!("`{command}`")) {
             Ok(f) if f.wall => {
