@@ -774,6 +774,69 @@ mod class {
     }
 
     #[test]
+    fn multiplicative_pdf_solves_the_fpk() {
+        use trirhythm::theory::quadrature::adaptive_gauss_kronrod;
+        // van der Pol (μ = 0.1, ω = 1) with additive and multiplicative noise, no wall:
+        // σ1 = 0.01, b_1 = 0.00125 (white) so r0 = σ1/b_1 = 8: the series (x ≤ 4) and the
+        // partial fractions (beyond) both cover the support
+        for (additive, tau) in [(0.01, 0.0), (0.01, 0.3), (0.0, 0.0)] {
+            let noise = if additive > 0.0 {
+                format!("[noise.additive]\nintensity = {additive:?}\n")
+            } else {
+                String::new()
+            };
+            let m = model(
+                "[leading]\nlambda = 1.0\n[restoring]\nomega0 = 1.0\n",
+                &format!(
+                    "[damping]\nmu0 = 0.1\ncoefficients = [1.0, -1.0]\n{noise}\
+                     [noise.multiplicative]\nintensity = 0.005\ncorrelation_time = {tau:?}\n"
+                ),
+            );
+            let th = Theory::from_model(&m, Variant::Consistent).unwrap();
+            let pdf = th.amplitude_pdf().unwrap();
+            // d ln P/dA = (2(f + m_c) − b′)/b, integrated independently by Gauss–Kronrod
+            let slope = |a: f64| {
+                let b1 = th.multiplicative_diffusion();
+                (2.0 * (th.drift(a) + th.drift_correction(a)) - 2.0 * b1 * a) / th.diffusion_at(a)
+            };
+            let points = [0.3, 0.8, 1.5, 2.0, 2.5, 2.9, 3.3];
+            for w in points.windows(2) {
+                let want = adaptive_gauss_kronrod(&slope, w[0], w[1], 1e-14);
+                let got = pdf.log_density(w[1]) - pdf.log_density(w[0]);
+                assert!(
+                    (got - want).abs() < 1e-10 * want.abs().max(1.0),
+                    "{w:?}: {got} vs {want}"
+                );
+            }
+            // normalised; the mode where 2(f + m_c) = b′, a stable root of the polynomial
+            assert!((pdf.probability(0.0, pdf.support_end) - 1.0).abs() < 1e-9);
+            assert_eq!(pdf.modes.len(), 1);
+            assert!(slope(pdf.modes[0]).abs() < 1e-12, "{}", slope(pdf.modes[0]));
+        }
+        // a vanishing multiplicative noise gives the additive density back
+        let additive = |extra: &str| {
+            let m = model(
+                "[leading]\nlambda = 1.0\n[restoring]\nomega0 = 1.0\n",
+                &format!(
+                    "[damping]\nmu0 = 0.1\ncoefficients = [1.0, -1.0]\n\
+                     [noise.additive]\nintensity = 0.01\n{extra}"
+                ),
+            );
+            Theory::from_model(&m, Variant::Consistent)
+                .unwrap()
+                .amplitude_pdf()
+                .unwrap()
+        };
+        let (plain, tiny) = (
+            additive(""),
+            additive("[noise.multiplicative]\nintensity = 1e-9\n"),
+        );
+        for a in [0.5, 1.0, 2.0, 2.5] {
+            assert!(close(tiny.density(a), plain.density(a), 1e-6), "A = {a}");
+        }
+    }
+
+    #[test]
     fn the_theory_refuses_what_it_does_not_cover() {
         let paper = Model::from(&trirhythm::model::preset("fig13a").unwrap().params);
         let text = paper.to_toml();

@@ -19,14 +19,15 @@
 //!
 //! Method: h is a polynomial in U² and U̇², so the phase averages are trigonometric
 //! polynomials; [`phase_average`] integrates ⟨cos^{2i}φ sin^{2j}φ⟩ exactly by the periodic
-//! trapezoidal rule on [`PHASE_NODES`] nodes (more than the degree 2(i + j) ≤ 84), and
+//! trapezoidal rule on [`PHASE_NODES`] nodes (more than the degree 2(i + j) ≤ 44), and
 //! f/A = g(x), x = A², is assembled as a polynomial: the certified roots of
 //! [`crate::theory::polynomial`] give the cycles unchanged. The noise's phase correlations
 //! C(ψ) = ⟨G(φ)G(φ + ψ)⟩ are sums of cos(nψ) (the harmonics of G are known), so the
 //! integrals against the OU correlation are the spectrum at those harmonics, exactly;
 //! ∫m_c and b are polynomials in x too: A·(f + m_c) = x g(x) + b_a/2 + q x with
 //! q = 3β2²S_m(2ω1)/(16ω1²), b = b_a + b_1 x with b_1 = β2²S_m(2ω1)/(8ω1²), and the extrema of
-//! P(A) are the positive roots of x g(x) + b_a/2 + (q − b_1)x. For the paper's model with its
+//! P(A) are the positive roots of x g(x) + b_a/2 + (q − b_1)x; P(A) itself is
+//! [`super::AmplitudePdf`] (the closed form of `shape.rs`). For the paper's model with its
 //! wall the coefficients are those of [`Theory::new`], which [`Theory::from_model`] returns
 //! (same bits); the route by quadrature is [`Theory::by_quadrature`].
 //!
@@ -48,7 +49,7 @@ use crate::theory::polynomial::Polynomial;
 use std::f64::consts::PI;
 
 /// Nodes of the periodic trapezoidal rule of [`phase_average`]: exact for trigonometric
-/// polynomials of degree below it; h of degree ≤ 40 in U and U̇ times sin²φ has degree ≤ 42.
+/// polynomials of degree below it; h of degree ≤ 40 in U and U̇ times sin²φ has degree ≤ 44.
 pub const PHASE_NODES: usize = 128;
 
 /// ⟨cos^{2i}φ sin^{2j}φ⟩ over a period, by the periodic trapezoidal rule on [`PHASE_NODES`]

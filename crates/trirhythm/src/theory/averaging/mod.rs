@@ -36,6 +36,7 @@
 mod applies;
 mod general;
 mod pdf;
+mod shape;
 mod variant;
 
 pub use applies::{
