@@ -29,9 +29,19 @@
 //! (Khasminskii). Tests: `tests/averaging.rs` (independent reference values, normalisation,
 //! Eq. 29 relation, joint PDF mass, proptest invariants) and the unit tests below.
 //!
+//! The model class (`general`, [`Theory::from_model`]): the same [`Theory`] from a
+//! [`Model`] — the fractional terms by the Eq. 4 rule, f by exact phase quadrature of h (still a
+//! polynomial in A²), the noise's diffusion b(A) = σ1 + b_1A² and drift correction
+//! m_c = σ1/(2A) + qA (additive and multiplicative, white or OU); the extrema of P(A) are then
+//! the roots of x g(x) + σ1/2 + (q − b_1)x, U_eff = −∫(f + m_c − b′/2). Where the method does
+//! not apply, [`applies`] refuses naming the term, and reports its small parameters
+//! ([`Assumption`]).
+//!
 //! Layout: `variant` (the two forms of the averaged coefficients: loss rate, diffusion, phase
 //! weights), this module (the drift, the potential, cycles, extrema and barriers of [`Theory`]),
-//! `pdf` (the stationary densities, [`AmplitudePdf`]).
+//! `pdf` (the stationary densities, [`AmplitudePdf`]), `shape` (ln P(A) for a constant or an
+//! A-dependent diffusion), `applies` (where the theory applies to a model), `general` (the
+//! theory of a model of the class).
 
 mod applies;
 mod general;

@@ -69,7 +69,12 @@ impl Shape {
 
     /// φ(A) = ln A + w(A²)/divisor (ln P up to a constant; for comparing modes).
     pub fn phi(&self, a: f64) -> f64 {
-        a.ln() + self.w(a * a).0 / self.divisor()
+        match self {
+            Shape::Additive {
+                g_integral, sigma1, ..
+            } => a.ln() + g_integral.eval(a * a) / sigma1,
+            Shape::General { .. } => a.ln() + self.w(a * a).0,
+        }
     }
 
     /// φ″ at x = A².
