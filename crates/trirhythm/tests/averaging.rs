@@ -505,6 +505,7 @@ proptest! {
 mod class {
     use super::{arb_params, close};
     use proptest::prelude::*;
+    use proptest::test_runner::RngSeed;
     use trirhythm::model::{presets, Model, Params};
     use trirhythm::theory::averaging::{
         phase_average, phase_average_weight, Theory, Variant, DUFFING_LIMIT,
@@ -563,13 +564,18 @@ mod class {
         [coefficients, cycles, worst]
     }
 
-    /// The tolerances: the coefficients and the cycles to 1e-12; P(A) to 1e-11, the limit of
-    /// its normalisation (adaptive Gauss–Kronrod to max(1e-13, 4ε·A/w) relative for a peak of
-    /// width w at A, which two integrands 1 ulp apart meet at different refinements; measured
-    /// on 2026-11-27: coefficients 5.2e-16, cycles 1.7e-14, P(A) 3.9e-12 over the presets and
-    /// 64 random sets).
+    /// The random sets' seed.
+    const SEED: u64 = 36;
+
+    /// The tolerances: the coefficients and the cycles to 1e-12; P(A) to 1e-10. The
+    /// coefficients of the two routes differ by an ulp or two (the weights' roundings), and
+    /// ln P(A) = ln A + G(A²)/σ1 − ln(mass) amplifies that by |G|/σ1 (thousands at small σ1)
+    /// and adds the normalisation's tolerance max(1e-13, 4ε·A/w) for a peak of width w at A.
+    /// Measured on 2026-11-27: coefficients ≤ 5.2e-16, cycles ≤ 1.7e-14 (presets) and 8.4e-16
+    /// (random), P(A) ≤ 1.2e-12 over the presets and ≤ 9.2e-11 over 3000 random sets (both
+    /// variants).
     fn within(d: [f64; 3]) -> bool {
-        d[0] <= 1e-12 && d[1] <= 1e-12 && d[2] <= 1e-11
+        d[0] <= 1e-12 && d[1] <= 1e-12 && d[2] <= 1e-10
     }
 
     #[test]
@@ -602,7 +608,7 @@ mod class {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+        #![proptest_config(ProptestConfig { cases: 64, rng_seed: RngSeed::Fixed(SEED), ..ProptestConfig::default() })]
 
         #[test]
         fn quadrature_is_the_closed_form_for_random_parameters(p in arb_params(), c0 in 0.5f64..1.5) {
@@ -833,6 +839,97 @@ mod class {
         );
         for a in [0.5, 1.0, 2.0, 2.5] {
             assert!(close(tiny.density(a), plain.density(a), 1e-6), "A = {a}");
+        }
+    }
+
+    /// A random model of the class the theory covers: van der Pol damping with a Rayleigh term,
+    /// up to one fractional term, a weak Duffing term, the wall at 0 or none, additive and
+    /// multiplicative noise (white or OU).
+    fn arb_class() -> impl Strategy<Value = Model> {
+        use trirhythm::model::terms::*;
+        (
+            (0.9f64..=1.0, 0.01f64..0.5, -0.2f64..=0.0, 0.5f64..1.5),
+            (
+                0.0f64..0.1,
+                0.1f64..=1.0,
+                0.0f64..0.01,
+                prop::option::of(0.8f64..=1.0),
+            ),
+            (1e-3f64..0.1, 0.0f64..2.0, 0.0f64..0.01, 0.0f64..2.0),
+        )
+            .prop_map(
+                |((lambda, mu0, d1, omega0), (k, alpha, k3, wall), (d, tau, dm, taum))| Model {
+                    leading: Leading { lambda },
+                    damping: Dissipation {
+                        mu0,
+                        coefficients: vec![1.0, -1.0],
+                        rayleigh: vec![d1],
+                    },
+                    restoring: Restoring {
+                        omega0,
+                        cubic: k3,
+                        quintic: 0.0,
+                    },
+                    fractional: vec![Fractional {
+                        coefficient: k,
+                        order: alpha,
+                    }],
+                    walls: wall
+                        .map(|r| Wall {
+                            position: 0.0,
+                            keep: Keep::Above,
+                            restitution: Restitution::Constant(r),
+                        })
+                        .into_iter()
+                        .collect(),
+                    forcing: None,
+                    noise: Noises {
+                        additive: Some(NoiseTerm {
+                            intensity: d,
+                            correlation_time: tau,
+                        }),
+                        multiplicative: Some(NoiseTerm {
+                            intensity: dm,
+                            correlation_time: taum,
+                        }),
+                        correlation: 0.0,
+                    },
+                    start: Start::default(),
+                },
+            )
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, rng_seed: RngSeed::Fixed(SEED), ..ProptestConfig::default() })]
+
+        #[test]
+        fn class_theories_are_consistent(m in arb_class()) {
+            let th = match Theory::from_model(&m, Variant::Consistent) {
+                Ok(th) => th,
+                // a strong Duffing shift at a large cycle is the one refusal possible here
+                Err(e) => {
+                    prop_assert!(e.to_string().contains("restoring.cubic"), "{}", e);
+                    return Ok(());
+                }
+            };
+            let extrema = th.cycles();
+            for w in extrema.windows(2) {
+                prop_assert!(w[0].amplitude < w[1].amplitude);
+                prop_assert!(w[0].stable != w[1].stable || w[0].fold || w[1].fold);
+            }
+            // each extremum of P(A) is where 2(f + m_c) = b′
+            let b1 = th.multiplicative_diffusion();
+            for c in &extrema {
+                let a = c.amplitude;
+                let terms = 2.0 * (th.drift(a).abs() + th.drift_correction(a).abs()) + 2.0 * b1 * a;
+                let balance = 2.0 * (th.drift(a) + th.drift_correction(a)) - 2.0 * b1 * a;
+                prop_assert!(balance.abs() <= 1e-9 * terms, "A = {}: {} of {}", a, balance, terms);
+            }
+            if let Ok(pdf) = th.amplitude_pdf() {
+                let mass = pdf.probability(0.0, pdf.support_end);
+                prop_assert!((mass - 1.0).abs() < 1e-8, "∫P = {}", mass);
+                prop_assert_eq!(pdf.modes.len(), extrema.iter().filter(|c| c.stable).count());
+            }
         }
     }
 
