@@ -244,6 +244,11 @@ fn theory_commands_take_a_model_the_theory_covers() {
     assert!(doc["model"]["damping"]["rayleigh"][0].as_f64() == Some(-0.1));
     assert!(doc.get("params").is_none());
     assert!(doc["assumptions"].as_array().unwrap().len() >= 4);
+    let said = ok_stdout(&["model", "check", &file]);
+    assert!(
+        said.contains("the averaged theory applies (--variant consistent)"),
+        "{said}"
+    );
     // every theory command runs on it; the CSV header names the model and the assumptions
     for command in [
         &["equivalents"][..],
@@ -314,6 +319,13 @@ fn theory_commands_refuse_a_model_the_theory_does_not_cover() {
         ("damping.rayleigh.0 = -0.1", RAYLEIGH.to_string(), "paper"),
     ] {
         let file = write(&dir, "refused.toml", &text);
+        if variant == "consistent" {
+            let said = ok_stdout(&["model", "check", &file]);
+            assert!(
+                said.contains("the averaged theory does not apply") && said.contains(field),
+                "{said}"
+            );
+        }
         for command in [
             &["cycles"][..],
             &["equivalents"],
