@@ -726,6 +726,12 @@ mod class {
             1e-14
         ));
         assert_eq!(plain.frequency_shift(a), 0.0);
+        let dw = duffing
+            .assumptions()
+            .iter()
+            .find(|x| x.name.contains("Δω"))
+            .unwrap();
+        assert!(close(dw.value, 3.0 * k3 * a * a / 8.0, 1e-14) && dw.holds);
         let shift = duffing
             .assumptions()
             .iter()
@@ -985,6 +991,19 @@ mod class {
                 other => panic!("{named}: not refused: {:?}", other.map(|t| t.describe())),
             }
         }
+        // the wall at 0 keeping U ≤ 0 is the mirror image (h even, k odd): the same theory
+        let below = Model::from_toml_str(
+            &text
+                .replace("keep = \"above\"", "keep = \"below\"")
+                .replace("u0 = 1.0", "u0 = -1.0"),
+        )
+        .unwrap();
+        let (above, below) = (
+            Theory::by_quadrature(&paper, Variant::Consistent).unwrap(),
+            Theory::from_model(&below, Variant::Consistent).unwrap(),
+        );
+        assert_eq!(above.drift_polynomial(), below.drift_polynomial());
+        assert_eq!(above.fpk_polynomial(), below.fpk_polynomial());
         // correlated noises without a wall: the cross terms vanish at first order, accepted
         let free = text
             .replace("[[wall]]\nposition = 0.0\nkeep = \"above\"\nrestitution = 0.99\n", "")

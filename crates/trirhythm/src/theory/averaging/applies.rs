@@ -15,7 +15,8 @@
 //! and its k odd by construction, so the wall at 0 always has Zhuravlev's image. The small
 //! parameters of the method are reported, not refused, as [`Assumption`]s (like R̂ for an
 //! ensemble): the memory 1 − λ, the balance frequency's distance |ω_b − ω1|/ω1, the damping
-//! strength β2·max|h − c − Σc_j|/ω1 on the largest cycle and the Duffing shift there.
+//! strength β2·max|h − c − Σc_j|/ω1 on the largest cycle, the Duffing shift there and the
+//! frequency shift |Δω|/ω1 it causes (the response leaves the balance frequency).
 //!
 //! Reference: Khasminskii's averaging theorem (first order in the small parameters reported
 //! here); Zhuravlev's transformation; `model-class.md` §6 of the project's design notes.

@@ -40,7 +40,9 @@
 //! `rayleigh_van_der_pol_cycle_is_its_closed_form`, `duffing_leaves_the_drift_and_shifts_the_frequency`,
 //! `fractional_damping_enters_as_its_harmonic_balance`.
 
-use super::applies::{applies, wall_at_zero, Assumption, DAMPING_LIMIT, DUFFING_LIMIT, METHOD};
+use super::applies::{
+    applies, wall_at_zero, Assumption, BALANCE_LIMIT, DAMPING_LIMIT, DUFFING_LIMIT, METHOD,
+};
 use super::{Theory, Variant};
 use crate::error::{Error, Exact, Result};
 use crate::maths::{pow, sin};
@@ -314,9 +316,17 @@ impl Theory {
                 ),
             });
         }
+        // the response frequency ω1 + Δω moves away from the balance frequency ω_b
+        let x = a2;
+        let dw = b2 * (3.0 * k.cubic * x / 8.0 + 5.0 * k.quintic * x * x / 16.0) / w1;
         Ok(vec![
             Assumption::new("β2·max|h − c − Σc_j|/ω1", strength, DAMPING_LIMIT),
             Assumption::new("(|k3|A² + |k5|A⁴)/ω0²", shift, DUFFING_LIMIT),
+            Assumption::new(
+                "|Δω|/ω1 (Duffing frequency shift)",
+                dw.abs() / w1,
+                BALANCE_LIMIT,
+            ),
         ])
     }
 }
