@@ -586,6 +586,29 @@ mod class {
             weights = weights.max((phase_average(k, 1) - phase_average_weight(k)).abs());
         }
         assert!(weights <= 1e-15, "weights differ by {weights:e}");
+        // every mixed average against (2i − 1)!!(2j − 1)!!/(2(i + j))!!, i + j ≤ 22 (the
+        // Rayleigh terms' ⟨sin^{2k+2}φ⟩ included)
+        for i in 0..=22usize {
+            for j in 0..=22 - i {
+                let mut exact = 1.0;
+                for k in 0..i {
+                    exact *= (2 * k + 1) as f64;
+                }
+                for k in 0..j {
+                    exact *= (2 * k + 1) as f64;
+                }
+                for k in 1..=(i + j) {
+                    exact /= (2 * k) as f64;
+                }
+                let got = phase_average(i, j);
+                assert!(
+                    (got - exact).abs() <= 1e-15,
+                    "⟨cos^{}sin^{}⟩ = {got} vs {exact}",
+                    2 * i,
+                    2 * j
+                );
+            }
+        }
         let mut worst = [0.0f64; 3];
         for p in presets() {
             let model = Model::from(&p.params);
