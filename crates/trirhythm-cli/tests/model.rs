@@ -291,6 +291,27 @@ fn theory_commands_take_a_model_the_theory_covers() {
         assert_eq!(by_model["cycles"], by_preset["cycles"], "{variant}");
         assert_eq!(by_model["params"], by_preset["params"], "{variant}");
     }
+    // the balance at ω1(ω1): by quadrature, for a preset too; not for the paper variant
+    let natural = common::ok_json(&[&["equivalents"][..], &flags, &["--format", "json"]].concat());
+    let balanced = common::ok_json(
+        &[
+            &["equivalents"][..],
+            &flags,
+            &["--balance", "self-consistent", "--format", "json"],
+        ]
+        .concat(),
+    );
+    let gap = |d: &serde_json::Value| d["assumptions"][1]["value"].as_f64().unwrap();
+    assert!(gap(&balanced) < 1e-14 && gap(&natural) > 1e-3);
+    let preset = [
+        "cycles",
+        "--preset",
+        "fig13a",
+        "--balance",
+        "self-consistent",
+    ];
+    let _ = ok_stdout(&[&preset[..], &["--variant", "consistent"]].concat());
+    assert_eq!(run(&preset).status.code(), Some(2));
     // --param overrides a paper-family file, as it does a preset
     let by_model = common::ok_json(&[
         "cycles", "--model", &paper, "--param", "r=0.95", "--format", "json",

@@ -963,6 +963,52 @@ mod class {
     }
 
     #[test]
+    fn the_self_consistent_balance_is_a_fixed_point() {
+        use trirhythm::theory::averaging::{linearise_with, Balance};
+        let m = model(
+            "[leading]\nlambda = 0.9\n[restoring]\nomega0 = 0.8\n",
+            "[damping]\nmu0 = 0.2\ncoefficients = [1.0, -1.0]\n\
+             [[fractional]]\ncoefficient = 0.1\norder = 0.4\n\
+             [noise.additive]\nintensity = 0.01\n",
+        );
+        let lin = linearise_with(&m, Balance::SelfConsistent).unwrap();
+        assert!(close(lin.equivalents.omega1, lin.omega_b, 1e-14));
+        let natural = Theory::from_model(&m, Variant::Consistent).unwrap();
+        let th = Theory::from_model_with(&m, Variant::Consistent, Balance::SelfConsistent).unwrap();
+        let gap = |t: &Theory| {
+            t.assumptions()
+                .iter()
+                .find(|a| a.name == "|ω_b − ω1|/ω1")
+                .unwrap()
+                .value
+        };
+        assert!(
+            gap(&th) < 1e-14 && gap(&natural) > 1e-3,
+            "{} {}",
+            gap(&th),
+            gap(&natural)
+        );
+        assert!(close(th.equivalents().omega1, lin.omega_b, 1e-15));
+        // λ = 1 with no fractional term: ω1 = ω0 already, the same theory
+        let plain = model(
+            "[leading]\nlambda = 1.0\n[restoring]\nomega0 = 0.8\n",
+            "[damping]\nmu0 = 0.2\ncoefficients = [1.0, -1.0]\n",
+        );
+        let (a, b) = (
+            Theory::from_model(&plain, Variant::Consistent).unwrap(),
+            Theory::from_model_with(&plain, Variant::Consistent, Balance::SelfConsistent).unwrap(),
+        );
+        assert!(close(
+            a.limit_cycles()[0].amplitude,
+            b.limit_cycles()[0].amplitude,
+            1e-15
+        ));
+        // the paper variant balances at ω0
+        let e = Theory::from_model_with(&m, Variant::Paper, Balance::SelfConsistent);
+        assert!(e.is_err());
+    }
+
+    #[test]
     fn the_theory_refuses_what_it_does_not_cover() {
         let paper = Model::from(&trirhythm::model::preset("fig13a").unwrap().params);
         let text = paper.to_toml();

@@ -228,20 +228,6 @@ impl TheoryModelArg {
         Ok(Some(out))
     }
 
-    /// The averaged theory of `--model FILE` in the variant of `params` (none without it).
-    pub fn theory(
-        &self,
-        params: &ParamArgs,
-    ) -> Result<Option<trirhythm::theory::averaging::Theory>> {
-        let Some(model) = self.load(params)? else {
-            return Ok(None);
-        };
-        let path = self.model.as_deref().unwrap_or(std::path::Path::new(""));
-        let th = trirhythm::theory::averaging::Theory::from_model(&model, params.variant())
-            .with_context(|| format!("--model {}", path.display()))?;
-        Ok(Some(th))
-    }
-
     /// The paper family's parameters of `--model FILE` for a command that sweeps them (a map,
     /// branches): the file's model must be the paper's Eq. (1) with its wall at 0, else the
     /// refusal naming the term. Sets `params.base`; nothing without `--model`.

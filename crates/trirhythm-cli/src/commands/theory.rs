@@ -3,10 +3,11 @@
 use crate::args::{Format, Grid, OutputArgs, ParamArgs, TheoryModelArg};
 use crate::error::bad;
 use crate::io::{emit, jlimit, jnum, jvec, params_json, pretty, reading, Csv};
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
-use trirhythm::theory::averaging::{AmplitudePdf, Theory};
+use trirhythm::model::Model;
+use trirhythm::theory::averaging::{AmplitudePdf, Balance, Theory};
 use trirhythm_paper::table::Table;
 use trirhythm_paper::views;
 
@@ -17,17 +18,44 @@ pub struct TheoryArgs {
     pub params: ParamArgs,
     #[command(flatten)]
     pub file: TheoryModelArg,
+    /// Where the fractional terms are balanced: at ω0 (the paper's Eq. 4) or at the linearised
+    /// oscillator's own frequency ω_b = ω1(ω_b) (consistent variant; by quadrature).
+    #[arg(long, value_enum, default_value_t = BalanceArg::Natural)]
+    pub balance: BalanceArg,
     #[command(flatten)]
     pub output: OutputArgs,
+}
+
+/// `natural` or `self-consistent`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum BalanceArg {
+    /// ω_b = ω0 (Eq. 4).
+    #[default]
+    Natural,
+    /// ω_b = ω1(ω_b).
+    SelfConsistent,
 }
 
 impl TheoryArgs {
     /// The theory of `--model FILE` (by quadrature, or its refusal), else of the parameters.
     fn theory(&self) -> Result<Theory> {
-        if let Some(th) = self.file.theory(&self.params)? {
-            return Ok(th);
+        let balance = match self.balance {
+            BalanceArg::Natural => Balance::Natural,
+            BalanceArg::SelfConsistent => Balance::SelfConsistent,
+        };
+        let variant = self.params.variant();
+        let model = match self.file.load(&self.params)? {
+            Some(model) => model,
+            None if balance == Balance::Natural => {
+                return Ok(Theory::new(&self.params.resolve()?, variant)?)
+            }
+            None => Model::from(&self.params.resolve()?),
+        };
+        let th = Theory::from_model_with(&model, variant, balance);
+        match &self.file.model {
+            Some(path) => th.with_context(|| format!("--model {}", path.display())),
+            None => Ok(th?),
         }
-        Ok(Theory::new(&self.params.resolve()?, self.params.variant())?)
     }
 }
 

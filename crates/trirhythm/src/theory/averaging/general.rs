@@ -1,7 +1,8 @@
 //! The averaged theory of a model of the class: equivalent linearisation, the drift by phase
 //! quadrature, the diffusion and drift correction of additive and multiplicative noise.
 //!
-//! Equation (balance at ω_b = ω0, the paper's Eq. 4 rule applied to every fractional term):
+//! Equation (balance at ω_b = ω0, the paper's Eq. 4 rule applied to every fractional term, or
+//! at the fixed point ω_b = ω1(ω_b), [`Balance::SelfConsistent`]):
 //! D^{1+λ}U ≈ mÜ + cU̇, m = ω_b^{λ−1} sin(πλ/2), c = ω_b^λ cos(πλ/2);
 //! K_j D^{α_j}U ≈ s_jU + c_jU̇, s_j = K_jω_b^{α_j} cos(πα_j/2), c_j = K_jω_b^{α_j−1} sin(πα_j/2);
 //! so Ü + ω1²U = β2[(h − c − Σc_j)U̇ − k_nl(U) + η_a + Uη_m], β2 = 1/m, ω1² = β2(ω0² + Σs_j).
@@ -48,6 +49,7 @@ use crate::error::{Error, Exact, Result};
 use crate::maths::{pow, sin};
 use crate::model::{Equivalents, Model, Params};
 use crate::theory::polynomial::Polynomial;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// Nodes of the periodic trapezoidal rule of [`phase_average`]: exact for trigonometric
@@ -80,6 +82,28 @@ pub struct Linearised {
     pub omega_b: f64,
 }
 
+/// Where the harmonic balance is taken.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Balance {
+    /// ω_b = ω0, the paper's Eq. 4.
+    #[default]
+    Natural,
+    /// ω_b = ω1(ω_b): the balance at the linearised oscillator's own frequency (a fixed point,
+    /// found by iteration from ω0).
+    SelfConsistent,
+}
+
+impl Balance {
+    /// `natural` or `self_consistent`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Balance::Natural => "natural",
+            Balance::SelfConsistent => "self_consistent",
+        }
+    }
+}
+
 /// The equivalent linearisation of `model` (valid) at ω_b = ω0; with no fractional term
 /// exactly [`Equivalents::from_scalars`] (the same bits as the paper's Eq. 5).
 pub fn linearise(model: &Model) -> Linearised {
@@ -88,32 +112,35 @@ pub fn linearise(model: &Model) -> Linearised {
         model.restoring.omega0,
         model.damping.mu0,
     );
-    let c0 = model.damping.coefficients.first().copied().unwrap_or(0.0);
-    let base = Equivalents::from_scalars(mu0, w0, l, c0);
-    let leading = pow(w0, l) * sin(PI * (1.0 - l) / 2.0);
-    let terms: Vec<(f64, f64)> = model
-        .fractional
-        .iter()
-        .filter(|f| f.coefficient != 0.0)
-        .map(|f| {
-            let a = f.order;
-            // cos(πα/2) = sin(π(1 − α)/2): exact 0 at α = 1
-            let s = f.coefficient * pow(w0, a) * sin(PI * (1.0 - a) / 2.0);
-            let c = f.coefficient * pow(w0, a - 1.0) * sin(PI * a / 2.0);
-            (s, c)
-        })
-        .collect();
-    if terms.is_empty() {
+    if model.fractional.iter().all(|f| f.coefficient == 0.0) {
+        let c0 = model.damping.coefficients.first().copied().unwrap_or(0.0);
         return Linearised {
-            equivalents: base,
-            damping: leading,
+            equivalents: Equivalents::from_scalars(mu0, w0, l, c0),
+            damping: pow(w0, l) * sin(PI * (1.0 - l) / 2.0),
             omega_b: w0,
         };
     }
-    let beta2 = base.beta2;
-    let (stiff, damp): (f64, f64) = terms
-        .iter()
-        .fold((0.0, 0.0), |(s, c), t| (s + t.0, c + t.1));
+    linearise_at(model, w0)
+}
+
+/// The equivalent linearisation of `model` (valid) at the balance frequency `omega_b`.
+pub fn linearise_at(model: &Model, omega_b: f64) -> Linearised {
+    let (l, w0, mu0, wb) = (
+        model.leading.lambda,
+        model.restoring.omega0,
+        model.damping.mu0,
+        omega_b,
+    );
+    let c0 = model.damping.coefficients.first().copied().unwrap_or(0.0);
+    // m = ω_b^{λ−1} sin(πλ/2), c = ω_b^λ cos(πλ/2) (cos(πλ/2) = sin(π(1 − λ)/2): exact 0 at 1)
+    let beta2 = pow(wb, 1.0 - l) / sin(PI * l / 2.0);
+    let leading = pow(wb, l) * sin(PI * (1.0 - l) / 2.0);
+    let (mut stiff, mut damp) = (0.0, 0.0);
+    for f in model.fractional.iter().filter(|f| f.coefficient != 0.0) {
+        let a = f.order;
+        stiff += f.coefficient * pow(wb, a) * sin(PI * (1.0 - a) / 2.0);
+        damp += f.coefficient * pow(wb, a - 1.0) * sin(PI * a / 2.0);
+    }
     let damping = leading + damp;
     Linearised {
         equivalents: Equivalents {
@@ -123,8 +150,34 @@ pub fn linearise(model: &Model) -> Linearised {
             beta2,
         },
         damping,
-        omega_b: w0,
+        omega_b: wb,
     }
+}
+
+/// The linearisation at the balance `balance` asks for: ω0, or the fixed point ω_b = ω1(ω_b)
+/// (iterated from ω0 to 4ε relative; the map is a contraction for the class's ranges, its slope
+/// (1 − λ)/2 + Σ O(K_j) near 1 − λ ≪ 1).
+pub fn linearise_with(model: &Model, balance: Balance) -> Result<Linearised> {
+    if balance == Balance::Natural {
+        return Ok(linearise(model));
+    }
+    let mut wb = model.restoring.omega0;
+    for _ in 0..200 {
+        let lin = linearise_at(model, wb);
+        let next = lin.equivalents.omega1;
+        if (next - wb).abs() <= 4.0 * f64::EPSILON * wb {
+            return Ok(linearise_at(model, next));
+        }
+        wb = next;
+    }
+    Err(Error::NoConvergence {
+        what: "the self-consistent balance frequency ω_b = ω1(ω_b)",
+        detail: format!(
+            "200 iterations from ω0 = {} end at ω_b = {}",
+            Exact(model.restoring.omega0),
+            Exact(wb)
+        ),
+    })
 }
 
 /// S(ν) = 2D/(1 + τ²ν²), the spectrum of ⟨η(t)η(s)⟩ = (D/τ)e^{−|t−s|/τ} (2Dδ at τ = 0).
@@ -148,8 +201,12 @@ pub(super) struct Averaged {
 
 /// The averaged coefficients of `model` by quadrature; `wall` is the restitution of the wall
 /// at 0 (none: no wall). The paper variant takes the printed κ and σ1 (paper family only).
-pub(super) fn average(model: &Model, variant: Variant, wall: Option<f64>) -> Result<Averaged> {
-    let lin = linearise(model);
+pub(super) fn average(
+    model: &Model,
+    variant: Variant,
+    wall: Option<f64>,
+    lin: &Linearised,
+) -> Result<Averaged> {
     let eq = lin.equivalents;
     let (b2, w1) = (eq.beta2, eq.omega1);
     let loss_rate = match wall {
@@ -229,13 +286,37 @@ impl Theory {
     /// quadrature ([`Theory::by_quadrature`]). The assumptions measured are
     /// [`Theory::assumptions`]; a Duffing shift beyond [`DUFFING_LIMIT`] at a cycle is refused.
     pub fn from_model(model: &Model, variant: Variant) -> Result<Theory> {
+        Theory::from_model_with(model, variant, Balance::Natural)
+    }
+
+    /// [`Theory::from_model`] with the harmonic balance at `balance`; the self-consistent
+    /// balance takes the quadrature route also for the paper's model, and refuses
+    /// [`Variant::Paper`] (whose formulas balance at ω0).
+    pub fn from_model_with(model: &Model, variant: Variant, balance: Balance) -> Result<Theory> {
         let mut assumptions = applies(model, variant)?;
         let wall = wall_at_zero(model)?;
-        let mut th = match (model.paper_family(METHOD), wall) {
-            (Ok(family), Some(_)) => Theory::new(&family.params, variant)?,
-            _ => Theory::quadrature(model, variant, wall)?,
+        if balance == Balance::SelfConsistent && variant == Variant::Paper {
+            return Err(Error::NotApplicable {
+                method: METHOD.to_string(),
+                assumption: "the balance at ω0 for --variant paper".into(),
+                reason: "the paper variant's formulas balance at ω0 (Eq. 4): use the \
+                         consistent variant for the self-consistent balance"
+                    .into(),
+            });
+        }
+        let lin = linearise_with(model, balance)?;
+        let mut th = match (model.paper_family(METHOD), wall, balance) {
+            (Ok(family), Some(_), Balance::Natural) => Theory::new(&family.params, variant)?,
+            _ => Theory::quadrature(model, variant, wall, &lin)?,
         };
-        assumptions.extend(th.measured_assumptions(model)?);
+        if balance == Balance::SelfConsistent {
+            th.model = Some(Box::new(model.clone()));
+            let w1 = lin.equivalents.omega1;
+            for a in assumptions.iter_mut().filter(|a| a.name == "|ω_b − ω1|/ω1") {
+                *a = Assumption::new(a.name.clone(), (lin.omega_b - w1).abs() / w1, a.limit);
+            }
+        }
+        assumptions.extend(th.measured_assumptions(model, &lin)?);
         th.assumptions = assumptions;
         Ok(th)
     }
@@ -246,14 +327,20 @@ impl Theory {
     pub fn by_quadrature(model: &Model, variant: Variant) -> Result<Theory> {
         let mut assumptions = applies(model, variant)?;
         let wall = wall_at_zero(model)?;
-        let mut th = Theory::quadrature(model, variant, wall)?;
-        assumptions.extend(th.measured_assumptions(model)?);
+        let lin = linearise(model);
+        let mut th = Theory::quadrature(model, variant, wall, &lin)?;
+        assumptions.extend(th.measured_assumptions(model, &lin)?);
         th.assumptions = assumptions;
         Ok(th)
     }
 
-    fn quadrature(model: &Model, variant: Variant, wall: Option<f64>) -> Result<Theory> {
-        let av = average(model, variant, wall)?;
+    fn quadrature(
+        model: &Model,
+        variant: Variant,
+        wall: Option<f64>,
+        lin: &Linearised,
+    ) -> Result<Theory> {
+        let av = average(model, variant, wall, lin)?;
         let paper = model.paper_family(METHOD).is_ok() && wall.is_some();
         let mut th = Theory::assemble(
             projection(model, wall),
@@ -273,14 +360,13 @@ impl Theory {
 
     /// The assumptions measured at the cycles found: the damping strength and the Duffing
     /// shift on the largest; a shift beyond [`DUFFING_LIMIT`] is refused.
-    fn measured_assumptions(&self, model: &Model) -> Result<Vec<Assumption>> {
+    fn measured_assumptions(&self, model: &Model, lin: &Linearised) -> Result<Vec<Assumption>> {
         let largest = self
             .limit_cycles()
             .into_iter()
             .chain(self.cycles())
             .map(|c| c.amplitude)
             .fold(0.0, f64::max);
-        let lin = linearise(model);
         let (b2, w1) = (lin.equivalents.beta2, lin.equivalents.omega1);
         let strength = (0..PHASE_NODES)
             .map(|k| {

@@ -52,7 +52,9 @@ mod variant;
 pub use applies::{
     applies, Assumption, BALANCE_LIMIT, DAMPING_LIMIT, DUFFING_LIMIT, MEMORY_LIMIT, METHOD,
 };
-pub use general::{linearise, phase_average, Linearised, PHASE_NODES};
+pub use general::{
+    linearise, linearise_at, linearise_with, phase_average, Balance, Linearised, PHASE_NODES,
+};
 pub use pdf::{AmplitudePdf, MIN_RELATIVE_WIDTH};
 pub use variant::{phase_average_weight, sgn_harmonic_sum, Variant};
 
