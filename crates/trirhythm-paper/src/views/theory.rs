@@ -186,5 +186,16 @@ pub fn equivalents_table(th: &Theory) -> Table {
     ] {
         t.row([name.to_string(), num(v)]);
     }
+    // a model of the class: the multiplicative noise's b_1 (b = σ1 + b_1A²) and q (m_c ∋ qA)
+    if th.model().is_some() {
+        t.row([
+            "diffusion_b1".to_string(),
+            num(th.multiplicative_diffusion()),
+        ]);
+        t.row([
+            "drift_correction_q".to_string(),
+            num(th.multiplicative_correction()),
+        ]);
+    }
     t
 }
