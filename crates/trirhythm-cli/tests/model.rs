@@ -203,3 +203,206 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A Rayleigh–van der Pol oscillator with fractional damping under OU noise, no wall: outside
+/// the paper's family, inside the averaged theory's.
+const RAYLEIGH: &str = r#"format = 1
+[leading]
+lambda = 0.98
+[damping]
+mu0 = 0.1
+coefficients = [1.0]
+rayleigh = [-0.1]
+[restoring]
+omega0 = 1.0
+[[fractional]]
+coefficient = 0.02
+order = 0.5
+[noise.additive]
+intensity = 0.01
+correlation_time = 0.2
+"#;
+
+#[test]
+fn theory_commands_take_a_model_the_theory_covers() {
+    let dir = scratch_dir("model-theory");
+    let file = write(&dir, "rayleigh.toml", RAYLEIGH);
+    let model = trirhythm::model::Model::from_toml_str(RAYLEIGH).unwrap();
+    let th = trirhythm::theory::averaging::Theory::from_model(
+        &model,
+        trirhythm::theory::averaging::Variant::Consistent,
+    )
+    .unwrap();
+    let flags = ["--model", file.as_str(), "--variant", "consistent"];
+    let doc = common::ok_json(&[&["cycles"][..], &flags, &["--format", "json"]].concat());
+    let cycles = doc["cycles"].as_array().unwrap();
+    assert_eq!(cycles.len(), th.cycles().len());
+    assert_eq!(
+        cycles[0]["amplitude"].as_f64().unwrap(),
+        th.cycles()[0].amplitude
+    );
+    assert!(doc["model"]["damping"]["rayleigh"][0].as_f64() == Some(-0.1));
+    assert!(doc.get("params").is_none());
+    assert!(doc["assumptions"].as_array().unwrap().len() >= 4);
+    let said = ok_stdout(&["model", "check", &file]);
+    assert!(
+        said.contains("the averaged theory applies (--variant consistent)"),
+        "{said}"
+    );
+    // every theory command runs on it; the CSV header names the model and the assumptions
+    for command in [
+        &["equivalents"][..],
+        &["drift", "--grid", "0:2:5"],
+        &["potential", "--grid", "0:2:5"],
+        &["barriers"],
+        &["pdf"],
+    ] {
+        let text = ok_stdout(&[command, &flags, &["--format", "csv"]].concat());
+        assert!(
+            text.contains("rayleigh = [-0.1]") && text.contains("assumption: 1 − λ"),
+            "{command:?}: {text}"
+        );
+    }
+    // a file of the paper's family gives the preset's cycles, bit for bit
+    let paper = write(
+        &dir,
+        "fig13a.toml",
+        &ok_stdout(&["model", "show", "--preset", "fig13a"]),
+    );
+    for variant in ["paper", "consistent"] {
+        let by_model = common::ok_json(&[
+            "cycles",
+            "--model",
+            &paper,
+            "--variant",
+            variant,
+            "--format",
+            "json",
+        ]);
+        let by_preset = common::ok_json(&[
+            "cycles",
+            "--preset",
+            "fig13a",
+            "--variant",
+            variant,
+            "--format",
+            "json",
+        ]);
+        assert_eq!(by_model["cycles"], by_preset["cycles"], "{variant}");
+        assert_eq!(by_model["params"], by_preset["params"], "{variant}");
+    }
+    // the balance at ω1(ω1): by quadrature, for a preset too; not for the paper variant
+    let natural = common::ok_json(&[&["equivalents"][..], &flags, &["--format", "json"]].concat());
+    let balanced = common::ok_json(
+        &[
+            &["equivalents"][..],
+            &flags,
+            &["--balance", "self-consistent", "--format", "json"],
+        ]
+        .concat(),
+    );
+    let gap = |d: &serde_json::Value| d["assumptions"][1]["value"].as_f64().unwrap();
+    assert!(gap(&balanced) < 1e-14 && gap(&natural) > 1e-3);
+    let preset = [
+        "cycles",
+        "--preset",
+        "fig13a",
+        "--balance",
+        "self-consistent",
+    ];
+    let _ = ok_stdout(&[&preset[..], &["--variant", "consistent"]].concat());
+    assert_eq!(run(&preset).status.code(), Some(2));
+    // --param overrides a paper-family file, as it does a preset
+    let by_model = common::ok_json(&[
+        "cycles", "--model", &paper, "--param", "r=0.95", "--format", "json",
+    ]);
+    let by_preset = common::ok_json(&[
+        "cycles", "--preset", "fig13a", "--param", "r=0.95", "--format", "json",
+    ]);
+    assert_eq!(by_model["cycles"], by_preset["cycles"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn theory_commands_refuse_a_model_the_theory_does_not_cover() {
+    let dir = scratch_dir("model-theory-refused");
+    let forced = RAYLEIGH.replace(
+        "[noise.additive]",
+        "[forcing]\namplitude = 0.3\nfrequency = 1.1\n[noise.additive]",
+    );
+    let offset = BASE
+        .replace("position = 0.0", "position = 0.5")
+        .replace("u0 = 1.0", "u0 = 1.5");
+    for (field, text, variant) in [
+        ("forcing.amplitude = 0.3", forced, "consistent"),
+        ("wall.0.position = 0.5", offset, "consistent"),
+        // the paper variant's κ and σ1 are printed for Eq. (1), not derived
+        ("damping.rayleigh.0 = -0.1", RAYLEIGH.to_string(), "paper"),
+    ] {
+        let file = write(&dir, "refused.toml", &text);
+        if variant == "consistent" {
+            let said = ok_stdout(&["model", "check", &file]);
+            assert!(
+                said.contains("the averaged theory does not apply") && said.contains(field),
+                "{said}"
+            );
+        }
+        for command in [
+            &["cycles"][..],
+            &["equivalents"],
+            &["drift"],
+            &["potential"],
+            &["barriers"],
+            &["pdf"],
+            &["map", "--x", "mu0=0.01:0.1:3", "--y", "r=0.9:1:3"],
+            &["branches", "--x", "mu0=0.01:0.1"],
+        ] {
+            let out_path = dir.join("out.csv");
+            let out = run(&[
+                command,
+                &["--model", &file, "--variant", variant],
+                &["--out", out_path.to_str().unwrap()],
+            ]
+            .concat());
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{field} {command:?}: {stderr}");
+            assert!(
+                stderr.contains(field) && stderr.contains("does not apply"),
+                "{command:?}: {stderr}"
+            );
+            assert!(!out_path.exists(), "{command:?}: output written");
+        }
+    }
+    // a model the theory covers but that map cannot sweep: refused naming the term, pointing
+    // at the theory commands
+    let file = write(&dir, "rayleigh.toml", RAYLEIGH);
+    let out = run(&[
+        "map",
+        "--model",
+        &file,
+        "--variant",
+        "consistent",
+        "--x",
+        "mu0=0.01:0.1:3",
+        "--y",
+        "r=0.9:1:3",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("damping.rayleigh.0") && stderr.contains("cycles"),
+        "{stderr}"
+    );
+    // --param does not edit a model outside the paper's family
+    let out = run(&[
+        "cycles",
+        "--model",
+        &file,
+        "--variant",
+        "consistent",
+        "--param",
+        "mu0=0.2",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let _ = std::fs::remove_dir_all(&dir);
+}

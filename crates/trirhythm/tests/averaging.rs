@@ -498,3 +498,588 @@ proptest! {
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The averaged theory of a model of the class (`Theory::from_model`, `Theory::by_quadrature`).
+
+mod class {
+    use super::{arb_params, close};
+    use proptest::prelude::*;
+    use proptest::test_runner::RngSeed;
+    use trirhythm::model::{presets, Model, Params};
+    use trirhythm::theory::averaging::{
+        phase_average, phase_average_weight, Theory, Variant, DUFFING_LIMIT,
+    };
+    use trirhythm::Error;
+
+    /// Relative difference |a − b|/max(|a|, |b|) (0 when both are 0).
+    fn rel(a: f64, b: f64) -> f64 {
+        if a == b {
+            0.0
+        } else {
+            (a - b).abs() / a.abs().max(b.abs())
+        }
+    }
+
+    /// The largest relative difference between the closed-form and the quadrature theory:
+    /// g's coefficients, σ1, κ, every cycle of f and of m1 (and their stability must agree), and
+    /// P(A) at 200 points over its support (relative where |ln P| ≤ 1, else of ln P).
+    fn difference(closed: &Theory, quad: &Theory) -> [f64; 3] {
+        let (a, b) = (closed.drift_polynomial(), quad.drift_polynomial());
+        assert_eq!(a.coefficients.len(), b.coefficients.len());
+        let mut worst: f64 = 0.0;
+        for (x, y) in a.coefficients.iter().zip(&b.coefficients) {
+            worst = worst.max(rel(*x, *y));
+        }
+        worst = worst
+            .max(rel(closed.diffusion(), quad.diffusion()))
+            .max(rel(closed.loss_rate(), quad.loss_rate()));
+        let coefficients = worst;
+        let mut worst: f64 = 0.0;
+        for (c, q) in [
+            (closed.limit_cycles(), quad.limit_cycles()),
+            (closed.cycles(), quad.cycles()),
+        ] {
+            assert_eq!(c.len(), q.len(), "{c:?} vs {q:?}");
+            for (x, y) in c.iter().zip(&q) {
+                assert_eq!((x.stable, x.fold), (y.stable, y.fold));
+                worst = worst.max(rel(x.amplitude, y.amplitude));
+            }
+        }
+        let cycles = worst;
+        let mut worst: f64 = 0.0;
+        match (closed.amplitude_pdf(), quad.amplitude_pdf()) {
+            (Ok(pc), Ok(pq)) => {
+                // P to 1e-12 relative where |ln P| ≤ 1; in the far tails (P down to 1e-300,
+                // where the error of ln P is that of its large terms G(A²)/σ1) ln P to 1e-12
+                for i in 1..=200 {
+                    let x = pc.support_end * i as f64 / 201.0;
+                    let (lc, lq) = (pc.log_density(x), pq.log_density(x));
+                    worst = worst.max((lc - lq).abs() / lc.abs().max(1.0));
+                }
+            }
+            (Err(e), Err(f)) => assert_eq!(e.to_string(), f.to_string()),
+            (c, q) => panic!("one PDF only: {:?} vs {:?}", c.err(), q.err()),
+        }
+        [coefficients, cycles, worst]
+    }
+
+    /// The random sets' seed.
+    const SEED: u64 = 36;
+
+    /// The tolerances: the coefficients and the cycles to 1e-12; P(A) to 1e-10. The
+    /// coefficients of the two routes differ by an ulp or two (the weights' roundings), and
+    /// ln P(A) = ln A + G(A²)/σ1 − ln(mass) amplifies that by |G|/σ1 (thousands at small σ1)
+    /// and adds the normalisation's tolerance max(1e-13, 4ε·A/w) for a peak of width w at A.
+    /// Measured on 2026-11-27: coefficients ≤ 5.2e-16, cycles ≤ 1.7e-14 (presets) and 8.4e-16
+    /// (random), P(A) ≤ 1.2e-12 over the presets and ≤ 9.2e-11 over 3000 random sets (both
+    /// variants).
+    fn within(d: [f64; 3]) -> bool {
+        d[0] <= 1e-12 && d[1] <= 1e-12 && d[2] <= 1e-10
+    }
+
+    #[test]
+    fn quadrature_is_the_closed_form() {
+        // the weights ⟨cos^{2k}φ sin²φ⟩ of the periodic trapezoid against the closed form
+        let mut weights: f64 = 0.0;
+        for k in 0..=20 {
+            weights = weights.max((phase_average(k, 1) - phase_average_weight(k)).abs());
+        }
+        assert!(weights <= 1e-15, "weights differ by {weights:e}");
+        // every mixed average against (2i − 1)!!(2j − 1)!!/(2(i + j))!!, i + j ≤ 22 (the
+        // Rayleigh terms' ⟨sin^{2k+2}φ⟩ included)
+        for i in 0..=22usize {
+            for j in 0..=22 - i {
+                let mut exact = 1.0;
+                for k in 0..i {
+                    exact *= (2 * k + 1) as f64;
+                }
+                for k in 0..j {
+                    exact *= (2 * k + 1) as f64;
+                }
+                for k in 1..=(i + j) {
+                    exact /= (2 * k) as f64;
+                }
+                let got = phase_average(i, j);
+                assert!(
+                    (got - exact).abs() <= 1e-15,
+                    "⟨cos^{}sin^{}⟩ = {got} vs {exact}",
+                    2 * i,
+                    2 * j
+                );
+            }
+        }
+        let mut worst = [0.0f64; 3];
+        for p in presets() {
+            let model = Model::from(&p.params);
+            for variant in [Variant::Consistent, Variant::Paper] {
+                let closed = Theory::new(&p.params, variant).unwrap();
+                // the paper family's theory from the model is the closed form, bit for bit
+                let same = Theory::from_model(&model, variant).unwrap();
+                assert_eq!(same.drift_polynomial(), closed.drift_polynomial());
+                assert_eq!(same.fpk_polynomial(), closed.fpk_polynomial());
+                assert!(same.model().is_none() && !same.assumptions().is_empty());
+                let quad = Theory::by_quadrature(&model, variant).unwrap();
+                let d = difference(&closed, &quad);
+                assert!(within(d), "{} {}: {d:?}", p.name, variant.name());
+                for (w, x) in worst.iter_mut().zip(d) {
+                    *w = w.max(x);
+                }
+            }
+        }
+        eprintln!("presets: weights {weights:e}, theories {worst:?} (max relative)");
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, rng_seed: RngSeed::Fixed(SEED), ..ProptestConfig::default() })]
+
+        #[test]
+        fn quadrature_is_the_closed_form_for_random_parameters(p in arb_params(), c0 in 0.5f64..1.5) {
+            let mut p: Params = p;
+            p.damping.coefficients[0] = c0;
+            let model = Model::from(&p);
+            for variant in [Variant::Consistent, Variant::Paper] {
+                let closed = Theory::new(&p, variant).unwrap();
+                let quad = Theory::by_quadrature(&model, variant).unwrap();
+                let d = difference(&closed, &quad);
+                prop_assert!(within(d), "{}: {:?}", variant.name(), d);
+            }
+        }
+    }
+
+    /// A model from the base file with `extra` TOML appended (tables not in the base).
+    fn model(base: &str, extra: &str) -> Model {
+        Model::from_toml_str(&format!("format = 1\n{base}\n{extra}")).unwrap()
+    }
+
+    const LINEAR: &str = "[leading]\nlambda = 1.0\n[restoring]\nomega0 = OMEGA\n";
+
+    #[test]
+    fn multiplicative_noise_gives_the_exact_moment_boundary() {
+        // Ü + 2ζωU̇ + ω²U = Uη_m: the second moments' matrix
+        // M = [[0, 2, 0], [−ω², −2ζω, 1], [2D, −2ω², −4ζω]] is singular at D_c = 2ζω³ (white);
+        // the averaged E[A²] grows at 2(f + m_c)/A + b/A², zero at the theory's D_c
+        for (zeta, omega, tau) in [(0.05, 1.0, 0.0), (0.01, 0.7, 0.0), (0.02, 1.3, 0.4)] {
+            let rate = |d: f64| {
+                let text = LINEAR.replace("OMEGA", &format!("{omega:?}"));
+                let m = model(
+                    &text,
+                    &format!(
+                        "[damping]\nmu0 = {:?}\ncoefficients = [-1.0]\n\
+                         [noise.multiplicative]\nintensity = {d:?}\ncorrelation_time = {tau:?}\n",
+                        2.0 * zeta * omega
+                    ),
+                );
+                let th = Theory::from_model(&m, Variant::Consistent).unwrap();
+                assert!(close(th.drift(1.0), -zeta * omega, 1e-14));
+                2.0 * (th.drift(1.0) + th.drift_correction(1.0)) + th.diffusion_at(1.0)
+            };
+            // the rate is affine in D
+            let (r0, r1) = (rate(0.0), rate(1.0));
+            let averaged = -r0 / (r1 - r0);
+            let exact = 2.0 * zeta * omega.powi(3) * (1.0 + 4.0 * tau * tau * omega * omega);
+            if tau == 0.0 {
+                let det = |d: f64| {
+                    let (w2, z) = (omega * omega, zeta * omega);
+                    // det [[0, 2, 0], [−ω², −2ζω, 1], [2D, −2ω², −4ζω]]
+                    -2.0 * (-w2 * -4.0 * z - 2.0 * d)
+                };
+                assert!(det(exact).abs() < 1e-15, "{}", det(exact));
+            }
+            assert!(close(averaged, exact, 1e-12), "{averaged} vs {exact}");
+            assert!(rate(0.9 * exact) < 0.0 && rate(1.1 * exact) > 0.0);
+        }
+    }
+
+    #[test]
+    fn rayleigh_van_der_pol_cycle_is_its_closed_form() {
+        // Ü − μ(1 − U̇²)U̇ + ω²U = 0: f = μA(1/2 − 3ω²A²/8), the cycle A = 2/(√3 ω); with
+        // λ < 1 the balance c = ω^λcos(πλ/2) and β2, ω1 of Eq. 5: A² = 4(μ − c)/(3μω1²)
+        for (mu, omega, lambda) in [(0.1f64, 1.0f64, 1.0f64), (0.3, 0.8, 1.0), (0.2, 1.1, 0.97)] {
+            let m = model(
+                &format!("[leading]\nlambda = {lambda:?}\n[restoring]\nomega0 = {omega:?}\n"),
+                &format!(
+                    "[damping]\nmu0 = {mu:?}\ncoefficients = [1.0]\nrayleigh = [{:?}]\n",
+                    -mu
+                ),
+            );
+            let th = Theory::from_model(&m, Variant::Consistent).unwrap();
+            let l = lambda;
+            let s = (std::f64::consts::PI * l / 2.0).sin();
+            let c = omega.powf(l) * (std::f64::consts::PI * l / 2.0).cos();
+            let w1 = (omega.powf(3.0 - l) / s).sqrt();
+            let a = (4.0 * (mu - c) / (3.0 * mu * w1 * w1)).sqrt();
+            let cycles = th.limit_cycles();
+            assert_eq!(cycles.len(), 1, "{cycles:?}");
+            assert!(cycles[0].stable);
+            assert!(
+                close(cycles[0].amplitude, a, 1e-13),
+                "{} vs {a}",
+                cycles[0].amplitude
+            );
+            if lambda == 1.0 {
+                assert!(close(a, 2.0 / (3f64.sqrt() * omega), 1e-15));
+            }
+            assert!(th.assumptions().iter().any(|x| x.name.contains("max|h")));
+        }
+    }
+
+    #[test]
+    fn duffing_leaves_the_drift_and_shifts_the_frequency() {
+        let vdp = "[leading]\nlambda = 1.0\n[damping]\nmu0 = 0.1\ncoefficients = [1.0, -1.0]\n";
+        let plain = Theory::from_model(
+            &model(vdp, "[restoring]\nomega0 = 1.0\n"),
+            Variant::Consistent,
+        )
+        .unwrap();
+        let k3 = 0.02;
+        let duffing = Theory::from_model(
+            &model(vdp, &format!("[restoring]\nomega0 = 1.0\ncubic = {k3:?}\n")),
+            Variant::Consistent,
+        )
+        .unwrap();
+        // k_nl drops out of f: the same polynomial, bit for bit; the cycle A = 2
+        assert_eq!(plain.drift_polynomial(), duffing.drift_polynomial());
+        let a = duffing.limit_cycles()[0].amplitude;
+        assert!(close(a, 2.0, 1e-14));
+        // θ̇ = 3k3A²/(8ω): the Duffing frequency ω + 3k3A²/(8ω)
+        assert!(close(
+            duffing.frequency_shift(a),
+            3.0 * k3 * a * a / 8.0,
+            1e-14
+        ));
+        assert_eq!(plain.frequency_shift(a), 0.0);
+        let dw = duffing
+            .assumptions()
+            .iter()
+            .find(|x| x.name.contains("Δω"))
+            .unwrap();
+        assert!(close(dw.value, 3.0 * k3 * a * a / 8.0, 1e-14) && dw.holds);
+        let shift = duffing
+            .assumptions()
+            .iter()
+            .find(|x| x.name.contains("k3"))
+            .unwrap();
+        assert!(close(shift.value, k3 * 4.0, 1e-14) && shift.holds);
+        // a strong shift at the cycle (k3·A² = 0.4 > 0.2) is refused, naming the term
+        let strong = Theory::from_model(
+            &model(vdp, "[restoring]\nomega0 = 1.0\ncubic = 0.1\n"),
+            Variant::Consistent,
+        );
+        let e = strong.unwrap_err().to_string();
+        assert!(
+            e.contains("restoring.cubic = 0.1") && e.contains(&DUFFING_LIMIT.to_string()),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn fractional_damping_enters_as_its_harmonic_balance() {
+        // Ü + K D^α U − μ(1 − U²)U̇ + ω0²U = η_a (OU, no wall): K D^α U ≈ s U + c U̇ with
+        // s = Kω0^α cos(πα/2), c = Kω0^{α−1} sin(πα/2); f = A[(μ − c)/2 − μA²/8], the cycle
+        // A² = 4(μ − c)/μ; σ1 = D/(ω1²(1 + τ²ω1²)), ω1² = ω0² + s
+        let (k, alpha, mu, w0, d, tau) = (0.05f64, 0.5f64, 0.2f64, 0.9f64, 0.01f64, 0.3f64);
+        let m = model(
+            &format!("[leading]\nlambda = 1.0\n[restoring]\nomega0 = {w0:?}\n"),
+            &format!(
+                "[damping]\nmu0 = {mu:?}\ncoefficients = [1.0, -1.0]\n\
+                 [[fractional]]\ncoefficient = {k:?}\norder = {alpha:?}\n\
+                 [noise.additive]\nintensity = {d:?}\ncorrelation_time = {tau:?}\n"
+            ),
+        );
+        let th = Theory::from_model(&m, Variant::Consistent).unwrap();
+        let h = std::f64::consts::FRAC_PI_2 * alpha;
+        let (s, c) = (
+            k * w0.powf(alpha) * h.cos(),
+            k * w0.powf(alpha - 1.0) * h.sin(),
+        );
+        let w1 = (w0 * w0 + s).sqrt();
+        assert!(close(th.equivalents().omega1, w1, 1e-14));
+        assert!(close(
+            th.limit_cycles()[0].amplitude,
+            (4.0 * (mu - c) / mu).sqrt(),
+            1e-13
+        ));
+        let sigma1 = d / (w1 * w1 * (1.0 + tau * tau * w1 * w1));
+        assert!(close(th.diffusion(), sigma1, 1e-14));
+        // the stationary P(A) exists and is normalised
+        let pdf = th.amplitude_pdf().unwrap();
+        assert!((pdf.probability(0.0, pdf.support_end) - 1.0).abs() < 1e-9);
+        assert!(th.describe().contains("fractional"));
+    }
+
+    #[test]
+    fn multiplicative_pdf_solves_the_fpk() {
+        use trirhythm::theory::quadrature::adaptive_gauss_kronrod;
+        // van der Pol (μ = 0.1, ω = 1) with additive and multiplicative noise, no wall:
+        // σ1 = 0.01, b_1 = 0.00125 (white) so r0 = σ1/b_1 = 8: the series (x ≤ 4) and the
+        // partial fractions (beyond) both cover the support
+        for (additive, tau) in [(0.01, 0.0), (0.01, 0.3), (0.0, 0.0)] {
+            let noise = if additive > 0.0 {
+                format!("[noise.additive]\nintensity = {additive:?}\n")
+            } else {
+                String::new()
+            };
+            let m = model(
+                "[leading]\nlambda = 1.0\n[restoring]\nomega0 = 1.0\n",
+                &format!(
+                    "[damping]\nmu0 = 0.1\ncoefficients = [1.0, -1.0]\n{noise}\
+                     [noise.multiplicative]\nintensity = 0.005\ncorrelation_time = {tau:?}\n"
+                ),
+            );
+            let th = Theory::from_model(&m, Variant::Consistent).unwrap();
+            let pdf = th.amplitude_pdf().unwrap();
+            // d ln P/dA = (2(f + m_c) − b′)/b, integrated independently by Gauss–Kronrod
+            let slope = |a: f64| {
+                let b1 = th.multiplicative_diffusion();
+                (2.0 * (th.drift(a) + th.drift_correction(a)) - 2.0 * b1 * a) / th.diffusion_at(a)
+            };
+            let points = [0.3, 0.8, 1.5, 2.0, 2.5, 2.9, 3.3];
+            for w in points.windows(2) {
+                let want = adaptive_gauss_kronrod(&slope, w[0], w[1], 1e-14);
+                let got = pdf.log_density(w[1]) - pdf.log_density(w[0]);
+                assert!(
+                    (got - want).abs() < 1e-10 * want.abs().max(1.0),
+                    "{w:?}: {got} vs {want}"
+                );
+            }
+            // normalised; the mode where 2(f + m_c) = b′, a stable root of the polynomial
+            assert!((pdf.probability(0.0, pdf.support_end) - 1.0).abs() < 1e-9);
+            assert_eq!(pdf.modes.len(), 1);
+            assert!(slope(pdf.modes[0]).abs() < 1e-12, "{}", slope(pdf.modes[0]));
+        }
+        // a vanishing multiplicative noise gives the additive density back
+        let additive = |extra: &str| {
+            let m = model(
+                "[leading]\nlambda = 1.0\n[restoring]\nomega0 = 1.0\n",
+                &format!(
+                    "[damping]\nmu0 = 0.1\ncoefficients = [1.0, -1.0]\n\
+                     [noise.additive]\nintensity = 0.01\n{extra}"
+                ),
+            );
+            Theory::from_model(&m, Variant::Consistent)
+                .unwrap()
+                .amplitude_pdf()
+                .unwrap()
+        };
+        let (plain, tiny) = (
+            additive(""),
+            additive("[noise.multiplicative]\nintensity = 1e-9\n"),
+        );
+        for a in [0.5, 1.0, 2.0, 2.5] {
+            assert!(close(tiny.density(a), plain.density(a), 1e-6), "A = {a}");
+        }
+    }
+
+    /// A random model of the class the theory covers: van der Pol damping with a Rayleigh term,
+    /// up to one fractional term, a weak Duffing term, the wall at 0 or none, additive and
+    /// multiplicative noise (white or OU).
+    fn arb_class() -> impl Strategy<Value = Model> {
+        use trirhythm::model::terms::*;
+        (
+            (0.9f64..=1.0, 0.01f64..0.5, -0.2f64..=0.0, 0.5f64..1.5),
+            (
+                0.0f64..0.1,
+                0.1f64..=1.0,
+                0.0f64..0.01,
+                prop::option::of(0.8f64..=1.0),
+            ),
+            (1e-3f64..0.1, 0.0f64..2.0, 0.0f64..0.01, 0.0f64..2.0),
+        )
+            .prop_map(
+                |((lambda, mu0, d1, omega0), (k, alpha, k3, wall), (d, tau, dm, taum))| Model {
+                    leading: Leading { lambda },
+                    damping: Dissipation {
+                        mu0,
+                        coefficients: vec![1.0, -1.0],
+                        rayleigh: vec![d1],
+                    },
+                    restoring: Restoring {
+                        omega0,
+                        cubic: k3,
+                        quintic: 0.0,
+                    },
+                    fractional: vec![Fractional {
+                        coefficient: k,
+                        order: alpha,
+                    }],
+                    walls: wall
+                        .map(|r| Wall {
+                            position: 0.0,
+                            keep: Keep::Above,
+                            restitution: Restitution::Constant(r),
+                        })
+                        .into_iter()
+                        .collect(),
+                    forcing: None,
+                    noise: Noises {
+                        additive: Some(NoiseTerm {
+                            intensity: d,
+                            correlation_time: tau,
+                        }),
+                        multiplicative: Some(NoiseTerm {
+                            intensity: dm,
+                            correlation_time: taum,
+                        }),
+                        correlation: 0.0,
+                    },
+                    start: Start::default(),
+                },
+            )
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, rng_seed: RngSeed::Fixed(SEED), ..ProptestConfig::default() })]
+
+        #[test]
+        fn class_theories_are_consistent(m in arb_class()) {
+            let th = match Theory::from_model(&m, Variant::Consistent) {
+                Ok(th) => th,
+                // a strong Duffing shift at a large cycle is the one refusal possible here
+                Err(e) => {
+                    prop_assert!(e.to_string().contains("restoring.cubic"), "{}", e);
+                    return Ok(());
+                }
+            };
+            let extrema = th.cycles();
+            for w in extrema.windows(2) {
+                prop_assert!(w[0].amplitude < w[1].amplitude);
+                prop_assert!(w[0].stable != w[1].stable || w[0].fold || w[1].fold);
+            }
+            // each extremum of P(A) is where 2(f + m_c) = b′
+            let b1 = th.multiplicative_diffusion();
+            for c in &extrema {
+                let a = c.amplitude;
+                let terms = 2.0 * (th.drift(a).abs() + th.drift_correction(a).abs()) + 2.0 * b1 * a;
+                let balance = 2.0 * (th.drift(a) + th.drift_correction(a)) - 2.0 * b1 * a;
+                prop_assert!(balance.abs() <= 1e-9 * terms, "A = {}: {} of {}", a, balance, terms);
+            }
+            if let Ok(pdf) = th.amplitude_pdf() {
+                let mass = pdf.probability(0.0, pdf.support_end);
+                prop_assert!((mass - 1.0).abs() < 1e-8, "∫P = {}", mass);
+                prop_assert_eq!(pdf.modes.len(), extrema.iter().filter(|c| c.stable).count());
+            }
+        }
+    }
+
+    #[test]
+    fn the_self_consistent_balance_is_a_fixed_point() {
+        use trirhythm::theory::averaging::{linearise_with, Balance};
+        let m = model(
+            "[leading]\nlambda = 0.9\n[restoring]\nomega0 = 0.8\n",
+            "[damping]\nmu0 = 0.2\ncoefficients = [1.0, -1.0]\n\
+             [[fractional]]\ncoefficient = 0.1\norder = 0.4\n\
+             [noise.additive]\nintensity = 0.01\n",
+        );
+        let lin = linearise_with(&m, Balance::SelfConsistent).unwrap();
+        assert!(close(lin.equivalents.omega1, lin.omega_b, 1e-14));
+        let natural = Theory::from_model(&m, Variant::Consistent).unwrap();
+        let th = Theory::from_model_with(&m, Variant::Consistent, Balance::SelfConsistent).unwrap();
+        let gap = |t: &Theory| {
+            t.assumptions()
+                .iter()
+                .find(|a| a.name == "|ω_b − ω1|/ω1")
+                .unwrap()
+                .value
+        };
+        assert!(
+            gap(&th) < 1e-14 && gap(&natural) > 1e-3,
+            "{} {}",
+            gap(&th),
+            gap(&natural)
+        );
+        assert!(close(th.equivalents().omega1, lin.omega_b, 1e-15));
+        // λ = 1 with no fractional term: ω1 = ω0 already, the same theory
+        let plain = model(
+            "[leading]\nlambda = 1.0\n[restoring]\nomega0 = 0.8\n",
+            "[damping]\nmu0 = 0.2\ncoefficients = [1.0, -1.0]\n",
+        );
+        let (a, b) = (
+            Theory::from_model(&plain, Variant::Consistent).unwrap(),
+            Theory::from_model_with(&plain, Variant::Consistent, Balance::SelfConsistent).unwrap(),
+        );
+        assert!(close(
+            a.limit_cycles()[0].amplitude,
+            b.limit_cycles()[0].amplitude,
+            1e-15
+        ));
+        // the paper variant balances at ω0
+        let e = Theory::from_model_with(&m, Variant::Paper, Balance::SelfConsistent);
+        assert!(e.is_err());
+    }
+
+    #[test]
+    fn the_theory_refuses_what_it_does_not_cover() {
+        let paper = Model::from(&trirhythm::model::preset("fig13a").unwrap().params);
+        let text = paper.to_toml();
+        let cases: [(&str, String, Variant); 7] = [
+            (
+                "wall.0.position = 0.5",
+                text.replace("position = 0.0", "position = 0.5").replace("u0 = 1.0", "u0 = 1.5"),
+                Variant::Consistent,
+            ),
+            (
+                "wall.1.position = 3",
+                format!("{text}\n[[wall]]\nposition = 3.0\nkeep = \"below\"\nrestitution = 0.9\n"),
+                Variant::Consistent,
+            ),
+            (
+                "forcing.amplitude = 0.2",
+                format!("{text}\n[forcing]\namplitude = 0.2\nfrequency = 1.0\n"),
+                Variant::Consistent,
+            ),
+            (
+                "noise.correlation = 0.5",
+                text.replace("correlation = 0.0", "correlation = 0.5\n[noise.multiplicative]\nintensity = 0.01\ncorrelation_time = 0.5"),
+                Variant::Consistent,
+            ),
+            (
+                "damping.rayleigh.0 = -0.1",
+                text.replace("rayleigh = []", "rayleigh = [-0.1]"),
+                Variant::Paper,
+            ),
+            (
+                "wall: none",
+                text.replace("[[wall]]\nposition = 0.0\nkeep = \"above\"\nrestitution = 0.99\n", ""),
+                Variant::Paper,
+            ),
+            (
+                "wall.0.restitution is speed-dependent",
+                text.replace("restitution = 0.99", "restitution = { r0 = 0.99, r_fast = 0.9, speed = 1.0 }"),
+                Variant::Consistent,
+            ),
+        ];
+        for (named, file, variant) in cases {
+            let m = Model::from_toml_str(&file).unwrap_or_else(|e| panic!("{named}: {e}\n{file}"));
+            match Theory::from_model(&m, variant) {
+                Err(e @ Error::NotApplicable { .. }) => {
+                    let msg = e.to_string();
+                    assert!(msg.contains(named), "{named}: {msg}");
+                    assert!(msg.contains("the averaged theory"), "{msg}");
+                }
+                other => panic!("{named}: not refused: {:?}", other.map(|t| t.describe())),
+            }
+        }
+        // the wall at 0 keeping U ≤ 0 is the mirror image (h even, k odd): the same theory
+        let below = Model::from_toml_str(
+            &text
+                .replace("keep = \"above\"", "keep = \"below\"")
+                .replace("u0 = 1.0", "u0 = -1.0"),
+        )
+        .unwrap();
+        let (above, below) = (
+            Theory::by_quadrature(&paper, Variant::Consistent).unwrap(),
+            Theory::from_model(&below, Variant::Consistent).unwrap(),
+        );
+        assert_eq!(above.drift_polynomial(), below.drift_polynomial());
+        assert_eq!(above.fpk_polynomial(), below.fpk_polynomial());
+        // correlated noises without a wall: the cross terms vanish at first order, accepted
+        let free = text
+            .replace("[[wall]]\nposition = 0.0\nkeep = \"above\"\nrestitution = 0.99\n", "")
+            .replace("correlation = 0.0", "correlation = 0.5\n[noise.multiplicative]\nintensity = 0.01\ncorrelation_time = 0.5");
+        let th =
+            Theory::from_model(&Model::from_toml_str(&free).unwrap(), Variant::Consistent).unwrap();
+        assert!(th.multiplicative_diffusion() > 0.0);
+        let _ = DUFFING_LIMIT;
+    }
+}

@@ -184,6 +184,92 @@ impl ModelFileArg {
     }
 }
 
+/// `--model FILE` on the commands of the averaged theory (`docs/model-file.md`, "what the
+/// averaged theory covers").
+#[derive(Debug, Clone, Args)]
+pub struct TheoryModelArg {
+    /// A model file (`trirhythm model show` prints one) in place of --preset: its averaged
+    /// theory by phase quadrature, or the refusal naming the term it does not cover (exit 2);
+    /// --param KEY=VALUE overrides only a model of the paper's family.
+    #[arg(long = "model", value_name = "FILE", conflicts_with = "preset")]
+    pub model: Option<PathBuf>,
+}
+
+impl TheoryModelArg {
+    /// The file's model (none without `--model`), with the `--param` overrides of `params`
+    /// applied when it is of the paper's family (refused otherwise: the file says it).
+    pub fn load(&self, params: &ParamArgs) -> Result<Option<trirhythm::model::Model>> {
+        let Some(path) = &self.model else {
+            return Ok(None);
+        };
+        let model = crate::io::files::read_model(path, "--model")?;
+        if params.params.is_empty() {
+            return Ok(Some(model));
+        }
+        let family = match model.paper_family("--param") {
+            Ok(f) => f,
+            Err(e) => {
+                return bad(format!(
+                    "--param overrides the paper family's parameters; --model {} is outside                      it ({e}): change the file instead",
+                    path.display()
+                ))
+            }
+        };
+        let resolved = ParamArgs {
+            base: Some(family.params),
+            ..params.clone()
+        }
+        .resolve()?;
+        let mut out = trirhythm::model::Model::from(&resolved);
+        if !family.wall {
+            out.walls.clear();
+        }
+        out.start = model.start;
+        Ok(Some(out))
+    }
+
+    /// The paper family's parameters of `--model FILE` for a command that sweeps them (a map,
+    /// branches): the file's model must be the paper's Eq. (1) with its wall at 0, else the
+    /// refusal naming the term. Sets `params.base`; nothing without `--model`.
+    pub fn paper_base(&self, params: &mut ParamArgs, command: &str) -> Result<()> {
+        let Some(path) = &self.model else {
+            return Ok(());
+        };
+        let model = crate::io::files::read_model(path, "--model")?;
+        let refuse = |reason: String| -> Result<()> {
+            Err(anyhow::Error::new(trirhythm::Error::NotApplicable {
+                method: format!("`{command}`"),
+                assumption: "the paper's Eq. (1) with its wall at 0 (it sweeps the paper's \
+                             parameters --x/--y)"
+                    .into(),
+                reason,
+            }))
+            .with_context(|| format!("--model {}", path.display()))
+        };
+        // the theory must apply before anything is swept
+        if let Err(e) = trirhythm::theory::averaging::applies(&model, params.variant()) {
+            return Err(anyhow::Error::new(e))
+                .with_context(|| format!("--model {}", path.display()));
+        }
+        match model.paper_family(&format!("`{command}`")) {
+            Ok(f) if f.wall => {
+                params.base = Some(f.params);
+                Ok(())
+            }
+            Ok(_) => refuse(
+                "wall: none; the map's closed forms are those of the wall at 0: the theory \
+                 commands (cycles, drift, potential, barriers, pdf) take this model"
+                    .into(),
+            ),
+            Err(trirhythm::Error::NotApplicable { reason, .. }) => refuse(format!(
+                "{}; the theory commands (cycles, drift, potential, barriers, pdf) take this model",
+                reason.split(": the engine").next().unwrap_or(&reason)
+            )),
+            Err(e) => Err(anyhow::Error::new(e)),
+        }
+    }
+}
+
 /// `on` for a wall, `off` for none.
 pub fn on_off(wall: bool) -> OnOff {
     if wall {

@@ -1,7 +1,7 @@
 //! Commands of the bifurcation structure: `map` (two-parameter classification with exact fold
 //! curves) and `branches` (one-parameter branch diagrams by continuation).
 
-use crate::args::{parse_axis, Format, OutputArgs, ParamArgs};
+use crate::args::{parse_axis, Format, OutputArgs, ParamArgs, TheoryModelArg};
 use crate::error::bad;
 use crate::io::files::check_destination;
 use crate::io::{emit, num, params_json, progress, Csv, Stream, Temporary};
@@ -34,6 +34,8 @@ same_variants!(WhatArg => What: Rhythmicity, Modes);
 pub struct MapArgs {
     #[command(flatten)]
     pub params: ParamArgs,
+    #[command(flatten)]
+    pub file: TheoryModelArg,
     /// Horizontal axis: KEY=START:STOP:COUNT (KEY as for --param).
     #[arg(long, value_name = "KEY=START:STOP:COUNT", allow_hyphen_values = true)]
     pub x: String,
@@ -81,7 +83,9 @@ fn folds_destination(args: &MapArgs) -> Result<Option<PathBuf>> {
 
 /// `map`: classification of a parameter plane, with fold curves on request.
 pub fn map(args: &MapArgs) -> Result<()> {
-    let base = args.params.resolve()?;
+    let mut params = args.params.clone();
+    args.file.paper_base(&mut params, "map")?;
+    let base = params.resolve()?;
     let variant = args.params.variant();
     let (kx, gx) = parse_axis(&args.x, "--x", true)?;
     let (ky, gy) = parse_axis(&args.y, "--y", true)?;
@@ -161,6 +165,8 @@ fn write_map_csv(
 pub struct BranchArgs {
     #[command(flatten)]
     pub params: ParamArgs,
+    #[command(flatten)]
+    pub file: TheoryModelArg,
     /// The swept parameter: KEY=START:STOP.
     #[arg(long, value_name = "KEY=START:STOP", allow_hyphen_values = true)]
     pub x: String,
@@ -185,7 +191,9 @@ struct BranchDocument<'a> {
 
 /// `branches`: every branch of cycles vs one parameter, traced through its folds.
 pub fn branches(args: &BranchArgs) -> Result<()> {
-    let base = args.params.resolve()?;
+    let mut params = args.params.clone();
+    args.file.paper_base(&mut params, "branches")?;
+    let base = params.resolve()?;
     let variant = args.params.variant();
     let (key, g) = parse_axis(&args.x, "--x", false)?;
     // the continuation takes at least 1/step steps: bound the work before it starts

@@ -86,12 +86,32 @@ fn check(a: &CheckArgs) -> Result<()> {
         ),
         Err(e) => format!("valid, but not stepped yet: {e}"),
     };
+    let theory = averaged_theory(&model);
     stdout_write(
         format!(
-            "{}: a valid model file (format {}); {engine}\n",
+            "{}: a valid model file (format {}); {engine}\n{theory}\n",
             a.file.display(),
             trirhythm::model::FORMAT
         )
         .as_bytes(),
     )
+}
+
+/// Whether the averaged theory applies to `model`, in which variants, or why not.
+fn averaged_theory(model: &Model) -> String {
+    use trirhythm::theory::averaging::{Theory, Variant};
+    match Theory::from_model(model, Variant::Consistent) {
+        Ok(_) => {
+            let variants = if Theory::from_model(model, Variant::Paper).is_ok() {
+                "--variant paper or consistent"
+            } else {
+                "--variant consistent"
+            };
+            format!(
+                "the averaged theory applies ({variants}): equivalents, cycles, drift, potential, \
+                 barriers, pdf take it with --model"
+            )
+        }
+        Err(e) => format!("{e}"),
+    }
 }

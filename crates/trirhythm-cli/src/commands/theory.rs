@@ -1,12 +1,13 @@
 //! Commands of the averaged theory: equivalents, cycles, drift, potential, barriers, pdf.
 
-use crate::args::{Format, Grid, OutputArgs, ParamArgs};
+use crate::args::{Format, Grid, OutputArgs, ParamArgs, TheoryModelArg};
 use crate::error::bad;
 use crate::io::{emit, jlimit, jnum, jvec, params_json, pretty, reading, Csv};
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
-use trirhythm::theory::averaging::{AmplitudePdf, Theory};
+use trirhythm::model::Model;
+use trirhythm::theory::averaging::{AmplitudePdf, Balance, Theory};
 use trirhythm_paper::table::Table;
 use trirhythm_paper::views;
 
@@ -16,20 +17,60 @@ pub struct TheoryArgs {
     #[command(flatten)]
     pub params: ParamArgs,
     #[command(flatten)]
+    pub file: TheoryModelArg,
+    /// Where the fractional terms are balanced: at ω0 (the paper's Eq. 4) or at the linearised
+    /// oscillator's own frequency ω_b = ω1(ω_b) (consistent variant; by quadrature).
+    #[arg(long, value_enum, default_value_t = BalanceArg::Natural)]
+    pub balance: BalanceArg,
+    #[command(flatten)]
     pub output: OutputArgs,
 }
 
+/// `natural` or `self-consistent`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum BalanceArg {
+    /// ω_b = ω0 (Eq. 4).
+    #[default]
+    Natural,
+    /// ω_b = ω1(ω_b).
+    SelfConsistent,
+}
+
 impl TheoryArgs {
+    /// The theory of `--model FILE` (by quadrature, or its refusal), else of the parameters.
     fn theory(&self) -> Result<Theory> {
-        Ok(Theory::new(&self.params.resolve()?, self.params.variant())?)
+        let balance = match self.balance {
+            BalanceArg::Natural => Balance::Natural,
+            BalanceArg::SelfConsistent => Balance::SelfConsistent,
+        };
+        let variant = self.params.variant();
+        let model = match self.file.load(&self.params)? {
+            Some(model) => model,
+            None if balance == Balance::Natural => {
+                return Ok(Theory::new(&self.params.resolve()?, variant)?)
+            }
+            None => Model::from(&self.params.resolve()?),
+        };
+        let th = Theory::from_model_with(&model, variant, balance);
+        match &self.file.model {
+            Some(path) => th.with_context(|| format!("--model {}", path.display())),
+            None => Ok(th?),
+        }
     }
 }
 
-/// A theory document: the parameters, the variant, the equivalents (Eq. 5), then `rest`.
+/// A theory document: the parameters (or the model and the assumptions measured on it), the
+/// variant, the equivalents (Eq. 5), then `rest`.
 fn doc<'a>(th: &Theory, rest: impl IntoIterator<Item = (&'a str, Value)>) -> Result<String> {
     let mut m = serde_json::Map::new();
-    m.insert("params".into(), params_json(th.params()));
+    match th.model() {
+        None => m.insert("params".into(), params_json(th.params())),
+        Some(model) => m.insert("model".into(), json!(model)),
+    };
     m.insert("variant".into(), json!(th.variant().name()));
+    if !th.assumptions().is_empty() {
+        m.insert("assumptions".into(), json!(th.assumptions()));
+    }
     m.insert("equivalents".into(), json!(th.equivalents()));
     m.extend(rest.into_iter().map(|(k, v)| (k.to_string(), v)));
     pretty(&m)
@@ -44,7 +85,17 @@ pub fn equivalents(args: &TheoryArgs) -> Result<()> {
             [
                 ("sigma1", jnum(th.diffusion())),
                 ("loss_rate", jnum(th.loss_rate())),
-            ],
+            ]
+            .into_iter()
+            .chain(th.model().map(|_| {
+                (
+                    "multiplicative",
+                    json!({
+                        "diffusion_b1": jnum(th.multiplicative_diffusion()),
+                        "drift_correction_q": jnum(th.multiplicative_correction()),
+                    }),
+                )
+            })),
         )?,
         Format::Csv => Csv::of(&views::equivalents_table(&th))?,
         Format::Table => reading(&Table {

@@ -6,17 +6,29 @@ use crate::notes::num;
 use crate::table::Table;
 use trirhythm::theory::averaging::{AmplitudePdf, Theory};
 
-/// The notes every table of the averaged theory starts with: the parameters and the variant.
+/// The notes every table of the averaged theory starts with: the parameters (or the model of
+/// the class) and the variant, then the assumptions measured on a model.
 pub fn theory_notes(th: &Theory) -> Vec<String> {
-    vec![
-        format!("params: {}", th.params().describe()),
-        format!("variant: {}", th.variant().name()),
-    ]
+    let what = match th.model() {
+        None => format!("params: {}", th.describe()),
+        Some(_) => th.describe(),
+    };
+    let mut notes = vec![what, format!("variant: {}", th.variant().name())];
+    for a in th.assumptions() {
+        notes.push(format!(
+            "assumption: {} = {} (limit {}: {})",
+            a.name,
+            num(a.value),
+            num(a.limit),
+            if a.holds { "holds" } else { "strained" }
+        ));
+    }
+    notes
 }
 
-/// What the roots of the theory are: `pdf_extrema` (roots of m1, D > 0) or `limit_cycles`.
+/// What the roots of the theory are: `pdf_extrema` (roots of m1, noise) or `limit_cycles`.
 pub fn cycles_kind(th: &Theory) -> &'static str {
-    if th.diffusion() > 0.0 {
+    if th.noisy() {
         "pdf_extrema"
     } else {
         "limit_cycles"
@@ -173,6 +185,17 @@ pub fn equivalents_table(th: &Theory) -> Table {
         ("loss_rate", th.loss_rate()),
     ] {
         t.row([name.to_string(), num(v)]);
+    }
+    // a model of the class: the multiplicative noise's b_1 (b = σ1 + b_1A²) and q (m_c ∋ qA)
+    if th.model().is_some() {
+        t.row([
+            "diffusion_b1".to_string(),
+            num(th.multiplicative_diffusion()),
+        ]);
+        t.row([
+            "drift_correction_q".to_string(),
+            num(th.multiplicative_correction()),
+        ]);
     }
     t
 }

@@ -29,18 +29,37 @@
 //! (Khasminskii). Tests: `tests/averaging.rs` (independent reference values, normalisation,
 //! Eq. 29 relation, joint PDF mass, proptest invariants) and the unit tests below.
 //!
+//! The model class (`general`, [`Theory::from_model`]): the same [`Theory`] from a
+//! [`Model`] — the fractional terms by the Eq. 4 rule, f by exact phase quadrature of h (still a
+//! polynomial in A²), the noise's diffusion b(A) = σ1 + b_1A² and drift correction
+//! m_c = σ1/(2A) + qA (additive and multiplicative, white or OU); the extrema of P(A) are then
+//! the roots of x g(x) + σ1/2 + (q − b_1)x, U_eff = −∫(f + m_c − b′/2). Where the method does
+//! not apply, [`applies`] refuses naming the term, and reports its small parameters
+//! ([`Assumption`]).
+//!
 //! Layout: `variant` (the two forms of the averaged coefficients: loss rate, diffusion, phase
 //! weights), this module (the drift, the potential, cycles, extrema and barriers of [`Theory`]),
-//! `pdf` (the stationary densities, [`AmplitudePdf`]).
+//! `pdf` (the stationary densities, [`AmplitudePdf`]), `shape` (ln P(A) for a constant or an
+//! A-dependent diffusion), `applies` (where the theory applies to a model), `general` (the
+//! theory of a model of the class).
 
+mod applies;
+mod general;
 mod pdf;
+mod shape;
 mod variant;
 
+pub use applies::{
+    applies, Assumption, BALANCE_LIMIT, DAMPING_LIMIT, DUFFING_LIMIT, MEMORY_LIMIT, METHOD,
+};
+pub use general::{
+    linearise, linearise_at, linearise_with, phase_average, Balance, Linearised, PHASE_NODES,
+};
 pub use pdf::{AmplitudePdf, MIN_RELATIVE_WIDTH};
 pub use variant::{phase_average_weight, sgn_harmonic_sum, Variant};
 
 use crate::error::{Error, Result};
-use crate::model::{Equivalents, Params};
+use crate::model::{Equivalents, Model, Params};
 use crate::theory::polynomial::Polynomial;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -150,10 +169,15 @@ pub struct Barrier {
     pub height: f64,
 }
 
-/// The averaged problem: parameters, variant and everything derived from them.
+/// The averaged problem: parameters (or a model of the class), variant and everything derived
+/// from them.
 #[derive(Debug, Clone)]
 pub struct Theory {
+    /// The paper family's parameters; for a model outside it, its projection (μ0, ω0, λ, P,
+    /// the additive D and τ, r or 1), the model itself in `model`.
     params: Params,
+    /// The model, when it is not the paper's Eq. (1) with its wall ([`Theory::from_model`]).
+    model: Option<Box<Model>>,
     variant: Variant,
     eq: Equivalents,
     /// Impact loss rate κ: the drift's impact term is −κA.
@@ -166,8 +190,19 @@ pub struct Theory {
     g_derivative: Polynomial,
     /// ∫₀^x g: ∫₀^A f dA = G(A²)/2.
     g_integral: Polynomial,
-    /// h(x) = A·m1 = x g(x) + σ1/2.
+    /// The extrema of P(A) (2(f + m_c) = b′) as the roots of a polynomial in x:
+    /// x g(x) + σ1/2 + (q − b_1)x (divided by x when σ1 = 0 < b_1); x g(x) + σ1/2 = A·m1 for
+    /// additive noise.
     h: Polynomial,
+    /// A·(f + m_c) = x g(x) + σ1/2 + q x, the FPK drift times A.
+    fpk: Polynomial,
+    /// b_1: the multiplicative noise's diffusion b_1A² (0 without it).
+    multiplicative: f64,
+    /// q: the multiplicative noise's drift correction qA (0 without it).
+    correction: f64,
+    /// The assumptions measured on the model ([`Theory::from_model`]; empty from
+    /// [`Theory::new`]).
+    assumptions: Vec<Assumption>,
 }
 
 impl Theory {
@@ -185,22 +220,61 @@ impl Theory {
         }
         let loss_rate = eq.loss_rate(variant, r);
         let sigma1 = eq.diffusion(variant, params.noise_intensity, params.correlation_time);
-        let mut gc: Vec<f64> = params
+        let gc: Vec<f64> = params
             .damping
             .coefficients
             .iter()
             .enumerate()
             .map(|(k, &c)| eq.mu1 * if k == 0 { eq.beta1 } else { c } * phase_average_weight(k))
             .collect();
-        gc[0] -= loss_rate;
-        let g = Polynomial::new(gc);
+        Ok(Theory::assemble(
+            params.clone(),
+            variant,
+            eq,
+            loss_rate,
+            Polynomial::new(gc),
+            sigma1,
+            0.0,
+            0.0,
+        ))
+    }
+
+    /// The theory from its averaged coefficients: g without the loss, the loss rate κ, the
+    /// additive diffusion σ1, the multiplicative b_1 and q.
+    #[allow(clippy::too_many_arguments)]
+    fn assemble(
+        params: Params,
+        variant: Variant,
+        eq: Equivalents,
+        loss_rate: f64,
+        mut g: Polynomial,
+        sigma1: f64,
+        multiplicative: f64,
+        correction: f64,
+    ) -> Theory {
+        g.coefficients[0] -= loss_rate;
         let g_integral = g.integral();
         let g_derivative = g.derivative();
-        let mut hc = vec![sigma1 / 2.0];
-        hc.extend(g.coefficients.iter().copied());
-        let h = Polynomial::new(hc);
-        Ok(Theory {
-            params: params.clone(),
+        let shifted = |shift: f64| {
+            let mut c = vec![sigma1 / 2.0];
+            c.extend(g.coefficients.iter().copied());
+            if shift != 0.0 {
+                c[1] += shift;
+            }
+            Polynomial::new(c)
+        };
+        let fpk = shifted(correction);
+        let h = if sigma1 == 0.0 && multiplicative > 0.0 {
+            // x g + (q − b_1)x over x: the extrema away from A = 0
+            let mut c = g.coefficients.clone();
+            c[0] += correction - multiplicative;
+            Polynomial::new(c)
+        } else {
+            shifted(correction - multiplicative)
+        };
+        Theory {
+            params,
+            model: None,
             variant,
             eq,
             loss_rate,
@@ -209,12 +283,47 @@ impl Theory {
             g_derivative,
             g_integral,
             h,
-        })
+            fpk,
+            multiplicative,
+            correction,
+            assumptions: Vec::new(),
+        }
     }
 
-    /// The parameters.
+    /// The parameters: the paper family's, or for a model outside it ([`Theory::model`]) its
+    /// projection μ0, ω0, λ, P(U), the additive D and τ and r (1 without a wall).
     pub fn params(&self) -> &Params {
         &self.params
+    }
+
+    /// The model of the class the theory was averaged from, when it is not the paper's Eq. (1)
+    /// with its wall.
+    pub fn model(&self) -> Option<&Model> {
+        self.model.as_deref()
+    }
+
+    /// What the theory is of, in one line: `key=value` pairs for the paper family, else the
+    /// model's fields.
+    pub fn describe(&self) -> String {
+        match &self.model {
+            None => self.params.describe(),
+            Some(m) => {
+                let lines: Vec<String> = m
+                    .to_toml()
+                    .lines()
+                    .map(str::trim)
+                    .filter(|l| !l.is_empty() && !l.starts_with('#') && !l.starts_with("format"))
+                    .map(String::from)
+                    .collect();
+                format!("model: {}", lines.join(" "))
+            }
+        }
+    }
+
+    /// The assumptions measured on the model (from [`Theory::from_model`]; empty from
+    /// [`Theory::new`]).
+    pub fn assumptions(&self) -> &[Assumption] {
+        &self.assumptions
     }
 
     /// The variant.
@@ -232,9 +341,47 @@ impl Theory {
         self.loss_rate
     }
 
-    /// σ1, the amplitude diffusion (Eq. 26).
+    /// σ1, the amplitude diffusion (Eq. 26) of the additive noise.
     pub fn diffusion(&self) -> f64 {
         self.sigma1
+    }
+
+    /// b(A) = σ1 + b_1A², the diffusion of the amplitude with multiplicative noise.
+    pub fn diffusion_at(&self, a: f64) -> f64 {
+        self.sigma1 + self.multiplicative * a * a
+    }
+
+    /// b_1 of the multiplicative noise's diffusion b_1A² (0 without it).
+    pub fn multiplicative_diffusion(&self) -> f64 {
+        self.multiplicative
+    }
+
+    /// q of the multiplicative noise's drift correction qA (0 without it).
+    pub fn multiplicative_correction(&self) -> f64 {
+        self.correction
+    }
+
+    /// m_c(A) = σ1/(2A) + qA, the drift correction of the noise (+∞ at A = 0 with σ1 > 0).
+    pub fn drift_correction(&self, a: f64) -> f64 {
+        let additive = if self.sigma1 > 0.0 {
+            self.sigma1 / (2.0 * a)
+        } else {
+            0.0
+        };
+        additive + self.correction * a
+    }
+
+    /// Whether the amplitude diffuses (additive or multiplicative noise).
+    pub fn noisy(&self) -> bool {
+        self.sigma1 > 0.0 || self.multiplicative > 0.0
+    }
+
+    /// The phase velocity's shift at amplitude A from the restoring force's nonlinearity:
+    /// β2⟨cos φ·k_nl(A cos φ)⟩/(ω1A) = β2(3k3A²/8 + 5k5A⁴/16)/ω1 (0 for the paper family).
+    pub fn frequency_shift(&self, a: f64) -> f64 {
+        let Some(m) = &self.model else { return 0.0 };
+        let (k3, k5, x) = (m.restoring.cubic, m.restoring.quintic, a * a);
+        self.eq.beta2 * (3.0 * k3 * x / 8.0 + 5.0 * k5 * x * x / 16.0) / self.eq.omega1
     }
 
     /// f(A)/A as a polynomial in x = A².
@@ -242,7 +389,8 @@ impl Theory {
         &self.g
     }
 
-    /// A·m1(A) as a polynomial in x = A².
+    /// A·m1(A) as a polynomial in x = A² (additive noise; with multiplicative noise the
+    /// polynomial whose positive roots are the extrema of P(A)).
     pub fn fpk_polynomial(&self) -> &Polynomial {
         &self.h
     }
@@ -271,22 +419,28 @@ impl Theory {
         }
     }
 
-    /// FPK drift m1(A) = f(A) + σ1/(2A) (Eq. 26); at A = 0 its limit: +∞ when σ1 > 0, else
-    /// f(0) = 0.
+    /// FPK drift m1(A) = f(A) + m_c(A), m_c = σ1/(2A) + qA (Eq. 26 for additive noise); at
+    /// A = 0 its limit: +∞ when σ1 > 0, else f(0) = 0.
     pub fn fpk_drift(&self, a: f64) -> f64 {
         if a == 0.0 {
-            return if self.h.eval(0.0) > 0.0 {
+            return if self.fpk.eval(0.0) > 0.0 {
                 f64::INFINITY
             } else {
                 0.0
             };
         }
-        self.h.eval(a * a) / a
+        self.fpk.eval(a * a) / a
     }
 
-    /// U_eff(A) = −∫₀^A f − (σ1/2) ln A (Eq. 23).
+    /// U_eff(A) = −∫₀^A f − (σ1/2) ln A (Eq. 23); with multiplicative noise
+    /// −∫₀^A (f + m_c − b′/2), whose wells and crests are the modes and antimodes of P(A).
     pub fn potential(&self, a: f64) -> f64 {
-        let poly = -0.5 * self.g_integral.eval(a * a);
+        let x = a * a;
+        let mut poly = -0.5 * self.g_integral.eval(x);
+        let shift = self.correction - self.multiplicative;
+        if shift != 0.0 {
+            poly -= 0.5 * shift * x;
+        }
         if self.sigma1 > 0.0 {
             poly - 0.5 * self.sigma1 * a.ln()
         } else {
@@ -300,9 +454,10 @@ impl Theory {
         positive_roots(&self.g)
     }
 
-    /// Every positive root of m1 (the extrema of P(A)) when D > 0, else the limit cycles.
+    /// Every positive root of m1 (the extrema of P(A)) when the amplitude diffuses, else the
+    /// limit cycles.
     pub fn cycles(&self) -> Vec<Cycle> {
-        if self.sigma1 > 0.0 {
+        if self.noisy() {
             positive_roots(&self.h)
         } else {
             self.limit_cycles()
@@ -317,13 +472,13 @@ impl Theory {
     /// Number of stable limit cycles from the Sturm count alone (no root isolation): the
     /// roots of g alternate in slope and g is negative at +∞ when the leading coefficient is.
     pub fn stable_count_fast(&self) -> usize {
-        stable_count(if self.sigma1 > 0.0 { &self.h } else { &self.g })
+        stable_count(if self.noisy() { &self.h } else { &self.g })
     }
 
     /// Extrema of U_eff, ascending in A (with the rest state A = 0 when D = 0).
     pub fn extrema(&self) -> Vec<Extremum> {
         let mut out = Vec::new();
-        if self.sigma1 == 0.0 {
+        if !self.noisy() {
             out.push(Extremum {
                 amplitude: 0.0,
                 potential: 0.0,

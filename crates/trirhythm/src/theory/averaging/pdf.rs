@@ -12,9 +12,9 @@
 //! Tests: `tests/averaging.rs` (normalisation, Eq. 29 relation, joint PDF mass, reference
 //! values).
 
+use super::shape::Shape;
 use super::{positive_roots, Cycle, Theory};
 use crate::error::{Error, Exact, Readable, Result};
-use crate::theory::polynomial::Polynomial;
 use crate::theory::quadrature::integrate_with_breakpoints;
 use std::f64::consts::PI;
 
@@ -25,10 +25,11 @@ pub const MIN_RELATIVE_WIDTH: f64 = 1e-12;
 /// The stationary amplitude PDF P(A) = N0 (A/σ1) e^{S(A)}, held in log form.
 #[derive(Debug, Clone)]
 pub struct AmplitudePdf {
-    sigma1: f64,
     omega1: f64,
-    g_integral: Polynomial,
-    /// The highest mode A_p, and G(A_p²) = ∫₀^{A_p²} g as a double-double (hi, lo).
+    /// ln P(A) = ln A + w(A²)/divisor + const.
+    shape: Shape,
+    /// The highest mode A_p, and w(A_p²) (G(A_p²) = ∫₀^{A_p²} g for additive noise) as a
+    /// double-double (hi, lo).
     peak: f64,
     peak_g: (f64, f64),
     /// ln ∫ P̃ dA for P̃(A) = (A/A_p) e^{S(A) − S(A_p)}: ln P(A) = ln P̃(A) − log_mass.
@@ -48,8 +49,8 @@ pub struct AmplitudePdf {
 
 impl AmplitudePdf {
     pub(super) fn new(th: &Theory) -> Result<Self> {
-        let s1 = th.sigma1;
         refuse_undefined(th)?;
+        let shape = shape_of(th);
         let extrema = positive_roots(&th.h);
         let modes: Vec<f64> = extrema
             .iter()
@@ -61,16 +62,15 @@ impl AmplitudePdf {
             .filter(|c| !c.stable && !c.fold)
             .map(|c| c.amplitude)
             .collect();
-        let gi = th.g_integral.clone();
-        let peak = highest_mode(&gi, s1, &modes)?;
-        let peak_g = gi.eval_double_double(peak * peak);
-        let rel = |a: f64| relative_log(&gi, s1, peak, peak_g, a);
+        let peak = highest_mode(&shape, &modes)?;
+        let peak_g = shape.w(peak * peak);
+        let rel = |a: f64| relative_log(&shape, peak, peak_g, a);
         // Upper limit: beyond the last extremum φ decreases; find φ = φmax − 46.
         let last = extrema.last().map(|c| c.amplitude).unwrap_or(1.0);
         let hi = support_end(&rel, last)?;
-        let mode_widths: Vec<f64> = modes.iter().map(|&m| peak_width(th, m)).collect();
+        let mode_widths: Vec<f64> = modes.iter().map(|&m| peak_width(&shape, m)).collect();
         refuse_delta(th, &modes, &mode_widths)?;
-        let (cuts, resolution) = breakpoints(th, &extrema, hi);
+        let (cuts, resolution) = breakpoints(&shape, &extrema, hi);
         let scaled = |a: f64| rel(a).exp();
         let tolerance = (4.0 * f64::EPSILON * resolution).max(1e-13);
         let mass = integrate_with_breakpoints(&scaled, &cuts, tolerance);
@@ -83,9 +83,8 @@ impl AmplitudePdf {
             });
         }
         Ok(AmplitudePdf {
-            sigma1: s1,
             omega1: th.eq.omega1,
-            g_integral: gi,
+            shape,
             peak,
             peak_g,
             log_mass: mass.ln(),
@@ -102,7 +101,7 @@ impl AmplitudePdf {
         if a <= 0.0 {
             return f64::NEG_INFINITY;
         }
-        relative_log(&self.g_integral, self.sigma1, self.peak, self.peak_g, a) - self.log_mass
+        relative_log(&self.shape, self.peak, self.peak_g, a) - self.log_mass
     }
 
     /// P(A).
@@ -133,8 +132,7 @@ impl AmplitudePdf {
         }
         let x = u * u + v * v / (self.omega1 * self.omega1);
         // ln[P(A)/A] = S(A) − S(A_p) − ln A_p − log_mass, finite at A = 0.
-        let dg = self.g_integral.eval_double_double(x);
-        ((dg.0 - self.peak_g.0) + (dg.1 - self.peak_g.1)) / self.sigma1
+        self.shape.difference(self.shape.w(x), self.peak_g)
             - self.peak.ln()
             - self.log_mass
             - (PI * self.omega1).ln()
@@ -176,23 +174,82 @@ impl AmplitudePdf {
     }
 }
 
-/// ln[(A/A_p) e^{S(A) − S(A_p)}] with S(A) − S(A_p) = [G(A²) − G(A_p²)]/σ1 in double-double.
-fn relative_log(gi: &Polynomial, s1: f64, peak: f64, peak_g: (f64, f64), a: f64) -> f64 {
+/// ln[(A/A_p) e^{S(A) − S(A_p)}] with S(A) − S(A_p) = [G(A²) − G(A_p²)]/σ1 in double-double
+/// (additive noise; [`Shape`] in general).
+fn relative_log(shape: &Shape, peak: f64, peak_g: (f64, f64), a: f64) -> f64 {
     if a <= 0.0 {
         return f64::NEG_INFINITY;
     }
-    let g = gi.eval_double_double(a * a);
-    (a / peak).ln() + ((g.0 - peak_g.0) + (g.1 - peak_g.1)) / s1
+    (a / peak).ln() + shape.difference(shape.w(a * a), peak_g)
+}
+
+/// The density's shape: the paper's (constant σ1) or with the multiplicative noise's b(A).
+fn shape_of(th: &Theory) -> Shape {
+    if th.multiplicative == 0.0 && th.correction == 0.0 {
+        return Shape::Additive {
+            g_integral: th.g_integral.clone(),
+            g: th.g.clone(),
+            g_derivative: th.g_derivative.clone(),
+            sigma1: th.sigma1,
+        };
+    }
+    let mut p = th.g.clone();
+    p.coefficients[0] += th.correction;
+    Shape::General {
+        p_derivative: p.derivative(),
+        p,
+        sigma1: th.sigma1,
+        b1: th.multiplicative,
+    }
 }
 
 /// Refuse a density that does not exist: no noise (σ1 = 0), or f(A) not tending to −∞.
 fn refuse_undefined(th: &Theory) -> Result<()> {
-    if th.sigma1 <= 0.0 {
+    if th.multiplicative > 0.0 {
+        // ln P ~ (2(g0 + q)/b_1 − 2) ln A at A → 0 without additive noise, and
+        // (2(g0 + q)/b_1 − 2) ln A at A → ∞ when g is a constant
+        let p0 = th.g.coefficients[0] + th.correction;
+        let exponent = 2.0 * p0 / th.multiplicative - 2.0;
+        let why = |at: &str| Error::Undefined {
+            what: "stationary amplitude PDF",
+            why: format!(
+                "P(A) ~ A^{} at {at} (the multiplicative noise's b(A) = σ1 + b_1A² with \
+                 σ1 = {}, b_1 = {}, and f(A) + m_c(A) ≈ {}·A there): no normalisable \
+                 density with a peak at A > 0 (that needs an exponent > 0 at A → 0 and \
+                 < −1 at A → ∞)",
+                Readable(exponent),
+                Readable(th.sigma1),
+                Readable(th.multiplicative),
+                Readable(p0)
+            ),
+        };
+        if th.sigma1 == 0.0 && exponent <= 0.0 {
+            return Err(why("A → 0 (no additive noise)"));
+        }
+        if th.g.degree() == 0 && exponent >= -1.0 {
+            return Err(why("A → ∞"));
+        }
+        if th.g.degree() == 0 {
+            return Ok(());
+        }
+    } else if th.sigma1 <= 0.0 {
         return Err(Error::Undefined {
             what: "stationary amplitude PDF",
             why: format!(
                 "needs noise: D = {} gives σ1 = 0",
                 th.params.noise_intensity
+            ),
+        });
+    }
+    if th.g.leading() >= 0.0 && th.model.is_some() {
+        return Err(Error::Undefined {
+            what: "stationary amplitude PDF",
+            why: format!(
+                "P(A) is not normalisable: f(A) must tend to −∞ for large A, which needs the \
+                 highest power of A in f (from damping.coefficients and damping.rayleigh) to \
+                 have a negative coefficient; here it is {} A^{}",
+                crate::error::Readable(th.g.leading()),
+                2 * th.g.degree() + 1
             ),
         });
     }
@@ -216,8 +273,8 @@ fn refuse_undefined(th: &Theory) -> Result<()> {
 /// The highest mode of P(A). φ(A) = ln A + S(A), S = G(A²)/σ1, is huge when σ1 is small: only
 /// differences from the highest mode are ever formed, in double-double, so they keep full
 /// precision.
-fn highest_mode(gi: &Polynomial, s1: f64, modes: &[f64]) -> Result<f64> {
-    let phi = |a: f64| a.ln() + gi.eval(a * a) / s1;
+fn highest_mode(shape: &Shape, modes: &[f64]) -> Result<f64> {
+    let phi = |a: f64| shape.phi(a);
     modes
         .iter()
         .copied()
@@ -253,9 +310,8 @@ fn support_end(rel: &dyn Fn(f64) -> f64, last: f64) -> Result<f64> {
 /// Width |φ″(m)|^{−1/2} of the peak at the mode m (1e−3·m where the curvature vanishes). A
 /// peak of width w at amplitude m cannot be resolved better than ε·m/w relative: the
 /// quadrature nodes themselves are rounded to ulp(m).
-fn peak_width(th: &Theory, m: f64) -> f64 {
-    let x = m * m;
-    let curvature = -1.0 / x + (2.0 * th.g.eval(x) + 4.0 * x * th.g_derivative.eval(x)) / th.sigma1;
+fn peak_width(shape: &Shape, m: f64) -> f64 {
+    let curvature = shape.curvature(m * m);
     if curvature < 0.0 {
         (-curvature).sqrt().recip()
     } else {
@@ -290,7 +346,7 @@ fn refuse_delta(th: &Theory, modes: &[f64], mode_widths: &[f64]) -> Result<()> {
 /// The quadrature's breakpoints on [0, hi]: the extrema and, around each mode, m ± w·2^k with
 /// w the peak's width, so that no Gauss–Kronrod panel is much wider than the peak it holds;
 /// with the largest m/w (the resolution the tolerance must respect).
-fn breakpoints(th: &Theory, extrema: &[Cycle], hi: f64) -> (Vec<f64>, f64) {
+fn breakpoints(shape: &Shape, extrema: &[Cycle], hi: f64) -> (Vec<f64>, f64) {
     let mut cuts: Vec<f64> = vec![0.0, hi];
     let mut resolution: f64 = 0.0;
     for (i, c) in extrema.iter().enumerate() {
@@ -302,7 +358,7 @@ fn breakpoints(th: &Theory, extrema: &[Cycle], hi: f64) -> (Vec<f64>, f64) {
             continue;
         }
         let m = c.amplitude;
-        let w = peak_width(th, m);
+        let w = peak_width(shape, m);
         resolution = resolution.max(m / w);
         let left = if i > 0 { extrema[i - 1].amplitude } else { 0.0 };
         let right = extrema.get(i + 1).map_or(hi, |n| n.amplitude.min(hi));
