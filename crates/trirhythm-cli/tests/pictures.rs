@@ -86,8 +86,8 @@ fn every_picture_states_what_it_shows() {
             );
         }
         for t in &texts {
-            let negative_zero =
-                t.starts_with("-0") && t.trim_start_matches(['-', '0', '.']).is_empty();
+            let negative_zero = (t.starts_with("-0") || t.starts_with("\u{2212}0"))
+                && t.trim_start_matches(['-', '\u{2212}', '0', '.']).is_empty();
             assert!(!negative_zero, "{name}: tick label {t:?}");
         }
         let png = std::fs::metadata(path.with_extension("png")).unwrap();

@@ -643,13 +643,21 @@ pub fn tick_formatter(range: &Range<f64>, ticks: usize) -> impl Fn(&f64) -> Stri
     let exponent = big >= 1e5 || (big > 0.0 && big < 1e-3);
     move |v: &f64| {
         let v = *v;
-        if v.abs() <= span * 1e-9 {
-            return "0".into();
-        }
-        if exponent {
+        // zero in the axis' format ("0.00" among "0.05"), negatives with the minus sign
+        let text = if v.abs() <= span * 1e-9 {
+            if exponent {
+                "0".to_string()
+            } else {
+                format!("{:.decimals$}", 0.0)
+            }
+        } else if exponent {
             times_ten(v, 3)
         } else {
             format!("{v:.decimals$}")
+        };
+        match text.strip_prefix('-') {
+            Some(rest) => format!("\u{2212}{rest}"),
+            None => text,
         }
     }
 }
@@ -830,7 +838,8 @@ fn framed_with<'a, DB: Backend>(
 ) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>> {
     init_fonts();
     let inset = size == ChartSize::Inset;
-    let ticks = if inset { 4 } else { 8 };
+    // (an inset asks for six: plotters' 1-2-5 steps then give it four or more on most ranges)
+    let ticks = if inset { 6 } else { 8 };
     let tick = font_px(TICK);
     let desc = font_px(AXIS_DESC);
     let widest = |f: &dyn Fn(&f64) -> String, r: &Range<f64>| {

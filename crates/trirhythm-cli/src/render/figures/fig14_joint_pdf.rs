@@ -87,7 +87,7 @@ picture!(Fig14, |self, root| size (2 * PANEL.0 + BAR, 4 * PANEL.1), draw {
                     100.0 * p.mc_outside
                 )
             } else {
-                format!("({mc_label}) r = {}, MC NOT STATIONARY", p.r)
+                format!("({mc_label}) r = {}, Monte Carlo: not stationary", p.r)
             },
             (&p.u_edges, &p.v_edges),
             &p.mc,

@@ -176,9 +176,12 @@ fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Resul
         }
     }
     c.draw_series(rects).map_err(pe)?;
+    // each fold on a white halo: red alone has the grey of the blue and green regions
     for curve in &p.folds.curves {
         let pts: Vec<(f64, f64)> = curve.points.iter().map(|q| (q.x / sx, q.y / sy)).collect();
-        c.draw_series(LineSeries::new(pts, FOLD.stroke_width(2)))
+        c.draw_series(LineSeries::new(pts.clone(), WHITE.stroke_width(stroke(4))))
+            .map_err(pe)?;
+        c.draw_series(LineSeries::new(pts, FOLD.stroke_width(stroke(2))))
             .map_err(pe)?;
     }
     for curve in p.printed.iter().flat_map(|f| &f.curves) {
