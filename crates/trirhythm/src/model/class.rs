@@ -67,6 +67,33 @@ pub struct PaperFamily {
     pub start: (f64, f64),
 }
 
+/// The terms of the class beyond the paper's family that the engine's General kernel steps
+/// (`engine::stepper::general`): the odd restoring terms k3U³ + k5U⁵, the Rayleigh damping
+/// Σ d_k U̇^{2k} in h, and the harmonic forcing F cos(Ωt + φ). The rest of the equation (μ0P(U),
+/// ω0, λ, the noise, the wall) is the [`PaperFamily`] beside it ([`Model::engine_terms`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct GeneralTerms {
+    /// k3, the coefficient of U³ in k(U).
+    pub cubic: f64,
+    /// k5, the coefficient of U⁵ in k(U).
+    pub quintic: f64,
+    /// d_k, the coefficient of U̇^{2k} in h (`rayleigh[0]` multiplies U̇²); trailing zeros
+    /// dropped.
+    pub rayleigh: Vec<f64>,
+    /// F cos(Ωt + φ), with F ≠ 0.
+    pub forcing: Option<Harmonic>,
+}
+
+impl GeneralTerms {
+    /// Whether every term is absent (the paper's family).
+    pub fn is_empty(&self) -> bool {
+        self.cubic == 0.0
+            && self.quintic == 0.0
+            && self.rayleigh.is_empty()
+            && self.forcing.is_none()
+    }
+}
+
 impl From<&Params> for Model {
     /// The paper's Eq. (1) of `p`: the wall at 0 with constant r, additive noise (D, τ) (kept
     /// even at D = 0, so that τ survives), the default start (1, 0). Lossless:
@@ -311,6 +338,57 @@ impl Model {
             wall,
             start: (self.start.u0, self.start.v0),
         })
+    }
+
+    /// The model as the engine steps it: the paper family's part ([`Model::paper_family`]) and
+    /// the General kernel's terms (Duffing k3, k5; Rayleigh d_k; harmonic forcing), None when
+    /// there are none (the paper's kernel, the paper's bits). Refused by name with
+    /// [`Error::NotApplicable`] for `method`: fractional terms K·D^αU, a wall off 0, below it
+    /// or two walls, a speed-dependent restitution, multiplicative noise (as by
+    /// [`Model::paper_family`]), and the General kernel's terms together with a wall (its
+    /// impacts are not stepped yet). Terms present with a zero coefficient are absent.
+    pub fn engine_terms(&self, method: &str) -> Result<(PaperFamily, Option<GeneralTerms>)> {
+        self.validate()?;
+        let mut rayleigh = self.damping.rayleigh.clone();
+        while rayleigh.last() == Some(&0.0) {
+            rayleigh.pop();
+        }
+        let terms = GeneralTerms {
+            cubic: self.restoring.cubic,
+            quintic: self.restoring.quintic,
+            rayleigh,
+            forcing: self.forcing.filter(|f| f.amplitude != 0.0),
+        };
+        let mut paper = self.clone();
+        paper.restoring.cubic = 0.0;
+        paper.restoring.quintic = 0.0;
+        paper.damping.rayleigh.clear();
+        paper.forcing = None;
+        let family = paper.paper_family(method)?;
+        if terms.is_empty() {
+            return Ok((family, None));
+        }
+        if family.wall {
+            let field = if terms.cubic != 0.0 {
+                "restoring.cubic"
+            } else if terms.quintic != 0.0 {
+                "restoring.quintic"
+            } else if !terms.rayleigh.is_empty() {
+                "damping.rayleigh"
+            } else {
+                "forcing.amplitude"
+            };
+            return Err(Error::NotApplicable {
+                method: method.to_string(),
+                assumption: "no wall with the General kernel's terms (Duffing, Rayleigh, forcing)"
+                    .to_string(),
+                reason: format!(
+                    "{field} with wall.0: the engine does not step it yet (the General kernel \
+                     runs without a wall; remove [[wall]] or the term)"
+                ),
+            });
+        }
+        Ok((family, Some(terms)))
     }
 
     /// The damping polynomial P(U) of h = μ0·P(U) + ….

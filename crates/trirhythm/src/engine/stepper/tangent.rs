@@ -56,7 +56,7 @@
 //!    perturbation of where the wall is met is all in δθ), its known part and the weight of g
 //!    at its end move with θ ([`History::current_split_rate`]) and so do its length and its
 //!    predictor weight: the passes are differentiated in (len, w) too
-//!    (`Rhs::advance_tangent_moving`).
+//!    (`Affine::advance_tangent_moving`).
 //! 5. **The split piece in the tangent memory.** The reference's split piece (g_n → g₋ on
 //!    [t_n, t*], g₊ → g_{n+1} on [t*, t_{n+1}]) enters every later J^λ through integrals whose
 //!    limits move with θ. With its values held, ∂/∂θ of the piece is exact for any kernel: a
@@ -263,8 +263,12 @@ fn fold_theta(piece: &Piece, d: &mut Split, dtheta: f64) {
 }
 
 impl Stepper {
-    /// δ(μP(U)V − ω²U) at the current node along (δU, δV).
+    /// δ(μP(U)V − ω²U) at the current node along (δU, δV) (of h(U, V)V − k(U) for the
+    /// General kernel).
     fn drift_derivative(&self, du: f64, dv: f64) -> f64 {
+        if let Some(g) = &self.general {
+            return g.drift_derivative(self.u, self.v, du, dv);
+        }
         (self.rhs.damping_slope(self.u) * self.v - self.rhs.omega2) * du
             + self.rhs.damping(self.u) * dv
     }
@@ -272,6 +276,9 @@ impl Stepper {
     /// Advance one step Δt, the tangent `t` with it (module docs). The path is advanced exactly
     /// as by [`Stepper::step`], bit for bit.
     pub(crate) fn step_with_tangent(&mut self, t: &mut Tangent) -> Result<()> {
+        if self.general.is_some() {
+            return self.step_general_with_tangent(t);
+        }
         let h = self.h;
         let b = self.begin();
         let free = self
@@ -288,6 +295,30 @@ impl Stepper {
         let a1 = self.set_node(end.u1, end.v1);
         let ddrift = self.drift_derivative_at(a1, self.rhs.damping_slope(end.u1), &end);
         self.complete_with_tangent(t, &b, end, ddrift);
+        Ok(())
+    }
+
+    /// [`Stepper::step_with_tangent`] of a General path (no wall: a smooth step): the
+    /// derivative of [`super::general::General::advance`], the forcing (noise and phase)
+    /// frozen.
+    fn step_general_with_tangent(&mut self, t: &mut Tangent) -> Result<()> {
+        let (b, free) = self.begin_general();
+        let (u1, v1) = free.end();
+        let dknown = t.base + t.history.value() + self.wl * t.drift;
+        let g = self.general.as_deref().expect("a General path");
+        let (du1, dv1) = g.advance_tangent(&free, (b.u, b.v), (t.u, t.v, t.drift), dknown);
+        let dgl = t.drift;
+        self.end_general(&b, u1, v1)?;
+        let g = self.general.as_deref().expect("a General path");
+        let ddrift = g.drift_derivative(u1, v1, du1, dv1);
+        t.history.push(Piece {
+            left: dgl,
+            right: ddrift,
+            split: None,
+        });
+        t.u = du1;
+        t.v = dv1;
+        t.drift = ddrift;
         Ok(())
     }
 
