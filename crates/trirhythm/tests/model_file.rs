@@ -207,6 +207,20 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
             other => panic!("{field}: expected a refusal, got {other:?}"),
         }
         assert_eq!(m.paper_params(), None, "{field}");
+        // the General kernel's terms (Duffing, Rayleigh, forcing) are stepped without a wall
+        let general = [
+            "damping.rayleigh.1",
+            "restoring.cubic",
+            "restoring.quintic",
+            "forcing.amplitude",
+        ];
+        if general.contains(&field) {
+            let mut free = m.clone();
+            free.walls.clear();
+            let p = Problem::from_model(&free).unwrap_or_else(|e| panic!("{field}: {e}"));
+            assert!(p.oscillator().terms().is_some(), "{field}");
+            assert!(!p.wall(), "{field}");
+        }
     }
     // present with a zero coefficient is absent: the same problem
     let mut zero = base.clone();

@@ -373,8 +373,17 @@ impl Model {
                 "restoring.cubic"
             } else if terms.quintic != 0.0 {
                 "restoring.quintic"
-            } else if !terms.rayleigh.is_empty() {
-                "damping.rayleigh"
+            } else if let Some(k) = terms.rayleigh.iter().position(|&d| d != 0.0) {
+                return Err(Error::NotApplicable {
+                    method: method.to_string(),
+                    assumption: "no wall with the General kernel's terms (Duffing, Rayleigh, \
+                                 forcing)"
+                        .to_string(),
+                    reason: format!(
+                        "damping.rayleigh.{k} with wall.0: the engine does not step it yet (the \
+                         General kernel runs without a wall; remove [[wall]] or the term)"
+                    ),
+                });
             } else {
                 "forcing.amplitude"
             };
