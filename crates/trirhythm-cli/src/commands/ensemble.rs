@@ -163,6 +163,7 @@ impl EnsembleArgs {
             amplitude_max: self.amplitude_max,
             sample_every: self.sample_every,
             lanes: crate::args::lanes(self.lanes)?,
+            terms: self.model.terms.clone(),
         })
     }
 

@@ -92,6 +92,31 @@ impl GeneralTerms {
             && self.rayleigh.is_empty()
             && self.forcing.is_none()
     }
+
+    /// `cubic=… quintic=… rayleigh=[…] forcing: amplitude=… frequency=… phase=…` (or
+    /// `forcing: none`), with the model file's names, for header lines.
+    pub fn describe(&self) -> String {
+        let rayleigh: Vec<String> = self
+            .rayleigh
+            .iter()
+            .map(|d| Exact(*d).to_string())
+            .collect();
+        let forcing = match &self.forcing {
+            Some(f) => format!(
+                "amplitude={} frequency={} phase={}",
+                Exact(f.amplitude),
+                Exact(f.frequency),
+                Exact(f.phase)
+            ),
+            None => "none".to_string(),
+        };
+        format!(
+            "cubic={} quintic={} rayleigh=[{}] forcing: {forcing}",
+            Exact(self.cubic),
+            Exact(self.quintic),
+            rayleigh.join(",")
+        )
+    }
 }
 
 impl From<&Params> for Model {
