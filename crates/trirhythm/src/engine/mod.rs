@@ -9,7 +9,8 @@
 //! - the [`Problem`] every driver takes (oscillator, system, wall, starts, blow-up bound) and
 //!   the method [`PredictorCorrector`];
 //! - [`Stepper`]: the linearly implicit predictor–corrector step with impacts (module docs of
-//!   `stepper` give the method and why);
+//!   `stepper` give the method and why), with two kernels: the paper's (Eq. 1/5/9, the wall)
+//!   and the General one (Duffing, Rayleigh, harmonic forcing; no wall yet);
 //! - [`Lanes`]: several paths of one problem stepped together, the arithmetic of their step
 //!   vectorised across them, with the scalar stepper's bits (module docs of `stepper::lanes`);
 //! - drivers: [`run`] with an [`Observer`], [`run_lanes`] for several paths at once, [`simulate`], [`simulate_ensemble`]; a

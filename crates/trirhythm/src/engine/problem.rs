@@ -1,5 +1,7 @@
 //! The problem and the method of a simulation: which equation ([`Problem`]: the
-//! [`Oscillator`], the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
+//! [`Oscillator`] — the paper family's parameters and, optionally, the General kernel's terms
+//! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing; with [`System::Fractional`] and no
+//! wall) —, the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
 //! discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and what one trajectory
 //! records ([`Options`]). Every driver — [`super::simulate`], the ensembles, the Lyapunov
 //! exponents, the oscillation search — takes the same [`Problem`]; its spec holds only what is

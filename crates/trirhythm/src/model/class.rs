@@ -11,8 +11,9 @@
 //! ones (two walls ordered and facing each other, the start on the allowed side of every wall,
 //! a correlation only between noises of one correlation time). The paper family's
 //! [`Params`] converts losslessly: `Model::from(&params).paper_params() == Some(params)`.
-//! [`Model::paper_family`] says which part of the class the engine steps today and refuses
-//! every other term by name ([`Error::NotApplicable`]).
+//! [`Model::paper_family`] is the paper's family (refusing every other term by name,
+//! [`Error::NotApplicable`]); [`Model::engine_terms`] is what the engine steps: that family plus,
+//! without a wall, the General kernel's terms ([`GeneralTerms`]: Duffing, Rayleigh, forcing).
 //!
 //! Reference: the paper's Eq. (1) and issue 36's class; `docs/model-file.md`.
 //!

@@ -5,9 +5,23 @@
 //! [`super::drivers`]. A stepper is built from a [`Problem`] ([`Stepper::new`]): the
 //! equation, the wall, the start of its path and the blow-up bound are the problem's.
 //!
-//! The step is here; `impact` locates an impact inside a step and redoes the rest of it,
-//! `tangent` steps the variational equation with the path, `renormalise` pulls a perturbed
-//! copy toward its reference, `polynomial` evaluates μP.
+//! The step is here; `affine` holds the paper's kernel (the arithmetic of a step of Eq. 1/5/9:
+//! predictor, corrector passes, their tangents), `general` the General kernel (Duffing,
+//! Rayleigh, harmonic forcing: the rest of the class the engine steps, without a wall),
+//! `impact` locates an impact inside a step and redoes the rest of it, `tangent` steps the
+//! variational equation with the path, `renormalise` pulls a perturbed copy toward its
+//! reference, `polynomial` evaluates μP.
+//!
+//! **Two kernels, absent terms cost nothing** (model-class.md §2). A path of the paper's
+//! family steps with [`Affine`] (the former `Rhs`, moved verbatim: same expressions, same
+//! order, same bits — `tests/pinned.rs` digests every step of scalar, lane and tangent runs,
+//! recorded before the move). A path whose problem has the General kernel's terms
+//! ([`crate::engine::Oscillator::terms`]) holds a boxed `General` with its forcing phase, and
+//! [`Stepper::step`] takes one branch on it per step (not a generic parameter: that would put
+//! the kernel into every driver's signature for a second implementation that has no lanes of
+//! its own). The lane steppers step General paths path by path. Measured side by side with
+//! main's `examples/lanes_timing.rs` (CHANGELOG.md): the paper's path within 2 % (ratios
+//! 0.99–1.02 of CPU time per path-step, scalar and eight lanes, λ = 0.998 and 1).
 //!
 //! # Equation
 //! Caputo D^{1+λ}U = D^λ(U′), so Eq. (1) is the multi-order system
@@ -104,7 +118,7 @@
 //! stiff fractional problems); Zhuravlev's transformation for Eq. (9).
 //!
 //! # Tests
-//! `tests/convergence.rs` (observed orders on Mittag-Leffler and impact-oscillator solutions),
+//! `tests/general.rs` (the General kernel's known answers), `tests/convergence.rs` (observed orders on Mittag-Leffler and impact-oscillator solutions),
 //! `tests/cycle_exponent.rs` (the noise-free exponent on every stable cycle of the Lyapunov
 //! figures is 0 within the window's bound, both methods, at the figures' Δt and half of it),
 //! `tests/stiff.rs` (Fig. 13(b) from U = 13 and Fig. 5(e) at μ0 = 0.7 at Δt = 0.01; amplitude
