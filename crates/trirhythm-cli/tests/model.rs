@@ -156,8 +156,8 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
     let dir = scratch_dir("model-refused");
     for (field, text) in [
         (
-            "restoring.cubic",
-            BASE.replace("omega0 = 1.0", "omega0 = 1.0\ncubic = 0.5"),
+            "fractional.0.coefficient",
+            format!("{BASE}[[fractional]]\ncoefficient = 0.1\norder = 0.5\n"),
         ),
         (
             "wall.0.position",

@@ -336,3 +336,145 @@ fn general_paths_are_the_same_in_lanes_and_clones() {
         assert_eq!(got, alone, "{width} lanes");
     }
 }
+
+/// The General kernel at the wall (U = 0) reduces to the paper's kernel when its terms vanish:
+/// a chattering fig13a path (λ = 0.998, OU noise, r = 0.3, D = 0.5: impacts and sticking, both
+/// impact memories) with k3 = 1e-300 (k(U) = ω0²U to the last bit) steps through the General
+/// kernel's impact code (`jump_general`, the scheme's V₋ at the wall) and gives the paper
+/// kernel's bits.
+#[test]
+fn the_general_kernel_at_the_wall_gives_the_paper_kernels_bits_when_its_terms_vanish() {
+    for memory in [
+        trirhythm::engine::ImpactMemory::Continuous,
+        trirhythm::engine::ImpactMemory::Restart,
+    ] {
+        let p = trirhythm::model::preset("fig13a")
+            .unwrap()
+            .params
+            .with("r", 0.3)
+            .unwrap()
+            .with("D", 0.5)
+            .unwrap();
+        let paper = Problem::from_params(&p).unwrap();
+        let mut m = Model::from(&p);
+        m.restoring.cubic = 1e-300;
+        let general = Problem::from_model(&m).unwrap();
+        assert!(general.oscillator().terms().is_some() && general.wall());
+        let method = PredictorCorrector {
+            impact_memory: memory,
+            ..Default::default()
+        };
+        let mut a = Stepper::new(&paper, &method, (7, 0), 200.0).unwrap();
+        let mut b = Stepper::new(&general, &method, (7, 0), 200.0).unwrap();
+        for n in 0..20_000 {
+            a.step().unwrap();
+            b.step().unwrap();
+            assert_eq!(
+                (a.u().to_bits(), a.v().to_bits(), a.events()),
+                (b.u().to_bits(), b.v().to_bits(), b.events()),
+                "{memory:?}: step {n}"
+            );
+        }
+        assert!(a.impacts() > 100 && a.sticking_steps() > 1000, "{memory:?}");
+        assert_eq!(
+            (a.impacts(), a.sticking_steps()),
+            (b.impacts(), b.sticking_steps())
+        );
+    }
+}
+
+/// A Duffing oscillator bouncing on the wall at 0 with r = 1 and no damping (h ≡ 0): the
+/// energy H = U̇²/2 + U²/2 + k3U⁴/4 is kept across impacts and the time between impacts is
+/// half the free period, 2∫₀^{π/2} dφ/√(1 + A²(1 + sin²φ)/2) (U = A sin φ), both converging at
+/// second order as Δt halves. The tangent method refuses such a model (its impact steps are not
+/// differentiated yet); two trajectories take it.
+#[test]
+fn a_duffing_oscillator_on_the_wall_keeps_its_energy_and_its_period() {
+    let (amplitude, k3) = (1.0, 1.0);
+    let mut m = linear(1.0, 1.0);
+    m.damping.coefficients = vec![0.0];
+    m.restoring.cubic = k3;
+    m.walls = Model::from(&trirhythm::model::preset("fig1").unwrap().params).walls;
+    m.walls[0].restitution = trirhythm::model::Restitution::Constant(1.0);
+    m.start.u0 = amplitude;
+    let problem = Problem::from_model(&m).unwrap();
+    assert!(problem.wall());
+    let energy = |u: f64, v: f64| 0.5 * v * v + 0.5 * u * u + 0.25 * k3 * u.powi(4);
+    let h0 = energy(amplitude, 0.0);
+    // the exact time between impacts (Simpson on a smooth integrand)
+    let n = 2000;
+    let dphi = std::f64::consts::FRAC_PI_2 / n as f64;
+    let f = |phi: f64| {
+        let s = phi.sin();
+        1.0 / (1.0 + amplitude * amplitude * (1.0 + s * s) * 0.5 * k3).sqrt()
+    };
+    let simpson: f64 = (0..=n)
+        .map(|i| {
+            let w = if i == 0 || i == n {
+                1.0
+            } else if i % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            };
+            w * f(i as f64 * dphi)
+        })
+        .sum::<f64>()
+        * dphi
+        / 3.0;
+    let exact = 2.0 * simpson;
+    let t_end = 100.0;
+    let mut errors = Vec::new();
+    for dt in [0.02, 0.01, 0.005] {
+        let method = PredictorCorrector {
+            dt,
+            ..Default::default()
+        };
+        let mut s = Stepper::new(&problem, &method, (SEED, 0), t_end).unwrap();
+        let mut times = Vec::new();
+        let mut obs = |s: &Stepper| {
+            if let Some(i) = s.events().impact {
+                times.push(i.time);
+            }
+            Flow::Continue
+        };
+        run(&mut s, (t_end / dt).round() as u64, &mut obs, &Silent).unwrap();
+        let interval = (times[times.len() - 1] - times[0]) / (times.len() - 1) as f64;
+        let de = (energy(s.u(), s.v()) - h0) / h0;
+        errors.push((dt, (interval - exact) / exact, de, times.len()));
+    }
+    println!(
+        "Duffing on the wall, r = 1, h = 0, A = {amplitude}, k3 = {k3}: exact time between \
+         impacts {exact:.10}; (dt, relative error of the interval, of the energy at t = {t_end}, \
+         impacts) {errors:?}"
+    );
+    let (_, e_mid, h_mid, _) = errors[1];
+    let (_, e_fine, h_fine, _) = errors[2];
+    assert!(e_fine.abs() < 1e-5 && h_fine.abs() < 1e-4, "{errors:?}");
+    for (coarse, fine) in [(e_mid, e_fine), (h_mid, h_fine)] {
+        let order = (coarse / fine).abs().log2();
+        assert!((1.6..=2.6).contains(&order), "order {order}: {errors:?}");
+    }
+    // the tangent method refuses it, two trajectories take it
+    use trirhythm::analysis::lyapunov::LyapunovMethod;
+    use trirhythm::analysis::{largest_lyapunov, LyapunovSpec};
+    let spec = |method| LyapunovSpec {
+        paths: 1,
+        transient: 0.0,
+        length: 20.0,
+        method,
+        ..Default::default()
+    };
+    let method = PredictorCorrector::default();
+    match largest_lyapunov(&problem, &method, &spec(LyapunovMethod::Tangent), &Silent) {
+        Err(trirhythm::Error::NotApplicable { .. }) => {}
+        other => panic!("expected a refusal: {other:?}"),
+    }
+    largest_lyapunov(
+        &problem,
+        &method,
+        &spec(LyapunovMethod::TwoTrajectory),
+        &Silent,
+    )
+    .unwrap();
+}

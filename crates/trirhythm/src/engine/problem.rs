@@ -1,7 +1,7 @@
 //! The problem and the method of a simulation: which equation ([`Problem`]: the
 //! [`Oscillator`] — the paper family's parameters and, optionally, the General kernel's terms
-//! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing; with [`System::Fractional`] and no
-//! wall) —, the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
+//! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing; with [`System::Fractional`], the
+//! wall at 0 or none) —, the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
 //! discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and what one trajectory
 //! records ([`Options`]). Every driver — [`super::simulate`], the ensembles, the Lyapunov
 //! exponents, the oscillation search — takes the same [`Problem`]; its spec holds only what is
@@ -265,8 +265,8 @@ impl Problem {
 
     /// The problem a model file describes: its equation, its wall and its start, for the
     /// models the engine steps ([`Model::engine_terms`]): the paper's Eq. 1 with the wall at 0
-    /// or none, additive white or OU noise, and without a wall the General kernel's terms —
-    /// Duffing k3U³ + k5U⁵, Rayleigh Σ d_k U̇^{2k}, harmonic forcing F cos(Ωt + φ). Every other
+    /// or none, additive white or OU noise, and the General kernel's terms — Duffing
+    /// k3U³ + k5U⁵, Rayleigh Σ d_k U̇^{2k}, harmonic forcing F cos(Ωt + φ). Every other
     /// term is refused with [`Error::NotApplicable`] naming it, never dropped. For
     /// `Model::from(&p)` this is `Problem::from_params(&p)` (the same value, hence the same
     /// paths, bit for bit: `tests/model_file.rs`, `tests/pinned.rs`).
@@ -280,9 +280,9 @@ impl Problem {
     /// assert_eq!(Problem::from_model(&model)?, Problem::from_params(&p)?);
     /// let mut duffing = model.clone();
     /// duffing.restoring.cubic = 0.5;
-    /// assert!(Problem::from_model(&duffing).is_err()); // with the wall: refused, named
-    /// duffing.walls.clear();
-    /// assert!(Problem::from_model(&duffing)?.oscillator().terms().is_some()); // stepped
+    /// assert!(Problem::from_model(&duffing)?.oscillator().terms().is_some()); // General kernel
+    /// duffing.fractional.push(trirhythm::model::Fractional { coefficient: 0.1, order: 0.5 });
+    /// assert!(Problem::from_model(&duffing).is_err()); // not stepped yet: refused, named
     /// # Ok::<(), trirhythm::Error>(())
     /// ```
     pub fn from_model(model: &Model) -> Result<Self> {
@@ -298,7 +298,7 @@ impl Problem {
     }
 
     /// The same problem with the General kernel's terms (Duffing, Rayleigh, forcing;
-    /// [`Oscillator::with_terms`]); they need [`System::Fractional`] and no wall.
+    /// [`Oscillator::with_terms`]); they need [`System::Fractional`] (the wall at 0 or none).
     pub fn with_terms(self, terms: Option<GeneralTerms>) -> Result<Self> {
         Problem {
             oscillator: self.oscillator.clone().with_terms(terms)?,
@@ -409,15 +409,6 @@ impl Problem {
                         "{field}: the General kernel's terms have no Eq. (5)/(9) equivalent; \
                          system = {:?}",
                         self.system
-                    ),
-                ));
-            }
-            if self.barrier == Barrier::On {
-                return Err(refuse(
-                    "no wall with the General kernel's terms (Duffing, Rayleigh, forcing)",
-                    format!(
-                        "{field} with the wall at U = 0: the engine does not step it yet (the \
-                         General kernel runs without a wall; Barrier::Off)"
                     ),
                 ));
             }

@@ -12,8 +12,8 @@
 //! a correlation only between noises of one correlation time). The paper family's
 //! [`Params`] converts losslessly: `Model::from(&params).paper_params() == Some(params)`.
 //! [`Model::paper_family`] is the paper's family (refusing every other term by name,
-//! [`Error::NotApplicable`]); [`Model::engine_terms`] is what the engine steps: that family plus,
-//! without a wall, the General kernel's terms ([`GeneralTerms`]: Duffing, Rayleigh, forcing).
+//! [`Error::NotApplicable`]); [`Model::engine_terms`] is what the engine steps: that family plus
+//! the General kernel's terms ([`GeneralTerms`]: Duffing, Rayleigh, forcing).
 //!
 //! Reference: the paper's Eq. (1) and issue 36's class; `docs/model-file.md`.
 //!
@@ -371,8 +371,7 @@ impl Model {
     /// there are none (the paper's kernel, the paper's bits). Refused by name with
     /// [`Error::NotApplicable`] for `method`: fractional terms K·D^αU, a wall off 0, below it
     /// or two walls, a speed-dependent restitution, multiplicative noise (as by
-    /// [`Model::paper_family`]), and the General kernel's terms together with a wall (its
-    /// impacts are not stepped yet). Terms present with a zero coefficient are absent.
+    /// [`Model::paper_family`]). Terms present with a zero coefficient are absent.
     pub fn engine_terms(&self, method: &str) -> Result<(PaperFamily, Option<GeneralTerms>)> {
         self.validate()?;
         let mut rayleigh = self.damping.rayleigh.clone();
@@ -393,35 +392,6 @@ impl Model {
         let family = paper.paper_family(method)?;
         if terms.is_empty() {
             return Ok((family, None));
-        }
-        if family.wall {
-            let field = if terms.cubic != 0.0 {
-                "restoring.cubic"
-            } else if terms.quintic != 0.0 {
-                "restoring.quintic"
-            } else if let Some(k) = terms.rayleigh.iter().position(|&d| d != 0.0) {
-                return Err(Error::NotApplicable {
-                    method: method.to_string(),
-                    assumption: "no wall with the General kernel's terms (Duffing, Rayleigh, \
-                                 forcing)"
-                        .to_string(),
-                    reason: format!(
-                        "damping.rayleigh.{k} with wall.0: the engine does not step it yet (the \
-                         General kernel runs without a wall; remove [[wall]] or the term)"
-                    ),
-                });
-            } else {
-                "forcing.amplitude"
-            };
-            return Err(Error::NotApplicable {
-                method: method.to_string(),
-                assumption: "no wall with the General kernel's terms (Duffing, Rayleigh, forcing)"
-                    .to_string(),
-                reason: format!(
-                    "{field} with wall.0: the engine does not step it yet (the General kernel \
-                     runs without a wall; remove [[wall]] or the term)"
-                ),
-            });
         }
         Ok((family, Some(terms)))
     }

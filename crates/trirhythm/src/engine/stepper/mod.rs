@@ -153,7 +153,7 @@ mod renormalise;
 mod tangent;
 pub use lanes::{detected_lanes, Lanes, LANE_WIDTHS};
 pub(crate) use lanes::{group_lanes, Group};
-pub(crate) use tangent::Tangent;
+pub(crate) use tangent::{general_wall_tangent, Tangent};
 
 /// What a step needs from the state and the noise ([`Stepper::begin`]).
 #[derive(Debug, Clone, Copy, Default)]
@@ -426,13 +426,28 @@ impl Stepper {
         Ok(())
     }
 
-    /// A step of the General kernel (module docs of `general`): no wall, so no events; the
-    /// forcing at both ends is the noise's level plus F cos ψ.
+    /// A step of the General kernel (module docs of `general`): without a wall no events;
+    /// with the wall at 0 the paper kernel's impacts and sticking; the forcing at both ends is
+    /// the noise's level plus F cos ψ.
     #[inline(never)]
     fn step_general(&mut self) -> Result<()> {
         let (b, free) = self.begin_general();
         let (u1, v1) = free.end();
-        self.end_general(&b, u1, v1)
+        if !self.wall {
+            return self.end_general(&b, u1, v1);
+        }
+        // the wall at 0: the paper kernel's events (impact, sticking), the General kernel's
+        // arithmetic inside them (`impact`)
+        let mut end = self.end_events(&b, u1, v1)?;
+        let g = self.general.as_deref().expect("a General path");
+        (self.drift, self.pw) = g.node(self.h, end.u1, end.v1);
+        if end.push {
+            end.piece.right = self.drift + b.fr;
+            self.history.push(end.piece);
+        }
+        self.u = end.u1;
+        self.v = end.v1;
+        Ok(())
     }
 
     /// The General step's start and its free end.

@@ -262,6 +262,18 @@ fn fold_theta(piece: &Piece, d: &mut Split, dtheta: f64) {
     d.after -= (piece.right - s.after) / (1.0 - theta) * dtheta;
 }
 
+/// The refusal of the tangent of a General path with a wall (its impact steps are not
+/// differentiated yet).
+pub(crate) fn general_wall_tangent() -> crate::Error {
+    crate::Error::NotApplicable {
+        method: "the tangent method (lyapunov --method tangent)".into(),
+        assumption: "no wall with the General kernel's terms (Duffing, Rayleigh, forcing)".into(),
+        reason: "the tangent of the General kernel's impact steps is not built yet; use the \
+                 two-trajectory method"
+            .into(),
+    }
+}
+
 impl Stepper {
     /// δ(μP(U)V − ω²U) at the current node along (δU, δV) (of h(U, V)V − k(U) for the
     /// General kernel).
@@ -302,6 +314,9 @@ impl Stepper {
     /// derivative of [`super::general::General::advance`], the forcing (noise and phase)
     /// frozen.
     fn step_general_with_tangent(&mut self, t: &mut Tangent) -> Result<()> {
+        if self.wall {
+            return Err(general_wall_tangent());
+        }
         let (b, free) = self.begin_general();
         let (u1, v1) = free.end();
         let dknown = t.base + t.history.value() + self.wl * t.drift;
