@@ -3,7 +3,7 @@
 //! predictor–corrector as the paper's kernel ([`super::Affine`]), and its tangent.
 //!
 //! # Equation
-//! D^{1+λ}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η(t), no wall, with
+//! D^{1+λ}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η(t), no wall or the wall at 0, with
 //! h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k} and k(U) = ω0²U + k3U³ + k5U⁵; in Volterra form
 //! U′ = V, V = V₀ + J^λ g, g = h(U, V)V − k(U) + F cos ψ + η, ψ = Ωt + φ.
 //!
@@ -51,8 +51,10 @@
 //! `tests/general.rs`: the Duffing oscillator under white noise against its exact stationary
 //! density ∝ exp(−cH/D) (⟨U²⟩, ⟨U̇²⟩ = D/c by quadrature); the forced linear oscillator's
 //! steady amplitude against |F·H(iΩ)| at λ = 1 and λ = 0.9, with its observed convergence as Δt
-//! halves; a Rayleigh oscillator's cycle; the tangent step against finite differences of the
-//! step (the unit tests below); lanes and clones give the scalar bits.
+//! halves; a Rayleigh oscillator's cycle; lanes and clones give the scalar bits; at the wall,
+//! the paper kernel's bits when the terms vanish (k3 = 1e-300) and a Duffing oscillator at
+//! r = 1 keeping energy and half-period at second order. `engine/stepper/tangent.rs`: the
+//! tangent step against finite differences of the step.
 
 use super::affine::{hermite_limiter, predictor_weight, predictor_weight_slope, Affine};
 use super::polynomial::Polynomial;
