@@ -164,7 +164,8 @@ impl ParamArgs {
 pub struct ModelFileArg {
     /// A model file (`trirhythm model show` prints one): the equation, the wall and the start,
     /// in place of --preset, --barrier and --u0/--v0; --param KEY=VALUE still overrides its
-    /// parameters. The engine steps the paper's family today; other terms are refused.
+    /// parameters. The engine steps the paper's family and Duffing, Rayleigh and forcing terms
+    /// (no wall or the wall at 0); other terms are refused.
     #[arg(long = "model", value_name = "FILE", conflicts_with = "preset")]
     pub model: Option<PathBuf>,
 }
