@@ -191,6 +191,7 @@ fn forced_amplitude(problem: &Problem, dt: f64, omega: f64, t_end: f64, periods:
 }
 
 /// Gaussian elimination of a 3 × 3 system.
+#[allow(clippy::needless_range_loop)]
 fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> [f64; 3] {
     for k in 0..3 {
         for i in k + 1..3 {

@@ -160,7 +160,7 @@ impl Oscillator {
                 ("restoring.cubic", t.cubic),
                 ("restoring.quintic", t.quintic),
             ] {
-                if !(v.abs() <= 1e6) {
+                if v.is_nan() || v.abs() > 1e6 {
                     return Err(Error::invalid(name, v, "[-1e6, 1e6]"));
                 }
             }
@@ -172,7 +172,7 @@ impl Oscillator {
                 ));
             }
             for (k, &d) in t.rayleigh.iter().enumerate() {
-                if !(d.abs() <= 1e6) {
+                if d.is_nan() || d.abs() > 1e6 {
                     return Err(Error::invalid(
                         format!("damping.rayleigh.{k}").as_str(),
                         d,

@@ -305,7 +305,8 @@ impl General {
             let df = 1.0 - w * (a0 + r.a);
             let step = f / df;
             v -= step;
-            if !(step.abs() > 1e-14 * (1.0 + v.abs())) {
+            // a NaN step ends the iteration too
+            if step.is_nan() || step.abs() <= 1e-14 * (1.0 + v.abs()) {
                 break;
             }
         }
