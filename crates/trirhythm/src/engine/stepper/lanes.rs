@@ -207,19 +207,46 @@ fn step_group_with<const L: usize, C: Coefficients<L>>(
         "at most {L} paths in a group of {L} lanes"
     );
     if paths.iter().any(|p| p.general.is_some()) {
-        // the General kernel's paths step path by path (module docs of `general`)
-        for (k, p) in paths.iter_mut().enumerate() {
-            if live[k] {
-                errors[k] = p.step().err();
-            }
-        }
-        return;
+        return step_one_by_one::<L>(paths, live, errors);
     }
     match isa {
         #[cfg(target_arch = "x86_64")]
         // SAFETY: `Isa::Avx2` is only detected where the CPU reports AVX2.
         Isa::Avx2 => unsafe { step_avx2::<L, _>(c, paths, live, errors) },
         _ => step_body::<L, _>(c, paths, live, errors),
+    }
+}
+
+/// A group holding General paths (module docs of `general`): every live path by the scalar
+/// stepper, one after the other. Out of line, so that the lane step's callers (their loops
+/// inlined around it) keep the code they had.
+#[cold]
+#[inline(never)]
+fn step_one_by_one<const L: usize>(
+    paths: &mut [Stepper],
+    live: &[bool; L],
+    errors: &mut [Option<Error>; L],
+) {
+    for (k, p) in paths.iter_mut().enumerate() {
+        if live[k] {
+            errors[k] = p.step().err();
+        }
+    }
+}
+
+/// [`step_one_by_one`] with the tangents.
+#[cold]
+#[inline(never)]
+fn step_tangents_one_by_one<const L: usize>(
+    paths: &mut [Stepper],
+    tangents: &mut [Tangent],
+    live: &[bool; L],
+    errors: &mut [Option<Error>; L],
+) {
+    for (k, (p, t)) in paths.iter_mut().zip(tangents.iter_mut()).enumerate() {
+        if live[k] {
+            errors[k] = p.step_with_tangent(t).err();
+        }
     }
 }
 
@@ -452,13 +479,7 @@ pub(crate) fn step_group_tangent<const L: usize>(
         "at most {L} paths, each with its tangent, in a group of {L} lanes"
     );
     if paths.iter().any(|p| p.general.is_some()) {
-        // the General kernel's paths step path by path (module docs of `general`)
-        for (k, (p, t)) in paths.iter_mut().zip(tangents.iter_mut()).enumerate() {
-            if live[k] {
-                errors[k] = p.step_with_tangent(t).err();
-            }
-        }
-        return;
+        return step_tangents_one_by_one::<L>(paths, tangents, live, errors);
     }
     match isa {
         #[cfg(target_arch = "x86_64")]
