@@ -257,6 +257,7 @@ impl Affine {
 
     /// The derivative of [`Affine::advance`] along (δu, δv, δg0), with δpw the predictor weight's
     /// and δknown the known part's: returns (δU₁, δV₁).
+    #[inline]
     pub(super) fn advance_tangent(
         &self,
         f: &Free,

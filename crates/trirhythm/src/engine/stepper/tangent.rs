@@ -313,6 +313,8 @@ impl Stepper {
     /// [`Stepper::step_with_tangent`] of a General path (no wall: a smooth step): the
     /// derivative of [`super::general::General::advance`], the forcing (noise and phase)
     /// frozen.
+    // out of line: the paper kernel's tangent step keeps the code it had
+    #[inline(never)]
     fn step_general_with_tangent(&mut self, t: &mut Tangent) -> Result<()> {
         if self.wall {
             return Err(general_wall_tangent());
