@@ -19,9 +19,10 @@
 //! ([`crate::engine::Oscillator::terms`]) holds a boxed `General` with its forcing phase, and
 //! [`Stepper::step`] takes one branch on it per step (not a generic parameter: that would put
 //! the kernel into every driver's signature for a second implementation that has no lanes of
-//! its own). The lane steppers step General paths path by path. Measured side by side with
-//! main's `examples/lanes_timing.rs` (CHANGELOG.md): the paper's path within 2 % (ratios
-//! 0.99–1.02 of CPU time per path-step, scalar and eight lanes, λ = 0.998 and 1).
+//! its own). The lane steppers step General paths path by path (out of line, so that the lane
+//! step's callers keep their code). Measured side by side with main's
+//! `examples/lanes_timing.rs` and `examples/drivers_timing.rs` (CHANGELOG.md): the paper's
+//! ensembles, lane steps and Lyapunov runs at 0.95–1.02 of main's CPU time.
 //!
 //! # Equation
 //! Caputo D^{1+λ}U = D^λ(U′), so Eq. (1) is the multi-order system
