@@ -119,7 +119,8 @@
 //! stiff fractional problems); Zhuravlev's transformation for Eq. (9).
 //!
 //! # Tests
-//! `tests/general.rs` (the General kernel's known answers), `tests/convergence.rs` (observed orders on Mittag-Leffler and impact-oscillator solutions),
+//! `tests/general.rs` (the General kernel's known answers), `tests/convergence.rs` (observed
+//! orders on Mittag-Leffler and impact-oscillator solutions),
 //! `tests/cycle_exponent.rs` (the noise-free exponent on every stable cycle of the Lyapunov
 //! figures is 0 within the window's bound, both methods, at the figures' Δt and half of it),
 //! `tests/stiff.rs` (Fig. 13(b) from U = 13 and Fig. 5(e) at μ0 = 0.7 at Δt = 0.01; amplitude
