@@ -17,6 +17,11 @@
 //!   order as Δt halves (0.04 → 0.005).
 //! - **Rayleigh damping**: Ü − μ(U̇ − U̇³/3) + U = 0 (h = μ − (μ/3)U̇²) is van der Pol's
 //!   equation for U̇, whose cycle has amplitude 2 + O(μ²); so has U's (ω = 1).
+//! - **The wall at 0**: the General kernel gives the paper kernel's bits when its terms vanish
+//!   (k3 = 1e-300), and a Duffing oscillator bouncing at r = 1 without damping keeps its energy
+//!   and its half-period (quadrature) at second order.
+//! - **Lyapunov**: the forced, noisy damped linear oscillator has the exponent −c/2 by the
+//!   tangent and by two trajectories.
 //!
 //! The tangent of the General step is checked against finite differences in the unit tests of
 //! `engine::stepper::tangent`; the paper's path is pinned bit for bit in `tests/pinned.rs`.
@@ -478,4 +483,51 @@ fn a_duffing_oscillator_on_the_wall_keeps_its_energy_and_its_period() {
         &Silent,
     )
     .unwrap();
+}
+
+/// The Lyapunov exponent through the General kernel: the damped linear oscillator
+/// Ü + cU̇ + U = F cos Ωt + η is linear, so the forcing and the noise do not enter its
+/// variational equation and its exponent is −c/2, by both methods (the tangent differentiates
+/// the General step, the forcing's phase held; the copy of two trajectories carries the phase).
+/// A Rayleigh term that vanishes to the last bit at the path's speeds (d = 1e-300) goes through
+/// the corrector's linearisation and its derivative with the same answer.
+#[test]
+fn the_lyapunov_exponent_of_the_forced_damped_oscillator_is_minus_half_the_damping() {
+    use trirhythm::analysis::lyapunov::LyapunovMethod;
+    use trirhythm::analysis::{largest_lyapunov, LyapunovSpec};
+    let c = 0.1;
+    let mut m = linear(1.0, c);
+    m.forcing = Some(Harmonic {
+        amplitude: 0.5,
+        frequency: 1.3,
+        phase: 0.3,
+    });
+    m.noise.additive = Some(NoiseTerm {
+        intensity: 0.1,
+        correlation_time: 0.0,
+    });
+    m.damping.rayleigh = vec![1e-300];
+    let problem = Problem::from_model(&m).unwrap();
+    for method in [LyapunovMethod::Tangent, LyapunovMethod::TwoTrajectory] {
+        let spec = LyapunovSpec {
+            paths: 2,
+            seed: SEED,
+            transient: 50.0,
+            length: 1000.0,
+            method,
+            ..Default::default()
+        };
+        let r = largest_lyapunov(&problem, &PredictorCorrector::default(), &spec, &Silent).unwrap();
+        let err = r.lle.value + c / 2.0;
+        println!(
+            "{method:?}: LLE {} against −c/2 = {} (error {err:e})",
+            r.lle.value,
+            -c / 2.0
+        );
+        assert!(
+            err.abs() < 1e-3,
+            "{method:?}: LLE {} (error {err:e})",
+            r.lle.value
+        );
+    }
 }
