@@ -155,9 +155,9 @@ impl Command {
         let theory_free =
             |command: &str| match trirhythm_paper::requests::theory_refusal(terms.as_ref()) {
                 Some(why) => error::bad(format!(
-                "--model: {command} starts from and compares with the averaged theory's cycles: \
-                 {why}"
-            )),
+                    "--model: {command} is built on the paper's averaged theory (its cycles and \
+                 boundaries): {why}"
+                )),
                 None => Ok(()),
             };
         let barrier = args::on_off(family.wall);

@@ -249,8 +249,31 @@ fn a_duffing_model_runs_through_simulate_and_ensemble_without_the_papers_theory(
         let error = doc["theory"][variant]["error"].as_str().unwrap();
         assert!(error.contains("does not apply"), "{variant}: {error}");
     }
-    // the commands built on the theory's cycles refuse it
-    let out = run(&["critical-noise", "--model", &file]);
-    assert_eq!(out.status.code(), Some(2));
+    // the well method and the commands built on the theory refuse it, saying why
+    for args in [
+        &[
+            &ensemble[..],
+            &["--amplitude-max", "4", "--method", "wells"],
+        ]
+        .concat()[..],
+        &["critical-noise", "--model", &file, "--noises", "0.1,0.2"],
+        &[
+            "oscillation",
+            "--model",
+            &file,
+            "--x",
+            "mu0=0.01:0.1:3",
+            "--y",
+            "lambda=0.9:1",
+        ],
+    ] {
+        let out = run(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("the averaged theory does not apply"),
+            "{args:?}: {stderr}"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

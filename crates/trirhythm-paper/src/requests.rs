@@ -432,6 +432,13 @@ impl EnsembleSetup {
         wells: &WellsSpec,
         monitor: &dyn trirhythm::monitor::Monitor<()>,
     ) -> Result<WellsResult> {
+        if let Some(why) = theory_refusal(self.terms.as_ref()) {
+            return Err(Error::NotApplicable {
+                method: "the well method (ensemble --method wells)".into(),
+                assumption: "the averaged theory's wells of P(A)".into(),
+                reason: why,
+            });
+        }
         run_wells(&self.problem, &self.method, &self.spec, wells, monitor)
     }
 
