@@ -531,3 +531,22 @@ fn the_lyapunov_exponent_of_the_forced_damped_oscillator_is_minus_half_the_dampi
         );
     }
 }
+
+/// An ensemble's fingerprint (checkpoints, pieces) tells a General model from the paper model
+/// of the same parameters, and the paper's fingerprint does not change.
+#[test]
+fn the_ensemble_fingerprint_names_the_general_terms() {
+    use trirhythm::analysis::ensemble::{fingerprint, EnsembleSpec};
+    let m = linear(1.0, 0.5);
+    let paper = Problem::from_model(&m).unwrap();
+    let mut duffing = m.clone();
+    duffing.restoring.cubic = 0.25;
+    let general = Problem::from_model(&duffing).unwrap();
+    let (method, spec) = (PredictorCorrector::default(), EnsembleSpec::default());
+    let (a, b) = (
+        fingerprint(&paper, &method, &spec),
+        fingerprint(&general, &method, &spec),
+    );
+    assert!(!a.contains("terms:"));
+    assert!(b.starts_with(&a) && b.contains("terms: cubic=0.25"), "{b}");
+}
