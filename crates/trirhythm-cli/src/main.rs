@@ -148,9 +148,18 @@ impl Command {
     /// the engine does not step yet) and put its parameters, wall and start in the command's
     /// arguments, so that the run and its header lines are those of the file.
     fn apply_model_file(&mut self) -> Result<()> {
-        let Some(family) = self.model_file().map(|f| f.load()).transpose()?.flatten() else {
+        let Some((family, terms)) = self.model_file().map(|f| f.load()).transpose()?.flatten()
+        else {
             return Ok(());
         };
+        let theory_free =
+            |command: &str| match trirhythm_paper::requests::theory_refusal(terms.as_ref()) {
+                Some(why) => error::bad(format!(
+                    "--model: {command} is built on the paper's averaged theory (its cycles and \
+                 boundaries): {why}"
+                )),
+                None => Ok(()),
+            };
         let barrier = args::on_off(family.wall);
         let (u0, v0) = family.start;
         let at_rest = |command: &str| {
@@ -166,26 +175,31 @@ impl Command {
             Command::Simulate(a) => {
                 a.params.base = Some(family.params);
                 a.model.barrier = barrier;
+                a.model.terms = terms;
                 (a.u0, a.v0) = (u0, v0);
             }
             Command::Ensemble(a) => {
                 at_rest("ensemble")?;
                 a.params.base = Some(family.params);
                 a.model.barrier = barrier;
+                a.model.terms = terms;
                 a.u0 = vec![u0];
             }
             Command::Lyapunov(a) => {
                 at_rest("lyapunov")?;
                 a.sim.params.base = Some(family.params);
                 a.sim.model.barrier = barrier;
+                a.sim.model.terms = terms;
                 a.sim.u0 = u0;
             }
             // critical-noise starts on each regime's cycle, oscillation searches: no start
             Command::CriticalNoise(a) => {
+                theory_free("critical-noise")?;
                 a.params.base = Some(family.params);
                 a.model.barrier = barrier;
             }
             Command::Oscillation(a) => {
+                theory_free("oscillation")?;
                 if family.params.noise_intensity != 0.0 {
                     return error::bad(format!(
                         "--model: noise.additive.intensity = {}: the oscillation boundary is that \

@@ -156,8 +156,8 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
     let dir = scratch_dir("model-refused");
     for (field, text) in [
         (
-            "restoring.cubic",
-            BASE.replace("omega0 = 1.0", "omega0 = 1.0\ncubic = 0.5"),
+            "fractional.0.coefficient",
+            format!("{BASE}[[fractional]]\ncoefficient = 0.1\norder = 0.5\n"),
         ),
         (
             "wall.0.position",
@@ -404,5 +404,79 @@ fn theory_commands_refuse_a_model_the_theory_does_not_cover() {
         "mu0=0.2",
     ]);
     assert_eq!(out.status.code(), Some(2));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A Duffing oscillator under white noise, no wall: the General kernel's terms run end to end
+/// through `simulate --model` and `ensemble --model`, and the ensemble says that the averaged
+/// theory does not apply instead of comparing with the paper's formulas.
+#[test]
+fn a_duffing_model_runs_through_simulate_and_ensemble_without_the_papers_theory() {
+    let dir = scratch_dir("model-duffing");
+    let text = "format = 1\nleading = { lambda = 1.0 }\n\
+                damping = { mu0 = 0.5, coefficients = [-1.0] }\n\
+                restoring = { omega0 = 1.0, cubic = 1.0 }\n\
+                noise.additive = { intensity = 0.5 }\nstart = { u0 = 0.5 }\n";
+    let file = write(&dir, "duffing.toml", text);
+    let said = ok_stdout(&["model", "check", &file]);
+    assert!(
+        said.contains("the engine steps it (the General kernel"),
+        "{said}"
+    );
+    let csv = ok_stdout(&["simulate", "--model", &file, "--t-end", "5"]);
+    assert!(csv.contains("# terms: cubic=1 quintic=0"), "{csv}");
+    assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 502);
+    let ensemble = [
+        "ensemble",
+        "--model",
+        &file,
+        "--t-end",
+        "50",
+        "--burn-in",
+        "10",
+        "--paths",
+        "2",
+    ];
+    // no theory to choose the histogram's range from: refused, naming it
+    let out = run(&ensemble);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("amplitude_max") && stderr.contains("restoring.cubic"),
+        "{stderr}"
+    );
+    let json = ok_stdout(&[&ensemble[..], &["--amplitude-max", "4", "--format", "json"]].concat());
+    let doc: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert!(doc["terms"].as_str().unwrap().contains("cubic=1"));
+    for variant in ["paper", "consistent"] {
+        let error = doc["theory"][variant]["error"].as_str().unwrap();
+        assert!(error.contains("does not apply"), "{variant}: {error}");
+    }
+    // the well method and the commands built on the theory refuse it, saying why
+    for args in [
+        &[
+            &ensemble[..],
+            &["--amplitude-max", "4", "--method", "wells"],
+        ]
+        .concat()[..],
+        &["critical-noise", "--model", &file, "--noises", "0.1,0.2"],
+        &[
+            "oscillation",
+            "--model",
+            &file,
+            "--x",
+            "mu0=0.01:0.1:3",
+            "--y",
+            "lambda=0.9:1",
+        ],
+    ] {
+        let out = run(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("the averaged theory does not apply"),
+            "{args:?}: {stderr}"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -22,7 +22,7 @@ use trirhythm::analysis::TheoryComparison;
 use trirhythm::engine::{
     Barrier, ImpactMemory, Lanes, Memory, PredictorCorrector, Problem, System, DEFAULT_WINDOW,
 };
-use trirhythm::model::Params;
+use trirhythm::model::{GeneralTerms, Params};
 use trirhythm::theory::averaging::Variant;
 use trirhythm::{Error, Result};
 
@@ -224,6 +224,31 @@ pub struct EnsembleRequest {
     pub sample_every: u64,
     /// Paths stepped together ([`Lanes`]); the result is the same bits for every choice.
     pub lanes: Lanes,
+    /// The General kernel's terms of a model file (Duffing, Rayleigh, forcing; None for the
+    /// paper's family): the averaged theory does not apply then, so nothing is chosen from
+    /// it and the comparison says so.
+    pub terms: Option<GeneralTerms>,
+}
+
+/// Why the paper's averaged theory does not apply to a model with the General kernel's
+/// `terms` (the term named), or None without such terms.
+pub fn theory_refusal(terms: Option<&GeneralTerms>) -> Option<String> {
+    let t = terms?;
+    let term = if t.cubic != 0.0 {
+        format!("restoring.cubic = {}", t.cubic)
+    } else if t.quintic != 0.0 {
+        format!("restoring.quintic = {}", t.quintic)
+    } else if let Some(k) = t.rayleigh.iter().position(|&d| d != 0.0) {
+        format!("damping.rayleigh.{k} = {}", t.rayleigh[k])
+    } else if let Some(f) = &t.forcing {
+        format!("forcing.amplitude = {}", f.amplitude)
+    } else {
+        return None;
+    };
+    Some(format!(
+        "the averaged theory does not apply: the model has {term}, and the paper's formulas \
+         (Eq. 5, Zhuravlev, P(A)) are those of h = mu0*P(U), k = omega0^2*U without forcing"
+    ))
 }
 
 impl EnsembleRequest {
@@ -245,13 +270,36 @@ impl EnsembleRequest {
             amplitude_max: None,
             sample_every: 1,
             lanes: Lanes::Auto,
+            terms: None,
         }
     }
 
     /// Choose what is left open from the theory and convert to library types; sizes, steps
     /// and ranges are checked by the ensemble's driver.
     pub fn setup(&self) -> Result<EnsembleSetup> {
-        let chosen = montecarlo::choices(&self.params, self.variant, &self.u0, self.amplitude_max);
+        let chosen = match theory_refusal(self.terms.as_ref()) {
+            None => montecarlo::choices(&self.params, self.variant, &self.u0, self.amplitude_max),
+            Some(why) => {
+                if self.u0.is_empty() {
+                    return Err(Error::Undefined {
+                        what: "a start u0",
+                        why: format!("{why}; give the initial displacements u0"),
+                    });
+                }
+                if self.amplitude_max.is_none() {
+                    return Err(Error::Undefined {
+                        what: "amplitude_max",
+                        why: format!("{why}; give the histogram's range amplitude_max"),
+                    });
+                }
+                montecarlo::Choices {
+                    starts: Some(self.u0.clone()),
+                    amplitude_max: self.amplitude_max,
+                    wells: None,
+                    said: vec![],
+                }
+            }
+        };
         let Some(starts) = chosen.starts else {
             return Err(Error::Undefined {
                 what: "a start u0",
@@ -290,7 +338,11 @@ impl EnsembleRequest {
             ..Default::default()
         };
         let starts: Vec<(f64, f64)> = starts.iter().map(|&u| (u, 0.0)).collect();
-        let problem = self.model.problem(&self.params)?.with_starts(&starts)?;
+        let problem = self
+            .model
+            .problem(&self.params)?
+            .with_terms(self.terms.clone())?
+            .with_starts(&starts)?;
         let method = self.model.method(self.dt, self.impact_memory);
         // every size, step and range checked (no path run) before the step guard
         trirhythm::analysis::run_paths(&problem, &method, &spec, &[], &trirhythm::monitor::Silent)?;
@@ -299,6 +351,7 @@ impl EnsembleRequest {
             .warnings();
         Ok(EnsembleSetup {
             params: self.params.clone(),
+            terms: self.terms.clone(),
             problem,
             method,
             spec,
@@ -339,6 +392,8 @@ pub fn wells_line(method_line: &str, w: &WellsSpec) -> String {
 pub struct EnsembleSetup {
     /// The parameters.
     pub params: Params,
+    /// The General kernel's terms (None: the paper's family).
+    pub terms: Option<GeneralTerms>,
     /// The problem with its starts.
     pub problem: Problem,
     /// The predictor–corrector.
@@ -360,6 +415,12 @@ impl EnsembleSetup {
         &self,
         result: &EnsembleResult,
     ) -> Vec<(Variant, std::result::Result<TheoryComparison, String>)> {
+        if let Some(why) = theory_refusal(self.terms.as_ref()) {
+            return [Variant::Paper, Variant::Consistent]
+                .into_iter()
+                .map(|v| (v, Err(why.clone())))
+                .collect();
+        }
         comparisons(&self.params, result, self.spec.seed)
     }
 
@@ -371,6 +432,13 @@ impl EnsembleSetup {
         wells: &WellsSpec,
         monitor: &dyn trirhythm::monitor::Monitor<()>,
     ) -> Result<WellsResult> {
+        if let Some(why) = theory_refusal(self.terms.as_ref()) {
+            return Err(Error::NotApplicable {
+                method: "the well method (ensemble --method wells)".into(),
+                assumption: "the averaged theory's wells of P(A)".into(),
+                reason: why,
+            });
+        }
         run_wells(&self.problem, &self.method, &self.spec, wells, monitor)
     }
 
@@ -403,6 +471,7 @@ impl EnsembleSetup {
     ) -> EnsembleDocument<'a> {
         EnsembleDocument {
             params: params_json(&self.params),
+            terms: self.terms.as_ref().map(GeneralTerms::describe),
             method: &self.method_line,
             choices: &self.choices,
             step_warnings: &self.step_warnings,
@@ -419,6 +488,10 @@ impl EnsembleSetup {
 pub struct EnsembleDocument<'a> {
     /// The parameters in key order.
     pub params: Value,
+    /// The General kernel's terms ([`GeneralTerms::describe`]), absent for the paper's
+    /// family.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub terms: Option<String>,
     /// The `method:` line.
     pub method: &'a str,
     /// The choices made for the user.

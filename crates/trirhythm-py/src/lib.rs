@@ -611,6 +611,7 @@ fn ensemble_request(
         amplitude_max,
         sample_every,
         lanes: trirhythm::engine::Lanes::Auto,
+        terms: None,
     })
 }
 

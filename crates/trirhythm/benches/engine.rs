@@ -3,7 +3,9 @@
 //! - one path of Eq. (1) with the SOE memory at λ = 0.998 against the same engine at λ = 1
 //!   (no memory), 1e5 steps;
 //! - SOE against Direct memory at 1e4, 3e4 and 1e5 steps (Direct is O(N²));
-//! - the scalar known-answer problem (Diethelm's benchmark) with both memories.
+//! - the scalar known-answer problem (Diethelm's benchmark) with both memories;
+//! - the General kernel (Duffing, Rayleigh, harmonic forcing) against the paper's kernel on the
+//!   same path (fig1 with the wall, μ0 = 0.1), λ = 0.998 and 1, 1e5 steps.
 //!
 //! Long runs (1e6, 1e7 steps) are timed by `examples/engine_timing.rs`, not here.
 
@@ -13,6 +15,7 @@ use std::time::Duration;
 use trirhythm::engine::simulate;
 use trirhythm::engine::{solve_scalar, Memory};
 use trirhythm::known_answers::{diethelm_rhs, engine_benchmark_case};
+use trirhythm::model::{GeneralTerms, Harmonic};
 
 fn path(lambda: f64, steps: usize, memory: Memory) -> f64 {
     let (osc, m, o) = engine_benchmark_case(lambda, steps, memory, steps).unwrap();
@@ -56,5 +59,39 @@ fn scalar(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, soe_vs_lambda_one, soe_vs_direct, scalar);
+/// The paper's kernel and the General one (k3 = 0.1, d1 = −0.001, F = 0.2 at Ω = 0.9) on the
+/// benchmark case.
+fn general_vs_paper(c: &mut Criterion) {
+    let mut g = c.benchmark_group("general_kernel_1e5_steps");
+    g.sample_size(10).measurement_time(Duration::from_secs(3));
+    let terms = GeneralTerms {
+        cubic: 0.1,
+        quintic: 0.0,
+        rayleigh: vec![-0.001],
+        forcing: Some(Harmonic {
+            amplitude: 0.2,
+            frequency: 0.9,
+            phase: 0.0,
+        }),
+    };
+    for lambda in [0.998, 1.0] {
+        let (paper, m, o) =
+            engine_benchmark_case(lambda, 100_000, Memory::default(), 100_000).unwrap();
+        let general = paper.clone().with_terms(Some(terms.clone())).unwrap();
+        for (name, problem) in [("paper", &paper), ("general", &general)] {
+            g.bench_with_input(BenchmarkId::new(name, lambda), problem, |b, p| {
+                b.iter(|| simulate(black_box(p), &m, &o).unwrap().final_amplitude)
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    soe_vs_lambda_one,
+    soe_vs_direct,
+    scalar,
+    general_vs_paper
+);
 criterion_main!(benches);

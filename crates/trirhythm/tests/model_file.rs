@@ -132,12 +132,6 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
     type Change = Box<dyn Fn(&mut Model)>;
     let cases: Vec<(&str, Change)> = vec![
         (
-            "damping.rayleigh.1",
-            Box::new(|m| m.damping.rayleigh = vec![0.0, 0.1]),
-        ),
-        ("restoring.cubic", Box::new(|m| m.restoring.cubic = 0.5)),
-        ("restoring.quintic", Box::new(|m| m.restoring.quintic = 0.5)),
-        (
             "fractional.0.coefficient",
             Box::new(|m| {
                 m.fractional = vec![Fractional {
@@ -175,16 +169,6 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
             }),
         ),
         (
-            "forcing.amplitude",
-            Box::new(|m| {
-                m.forcing = Some(Harmonic {
-                    amplitude: 0.1,
-                    frequency: 1.0,
-                    phase: 0.0,
-                })
-            }),
-        ),
-        (
             "noise.multiplicative.intensity",
             Box::new(|m| {
                 m.noise.multiplicative = Some(NoiseTerm {
@@ -207,6 +191,40 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
             other => panic!("{field}: expected a refusal, got {other:?}"),
         }
         assert_eq!(m.paper_params(), None, "{field}");
+    }
+    // the General kernel's terms (Duffing, Rayleigh, forcing) are stepped, with the wall at 0
+    // and without it
+    type General = Box<dyn Fn(&mut Model)>;
+    let general: Vec<(&str, General)> = vec![
+        (
+            "rayleigh",
+            Box::new(|m| m.damping.rayleigh = vec![0.0, 0.1]),
+        ),
+        ("cubic", Box::new(|m| m.restoring.cubic = 0.5)),
+        ("quintic", Box::new(|m| m.restoring.quintic = 0.5)),
+        (
+            "forcing",
+            Box::new(|m| {
+                m.forcing = Some(Harmonic {
+                    amplitude: 0.1,
+                    frequency: 1.0,
+                    phase: 0.0,
+                })
+            }),
+        ),
+    ];
+    for (name, change) in general {
+        for wall in [true, false] {
+            let mut m = base.clone();
+            change(&mut m);
+            if !wall {
+                m.walls.clear();
+            }
+            let p = Problem::from_model(&m).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(p.oscillator().terms().is_some(), "{name}");
+            assert_eq!(p.wall(), wall, "{name}");
+            assert_eq!(m.paper_params(), None, "{name}");
+        }
     }
     // present with a zero coefficient is absent: the same problem
     let mut zero = base.clone();

@@ -164,23 +164,34 @@ impl ParamArgs {
 pub struct ModelFileArg {
     /// A model file (`trirhythm model show` prints one): the equation, the wall and the start,
     /// in place of --preset, --barrier and --u0/--v0; --param KEY=VALUE still overrides its
-    /// parameters. The engine steps the paper's family today; other terms are refused.
+    /// parameters. The engine steps the paper's family and Duffing, Rayleigh and forcing terms
+    /// (no wall or the wall at 0); other terms are refused.
     #[arg(long = "model", value_name = "FILE", conflicts_with = "preset")]
     pub model: Option<PathBuf>,
 }
 
 impl ModelFileArg {
-    /// The file's model as the engine steps it today (none without `--model`): read,
-    /// validated, and refused by name where it has a term the engine does not step.
-    pub fn load(&self) -> Result<Option<trirhythm::model::PaperFamily>> {
+    /// The file's model as the engine steps it (none without `--model`): read, validated,
+    /// and refused by name where it has a term the engine does not step; the paper family's
+    /// part and the General kernel's terms (Duffing, Rayleigh, forcing; none for the paper's
+    /// family).
+    #[allow(clippy::type_complexity)]
+    pub fn load(
+        &self,
+    ) -> Result<
+        Option<(
+            trirhythm::model::PaperFamily,
+            Option<trirhythm::model::GeneralTerms>,
+        )>,
+    > {
         let Some(path) = &self.model else {
             return Ok(None);
         };
         let model = crate::io::files::read_model(path, "--model")?;
-        let family = model
-            .paper_family("the engine")
+        let engine = model
+            .engine_terms("the engine")
             .with_context(|| format!("--model {}", path.display()))?;
-        Ok(Some(family))
+        Ok(Some(engine))
     }
 }
 
@@ -386,6 +397,9 @@ pub struct ModelArgs {
     /// Relative tolerance of the sum-of-exponentials kernel (checked at start-up).
     #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
     pub tolerance: f64,
+    /// The General kernel's terms of a `--model` file (Duffing, Rayleigh, forcing).
+    #[arg(skip)]
+    pub terms: Option<trirhythm::model::GeneralTerms>,
 }
 
 impl ModelArgs {
@@ -404,7 +418,7 @@ impl ModelArgs {
 
     /// The problem of `params` with this equation and wall (its start still to be set).
     pub fn problem(&self, params: &Params) -> trirhythm::Result<Problem> {
-        self.model().problem(params)
+        self.model().problem(params)?.with_terms(self.terms.clone())
     }
 
     /// `memory=… tolerance=… impact_memory=… barrier=… system=…`, for `method:` header lines.

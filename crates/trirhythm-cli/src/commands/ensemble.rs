@@ -163,6 +163,7 @@ impl EnsembleArgs {
             amplitude_max: self.amplitude_max,
             sample_every: self.sample_every,
             lanes: crate::args::lanes(self.lanes)?,
+            terms: self.model.terms.clone(),
         })
     }
 
@@ -388,6 +389,7 @@ fn ensemble_wells(args: &EnsembleArgs, s: &EnsembleSetup) -> Result<()> {
                 format!("params: {}", s.params.describe()),
                 line.clone(),
             ];
+            notes.extend(s.terms.as_ref().map(|t| format!("terms: {}", t.describe())));
             notes.extend(s.choices.iter().map(|c| format!("chosen: {c}")));
             notes.extend(s.step_warnings.iter().map(|w| format!("warning: {w}")));
             notes.push(summary);
@@ -491,6 +493,7 @@ fn csv_text(
         format!("params: {}", s.params.describe()),
         method.to_string(),
     ];
+    notes.extend(s.terms.as_ref().map(|t| format!("terms: {}", t.describe())));
     notes.extend(s.choices.iter().map(|c| format!("chosen: {c}")));
     notes.extend(s.step_warnings.iter().map(|w| format!("warning: {w}")));
     notes.push(views::ensemble(r, theory, wall));

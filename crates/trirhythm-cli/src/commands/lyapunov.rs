@@ -211,6 +211,9 @@ pub struct LyapunovArgs {
 #[derive(Serialize)]
 struct Run<'a> {
     params: Value,
+    /// The General kernel's terms of a `--model` file, absent for the paper's family.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    terms: Option<String>,
     method: &'static str,
     system: String,
     barrier: String,
@@ -232,6 +235,10 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
     let warnings = guard_step(&problem, &method)?;
     let mut header = vec!["trirhythm lyapunov: largest Lyapunov exponent".to_string()];
     header.push(format!("params: {}", base.describe()));
+    let terms = problem.oscillator().terms().map(|t| t.describe());
+    if let Some(t) = &terms {
+        header.push(format!("terms: {t}"));
+    }
     header.extend(args.sim.describe(&spec));
     header.extend(warnings.iter().map(|w| format!("warning: {w}")));
     if let Some(sweep) = &args.sweep {
@@ -248,6 +255,7 @@ pub fn lyapunov(args: &LyapunovArgs) -> Result<()> {
         SimFormat::Csv => Csv::of(&views::lle_table(&header, &r))?,
         SimFormat::Json => pretty(&Run {
             params: params_json(&base),
+            terms,
             method: args.sim.exponent.method.name(),
             system: args.sim.model.system.name(),
             barrier: args.sim.model.barrier.name(),

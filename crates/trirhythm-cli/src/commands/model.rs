@@ -72,9 +72,14 @@ fn show(a: &ShowArgs) -> Result<()> {
 
 fn check(a: &CheckArgs) -> Result<()> {
     let model = read_model(&a.file, "model check")?;
-    let engine = match model.paper_family("the engine") {
-        Ok(f) => format!(
-            "the engine steps it (the paper's family, {}, {} noise): simulate, ensemble, lyapunov, critical-noise, oscillation take it with --model",
+    let engine = match model.engine_terms("the engine") {
+        Ok((f, terms)) => format!(
+            "the engine steps it ({}, {}, {} noise): {}",
+            if terms.is_some() {
+                "the General kernel: Duffing, Rayleigh or forcing terms"
+            } else {
+                "the paper's family"
+            },
             if f.wall { "wall at U = 0" } else { "no wall" },
             if f.params.noise_intensity == 0.0 {
                 "no"
@@ -82,6 +87,11 @@ fn check(a: &CheckArgs) -> Result<()> {
                 "white"
             } else {
                 "Ornstein-Uhlenbeck"
+            },
+            if terms.is_some() {
+                "simulate, ensemble (no theory comparison), lyapunov take it with --model"
+            } else {
+                "simulate, ensemble, lyapunov, critical-noise, oscillation take it with --model"
             }
         ),
         Err(e) => format!("valid, but not stepped yet: {e}"),

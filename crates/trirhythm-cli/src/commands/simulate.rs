@@ -181,6 +181,9 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
         bar.finish_and_clear();
         let mut m = serde_json::Map::new();
         m.insert("params".into(), params_json(s.problem.params()));
+        if let Some(t) = s.problem.oscillator().terms() {
+            m.insert("terms".into(), json!(t.describe()));
+        }
         m.insert("method".into(), json!(method_line(args)));
         m.insert("step_warnings".into(), json!(s.warnings));
         m.insert("summary".into(), json!(PathSummary::of(&tr, wall)));
@@ -220,6 +223,9 @@ fn stream_csv(
     let w = stream.writer();
     writeln!(w, "# trirhythm simulate: {steps} steps")?;
     writeln!(w, "# params: {}", s.problem.params().describe())?;
+    if let Some(t) = s.problem.oscillator().terms() {
+        writeln!(w, "# terms: {}", t.describe())?;
+    }
     writeln!(w, "# {}", method_line(args))?;
     for warning in &s.warnings {
         writeln!(w, "# warning: {warning}")?;

@@ -9,7 +9,8 @@
 //! - the [`Problem`] every driver takes (oscillator, system, wall, starts, blow-up bound) and
 //!   the method [`PredictorCorrector`];
 //! - [`Stepper`]: the linearly implicit predictor–corrector step with impacts (module docs of
-//!   `stepper` give the method and why);
+//!   `stepper` give the method and why), with two kernels: the paper's (Eq. 1/5/9, the wall)
+//!   and the General one (Duffing, Rayleigh, harmonic forcing; no wall or the wall at 0);
 //! - [`Lanes`]: several paths of one problem stepped together, the arithmetic of their step
 //!   vectorised across them, with the scalar stepper's bits (module docs of `stepper::lanes`);
 //! - drivers: [`run`] with an [`Observer`], [`run_lanes`] for several paths at once, [`simulate`], [`simulate_ensemble`]; a
@@ -43,4 +44,4 @@ pub use resolution::Resolution;
 pub use stepper::{
     detected_lanes, Impact, Lanes, StepEvents, Stepper, LANE_WIDTHS, MAX_DIRECT_STEPS,
 };
-pub(crate) use stepper::{fresh_history, group_lanes, Group, Tangent};
+pub(crate) use stepper::{fresh_history, general_wall_tangent, group_lanes, Group, Tangent};

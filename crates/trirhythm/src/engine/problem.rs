@@ -1,5 +1,7 @@
 //! The problem and the method of a simulation: which equation ([`Problem`]: the
-//! [`Oscillator`], the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
+//! [`Oscillator`] — the paper family's parameters and, optionally, the General kernel's terms
+//! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing; with [`System::Fractional`], the
+//! wall at 0 or none) —, the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
 //! discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and what one trajectory
 //! records ([`Options`]). Every driver — [`super::simulate`], the ensembles, the Lyapunov
 //! exponents, the oscillation search — takes the same [`Problem`]; its spec holds only what is
@@ -8,7 +10,7 @@
 use super::memory::{Memory, DEFAULT_WINDOW};
 use super::noise::Noise;
 use crate::error::{Error, Exact, Result};
-use crate::model::{Equivalents, Model, Params};
+use crate::model::{Equivalents, GeneralTerms, Model, Params};
 
 /// What the memory does at an impact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -131,6 +133,8 @@ pub struct Oscillator {
     params: Params,
     equivalents: Equivalents,
     noise: Noise,
+    /// The terms beyond the paper's family (Duffing, Rayleigh, forcing): the General kernel.
+    general: Option<GeneralTerms>,
 }
 
 impl Oscillator {
@@ -141,7 +145,51 @@ impl Oscillator {
             params: params.clone(),
             equivalents: Equivalents::new(params),
             noise: Noise::from_params(params),
+            general: None,
         })
+    }
+
+    /// The same oscillator with the General kernel's terms added (Duffing k3U³ + k5U⁵,
+    /// Rayleigh Σ d_k U̇^{2k}, F cos(Ωt + φ)); `None` or empty terms: the paper's equation.
+    /// Validated: |k3|, |k5| ≤ 1e6, at most 20 Rayleigh coefficients each |d_k| ≤ 1e6, the
+    /// forcing's F ∈ [0, 1e6], Ω ∈ (0, 1e3], |φ| ≤ 1e6 (the model file's ranges).
+    pub fn with_terms(self, terms: Option<GeneralTerms>) -> Result<Self> {
+        let general = terms.filter(|t| !t.is_empty());
+        if let Some(t) = &general {
+            for (name, v) in [
+                ("restoring.cubic", t.cubic),
+                ("restoring.quintic", t.quintic),
+            ] {
+                if v.is_nan() || v.abs() > 1e6 {
+                    return Err(Error::invalid(name, v, "[-1e6, 1e6]"));
+                }
+            }
+            if t.rayleigh.len() > 20 {
+                return Err(Error::invalid(
+                    "damping.rayleigh",
+                    t.rayleigh.len() as f64,
+                    "at most 20 coefficients (U̇² … U̇⁴⁰)",
+                ));
+            }
+            for (k, &d) in t.rayleigh.iter().enumerate() {
+                if d.is_nan() || d.abs() > 1e6 {
+                    return Err(Error::invalid(
+                        format!("damping.rayleigh.{k}").as_str(),
+                        d,
+                        "[-1e6, 1e6]",
+                    ));
+                }
+            }
+            if let Some(f) = &t.forcing {
+                f.validate()?;
+            }
+        }
+        Ok(Oscillator { general, ..self })
+    }
+
+    /// The General kernel's terms, None for the paper's equation.
+    pub fn terms(&self) -> Option<&GeneralTerms> {
+        self.general.as_ref()
     }
 
     /// The parameters.
@@ -216,10 +264,12 @@ impl Problem {
     }
 
     /// The problem a model file describes: its equation, its wall and its start, for the
-    /// models the engine steps today ([`Model::paper_family`]: the paper's Eq. 1 with the wall
-    /// at 0 or none, additive white or OU noise). Every other term is refused with
-    /// [`Error::NotApplicable`] naming it, never dropped. For `Model::from(&p)` this is
-    /// `Problem::from_params(&p)` (the same value, hence the same paths: `tests/model_file.rs`).
+    /// models the engine steps ([`Model::engine_terms`]): the paper's Eq. 1 with the wall at 0
+    /// or none, additive white or OU noise, and the General kernel's terms — Duffing
+    /// k3U³ + k5U⁵, Rayleigh Σ d_k U̇^{2k}, harmonic forcing F cos(Ωt + φ). Every other
+    /// term is refused with [`Error::NotApplicable`] naming it, never dropped. For
+    /// `Model::from(&p)` this is `Problem::from_params(&p)` (the same value, hence the same
+    /// paths, bit for bit: `tests/model_file.rs`, `tests/pinned.rs`).
     ///
     /// ```
     /// use trirhythm::engine::{Barrier, Problem};
@@ -230,13 +280,15 @@ impl Problem {
     /// assert_eq!(Problem::from_model(&model)?, Problem::from_params(&p)?);
     /// let mut duffing = model.clone();
     /// duffing.restoring.cubic = 0.5;
+    /// assert!(Problem::from_model(&duffing)?.oscillator().terms().is_some()); // General kernel
+    /// duffing.fractional.push(trirhythm::model::Fractional { coefficient: 0.1, order: 0.5 });
     /// assert!(Problem::from_model(&duffing).is_err()); // not stepped yet: refused, named
     /// # Ok::<(), trirhythm::Error>(())
     /// ```
     pub fn from_model(model: &Model) -> Result<Self> {
-        let family = model.paper_family("the engine (Problem::from_model)")?;
+        let (family, terms) = model.engine_terms("the engine (Problem::from_model)")?;
         let (u0, v0) = family.start;
-        Problem::from_params(&family.params)?
+        Problem::new(Oscillator::new(&family.params)?.with_terms(terms)?)
             .with_barrier(if family.wall {
                 Barrier::On
             } else {
@@ -245,10 +297,20 @@ impl Problem {
             .with_start(u0, v0)
     }
 
+    /// The same problem with the General kernel's terms (Duffing, Rayleigh, forcing;
+    /// [`Oscillator::with_terms`]); they need [`System::Fractional`] (the wall at 0 or none).
+    pub fn with_terms(self, terms: Option<GeneralTerms>) -> Result<Self> {
+        Problem {
+            oscillator: self.oscillator.clone().with_terms(terms)?,
+            ..self
+        }
+        .checked()
+    }
+
     /// The same problem for other parameters (a sweep's point), validated.
     pub fn with_params(&self, params: &Params) -> Result<Self> {
         Problem {
-            oscillator: Oscillator::new(params)?,
+            oscillator: Oscillator::new(params)?.with_terms(self.oscillator.general.clone())?,
             ..self.clone()
         }
         .checked()
@@ -325,6 +387,32 @@ impl Problem {
     }
 
     fn checked(self) -> Result<Self> {
+        if let Some(t) = self.oscillator.terms() {
+            let field = if t.cubic != 0.0 {
+                "restoring.cubic"
+            } else if t.quintic != 0.0 {
+                "restoring.quintic"
+            } else if !t.rayleigh.is_empty() {
+                "damping.rayleigh"
+            } else {
+                "forcing.amplitude"
+            };
+            let refuse = |assumption: &str, reason: String| Error::NotApplicable {
+                method: "the engine".into(),
+                assumption: assumption.into(),
+                reason,
+            };
+            if self.system != System::Fractional {
+                return Err(refuse(
+                    "Eq. (1) itself (System::Fractional)",
+                    format!(
+                        "{field}: the General kernel's terms have no Eq. (5)/(9) equivalent; \
+                         system = {:?}",
+                        self.system
+                    ),
+                ));
+            }
+        }
         let b = self.blow_up;
         if b.is_nan() || b <= 0.0 {
             return Err(Error::invalid("blow_up", b, "(0, ∞]"));

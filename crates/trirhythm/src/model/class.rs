@@ -11,8 +11,9 @@
 //! ones (two walls ordered and facing each other, the start on the allowed side of every wall,
 //! a correlation only between noises of one correlation time). The paper family's
 //! [`Params`] converts losslessly: `Model::from(&params).paper_params() == Some(params)`.
-//! [`Model::paper_family`] says which part of the class the engine steps today and refuses
-//! every other term by name ([`Error::NotApplicable`]).
+//! [`Model::paper_family`] is the paper's family (refusing every other term by name,
+//! [`Error::NotApplicable`]); [`Model::engine_terms`] is what the engine steps: that family plus
+//! the General kernel's terms ([`GeneralTerms`]: Duffing, Rayleigh, forcing).
 //!
 //! Reference: the paper's Eq. (1) and issue 36's class; `docs/model-file.md`.
 //!
@@ -65,6 +66,58 @@ pub struct PaperFamily {
     pub wall: bool,
     /// The start (U(0), U̇(0)).
     pub start: (f64, f64),
+}
+
+/// The terms of the class beyond the paper's family that the engine's General kernel steps
+/// (`engine::stepper::general`): the odd restoring terms k3U³ + k5U⁵, the Rayleigh damping
+/// Σ d_k U̇^{2k} in h, and the harmonic forcing F cos(Ωt + φ). The rest of the equation (μ0P(U),
+/// ω0, λ, the noise, the wall) is the [`PaperFamily`] beside it ([`Model::engine_terms`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct GeneralTerms {
+    /// k3, the coefficient of U³ in k(U).
+    pub cubic: f64,
+    /// k5, the coefficient of U⁵ in k(U).
+    pub quintic: f64,
+    /// d_k, the coefficient of U̇^{2k} in h (`rayleigh[0]` multiplies U̇²); trailing zeros
+    /// dropped.
+    pub rayleigh: Vec<f64>,
+    /// F cos(Ωt + φ), with F ≠ 0.
+    pub forcing: Option<Harmonic>,
+}
+
+impl GeneralTerms {
+    /// Whether every term is absent (the paper's family).
+    pub fn is_empty(&self) -> bool {
+        self.cubic == 0.0
+            && self.quintic == 0.0
+            && self.rayleigh.is_empty()
+            && self.forcing.is_none()
+    }
+
+    /// `cubic=… quintic=… rayleigh=[…] forcing: amplitude=… frequency=… phase=…` (or
+    /// `forcing: none`), with the model file's names, for header lines.
+    pub fn describe(&self) -> String {
+        let rayleigh: Vec<String> = self
+            .rayleigh
+            .iter()
+            .map(|d| Exact(*d).to_string())
+            .collect();
+        let forcing = match &self.forcing {
+            Some(f) => format!(
+                "amplitude={} frequency={} phase={}",
+                Exact(f.amplitude),
+                Exact(f.frequency),
+                Exact(f.phase)
+            ),
+            None => "none".to_string(),
+        };
+        format!(
+            "cubic={} quintic={} rayleigh=[{}] forcing: {forcing}",
+            Exact(self.cubic),
+            Exact(self.quintic),
+            rayleigh.join(",")
+        )
+    }
 }
 
 impl From<&Params> for Model {
@@ -311,6 +364,36 @@ impl Model {
             wall,
             start: (self.start.u0, self.start.v0),
         })
+    }
+
+    /// The model as the engine steps it: the paper family's part ([`Model::paper_family`]) and
+    /// the General kernel's terms (Duffing k3, k5; Rayleigh d_k; harmonic forcing), None when
+    /// there are none (the paper's kernel, the paper's bits). Refused by name with
+    /// [`Error::NotApplicable`] for `method`: fractional terms K·D^αU, a wall off 0, below it
+    /// or two walls, a speed-dependent restitution, multiplicative noise (as by
+    /// [`Model::paper_family`]). Terms present with a zero coefficient are absent.
+    pub fn engine_terms(&self, method: &str) -> Result<(PaperFamily, Option<GeneralTerms>)> {
+        self.validate()?;
+        let mut rayleigh = self.damping.rayleigh.clone();
+        while rayleigh.last() == Some(&0.0) {
+            rayleigh.pop();
+        }
+        let terms = GeneralTerms {
+            cubic: self.restoring.cubic,
+            quintic: self.restoring.quintic,
+            rayleigh,
+            forcing: self.forcing.filter(|f| f.amplitude != 0.0),
+        };
+        let mut paper = self.clone();
+        paper.restoring.cubic = 0.0;
+        paper.restoring.quintic = 0.0;
+        paper.damping.rayleigh.clear();
+        paper.forcing = None;
+        let family = paper.paper_family(method)?;
+        if terms.is_empty() {
+            return Ok((family, None));
+        }
+        Ok((family, Some(terms)))
     }
 
     /// The damping polynomial P(U) of h = μ0·P(U) + ….

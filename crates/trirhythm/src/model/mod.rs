@@ -19,7 +19,7 @@ mod equivalents;
 mod file;
 pub mod terms;
 
-pub use class::{Model, PaperFamily};
+pub use class::{GeneralTerms, Model, PaperFamily};
 pub use equivalents::Equivalents;
 pub use file::FORMAT;
 pub use terms::{

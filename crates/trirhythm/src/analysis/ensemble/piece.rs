@@ -28,7 +28,7 @@ pub fn fingerprint(problem: &Problem, method: &PredictorCorrector, spec: &Ensemb
         lanes: Lanes::Auto,
         ..spec.clone()
     };
-    format!(
+    let mut text = format!(
         "trirhythm ensemble {}\nparams: {}\n{method:?}\nspec: {spec:?}\nstarts: {:?} system: {:?} \
          barrier: {:?} blow_up: {:e}\n",
         env!("CARGO_PKG_VERSION"),
@@ -37,7 +37,12 @@ pub fn fingerprint(problem: &Problem, method: &PredictorCorrector, spec: &Ensemb
         problem.system(),
         problem.barrier(),
         problem.blow_up()
-    )
+    );
+    // the General kernel's terms (absent for the paper's family, whose fingerprints stay)
+    if let Some(t) = problem.oscillator().terms() {
+        text.push_str(&format!("terms: {}\n", t.describe()));
+    }
+    text
 }
 
 /// One path's statistics with the [`fingerprint`] of their run.

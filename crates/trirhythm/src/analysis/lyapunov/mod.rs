@@ -473,6 +473,12 @@ pub fn run_paths(
 ) -> Result<Vec<PathRun>> {
     let (transient, window) = spec.sizes(method)?;
     super::check_indices(paths, spec.paths)?;
+    if spec.method == LyapunovMethod::Tangent
+        && problem.oscillator().terms().is_some()
+        && problem.wall()
+    {
+        return Err(crate::engine::general_wall_tangent());
+    }
     monitor.check()?;
     if paths.is_empty() {
         return Ok(vec![]);

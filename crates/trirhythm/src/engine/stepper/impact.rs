@@ -68,6 +68,9 @@ impl Stepper {
         (u1, v1): (f64, f64),
     ) -> (Split, f64, f64) {
         let c = self.locate(gl, (el, er), (u1, v1));
+        if self.general.is_some() {
+            return self.jump_general(&c, gl, er);
+        }
         let rest = self.jump(&c, gl, er);
         let (u_end, v_end) = rest.free.end();
         (rest.split, u_end, v_end)
@@ -82,9 +85,14 @@ impl Stepper {
         // g at U = 0 is a0·V + forcing
         let a0 = self.rhs.damping(0.0);
         let (hs, ws) = self.history.at_fraction(theta, gl);
-        let forcing = self.rhs.forcing(eta_star, self.side);
+        let mut forcing = self.rhs.forcing(eta_star, self.side);
         // the scheme's own V(t*−); at a grazing wall impact it may come out ≥ 0: then V₋ = 0
-        let v_at = (self.base + hs + ws * forcing) / (1.0 - ws * a0);
+        let mut v_at = (self.base + hs + ws * forcing) / (1.0 - ws * a0);
+        if let Some(g) = &self.general {
+            // g at the wall is h(0, V)V + F cos ψ* + η* (module docs of `general`)
+            forcing += g.force_at(theta);
+            v_at = g.wall_velocity(self.base + hs, ws, forcing);
+        }
         Crossing {
             theta,
             eta_star,
@@ -145,6 +153,46 @@ impl Stepper {
             v_minus,
             free,
         }
+    }
+}
+
+impl Stepper {
+    /// [`Stepper::jump`] for the General kernel (the wall at 0; module docs of `general`):
+    /// the split piece's values h(0, V)V + forcing at V(t*) and V₊, the rest of the step by the
+    /// General kernel from (0, V₊). Returns the split and the end of the step.
+    fn jump_general(&mut self, c: &Crossing, gl: f64, er: f64) -> (Split, f64, f64) {
+        let h = self.h;
+        let (theta, v_at) = (c.theta, c.v_at);
+        let v_minus = v_at.min(0.0);
+        let v_plus = -self.rhs.restitution * v_minus;
+        self.impacts += 1;
+        self.events.impact = Some(Impact {
+            time: self.time() + theta * h,
+            v_minus,
+            v_plus,
+        });
+        let g = self.general.as_deref().expect("a General path");
+        let split = Split {
+            theta,
+            before: g.wall_drift(v_at) + c.forcing,
+            after: g.wall_drift(v_plus) + c.forcing,
+            keep_before: !self.restart,
+            mass: 0.0,
+        };
+        if self.restart {
+            self.history.restart();
+            self.base = v_plus;
+        } else {
+            self.base += v_plus - v_at;
+        }
+        let (known_s, wr_s) = self.history.current_split(gl, &split);
+        let known = self.base + self.history.value() + known_s;
+        let hh = (1.0 - theta) * h;
+        let fr = self.rhs.forcing(er, self.side) + g.force_now();
+        let pw = predictor_weight(hh, g.a(0.0, v_plus));
+        let free = g.advance(hh, (0.0, v_plus, split.after), pw, known, wr_s, fr);
+        let (u_end, v_end) = free.end();
+        (split, u_end, v_end)
     }
 }
 

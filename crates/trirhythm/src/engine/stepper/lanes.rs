@@ -83,7 +83,7 @@
 
 use super::polynomial::LanePolynomial;
 use super::tangent::{TangentBegin, TangentEnd};
-use super::{node_with, pass_with, Begin, End, Free, Pass, Rhs, Stepper, Tangent};
+use super::{node_with, pass_with, Affine, Begin, End, Free, Pass, Stepper, Tangent};
 use crate::error::{Error, Result};
 
 /// How many paths the drivers step together.
@@ -206,11 +206,47 @@ fn step_group_with<const L: usize, C: Coefficients<L>>(
         paths.len() <= L,
         "at most {L} paths in a group of {L} lanes"
     );
+    if paths.iter().any(|p| p.general.is_some()) {
+        return step_one_by_one::<L>(paths, live, errors);
+    }
     match isa {
         #[cfg(target_arch = "x86_64")]
         // SAFETY: `Isa::Avx2` is only detected where the CPU reports AVX2.
         Isa::Avx2 => unsafe { step_avx2::<L, _>(c, paths, live, errors) },
         _ => step_body::<L, _>(c, paths, live, errors),
+    }
+}
+
+/// A group holding General paths (module docs of `general`): every live path by the scalar
+/// stepper, one after the other. Out of line, so that the lane step's callers (their loops
+/// inlined around it) keep the code they had.
+#[cold]
+#[inline(never)]
+fn step_one_by_one<const L: usize>(
+    paths: &mut [Stepper],
+    live: &[bool; L],
+    errors: &mut [Option<Error>; L],
+) {
+    for (k, p) in paths.iter_mut().enumerate() {
+        if live[k] {
+            errors[k] = p.step().err();
+        }
+    }
+}
+
+/// [`step_one_by_one`] with the tangents.
+#[cold]
+#[inline(never)]
+fn step_tangents_one_by_one<const L: usize>(
+    paths: &mut [Stepper],
+    tangents: &mut [Tangent],
+    live: &[bool; L],
+    errors: &mut [Option<Error>; L],
+) {
+    for (k, (p, t)) in paths.iter_mut().zip(tangents.iter_mut()).enumerate() {
+        if live[k] {
+            errors[k] = p.step_with_tangent(t).err();
+        }
     }
 }
 
@@ -335,7 +371,7 @@ fn begin_lanes<const L: usize>(paths: &mut [Stepper], live: &[bool; L]) -> ([Beg
     (begun, x)
 }
 
-/// [`Rhs::pass`] for L lanes: μP in one vectorised evaluation, then the pass element by element
+/// [`Affine::pass`] for L lanes: μP in one vectorised evaluation, then the pass element by element
 /// (the same function as the scalar stepper's).
 #[inline(always)]
 fn pass_lanes<const L: usize, C: Coefficients<L>>(
@@ -442,6 +478,9 @@ pub(crate) fn step_group_tangent<const L: usize>(
         paths.len() <= L && tangents.len() == paths.len(),
         "at most {L} paths, each with its tangent, in a group of {L} lanes"
     );
+    if paths.iter().any(|p| p.general.is_some()) {
+        return step_tangents_one_by_one::<L>(paths, tangents, live, errors);
+    }
     match isa {
         #[cfg(target_arch = "x86_64")]
         // SAFETY: `Isa::Avx2` is only detected where the CPU reports AVX2.
@@ -462,10 +501,10 @@ unsafe fn step_tangent_avx2<const L: usize>(
     step_tangent_body::<L>(paths, tangents, live, errors)
 }
 
-/// μP and d(μP)/dU = 2U·(μP)′(U²) at the points u, for every lane (as [`Rhs::damping`] and
-/// [`Rhs::damping_slope`]).
+/// μP and d(μP)/dU = 2U·(μP)′(U²) at the points u, for every lane (as [`Affine::damping`] and
+/// [`Affine::damping_slope`]).
 #[inline(always)]
-fn damping_and_slope<const L: usize>(rhs: &Rhs, u: &[f64; L]) -> ([f64; L], [f64; L]) {
+fn damping_and_slope<const L: usize>(rhs: &Affine, u: &[f64; L]) -> ([f64; L], [f64; L]) {
     let mut sq = [0.0; L];
     for i in 0..L {
         sq[i] = u[i] * u[i];
@@ -481,7 +520,7 @@ fn damping_and_slope<const L: usize>(rhs: &Rhs, u: &[f64; L]) -> ([f64; L], [f64
 
 /// d(μP)/dU at the points u, for every lane.
 #[inline(always)]
-fn slope_lanes<const L: usize>(rhs: &Rhs, u: &[f64; L]) -> [f64; L] {
+fn slope_lanes<const L: usize>(rhs: &Affine, u: &[f64; L]) -> [f64; L] {
     let mut sq = [0.0; L];
     for i in 0..L {
         sq[i] = u[i] * u[i];
@@ -497,7 +536,7 @@ fn slope_lanes<const L: usize>(rhs: &Rhs, u: &[f64; L]) -> [f64; L] {
 /// The corrector's pass for L lanes with everything the tangent needs (the scalar [`Pass`]).
 #[inline(always)]
 fn full_pass_lanes<const L: usize>(
-    rhs: &Rhs,
+    rhs: &Affine,
     (h, w): (f64, f64),
     x: &Inputs<L>,
     up: &[f64; L],

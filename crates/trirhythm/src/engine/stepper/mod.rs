@@ -5,9 +5,24 @@
 //! [`super::drivers`]. A stepper is built from a [`Problem`] ([`Stepper::new`]): the
 //! equation, the wall, the start of its path and the blow-up bound are the problem's.
 //!
-//! The step is here; `impact` locates an impact inside a step and redoes the rest of it,
-//! `tangent` steps the variational equation with the path, `renormalise` pulls a perturbed
-//! copy toward its reference, `polynomial` evaluates μP.
+//! The step is here; `affine` holds the paper's kernel (the arithmetic of a step of Eq. 1/5/9:
+//! predictor, corrector passes, their tangents), `general` the General kernel (Duffing,
+//! Rayleigh, harmonic forcing: the rest of the class the engine steps, no wall or the wall at 0),
+//! `impact` locates an impact inside a step and redoes the rest of it, `tangent` steps the
+//! variational equation with the path, `renormalise` pulls a perturbed copy toward its
+//! reference, `polynomial` evaluates μP.
+//!
+//! **Two kernels, absent terms cost nothing** (model-class.md §2). A path of the paper's
+//! family steps with [`Affine`] (the former `Rhs`, moved verbatim: same expressions, same
+//! order, same bits — `tests/pinned.rs` digests every step of scalar, lane and tangent runs,
+//! recorded before the move). A path whose problem has the General kernel's terms
+//! ([`crate::engine::Oscillator::terms`]) holds a boxed `General` with its forcing phase, and
+//! [`Stepper::step`] takes one branch on it per step (not a generic parameter: that would put
+//! the kernel into every driver's signature for a second implementation that has no lanes of
+//! its own). The lane steppers step General paths path by path (out of line, so that the lane
+//! step's callers keep their code). Measured side by side with main's
+//! `examples/lanes_timing.rs` and `examples/drivers_timing.rs` (CHANGELOG.md): the paper's
+//! ensembles, lane steps and Lyapunov runs at 0.95–1.02 of main's CPU time.
 //!
 //! # Equation
 //! Caputo D^{1+λ}U = D^λ(U′), so Eq. (1) is the multi-order system
@@ -104,7 +119,8 @@
 //! stiff fractional problems); Zhuravlev's transformation for Eq. (9).
 //!
 //! # Tests
-//! `tests/convergence.rs` (observed orders on Mittag-Leffler and impact-oscillator solutions),
+//! `tests/general.rs` (the General kernel's known answers), `tests/convergence.rs` (observed
+//! orders on Mittag-Leffler and impact-oscillator solutions),
 //! `tests/cycle_exponent.rs` (the noise-free exponent on every stable cycle of the Lyapunov
 //! figures is 0 within the window's bound, both methods, at the figures' Δt and half of it),
 //! `tests/stiff.rs` (Fig. 13(b) from U = 13 and Fig. 5(e) at μ0 = 0.7 at Δt = 0.01; amplitude
@@ -120,10 +136,17 @@
 use super::drivers::MAX_STEPS;
 use super::memory::{History, Memory, Piece, Split};
 use super::noise::NoiseStream;
-use super::problem::{ImpactMemory, Oscillator, PredictorCorrector, Problem, System};
+use super::problem::{ImpactMemory, PredictorCorrector, Problem, System};
 use crate::error::{Error, Exact, Result};
-use polynomial::Polynomial;
+pub(crate) use affine::Affine;
+use affine::{
+    node_with, pass_with, predictor_weight, predictor_weight_len_slope, predictor_weight_slope,
+    Free, Pass,
+};
+use general::General;
 
+mod affine;
+mod general;
 mod impact;
 pub(crate) mod lanes;
 mod polynomial;
@@ -132,337 +155,7 @@ mod renormalise;
 mod tangent;
 pub use lanes::{detected_lanes, Lanes, LANE_WIDTHS};
 pub(crate) use lanes::{group_lanes, Group};
-pub(crate) use tangent::Tangent;
-
-/// g(U, V, η) = μP(U)V − ω²U + γ·side·η of one system.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Rhs {
-    pub lambda: f64,
-    /// μP as a polynomial in U².
-    damping: Polynomial,
-    /// Its derivative in U², so that d(μP)/dU = 2U·slope(U²) (the tangent method).
-    slope: Polynomial,
-    omega2: f64,
-    gain: f64,
-    restitution: f64,
-}
-
-impl Rhs {
-    pub fn new(osc: &Oscillator, system: System) -> Self {
-        let p = osc.params();
-        let e = osc.equivalents();
-        match system {
-            System::Fractional => Rhs {
-                lambda: p.lambda,
-                slope: Polynomial::scaled(p.mu0, &p.damping.coefficients).derivative(),
-                damping: Polynomial::scaled(p.mu0, &p.damping.coefficients),
-                omega2: p.omega0 * p.omega0,
-                gain: 1.0,
-                restitution: p.restitution,
-            },
-            System::Equivalent | System::Zhuravlev => {
-                let mut c = p.damping.coefficients.clone();
-                c[0] = e.beta1;
-                Rhs {
-                    lambda: 1.0,
-                    slope: Polynomial::scaled(e.mu1, &c).derivative(),
-                    damping: Polynomial::scaled(e.mu1, &c),
-                    omega2: e.omega1 * e.omega1,
-                    gain: e.beta2,
-                    restitution: p.restitution,
-                }
-            }
-        }
-    }
-
-    /// μP(U), the coefficient of V in g.
-    #[inline]
-    fn damping(&self, u: f64) -> f64 {
-        self.damping.eval(u * u)
-    }
-
-    /// d(μP)/dU = 2U·(μP)′ in U², the tangent method's derivative of the damping.
-    #[inline]
-    fn damping_slope(&self, u: f64) -> f64 {
-        2.0 * u * self.slope.eval(u * u)
-    }
-
-    /// The drift μP(U)V − ω²U and the predictor's weight at a node (u1, v1) where μP = `a1`,
-    /// for steps of length `h`.
-    #[inline(always)]
-    fn node(&self, h: f64, a1: f64, u1: f64, v1: f64) -> (f64, f64) {
-        node_with(self.omega2, h, a1, u1, v1)
-    }
-
-    /// The deterministic part μP(U)V − ω²U of g.
-    #[inline]
-    fn drift(&self, u: f64, v: f64) -> f64 {
-        self.damping(u) * v - self.omega2 * u
-    }
-
-    /// The forcing term γ·side·η.
-    #[inline]
-    fn forcing(&self, eta: f64, side: f64) -> f64 {
-        self.gain * side * eta
-    }
-}
-
-/// [`Rhs::node`] with ω² = `omega2` given (the lane stepper's lanes may each have their own).
-#[inline(always)]
-fn node_with(omega2: f64, h: f64, a1: f64, u1: f64, v1: f64) -> (f64, f64) {
-    (a1 * v1 - omega2 * u1, predictor_weight(h, a1))
-}
-
-/// The predictor's weight of g at the start of a step of length `len`: ½len²/(1 + len|a|), a
-/// = μP(U) there. ½len² is the Taylor term (U″ = V′ ≈ g); the factor 1/(1 + len|a|) keeps the
-/// predictor bounded where the damping is stiff (|a|len ≫ 1: it tends to len/(2|a|), the
-/// linearly implicit Euler's velocity increment) and changes it by O(len³) elsewhere.
-#[inline]
-fn predictor_weight(len: f64, a: f64) -> f64 {
-    0.5 * len * len / (1.0 + len * a.abs())
-}
-
-/// d/dU of [`predictor_weight`] where da/dU = `slope`.
-fn predictor_weight_slope(len: f64, a: f64, slope: f64) -> f64 {
-    let d = 1.0 + len * a.abs();
-    -0.5 * len * len * len * a.signum() * slope / (d * d)
-}
-
-/// d/d(len) of [`predictor_weight`] at a fixed a: len(1 + ½len|a|)/(1 + len|a|)² (the rest of
-/// an impact step, whose length moves with the impact).
-fn predictor_weight_len_slope(len: f64, a: f64) -> f64 {
-    let d = 1.0 + len * a.abs();
-    len * (1.0 + 0.5 * len * a.abs()) / (d * d)
-}
-
-/// The factor 1/(1 + z²/12) of the Hermite correction of U, z = 2w·a the stiffness of the
-/// step's implicit velocity (z = Δt·μP at λ = 1).
-#[inline]
-fn hermite_limiter(z: f64) -> f64 {
-    1.0 / (1.0 + z * z * (1.0 / 12.0))
-}
-
-/// One pass of the linearly implicit corrector: U frozen at `up` in μP and ω²U.
-#[derive(Debug, Clone, Copy)]
-struct Pass {
-    up: f64,
-    /// μP(up).
-    a: f64,
-    /// 1/(1 − w·a).
-    inv: f64,
-    /// The Hermite limiter at z = 2w·a.
-    lim: f64,
-    /// g at the end, with μP and ω²U at `up`.
-    gr: f64,
-    u1: f64,
-    v1: f64,
-}
-
-/// [`Rhs::pass`] with μP(up) = `a` and ω² = `omega2` given (the lane stepper evaluates μP for
-/// several paths at once, and its lanes may each have their own ω²).
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn pass_with(
-    omega2: f64,
-    a: f64,
-    len: f64,
-    (u, v, g0): (f64, f64, f64),
-    up: f64,
-    known: f64,
-    w: f64,
-    fr: f64,
-) -> Pass {
-    let inv = 1.0 / (1.0 - w * a);
-    let lim = hermite_limiter(2.0 * w * a);
-    let v1 = (known + w * (fr - omega2 * up)) * inv;
-    let gr = a * v1 - omega2 * up + fr;
-    let u1 = u + 0.5 * len * (v + v1) + len * len * (1.0 / 12.0) * lim * (g0 - gr);
-    Pass {
-        up,
-        a,
-        inv,
-        lim,
-        gr,
-        u1,
-        v1,
-    }
-}
-
-/// One linearly implicit step of length `len` from (u, v), where g = `g0`, to its free end
-/// (module docs): the quantities the step forms, kept for the tangent's derivative.
-#[derive(Debug, Clone, Copy)]
-struct Free {
-    len: f64,
-    /// Scaled weight of g at the end.
-    w: f64,
-    g0: f64,
-    /// The predictor's weight of g0.
-    pw: f64,
-    /// The first pass (from the predictor) and the second (from the first pass's U), which
-    /// is the step's end.
-    passes: [Pass; 2],
-}
-
-impl Free {
-    /// The end (U₁, V₁) of the step.
-    #[inline]
-    fn end(&self) -> (f64, f64) {
-        let p = &self.passes[1];
-        (p.u1, p.v1)
-    }
-}
-
-impl Rhs {
-    /// One corrector pass with U frozen at `up` (see [`Rhs::advance`]).
-    #[inline]
-    #[allow(clippy::too_many_arguments)]
-    fn pass(
-        &self,
-        len: f64,
-        (u, v, g0): (f64, f64, f64),
-        up: f64,
-        known: f64,
-        w: f64,
-        fr: f64,
-    ) -> Pass {
-        let a = self.damping(up);
-        pass_with(self.omega2, a, len, (u, v, g0), up, known, w, fr)
-    }
-
-    /// The step of length `len` from (u, v) with g = `g0` there, `known` the part of V at the
-    /// end that does not depend on g at the end, `w` the scaled weight of g at the end, `fr`
-    /// the forcing there:
-    /// up = u + len·v + pw·g0, V₁ = (known + w(fr − ω²up))/(1 − w·μP(up)),
-    /// U₁ = u + len(v + V₁)/2 + (len²/12)·lim·(g0 − g₁); the pass is then repeated once with
-    /// up = U₁, and the second pass is the step (module docs: why on every step).
-    // always: left to itself the inliner keeps it out of `step` (a call on every step, ≈ 10 %
-    // of an ensemble's time, measured with perf)
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn advance(
-        &self,
-        len: f64,
-        (u, v, g0): (f64, f64, f64),
-        pw: f64,
-        known: f64,
-        w: f64,
-        fr: f64,
-    ) -> Free {
-        let first = self.pass(len, (u, v, g0), u + len * v + pw * g0, known, w, fr);
-        let second = self.pass(len, (u, v, g0), first.u1, known, w, fr);
-        Free {
-            len,
-            w,
-            g0,
-            pw,
-            passes: [first, second],
-        }
-    }
-
-    /// The derivative of one pass along (δu, δv, δg0, δup, δknown): (δU₁, δV₁), with
-    /// d(μP)/dU at the pass's up = `slope` given (the lane stepper evaluates it for several
-    /// paths at once).
-    #[inline(always)]
-    fn pass_tangent(
-        &self,
-        f: &Free,
-        (p, slope): (&Pass, f64),
-        (du, dv, dg0): (f64, f64, f64),
-        dup: f64,
-        dknown: f64,
-    ) -> (f64, f64) {
-        let da = slope * dup;
-        let dv1 = p.inv * (dknown - f.w * self.omega2 * dup + p.v1 * f.w * da);
-        let dgr = da * p.v1 + p.a * dv1 - self.omega2 * dup;
-        let z = 2.0 * f.w * p.a;
-        let dlim = -p.lim * p.lim * (z / 6.0) * 2.0 * f.w * da;
-        let c = f.len * f.len / 12.0;
-        let du1 = du + 0.5 * f.len * (dv + dv1) + c * (dlim * (f.g0 - p.gr) + p.lim * (dg0 - dgr));
-        (du1, dv1)
-    }
-
-    /// The derivative of [`Rhs::advance`] along (δu, δv, δg0), with δpw the predictor weight's
-    /// and δknown the known part's: returns (δU₁, δV₁).
-    fn advance_tangent(
-        &self,
-        f: &Free,
-        (du, dv, dg0): (f64, f64, f64),
-        dpw: f64,
-        dknown: f64,
-    ) -> (f64, f64) {
-        let slopes = [
-            self.damping_slope(f.passes[0].up),
-            self.damping_slope(f.passes[1].up),
-        ];
-        self.advance_tangent_with(f, slopes, (du, dv, dg0), dpw, dknown)
-    }
-
-    /// The derivative of [`Rhs::advance`] from (u, v) = `start` when the step's length and its
-    /// weight of g at the end move as well (the rest of an impact step: its length (1 − θ)Δt
-    /// and its weights follow the impact's θ): along (δu, δv, δg0), δpw, δknown and
-    /// (δlen, δw). Returns (δU₁, δV₁).
-    #[allow(clippy::too_many_arguments)]
-    fn advance_tangent_moving(
-        &self,
-        f: &Free,
-        (_, v): (f64, f64),
-        (du, dv, dg0): (f64, f64, f64),
-        dpw: f64,
-        dknown: f64,
-        (dlen, dw): (f64, f64),
-    ) -> (f64, f64) {
-        let dup = du + dlen * v + f.len * dv + f.pw * dg0 + f.g0 * dpw;
-        let moving = (v, dlen, dw);
-        let first = self.pass_tangent_moving(f, &f.passes[0], moving, (du, dv, dg0), dup, dknown);
-        self.pass_tangent_moving(f, &f.passes[1], moving, (du, dv, dg0), first.0, dknown)
-    }
-
-    /// [`Rhs::pass_tangent`] with the length and the weight moving: `moving` = (v at the
-    /// start, δlen, δw). With inv = 1/(1 − w·a): δ(wa) = δw·a + w·δa,
-    /// δV₁ = inv·(δknown + δw·(F_r − ω²up) − wω²δup + V₁δ(wa)) (F_r − ω²up = g_r − aV₁),
-    /// δL = −L²(z/6)·2δ(wa), and U₁'s terms in len differentiated as well.
-    fn pass_tangent_moving(
-        &self,
-        f: &Free,
-        p: &Pass,
-        (v, dlen, dw): (f64, f64, f64),
-        (du, dv, dg0): (f64, f64, f64),
-        dup: f64,
-        dknown: f64,
-    ) -> (f64, f64) {
-        let da = self.damping_slope(p.up) * dup;
-        let dwa = dw * p.a + f.w * da;
-        let free_part = p.gr - p.a * p.v1;
-        let dv1 = p.inv * (dknown + dw * free_part - f.w * self.omega2 * dup + p.v1 * dwa);
-        let dgr = da * p.v1 + p.a * dv1 - self.omega2 * dup;
-        let z = 2.0 * f.w * p.a;
-        let dlim = -p.lim * p.lim * (z / 6.0) * 2.0 * dwa;
-        let c = f.len * f.len / 12.0;
-        let dc = f.len * dlen / 6.0;
-        let du1 = du
-            + 0.5 * dlen * (v + p.v1)
-            + 0.5 * f.len * (dv + dv1)
-            + dc * p.lim * (f.g0 - p.gr)
-            + c * (dlim * (f.g0 - p.gr) + p.lim * (dg0 - dgr));
-        (du1, dv1)
-    }
-
-    /// [`Rhs::advance_tangent`] with d(μP)/dU at the passes' up given.
-    #[inline(always)]
-    fn advance_tangent_with(
-        &self,
-        f: &Free,
-        slopes: [f64; 2],
-        (du, dv, dg0): (f64, f64, f64),
-        dpw: f64,
-        dknown: f64,
-    ) -> (f64, f64) {
-        let dup = du + f.len * dv + f.pw * dg0 + f.g0 * dpw;
-        let first = self.pass_tangent(f, (&f.passes[0], slopes[0]), (du, dv, dg0), dup, dknown);
-        let p = (&f.passes[1], slopes[1]);
-        self.pass_tangent(f, p, (du, dv, dg0), first.0, dknown)
-    }
-}
+pub(crate) use tangent::{general_wall_tangent, Tangent};
 
 /// What a step needs from the state and the noise ([`Stepper::begin`]).
 #[derive(Debug, Clone, Copy, Default)]
@@ -514,7 +207,10 @@ pub struct StepEvents {
 /// The state and history of one path, advanced by [`Stepper::step`].
 #[derive(Debug, Clone)]
 pub struct Stepper {
-    rhs: Rhs,
+    rhs: Affine,
+    /// The General kernel with the path's forcing phase, when the problem has its terms
+    /// (`general`): then every step is [`Stepper::step_general`]'s.
+    general: Option<Box<General>>,
     h: f64,
     wall: bool,
     crossing: bool,
@@ -584,16 +280,22 @@ impl Stepper {
         if v0.is_nan() || v0.abs() >= blow_up {
             return Err(Error::invalid("v0", v0, limit.as_str()));
         }
-        let rhs = Rhs::new(oscillator, system);
+        let rhs = Affine::new(oscillator, system);
         let wall = problem.wall();
         if wall && u0 < 0.0 {
             return Err(Error::invalid("u0", u0, "[0, ∞) with the barrier on"));
         }
         let noise = NoiseStream::new(oscillator.noise(), h, seed, path)?;
         let (wl, wr) = history.current_weights();
-        let drift = rhs.drift(u0, v0);
-        let pw = predictor_weight(h, rhs.damping(u0));
+        let general = oscillator
+            .terms()
+            .map(|t| Box::new(General::new(&rhs, t, h)));
+        let (drift, pw) = match &general {
+            None => (rhs.drift(u0, v0), predictor_weight(h, rhs.damping(u0))),
+            Some(g) => g.node(h, u0, v0),
+        };
         Ok(Stepper {
+            general,
             h,
             wall,
             crossing: system == System::Zhuravlev,
@@ -712,6 +414,9 @@ impl Stepper {
     /// Advance one step Δt.
     #[inline]
     pub fn step(&mut self) -> Result<()> {
+        if self.general.is_some() {
+            return self.step_general();
+        }
         let b = self.begin();
         let free = self
             .rhs
@@ -720,6 +425,69 @@ impl Stepper {
         let end = self.end_events(&b, u1, v1)?;
         self.set_node(end.u1, end.v1);
         self.complete(&b, end);
+        Ok(())
+    }
+
+    /// A step of the General kernel (module docs of `general`): without a wall no events;
+    /// with the wall at 0 the paper kernel's impacts and sticking; the forcing at both ends is
+    /// the noise's level plus F cos ψ.
+    #[inline(never)]
+    fn step_general(&mut self) -> Result<()> {
+        let (b, free) = self.begin_general();
+        let (u1, v1) = free.end();
+        if !self.wall {
+            return self.end_general(&b, u1, v1);
+        }
+        // the wall at 0: the paper kernel's events (impact, sticking), the General kernel's
+        // arithmetic inside them (`impact`)
+        let mut end = self.end_events(&b, u1, v1)?;
+        let g = self.general.as_deref().expect("a General path");
+        (self.drift, self.pw) = g.node(self.h, end.u1, end.v1);
+        if end.push {
+            end.piece.right = self.drift + b.fr;
+            self.history.push(end.piece);
+        }
+        self.u = end.u1;
+        self.v = end.v1;
+        Ok(())
+    }
+
+    /// The General step's start and its free end.
+    fn begin_general(&mut self) -> (Begin, general::GeneralFree) {
+        let (el, er) = self.noise.next_step();
+        let g = self.general.as_deref_mut().expect("a General path");
+        let (fl, fr) = g.forces();
+        let (u, v) = (self.u, self.v);
+        let gl = self.drift + self.rhs.forcing(el, self.side) + fl;
+        let known = self.base + self.history.value() + self.wl * gl;
+        let fr = self.rhs.forcing(er, self.side) + fr;
+        let free = g.advance(self.h, (u, v, gl), self.pw, known, self.wr, fr);
+        let b = Begin {
+            el,
+            er,
+            u,
+            v,
+            gl,
+            known,
+            fr,
+        };
+        (b, free)
+    }
+
+    /// The General step's end at (u1, v1): the blow-up check, the node, the piece of g.
+    fn end_general(&mut self, b: &Begin, u1: f64, v1: f64) -> Result<()> {
+        self.events = StepEvents::default();
+        self.steps += 1;
+        self.check_blow_up((b.u, b.v), (u1, v1))?;
+        let g = self.general.as_deref().expect("a General path");
+        (self.drift, self.pw) = g.node(self.h, u1, v1);
+        self.history.push(Piece {
+            left: b.gl,
+            right: self.drift + b.fr,
+            split: None,
+        });
+        self.u = u1;
+        self.v = v1;
         Ok(())
     }
 
@@ -861,6 +629,6 @@ pub(crate) fn fresh_history(
             ),
         ));
     }
-    let lambda = Rhs::new(problem.oscillator(), problem.system()).lambda;
+    let lambda = Affine::new(problem.oscillator(), problem.system()).lambda;
     History::new(lambda, method.dt, horizon, method.memory, method.window)
 }

@@ -42,7 +42,10 @@ impl Stepper {
         self.v = pull(reference.v, self.v);
         self.base = pull(reference.base, self.base);
         self.drift = pull(reference.drift, self.drift);
-        self.pw = predictor_weight(self.h, self.rhs.damping(self.u));
+        self.pw = match &self.general {
+            None => predictor_weight(self.h, self.rhs.damping(self.u)),
+            Some(g) => predictor_weight(self.h, g.a(self.u, self.v)),
+        };
         true
     }
 

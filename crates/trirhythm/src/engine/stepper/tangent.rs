@@ -56,7 +56,7 @@
 //!    perturbation of where the wall is met is all in δθ), its known part and the weight of g
 //!    at its end move with θ ([`History::current_split_rate`]) and so do its length and its
 //!    predictor weight: the passes are differentiated in (len, w) too
-//!    (`Rhs::advance_tangent_moving`).
+//!    (`Affine::advance_tangent_moving`).
 //! 5. **The split piece in the tangent memory.** The reference's split piece (g_n → g₋ on
 //!    [t_n, t*], g₊ → g_{n+1} on [t*, t_{n+1}]) enters every later J^λ through integrals whose
 //!    limits move with θ. With its values held, ∂/∂θ of the piece is exact for any kernel: a
@@ -262,9 +262,25 @@ fn fold_theta(piece: &Piece, d: &mut Split, dtheta: f64) {
     d.after -= (piece.right - s.after) / (1.0 - theta) * dtheta;
 }
 
+/// The refusal of the tangent of a General path with a wall (its impact steps are not
+/// differentiated yet).
+pub(crate) fn general_wall_tangent() -> crate::Error {
+    crate::Error::NotApplicable {
+        method: "the tangent method (lyapunov --method tangent)".into(),
+        assumption: "no wall with the General kernel's terms (Duffing, Rayleigh, forcing)".into(),
+        reason: "the tangent of the General kernel's impact steps is not built yet; use the \
+                 two-trajectory method"
+            .into(),
+    }
+}
+
 impl Stepper {
-    /// δ(μP(U)V − ω²U) at the current node along (δU, δV).
+    /// δ(μP(U)V − ω²U) at the current node along (δU, δV) (of h(U, V)V − k(U) for the
+    /// General kernel).
     fn drift_derivative(&self, du: f64, dv: f64) -> f64 {
+        if let Some(g) = &self.general {
+            return g.drift_derivative(self.u, self.v, du, dv);
+        }
         (self.rhs.damping_slope(self.u) * self.v - self.rhs.omega2) * du
             + self.rhs.damping(self.u) * dv
     }
@@ -272,6 +288,9 @@ impl Stepper {
     /// Advance one step Δt, the tangent `t` with it (module docs). The path is advanced exactly
     /// as by [`Stepper::step`], bit for bit.
     pub(crate) fn step_with_tangent(&mut self, t: &mut Tangent) -> Result<()> {
+        if self.general.is_some() {
+            return self.step_general_with_tangent(t);
+        }
         let h = self.h;
         let b = self.begin();
         let free = self
@@ -288,6 +307,35 @@ impl Stepper {
         let a1 = self.set_node(end.u1, end.v1);
         let ddrift = self.drift_derivative_at(a1, self.rhs.damping_slope(end.u1), &end);
         self.complete_with_tangent(t, &b, end, ddrift);
+        Ok(())
+    }
+
+    /// [`Stepper::step_with_tangent`] of a General path (no wall: a smooth step): the
+    /// derivative of [`super::general::General::advance`], the forcing (noise and phase)
+    /// frozen.
+    // out of line: the paper kernel's tangent step keeps the code it had
+    #[inline(never)]
+    fn step_general_with_tangent(&mut self, t: &mut Tangent) -> Result<()> {
+        if self.wall {
+            return Err(general_wall_tangent());
+        }
+        let (b, free) = self.begin_general();
+        let (u1, v1) = free.end();
+        let dknown = t.base + t.history.value() + self.wl * t.drift;
+        let g = self.general.as_deref().expect("a General path");
+        let (du1, dv1) = g.advance_tangent(&free, (b.u, b.v), (t.u, t.v, t.drift), dknown);
+        let dgl = t.drift;
+        self.end_general(&b, u1, v1)?;
+        let g = self.general.as_deref().expect("a General path");
+        let ddrift = g.drift_derivative(u1, v1, du1, dv1);
+        t.history.push(Piece {
+            left: dgl,
+            right: ddrift,
+            split: None,
+        });
+        t.u = du1;
+        t.v = dv1;
+        t.drift = ddrift;
         Ok(())
     }
 
@@ -585,7 +633,12 @@ mod tests {
         p.v += eps * d.v;
         p.base += eps * d.base;
         p.history.scale_state(1.0 + eps * d.memory);
-        p.set_node(p.u, p.v);
+        match &p.general {
+            Some(g) => (p.drift, p.pw) = g.node(p.h, p.u, p.v),
+            None => {
+                p.set_node(p.u, p.v);
+            }
+        }
         p
     }
 
@@ -804,6 +857,60 @@ mod tests {
                     report += &r;
                     assert!(worst < TOLERANCE);
                 }
+            }
+        }
+        eprintln!("{report}");
+    }
+
+    #[test]
+    fn general_steps_are_the_derivative_of_the_discrete_step() {
+        // the General kernel (no wall): Duffing k3U³ + k5U⁵, Rayleigh terms in U̇² and U̇⁴ (the
+        // linearised corrector, re-linearised in the second pass), harmonic forcing (the phase
+        // frozen in the tangent), OU noise; fig17a's P(U) at μ0 = 0.2, λ = 1, 0.998, 0.95; one
+        // step and 40; the reference advanced with the tangent bit for bit as by `step`
+        let terms = crate::model::GeneralTerms {
+            cubic: 0.3,
+            quintic: 0.01,
+            rayleigh: vec![-0.1, 0.002],
+            forcing: Some(crate::model::Harmonic {
+                amplitude: 0.4,
+                frequency: 1.3,
+                phase: 0.2,
+            }),
+        };
+        let mut report = String::new();
+        for lambda in [1.0, 0.998, 0.95] {
+            let p = params("fig17a", &[("lambda", lambda), ("D", 0.3), ("mu0", 0.2)]);
+            let problem = Problem::from_params(&p)
+                .and_then(|q| q.with_barrier(Barrier::Off))
+                .and_then(|q| q.with_terms(Some(terms.clone())))
+                .and_then(|q| q.with_start(2.0, 0.5))
+                .unwrap();
+            let method = PredictorCorrector {
+                dt: 0.01,
+                ..Default::default()
+            };
+            let o = Options {
+                t_end: 100.0,
+                seed: 5,
+                ..Default::default()
+            };
+            let mut s = o.stepper(&problem, &method).unwrap();
+            assert!(s.general.is_some());
+            for _ in 0..300 {
+                s.step().unwrap();
+            }
+            let (mut a, mut b) = (s.clone(), s.clone());
+            let mut t = Tangent::new(&b, (1.0, 0.0));
+            for n in 0..1000 {
+                a.step().unwrap();
+                b.step_with_tangent(&mut t).unwrap();
+                assert_eq!((a.u, a.v, a.base), (b.u, b.v, b.base), "step {n}");
+            }
+            for steps in [1, 40] {
+                let (worst, r) = assert_derivative(&format!("General λ = {lambda}"), &s, steps);
+                report += &r;
+                assert!(worst < TOLERANCE, "{r}");
             }
         }
         eprintln!("{report}");
