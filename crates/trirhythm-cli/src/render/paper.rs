@@ -274,8 +274,8 @@ pub fn verdict_lines(verdicts: &[ClaimVerdict]) -> Vec<VerdictLine> {
 /// picture.
 pub const VERDICT_CHARS: usize = 190;
 
-/// The verdict line, the same uncut (every deciding check), and how many characters open
-/// them as `{claim} — {verdict} ({number})`.
+/// The verdict line, the same for the caption (up to [`CAPTION_CHARS`]), and how many
+/// characters open them as `{claim} — {verdict} ({number})`.
 fn verdict_text(v: &ClaimVerdict) -> (String, String, usize) {
     use trirhythm_paper::verdict::Verdict;
     let d = &v.decision;
@@ -310,12 +310,16 @@ fn verdict_text(v: &ClaimVerdict) -> (String, String, usize) {
         }
         _ => String::new(),
     };
-    (
-        fit(&head, &items, &tail, VERDICT_CHARS),
-        fit(&head, &items, &tail, usize::MAX),
-        kept,
-    )
+    let mut full = fit(&head, &items, &tail, CAPTION_CHARS);
+    if full != fit(&head, &items, &tail, usize::MAX) {
+        full.push_str(" (every check: the report's verdicts.json)");
+    }
+    (fit(&head, &items, &tail, VERDICT_CHARS), full, kept)
 }
+
+/// The most characters a verdict line takes in a caption (a figure's hundred thousand
+/// grid checks are in the report's verdicts.json, not under the picture).
+pub const CAPTION_CHARS: usize = 600;
 
 /// `head: item; item…tail`, with as many items as fit in `max` characters (at least the
 /// first, cut with "…" when it alone is too long).

@@ -80,7 +80,8 @@ pub struct VerdictLine {
     /// The line: the claim, the verdict, the deciding numbers (at most
     /// [`crate::render::paper::VERDICT_CHARS`] characters, for the picture's badge).
     pub text: String,
-    /// The same with every deciding check, uncut (for the caption).
+    /// The same for the caption: more of the deciding checks (at most
+    /// [`crate::render::paper::CAPTION_CHARS`] characters, and then where all are).
     #[serde(default)]
     pub full: String,
     /// How many characters of `text` open it as `{claim} — {verdict} ({deciding number})`:
@@ -1023,8 +1024,9 @@ pub fn colour_bar_vertical<DB: Backend>(
 ) -> Result<()> {
     let (_, height) = area.dim_in_pixel();
     let (tick, desc) = (font_px(TICK), font_px(AXIS_DESC));
-    // ticks as dense as the bar's height allows (at least four labelled)
-    let n = (height / (tick * 2)).clamp(5, 10) as usize;
+    // ticks as dense as the bar's height allows (at least four labelled: plotters keeps to
+    // 1-2-5 steps below the count asked, so ask for eight)
+    let n = (height * 2 / (tick * 3)).clamp(8, 12) as usize;
     let fy = tick_formatter(&(lo..hi), n);
     let widest = (0..=20)
         .map(|k| text_width(&fy(&(lo + (hi - lo) * k as f64 / 20.0)), tick))

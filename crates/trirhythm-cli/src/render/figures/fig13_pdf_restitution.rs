@@ -2,8 +2,8 @@
 //! μ0 = 0.2 (b): the averaged theory (Eq. 27, both variants) against Monte Carlo ensembles of
 //! the fractional system (Eq. 1) and of its integer-order equivalent (Eq. 5), with error bars,
 //! distances and the stationarity verdict of every ensemble. Drawn as a 4 × 2 grid: (a) in the
-//! left column, (b) in the right, each column on one A axis (where its densities are), one
-//! legend below.
+//! left column, (b) in the right, each panel on the part of the A axis where its densities
+//! are, one legend below.
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig13_pdf_restitution`].
 

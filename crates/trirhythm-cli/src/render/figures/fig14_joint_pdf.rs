@@ -66,11 +66,8 @@ picture!(Fig14, |self, root| size (2 * PANEL.0 + BAR, 4 * PANEL.1), draw {
         let fine = (refine(&p.u_edges, FINE), refine(&p.v_edges, FINE));
         heat(
             &left,
-            &format!(
-                "({label}) r = {}, theory: {:.1} % out",
-                p.r,
-                100.0 * p.theory_outside
-            ),
+            // (the mass outside the window is in the caption)
+            &format!("({label}) r = {}, theory", p.r),
             (&fine.0, &fine.1),
             &p.theory_fine,
             top,
@@ -81,10 +78,10 @@ picture!(Fig14, |self, root| size (2 * PANEL.0 + BAR, 4 * PANEL.1), draw {
             // outside the window are in the caption)
             &if p.stationary {
                 format!(
-                    "({mc_label}) MC{}: H = {:.2}, {:.1} % out",
+                    "({mc_label}) r = {}, Monte Carlo{}: H = {:.2}",
+                    p.r,
                     if p.estimator == "wells" { " (wells)" } else { "" },
-                    p.hellinger,
-                    100.0 * p.mc_outside
+                    p.hellinger
                 )
             } else {
                 format!("({mc_label}) r = {}, Monte Carlo: not stationary", p.r)

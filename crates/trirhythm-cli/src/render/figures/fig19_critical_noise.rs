@@ -114,8 +114,12 @@ fn strip() -> LegendStrip {
             "row \"none\": never chaotic, no D_c".into(),
         ),
         (
-            Symbol::Mark('▲'),
+            Symbol::Mark('↑'),
             "bar up to the row \"none\": regular at its foot, not chaotic up to the largest D".into(),
+        ),
+        (
+            Symbol::Mark('I'),
+            "bare bar down to the row \"0\": chaotic at its top, regular nowhere below".into(),
         ),
         (
             Symbol::Cross(RGBColor(0, 0, 0)),

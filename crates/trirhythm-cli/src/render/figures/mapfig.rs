@@ -72,7 +72,7 @@ fn legend(fig: &MapFigure) -> LegendStrip {
         .collect();
     if fig.panels.iter().any(|p| !p.folds.curves.is_empty()) {
         let name = if modes {
-            "P-bifurcation (m1 = m1' = 0)".to_string()
+            "P-bifurcation: m1 = m1' = 0 (Eq. 35–37)".to_string()
         } else if named.is_empty() {
             "saddle-node (f = f' = 0)".to_string()
         } else {

@@ -59,7 +59,8 @@ fn mc_style(k: usize) -> SeriesStyle {
 
 /// The part of the A axis where a panel's densities are: the bins of its histograms with
 /// a density, and the theory, where they stand above a ten-thousandth of the panel's highest
-/// density (the floor of a log axis), padded by 5 % (never below A = 0).
+/// density (the floor of a log axis), padded by 5 % (never below A = 0) and widened to hold
+/// four ticks.
 pub fn a_range(p: &AmplitudePanel) -> (f64, f64) {
     let shown: Vec<Vec<f64>> = p.runs.iter().map(|r| r.shown_density().0 .0).collect();
     let top = shown
@@ -89,17 +90,29 @@ pub fn a_range(p: &AmplitudePanel) -> (f64, f64) {
         return (0.0, 1.0);
     }
     let pad = 0.05 * (hi - lo);
-    ((lo - pad).max(0.0), hi + pad)
-}
-
-/// The union of panels' [`a_range`]s: one A axis for them all.
-pub fn a_range_of<'a>(panels: impl IntoIterator<Item = &'a AmplitudePanel>) -> (f64, f64) {
-    panels
-        .into_iter()
-        .map(a_range)
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
-            (a.min(c), b.max(d))
-        })
+    let (mut lo, mut hi) = ((lo - pad).max(0.0), hi + pad);
+    // at least four whole steps of the 1-2-5 ladder inside, for four labelled ticks: a
+    // narrow range is widened a step at a time, alternately above and below
+    let step = {
+        let raw = (hi - lo) / 4.0;
+        let decade = 10f64.powf(raw.log10().floor());
+        [1.0, 2.0, 5.0, 10.0]
+            .into_iter()
+            .map(|m| m * decade)
+            .find(|s| *s >= raw)
+            .unwrap_or(10.0 * decade)
+    };
+    let inside = |lo: f64, hi: f64| (hi / step).floor() - (lo / step).ceil() + 1.0;
+    let mut up = true;
+    while inside(lo, hi) < 4.0 {
+        if up || lo <= 0.0 {
+            hi = ((hi / step).floor() + 1.0) * step;
+        } else {
+            lo = (((lo / step).ceil() - 1.0) * step).max(0.0);
+        }
+        up = !up;
+    }
+    (lo, hi)
 }
 
 /// The marks a panel title puts after a system: its ensemble is not stationary, its density
@@ -213,7 +226,8 @@ pub fn draw_amplitude_panel<DB: Backend>(
 }
 
 /// The amplitude panels in a grid of `columns` columns, filled column by column (a
-/// column holds one series of the figure), each column on one A axis.
+/// column holds one series of the figure), each panel on the part of the A axis where its
+/// densities are ([`a_range`]).
 pub fn draw_amplitude_columns<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
     panels: &[AmplitudePanel],
@@ -223,8 +237,7 @@ pub fn draw_amplitude_columns<DB: Backend>(
     let cells = area.split_evenly((rows, columns));
     for (k, p) in panels.iter().enumerate() {
         let (col, row) = (k / rows, k % rows);
-        let column = &panels[col * rows..((col + 1) * rows).min(panels.len())];
-        draw_amplitude_panel(&cells[row * columns + col], p, a_range_of(column))?;
+        draw_amplitude_panel(&cells[row * columns + col], p, a_range(p))?;
     }
     Ok(())
 }
