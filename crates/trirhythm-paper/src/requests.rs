@@ -451,7 +451,7 @@ impl EnsembleSetup {
             m.restoring.cubic = t.cubic;
             m.restoring.quintic = t.quintic;
             m.damping.rayleigh = t.rayleigh.clone();
-            m.forcing = t.forcing.clone();
+            m.forcing = t.forcing;
         }
         m
     }
