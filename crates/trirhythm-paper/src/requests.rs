@@ -575,6 +575,39 @@ pub fn params_json(p: &Params) -> Value {
 mod tests {
     use super::*;
 
+    /// The ensemble is compared with the theory of the model it simulates: with the wall the
+    /// paper's closed forms (the same P(A), bit for bit), without it the wall-free theory (its
+    /// own σ1: another P(A)), and the paper's printed formulas refused there.
+    #[test]
+    fn an_ensemble_is_compared_with_the_theory_of_the_model_it_simulates() {
+        let params = trirhythm::model::preset("fig13a").unwrap().params;
+        let mut request = EnsembleRequest::new(params.clone());
+        let with = request.setup().unwrap();
+        request.model.barrier = Barrier::Off;
+        let without = request.setup().unwrap();
+        assert_eq!(with.class_model().walls.len(), 1);
+        assert!(without.class_model().walls.is_empty());
+        let pdf = |t: Theory| t.amplitude_pdf().unwrap();
+        for v in [Variant::Paper, Variant::Consistent] {
+            let ours = pdf(Theory::from_model(&with.class_model(), v).unwrap());
+            let paper = pdf(Theory::new(&params, v).unwrap());
+            for a in [0.5, 2.0, 8.0, 12.5] {
+                assert_eq!(
+                    ours.density(a).to_bits(),
+                    paper.density(a).to_bits(),
+                    "{v:?}, A = {a}"
+                );
+            }
+        }
+        let free = pdf(Theory::from_model(&without.class_model(), Variant::Consistent).unwrap());
+        let walled = pdf(Theory::new(&params, Variant::Consistent).unwrap());
+        let differ = [0.5, 2.0, 8.0, 12.5]
+            .iter()
+            .any(|&a| (free.density(a) - walled.density(a)).abs() > 1e-6 * walled.density(a).abs());
+        assert!(differ, "the wall-free P(A) is the wall's");
+        assert!(Theory::from_model(&without.class_model(), Variant::Paper).is_err());
+    }
+
     #[test]
     fn names_parse_back_and_unknown_names_list_the_accepted() {
         for (v, n) in System::ALL {
