@@ -46,9 +46,15 @@ fn key() -> LegendStrip {
     }
 }
 
+// The phase portraits, their legend under them, the recurrence plots.
 picture!(Fig01, |self, root| size (1300, 1300 + key().height(1300)), draw {
-    let (grid, strip) = root.split_vertically(1300);
-    let areas = grid.split_evenly((2, 2));
+    let (top, rest) = root.split_vertically(650);
+    let (strip, bottom) = rest.split_vertically(key().height(1300));
+    let areas: Vec<_> = top
+        .split_evenly((1, 2))
+        .into_iter()
+        .chain(bottom.split_evenly((1, 2)))
+        .collect();
     let ur = padded_range(self.panels.iter().flat_map(|p| p.u.iter().copied()));
     let vr = padded_range(self.panels.iter().flat_map(|p| p.v.iter().copied()));
     for (k, p) in self.panels.iter().enumerate() {
@@ -87,8 +93,8 @@ picture!(Fig01, |self, root| size (1300, 1300 + key().height(1300)), draw {
             &caption,
             0.0..tmax,
             0.0..tmax,
-            "t_i - t_0",
-            "t_j - t_0",
+            "t_i − t_0",
+            "t_j − t_0",
         )?;
         let block = n.div_ceil(DISPLAY_CELLS).max(1);
         let cells_n = n.div_ceil(block);

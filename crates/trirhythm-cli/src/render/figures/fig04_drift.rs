@@ -18,14 +18,8 @@ use trirhythm_paper::fig04_drift::{cycle_names, Fig04, Panel};
 fn key() -> LegendStrip {
     LegendStrip {
         entries: vec![
-            (
-                Symbol::Swatch(UP),
-                "f > 0: amplitude grows (energy uptake)".into(),
-            ),
-            (
-                Symbol::Swatch(DOWN),
-                "f < 0: amplitude decays (dissipation)".into(),
-            ),
+            (Symbol::Swatch(UP), "f > 0: amplitude grows".into()),
+            (Symbol::Swatch(DOWN), "f < 0: amplitude decays".into()),
             (Symbol::Line(BLACK), "f(A_0) at the panel's r".into()),
             (
                 Symbol::Dashed(GREY),
@@ -141,7 +135,7 @@ fn draw_panel<DB: Backend>(
         up.mix(0.8),
     ))
     .map_err(pe)?
-    .label("f > 0: amplitude grows (energy uptake)")
+    .label("f > 0: amplitude grows")
     .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 15, y + 5)], up.filled()));
     c.draw_series(AreaSeries::new(
         shown(&p.curve).into_iter().map(|(a, f)| (a, f.min(0.0))),
@@ -149,7 +143,7 @@ fn draw_panel<DB: Backend>(
         down.mix(0.8),
     ))
     .map_err(pe)?
-    .label("f < 0: amplitude decays (dissipation)")
+    .label("f < 0: amplitude decays")
     .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 15, y + 5)], down.filled()));
     {
         let clipped: Vec<(f64, f64)> = shown(p.reference.as_deref().unwrap_or(&[]))

@@ -55,11 +55,11 @@ picture!(Fig09, |self, root| size (2 * MAP.0 + BAR, 4 * MAP.1), draw {
                 format!("({label}{}) ΔU_{}, r = {}: undefined", row + 1, k + 1, s.r)
             } else {
                 format!(
-                    "({label}{}) ΔU_{}, r = {}: [{:.3}, {:.3}]",
+                    "({label}{}) r = {}: {:.3} ≤ ΔU_{} ≤ {:.3}",
                     row + 1,
-                    k + 1,
                     s.r,
                     here.0,
+                    k + 1,
                     here.1
                 )
             };

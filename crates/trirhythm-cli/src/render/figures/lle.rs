@@ -93,7 +93,10 @@ fn strip(panel: &Panel) -> LegendStrip {
     let black = RGBColor(0, 0, 0);
     entries.push((Symbol::Dot(black), "filled: rest regime".into()));
     entries.push((Symbol::Ring(black), "open: cycle regime".into()));
-    entries.push((Symbol::Dashed(RGBColor(120, 120, 120)), "prediction".into()));
+    entries.push((
+        Symbol::Dashed(black),
+        "dashed: prediction (in its series' colour)".into(),
+    ));
     let flagged = |f: Flag| {
         panel
             .curves
