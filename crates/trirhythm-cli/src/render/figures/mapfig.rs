@@ -20,12 +20,13 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use trirhythm::theory::bifurcation::What;
 use trirhythm_paper::maps::{MapFigure, MapPanel};
 
-/// Colour of a count: 0 light grey, 1 blue, 2 green, 3 black, more purple.
+/// Colour of a count: 0 light grey, 1 blue, 2 green, 3 black, more purple; blue, green and
+/// black of distinct greys (luminance 145, 98, 0), so that the regions part in greyscale.
 pub fn count_colour(c: u8) -> RGBColor {
     match c {
         0 => RGBColor(225, 225, 225),
-        1 => RGBColor(40, 90, 220),
-        2 => RGBColor(40, 170, 70),
+        1 => RGBColor(100, 150, 240),
+        2 => RGBColor(30, 140, 60),
         3 => RGBColor(0, 0, 0),
         _ => RGBColor(150, 60, 180),
     }
