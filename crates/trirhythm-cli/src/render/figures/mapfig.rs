@@ -3,8 +3,11 @@
 //! for the whole figure in a strip below the panels (outside the data). A panel of stable
 //! cycles states its mono/bi/tri shares of the grid in its title ([`MapPanel::share`], the
 //! numbers the verdicts on Figs 3 and 6 are decided on) and, where the trirhythmic region is
-//! small, zooms on it in an inset ([`MapPanel::bounding_box`], padded) placed in the corner
-//! of the panel that hides the least: no trirhythmic cell, fold curve, label or mark.
+//! small, zooms on it in an inset ([`MapPanel::bounding_box`], padded; on a map of modes a
+//! thin band, [`MapPanel::slivers`]) placed where it hides the least: no trirhythmic cell,
+//! fold curve or mark, a corner when one does as well as anywhere. The folds are named "L1"–
+//! "L3" beside their curves, where a name covers no fold, inset or other name; the legend
+//! says which cycle's fold each name is.
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::maps`].
 
@@ -542,8 +545,9 @@ fn draw_inset<DB: Backend>(
 }
 
 /// What an inset at `corner` (backend pixels, top left) of `size` would hide on the panel:
-/// trirhythmic cells, the zoomed box and labels weigh most, then fold curves and cusps, then
-/// cells of a count other than the corner's commonest (a uniform corner hides least).
+/// the zoomed box, cusps and the marked point weigh most, then (on a map of stable cycles)
+/// trirhythmic cells, then fold curves and printed curves, then cells of a count other than
+/// the place's commonest (a uniform place hides least).
 fn cover_cost<DB: Backend>(
     c: &MapChart<'_, DB>,
     p: &MapPanel,
