@@ -150,7 +150,8 @@ picture!(Fig07, |self, root| size {
     }
     for (k, (area, Panel { caption, curves, .. })) in areas.iter().zip(&self.panels).enumerate() {
         let (y, clipped) = frame(curves, 14.0);
-        let mut c = chart(area, caption, 0.0..14.0, y, "A0", "U_eff(A0)")?;
+        // (A0 from a little below 0: the marker at A0 = 0 clear of the y ticks)
+        let mut c = chart(area, caption, -0.3..14.0, y, "A0", "U_eff(A0)")?;
         draw_curves(&mut c, &clipped)?;
         if let Some(end) = zoom_end(curves) {
             let (yz, zoomed) = frame(curves, end);
@@ -160,7 +161,7 @@ picture!(Fig07, |self, root| size {
             let mut z = chart(
                 &zoom_areas[k],
                 &format!("{letter} {label} enlarged: inner well, A0 ≤ {end:.1}"),
-                0.0..end,
+                -0.02 * end..end,
                 yz,
                 "A0",
                 "U_eff(A0)",

@@ -149,7 +149,8 @@ pub fn draw_amplitude_panel<DB: Backend>(
         .zip(&shown)
         .filter_map(|(r, (_, mixture))| {
             let mut m = String::new();
-            if !mixture && !r.stationary {
+            // (a wells' mixture stands in for a run that is not stationary: it keeps its †)
+            if !r.stationary {
                 m.push(NOT_STATIONARY);
             }
             if *mixture || r.estimator == "wells" {
@@ -267,7 +268,10 @@ pub fn amplitude_legend(panels: &[AmplitudePanel]) -> crate::render::plot::Legen
         ));
     }
     if runs().any(|r| r.estimator == "wells" || r.shown_density().1) {
-        entries.push((Symbol::Mark(BY_WELLS), "density by wells (H_min)".into()));
+        entries.push((
+            Symbol::Mark(BY_WELLS),
+            "density by wells (undetermined weights: those nearest the theory, H_min)".into(),
+        ));
     }
     if runs().any(|r| !r.step_warnings.is_empty()) {
         entries.push((Symbol::Mark(COARSE_STEP), "Δt coarse (notes)".into()));
