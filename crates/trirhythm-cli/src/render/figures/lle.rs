@@ -227,7 +227,7 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
             ])
             .map_err(pe)?;
             // the value's shape, open (white inside a thick outline) or filled
-            let ring = outline(shape_of(panel, curve.value), pxi(5));
+            let ring = outline(shape_of(panel, curve.value), pxi(4));
             let fill = if open { WHITE } else { colour };
             c.draw_series(std::iter::once(
                 EmptyElement::at((xq, q.y))
