@@ -887,7 +887,22 @@ fn framed_with<'a, DB: Backend>(
         .dim_in_pixel()
         .1
         .saturating_sub(cap + x_area + 2 * margin);
-    let y_ticks = (y_room / (tick * 9 / 8).max(1)).clamp(2, ticks as u32) as usize;
+    let mut y_ticks = (y_room / (tick * 9 / 8).max(1)).clamp(2, ticks as u32) as usize;
+    // where plotters' step for that count leaves under four labelled ticks, ask for more as
+    // long as the labels keep a label's height apart
+    let labelled = |n: usize| {
+        let step = key_step(y.start.min(y.end), y.start.max(y.end), n);
+        if step > 0.0 {
+            ((y.start.max(y.end) / step).floor() - (y.start.min(y.end) / step).ceil() + 1.0)
+                as usize
+        } else {
+            0
+        }
+    };
+    let most = (y_room / tick.max(1)) as usize;
+    while y_labels.is_none() && labelled(y_ticks) < 4 && y_ticks < most.min(12) {
+        y_ticks += 1;
+    }
     let plain_y = tick_formatter(&y, y_ticks);
     let fy: &dyn Fn(&f64) -> String = match y_labels {
         Some(f) => f,
