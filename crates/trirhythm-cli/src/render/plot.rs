@@ -1,26 +1,27 @@
 //! Pictures: an embedded font, PNG + SVG output of one drawing, chart helpers, colours.
 //!
 //! A figure implements [`Picture`] once, generically over the plotters backend, and
-//! [`save`] renders it to both formats through temporary files and renames. One style for
-//! every figure (Rougier et al., "Ten simple rules for better figures"): [`save`] draws the
-//! [`Heading`]'s title on one line above the picture and one one-line verdict badge per claim
-//! below it; the explanations (parameters, formula variant, the values chosen where the paper
-//! is silent, the verdicts' details) are the caption: the heading's lines, written to the
-//! figure's CSV notes, the report page and the contact sheet, never drawn inside the plot.
+//! [`save`] draws it as SVG and rasterises that SVG (resvg) to the PNG ([`rasterise`]):
+//! [`PNG_WIDTH`] = 2100 px, 7 in at 300 dpi, one picture in both formats, written atomically.
+//! One style for every figure (Rougier et al., "Ten simple rules for better figures"): [`save`]
+//! draws the [`Heading`]'s title on one line above the picture and one one-line verdict badge
+//! per claim below it; the explanations (parameters, formula variant, the values chosen where
+//! the paper is silent, the verdicts' details) are the caption: the heading's lines, written
+//! to the figure's CSV notes, the report page and the contact sheet, never drawn inside the
+//! plot.
 //!
 //! Print size: [`save`] sets a scale from the canvas width ([`ScaleGuard`], [`scale_for`]) so
-//! that, printed 7 in (504 pt) wide, the smallest text ([`TICK`]) is 7 pt: an em (plotters'
-//! size / 1.24, the SVG `font-size`) of at least width / 72 px. Font sizes ([`font_px`]) and
+//! that, printed 7 in (504 pt) wide, the smallest text ([`TICK`]) is at least 7 pt: an em of
+//! at least width / 72 px (plotters' size / 1.24, its `font-size`; the SVG carries the em the
+//! text is laid out with, size / 1.164, [`true_font_sizes`]). Font sizes ([`font_px`]) and
 //! text-dependent layout ([`px`]) are designed at scale 1 and drawn at the scale. Rich text
 //! ([`rich_text`]) draws subscripts (`U_eff`, `ΔU_1`, `A_{01}`) as smaller, lowered runs.
 //! Series: [`series`] gives the i-th curve an Okabe–Ito colour, a dash and a marker
 //! ([`draw_line`], [`draw_markers`]). Tests: unit tests below; the CLI's `pictures` test parses
-//! every SVG's font sizes.
+//! every SVG's font sizes and layout.
 //!
-//! Text: every font size is even. The bitmap text renderer places a glyph at
-//! `(size/2 + top) as i32`, which truncates toward zero; with an odd size the half pixel
-//! rounds digits down and a decimal point up, so "0.04" printed as "0·04".
-//! SVG: the same DejaVu Sans the PNGs use is embedded in each SVG as a web font
+//! Text: every font size is even (the layout's pixel arithmetic stays whole). SVG: the same
+//! DejaVu Sans the PNG is rasterised with is embedded in each SVG as a web font
 //! ([`embed_font`]), so the two render alike on any machine.
 
 use crate::io::write_atomic;
