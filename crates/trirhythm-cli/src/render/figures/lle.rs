@@ -7,8 +7,8 @@
 //! Drawing only: the runs and verdicts are [`trirhythm_paper::lle`].
 
 use crate::render::plot::{
-    font_px, padded_range, pe, px, pxi, stroke, tick_formatter, times_ten, Backend, Dash,
-    LegendStrip, Marker, SeriesStyle, Symbol, AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
+    draw_line, font_px, padded_range, pe, px, pxi, stroke, tick_formatter, times_ten, Backend,
+    Dash, LegendStrip, Marker, SeriesStyle, Symbol, AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
 };
 use anyhow::{anyhow, Result};
 use plotters::coord::types::RangedCoordf64;
@@ -53,6 +53,23 @@ fn shape_of(panel: &Panel, value: f64) -> Marker {
     SHAPES[index_of(panel, value) % SHAPES.len()]
 }
 
+/// The dash of an attractor's line: rest solid, inner cycle dashed, middle chain, outer
+/// dotted (the attractor's first word).
+fn dash_of(attractor: &str) -> Dash {
+    match attractor.split_whitespace().next().unwrap_or("") {
+        "inner" => Dash::Dashed,
+        "middle" => Dash::Chain,
+        "outer" => Dash::Dotted,
+        _ => Dash::Solid,
+    }
+}
+
+/// `colour` halfway to white: a prediction's line beside its series.
+fn pale(colour: RGBColor) -> RGBColor {
+    let half = |c: u8| c + (255 - c) / 2;
+    RGBColor(half(colour.0), half(colour.1), half(colour.2))
+}
+
 /// The outline of a marker `shape` of radius `r` around the origin (pixels), closed.
 pub(super) fn outline(shape: Marker, r: i32) -> Vec<(i32, i32)> {
     let q = r + r / 4;
@@ -93,9 +110,31 @@ fn strip(panel: &Panel) -> LegendStrip {
     let black = RGBColor(0, 0, 0);
     entries.push((Symbol::Dot(black), "filled: rest regime".into()));
     entries.push((Symbol::Ring(black), "open: cycle regime".into()));
+    // the attractors met, by their lines' dash
+    for (word, dash, name) in [
+        ("rest", Dash::Solid, "rest"),
+        ("inner", Dash::Dashed, "inner cycle"),
+        ("middle", Dash::Chain, "middle cycle"),
+        ("outer", Dash::Dotted, "outer cycle"),
+    ] {
+        if panel
+            .curves
+            .iter()
+            .any(|c| c.attractor.split_whitespace().next() == Some(word))
+        {
+            entries.push((
+                Symbol::Series(SeriesStyle {
+                    colour: black,
+                    dash,
+                    marker: Marker::None,
+                }),
+                name.into(),
+            ));
+        }
+    }
     entries.push((
-        Symbol::Dashed(black),
-        "dashed: prediction (in its series' colour)".into(),
+        Symbol::Line(pale(RGBColor(80, 80, 80))),
+        "wide pale line: prediction (its series' colour)".into(),
     ));
     let flagged = |f: Flag| {
         panel
@@ -193,20 +232,50 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
         RGBColor(120, 120, 120).stroke_width(1),
     )))
     .map_err(pe)?;
+    // the predictions first (under the data): −c·D on a cycle (over its D), the rest regime's
+    // D-independent exponent (over D ≤ 0.01 where it was pooled), wide and pale
+    for curve in &panel.curves {
+        let Some(r) = curve.regime.as_ref() else {
+            continue;
+        };
+        let colour = colour_of(panel, curve.value);
+        let ds: Vec<f64> = curve.points.iter().map(|q| q.x).collect();
+        let line: Vec<(f64, f64)> = if let Some(rest) = r.rest.as_ref().filter(|r| r.d_c_zero) {
+            ds.iter()
+                .filter(|&&d| d <= trirhythm_paper::verdict::rules::REST_HOMOGENEOUS_D)
+                .map(|&d| (lx(d), rest.pooled))
+                .collect()
+        } else if r.coefficient.is_finite() {
+            // only where the prediction is on the chart (its order-D validity ends earlier)
+            ds.iter()
+                .map(|&d| (lx(d), -r.coefficient * d))
+                .filter(|&(_, v)| v >= y.start)
+                .collect()
+        } else {
+            vec![]
+        };
+        if line.len() >= 2 {
+            // thin and pale, in its series' colour
+            c.draw_series(LineSeries::new(line, pale(colour).stroke_width(stroke(3))))
+                .map_err(pe)?;
+        }
+    }
     let n = panel.curves.len().max(1) as f64;
     for (i, curve) in panel.curves.iter().enumerate() {
         let colour = colour_of(panel, curve.value);
         let open = curve.start == StartKind::Cycle;
         // a small horizontal offset per curve keeps overlapping error bars apart
         let shift = (x.end - x.start) * 0.003 * (i as f64 - (n - 1.0) / 2.0);
-        let style = if open {
-            colour.stroke_width(1)
-        } else {
-            colour.stroke_width(2)
+        // the line in its attractor's dash (rest solid, inner dashed, middle chain, outer
+        // dotted): the attractors of one value part in greyscale
+        let style = SeriesStyle {
+            colour,
+            dash: dash_of(&curve.attractor),
+            marker: Marker::None,
         };
         for run in curve.points.split(|q| q.flag != Flag::Value) {
             let run: Vec<(f64, f64)> = run.iter().map(|q| (lx(q.x) + shift, q.y)).collect();
-            c.draw_series(LineSeries::new(run, style)).map_err(pe)?;
+            draw_line(&c, &run, style, if open { 1 } else { 2 })?;
         }
         let cap = (x.end - x.start) * 0.005;
         for q in &curve.points {
@@ -235,33 +304,6 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
                     + PathElement::new(ring, colour.stroke_width(stroke(2))),
             ))
             .map_err(pe)?;
-        }
-    }
-    // the predictions: −c·D on a cycle (dashed, over its D), the rest regime's D-independent
-    // exponent (dotted, over D ≤ 0.01 where it was pooled)
-    for curve in &panel.curves {
-        let Some(r) = curve.regime.as_ref() else {
-            continue;
-        };
-        let colour = colour_of(panel, curve.value);
-        let ds: Vec<f64> = curve.points.iter().map(|q| q.x).collect();
-        let line: Vec<(f64, f64)> = if let Some(rest) = r.rest.as_ref().filter(|r| r.d_c_zero) {
-            ds.iter()
-                .filter(|&&d| d <= trirhythm_paper::verdict::rules::REST_HOMOGENEOUS_D)
-                .map(|&d| (lx(d), rest.pooled))
-                .collect()
-        } else if r.coefficient.is_finite() {
-            // only where the prediction is on the chart (its order-D validity ends earlier)
-            ds.iter()
-                .map(|&d| (lx(d), -r.coefficient * d))
-                .filter(|&(_, v)| v >= y.start)
-                .collect()
-        } else {
-            vec![]
-        };
-        if line.len() >= 2 {
-            c.draw_series(DashedLineSeries::new(line, 6, 4, colour.stroke_width(1)))
-                .map_err(pe)?;
         }
     }
     strip(panel).draw(&bottom)

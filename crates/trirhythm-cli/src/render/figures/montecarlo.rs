@@ -264,7 +264,7 @@ pub fn amplitude_legend(panels: &[AmplitudePanel]) -> crate::render::plot::Legen
     if runs().any(|r| !r.stationary) {
         entries.push((
             Symbol::Mark(NOT_STATIONARY),
-            "ensemble not stationary".into(),
+            "Monte Carlo NOT stationary".into(),
         ));
     }
     if runs().any(|r| r.estimator == "wells" || r.shown_density().1) {
@@ -274,7 +274,10 @@ pub fn amplitude_legend(panels: &[AmplitudePanel]) -> crate::render::plot::Legen
         ));
     }
     if runs().any(|r| !r.step_warnings.is_empty()) {
-        entries.push((Symbol::Mark(COARSE_STEP), "Δt coarse (notes)".into()));
+        entries.push((
+            Symbol::Mark(COARSE_STEP),
+            "Δt flagged coarse by the step guard".into(),
+        ));
     }
     crate::render::plot::LegendStrip { entries }
 }
