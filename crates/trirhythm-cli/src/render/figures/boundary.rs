@@ -156,7 +156,13 @@ fn legend_entries(panel: &Panel) -> Vec<(Symbol, String)> {
             1 => Symbol::CircledCross(colour(curve)),
             _ => Symbol::Series(style(curve)),
         };
-        entries.push((symbol, curve.label.clone()));
+        // (the exact boundary's damped frequency defined where it is named)
+        let label = if curve.label.contains("ω_{d}") {
+            format!("{}, ω_{{d}}² = ω0² − μ0²/4", curve.label)
+        } else {
+            curve.label.clone()
+        };
+        entries.push((symbol, label));
     }
     if panel.is_family() {
         let plain = |dash, marker| {

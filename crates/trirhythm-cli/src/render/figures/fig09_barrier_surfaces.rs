@@ -5,7 +5,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig09_barrier_surfaces`].
 
-use crate::render::plot::{chart, colour_bar_vertical, pe, viridis};
+use crate::render::plot::{chart, colour_bar_vertical, pe, viridis, LegendStrip, Symbol};
 use plotters::prelude::*;
 use trirhythm_paper::fig09_barrier_surfaces::Fig09;
 
@@ -15,7 +15,19 @@ const BAR: u32 = 180;
 
 // One row per barrier: its two r side by side (each 3 in wide printed 7 in) and its colour
 // bar, shared by both, on their right.
-picture!(Fig09, |self, root| size (2 * MAP.0 + BAR, 4 * MAP.1), draw {
+/// What the white of the maps means.
+fn key() -> LegendStrip {
+    LegendStrip {
+        entries: vec![(
+            Symbol::Framed(WHITE, RGBColor(150, 150, 150)),
+            "white: fewer than three wells, the barrier undefined".into(),
+        )],
+    }
+}
+
+picture!(Fig09, |self, root| size (2 * MAP.0 + BAR, 4 * MAP.1 + key().height(2 * MAP.0 + BAR)), draw {
+    let (root, strip) = root.split_vertically(4 * MAP.1);
+    key().draw(&strip)?;
     // one colour scale per barrier, shared by both r: the rows can be compared
     let scales: Vec<(f64, f64)> = (0..4)
         .map(|k| {
