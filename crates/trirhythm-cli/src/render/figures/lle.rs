@@ -53,21 +53,15 @@ fn shape_of(panel: &Panel, value: f64) -> Marker {
     SHAPES[index_of(panel, value) % SHAPES.len()]
 }
 
-/// The dash of an attractor's line: rest solid, inner cycle dashed, middle chain, outer
-/// dotted (the attractor's first word).
+/// The dash of an attractor's line: rest and outer cycle solid (the rest regime's line is
+/// the thicker), inner cycle dotted, middle chain (the attractor's first word); dashed is the
+/// predictions'.
 fn dash_of(attractor: &str) -> Dash {
     match attractor.split_whitespace().next().unwrap_or("") {
-        "inner" => Dash::Dashed,
+        "inner" => Dash::Dotted,
         "middle" => Dash::Chain,
-        "outer" => Dash::Dotted,
         _ => Dash::Solid,
     }
-}
-
-/// `colour` halfway to white: a prediction's line beside its series.
-fn pale(colour: RGBColor) -> RGBColor {
-    let half = |c: u8| c + (255 - c) / 2;
-    RGBColor(half(colour.0), half(colour.1), half(colour.2))
 }
 
 /// The outline of a marker `shape` of radius `r` around the origin (pixels), closed.
@@ -110,12 +104,10 @@ fn strip(panel: &Panel) -> LegendStrip {
     let black = RGBColor(0, 0, 0);
     entries.push((Symbol::Dot(black), "filled: rest regime".into()));
     entries.push((Symbol::Ring(black), "open: cycle regime".into()));
-    // the attractors met, by their lines' dash
+    // the attractors met, by their lines' dash (the rest regime's line thicker)
     for (word, dash, name) in [
-        ("rest", Dash::Solid, "rest"),
-        ("inner", Dash::Dashed, "inner cycle"),
+        ("inner", Dash::Dotted, "inner cycle"),
         ("middle", Dash::Chain, "middle cycle"),
-        ("outer", Dash::Dotted, "outer cycle"),
     ] {
         if panel
             .curves
@@ -133,8 +125,8 @@ fn strip(panel: &Panel) -> LegendStrip {
         }
     }
     entries.push((
-        Symbol::Line(pale(RGBColor(80, 80, 80))),
-        "wide pale line: prediction (its series' colour)".into(),
+        Symbol::Dashed(black),
+        "dashed: prediction (its series' colour)".into(),
     ));
     let flagged = |f: Flag| {
         panel
@@ -232,8 +224,8 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
         RGBColor(120, 120, 120).stroke_width(1),
     )))
     .map_err(pe)?;
-    // the predictions first (under the data): −c·D on a cycle (over its D), the rest regime's
-    // D-independent exponent (over D ≤ 0.01 where it was pooled), wide and pale
+    // the predictions first (under the data), dashed: −c·D on a cycle (over its D), the rest
+    // regime's D-independent exponent (over D ≤ 0.01 where it was pooled)
     for curve in &panel.curves {
         let Some(r) = curve.regime.as_ref() else {
             continue;
@@ -255,8 +247,7 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
             vec![]
         };
         if line.len() >= 2 {
-            // thin and pale, in its series' colour
-            c.draw_series(LineSeries::new(line, pale(colour).stroke_width(stroke(3))))
+            c.draw_series(DashedLineSeries::new(line, 6, 4, colour.stroke_width(1)))
                 .map_err(pe)?;
         }
     }
@@ -266,8 +257,8 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
         let open = curve.start == StartKind::Cycle;
         // a small horizontal offset per curve keeps overlapping error bars apart
         let shift = (x.end - x.start) * 0.003 * (i as f64 - (n - 1.0) / 2.0);
-        // the line in its attractor's dash (rest solid, inner dashed, middle chain, outer
-        // dotted): the attractors of one value part in greyscale
+        // the line in its attractor's dash (inner dotted, middle chain, rest and outer solid,
+        // the rest regime's thicker): the attractors of one value part in greyscale
         let style = SeriesStyle {
             colour,
             dash: dash_of(&curve.attractor),

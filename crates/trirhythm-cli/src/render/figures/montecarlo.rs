@@ -174,7 +174,8 @@ pub fn draw_amplitude_panel<DB: Backend>(
             area,
             &caption,
             x_min..x_max,
-            floor.log10()..(y_max * 1.5).log10(),
+            // (a quarter decade below the floor and above the peak: no marker on a spine)
+            floor.log10() - 0.25..(y_max * 1.5).log10() + 0.25,
             "A",
             "P(A) (log scale)",
         )?
