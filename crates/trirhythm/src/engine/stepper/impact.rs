@@ -103,6 +103,29 @@ impl Stepper {
         }
     }
 
+    /// Count an impact at θ of the step and report it as the step's event.
+    #[inline]
+    fn record_impact(&mut self, theta: f64, v_minus: f64, v_plus: f64) {
+        self.impacts += 1;
+        self.events.impact = Some(Impact {
+            time: self.time() + theta * self.h,
+            v_minus,
+            v_plus,
+        });
+    }
+
+    /// V(t*+) = V₊ exactly: restart the memory at the impact, or shift V's Volterra constant
+    /// by the jump V₊ − V(t*).
+    #[inline]
+    fn memory_at_impact(&mut self, v_at: f64, v_plus: f64) {
+        if self.restart {
+            self.history.restart();
+            self.base = v_plus;
+        } else {
+            self.base += v_plus - v_at;
+        }
+    }
+
     /// Jump at the located crossing `c` and redo the rest of the step.
     pub(super) fn jump(&mut self, c: &Crossing, gl: f64, er: f64) -> Rest {
         let h = self.h;
@@ -114,12 +137,7 @@ impl Stepper {
             let vm = v_at.min(0.0);
             (vm, -self.rhs.restitution * vm, side)
         };
-        self.impacts += 1;
-        self.events.impact = Some(Impact {
-            time: self.time() + theta * h,
-            v_minus,
-            v_plus,
-        });
+        self.record_impact(theta, v_minus, v_plus);
         self.side = new_side;
         let after_forcing = self.rhs.forcing(c.eta_star, new_side);
         let split = Split {
@@ -129,13 +147,7 @@ impl Stepper {
             keep_before: !self.restart,
             mass: 0.0,
         };
-        // V(t*+) = V₊ exactly: restart the memory there, or shift V's Volterra constant
-        if self.restart {
-            self.history.restart();
-            self.base = v_plus;
-        } else {
-            self.base += v_plus - v_at;
-        }
+        self.memory_at_impact(v_at, v_plus);
         // the rest of the step, [t*, t_{n+1}], from (0, V₊), linearly implicit in V
         let (known_s, wr_s) = self.history.current_split(gl, &split);
         let known = self.base + self.history.value() + known_s;
@@ -165,12 +177,8 @@ impl Stepper {
         let (theta, v_at) = (c.theta, c.v_at);
         let v_minus = v_at.min(0.0);
         let v_plus = -self.rhs.restitution * v_minus;
-        self.impacts += 1;
-        self.events.impact = Some(Impact {
-            time: self.time() + theta * h,
-            v_minus,
-            v_plus,
-        });
+        self.record_impact(theta, v_minus, v_plus);
+        self.memory_at_impact(v_at, v_plus);
         let g = self.general.as_deref().expect("a General path");
         let split = Split {
             theta,
@@ -179,12 +187,6 @@ impl Stepper {
             keep_before: !self.restart,
             mass: 0.0,
         };
-        if self.restart {
-            self.history.restart();
-            self.base = v_plus;
-        } else {
-            self.base += v_plus - v_at;
-        }
         let (known_s, wr_s) = self.history.current_split(gl, &split);
         let known = self.base + self.history.value() + known_s;
         let hh = (1.0 - theta) * h;
