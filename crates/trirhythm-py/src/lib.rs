@@ -169,6 +169,28 @@ fn variant(name: &str) -> PyResult<Variant> {
     Variant::parse(name).map_err(py_err)
 }
 
+/// The General kernel's terms of a `trirhythm.Model` (Duffing, Rayleigh, forcing; `None`
+/// without a model or for the paper's family), refused by name where the engine does not step
+/// a term (as `--model FILE`).
+fn terms_of(model: Option<PyRef<'_, PyModel>>) -> PyResult<Option<model::GeneralTerms>> {
+    match model {
+        None => Ok(None),
+        Some(m) => Ok(m.0.engine_terms("the engine").map_err(py_err)?.1),
+    }
+}
+
+/// `call` for a `model=` of the General kernel's terms: refused with the reason, since `call`
+/// is built on the paper's averaged theory (its cycles and boundaries), as on the command line.
+fn theory_only(model: Option<PyRef<'_, PyModel>>, call: &str) -> PyResult<()> {
+    match trirhythm_paper::requests::theory_refusal(terms_of(model)?.as_ref()) {
+        Some(why) => Err(PyValueError::new_err(format!(
+            "model: {call} is built on the paper's averaged theory (its cycles and \
+             boundaries): {why}"
+        ))),
+        None => Ok(()),
+    }
+}
+
 /// A validated parameter set (`trirhythm.Params`): immutable; `with_(**values)` makes a new
 /// one.
 #[pyclass(name = "Params", module = "trirhythm", frozen, eq)]
@@ -362,6 +384,51 @@ impl PyModel {
         Self::from_toml(&text)
     }
 
+    /// A copy with `values` set, each named by its dotted field path as in the model file's
+    /// errors (`m.with_(**{"restoring.cubic": 0.5, "wall.0.restitution": 0.9})`; a table or
+    /// list element that is absent is created), validated as a whole: a bad value raises
+    /// `ValueError` naming the field, its value and the allowed range.
+    #[pyo3(signature = (**values))]
+    fn with_(&self, values: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        use serde_json::Value;
+        let mut doc = serde_json::to_value(&self.0).map_err(json_err)?;
+        for (k, v) in values.into_iter().flatten() {
+            let path: String = k.extract()?;
+            let mut at = &mut doc;
+            for part in path.split('.') {
+                at = match at {
+                    Value::Object(map) => map
+                        .entry(part.to_string())
+                        .or_insert_with(|| Value::Object(Default::default())),
+                    Value::Array(list) => {
+                        let i: usize = part.parse().map_err(|_| {
+                            PyValueError::new_err(format!(
+                                "model: {path}: `{part}` is not an index of a list"
+                            ))
+                        })?;
+                        let len = list.len();
+                        if i == len {
+                            list.push(Value::Object(Default::default()));
+                        }
+                        list.get_mut(i).ok_or_else(|| {
+                            PyValueError::new_err(format!(
+                                "model: {path}: index {i} is past the list's end (it has \
+                                 {len} elements)"
+                            ))
+                        })?
+                    }
+                    _ => {
+                        return Err(PyValueError::new_err(format!(
+                            "model: {path}: `{part}` is inside a value, not a table"
+                        )))
+                    }
+                };
+            }
+            *at = to_json(&v, &path)?;
+        }
+        Ok(PyModel(model::Model::from_tables(doc).map_err(py_err)?))
+    }
+
     /// The paper's Eq. (1) of `params` (the wall at 0, additive noise, the start (1, 0)).
     #[staticmethod]
     fn from_params(params: &PyParams) -> Self {
@@ -384,11 +451,19 @@ impl PyModel {
         self.0.paper_params().map(PyParams)
     }
 
-    /// `(params, barrier, u0, v0)` of the model as the engine steps it today; `ValueError`
-    /// naming the term it does not step yet.
-    fn _engine(&self) -> PyResult<(PyParams, bool, f64, f64)> {
-        let f = self.0.paper_family("the engine").map_err(py_err)?;
-        Ok((PyParams(f.params), f.wall, f.start.0, f.start.1))
+    /// `(params, barrier, u0, v0, general)` of the model as the engine steps it: the paper
+    /// family's part, and whether it has terms of the General kernel (Duffing, Rayleigh,
+    /// forcing) that the calls take through `model=`; `ValueError` naming a term the engine
+    /// does not step.
+    fn _engine(&self) -> PyResult<(PyParams, bool, f64, f64, bool)> {
+        let (f, terms) = self.0.engine_terms("the engine").map_err(py_err)?;
+        Ok((
+            PyParams(f.params),
+            f.wall,
+            f.start.0,
+            f.start.1,
+            terms.is_some(),
+        ))
     }
 
     fn __repr__(&self) -> String {
@@ -519,7 +594,7 @@ impl PyTheory {
 
 /// One path (`simulate`): `(t, u, v, eta, summary_json)`; `eta` empty without noise.
 #[pyfunction]
-#[pyo3(signature = (params, t_end, dt, u0, v0, seed, path, every, system, barrier, memory, tolerance, impact_memory, threads=None, progress=None))]
+#[pyo3(signature = (params, t_end, dt, u0, v0, seed, path, every, system, barrier, memory, tolerance, impact_memory, model=None, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn _simulate<'py>(
     py: Python<'py>,
@@ -536,6 +611,7 @@ fn _simulate<'py>(
     memory: &str,
     tolerance: f64,
     impact_memory: &str,
+    model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -544,10 +620,12 @@ fn _simulate<'py>(
             "invalid parameter every = 0: allowed range is 1 or more",
         ));
     }
-    let m = model(system, barrier, memory, tolerance)?;
+    let terms = terms_of(model)?;
+    let m = self::model(system, barrier, memory, tolerance)?;
     let method = m.method(dt, impact(impact_memory)?);
     let problem = m
         .problem(&params.0)
+        .and_then(|p| p.with_terms(terms))
         .and_then(|p| p.with_start(u0, v0))
         .map_err(py_err)?;
     let options = Options {
@@ -594,11 +672,12 @@ fn ensemble_request(
     joint_bins: usize,
     amplitude_max: Option<f64>,
     sample_every: u64,
+    terms: Option<model::GeneralTerms>,
 ) -> PyResult<EnsembleRequest> {
     Ok(EnsembleRequest {
         params: params.0.clone(),
         variant: self::variant(variant)?,
-        model: model(system, barrier, memory, tolerance)?,
+        model: self::model(system, barrier, memory, tolerance)?,
         impact_memory: impact(impact_memory)?,
         dt,
         paths,
@@ -611,14 +690,14 @@ fn ensemble_request(
         amplitude_max,
         sample_every,
         lanes: trirhythm::engine::Lanes::Auto,
-        terms: None,
+        terms,
     })
 }
 
 /// Run paths `which` (all when `None`) of an ensemble; with `merge`, the document of the whole
 /// ensemble (JSON), otherwise the paths' statistics (JSON list, for `merge_paths`).
 #[pyfunction]
-#[pyo3(signature = (params, paths, t_end, burn_in, seed, dt, u0, variant, system, barrier, memory, tolerance, impact_memory, bins, joint_bins, amplitude_max, sample_every, which=None, pieces=None, merge=true, threads=None, progress=None))]
+#[pyo3(signature = (params, paths, t_end, burn_in, seed, dt, u0, variant, system, barrier, memory, tolerance, impact_memory, bins, joint_bins, amplitude_max, sample_every, which=None, pieces=None, merge=true, model=None, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn _ensemble(
     py: Python<'_>,
@@ -642,6 +721,7 @@ fn _ensemble(
     which: Option<Vec<u64>>,
     pieces: Option<Vec<String>>,
     merge: bool,
+    model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
@@ -663,6 +743,7 @@ fn _ensemble(
         joint_bins,
         amplitude_max,
         sample_every,
+        terms_of(model)?,
     )?;
     let s = request.setup().map_err(py_err)?;
     // every size, step and range checked before any work
@@ -719,7 +800,7 @@ fn _ensemble(
 /// An ensemble by well decomposition: the document of `trirhythm ensemble --method wells`
 /// (JSON).
 #[pyfunction]
-#[pyo3(signature = (params, paths, t_end, burn_in, seed, dt, u0, variant, system, barrier, memory, tolerance, impact_memory, bins, joint_bins, amplitude_max, sample_every, clones, max_excursion, max_iterations, separation, core_quantile, threads=None, progress=None))]
+#[pyo3(signature = (params, paths, t_end, burn_in, seed, dt, u0, variant, system, barrier, memory, tolerance, impact_memory, bins, joint_bins, amplitude_max, sample_every, clones, max_excursion, max_iterations, separation, core_quantile, model=None, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn _ensemble_wells(
     py: Python<'_>,
@@ -745,6 +826,7 @@ fn _ensemble_wells(
     max_iterations: usize,
     separation: f64,
     core_quantile: f64,
+    model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
@@ -766,6 +848,7 @@ fn _ensemble_wells(
         joint_bins,
         amplitude_max,
         sample_every,
+        terms_of(model)?,
     )?;
     let s = request.setup().map_err(py_err)?;
     let wspec = ens::WellsSpec {
@@ -785,7 +868,7 @@ fn _ensemble_wells(
 
 /// The largest Lyapunov exponent (JSON of the library's result).
 #[pyfunction]
-#[pyo3(signature = (params, t_end, transient, dt, paths, seed, u0, impact_memory, method, renormalise_every, separation, system, barrier, memory, tolerance, threads=None, progress=None))]
+#[pyo3(signature = (params, t_end, transient, dt, paths, seed, u0, impact_memory, method, renormalise_every, separation, system, barrier, memory, tolerance, model=None, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn _lyapunov(
     py: Python<'_>,
@@ -804,13 +887,16 @@ fn _lyapunov(
     barrier: bool,
     memory: &str,
     tolerance: f64,
+    model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
-    let m = model(system, barrier, memory, tolerance)?;
+    let terms = terms_of(model)?;
+    let m = self::model(system, barrier, memory, tolerance)?;
     let pc = m.method(dt, impact(impact_memory)?);
     let problem = m
         .problem(&params.0)
+        .and_then(|p| p.with_terms(terms))
         .and_then(|p| p.with_start(u0, 0.0))
         .map_err(py_err)?;
     let spec = LyapunovSpec {
@@ -848,7 +934,7 @@ fn lyapunov_method(name: &str) -> PyResult<lle::LyapunovMethod> {
 /// regime rules of Figs 17–19. `dt` None: the figures' rule (Δt ≤ τ/10). Everything is checked
 /// before any work, the step guard included (its warnings are in the document).
 #[pyfunction]
-#[pyo3(signature = (params, noises, d_range, points, sweep, t_end, transient, dt, paths, seed, impact_memory, method, renormalise_every, separation, system, barrier, memory, tolerance, variant, threads=None, progress=None))]
+#[pyo3(signature = (params, noises, d_range, points, sweep, t_end, transient, dt, paths, seed, impact_memory, method, renormalise_every, separation, system, barrier, memory, tolerance, variant, model=None, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn _critical_noise(
     py: Python<'_>,
@@ -871,9 +957,11 @@ fn _critical_noise(
     memory: &str,
     tolerance: f64,
     variant: &str,
+    model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
+    theory_only(model, "critical_noise")?;
     let spec = LyapunovSpec {
         paths,
         seed,
@@ -898,7 +986,7 @@ fn _critical_noise(
         sweep,
         noises,
         sizes: Sizes {
-            model: model(system, barrier, memory, tolerance)?,
+            model: self::model(system, barrier, memory, tolerance)?,
             dt,
             impact_memory: impact(impact_memory)?,
             ..Sizes::of_spec(spec)
@@ -913,7 +1001,7 @@ fn _critical_noise(
 /// The attractor of the noise-free path from (u0, 0) (JSON of the library's
 /// `StartAttractor`); with `u0` None, one start per attractor (JSON list).
 #[pyfunction]
-#[pyo3(signature = (params, u0, dt, impact_memory, t_max, variant, system, barrier, memory, tolerance, threads=None))]
+#[pyo3(signature = (params, u0, dt, impact_memory, t_max, variant, system, barrier, memory, tolerance, model=None, threads=None))]
 #[allow(clippy::too_many_arguments)]
 fn _attractor(
     py: Python<'_>,
@@ -927,9 +1015,11 @@ fn _attractor(
     barrier: bool,
     memory: &str,
     tolerance: f64,
+    model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
 ) -> PyResult<String> {
-    let m = model(system, barrier, memory, tolerance)?;
+    theory_only(model, "attractor")?;
+    let m = self::model(system, barrier, memory, tolerance)?;
     let method = m.method(dt, impact(impact_memory)?);
     let problem = m
         .problem(&params.0)
@@ -964,7 +1054,7 @@ fn _attractor(
 /// theory's largest stable amplitude (D = 0), Δt must lie in [1e-4, 0.1], and a step that
 /// cannot resolve the problem is refused.
 #[pyfunction]
-#[pyo3(signature = (params, u0, dt, impact_memory, phases, kick, periods, t_max, variant, system, barrier, memory, tolerance, threads=None, progress=None))]
+#[pyo3(signature = (params, u0, dt, impact_memory, phases, kick, periods, t_max, variant, system, barrier, memory, tolerance, model=None, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn _phase_response(
     py: Python<'_>,
@@ -981,9 +1071,11 @@ fn _phase_response(
     barrier: bool,
     memory: &str,
     tolerance: f64,
+    model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<(String, Vec<String>)> {
+    theory_only(model, "phase_response")?;
     let variant = self::variant(variant)?;
     if !(lle::DT_RANGE.0..=lle::DT_RANGE.1).contains(&dt) {
         return Err(py_err(trirhythm::Error::invalid("dt", dt, "[1e-4, 0.1]")));
@@ -1013,7 +1105,7 @@ fn _phase_response(
             }
         }
     };
-    let m = model(system, barrier, memory, tolerance)?;
+    let m = self::model(system, barrier, memory, tolerance)?;
     let method = m.method(dt, impact(impact_memory)?);
     let problem = m
         .problem(&params.0)
@@ -1032,7 +1124,7 @@ fn _phase_response(
 /// The oscillation boundary in the plane (x_key over `x`, y_key in `y_range`) by `method`
 /// (JSON of the library's result).
 #[pyfunction]
-#[pyo3(signature = (params, x_key, x, y_key, y_range, method="simulation", variant="paper", barrier=true, tolerance=1e-3, threads=None, progress=None))]
+#[pyo3(signature = (params, x_key, x, y_key, y_range, method="simulation", variant="paper", barrier=true, tolerance=1e-3, model=None, threads=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn _oscillation_boundary(
     py: Python<'_>,
@@ -1045,10 +1137,12 @@ fn _oscillation_boundary(
     variant: &str,
     barrier: bool,
     tolerance: f64,
+    model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
-    let m = model("fractional", barrier, "soe", 1e-10)?;
+    theory_only(model, "oscillation_boundary")?;
+    let m = self::model("fractional", barrier, "soe", 1e-10)?;
     let template = m.problem(&params.0).map_err(py_err)?;
     let plane =
         osc::Plane::new(&template, (x_key, x), (y_key, y_range.0, y_range.1)).map_err(py_err)?;

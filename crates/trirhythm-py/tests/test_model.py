@@ -86,10 +86,99 @@ def test_what_the_model_says_is_not_given_twice():
 
 
 def test_a_term_the_engine_does_not_step_is_refused_by_name():
-    duffing = tr.Model(**{**FIG13A, "restoring": {"omega0": 1.0, "cubic": 0.5}})
-    assert duffing.paper_params() is None
-    with pytest.raises(ValueError, match=r"restoring\.cubic = 0\.5 .*does not step it yet"):
-        tr.simulate(model=duffing, t_end=1.0)
-    forced = tr.Model(**{**FIG13A, "forcing": {"amplitude": 0.1, "frequency": 1.0}})
-    with pytest.raises(ValueError, match=r"forcing\.amplitude"):
-        tr.ensemble(model=forced, paths=1, t_end=1.0)
+    fractional = tr.Model(**{**FIG13A, "fractional": [{"coefficient": 0.2, "order": 0.5}]})
+    assert fractional.paper_params() is None
+    with pytest.raises(ValueError, match=r"fractional\.0\.coefficient = 0\.2 .*does not step it yet"):
+        tr.simulate(model=fractional, t_end=1.0)
+    with pytest.raises(ValueError, match=r"fractional\.0\.coefficient"):
+        tr.ensemble(model=fractional, paths=1, t_end=1.0)
+
+
+# Duffing under additive white noise: Ü + cU̇ + ω0²U + k3U³ = η, ⟨η(t)η(s)⟩ = 2Dδ(t − s)
+# (h = μ0·P(U) with P = −1: c = μ0). Its stationary density is ∝ exp(−c·H/D),
+# H = U̇²/2 + ω0²U²/2 + k3U⁴/4, so ⟨U̇²⟩ = D/c and ⟨U²⟩ is a ratio of two integrals.
+DUFFING = dict(
+    leading={"lambda": 1.0},
+    damping={"mu0": 0.5, "coefficients": [-1.0]},
+    restoring={"omega0": 1.0, "cubic": 0.0},
+    noise={"additive": {"intensity": 0.25}},
+    wall=[],
+    start={"u0": 0.5},
+)
+
+
+def _duffing_second_moment(c, d, k3):
+    u = np.linspace(-8.0, 8.0, 20001)
+    w = np.exp(-(c / d) * (u**2 / 2 + k3 * u**4 / 4))
+    return float(np.sum(u**2 * w) / np.sum(w))
+
+
+def test_with_sets_dotted_fields_and_refuses_bad_ones_by_name():
+    m = tr.Model(**DUFFING)
+    k = m.with_(**{"restoring.cubic": 2.0, "noise.additive.correlation_time": 0.5})
+    assert k.to_dict()["restoring"]["cubic"] == 2.0
+    assert k.to_dict()["noise"]["additive"]["correlation_time"] == 0.5
+    assert m.to_dict()["restoring"]["cubic"] == 0.0  # a copy: the model is immutable
+    walled = m.with_(**{"wall.0": {"position": 0.0, "keep": "above", "restitution": 0.9}, "start.u0": 0.5})
+    assert walled.to_dict()["wall"][0]["restitution"] == 0.9
+    for change, field in [
+        ({"restoring.cubic": float("nan")}, r"restoring\.cubic = NaN"),
+        ({"leading.lambda": 2.0}, r"leading\.lambda = 2: allowed range is \(0, 1\]"),
+        ({"wall.2.position": 0.0}, r"wall\.2\.position: index 2 is past the list's end"),
+        ({"restoring.omega0.x": 1.0}, r"restoring\.omega0\.x"),
+        ({"restoring.k7": 1.0}, r"restoring\.k7: unknown field"),
+    ]:
+        with pytest.raises(ValueError, match=field):
+            m.with_(**change)
+
+
+def test_a_duffing_model_runs_through_every_simulating_call():
+    m = tr.Model(**DUFFING).with_(**{"restoring.cubic": 1.0})
+    a = tr.simulate(model=m, t_end=20.0, seed=3)
+    b = tr.simulate(model=m, t_end=20.0, seed=3)
+    linear = tr.simulate(model=tr.Model(**DUFFING), t_end=20.0, seed=3)
+    assert np.array_equal(a.u, b.u) and not np.array_equal(a.u, linear.u)
+    lle = tr.lyapunov(model=m, paths=2, t_end=200.0, transient=20.0)
+    # a damped system: the exponent is negative (the linear one's is −c/2 = −0.25)
+    assert lle["lle"]["value"] < 0
+    e = tr.ensemble(model=m, paths=2, t_end=50.0, burn_in=10.0, amplitude_max=6.0)
+    assert "does not apply" in e["theory"]["paper"]["error"]
+    # the pieces of an ensemble of a model merge into the whole, bit for bit
+    pieces = [tr.ensemble_paths(None, [i], paths=2, t_end=50.0, burn_in=10.0, model=m, amplitude_max=6.0) for i in (1, 0)]
+    merged = tr.merge_paths(None, pieces, paths=2, t_end=50.0, burn_in=10.0, model=m, amplitude_max=6.0)
+    assert merged.statistics() == e.statistics()
+
+
+def test_calls_built_on_the_averaged_theory_refuse_a_duffing_model_with_the_reason():
+    m = tr.Model(**DUFFING).with_(**{"restoring.cubic": 1.0})
+    for call in (
+        lambda: tr.critical_noise(model=m, points=2),
+        lambda: tr.attractor(model=m),
+        lambda: tr.attractor_starts(model=m),
+        lambda: tr.phase_response(model=m),
+        lambda: tr.oscillation_boundary(model=m, x=("lambda", [0.9]), y=("mu0", 0.0, 0.1)),
+    ):
+        with pytest.raises(ValueError, match=r"averaged theory .*restoring\.cubic = 1"):
+            call()
+
+
+def test_a_sweep_over_a_model_field_matches_the_exact_duffing_variance():
+    base = tr.Model(**DUFFING)
+    ds = tr.sweep(
+        "ensemble", {"restoring.cubic": [0.0, 1.0]}, base=base, paths=8, t_end=400.0, burn_in=20.0,
+        amplitude_max=6.0, seed=5,
+    )
+    c, d = 0.5, 0.25
+    for i, k3 in enumerate([0.0, 1.0]):
+        exact = _duffing_second_moment(c, d, k3)
+        value, se = float(ds["var_u"][i]), float(ds["var_u_stderr"][i])
+        assert abs(value - exact) < 4 * se + 0.01 * exact, (k3, value, se, exact)
+        v, vse = float(ds["var_v"][i]), float(ds["var_v_stderr"][i])
+        assert abs(v - d / c) < 4 * vse + 0.01 * d / c, (k3, v, vse)
+    # each point is the direct call at that model, bit for bit
+    one = tr.ensemble(
+        model=base.with_(**{"restoring.cubic": 1.0}), paths=8, t_end=400.0, burn_in=20.0,
+        amplitude_max=6.0, seed=5,
+    )
+    assert one.statistics()["var_u"] == (float(ds["var_u"][1]), float(ds["var_u_stderr"][1]))
+    assert "restoring.cubic" in ds.coords

@@ -115,9 +115,11 @@ def _check_params(params) -> Params:
 
 
 def _from_model(model, params, given):
-    """``(params, barrier, u0, v0)`` of ``model`` as the engine steps it today (``ValueError``
-    naming a term it does not step yet); ``given`` holds the run's arguments that the model
-    file says instead (wall, start), refused when not ``None``."""
+    """``(params, barrier, u0, v0)`` of ``model`` as the engine steps it: the paper family's
+    part, its wall and its start (``ValueError`` naming a term the engine does not step); the
+    General kernel's terms (Duffing, Rayleigh, forcing) travel with ``model=`` to the native
+    call. ``given`` holds the run's arguments that the model file says instead (wall, start),
+    refused when not ``None``."""
     if not isinstance(model, Model):
         raise ValueError(
             f"invalid parameter model = {model!r}: expected a trirhythm.Model (Model(**tables) or Model.load(path))"
@@ -130,7 +132,24 @@ def _from_model(model, params, given):
                 f"invalid parameter {name} = {value!r}: the model says the wall and the start "
                 "(its wall and start tables); leave it out with model="
             )
-    return model._engine()
+    params, barrier, u0, v0, _general = model._engine()
+    return params, barrier, u0, v0
+
+
+def _model_options(model, params, options, call, start=True):
+    """``(params, options)`` for a call that takes ``model=``: the model's parameters, with its
+    wall as ``barrier`` and (``start``) its U(0) as ``u0`` in ``options`` (its U̇(0) must be 0:
+    ``call`` starts at rest)."""
+    given = {"barrier": options.get("barrier")}
+    if start:
+        given["u0"] = options.get("u0")
+    params, barrier, u0, v0 = _from_model(model, params, given)
+    options = {**options, "barrier": barrier}
+    if start:
+        if v0 != 0.0:
+            raise ValueError(f"invalid parameter start.v0 = {v0!r}: {call} starts its paths at rest; set start.v0 = 0")
+        options["u0"] = u0
+    return params, options
 
 
 @dataclass
@@ -190,8 +209,9 @@ def simulate(
         memory,
         _finite("tolerance", tolerance),
         impact_memory,
-        threads,
-        _progress(progress),
+        model=model,
+        threads=threads,
+        progress=_progress(progress),
     )
     eta = d["eta"] if len(d["eta"]) else None
     return Path(d["t"], d["u"], d["v"], eta, json.loads(d["summary"]))
@@ -336,14 +356,10 @@ def ensemble(
     ``model=`` (a ``trirhythm.Model``) in place of ``params``: its parameters, wall and start
     (paths start at rest at ``start.u0``), as ``trirhythm ensemble --model FILE``."""
     if model is not None:
-        params, barrier, u0, v0 = _from_model(
-            model, params, dict(u0=options.get("u0"), barrier=options.get("barrier"))
-        )
-        if v0 != 0.0:
-            raise ValueError(f"invalid parameter start.v0 = {v0!r}: ensemble starts its paths at rest; set start.v0 = 0")
-        options = {**options, "barrier": barrier}
-        if options.get("method", "direct") == "direct":
-            options["u0"] = [u0]
+        direct = options.get("method", "direct") == "direct"
+        params, options = _model_options(model, params, options, "ensemble", start=direct)
+        if direct:
+            options["u0"] = [options["u0"]]
     method = options.pop("method", "direct")
     wells = {k: options.pop(k) for k in list(options) if k in _WELLS_DEFAULTS}
     if method == "wells" and "u0" in options:
@@ -361,6 +377,7 @@ def ensemble(
             _count("max_iterations", w["max_iterations"]),
             _finite("separation", w["separation"]),
             _finite("core_quantile", w["core_quantile"]),
+            model=model,
             threads=threads,
             progress=_progress(progress),
         )
@@ -369,12 +386,20 @@ def ensemble(
         raise ValueError(f"invalid parameter method = {method!r}: expected 'direct' or 'wells'")
     if wells:
         raise ValueError(f"argument(s) {sorted(wells)} need method='wells'")
-    text = _native._ensemble(*args, threads=threads, progress=_progress(progress))
+    text = _native._ensemble(*args, model=model, threads=threads, progress=_progress(progress))
     return Ensemble(json.loads(text))
 
 
+def _direct_model(model, params, options):
+    """``(params, options)`` of a direct ensemble with ``model=`` (its start as the one u0)."""
+    if model is None:
+        return params, options
+    params, options = _model_options(model, params, options, "ensemble")
+    return params, {**options, "u0": [options["u0"]]}
+
+
 def ensemble_paths(
-    params: Params,
+    params: Params | None,
     which: Iterable[int],
     paths: int = 8,
     t_end: float = 1000.0,
@@ -383,35 +408,42 @@ def ensemble_paths(
     *,
     threads: int | None = None,
     progress=None,
+    model: Model | None = None,
     **options,
 ) -> EnsemblePaths:
     """Run only the paths ``which`` (indices in ``range(paths)``) of the ensemble that
     ``ensemble`` with the same arguments runs; ``merge_paths`` puts the pieces together, in
-    any order and any split, into the same result bit for bit."""
+    any order and any split, into the same result bit for bit. ``model=`` as ``ensemble``."""
     which = [_count("which", i) for i in which]
+    params, options = _direct_model(model, params, options)
     args = _ensemble_args(params, paths, t_end, burn_in, seed, options)
-    text = _native._ensemble(*args, which=which, merge=False, threads=threads, progress=_progress(progress))
+    text = _native._ensemble(
+        *args, which=which, merge=False, model=model, threads=threads, progress=_progress(progress)
+    )
     return EnsemblePaths(text, which)
 
 
 def merge_paths(
-    params: Params,
+    params: Params | None,
     pieces: Sequence[EnsemblePaths],
     paths: int = 8,
     t_end: float = 1000.0,
     burn_in: float = 100.0,
     seed: int = 1,
+    *,
+    model: Model | None = None,
     **options,
 ) -> Ensemble:
     """Merge the pieces of ``ensemble_paths`` (same arguments) into the ensemble's result;
     every path must be given exactly once."""
+    params, options = _direct_model(model, params, options)
     args = _ensemble_args(params, paths, t_end, burn_in, seed, options)
     given = sorted(i for p in pieces for i in p.which)
     if given != list(range(paths)):
         raise ValueError(
             f"invalid parameter pieces: they hold paths {given}, expected each of 0..{paths - 1} once"
         )
-    text = _native._ensemble(*args, which=[], pieces=[p.pieces for p in pieces])
+    text = _native._ensemble(*args, which=[], pieces=[p.pieces for p in pieces], model=model)
     return Ensemble(json.loads(text))
 
 
@@ -455,22 +487,27 @@ def _lle_args(params, paths, t_end, seed, options):
 
 
 def lyapunov(
-    params: Params,
+    params: Params | None = None,
     paths: int = 8,
     t_end: float = 2000.0,
     seed: int = 1,
     *,
     threads: int | None = None,
     progress=None,
+    model: Model | None = None,
     **options,
 ) -> dict:
     """The largest Lyapunov exponent with frozen noise (``trirhythm lyapunov``): a dict with
     ``lle`` ``{value, stderr}``, ``per_path``, ``running``, … Options: ``transient=200``,
     ``dt=0.01``, ``u0=1``, ``impact_memory="restart"``, ``method="two-trajectory"`` or
     ``"tangent"``, ``renormalise_every=100``, ``separation=1e-8``, ``system``, ``barrier``,
-    ``memory``, ``tolerance``."""
+    ``memory``, ``tolerance``. ``model=`` (a ``trirhythm.Model``, any the engine steps) in
+    place of ``params``: its parameters, terms, wall and start (at rest at ``start.u0``), as
+    ``trirhythm lyapunov --model FILE``."""
+    if model is not None:
+        params, options = _model_options(model, params, options, "lyapunov")
     a = _lle_args(params, paths, t_end, seed, options)
-    return json.loads(_native._lyapunov(**a, threads=threads, progress=_progress(progress)))
+    return json.loads(_native._lyapunov(**a, model=model, threads=threads, progress=_progress(progress)))
 
 
 @dataclass
@@ -708,7 +745,7 @@ _CRITICAL_DEFAULTS = dict(
 
 
 def critical_noise(
-    params: Params,
+    params: Params | None = None,
     d_range: tuple[float, float] | None = None,
     points: int = 9,
     paths: int = 8,
@@ -719,6 +756,7 @@ def critical_noise(
     sweep: tuple[str, Sequence[float]] | None = None,
     threads: int | None = None,
     progress=None,
+    model: Model | None = None,
     **options,
 ) -> CriticalNoise:
     """The largest Lyapunov exponent against the noise intensity D by regime, and each
@@ -738,7 +776,11 @@ def critical_noise(
     ``impact_memory="restart"``, ``method="two-trajectory"`` or ``"tangent"``,
     ``renormalise_every=100``, ``separation=1e-8``, ``system``, ``barrier``, ``memory``,
     ``tolerance``, ``variant="paper"``. Bad values raise ``ValueError`` naming the argument,
-    its value and the allowed range, before any work; the step guard's warnings are warned."""
+    its value and the allowed range, before any work; the step guard's warnings are warned.
+    ``model=`` in place of ``params``: its parameters and wall (a model with terms outside the
+    paper's family is refused: the starts and regimes come from the averaged theory)."""
+    if model is not None:
+        params, options = _model_options(model, params, options, "critical_noise", start=False)
     unknown = set(options) - set(_CRITICAL_DEFAULTS)
     if unknown:
         raise ValueError(f"unknown argument(s) {sorted(unknown)}: expected {sorted(_CRITICAL_DEFAULTS)}")
@@ -782,6 +824,7 @@ def critical_noise(
         o["memory"],
         _finite("tolerance", o["tolerance"]),
         o["variant"],
+        model=model,
         threads=threads,
         progress=_progress(progress),
     )
@@ -866,14 +909,15 @@ class Attractor:
 
 
 def attractor(
-    params: Params,
-    u0: float,
+    params: Params | None = None,
+    u0: float | None = None,
     dt: float = 0.01,
     impact_memory: str = "restart",
     t_max: float = 20_000.0,
     variant: str = "paper",
     *,
     threads: int | None = None,
+    model: Model | None = None,
     **options,
 ) -> Attractor:
     """The attractor the noise-free path (D set to 0) from (U(0), U̇(0)) = (``u0``, 0) reaches:
@@ -882,7 +926,16 @@ def attractor(
     when the turning amplitudes have settled (Aitken's extrapolation within 1e-5 at three
     turning points in a row) or fallen below 1e-3. Options: ``system``, ``barrier``,
     ``memory``, ``tolerance`` (as ``simulate``; Eq. 9's ``"zhuravlev"`` is refused). The GIL
-    is released; the run is not cancellable midway (Ctrl-C is raised when it ends)."""
+    is released; the run is not cancellable midway (Ctrl-C is raised when it ends).
+    ``model=`` in place of ``params``: its parameters and wall, ``u0`` its ``start.u0`` unless
+    given (a model with terms outside the paper's family is refused: the attractors are named
+    by the averaged theory)."""
+    if model is not None:
+        params, options = _model_options(model, params, options, "attractor", start=False)
+        if u0 is None:
+            u0 = _from_model(model, None, {})[2]
+    if u0 is None:
+        raise ValueError("invalid parameter u0 = None: give the start U(0) (or model= with its start)")
     m = _model_args(options)
     text = _native._attractor(
         _check_params(params),
@@ -892,26 +945,30 @@ def attractor(
         _finite("t_max", t_max),
         variant,
         **m,
+        model=model,
         threads=threads,
     )
     return Attractor._of(json.loads(text))
 
 
 def attractor_starts(
-    params: Params,
+    params: Params | None = None,
     dt: float = 0.01,
     impact_memory: str = "restart",
     t_max: float = 20_000.0,
     variant: str = "paper",
     *,
     threads: int | None = None,
+    model: Model | None = None,
     **options,
 ) -> list[tuple[float, Attractor]]:
     """One start per attractor of the noise-free system (library ``attractor_starts``):
     ``[(u0, attractor), …]``, rest first, then the cycles by amplitude, the unsettled last.
     The starts tried are the averaged theory's stable cycle amplitudes, 1 and 0.01, each
     classified as ``attractor`` does (in parallel on ``threads``); the first start of each
-    attractor is kept. Options as ``attractor``."""
+    attractor is kept. Options and ``model=`` as ``attractor``."""
+    if model is not None:
+        params, options = _model_options(model, params, options, "attractor_starts", start=False)
     m = _model_args(options)
     text = _native._attractor(
         _check_params(params),
@@ -921,6 +978,7 @@ def attractor_starts(
         _finite("t_max", t_max),
         variant,
         **m,
+        model=model,
         threads=threads,
     )
     return [(float(d["u0"]), Attractor._of(d)) for d in json.loads(text)]
@@ -980,7 +1038,7 @@ class PhaseResponse:
 
 
 def phase_response(
-    params: Params,
+    params: Params | None = None,
     u0: float | None = None,
     dt: float = 0.01,
     impact_memory: str = "restart",
@@ -992,6 +1050,7 @@ def phase_response(
     *,
     threads: int | None = None,
     progress=None,
+    model: Model | None = None,
     **options,
 ) -> PhaseResponse:
     """The phase response of the cycle the noise-free path from (``u0``, 0) reaches, measured
@@ -1003,7 +1062,11 @@ def phase_response(
     followed), ``t_max=20000`` (to reach the cycle), ``variant``, ``system``, ``barrier``,
     ``memory``, ``tolerance``. A start that reaches no cycle raises ``ValueError``. Where the
     coefficient is undefined it is ``None`` and a ``RuntimeWarning`` gives the reason; the step
-    guard's warnings are warned too."""
+    guard's warnings are warned too. ``model=`` in place of ``params``: its parameters and
+    wall (terms outside the paper's family are refused: the cycle is named by the averaged
+    theory)."""
+    if model is not None:
+        params, options = _model_options(model, params, options, "phase_response", start=False)
     m = _model_args(options)
     text, step_warnings = _native._phase_response(
         _check_params(params),
@@ -1016,6 +1079,7 @@ def phase_response(
         _finite("t_max", t_max),
         variant,
         **m,
+        model=model,
         threads=threads,
         progress=_progress(progress),
     )
@@ -1057,20 +1121,29 @@ def phase_response(
 
 
 def oscillation_boundary(
-    params: Params,
-    x: tuple[str, Sequence[float]],
-    y: tuple[str, float, float],
+    params: Params | None = None,
+    x: tuple[str, Sequence[float]] | None = None,
+    y: tuple[str, float, float] | None = None,
     method: str = "simulation",
     variant: str = "paper",
-    barrier: bool = True,
+    barrier: bool | None = None,
     tolerance: float = 1e-3,
     *,
     threads: int | None = None,
     progress=None,
+    model: Model | None = None,
 ) -> dict:
     """The oscillation boundary (``trirhythm oscillation``): for each abscissa of
     ``x = (key, values)`` the value of ``y = (key, lo, hi)`` where the rest state loses
-    stability, by ``method`` ``"simulation"``, ``"averaging"`` or ``"exact"``."""
+    stability, by ``method`` ``"simulation"``, ``"averaging"`` or ``"exact"``. ``model=`` in
+    place of ``params``: its parameters and wall (terms outside the paper's family are
+    refused: the boundary is the paper family's)."""
+    if model is not None:
+        params, o = _model_options(model, params, {"barrier": barrier}, "oscillation_boundary", start=False)
+        barrier = o["barrier"]
+    barrier = True if barrier is None else barrier
+    if x is None or y is None:
+        raise ValueError("give the abscissa x = (key, values) and the ordinate y = (key, lo, hi)")
     xk, xs = x
     yk, lo, hi = y
     r = _native._oscillation_boundary(
@@ -1083,6 +1156,7 @@ def oscillation_boundary(
         variant,
         bool(barrier),
         _finite("tolerance", tolerance),
+        model=model,
         threads=threads,
         progress=_progress(progress),
     )

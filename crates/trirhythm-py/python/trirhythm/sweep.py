@@ -102,20 +102,32 @@ def _takes_seed(f) -> bool:
     return any(p.name == "seed" or p.kind is inspect.Parameter.VAR_KEYWORD for p in ps)
 
 
+def _point_args(func, point):
+    """How a point is handed to ``func``: a ``Params`` positionally; a ``Model`` as ``model=``
+    to a trirhythm function, positionally to a callable of the user's."""
+    import trirhythm
+
+    if isinstance(point, trirhythm.Model) and isinstance(func, str):
+        return (), {"model": point}
+    return (point,), {}
+
+
 def _run_point(func, params, seed, kwargs):
     """One point (runs on a worker): the function's statistics. A function without a seed
     (a deterministic one, such as an oscillation boundary) is called without it."""
     f = _named(func) if isinstance(func, str) else func
+    args, given = _point_args(func, params)
     if _takes_seed(f):
-        return statistics(f(params, seed=seed, **kwargs))
-    return statistics(f(params, **kwargs))
+        return statistics(f(*args, seed=seed, **given, **kwargs))
+    return statistics(f(*args, **given, **kwargs))
 
 
 def _run_chunk(func, params, seed, which, kwargs):
     """Some paths of one point's ensemble (runs on a worker)."""
     import trirhythm
 
-    return trirhythm.ensemble_paths(params, which, seed=seed, **kwargs)
+    args, given = _point_args(func, params)
+    return trirhythm.ensemble_paths(*(args or (None,)), which, seed=seed, **given, **kwargs)
 
 
 def _merge_chunks(params, seed, kwargs, *pieces):
@@ -123,7 +135,8 @@ def _merge_chunks(params, seed, kwargs, *pieces):
     import trirhythm
 
     kw = {k: v for k, v in kwargs.items() if k not in ("threads", "progress")}
-    return statistics(trirhythm.merge_paths(params, pieces, seed=seed, **kw))
+    args, given = _point_args("ensemble", params)
+    return statistics(trirhythm.merge_paths(*(args or (None,)), pieces, seed=seed, **given, **kw))
 
 
 def _describe(x):
@@ -248,14 +261,17 @@ def sweep(
     progress=None,
     **kwargs,
 ):
-    """Run ``func`` at every point of ``grid`` around the parameters ``base``.
+    """Run ``func`` at every point of ``grid`` around ``base``: a ``Params`` (grid keys are
+    parameter keys) or a ``Model`` (grid keys are the model file's dotted field paths, e.g.
+    ``"restoring.cubic"``, ``"noise.additive.intensity"``, ``"wall.0.restitution"``; each
+    point is ``base.with_(**{key: value})`` and reaches a trirhythm function as ``model=``).
 
     - ``func``: the name of a trirhythm function (``"ensemble"``, ``"lyapunov"``,
       ``"critical_noise"``, ``"oscillation_boundary"``, ``"simulate"``) called as
       ``func(params, seed=seed, **kwargs)``, or any picklable callable of that form returning
       what ``statistics`` reads (a number, a ``(value, stderr)`` pair, a dict of them).
-    - ``grid``: ``{key: values}`` for any parameter keys (``"lambda"``, ``"r"``, ``"D"``, …);
-      the points are the outer product, each validated before any work.
+    - ``grid``: ``{key: values}`` for any parameter keys (``"lambda"``, ``"r"``, ``"D"``, …)
+      or model fields; the points are the outer product, each validated before any work.
     - ``client``: ``None`` runs in-process, one point after the other (each call on all
       cores); a ``dask.distributed.Client`` runs one task per point (or per chunk) on its
       workers, each with ``threads=1`` unless ``kwargs`` says otherwise.
@@ -273,8 +289,8 @@ def sweep(
 
     import trirhythm
 
-    if not isinstance(base, trirhythm.Params):
-        raise ValueError(f"invalid parameter base = {base!r}: expected a trirhythm.Params")
+    if not isinstance(base, (trirhythm.Params, trirhythm.Model)):
+        raise ValueError(f"invalid parameter base = {base!r}: expected a trirhythm.Params or trirhythm.Model")
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise ValueError(f"invalid parameter seed = {seed!r}: allowed range is an integer, 0 or more")
     if not grid:
