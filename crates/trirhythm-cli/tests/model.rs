@@ -249,6 +249,17 @@ fn theory_commands_take_a_model_the_theory_covers() {
         said.contains("the averaged theory applies (--variant consistent)"),
         "{said}"
     );
+    // without --variant a model outside Eq. (1) with its wall gets the consistent variant,
+    // said on standard error; the paper's variant, asked for, is refused with the reason
+    let out = run(&["cycles", "--model", &file, "--format", "json"]);
+    assert_eq!(out.status.code(), Some(0));
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(doc["variant"], "consistent");
+    assert_eq!(doc["cycles"].as_array().unwrap(), cycles);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--variant consistent"));
+    let out = run(&["cycles", "--model", &file, "--variant", "paper"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("use the consistent variant"));
     // every theory command runs on it; the CSV header names the model and the assumptions
     for command in [
         &["equivalents"][..],

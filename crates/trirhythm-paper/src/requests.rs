@@ -278,7 +278,17 @@ impl EnsembleRequest {
     /// and ranges are checked by the ensemble's driver.
     pub fn setup(&self) -> Result<EnsembleSetup> {
         let chosen = match theory_refusal(self.terms.as_ref()) {
-            None => montecarlo::choices(&self.params, self.variant, &self.u0, self.amplitude_max),
+            None => {
+                // the wells and the range from a variant whose formulas hold for the model
+                // simulated: the paper's are printed for Eq. (1) with its wall at 0 only, so
+                // without the wall the consistent one
+                let variant = if self.model.barrier == Barrier::Off {
+                    Variant::Consistent
+                } else {
+                    self.variant
+                };
+                montecarlo::choices(&self.params, variant, &self.u0, self.amplitude_max)
+            }
             Some(why) => {
                 if self.u0.is_empty() {
                     return Err(Error::Undefined {

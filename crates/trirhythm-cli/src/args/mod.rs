@@ -120,9 +120,10 @@ pub struct ParamArgs {
     /// KEY=VALUE override (repeatable); KEY: mu0 omega0 lambda r alpha0 beta0 gamma0 delta0 D tau c<k>.
     #[arg(long = "param", value_name = "KEY=VALUE")]
     pub params: Vec<String>,
-    /// Formula variant of the averaged theory.
-    #[arg(long, value_enum, default_value_t = VariantArg::Paper)]
-    pub variant: VariantArg,
+    /// Formula variant of the averaged theory [default: paper; with --model, paper where the
+    /// paper's formulas apply to the file's model, else consistent].
+    #[arg(long, value_enum)]
+    pub variant: Option<VariantArg>,
     /// The parameters of a model file (`--model`), in place of a preset's.
     #[arg(skip)]
     pub base: Option<Params>,
@@ -152,9 +153,22 @@ impl ParamArgs {
         Ok(p)
     }
 
-    /// The variant as the library's type.
+    /// The variant as the library's type (paper unless chosen).
     pub fn variant(&self) -> Variant {
-        self.variant.into()
+        self.variant.map_or(Variant::Paper, Into::into)
+    }
+
+    /// The variant for a model file's model: the one chosen, else the paper's where its
+    /// formulas apply to `model` and the consistent one where they do not (a model outside
+    /// Eq. (1) with its wall at 0: the paper's κ and σ1 are printed for that equation only).
+    pub fn variant_for(&self, model: &trirhythm::model::Model) -> Variant {
+        match self.variant {
+            Some(v) => v.into(),
+            None if trirhythm::theory::averaging::applies(model, Variant::Paper).is_ok() => {
+                Variant::Paper
+            }
+            None => Variant::Consistent,
+        }
     }
 }
 

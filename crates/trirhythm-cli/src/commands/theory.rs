@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
 use trirhythm::model::Model;
-use trirhythm::theory::averaging::{AmplitudePdf, Balance, Theory};
+use trirhythm::theory::averaging::{AmplitudePdf, Balance, Theory, Variant};
 use trirhythm_paper::table::Table;
 use trirhythm_paper::views;
 
@@ -43,13 +43,24 @@ impl TheoryArgs {
             BalanceArg::Natural => Balance::Natural,
             BalanceArg::SelfConsistent => Balance::SelfConsistent,
         };
-        let variant = self.params.variant();
-        let model = match self.file.load(&self.params)? {
-            Some(model) => model,
-            None if balance == Balance::Natural => {
-                return Ok(Theory::new(&self.params.resolve()?, variant)?)
+        let (model, variant) = match self.file.load(&self.params)? {
+            Some(model) => {
+                let variant = self.params.variant_for(&model);
+                if self.params.variant.is_none() && variant != Variant::Paper {
+                    crate::io::progress::note(
+                        "note: --variant consistent (the paper's formulas are printed for its \
+                         Eq. (1) with the wall at 0 only, not for this model)",
+                    );
+                }
+                (model, variant)
             }
-            None => Model::from(&self.params.resolve()?),
+            None if balance == Balance::Natural => {
+                return Ok(Theory::new(
+                    &self.params.resolve()?,
+                    self.params.variant(),
+                )?)
+            }
+            None => (Model::from(&self.params.resolve()?), self.params.variant()),
         };
         let th = Theory::from_model_with(&model, variant, balance);
         match &self.file.model {
