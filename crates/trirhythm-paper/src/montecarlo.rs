@@ -21,7 +21,7 @@ use trirhythm::analysis::check_step;
 use trirhythm::analysis::ensemble::{
     run_ensemble, run_wells, EnsembleResult, EnsembleSpec, Wells, WellsResult, WellsSpec,
 };
-use trirhythm::analysis::versus::{compare, theory_layout, TheoryComparison};
+use trirhythm::analysis::versus::{compare, model_layout, theory_layout, TheoryComparison};
 use trirhythm::engine::{ImpactMemory, PredictorCorrector, Problem, System};
 use trirhythm::model::Params;
 use trirhythm::theory::averaging::{Theory, Variant};
@@ -939,7 +939,26 @@ pub fn choices(
     u0: &[f64],
     amplitude_max: Option<f64>,
 ) -> Choices {
-    let layout = theory_layout(params, variant);
+    choices_from(theory_layout(params, variant), variant, u0, amplitude_max)
+}
+
+/// [`choices`] from the theory of a model of the class ([`model_layout`]: e.g. the wall-free
+/// theory of Eq. (1) without its wall).
+pub fn model_choices(
+    model: &trirhythm::model::Model,
+    variant: Variant,
+    u0: &[f64],
+    amplitude_max: Option<f64>,
+) -> Choices {
+    choices_from(model_layout(model, variant), variant, u0, amplitude_max)
+}
+
+fn choices_from(
+    layout: Option<trirhythm::analysis::versus::TheoryLayout>,
+    variant: Variant,
+    u0: &[f64],
+    amplitude_max: Option<f64>,
+) -> Choices {
     let mut said = Vec::new();
     let starts = if !u0.is_empty() {
         Some(u0.to_vec())

@@ -279,15 +279,21 @@ impl EnsembleRequest {
     pub fn setup(&self) -> Result<EnsembleSetup> {
         let chosen = match theory_refusal(self.terms.as_ref()) {
             None => {
-                // the wells and the range from a variant whose formulas hold for the model
-                // simulated: the paper's are printed for Eq. (1) with its wall at 0 only, so
-                // without the wall the consistent one
-                let variant = if self.model.barrier == Barrier::Off {
-                    Variant::Consistent
+                // the wells and the range from the theory of the model simulated: without the
+                // wall the wall-free theory, in the consistent variant (the paper's formulas
+                // are printed for Eq. (1) with its wall at 0 only)
+                if self.model.barrier == Barrier::Off {
+                    let mut model = trirhythm::model::Model::from(&self.params);
+                    model.walls.clear();
+                    let variant = match trirhythm::theory::averaging::applies(&model, self.variant)
+                    {
+                        Ok(_) => self.variant,
+                        Err(_) => Variant::Consistent,
+                    };
+                    montecarlo::model_choices(&model, variant, &self.u0, self.amplitude_max)
                 } else {
-                    self.variant
-                };
-                montecarlo::choices(&self.params, variant, &self.u0, self.amplitude_max)
+                    montecarlo::choices(&self.params, self.variant, &self.u0, self.amplitude_max)
+                }
             }
             Some(why) => {
                 if self.u0.is_empty() {

@@ -182,3 +182,18 @@ def test_a_sweep_over_a_model_field_matches_the_exact_duffing_variance():
     )
     assert one.statistics()["var_u"] == (float(ds["var_u"][1]), float(ds["var_u_stderr"][1]))
     assert "restoring.cubic" in ds.coords
+
+
+def test_the_own_oscillator_example_runs_from_its_model_file():
+    import pathlib
+    import subprocess
+    import sys
+
+    root = pathlib.Path(__file__).resolve().parents[3]
+    out = subprocess.run(
+        [sys.executable, str(root / "examples" / "python" / "own_oscillator.py"), "--quick"],
+        capture_output=True, text=True, timeout=300,
+    )
+    assert out.returncode == 0, out.stderr
+    assert "theory (consistent): occupancy 0.6571" in out.stdout
+    assert out.stdout.count("inner well's occupancy") == 4

@@ -55,10 +55,7 @@ impl TheoryArgs {
                 (model, variant)
             }
             None if balance == Balance::Natural => {
-                return Ok(Theory::new(
-                    &self.params.resolve()?,
-                    self.params.variant(),
-                )?)
+                return Ok(Theory::new(&self.params.resolve()?, self.params.variant())?)
             }
             None => (Model::from(&self.params.resolve()?), self.params.variant()),
         };

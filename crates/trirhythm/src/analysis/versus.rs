@@ -451,11 +451,43 @@ pub fn theory_layout(
     params: &crate::model::Params,
     variant: crate::theory::averaging::Variant,
 ) -> Option<TheoryLayout> {
+    theory_layout_with(
+        |v| Theory::new(params, v).ok(),
+        variant,
+        params.noise_intensity,
+    )
+}
+
+/// The [`TheoryLayout`] of a model of the class ([`Theory::from_model`]: a variant whose
+/// formulas do not hold for it is left out), or None when its theory has no cycle to offer.
+pub fn model_layout(
+    model: &crate::model::Model,
+    variant: crate::theory::averaging::Variant,
+) -> Option<TheoryLayout> {
+    let noisy = model.noise.additive.is_some_and(|a| a.intensity > 0.0)
+        || model
+            .noise
+            .multiplicative
+            .is_some_and(|m| m.intensity > 0.0);
+    theory_layout_with(
+        |v| Theory::from_model(model, v).ok(),
+        variant,
+        if noisy { 1.0 } else { 0.0 },
+    )
+}
+
+/// The layout from `theory` of each variant (None where it does not exist): the range over
+/// both, the modes and wells of `variant`'s; wells only under noise (`noise` > 0).
+fn theory_layout_with(
+    theory: impl Fn(crate::theory::averaging::Variant) -> Option<Theory>,
+    variant: crate::theory::averaging::Variant,
+    noise: f64,
+) -> Option<TheoryLayout> {
     use crate::theory::averaging::Variant;
     let mut top: f64 = 0.0;
     let mut chosen = None;
     for v in [Variant::Paper, Variant::Consistent] {
-        let Ok(th) = Theory::new(params, v) else {
+        let Some(th) = theory(v) else {
             continue;
         };
         let (modes, antimodes, widths) = match th.amplitude_pdf() {
@@ -486,7 +518,7 @@ pub fn theory_layout(
     if modes.is_empty() || top <= 0.0 {
         return None;
     }
-    let wells = if antimodes.len() + 1 == modes.len() && params.noise_intensity > 0.0 {
+    let wells = if antimodes.len() + 1 == modes.len() && noise > 0.0 {
         Wells::new(modes.clone(), antimodes).ok()
     } else {
         None
