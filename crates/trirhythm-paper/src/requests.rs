@@ -225,8 +225,9 @@ pub struct EnsembleRequest {
     /// Paths stepped together ([`Lanes`]); the result is the same bits for every choice.
     pub lanes: Lanes,
     /// The General kernel's terms of a model file (Duffing, Rayleigh, forcing; None for the
-    /// paper's family): the averaged theory does not apply then, so nothing is chosen from
-    /// it and the comparison says so.
+    /// paper's family): the starts, wells and range come from the model's averaged theory by
+    /// quadrature where it holds; where it does not (a forcing, a strong Duffing shift) nothing
+    /// is chosen from it and the comparison says why.
     pub terms: Option<GeneralTerms>,
 }
 
@@ -249,6 +250,25 @@ pub fn theory_refusal(terms: Option<&GeneralTerms>) -> Option<String> {
         "the averaged theory does not apply: the model has {term}, and the paper's formulas \
          (Eq. 5, Zhuravlev, P(A)) are those of h = mu0*P(U), k = omega0^2*U without forcing"
     ))
+}
+
+/// The model of the class of `params`' Eq. (1) with `barrier` and the General kernel's `terms`.
+fn class_model(
+    params: &Params,
+    barrier: Barrier,
+    terms: Option<&GeneralTerms>,
+) -> trirhythm::model::Model {
+    let mut m = trirhythm::model::Model::from(params);
+    if barrier == Barrier::Off {
+        m.walls.clear();
+    }
+    if let Some(t) = terms {
+        m.restoring.cubic = t.cubic;
+        m.restoring.quintic = t.quintic;
+        m.damping.rayleigh = t.rayleigh.clone();
+        m.forcing = t.forcing;
+    }
+    m
 }
 
 impl EnsembleRequest {
@@ -274,46 +294,50 @@ impl EnsembleRequest {
         }
     }
 
+    /// The model of the class this request simulates: the parameters' Eq. (1), its wall as
+    /// the request has it, and the General kernel's terms.
+    pub fn class_model(&self) -> trirhythm::model::Model {
+        class_model(&self.params, self.model.barrier, self.terms.as_ref())
+    }
+
     /// Choose what is left open from the theory and convert to library types; sizes, steps
     /// and ranges are checked by the ensemble's driver.
     pub fn setup(&self) -> Result<EnsembleSetup> {
-        let chosen = match theory_refusal(self.terms.as_ref()) {
-            None => {
-                // the wells and the range from the theory of the model simulated: without the
-                // wall the wall-free theory, in the consistent variant (the paper's formulas
-                // are printed for Eq. (1) with its wall at 0 only)
-                if self.model.barrier == Barrier::Off {
-                    let mut model = trirhythm::model::Model::from(&self.params);
-                    model.walls.clear();
-                    let variant = match trirhythm::theory::averaging::applies(&model, self.variant)
-                    {
-                        Ok(_) => self.variant,
-                        Err(_) => Variant::Consistent,
-                    };
-                    montecarlo::model_choices(&model, variant, &self.u0, self.amplitude_max)
-                } else {
-                    montecarlo::choices(&self.params, self.variant, &self.u0, self.amplitude_max)
+        let chosen = if self.terms.is_none() && self.model.barrier == Barrier::On {
+            montecarlo::choices(&self.params, self.variant, &self.u0, self.amplitude_max)
+        } else {
+            // the wells and the range from the theory of the model simulated: without the wall
+            // the wall-free theory, with the General kernel's terms their quadrature, in the
+            // consistent variant where the paper's printed formulas (Eq. (1) with its wall at 0
+            // only) do not hold
+            let model = self.class_model();
+            let variant = match trirhythm::theory::averaging::applies(&model, self.variant) {
+                Ok(_) => self.variant,
+                Err(_) => Variant::Consistent,
+            };
+            match Theory::from_model(&model, variant) {
+                Ok(_) => montecarlo::model_choices(&model, variant, &self.u0, self.amplitude_max),
+                Err(why) if self.terms.is_some() => {
+                    if self.u0.is_empty() {
+                        return Err(Error::Undefined {
+                            what: "a start u0",
+                            why: format!("{why}; give the initial displacements u0"),
+                        });
+                    }
+                    if self.amplitude_max.is_none() {
+                        return Err(Error::Undefined {
+                            what: "amplitude_max",
+                            why: format!("{why}; give the histogram's range amplitude_max"),
+                        });
+                    }
+                    montecarlo::Choices {
+                        starts: Some(self.u0.clone()),
+                        amplitude_max: self.amplitude_max,
+                        wells: None,
+                        said: vec![],
+                    }
                 }
-            }
-            Some(why) => {
-                if self.u0.is_empty() {
-                    return Err(Error::Undefined {
-                        what: "a start u0",
-                        why: format!("{why}; give the initial displacements u0"),
-                    });
-                }
-                if self.amplitude_max.is_none() {
-                    return Err(Error::Undefined {
-                        what: "amplitude_max",
-                        why: format!("{why}; give the histogram's range amplitude_max"),
-                    });
-                }
-                montecarlo::Choices {
-                    starts: Some(self.u0.clone()),
-                    amplitude_max: self.amplitude_max,
-                    wells: None,
-                    said: vec![],
-                }
+                Err(_) => montecarlo::model_choices(&model, variant, &self.u0, self.amplitude_max),
             }
         };
         let Some(starts) = chosen.starts else {
@@ -429,19 +453,13 @@ impl EnsembleSetup {
     /// The averaged theory of the model simulated against `result`, each variant's refusal in
     /// words where it does not apply: [`Theory::from_model`] of the paper's family (with its
     /// wall the paper's closed forms, bit for bit; without it the wall-free theory, not the
-    /// wall's σ1), and for the General kernel's terms the refusal [`theory_refusal`] (their
-    /// theory's assumptions — a Duffing shift at the typical amplitude — are not yet checked
-    /// against a stochastic run).
+    /// wall's σ1), with the General kernel's terms their quadrature where first-order
+    /// averaging holds (Duffing, Rayleigh; the refusal naming the assumption otherwise, e.g.
+    /// a strong Duffing shift or a forcing).
     pub fn comparisons(
         &self,
         result: &EnsembleResult,
     ) -> Vec<(Variant, std::result::Result<TheoryComparison, String>)> {
-        if let Some(why) = theory_refusal(self.terms.as_ref()) {
-            return [Variant::Paper, Variant::Consistent]
-                .into_iter()
-                .map(|v| (v, Err(why.clone())))
-                .collect();
-        }
         let model = self.class_model();
         [Variant::Paper, Variant::Consistent]
             .into_iter()
@@ -459,17 +477,7 @@ impl EnsembleSetup {
     /// The model of the class this ensemble simulates: the parameters' Eq. (1), its wall as
     /// the run has it, and the General kernel's terms.
     pub fn class_model(&self) -> trirhythm::model::Model {
-        let mut m = trirhythm::model::Model::from(&self.params);
-        if self.problem.barrier() == Barrier::Off {
-            m.walls.clear();
-        }
-        if let Some(t) = &self.terms {
-            m.restoring.cubic = t.cubic;
-            m.restoring.quintic = t.quintic;
-            m.damping.rayleigh = t.rayleigh.clone();
-            m.forcing = t.forcing;
-        }
-        m
+        class_model(&self.params, self.problem.barrier(), self.terms.as_ref())
     }
 
     /// The ensemble by well decomposition: `spec.paths` replicas of one path per well of
@@ -480,12 +488,14 @@ impl EnsembleSetup {
         wells: &WellsSpec,
         monitor: &dyn trirhythm::monitor::Monitor<()>,
     ) -> Result<WellsResult> {
-        if let Some(why) = theory_refusal(self.terms.as_ref()) {
-            return Err(Error::NotApplicable {
-                method: "the well method (ensemble --method wells)".into(),
-                assumption: "the averaged theory's wells of P(A)".into(),
-                reason: why,
-            });
+        if self.terms.is_some() {
+            if let Err(why) = Theory::from_model(&self.class_model(), Variant::Consistent) {
+                return Err(Error::NotApplicable {
+                    method: "the well method (ensemble --method wells)".into(),
+                    assumption: "the averaged theory's wells of P(A)".into(),
+                    reason: why.to_string(),
+                });
+            }
         }
         run_wells(&self.problem, &self.method, &self.spec, wells, monitor)
     }
