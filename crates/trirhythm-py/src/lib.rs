@@ -193,16 +193,43 @@ fn theory_only(model: Option<PyRef<'_, PyModel>>, call: &str) -> PyResult<()> {
 
 /// A validated parameter set (`trirhythm.Params`): immutable; `with_(**values)` makes a new
 /// one.
-#[pyclass(name = "Params", module = "trirhythm", frozen, eq)]
+#[pyclass(name = "Params", module = "trirhythm", frozen, eq, hash)]
 #[derive(Clone, PartialEq)]
 struct PyParams(Params);
+
+/// Equal parameter sets hash alike: the keys and the bits of the values (−0 as 0, as `==`
+/// has it; validated parameters hold no NaN).
+impl std::hash::Hash for PyParams {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        for (k, v) in self.0.key_values() {
+            k.hash(h);
+            (v + 0.0).to_bits().hash(h);
+        }
+    }
+}
+
+/// The parameter a key sets (`lambda_` and `lambda`, `alpha0` and `c2`, `beta0` and `c3`,
+/// `gamma0` and `c4`, `delta0` and `c5`, `c02` and `c2` set the same one), so that two keys of
+/// one call that set the same parameter are refused instead of one overriding the other.
+fn slot(key: &str) -> String {
+    match key {
+        "alpha0" => "c2".into(),
+        "beta0" => "c3".into(),
+        "gamma0" => "c4".into(),
+        "delta0" => "c5".into(),
+        _ => match key.strip_prefix('c').map(str::parse::<u64>) {
+            Some(Ok(k)) => format!("c{k}"),
+            _ => key.into(),
+        },
+    }
+}
 
 #[pymethods]
 impl PyParams {
     /// The parameters of `pairs` (key, value) over the defaults (Fig. 4(c)'s set with r = 1,
     /// D = 0, τ = 0), validated.
     #[new]
-    #[pyo3(signature = (**values))]
+    #[pyo3(signature = (**values), text_signature = "(**values)")]
     fn new(values: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         PyParams(Params::default()).with_(values)
     }
@@ -210,15 +237,24 @@ impl PyParams {
     /// A copy with `values` (keys as `keys()` lists, `lambda_` for `lambda`, `c<k>` for a
     /// damping coefficient)
     /// changed; the result is validated: a bad value raises `ValueError` naming the key, the
-    /// value and the allowed range.
+    /// value and the allowed range. Two keys that set the same parameter (`alpha0` and `c2`,
+    /// `lambda` and `lambda_`) are refused, naming both.
     #[pyo3(signature = (**values))]
     fn with_(&self, values: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         let mut p = self.0.clone();
         if let Some(values) = values {
+            let mut seen: Vec<(String, String)> = Vec::new();
             for (k, v) in values.iter() {
-                let key: String = k.extract()?;
+                let given: String = k.extract()?;
                 // `lambda` is a Python keyword: `with_(lambda_=0.9)`
-                let key = key.strip_suffix('_').unwrap_or(&key).to_string();
+                let key = given.strip_suffix('_').unwrap_or(&given).to_string();
+                let at = slot(&key);
+                if let Some((other, _)) = seen.iter().find(|(_, s)| *s == at) {
+                    return Err(PyValueError::new_err(format!(
+                        "conflicting parameters {other} and {given}: both set {at}; give one"
+                    )));
+                }
+                seen.push((given.clone(), at));
                 let value: f64 = v.extract().map_err(|_| {
                     PyValueError::new_err(format!(
                         "invalid value for parameter {key}: `{}` is not a number",
@@ -251,8 +287,19 @@ impl PyParams {
         Ok(d)
     }
 
+    /// `Params(mu0=0.01, omega0=1, lambda_=0.99, …)`: every key with its exact value, as
+    /// Python that gives the same parameters back.
     fn __repr__(&self) -> String {
-        format!("Params({})", self.0.describe())
+        let pairs: Vec<String> = self
+            .0
+            .key_values()
+            .into_iter()
+            .map(|(k, v)| {
+                let k = if k == "lambda" { "lambda_".into() } else { k };
+                format!("{k}={}", trirhythm::error::Exact(v))
+            })
+            .collect();
+        format!("Params({})", pairs.join(", "))
     }
 
     /// Pickled as its key–value pairs (so that it travels to Dask workers).
@@ -466,8 +513,10 @@ impl PyModel {
         ))
     }
 
-    fn __repr__(&self) -> String {
-        format!("Model.from_toml({:?})", self.0.to_toml())
+    /// `Model(**{tables})`: one line, Python that gives the same model back (`to_toml()`
+    /// is the commented file).
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        Ok(format!("Model(**{})", self.to_dict(py)?.repr()?))
     }
 
     /// Pickled as its file text.
@@ -505,13 +554,11 @@ impl PyTheory {
         Ok(d)
     }
 
-    /// The cycles (D = 0) or modes of P(A) (D > 0): `(amplitude, stable, fold)` arrays.
-    fn cycles<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> (Array<'py, f64>, Array<'py, bool>, Array<'py, bool>) {
+    /// The cycles (D = 0) or modes of P(A) (D > 0): a `Cycles` named tuple of arrays
+    /// `(amplitude, stable, fold)`.
+    fn cycles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let c = self.0.cycles();
-        (
+        let arrays = (
             c.iter()
                 .map(|c| c.amplitude)
                 .collect::<Vec<_>>()
@@ -524,7 +571,10 @@ impl PyTheory {
                 .map(|c| c.fold)
                 .collect::<Vec<_>>()
                 .into_pyarray(py),
-        )
+        );
+        py.import("trirhythm._results")?
+            .getattr("Cycles")?
+            .call1(arrays)
     }
 
     /// The averaged drift f(A) (Eq. 18) at each amplitude.
@@ -543,12 +593,23 @@ impl PyTheory {
             .into_pyarray(py)
     }
 
-    /// The energy barriers as `(well, crest, side, height)` tuples.
-    fn barriers(&self) -> Vec<(f64, f64, &'static str, f64)> {
+    /// The energy barriers as `Barrier` named tuples `(well, crest, side, height, name)`,
+    /// named `dU1`, `dU2`, … in order, as `trirhythm barriers --format json` names them.
+    fn barriers<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
+        let make = py.import("trirhythm._results")?.getattr("Barrier")?;
         self.0
             .barriers()
             .into_iter()
-            .map(|b| (b.well, b.crest, b.side.name(), b.height))
+            .enumerate()
+            .map(|(i, b)| {
+                make.call1((
+                    b.well,
+                    b.crest,
+                    b.side.name(),
+                    b.height,
+                    format!("dU{}", i + 1),
+                ))
+            })
             .collect()
     }
 
@@ -628,6 +689,12 @@ fn _simulate<'py>(
         .and_then(|p| p.with_terms(terms))
         .and_then(|p| p.with_start(u0, v0))
         .map_err(py_err)?;
+    // the step guard first, as the command line's: a step that cannot resolve the problem is
+    // refused naming dt (before t_end is checked as a whole number of such steps)
+    let step_warnings = trirhythm::analysis::check_step(&problem, &method)
+        .and_then(|r| r.require())
+        .map_err(py_err)?
+        .warnings();
     let options = Options {
         t_end,
         seed,
@@ -649,6 +716,7 @@ fn _simulate<'py>(
     d.set_item("u", tr.u.into_pyarray(py))?;
     d.set_item("v", tr.v.into_pyarray(py))?;
     d.set_item("eta", tr.eta.into_pyarray(py))?;
+    d.set_item("step_warnings", step_warnings)?;
     Ok(d)
 }
 
@@ -697,7 +765,7 @@ fn ensemble_request(
 /// Run paths `which` (all when `None`) of an ensemble; with `merge`, the document of the whole
 /// ensemble (JSON), otherwise the paths' statistics (JSON list, for `merge_paths`).
 #[pyfunction]
-#[pyo3(signature = (params, paths, t_end, burn_in, seed, dt, u0, variant, system, barrier, memory, tolerance, impact_memory, bins, joint_bins, amplitude_max, sample_every, which=None, pieces=None, merge=true, model=None, threads=None, progress=None))]
+#[pyo3(signature = (params, paths, t_end, burn_in, seed, dt, u0, variant, system, barrier, memory, tolerance, impact_memory, bins, joint_bins, amplitude_max, sample_every, which=None, pieces=None, merge=true, model=None, threads=None, progress=None, setup_only=false))]
 #[allow(clippy::too_many_arguments)]
 fn _ensemble(
     py: Python<'_>,
@@ -724,6 +792,7 @@ fn _ensemble(
     model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
+    setup_only: bool,
 ) -> PyResult<String> {
     let request = ensemble_request(
         params,
@@ -746,6 +815,14 @@ fn _ensemble(
         terms_of(model)?,
     )?;
     let s = request.setup().map_err(py_err)?;
+    if setup_only {
+        // what the run would use where the user left it open (a density sweep's common bins)
+        return serde_json::to_string(&serde_json::json!({
+            "amplitude_max": s.spec.amplitude_max,
+            "choices": s.choices,
+        }))
+        .map_err(json_err);
+    }
     // every size, step and range checked before any work
     ens::run_paths(
         &s.problem,

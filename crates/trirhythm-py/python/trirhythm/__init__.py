@@ -22,7 +22,7 @@ from __future__ import annotations
 import json
 import warnings
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
+from typing import Iterable, NamedTuple, Sequence
 
 import numpy as np
 
@@ -39,6 +39,8 @@ __all__ = [
     "Path",
     "ensemble",
     "Ensemble",
+    "Stationarity",
+    "NotStationaryWarning",
     "ensemble_paths",
     "merge_paths",
     "EnsemblePaths",
@@ -100,10 +102,21 @@ def _finite(name: str, value: float) -> float:
     return v
 
 
-def _count(name: str, value, low: int = 0) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
-        raise ValueError(f"invalid parameter {name} = {value!r}: allowed range is an integer, {low} or more")
+def _count(name: str, value, low: int = 0, high: int | None = None) -> int:
+    """An integer in [low, high] (``high=None``: no upper end), or ``ValueError`` naming
+    ``name``, its value and the range (never ``OverflowError``: a value past what the engine
+    holds is out of range like any other)."""
+    high = _HIGHEST if high is None else high
+    allowed = f"an integer, {low} or more (at most 2**64 - 1)" if high == _HIGHEST else f"an integer, {low} to {high}"
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not low <= int(value) <= high:
+        raise ValueError(f"invalid parameter {name} = {value!r}: allowed range is {allowed}")
     return int(value)
+
+
+# the largest count the engine takes (u64)
+_HIGHEST = 2**64 - 1
+# an ensemble's or a Lyapunov exponent's paths: 1 to the engine's MAX_PATHS
+_MAX_PATHS = 1_000_000
 
 
 def _check_params(params) -> Params:
@@ -152,16 +165,34 @@ def _model_options(model, params, options, call, start=True):
     return params, options
 
 
-@dataclass
+def _short(text: str, most: int = 160) -> str:
+    return text if len(text) <= most else text[: most - 1] + "…"
+
+
+def _span(x: np.ndarray) -> str:
+    return f"[{np.min(x):.6g}, {np.max(x):.6g}]" if len(x) else "[]"
+
+
+@dataclass(repr=False)
 class Path:
     """One simulated path: numpy arrays ``t``, ``u``, ``v`` (and ``eta``, the noise, when
-    D > 0, else ``None``) and the run's ``summary`` (steps, impacts, final amplitude, …)."""
+    D > 0, else ``None``) and the run's ``summary`` (steps, impacts, final amplitude, …).
+    Its repr is one line (sizes and ranges)."""
 
     t: np.ndarray
     u: np.ndarray
     v: np.ndarray
     eta: np.ndarray | None
     summary: dict
+
+    def __repr__(self) -> str:
+        t = f"{self.t[0]:.6g} to {self.t[-1]:.6g}" if len(self.t) else "none"
+        eta = "None" if self.eta is None else f"{len(self.eta)} values"
+        return _short(
+            f"Path({len(self.t)} samples, t {t}, u in {_span(self.u)}, v in {_span(self.v)}, eta {eta}, "
+            f"summary={self.summary!r})",
+            400,
+        )
 
 
 def simulate(
@@ -213,6 +244,8 @@ def simulate(
         threads=threads,
         progress=_progress(progress),
     )
+    for w in d["step_warnings"]:
+        warnings.warn(f"simulate: {w}", RuntimeWarning, stacklevel=2)
     eta = d["eta"] if len(d["eta"]) else None
     return Path(d["t"], d["u"], d["v"], eta, json.loads(d["summary"]))
 
@@ -227,10 +260,75 @@ def _nonfinite(x):
     return x
 
 
-@dataclass
+class NotStationaryWarning(UserWarning):
+    """Warned when an ensemble is not stationary (some split-R̂ above 1.1, or the mean amplitude
+    drifting by more than 3 standard errors between the window's halves): its statistics are
+    those of the window run, not of the stationary law. The message gives R̂, the effective
+    sample size and the suggested window; ``Ensemble.stationarity`` holds them. Silence it
+    with ``warnings.simplefilter("ignore", trirhythm.NotStationaryWarning)``, or turn it into
+    an error with ``"error"``."""
+
+
+def _inf(x) -> float:
+    """A number of a document as a float: the library writes NaN and ±∞ as the strings
+    ``"NaN"``, ``"inf"``, ``"-inf"``; ``None`` (undefined) reads as NaN."""
+    if x is None:
+        return float("nan")
+    return float(_nonfinite(x))
+
+
+class Stationarity(NamedTuple):
+    """An ensemble's stationarity diagnosis (the document's ``stationarity``, as numbers:
+    ``inf`` where R̂ is infinite — the paths never left their wells —, never ``None``).
+
+    ``stationary``: every R̂ ≤ 1.1 and |``drift_z``| ≤ 3; ``r_hat``: the largest split-R̂
+    (of the mean amplitude, ``r_hat_amplitude``, and of each well's occupancy,
+    ``r_hat_wells``); ``ess``: the effective sample size of the mean amplitude; ``drift``
+    (second half − first half of the mean amplitude) and ``drift_z`` (in standard errors);
+    ``suggested_length``: the window that the R̂ scaling suggests for R̂ ≤ 1.1; ``method``:
+    how the diagnosis was made (``"direct"``: over the paths; ``"wells"``: the worst of the
+    well method's conditional runs)."""
+
+    stationary: bool
+    r_hat: float
+    ess: float
+    r_hat_amplitude: float
+    r_hat_wells: tuple[float, ...]
+    drift: float
+    drift_z: float
+    suggested_length: float
+    method: str
+
+    @classmethod
+    def _of(cls, doc: dict) -> "Stationarity":
+        st = doc["stationarity"]
+        return cls(
+            stationary=bool(st["stationary"]),
+            r_hat=_inf(st["r_hat"]),
+            ess=_inf(st["ess"]),
+            r_hat_amplitude=_inf(st["r_hat_amplitude"]),
+            r_hat_wells=tuple(_inf(x) for x in st.get("r_hat_wells") or ()),
+            drift=_inf(st["drift"]),
+            drift_z=_inf(st["drift_z"]),
+            suggested_length=_inf(st["suggested_length"]),
+            method=doc.get("estimator", "direct"),
+        )
+
+    def __str__(self) -> str:
+        verdict = "stationary" if self.stationary else "NOT stationary"
+        return (
+            f"{verdict} (R̂ = {self.r_hat:.3g}, ESS = {self.ess:.0f}, drift {self.drift_z:.1f} s.e.; "
+            f"suggested window {self.suggested_length:.4g}; {self.method})"
+        )
+
+
+@dataclass(repr=False)
 class Ensemble:
     """An ensemble's result: ``to_dict()`` is the document ``trirhythm ensemble --format json``
-    writes (``wall_time_s`` aside); ``statistics()`` the moments with their standard errors."""
+    writes (``wall_time_s`` aside); ``statistics()`` the moments with their standard errors;
+    ``stationarity`` the diagnosis (a ``Stationarity``: ``stationary``, ``r_hat``, ``ess``, …);
+    ``density(kind)`` a histogram. Its repr is a few lines (the moments and the diagnosis);
+    the whole document is ``to_dict()``."""
 
     document: dict
 
@@ -240,14 +338,43 @@ class Ensemble:
     def __getitem__(self, key):
         return self.document[key]
 
+    @property
+    def stationarity(self) -> Stationarity:
+        """The stationarity diagnosis, as numbers (``inf`` where R̂ is infinite)."""
+        return Stationarity._of(self.document)
+
+    @property
+    def stationary(self) -> bool:
+        """Whether the ensemble is stationary (``stationarity.stationary``)."""
+        return bool(self.document["stationarity"]["stationary"])
+
+    def __repr__(self) -> str:
+        lines = [f"Ensemble({self.document.get('estimator', 'direct')}: {self.document.get('method', '')}"]
+        for name, (v, e) in self.statistics().items():
+            lines.append(f"  {name} = {v:.6g} ± {e:.2g}")
+            if len(lines) >= 14:
+                lines.append("  …")
+                break
+        lines.append(f"  stationarity: {self.stationarity}")
+        warns = self.document.get("warnings") or []
+        if warns:
+            lines.append(f"  warnings: {len(warns)} (to_dict()['warnings'])")
+        lines.append(")")
+        return "\n".join(line if len(line) <= 200 else line[:199] + "…" for line in lines)
+
+    def _warn(self, call: str, stacklevel: int = 3) -> "Ensemble":
+        if not self.stationary:
+            warnings.warn(f"{call}: the ensemble is {self.stationarity}", NotStationaryWarning, stacklevel=stacklevel)
+        return self
+
     def statistics(self) -> dict[str, tuple[float, float]]:
         """``{name: (value, stderr)}`` for ⟨U⟩, Var U, ⟨U̇⟩, Var U̇, ⟨A⟩ and each well's occupancy."""
         out = {}
         for k in ("mean_u", "var_u", "mean_v", "var_v", "mean_amplitude"):
             e = self.document[k]
-            out[k] = (float(_nonfinite(e["value"])), float(_nonfinite(e["stderr"])))
+            out[k] = (_inf(e["value"]), _inf(e["stderr"]))
         for i, e in enumerate(self.document.get("occupancy") or []):
-            out[f"occupancy_{i}"] = (float(_nonfinite(e["value"])), float(_nonfinite(e["stderr"])))
+            out[f"occupancy_{i}"] = (_inf(e["value"]), _inf(e["stderr"]))
         return out
 
     def density(self, kind: str = "amplitude") -> dict:
@@ -257,23 +384,28 @@ class Ensemble:
         if kind not in ("amplitude", "turning", "energy"):
             raise ValueError(f"invalid parameter kind = {kind!r}: expected amplitude, turning or energy")
         d = self.document[kind]
-        arr = lambda xs: np.array([float(_nonfinite(x)) for x in xs])  # noqa: E731
+        arr = lambda xs: np.array([_inf(x) for x in xs])  # noqa: E731
         return {
             "edges": arr(d["edges"]),
             "density": arr(d["density"]),
             "stderr": arr(d["stderr"]),
-            "beyond": float(_nonfinite(d["beyond"])),
+            "beyond": _inf(d["beyond"]),
             "count": int(d["count"]),
         }
 
 
-@dataclass
+@dataclass(repr=False)
 class EnsemblePaths:
     """Some paths of an ensemble (``ensemble_paths``), to be merged with ``merge_paths``;
     picklable (the statistics travel as exact JSON)."""
 
     pieces: str
     which: list[int] = field(default_factory=list)
+
+    def __repr__(self) -> str:
+        w = self.which
+        shown = ", ".join(map(str, w[:8])) + (f", … ({len(w)} paths)" if len(w) > 8 else "")
+        return f"EnsemblePaths(which=[{shown}], {len(self.pieces)} characters of statistics)"
 
 
 _ENSEMBLE_DEFAULTS = dict(
@@ -311,7 +443,7 @@ def _ensemble_args(params, paths, t_end, burn_in, seed, options):
     amax = o["amplitude_max"]
     return (
         _check_params(params),
-        _count("paths", paths),
+        _count("paths", paths, 1, _MAX_PATHS),
         _finite("t_end", t_end),
         _finite("burn_in", burn_in),
         _count("seed", seed),
@@ -381,13 +513,13 @@ def ensemble(
             threads=threads,
             progress=_progress(progress),
         )
-        return Ensemble(json.loads(text))
+        return Ensemble(json.loads(text))._warn("ensemble")
     if method != "direct":
         raise ValueError(f"invalid parameter method = {method!r}: expected 'direct' or 'wells'")
     if wells:
         raise ValueError(f"argument(s) {sorted(wells)} need method='wells'")
     text = _native._ensemble(*args, model=model, threads=threads, progress=_progress(progress))
-    return Ensemble(json.loads(text))
+    return Ensemble(json.loads(text))._warn("ensemble")
 
 
 def _direct_model(model, params, options):
@@ -396,6 +528,27 @@ def _direct_model(model, params, options):
         return params, options
     params, options = _model_options(model, params, options, "ensemble")
     return params, {**options, "u0": [options["u0"]]}
+
+
+def _ensemble_range(
+    base: Params | Model,
+    paths: int = 8,
+    t_end: float = 1000.0,
+    burn_in: float = 100.0,
+    seed: int = 1,
+    *,
+    threads: int | None = None,
+    progress=None,
+    **options,
+) -> float:
+    """The histogram range ``amplitude_max`` that ``ensemble(base, …)`` with these options
+    uses (the one given, else the one it chooses from the averaged theory), without running
+    it: a density sweep's common bins."""
+    options.pop("method", None)
+    model = base if isinstance(base, Model) else None
+    params, options = _direct_model(model, None if model is not None else base, options)
+    args = _ensemble_args(params, paths, t_end, burn_in, seed, options)
+    return float(json.loads(_native._ensemble(*args, model=model, setup_only=True))["amplitude_max"])
 
 
 def ensemble_paths(
@@ -444,7 +597,7 @@ def merge_paths(
             f"invalid parameter pieces: they hold paths {given}, expected each of 0..{paths - 1} once"
         )
     text = _native._ensemble(*args, which=[], pieces=[p.pieces for p in pieces], model=model)
-    return Ensemble(json.loads(text))
+    return Ensemble(json.loads(text))._warn("merge_paths")
 
 
 _LLE_DEFAULTS = dict(
@@ -472,7 +625,7 @@ def _lle_args(params, paths, t_end, seed, options):
         t_end=_finite("t_end", t_end),
         transient=_finite("transient", o["transient"]),
         dt=_finite("dt", o["dt"]),
-        paths=_count("paths", paths),
+        paths=_count("paths", paths, 1, _MAX_PATHS),
         seed=_count("seed", seed),
         u0=_finite("u0", o["u0"]),
         impact_memory=o["impact_memory"],
@@ -659,6 +812,17 @@ class CriticalCurve:
         """The attractor's short name: ``"rest"``, ``"inner"``, ``"middle"``, ``"outer"``, …"""
         return self.attractor.split(" ")[0]
 
+    def __repr__(self) -> str:
+        d = f"D {self.points[0].D:g} to {self.points[-1].D:g}" if self.points else "no D"
+        value = "" if self.value is None else f"value={self.value:g}, "
+        c = "" if self.coefficient is None else f", coefficient={self.coefficient:.6g}"
+        calls = ", ".join(q.call for q in self.points[:6]) + (", …" if len(self.points) > 6 else "")
+        return _short(
+            f"CriticalCurve({value}{self.attractor!r}, {len(self.points)} points {d} [{calls}], "
+            f"bracket={self.bracket}{c})",
+            300,
+        )
+
     def arrays(self) -> dict[str, np.ndarray]:
         """The points as numpy arrays: ``D``, ``lle``, ``se``, ``n``, ``merged``, ``call``."""
         return {
@@ -702,6 +866,15 @@ class CriticalNoise:
 
     def to_dict(self) -> dict:
         return self.document
+
+    def __repr__(self) -> str:
+        lines = [f"CriticalNoise(sweep={self.sweep!r}, {len(self.noises)} noises, margin={self.margin:g},"]
+        for c in self.curves[:14]:
+            lines.append(f"  {c!r},")
+        if len(self.curves) > 14:
+            lines.append(f"  … {len(self.curves) - 14} more curves,")
+        lines.append(f"  {len(self.step_warnings)} step warnings, {len(self.notes)} notes)")
+        return "\n".join(lines)
 
     def statistics(self) -> dict[str, tuple[float, float]]:
         """``{name: (value, stderr)}`` per curve, named by its attractor (``rest``, ``inner``,
@@ -813,7 +986,7 @@ def critical_noise(
         _finite("t_end", t_end),
         _finite("transient", o["transient"]),
         None if dt is None else _finite("dt", dt),
-        _count("paths", paths),
+        _count("paths", paths, 1, _MAX_PATHS),
         _count("seed", seed),
         o["impact_memory"],
         o["method"],
@@ -1009,8 +1182,8 @@ class PhaseResponse:
     omega: float
     section: str
     impulse: float
-    theta: np.ndarray
-    z: np.ndarray
+    theta: np.ndarray = field(repr=False)
+    z: np.ndarray = field(repr=False)
     z_double: np.ndarray = field(repr=False)
     z_extrapolation: np.ndarray = field(repr=False)
     z_after: float
