@@ -14,6 +14,7 @@ processes that import this file, and must not start a cluster of their own.
 from __future__ import annotations
 
 import sys
+from typing import Any
 
 import matplotlib
 
@@ -30,7 +31,7 @@ def main(argv: list[str]) -> None:
     base = tr.preset("fig4c").with_(D=0.1)
     n = 2 if quick else 4
     grid = {"lambda": np.linspace(0.99, 1.0, n), "r": np.linspace(0.9, 0.99, n)}
-    run = dict(paths=2, t_end=20.0, burn_in=5.0) if quick else dict(paths=6, t_end=300.0, burn_in=50.0)
+    run: dict[str, Any] = dict(paths=2, t_end=20.0, burn_in=5.0) if quick else dict(paths=6, t_end=300.0, burn_in=50.0)
 
     # %%
     client = None

@@ -320,7 +320,7 @@ class _Checkpoint:
 
 def sweep(
     func,
-    grid: Mapping[str, Sequence[float]],
+    grid: Mapping[str, Sequence[float] | np.ndarray],
     *,
     base,
     client=None,
