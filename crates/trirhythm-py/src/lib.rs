@@ -1246,7 +1246,7 @@ fn _oscillation_boundary(
 /// The count of stable cycles (`rhythmicity`) or of modes of P(A) (`modes`) over a plane of
 /// the averaged theory: `(x, y, counts[ny, nx])`.
 #[pyfunction]
-#[pyo3(signature = (params, x, y, what="rhythmicity", variant="paper", threads=None, progress=None))]
+#[pyo3(signature = (params, x, y, what="rhythmicity", variant="paper", threads=None, progress=None, folds=false))]
 #[allow(clippy::too_many_arguments)]
 fn _map<'py>(
     py: Python<'py>,
@@ -1257,34 +1257,85 @@ fn _map<'py>(
     variant: &str,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
-) -> PyResult<(Array<'py, f64>, Array<'py, f64>, Bound<'py, PyAny>)> {
-    let what = match what {
-        "rhythmicity" => What::Rhythmicity,
-        "modes" => What::Modes,
-        _ => {
-            return Err(PyValueError::new_err(format!(
-                "unknown map `{what}`: expected one of rhythmicity, modes"
-            )))
-        }
-    };
+    folds: bool,
+) -> PyResult<(
+    Array<'py, f64>,
+    Array<'py, f64>,
+    Bound<'py, PyAny>,
+    Option<String>,
+)> {
+    let what = what_of(what)?;
     let ax = Axis::new(&x.0, x.1, x.2, x.3).map_err(py_err)?;
     let ay = Axis::new(&y.0, y.1, y.2, y.3).map_err(py_err)?;
     let plane = bif::Plane::new(&params.0, ax, ay, self::variant(variant)?).map_err(py_err)?;
-    let map = long_call(py, threads, progress, |w| {
+    let (map, traced) = long_call(py, threads, progress, |w| {
         let report =
             |done: usize, total: usize| Monitor::<()>::progress(w, done as u64, total as u64);
-        Ok(bif::classify(&plane, what, &report))
+        let map = bif::classify(&plane, what, &report);
+        // the fold curves through the map's transitions, as `trirhythm map --folds`
+        let traced = folds.then(|| bif::trace_folds(&map));
+        Ok((map, traced))
     })?;
     let (nx, ny) = (map.plane.x.count, map.plane.y.count);
     let rows: Vec<Vec<u8>> = map.counts.chunks(nx).map(|r| r.to_vec()).collect();
     debug_assert_eq!(rows.len(), ny);
     let counts = numpy::PyArray2::from_vec2(py, &rows)
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let traced = match traced {
+        Some(f) => Some(serde_json::to_string(&f).map_err(json_err)?),
+        None => None,
+    };
     Ok((
         map.plane.x.values().into_pyarray(py),
         map.plane.y.values().into_pyarray(py),
         counts.into_any(),
+        traced,
     ))
+}
+
+/// `rhythmicity` (cycles, roots of f) or `modes` (extrema of P(A), roots of m1).
+fn what_of(name: &str) -> PyResult<What> {
+    match name {
+        "rhythmicity" => Ok(What::Rhythmicity),
+        "modes" => Ok(What::Modes),
+        _ => Err(PyValueError::new_err(format!(
+            "unknown map `{name}`: expected one of rhythmicity, modes"
+        ))),
+    }
+}
+
+/// Every branch of cycles (or modes of P(A)) against `key` over [start, stop], traced through
+/// its folds by continuation (`trirhythm branches`; JSON of the library's diagram).
+#[pyfunction]
+#[pyo3(signature = (params, key, start, stop, what="rhythmicity", variant="paper", step=0.004, threads=None))]
+#[allow(clippy::too_many_arguments)]
+fn _branches(
+    py: Python<'_>,
+    params: &PyParams,
+    key: &str,
+    start: f64,
+    stop: f64,
+    what: &str,
+    variant: &str,
+    step: f64,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    // the continuation takes at least 1/step steps: bound the work before it starts
+    if !(1e-6..=0.1).contains(&step) {
+        return Err(PyValueError::new_err(format!(
+            "invalid parameter step = {}: allowed range is [1e-6, 0.1] (the fraction of the \
+             interval per continuation step)",
+            trirhythm::error::Exact(step)
+        )));
+    }
+    let what = what_of(what)?;
+    let variant = self::variant(variant)?;
+    let base = params.0.clone();
+    let key = key.to_string();
+    let bd = long_call(py, threads, None, |_| {
+        bif::branches(&base, variant, what, &key, start, stop, step)
+    })?;
+    serde_json::to_string(&bd).map_err(json_err)
 }
 
 /// Figure `n`'s data (JSON: the value `figure N --data` writes under `data`).
@@ -1336,6 +1387,7 @@ fn _trirhythm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_phase_response, m)?)?;
     m.add_function(wrap_pyfunction!(_oscillation_boundary, m)?)?;
     m.add_function(wrap_pyfunction!(_map, m)?)?;
+    m.add_function(wrap_pyfunction!(_branches, m)?)?;
     m.add_function(wrap_pyfunction!(_figure_data, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())

@@ -22,7 +22,7 @@ from __future__ import annotations
 import json
 import warnings
 from dataclasses import dataclass, field
-from typing import Iterable, NamedTuple, Sequence
+from typing import Any, Iterable, Literal, NamedTuple, Sequence, overload
 
 import numpy as np
 
@@ -60,6 +60,13 @@ __all__ = [
     "oscillation_boundary",
     "rhythmicity_map",
     "modes_map",
+    "PlaneMap",
+    "PlaneMapFolds",
+    "Folds",
+    "FoldCurve",
+    "branches",
+    "Branches",
+    "BranchCurve",
     "figure_data",
     "sweep",
     "version",
@@ -1344,17 +1351,273 @@ def _axis(name, a):
     return (str(key), _finite(f"{name} start", start), _finite(f"{name} stop", stop), _count(f"{name} count", count, 2))
 
 
-def rhythmicity_map(params, x, y, variant="paper", *, threads=None, progress=None):
-    """Stable-cycle counts of the averaged theory over the plane ``x = (key, start, stop,
-    count)`` × ``y = (…)``: ``(xs, ys, counts)`` with ``counts[iy, ix]`` (``trirhythm map``)."""
-    return _native._map(
-        _check_params(params), _axis("x", x), _axis("y", y), "rhythmicity", variant, threads, _progress(progress)
+@dataclass(repr=False)
+class FoldCurve:
+    """One fold curve of a map (``trirhythm map --folds``): where two cycles (or two extrema of
+    P(A)) meet and vanish, as arrays ``x``, ``y`` (the plane's parameters) and ``amplitude``
+    (the double root's A), in order along the curve; ``system`` (``"drift"``: f = ∂f/∂A = 0;
+    ``"fpk"``: the same for m1), and why each end ends it, ``start`` and ``end``
+    (``"border"``, ``"cusp"``, ``"zero_amplitude"``, ``"closed"``, ``"failed"``,
+    ``"step_limit"``, ``"unbounded"``)."""
+
+    x: np.ndarray
+    y: np.ndarray
+    amplitude: np.ndarray
+    system: str
+    start: str
+    end: str
+
+    def __repr__(self) -> str:
+        return f"FoldCurve({self.system}, {len(self.x)} points, {self.start} to {self.end})"
+
+
+@dataclass(repr=False)
+class Folds:
+    """The fold curves traced on a map: ``curves`` (``FoldCurve`` s), ``cusps`` (an (n, 3)
+    array of x, y, A where two fold curves meet), ``seeds`` (transitions examined) and
+    ``unlocated`` (seeds where no curve point was found); ``to_dict()`` is the library's
+    document, the ``folds`` of ``trirhythm map --folds --format json``."""
+
+    curves: list[FoldCurve]
+    cusps: np.ndarray
+    seeds: int
+    unlocated: int
+    document: dict
+
+    @classmethod
+    def _of(cls, doc: dict) -> "Folds":
+        col = lambda pts, k: np.array([_inf(q[k]) for q in pts])  # noqa: E731
+        return cls(
+            curves=[
+                FoldCurve(
+                    x=col(c["points"], "x"),
+                    y=col(c["points"], "y"),
+                    amplitude=col(c["points"], "amplitude"),
+                    system=str(c["system"]),
+                    start=str(c["start"]),
+                    end=str(c["end"]),
+                )
+                for c in doc["curves"]
+            ],
+            cusps=np.array([[_inf(q["x"]), _inf(q["y"]), _inf(q["amplitude"])] for q in doc["cusps"]]).reshape(-1, 3),
+            seeds=int(doc["seeds"]),
+            unlocated=int(doc["unlocated"]),
+            document=doc,
+        )
+
+    def to_dict(self) -> dict:
+        return self.document
+
+    def __repr__(self) -> str:
+        lines = [f"Folds({len(self.curves)} curves, {len(self.cusps)} cusps, {self.seeds} seeds, {self.unlocated} unlocated"]
+        lines += [f"  {c!r}," for c in self.curves[:16]]
+        if len(self.curves) > 16:
+            lines.append(f"  … {len(self.curves) - 16} more")
+        return "\n".join(lines) + ")"
+
+
+class PlaneMap(NamedTuple):
+    """A classified plane: ``x`` and ``y`` (the axes' values) and ``counts[iy, ix]``; unpacks
+    as ``xs, ys, counts = ...``."""
+
+    x: np.ndarray
+    y: np.ndarray
+    counts: np.ndarray
+
+
+class PlaneMapFolds(NamedTuple):
+    """A classified plane with its fold curves (``folds=True``): ``x``, ``y``,
+    ``counts[iy, ix]`` and ``folds`` (``Folds``); unpacks as ``xs, ys, counts, folds = ...``."""
+
+    x: np.ndarray
+    y: np.ndarray
+    counts: np.ndarray
+    folds: Folds
+
+
+def _plane(params, x, y, what, variant, threads, progress, folds):
+    xs, ys, counts, traced = _native._map(
+        _check_params(params), _axis("x", x), _axis("y", y), what, variant, threads, _progress(progress), bool(folds)
     )
+    if traced is None:
+        return PlaneMap(xs, ys, counts)
+    return PlaneMapFolds(xs, ys, counts, Folds._of(json.loads(traced)))
 
 
-def modes_map(params, x, y, variant="paper", *, threads=None, progress=None):
-    """Counts of the modes of the stationary P(A) (D > 0) over a plane, as ``rhythmicity_map``."""
-    return _native._map(_check_params(params), _axis("x", x), _axis("y", y), "modes", variant, threads, _progress(progress))
+@overload
+def rhythmicity_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = ...,
+    *,
+    folds: Literal[False] = ...,
+    threads: int | None = ...,
+    progress: Any = ...,
+) -> PlaneMap: ...
+@overload
+def rhythmicity_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = ...,
+    *,
+    folds: Literal[True],
+    threads: int | None = ...,
+    progress: Any = ...,
+) -> PlaneMapFolds: ...
+def rhythmicity_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = "paper",
+    *,
+    folds: bool = False,
+    threads: int | None = None,
+    progress=None,
+) -> PlaneMap | PlaneMapFolds:
+    """Stable-cycle counts of the averaged theory over the plane ``x = (key, start, stop,
+    count)`` × ``y = (…)``: a ``PlaneMap`` ``(xs, ys, counts)`` with ``counts[iy, ix]``
+    (``trirhythm map``); ``folds=True`` traces the fold curves through the map's transitions
+    (``trirhythm map --folds``, the same curves): a ``PlaneMapFolds`` ``(xs, ys, counts,
+    folds)``."""
+    return _plane(params, x, y, "rhythmicity", variant, threads, progress, folds)
+
+
+@overload
+def modes_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = ...,
+    *,
+    folds: Literal[False] = ...,
+    threads: int | None = ...,
+    progress: Any = ...,
+) -> PlaneMap: ...
+@overload
+def modes_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = ...,
+    *,
+    folds: Literal[True],
+    threads: int | None = ...,
+    progress: Any = ...,
+) -> PlaneMapFolds: ...
+def modes_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = "paper",
+    *,
+    folds: bool = False,
+    threads: int | None = None,
+    progress=None,
+) -> PlaneMap | PlaneMapFolds:
+    """Counts of the modes of the stationary P(A) (D > 0) over a plane, as ``rhythmicity_map``
+    (``trirhythm map --what modes``; ``folds=True``: the curves where two extrema of P(A)
+    meet)."""
+    return _plane(params, x, y, "modes", variant, threads, progress, folds)
+
+
+class BranchCurve(NamedTuple):
+    """One branch of a branch diagram, in order along its arclength: arrays ``param`` (the
+    swept parameter), ``amplitude`` and ``stable`` (a stable cycle, or a mode of P(A)), and why
+    its first and last points end it, ``start`` and ``end`` (as ``FoldCurve``'s)."""
+
+    param: np.ndarray
+    amplitude: np.ndarray
+    stable: np.ndarray
+    start: str
+    end: str
+
+
+@dataclass(repr=False)
+class Branches:
+    """Every branch of cycles (``what="rhythmicity"``) or of extrema of P(A) (``"modes"``)
+    against one parameter ``key`` over [``start``, ``stop``], traced through its folds
+    (``trirhythm branches``): ``branches`` (``BranchCurve`` s), ``folds`` (an (n, 2) array of
+    the saddle-nodes' parameter and amplitude), ``hopf`` (parameter values where a branch
+    reaches A = 0). ``to_dict()`` is the library's diagram, the document of ``trirhythm
+    branches --format json`` less its ``params`` and ``variant``."""
+
+    key: str
+    start: float
+    stop: float
+    what: str
+    branches: list[BranchCurve]
+    folds: np.ndarray
+    hopf: np.ndarray
+    document: dict
+
+    def to_dict(self) -> dict:
+        return self.document
+
+    def __repr__(self) -> str:
+        lines = [
+            f"Branches({self.what} against {self.key} in [{self.start:g}, {self.stop:g}]: {len(self.branches)} branches, "
+            f"{len(self.folds)} folds, {len(self.hopf)} Hopf points"
+        ]
+        for b in self.branches[:16]:
+            share = float(np.mean(b.stable)) if len(b.stable) else 0.0
+            lines.append(
+                f"  {len(b.param)} points, A in {_span(b.amplitude)}, {share:.0%} stable, {b.start} to {b.end},"
+            )
+        if len(self.branches) > 16:
+            lines.append(f"  … {len(self.branches) - 16} more")
+        return "\n".join(lines) + ")"
+
+
+def branches(
+    params: Params,
+    x: tuple[str, float, float],
+    what: str = "rhythmicity",
+    variant: str = "paper",
+    step: float = 0.004,
+    *,
+    threads: int | None = None,
+) -> Branches:
+    """The branch diagram of the averaged theory along ``x = (key, start, stop)``: every branch
+    of cycles (``what="rhythmicity"``) or of extrema of P(A) (``"modes"``, D > 0), traced by
+    continuation through its folds, with the largest step ``step`` (a fraction of the interval,
+    in [1e-6, 0.1]) — ``trirhythm branches --x KEY=START:STOP``, the same bits."""
+    try:
+        key, start, stop = x
+    except (TypeError, ValueError):
+        raise ValueError(f"invalid parameter x = {x!r}: expected (key, start, stop)") from None
+    text = _native._branches(
+        _check_params(params),
+        str(key),
+        _finite("x start", start),
+        _finite("x stop", stop),
+        what,
+        variant,
+        _finite("step", step),
+        threads,
+    )
+    doc = json.loads(text)
+    col = lambda pts, k, f=float: np.array([f(_inf(q[k])) if f is float else f(q[k]) for q in pts])  # noqa: E731
+    return Branches(
+        key=doc["key"],
+        start=_inf(doc["start"]),
+        stop=_inf(doc["stop"]),
+        what=str(doc["what"]),
+        branches=[
+            BranchCurve(
+                param=col(b["points"], "param"),
+                amplitude=col(b["points"], "amplitude"),
+                stable=np.array([bool(q["stable"]) for q in b["points"]], dtype=bool),
+                start=str(b["start"]),
+                end=str(b["end"]),
+            )
+            for b in doc["branches"]
+        ],
+        folds=np.array([[_inf(a), _inf(b)] for a, b in doc["folds"]]).reshape(-1, 2),
+        hopf=np.array([_inf(h) for h in doc["hopf"]]),
+        document=doc,
+    )
 
 
 def figure_data(n: int, quick: bool = False, variant: str = "paper", *, threads=None, progress=None) -> dict:

@@ -231,7 +231,18 @@ def _map(
     variant: str = "paper",
     threads: int | None = None,
     progress: _Progress = None,
-) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[Any]]: ...
+    folds: bool = False,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[Any], str | None]: ...
+def _branches(
+    params: Params,
+    key: str,
+    start: float,
+    stop: float,
+    what: str = "rhythmicity",
+    variant: str = "paper",
+    step: float = 0.004,
+    threads: int | None = None,
+) -> str: ...
 def _figure_data(
     n: int, quick: bool = False, variant: str = "paper", threads: int | None = None, progress: _Progress = None
 ) -> str: ...
