@@ -32,6 +32,14 @@ use trirhythm_paper::FigureOptions;
 /// A one-dimensional numpy array.
 type Array<'py, T> = Bound<'py, PyArray1<T>>;
 
+/// A classified plane: the axes' values, the counts and the fold curves' JSON (when traced).
+type PlaneOut<'py> = (
+    Array<'py, f64>,
+    Array<'py, f64>,
+    Bound<'py, PyAny>,
+    Option<String>,
+);
+
 /// A library error as a Python exception: bad input is a `ValueError`, a cancelled run a
 /// `KeyboardInterrupt`, anything else a `RuntimeError`; the message is the library's.
 fn py_err(e: trirhythm::Error) -> PyErr {
@@ -1258,12 +1266,7 @@ fn _map<'py>(
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
     folds: bool,
-) -> PyResult<(
-    Array<'py, f64>,
-    Array<'py, f64>,
-    Bound<'py, PyAny>,
-    Option<String>,
-)> {
+) -> PyResult<PlaneOut<'py>> {
     let what = what_of(what)?;
     let ax = Axis::new(&x.0, x.1, x.2, x.3).map_err(py_err)?;
     let ay = Axis::new(&y.0, y.1, y.2, y.3).map_err(py_err)?;
