@@ -64,7 +64,8 @@ def _number(x):
 
 def statistics(result: Any) -> dict[str, tuple[float, float]]:
     """The scalar statistics of a result as ``{name: (value, stderr)}`` (stderr NaN where the
-    result gives none): an ``Ensemble``'s moments and occupancies, the ``{value, stderr}`` and
+    result gives none): an ``Ensemble``'s moments and occupancies with its diagnosis
+    (``stationary`` as 1 or 0, ``r_hat``, ``ess``; no standard error), the ``{value, stderr}`` and
     number fields of a dict (a Lyapunov exponent), a ``CriticalNoise``'s brackets, rest-regime
     statistics and coefficients (``CriticalNoise.statistics``), a ``Path``'s summary, a
     number, a ``(value, stderr)`` pair, or a dict of those (what a custom function returns)."""
