@@ -593,6 +593,41 @@ impl PyTheory {
             .into_pyarray(py)
     }
 
+    /// df/dA at each amplitude (`trirhythm drift`'s `df_dA`).
+    fn drift_slope<'py>(&self, py: Python<'py>, a: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
+        a.iter()
+            .map(|&a| self.0.drift_slope(a))
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
+    }
+
+    /// The energy change per period ΔE(A) (Eq. 20; `trirhythm drift`'s `delta_E`).
+    fn energy_change<'py>(&self, py: Python<'py>, a: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
+        a.iter()
+            .map(|&a| self.0.energy_change(a))
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
+    }
+
+    /// The FPK drift m1(A) (`trirhythm potential`'s `m1`; +∞ at A = 0 with noise, the limit).
+    fn fpk_drift<'py>(&self, py: Python<'py>, a: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
+        a.iter()
+            .map(|&a| self.0.fpk_drift(a))
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
+    }
+
+    /// The extrema of U_eff as `Extremum` named tuples `(amplitude, potential, minimum)`
+    /// (`trirhythm barriers --format json`'s `extrema`).
+    fn extrema<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
+        let make = py.import("trirhythm._results")?.getattr("Extremum")?;
+        self.0
+            .extrema()
+            .into_iter()
+            .map(|e| make.call1((e.amplitude, e.potential, e.minimum)))
+            .collect()
+    }
+
     /// The pseudo-potential U_eff(A) at each amplitude.
     fn potential<'py>(&self, py: Python<'py>, a: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
         a.iter()

@@ -52,3 +52,27 @@ def test_map_folds_are_the_command_lines(cli):
     # without folds: the three arrays, as before
     plain = tr.rhythmicity_map(p, x, y)
     assert len(plain) == 3 and np.array_equal(plain.counts, counts)
+
+
+def _json(out):
+    return json.loads(out, parse_constant=float)
+
+
+def _num(x):
+    return float(x) if isinstance(x, str) else x
+
+
+def test_the_theory_curves_are_the_command_lines(cli):
+    th = tr.Theory(tr.preset("fig4c"))
+    d = _json(run_cli(cli, "drift", "--preset", "fig4c", "--grid", "0.1:14:5", "--format", "json"))
+    a = d["A"]
+    assert np.array_equal(th.drift(a), d["f"])
+    assert np.array_equal(th.drift_slope(a), d["df_dA"])
+    assert np.array_equal(th.energy_change(a), d["delta_E"])
+    fig8 = tr.Theory(tr.preset("fig8"))
+    d = _json(run_cli(cli, "potential", "--preset", "fig8", "--grid", "0:14:5", "--format", "json"))
+    assert np.array_equal(fig8.potential(d["A"]), [_num(x) for x in d["U_eff"]])
+    assert np.array_equal(fig8.fpk_drift(d["A"]), [_num(x) for x in d["m1"]])
+    assert fig8.fpk_drift([0.0])[0] == np.inf
+    d = _json(run_cli(cli, "barriers", "--preset", "fig8", "--format", "json"))
+    assert [e._asdict() for e in fig8.extrema()] == d["extrema"]

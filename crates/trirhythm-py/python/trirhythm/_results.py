@@ -27,6 +27,16 @@ class Cycles(NamedTuple):
         return f"Cycles({len(self.amplitude)}: {rows})"
 
 
+class Extremum(NamedTuple):
+    """An extremum of U_eff (Eq. 23): its ``amplitude``, ``potential`` U_eff there, and
+    ``minimum`` (a well; ``False``: a crest), as ``trirhythm barriers --format json``'s
+    ``extrema``."""
+
+    amplitude: float
+    potential: float
+    minimum: bool
+
+
 class Barrier(NamedTuple):
     """One energy barrier of U_eff (Eq. 23) between consecutive extrema: from the well at
     amplitude ``well`` to the crest at ``crest`` on its ``side`` (``"left"``: towards smaller
