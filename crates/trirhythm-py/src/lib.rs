@@ -32,6 +32,14 @@ use trirhythm_paper::FigureOptions;
 /// A one-dimensional numpy array.
 type Array<'py, T> = Bound<'py, PyArray1<T>>;
 
+/// A classified plane: the axes' values, the counts and the fold curves' JSON (when traced).
+type PlaneOut<'py> = (
+    Array<'py, f64>,
+    Array<'py, f64>,
+    Bound<'py, PyAny>,
+    Option<String>,
+);
+
 /// A library error as a Python exception: bad input is a `ValueError`, a cancelled run a
 /// `KeyboardInterrupt`, anything else a `RuntimeError`; the message is the library's.
 fn py_err(e: trirhythm::Error) -> PyErr {
@@ -193,16 +201,43 @@ fn theory_only(model: Option<PyRef<'_, PyModel>>, call: &str) -> PyResult<()> {
 
 /// A validated parameter set (`trirhythm.Params`): immutable; `with_(**values)` makes a new
 /// one.
-#[pyclass(name = "Params", module = "trirhythm", frozen, eq)]
+#[pyclass(name = "Params", module = "trirhythm", frozen, eq, hash)]
 #[derive(Clone, PartialEq)]
 struct PyParams(Params);
+
+/// Equal parameter sets hash alike: the keys and the bits of the values (−0 as 0, as `==`
+/// has it; validated parameters hold no NaN).
+impl std::hash::Hash for PyParams {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        for (k, v) in self.0.key_values() {
+            k.hash(h);
+            (v + 0.0).to_bits().hash(h);
+        }
+    }
+}
+
+/// The parameter a key sets (`lambda_` and `lambda`, `alpha0` and `c2`, `beta0` and `c3`,
+/// `gamma0` and `c4`, `delta0` and `c5`, `c02` and `c2` set the same one), so that two keys of
+/// one call that set the same parameter are refused instead of one overriding the other.
+fn slot(key: &str) -> String {
+    match key {
+        "alpha0" => "c2".into(),
+        "beta0" => "c3".into(),
+        "gamma0" => "c4".into(),
+        "delta0" => "c5".into(),
+        _ => match key.strip_prefix('c').map(str::parse::<u64>) {
+            Some(Ok(k)) => format!("c{k}"),
+            _ => key.into(),
+        },
+    }
+}
 
 #[pymethods]
 impl PyParams {
     /// The parameters of `pairs` (key, value) over the defaults (Fig. 4(c)'s set with r = 1,
     /// D = 0, τ = 0), validated.
     #[new]
-    #[pyo3(signature = (**values))]
+    #[pyo3(signature = (**values), text_signature = "(**values)")]
     fn new(values: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         PyParams(Params::default()).with_(values)
     }
@@ -210,15 +245,24 @@ impl PyParams {
     /// A copy with `values` (keys as `keys()` lists, `lambda_` for `lambda`, `c<k>` for a
     /// damping coefficient)
     /// changed; the result is validated: a bad value raises `ValueError` naming the key, the
-    /// value and the allowed range.
+    /// value and the allowed range. Two keys that set the same parameter (`alpha0` and `c2`,
+    /// `lambda` and `lambda_`) are refused, naming both.
     #[pyo3(signature = (**values))]
     fn with_(&self, values: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         let mut p = self.0.clone();
         if let Some(values) = values {
+            let mut seen: Vec<(String, String)> = Vec::new();
             for (k, v) in values.iter() {
-                let key: String = k.extract()?;
+                let given: String = k.extract()?;
                 // `lambda` is a Python keyword: `with_(lambda_=0.9)`
-                let key = key.strip_suffix('_').unwrap_or(&key).to_string();
+                let key = given.strip_suffix('_').unwrap_or(&given).to_string();
+                let at = slot(&key);
+                if let Some((other, _)) = seen.iter().find(|(_, s)| *s == at) {
+                    return Err(PyValueError::new_err(format!(
+                        "conflicting parameters {other} and {given}: both set {at}; give one"
+                    )));
+                }
+                seen.push((given.clone(), at));
                 let value: f64 = v.extract().map_err(|_| {
                     PyValueError::new_err(format!(
                         "invalid value for parameter {key}: `{}` is not a number",
@@ -251,8 +295,19 @@ impl PyParams {
         Ok(d)
     }
 
+    /// `Params(mu0=0.01, omega0=1, lambda_=0.99, …)`: every key with its exact value, as
+    /// Python that gives the same parameters back.
     fn __repr__(&self) -> String {
-        format!("Params({})", self.0.describe())
+        let pairs: Vec<String> = self
+            .0
+            .key_values()
+            .into_iter()
+            .map(|(k, v)| {
+                let k = if k == "lambda" { "lambda_".into() } else { k };
+                format!("{k}={}", trirhythm::error::Exact(v))
+            })
+            .collect();
+        format!("Params({})", pairs.join(", "))
     }
 
     /// Pickled as its key–value pairs (so that it travels to Dask workers).
@@ -466,8 +521,10 @@ impl PyModel {
         ))
     }
 
-    fn __repr__(&self) -> String {
-        format!("Model.from_toml({:?})", self.0.to_toml())
+    /// `Model(**{tables})`: one line, Python that gives the same model back (`to_toml()`
+    /// is the commented file).
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        Ok(format!("Model(**{})", self.to_dict(py)?.repr()?))
     }
 
     /// Pickled as its file text.
@@ -505,13 +562,11 @@ impl PyTheory {
         Ok(d)
     }
 
-    /// The cycles (D = 0) or modes of P(A) (D > 0): `(amplitude, stable, fold)` arrays.
-    fn cycles<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> (Array<'py, f64>, Array<'py, bool>, Array<'py, bool>) {
+    /// The cycles (D = 0) or modes of P(A) (D > 0): a `Cycles` named tuple of arrays
+    /// `(amplitude, stable, fold)`.
+    fn cycles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let c = self.0.cycles();
-        (
+        let arrays = (
             c.iter()
                 .map(|c| c.amplitude)
                 .collect::<Vec<_>>()
@@ -524,7 +579,10 @@ impl PyTheory {
                 .map(|c| c.fold)
                 .collect::<Vec<_>>()
                 .into_pyarray(py),
-        )
+        );
+        py.import("trirhythm._results")?
+            .getattr("Cycles")?
+            .call1(arrays)
     }
 
     /// The averaged drift f(A) (Eq. 18) at each amplitude.
@@ -535,6 +593,41 @@ impl PyTheory {
             .into_pyarray(py)
     }
 
+    /// df/dA at each amplitude (`trirhythm drift`'s `df_dA`).
+    fn drift_slope<'py>(&self, py: Python<'py>, a: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
+        a.iter()
+            .map(|&a| self.0.drift_slope(a))
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
+    }
+
+    /// The energy change per period ΔE(A) (Eq. 20; `trirhythm drift`'s `delta_E`).
+    fn energy_change<'py>(&self, py: Python<'py>, a: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
+        a.iter()
+            .map(|&a| self.0.energy_change(a))
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
+    }
+
+    /// The FPK drift m1(A) (`trirhythm potential`'s `m1`; +∞ at A = 0 with noise, the limit).
+    fn fpk_drift<'py>(&self, py: Python<'py>, a: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
+        a.iter()
+            .map(|&a| self.0.fpk_drift(a))
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
+    }
+
+    /// The extrema of U_eff as `Extremum` named tuples `(amplitude, potential, minimum)`
+    /// (`trirhythm barriers --format json`'s `extrema`).
+    fn extrema<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
+        let make = py.import("trirhythm._results")?.getattr("Extremum")?;
+        self.0
+            .extrema()
+            .into_iter()
+            .map(|e| make.call1((e.amplitude, e.potential, e.minimum)))
+            .collect()
+    }
+
     /// The pseudo-potential U_eff(A) at each amplitude.
     fn potential<'py>(&self, py: Python<'py>, a: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
         a.iter()
@@ -543,12 +636,23 @@ impl PyTheory {
             .into_pyarray(py)
     }
 
-    /// The energy barriers as `(well, crest, side, height)` tuples.
-    fn barriers(&self) -> Vec<(f64, f64, &'static str, f64)> {
+    /// The energy barriers as `Barrier` named tuples `(well, crest, side, height, name)`,
+    /// named `dU1`, `dU2`, … in order, as `trirhythm barriers --format json` names them.
+    fn barriers<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
+        let make = py.import("trirhythm._results")?.getattr("Barrier")?;
         self.0
             .barriers()
             .into_iter()
-            .map(|b| (b.well, b.crest, b.side.name(), b.height))
+            .enumerate()
+            .map(|(i, b)| {
+                make.call1((
+                    b.well,
+                    b.crest,
+                    b.side.name(),
+                    b.height,
+                    format!("dU{}", i + 1),
+                ))
+            })
             .collect()
     }
 
@@ -628,6 +732,12 @@ fn _simulate<'py>(
         .and_then(|p| p.with_terms(terms))
         .and_then(|p| p.with_start(u0, v0))
         .map_err(py_err)?;
+    // the step guard first, as the command line's: a step that cannot resolve the problem is
+    // refused naming dt (before t_end is checked as a whole number of such steps)
+    let step_warnings = trirhythm::analysis::check_step(&problem, &method)
+        .and_then(|r| r.require())
+        .map_err(py_err)?
+        .warnings();
     let options = Options {
         t_end,
         seed,
@@ -649,6 +759,7 @@ fn _simulate<'py>(
     d.set_item("u", tr.u.into_pyarray(py))?;
     d.set_item("v", tr.v.into_pyarray(py))?;
     d.set_item("eta", tr.eta.into_pyarray(py))?;
+    d.set_item("step_warnings", step_warnings)?;
     Ok(d)
 }
 
@@ -697,7 +808,7 @@ fn ensemble_request(
 /// Run paths `which` (all when `None`) of an ensemble; with `merge`, the document of the whole
 /// ensemble (JSON), otherwise the paths' statistics (JSON list, for `merge_paths`).
 #[pyfunction]
-#[pyo3(signature = (params, paths, t_end, burn_in, seed, dt, u0, variant, system, barrier, memory, tolerance, impact_memory, bins, joint_bins, amplitude_max, sample_every, which=None, pieces=None, merge=true, model=None, threads=None, progress=None))]
+#[pyo3(signature = (params, paths, t_end, burn_in, seed, dt, u0, variant, system, barrier, memory, tolerance, impact_memory, bins, joint_bins, amplitude_max, sample_every, which=None, pieces=None, merge=true, model=None, threads=None, progress=None, setup_only=false))]
 #[allow(clippy::too_many_arguments)]
 fn _ensemble(
     py: Python<'_>,
@@ -724,6 +835,7 @@ fn _ensemble(
     model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
+    setup_only: bool,
 ) -> PyResult<String> {
     let request = ensemble_request(
         params,
@@ -746,6 +858,14 @@ fn _ensemble(
         terms_of(model)?,
     )?;
     let s = request.setup().map_err(py_err)?;
+    if setup_only {
+        // what the run would use where the user left it open (a density sweep's common bins)
+        return serde_json::to_string(&serde_json::json!({
+            "amplitude_max": s.spec.amplitude_max,
+            "choices": s.choices,
+        }))
+        .map_err(json_err);
+    }
     // every size, step and range checked before any work
     ens::run_paths(
         &s.problem,
@@ -1169,7 +1289,7 @@ fn _oscillation_boundary(
 /// The count of stable cycles (`rhythmicity`) or of modes of P(A) (`modes`) over a plane of
 /// the averaged theory: `(x, y, counts[ny, nx])`.
 #[pyfunction]
-#[pyo3(signature = (params, x, y, what="rhythmicity", variant="paper", threads=None, progress=None))]
+#[pyo3(signature = (params, x, y, what="rhythmicity", variant="paper", threads=None, progress=None, folds=false))]
 #[allow(clippy::too_many_arguments)]
 fn _map<'py>(
     py: Python<'py>,
@@ -1180,34 +1300,80 @@ fn _map<'py>(
     variant: &str,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
-) -> PyResult<(Array<'py, f64>, Array<'py, f64>, Bound<'py, PyAny>)> {
-    let what = match what {
-        "rhythmicity" => What::Rhythmicity,
-        "modes" => What::Modes,
-        _ => {
-            return Err(PyValueError::new_err(format!(
-                "unknown map `{what}`: expected one of rhythmicity, modes"
-            )))
-        }
-    };
+    folds: bool,
+) -> PyResult<PlaneOut<'py>> {
+    let what = what_of(what)?;
     let ax = Axis::new(&x.0, x.1, x.2, x.3).map_err(py_err)?;
     let ay = Axis::new(&y.0, y.1, y.2, y.3).map_err(py_err)?;
     let plane = bif::Plane::new(&params.0, ax, ay, self::variant(variant)?).map_err(py_err)?;
-    let map = long_call(py, threads, progress, |w| {
+    let (map, traced) = long_call(py, threads, progress, |w| {
         let report =
             |done: usize, total: usize| Monitor::<()>::progress(w, done as u64, total as u64);
-        Ok(bif::classify(&plane, what, &report))
+        let map = bif::classify(&plane, what, &report);
+        // the fold curves through the map's transitions, as `trirhythm map --folds`
+        let traced = folds.then(|| bif::trace_folds(&map));
+        Ok((map, traced))
     })?;
     let (nx, ny) = (map.plane.x.count, map.plane.y.count);
     let rows: Vec<Vec<u8>> = map.counts.chunks(nx).map(|r| r.to_vec()).collect();
     debug_assert_eq!(rows.len(), ny);
     let counts = numpy::PyArray2::from_vec2(py, &rows)
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let traced = match traced {
+        Some(f) => Some(serde_json::to_string(&f).map_err(json_err)?),
+        None => None,
+    };
     Ok((
         map.plane.x.values().into_pyarray(py),
         map.plane.y.values().into_pyarray(py),
         counts.into_any(),
+        traced,
     ))
+}
+
+/// `rhythmicity` (cycles, roots of f) or `modes` (extrema of P(A), roots of m1).
+fn what_of(name: &str) -> PyResult<What> {
+    match name {
+        "rhythmicity" => Ok(What::Rhythmicity),
+        "modes" => Ok(What::Modes),
+        _ => Err(PyValueError::new_err(format!(
+            "unknown map `{name}`: expected one of rhythmicity, modes"
+        ))),
+    }
+}
+
+/// Every branch of cycles (or modes of P(A)) against `key` over [start, stop], traced through
+/// its folds by continuation (`trirhythm branches`; JSON of the library's diagram).
+#[pyfunction]
+#[pyo3(signature = (params, key, start, stop, what="rhythmicity", variant="paper", step=0.004, threads=None))]
+#[allow(clippy::too_many_arguments)]
+fn _branches(
+    py: Python<'_>,
+    params: &PyParams,
+    key: &str,
+    start: f64,
+    stop: f64,
+    what: &str,
+    variant: &str,
+    step: f64,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    // the continuation takes at least 1/step steps: bound the work before it starts
+    if !(1e-6..=0.1).contains(&step) {
+        return Err(PyValueError::new_err(format!(
+            "invalid parameter step = {}: allowed range is [1e-6, 0.1] (the fraction of the \
+             interval per continuation step)",
+            trirhythm::error::Exact(step)
+        )));
+    }
+    let what = what_of(what)?;
+    let variant = self::variant(variant)?;
+    let base = params.0.clone();
+    let key = key.to_string();
+    let bd = long_call(py, threads, None, |_| {
+        bif::branches(&base, variant, what, &key, start, stop, step)
+    })?;
+    serde_json::to_string(&bd).map_err(json_err)
 }
 
 /// Figure `n`'s data (JSON: the value `figure N --data` writes under `data`).
@@ -1259,6 +1425,7 @@ fn _trirhythm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_phase_response, m)?)?;
     m.add_function(wrap_pyfunction!(_oscillation_boundary, m)?)?;
     m.add_function(wrap_pyfunction!(_map, m)?)?;
+    m.add_function(wrap_pyfunction!(_branches, m)?)?;
     m.add_function(wrap_pyfunction!(_figure_data, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())

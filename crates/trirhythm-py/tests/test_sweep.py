@@ -205,3 +205,55 @@ def test_keyboard_interrupt_stops_a_long_call_within_a_second(tmp_path):
     assert proc.returncode == 3, err
     assert "interrupted" in out
     assert took < 1.5, f"stopped {took:.2f} s after SIGINT"
+
+
+DKW = dict(paths=3, t_end=15.0, burn_in=2.0, bins=10, joint_bins=4)
+DGRID = {"r": [0.9, 0.96], "D": [0.01, 0.02]}
+
+
+@pytest.fixture(scope="module")
+def densities(base):
+    with pytest.warns(tr.NotStationaryWarning):
+        return tr.sweep("ensemble", DGRID, base=base, seed=2, densities=True, **DKW)
+
+
+def test_a_density_sweep_has_p_of_a_on_common_bins(densities, base):
+    ds = densities
+    assert ds["density_amplitude"].dims == ("r", "D", "amplitude")
+    assert ds.sizes["amplitude"] == 10
+    assert ds["density_amplitude_stderr"].dims == ("r", "D", "amplitude")
+    amax = tr._ensemble_range(base, **DKW)
+    assert ds.attrs["amplitude_max"] == amax
+    assert ds["amplitude_hi"].values[-1] == amax and ds["amplitude_lo"].values[0] == 0.0
+    # each point is the direct call's histogram at the common range, bit for bit
+    e = tr.ensemble(base.with_(r=0.96, D=0.02), seed=2, amplitude_max=amax, **DKW).density()
+    point = ds.sel(r=0.96, D=0.02)
+    assert np.array_equal(point["density_amplitude"].values, e["density"])
+    assert np.array_equal(point["density_amplitude_stderr"].values, e["stderr"])
+    assert point["density_amplitude_beyond"].item() == e["beyond"]
+    # the theory's P(A) at the bin centres, both variants
+    th = tr.Theory(base.with_(r=0.96, D=0.02), "consistent").pdf("amplitude", list(ds["amplitude"].values))
+    assert np.array_equal(point["theory_amplitude_consistent"].values, th)
+    assert ds["theory_amplitude_paper"].dims == ("r", "D", "amplitude")
+
+
+def test_a_density_sweep_on_a_local_cluster_is_the_serial_one_bit_for_bit(densities, base, client):
+    with pytest.warns(tr.NotStationaryWarning):
+        on_cluster = tr.sweep("ensemble", DGRID, base=base, seed=2, client=client, densities=True, **DKW)
+    xr.testing.assert_identical(on_cluster, densities)
+    with pytest.warns(tr.NotStationaryWarning):
+        chunked = tr.sweep("ensemble", DGRID, base=base, seed=2, client=client, chunk_paths=2, densities=True, **DKW)
+    xr.testing.assert_identical(chunked, densities)
+
+
+def test_density_sweeps_take_a_given_range_and_other_kinds(base):
+    with pytest.warns(tr.NotStationaryWarning):
+        ds = tr.sweep(
+            "ensemble", {"r": [0.9]}, base=base, densities=["amplitude", "turning"], amplitude_max=20.0, **DKW
+        )
+    assert ds.attrs["amplitude_max"] == 20.0 and ds["amplitude_hi"].values[-1] == 20.0
+    assert ds["density_turning"].dims == ("r", "turning")
+    with pytest.raises(ValueError, match="densities"):
+        tr.sweep("lyapunov", {"r": [0.9]}, base=base, densities=True)
+    with pytest.raises(ValueError, match="densities"):
+        tr.sweep("ensemble", {"r": [0.9]}, base=base, densities=["wobbly"])

@@ -22,7 +22,7 @@ from __future__ import annotations
 import json
 import warnings
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
+from typing import Any, Iterable, Literal, NamedTuple, Sequence, overload
 
 import numpy as np
 
@@ -39,6 +39,8 @@ __all__ = [
     "Path",
     "ensemble",
     "Ensemble",
+    "Stationarity",
+    "NotStationaryWarning",
     "ensemble_paths",
     "merge_paths",
     "EnsemblePaths",
@@ -58,6 +60,13 @@ __all__ = [
     "oscillation_boundary",
     "rhythmicity_map",
     "modes_map",
+    "PlaneMap",
+    "PlaneMapFolds",
+    "Folds",
+    "FoldCurve",
+    "branches",
+    "Branches",
+    "BranchCurve",
     "figure_data",
     "sweep",
     "version",
@@ -100,10 +109,21 @@ def _finite(name: str, value: float) -> float:
     return v
 
 
-def _count(name: str, value, low: int = 0) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
-        raise ValueError(f"invalid parameter {name} = {value!r}: allowed range is an integer, {low} or more")
+def _count(name: str, value, low: int = 0, high: int | None = None) -> int:
+    """An integer in [low, high] (``high=None``: no upper end), or ``ValueError`` naming
+    ``name``, its value and the range (never ``OverflowError``: a value past what the engine
+    holds is out of range like any other)."""
+    high = _HIGHEST if high is None else high
+    allowed = f"an integer, {low} or more (at most 2**64 - 1)" if high == _HIGHEST else f"an integer, {low} to {high}"
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not low <= int(value) <= high:
+        raise ValueError(f"invalid parameter {name} = {value!r}: allowed range is {allowed}")
     return int(value)
+
+
+# the largest count the engine takes (u64)
+_HIGHEST = 2**64 - 1
+# an ensemble's or a Lyapunov exponent's paths: 1 to the engine's MAX_PATHS
+_MAX_PATHS = 1_000_000
 
 
 def _check_params(params) -> Params:
@@ -152,16 +172,34 @@ def _model_options(model, params, options, call, start=True):
     return params, options
 
 
-@dataclass
+def _short(text: str, most: int = 160) -> str:
+    return text if len(text) <= most else text[: most - 1] + "…"
+
+
+def _span(x: np.ndarray) -> str:
+    return f"[{np.min(x):.6g}, {np.max(x):.6g}]" if len(x) else "[]"
+
+
+@dataclass(repr=False)
 class Path:
     """One simulated path: numpy arrays ``t``, ``u``, ``v`` (and ``eta``, the noise, when
-    D > 0, else ``None``) and the run's ``summary`` (steps, impacts, final amplitude, …)."""
+    D > 0, else ``None``) and the run's ``summary`` (steps, impacts, final amplitude, …).
+    Its repr is one line (sizes and ranges)."""
 
     t: np.ndarray
     u: np.ndarray
     v: np.ndarray
     eta: np.ndarray | None
     summary: dict
+
+    def __repr__(self) -> str:
+        t = f"{self.t[0]:.6g} to {self.t[-1]:.6g}" if len(self.t) else "none"
+        eta = "None" if self.eta is None else f"{len(self.eta)} values"
+        return _short(
+            f"Path({len(self.t)} samples, t {t}, u in {_span(self.u)}, v in {_span(self.v)}, eta {eta}, "
+            f"summary={self.summary!r})",
+            400,
+        )
 
 
 def simulate(
@@ -213,6 +251,8 @@ def simulate(
         threads=threads,
         progress=_progress(progress),
     )
+    for w in d["step_warnings"]:
+        warnings.warn(f"simulate: {w}", RuntimeWarning, stacklevel=2)
     eta = d["eta"] if len(d["eta"]) else None
     return Path(d["t"], d["u"], d["v"], eta, json.loads(d["summary"]))
 
@@ -227,10 +267,75 @@ def _nonfinite(x):
     return x
 
 
-@dataclass
+class NotStationaryWarning(UserWarning):
+    """Warned when an ensemble is not stationary (some split-R̂ above 1.1, or the mean amplitude
+    drifting by more than 3 standard errors between the window's halves): its statistics are
+    those of the window run, not of the stationary law. The message gives R̂, the effective
+    sample size and the suggested window; ``Ensemble.stationarity`` holds them. Silence it
+    with ``warnings.simplefilter("ignore", trirhythm.NotStationaryWarning)``, or turn it into
+    an error with ``"error"``."""
+
+
+def _inf(x) -> float:
+    """A number of a document as a float: the library writes NaN and ±∞ as the strings
+    ``"NaN"``, ``"inf"``, ``"-inf"``; ``None`` (undefined) reads as NaN."""
+    if x is None:
+        return float("nan")
+    return float(_nonfinite(x))
+
+
+class Stationarity(NamedTuple):
+    """An ensemble's stationarity diagnosis (the document's ``stationarity``, as numbers:
+    ``inf`` where R̂ is infinite — the paths never left their wells —, never ``None``).
+
+    ``stationary``: every R̂ ≤ 1.1 and |``drift_z``| ≤ 3; ``r_hat``: the largest split-R̂
+    (of the mean amplitude, ``r_hat_amplitude``, and of each well's occupancy,
+    ``r_hat_wells``); ``ess``: the effective sample size of the mean amplitude; ``drift``
+    (second half − first half of the mean amplitude) and ``drift_z`` (in standard errors);
+    ``suggested_length``: the window that the R̂ scaling suggests for R̂ ≤ 1.1; ``method``:
+    how the diagnosis was made (``"direct"``: over the paths; ``"wells"``: the worst of the
+    well method's conditional runs)."""
+
+    stationary: bool
+    r_hat: float
+    ess: float
+    r_hat_amplitude: float
+    r_hat_wells: tuple[float, ...]
+    drift: float
+    drift_z: float
+    suggested_length: float
+    method: str
+
+    @classmethod
+    def _of(cls, doc: dict) -> "Stationarity":
+        st = doc["stationarity"]
+        return cls(
+            stationary=bool(st["stationary"]),
+            r_hat=_inf(st["r_hat"]),
+            ess=_inf(st["ess"]),
+            r_hat_amplitude=_inf(st["r_hat_amplitude"]),
+            r_hat_wells=tuple(_inf(x) for x in st.get("r_hat_wells") or ()),
+            drift=_inf(st["drift"]),
+            drift_z=_inf(st["drift_z"]),
+            suggested_length=_inf(st["suggested_length"]),
+            method=doc.get("estimator", "direct"),
+        )
+
+    def __str__(self) -> str:
+        verdict = "stationary" if self.stationary else "NOT stationary"
+        return (
+            f"{verdict} (R̂ = {self.r_hat:.3g}, ESS = {self.ess:.0f}, drift {self.drift_z:.1f} s.e.; "
+            f"suggested window {self.suggested_length:.4g}; {self.method})"
+        )
+
+
+@dataclass(repr=False)
 class Ensemble:
     """An ensemble's result: ``to_dict()`` is the document ``trirhythm ensemble --format json``
-    writes (``wall_time_s`` aside); ``statistics()`` the moments with their standard errors."""
+    writes (``wall_time_s`` aside); ``statistics()`` the moments with their standard errors;
+    ``stationarity`` the diagnosis (a ``Stationarity``: ``stationary``, ``r_hat``, ``ess``, …);
+    ``density(kind)`` a histogram. Its repr is a few lines (the moments and the diagnosis);
+    the whole document is ``to_dict()``."""
 
     document: dict
 
@@ -240,14 +345,43 @@ class Ensemble:
     def __getitem__(self, key):
         return self.document[key]
 
+    @property
+    def stationarity(self) -> Stationarity:
+        """The stationarity diagnosis, as numbers (``inf`` where R̂ is infinite)."""
+        return Stationarity._of(self.document)
+
+    @property
+    def stationary(self) -> bool:
+        """Whether the ensemble is stationary (``stationarity.stationary``)."""
+        return bool(self.document["stationarity"]["stationary"])
+
+    def __repr__(self) -> str:
+        lines = [f"Ensemble({self.document.get('estimator', 'direct')}: {self.document.get('method', '')}"]
+        for name, (v, e) in self.statistics().items():
+            lines.append(f"  {name} = {v:.6g} ± {e:.2g}")
+            if len(lines) >= 14:
+                lines.append("  …")
+                break
+        lines.append(f"  stationarity: {self.stationarity}")
+        warns = self.document.get("warnings") or []
+        if warns:
+            lines.append(f"  warnings: {len(warns)} (to_dict()['warnings'])")
+        lines.append(")")
+        return "\n".join(line if len(line) <= 200 else line[:199] + "…" for line in lines)
+
+    def _warn(self, call: str, stacklevel: int = 3) -> "Ensemble":
+        if not self.stationary:
+            warnings.warn(f"{call}: the ensemble is {self.stationarity}", NotStationaryWarning, stacklevel=stacklevel)
+        return self
+
     def statistics(self) -> dict[str, tuple[float, float]]:
         """``{name: (value, stderr)}`` for ⟨U⟩, Var U, ⟨U̇⟩, Var U̇, ⟨A⟩ and each well's occupancy."""
         out = {}
         for k in ("mean_u", "var_u", "mean_v", "var_v", "mean_amplitude"):
             e = self.document[k]
-            out[k] = (float(_nonfinite(e["value"])), float(_nonfinite(e["stderr"])))
+            out[k] = (_inf(e["value"]), _inf(e["stderr"]))
         for i, e in enumerate(self.document.get("occupancy") or []):
-            out[f"occupancy_{i}"] = (float(_nonfinite(e["value"])), float(_nonfinite(e["stderr"])))
+            out[f"occupancy_{i}"] = (_inf(e["value"]), _inf(e["stderr"]))
         return out
 
     def density(self, kind: str = "amplitude") -> dict:
@@ -257,23 +391,28 @@ class Ensemble:
         if kind not in ("amplitude", "turning", "energy"):
             raise ValueError(f"invalid parameter kind = {kind!r}: expected amplitude, turning or energy")
         d = self.document[kind]
-        arr = lambda xs: np.array([float(_nonfinite(x)) for x in xs])  # noqa: E731
+        arr = lambda xs: np.array([_inf(x) for x in xs])  # noqa: E731
         return {
             "edges": arr(d["edges"]),
             "density": arr(d["density"]),
             "stderr": arr(d["stderr"]),
-            "beyond": float(_nonfinite(d["beyond"])),
+            "beyond": _inf(d["beyond"]),
             "count": int(d["count"]),
         }
 
 
-@dataclass
+@dataclass(repr=False)
 class EnsemblePaths:
     """Some paths of an ensemble (``ensemble_paths``), to be merged with ``merge_paths``;
     picklable (the statistics travel as exact JSON)."""
 
     pieces: str
     which: list[int] = field(default_factory=list)
+
+    def __repr__(self) -> str:
+        w = self.which
+        shown = ", ".join(map(str, w[:8])) + (f", … ({len(w)} paths)" if len(w) > 8 else "")
+        return f"EnsemblePaths(which=[{shown}], {len(self.pieces)} characters of statistics)"
 
 
 _ENSEMBLE_DEFAULTS = dict(
@@ -311,7 +450,7 @@ def _ensemble_args(params, paths, t_end, burn_in, seed, options):
     amax = o["amplitude_max"]
     return (
         _check_params(params),
-        _count("paths", paths),
+        _count("paths", paths, 1, _MAX_PATHS),
         _finite("t_end", t_end),
         _finite("burn_in", burn_in),
         _count("seed", seed),
@@ -381,13 +520,13 @@ def ensemble(
             threads=threads,
             progress=_progress(progress),
         )
-        return Ensemble(json.loads(text))
+        return Ensemble(json.loads(text))._warn("ensemble")
     if method != "direct":
         raise ValueError(f"invalid parameter method = {method!r}: expected 'direct' or 'wells'")
     if wells:
         raise ValueError(f"argument(s) {sorted(wells)} need method='wells'")
     text = _native._ensemble(*args, model=model, threads=threads, progress=_progress(progress))
-    return Ensemble(json.loads(text))
+    return Ensemble(json.loads(text))._warn("ensemble")
 
 
 def _direct_model(model, params, options):
@@ -396,6 +535,27 @@ def _direct_model(model, params, options):
         return params, options
     params, options = _model_options(model, params, options, "ensemble")
     return params, {**options, "u0": [options["u0"]]}
+
+
+def _ensemble_range(
+    base: Params | Model,
+    paths: int = 8,
+    t_end: float = 1000.0,
+    burn_in: float = 100.0,
+    seed: int = 1,
+    *,
+    threads: int | None = None,
+    progress=None,
+    **options,
+) -> float:
+    """The histogram range ``amplitude_max`` that ``ensemble(base, …)`` with these options
+    uses (the one given, else the one it chooses from the averaged theory), without running
+    it: a density sweep's common bins."""
+    options.pop("method", None)
+    model = base if isinstance(base, Model) else None
+    params, options = _direct_model(model, None if model is not None else base, options)
+    args = _ensemble_args(params, paths, t_end, burn_in, seed, options)
+    return float(json.loads(_native._ensemble(*args, model=model, setup_only=True))["amplitude_max"])
 
 
 def ensemble_paths(
@@ -444,7 +604,7 @@ def merge_paths(
             f"invalid parameter pieces: they hold paths {given}, expected each of 0..{paths - 1} once"
         )
     text = _native._ensemble(*args, which=[], pieces=[p.pieces for p in pieces], model=model)
-    return Ensemble(json.loads(text))
+    return Ensemble(json.loads(text))._warn("merge_paths")
 
 
 _LLE_DEFAULTS = dict(
@@ -472,7 +632,7 @@ def _lle_args(params, paths, t_end, seed, options):
         t_end=_finite("t_end", t_end),
         transient=_finite("transient", o["transient"]),
         dt=_finite("dt", o["dt"]),
-        paths=_count("paths", paths),
+        paths=_count("paths", paths, 1, _MAX_PATHS),
         seed=_count("seed", seed),
         u0=_finite("u0", o["u0"]),
         impact_memory=o["impact_memory"],
@@ -659,6 +819,17 @@ class CriticalCurve:
         """The attractor's short name: ``"rest"``, ``"inner"``, ``"middle"``, ``"outer"``, …"""
         return self.attractor.split(" ")[0]
 
+    def __repr__(self) -> str:
+        d = f"D {self.points[0].D:g} to {self.points[-1].D:g}" if self.points else "no D"
+        value = "" if self.value is None else f"value={self.value:g}, "
+        c = "" if self.coefficient is None else f", coefficient={self.coefficient:.6g}"
+        calls = ", ".join(q.call for q in self.points[:6]) + (", …" if len(self.points) > 6 else "")
+        return _short(
+            f"CriticalCurve({value}{self.attractor!r}, {len(self.points)} points {d} [{calls}], "
+            f"bracket={self.bracket}{c})",
+            300,
+        )
+
     def arrays(self) -> dict[str, np.ndarray]:
         """The points as numpy arrays: ``D``, ``lle``, ``se``, ``n``, ``merged``, ``call``."""
         return {
@@ -702,6 +873,15 @@ class CriticalNoise:
 
     def to_dict(self) -> dict:
         return self.document
+
+    def __repr__(self) -> str:
+        lines = [f"CriticalNoise(sweep={self.sweep!r}, {len(self.noises)} noises, margin={self.margin:g},"]
+        for c in self.curves[:14]:
+            lines.append(f"  {c!r},")
+        if len(self.curves) > 14:
+            lines.append(f"  … {len(self.curves) - 14} more curves,")
+        lines.append(f"  {len(self.step_warnings)} step warnings, {len(self.notes)} notes)")
+        return "\n".join(lines)
 
     def statistics(self) -> dict[str, tuple[float, float]]:
         """``{name: (value, stderr)}`` per curve, named by its attractor (``rest``, ``inner``,
@@ -813,7 +993,7 @@ def critical_noise(
         _finite("t_end", t_end),
         _finite("transient", o["transient"]),
         None if dt is None else _finite("dt", dt),
-        _count("paths", paths),
+        _count("paths", paths, 1, _MAX_PATHS),
         _count("seed", seed),
         o["impact_memory"],
         o["method"],
@@ -1009,8 +1189,8 @@ class PhaseResponse:
     omega: float
     section: str
     impulse: float
-    theta: np.ndarray
-    z: np.ndarray
+    theta: np.ndarray = field(repr=False)
+    z: np.ndarray = field(repr=False)
     z_double: np.ndarray = field(repr=False)
     z_extrapolation: np.ndarray = field(repr=False)
     z_after: float
@@ -1171,17 +1351,273 @@ def _axis(name, a):
     return (str(key), _finite(f"{name} start", start), _finite(f"{name} stop", stop), _count(f"{name} count", count, 2))
 
 
-def rhythmicity_map(params, x, y, variant="paper", *, threads=None, progress=None):
-    """Stable-cycle counts of the averaged theory over the plane ``x = (key, start, stop,
-    count)`` × ``y = (…)``: ``(xs, ys, counts)`` with ``counts[iy, ix]`` (``trirhythm map``)."""
-    return _native._map(
-        _check_params(params), _axis("x", x), _axis("y", y), "rhythmicity", variant, threads, _progress(progress)
+@dataclass(repr=False)
+class FoldCurve:
+    """One fold curve of a map (``trirhythm map --folds``): where two cycles (or two extrema of
+    P(A)) meet and vanish, as arrays ``x``, ``y`` (the plane's parameters) and ``amplitude``
+    (the double root's A), in order along the curve; ``system`` (``"drift"``: f = ∂f/∂A = 0;
+    ``"fpk"``: the same for m1), and why each end ends it, ``start`` and ``end``
+    (``"border"``, ``"cusp"``, ``"zero_amplitude"``, ``"closed"``, ``"failed"``,
+    ``"step_limit"``, ``"unbounded"``)."""
+
+    x: np.ndarray
+    y: np.ndarray
+    amplitude: np.ndarray
+    system: str
+    start: str
+    end: str
+
+    def __repr__(self) -> str:
+        return f"FoldCurve({self.system}, {len(self.x)} points, {self.start} to {self.end})"
+
+
+@dataclass(repr=False)
+class Folds:
+    """The fold curves traced on a map: ``curves`` (``FoldCurve`` s), ``cusps`` (an (n, 3)
+    array of x, y, A where two fold curves meet), ``seeds`` (transitions examined) and
+    ``unlocated`` (seeds where no curve point was found); ``to_dict()`` is the library's
+    document, the ``folds`` of ``trirhythm map --folds --format json``."""
+
+    curves: list[FoldCurve]
+    cusps: np.ndarray
+    seeds: int
+    unlocated: int
+    document: dict
+
+    @classmethod
+    def _of(cls, doc: dict) -> "Folds":
+        col = lambda pts, k: np.array([_inf(q[k]) for q in pts])  # noqa: E731
+        return cls(
+            curves=[
+                FoldCurve(
+                    x=col(c["points"], "x"),
+                    y=col(c["points"], "y"),
+                    amplitude=col(c["points"], "amplitude"),
+                    system=str(c["system"]),
+                    start=str(c["start"]),
+                    end=str(c["end"]),
+                )
+                for c in doc["curves"]
+            ],
+            cusps=np.array([[_inf(q["x"]), _inf(q["y"]), _inf(q["amplitude"])] for q in doc["cusps"]]).reshape(-1, 3),
+            seeds=int(doc["seeds"]),
+            unlocated=int(doc["unlocated"]),
+            document=doc,
+        )
+
+    def to_dict(self) -> dict:
+        return self.document
+
+    def __repr__(self) -> str:
+        lines = [f"Folds({len(self.curves)} curves, {len(self.cusps)} cusps, {self.seeds} seeds, {self.unlocated} unlocated"]
+        lines += [f"  {c!r}," for c in self.curves[:16]]
+        if len(self.curves) > 16:
+            lines.append(f"  … {len(self.curves) - 16} more")
+        return "\n".join(lines) + ")"
+
+
+class PlaneMap(NamedTuple):
+    """A classified plane: ``x`` and ``y`` (the axes' values) and ``counts[iy, ix]``; unpacks
+    as ``xs, ys, counts = ...``."""
+
+    x: np.ndarray
+    y: np.ndarray
+    counts: np.ndarray
+
+
+class PlaneMapFolds(NamedTuple):
+    """A classified plane with its fold curves (``folds=True``): ``x``, ``y``,
+    ``counts[iy, ix]`` and ``folds`` (``Folds``); unpacks as ``xs, ys, counts, folds = ...``."""
+
+    x: np.ndarray
+    y: np.ndarray
+    counts: np.ndarray
+    folds: Folds
+
+
+def _plane(params, x, y, what, variant, threads, progress, folds):
+    xs, ys, counts, traced = _native._map(
+        _check_params(params), _axis("x", x), _axis("y", y), what, variant, threads, _progress(progress), bool(folds)
     )
+    if traced is None:
+        return PlaneMap(xs, ys, counts)
+    return PlaneMapFolds(xs, ys, counts, Folds._of(json.loads(traced)))
 
 
-def modes_map(params, x, y, variant="paper", *, threads=None, progress=None):
-    """Counts of the modes of the stationary P(A) (D > 0) over a plane, as ``rhythmicity_map``."""
-    return _native._map(_check_params(params), _axis("x", x), _axis("y", y), "modes", variant, threads, _progress(progress))
+@overload
+def rhythmicity_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = ...,
+    *,
+    folds: Literal[False] = ...,
+    threads: int | None = ...,
+    progress: Any = ...,
+) -> PlaneMap: ...
+@overload
+def rhythmicity_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = ...,
+    *,
+    folds: Literal[True],
+    threads: int | None = ...,
+    progress: Any = ...,
+) -> PlaneMapFolds: ...
+def rhythmicity_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = "paper",
+    *,
+    folds: bool = False,
+    threads: int | None = None,
+    progress=None,
+) -> PlaneMap | PlaneMapFolds:
+    """Stable-cycle counts of the averaged theory over the plane ``x = (key, start, stop,
+    count)`` × ``y = (…)``: a ``PlaneMap`` ``(xs, ys, counts)`` with ``counts[iy, ix]``
+    (``trirhythm map``); ``folds=True`` traces the fold curves through the map's transitions
+    (``trirhythm map --folds``, the same curves): a ``PlaneMapFolds`` ``(xs, ys, counts,
+    folds)``."""
+    return _plane(params, x, y, "rhythmicity", variant, threads, progress, folds)
+
+
+@overload
+def modes_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = ...,
+    *,
+    folds: Literal[False] = ...,
+    threads: int | None = ...,
+    progress: Any = ...,
+) -> PlaneMap: ...
+@overload
+def modes_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = ...,
+    *,
+    folds: Literal[True],
+    threads: int | None = ...,
+    progress: Any = ...,
+) -> PlaneMapFolds: ...
+def modes_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = "paper",
+    *,
+    folds: bool = False,
+    threads: int | None = None,
+    progress=None,
+) -> PlaneMap | PlaneMapFolds:
+    """Counts of the modes of the stationary P(A) (D > 0) over a plane, as ``rhythmicity_map``
+    (``trirhythm map --what modes``; ``folds=True``: the curves where two extrema of P(A)
+    meet)."""
+    return _plane(params, x, y, "modes", variant, threads, progress, folds)
+
+
+class BranchCurve(NamedTuple):
+    """One branch of a branch diagram, in order along its arclength: arrays ``param`` (the
+    swept parameter), ``amplitude`` and ``stable`` (a stable cycle, or a mode of P(A)), and why
+    its first and last points end it, ``start`` and ``end`` (as ``FoldCurve``'s)."""
+
+    param: np.ndarray
+    amplitude: np.ndarray
+    stable: np.ndarray
+    start: str
+    end: str
+
+
+@dataclass(repr=False)
+class Branches:
+    """Every branch of cycles (``what="rhythmicity"``) or of extrema of P(A) (``"modes"``)
+    against one parameter ``key`` over [``start``, ``stop``], traced through its folds
+    (``trirhythm branches``): ``branches`` (``BranchCurve`` s), ``folds`` (an (n, 2) array of
+    the saddle-nodes' parameter and amplitude), ``hopf`` (parameter values where a branch
+    reaches A = 0). ``to_dict()`` is the library's diagram, the document of ``trirhythm
+    branches --format json`` less its ``params`` and ``variant``."""
+
+    key: str
+    start: float
+    stop: float
+    what: str
+    branches: list[BranchCurve]
+    folds: np.ndarray
+    hopf: np.ndarray
+    document: dict
+
+    def to_dict(self) -> dict:
+        return self.document
+
+    def __repr__(self) -> str:
+        lines = [
+            f"Branches({self.what} against {self.key} in [{self.start:g}, {self.stop:g}]: {len(self.branches)} branches, "
+            f"{len(self.folds)} folds, {len(self.hopf)} Hopf points"
+        ]
+        for b in self.branches[:16]:
+            share = float(np.mean(b.stable)) if len(b.stable) else 0.0
+            lines.append(
+                f"  {len(b.param)} points, A in {_span(b.amplitude)}, {share:.0%} stable, {b.start} to {b.end},"
+            )
+        if len(self.branches) > 16:
+            lines.append(f"  … {len(self.branches) - 16} more")
+        return "\n".join(lines) + ")"
+
+
+def branches(
+    params: Params,
+    x: tuple[str, float, float],
+    what: str = "rhythmicity",
+    variant: str = "paper",
+    step: float = 0.004,
+    *,
+    threads: int | None = None,
+) -> Branches:
+    """The branch diagram of the averaged theory along ``x = (key, start, stop)``: every branch
+    of cycles (``what="rhythmicity"``) or of extrema of P(A) (``"modes"``, D > 0), traced by
+    continuation through its folds, with the largest step ``step`` (a fraction of the interval,
+    in [1e-6, 0.1]) — ``trirhythm branches --x KEY=START:STOP``, the same bits."""
+    try:
+        key, start, stop = x
+    except (TypeError, ValueError):
+        raise ValueError(f"invalid parameter x = {x!r}: expected (key, start, stop)") from None
+    text = _native._branches(
+        _check_params(params),
+        str(key),
+        _finite("x start", start),
+        _finite("x stop", stop),
+        what,
+        variant,
+        _finite("step", step),
+        threads,
+    )
+    doc = json.loads(text)
+    col = lambda pts, k, f=float: np.array([f(_inf(q[k])) if f is float else f(q[k]) for q in pts])  # noqa: E731
+    return Branches(
+        key=doc["key"],
+        start=_inf(doc["start"]),
+        stop=_inf(doc["stop"]),
+        what=str(doc["what"]),
+        branches=[
+            BranchCurve(
+                param=col(b["points"], "param"),
+                amplitude=col(b["points"], "amplitude"),
+                stable=np.array([bool(q["stable"]) for q in b["points"]], dtype=bool),
+                start=str(b["start"]),
+                end=str(b["end"]),
+            )
+            for b in doc["branches"]
+        ],
+        folds=np.array([[_inf(a), _inf(b)] for a, b in doc["folds"]]).reshape(-1, 2),
+        hopf=np.array([_inf(h) for h in doc["hopf"]]),
+        document=doc,
+    )
 
 
 def figure_data(n: int, quick: bool = False, variant: str = "paper", *, threads=None, progress=None) -> dict:

@@ -20,7 +20,9 @@ import inspect
 import itertools
 import json
 import os
+import re
 import tempfile
+import warnings
 from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
@@ -29,6 +31,13 @@ import numpy as np
 _UNSTABLE = {"wall_time_s", "steps_per_second"}
 # ensemble functions that can split their paths across tasks
 _SPLITTABLE = {"ensemble"}
+# an ensemble's diagnostics: one value per point, no standard error
+_DIAGNOSTICS = ("stationary", "r_hat", "ess")
+# the densities a sweep can record on common bins
+_DENSITIES = ("amplitude", "turning", "energy")
+# a density's bin i in a point's statistics (``density_amplitude[3]``), gathered into one
+# variable with a bin dimension when the Dataset is made
+_BIN = re.compile(r"^(.+)\[(\d+)\]$")
 
 
 def _named(func: str) -> Callable:
@@ -55,14 +64,23 @@ def _number(x):
 
 def statistics(result: Any) -> dict[str, tuple[float, float]]:
     """The scalar statistics of a result as ``{name: (value, stderr)}`` (stderr NaN where the
-    result gives none): an ``Ensemble``'s moments and occupancies, the ``{value, stderr}`` and
+    result gives none): an ``Ensemble``'s moments and occupancies with its diagnosis
+    (``stationary`` as 1 or 0, ``r_hat``, ``ess``; no standard error), the ``{value, stderr}`` and
     number fields of a dict (a Lyapunov exponent), a ``CriticalNoise``'s brackets, rest-regime
     statistics and coefficients (``CriticalNoise.statistics``), a ``Path``'s summary, a
     number, a ``(value, stderr)`` pair, or a dict of those (what a custom function returns)."""
     import trirhythm
 
     nan = float("nan")
-    if isinstance(result, (trirhythm.Ensemble, trirhythm.CriticalNoise)):
+    if isinstance(result, trirhythm.Ensemble):
+        st = result.stationarity
+        return {
+            **result.statistics(),
+            "stationary": (float(st.stationary), nan),
+            "r_hat": (st.r_hat, nan),
+            "ess": (st.ess, nan),
+        }
+    if isinstance(result, trirhythm.CriticalNoise):
         return result.statistics()
     if isinstance(result, trirhythm.Path):
         result = result.summary
@@ -112,14 +130,63 @@ def _point_args(func, point):
     return (point,), {}
 
 
-def _run_point(func, params, seed, kwargs):
-    """One point (runs on a worker): the function's statistics. A function without a seed
-    (a deterministic one, such as an oscillation boundary) is called without it."""
+def _densities(result, point, densities, variant) -> dict[str, tuple[float, float]]:
+    """An ensemble's densities ``densities`` (kinds) bin by bin, as statistics named
+    ``density_<kind>[i]`` with their standard errors, the fraction past the last edge
+    ``density_<kind>_beyond``, and for P(A) the averaged theory's density at the bin centres
+    in both variants, ``theory_amplitude_<variant>[i]`` (NaN where the theory does not apply:
+    D = 0, a model outside the paper's family), and the edges ``edges_<kind>[i]`` (the same at
+    every point where the range is: the sweep fixes ``amplitude_max``)."""
+    import trirhythm
+
+    nan = float("nan")
+    out: dict[str, tuple[float, float]] = {}
+    for kind in densities:
+        d = result.density(kind)
+        for i, (v, e) in enumerate(zip(d["density"], d["stderr"])):
+            out[f"density_{kind}[{i}]"] = (float(v), float(e))
+        out[f"density_{kind}_beyond"] = (d["beyond"], nan)
+        for i, x in enumerate(d["edges"]):
+            out[f"edges_{kind}[{i}]"] = (float(x), nan)
+        if kind == "amplitude":
+            edges = d["edges"]
+            centres = 0.5 * (edges[:-1] + edges[1:])
+            params = point.paper_params() if isinstance(point, trirhythm.Model) else point
+            for v in ("paper", "consistent"):
+                try:
+                    th = trirhythm.Theory(params, v).pdf("amplitude", list(centres))
+                except (ValueError, TypeError, RuntimeError):
+                    th = np.full(len(centres), nan)
+                for i, x in enumerate(th):
+                    out[f"theory_amplitude_{v}[{i}]"] = (float(x), nan)
+    return out
+
+
+def _ensemble_statistics(result, point, densities, kwargs):
+    out = statistics(result)
+    if densities:
+        out.update(_densities(result, point, densities, kwargs.get("variant", "paper")))
+    return out
+
+
+def _run_point(func, params, seed, kwargs, densities=()):
+    """One point (runs on a worker): the function's statistics (an ensemble's
+    ``NotStationaryWarning`` is not warned here: the sweep records ``stationary``, ``r_hat``
+    and ``ess`` per point and warns once). A function without a seed (a deterministic one,
+    such as an oscillation boundary) is called without it."""
+    import trirhythm
+
     f = _named(func) if isinstance(func, str) else func
     args, given = _point_args(func, params)
-    if _takes_seed(f):
-        return statistics(f(*args, seed=seed, **given, **kwargs))
-    return statistics(f(*args, **given, **kwargs))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", trirhythm.NotStationaryWarning)
+        if _takes_seed(f):
+            result = f(*args, seed=seed, **given, **kwargs)
+        else:
+            result = f(*args, **given, **kwargs)
+    if densities:
+        return _ensemble_statistics(result, params, densities, kwargs)
+    return statistics(result)
 
 
 def _run_chunk(func, params, seed, which, kwargs):
@@ -130,13 +197,16 @@ def _run_chunk(func, params, seed, which, kwargs):
     return trirhythm.ensemble_paths(*(args or (None,)), which, seed=seed, **given, **kwargs)
 
 
-def _merge_chunks(params, seed, kwargs, *pieces):
+def _merge_chunks(params, seed, kwargs, *pieces, densities=()):
     """One point's ensemble from its pieces (runs on a worker)."""
     import trirhythm
 
     kw = {k: v for k, v in kwargs.items() if k not in ("threads", "progress")}
     args, given = _point_args("ensemble", params)
-    return statistics(trirhythm.merge_paths(*(args or (None,)), pieces, seed=seed, **given, **kw))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", trirhythm.NotStationaryWarning)
+        result = trirhythm.merge_paths(*(args or (None,)), pieces, seed=seed, **given, **kw)
+    return _ensemble_statistics(result, params, densities, kwargs)
 
 
 def _describe(x):
@@ -251,7 +321,7 @@ class _Checkpoint:
 
 def sweep(
     func,
-    grid: Mapping[str, Sequence[float]],
+    grid: Mapping[str, Sequence[float] | np.ndarray],
     *,
     base,
     client=None,
@@ -259,6 +329,7 @@ def sweep(
     chunk_paths: int | None = None,
     checkpoint: str | os.PathLike | None = None,
     progress=None,
+    densities: bool | Sequence[str] = False,
     **kwargs,
 ):
     """Run ``func`` at every point of ``grid`` around ``base``: a ``Params`` (grid keys are
@@ -280,10 +351,22 @@ def sweep(
       many paths, merged exactly (the result does not depend on it).
     - ``checkpoint``: a directory keeping each finished point; a rerun resumes.
     - ``progress``: a callable ``f(done, total)`` over points, or ``True`` for a tqdm bar.
+    - ``densities``: with ``func="ensemble"``, ``True`` records P(A) at every point (or a list
+      of kinds: ``"amplitude"``, ``"turning"``, ``"energy"``) on common bins: the histogram
+      range ``amplitude_max`` is the one given, else the one the base's ensemble would choose,
+      the same at every point.
 
-    Returns an ``xarray.Dataset`` with one dimension per key of ``grid`` and, for every
-    statistic, a variable and its standard error ``<name>_stderr``; the attributes record the
-    function, the base parameters, the seed, the options and the trirhythm version.
+    Returns an ``xarray.Dataset`` with one dimension per key of ``grid`` (named as the key, and
+    ``"lambda"`` for ``"lambda_"``) and, for every statistic, a variable and its standard error
+    ``<name>_stderr``; for an ensemble also ``stationary`` (bool), ``r_hat`` and ``ess`` per
+    point (``inf`` where R̂ is infinite), with ``NotStationaryWarning`` warned once when some
+    point is not stationary; with ``densities``, ``density_<kind>`` and its
+    ``density_<kind>_stderr`` over the grid's dimensions and a bin dimension ``<kind>``
+    (coordinates: the bin centres, and ``<kind>_lo``, ``<kind>_hi`` its edges), the fraction
+    past the last edge ``density_<kind>_beyond``, and for P(A) the averaged theory's density
+    at the bin centres, ``theory_amplitude_paper`` and ``theory_amplitude_consistent``. The
+    attributes record the function, the base parameters, the seed, the options and the
+    trirhythm version.
     """
     import xarray as xr
 
@@ -295,7 +378,16 @@ def sweep(
         raise ValueError(f"invalid parameter seed = {seed!r}: allowed range is an integer, 0 or more")
     if not grid:
         raise ValueError("invalid parameter grid = {}: give at least one key with its values")
-    keys = list(grid)
+    given_keys = list(grid)
+    # `lambda` is a Python keyword: `lambda_` names the same parameter (and its dimension)
+    keys = [k[:-1] if isinstance(base, trirhythm.Params) and k.endswith("_") else k for k in given_keys]
+    for i, k in enumerate(keys):
+        if k in keys[:i]:
+            raise ValueError(
+                f"invalid parameter grid: keys {given_keys[keys.index(k)]!r} and {given_keys[i]!r} "
+                f"both set {k}; give one"
+            )
+    grid = dict(zip(keys, (grid[k] for k in given_keys)))
     values = []
     for k in keys:
         v = np.asarray(grid[k], dtype=float)
@@ -311,6 +403,21 @@ def sweep(
             raise ValueError(f"invalid parameter chunk_paths = {chunk_paths}: only func='ensemble' splits its paths")
         if isinstance(chunk_paths, bool) or not isinstance(chunk_paths, (int, np.integer)) or chunk_paths < 1:
             raise ValueError(f"invalid parameter chunk_paths = {chunk_paths!r}: allowed range is 1 or more")
+    kinds: tuple[str, ...] = ()
+    if densities is not False and densities is not None:
+        if func != "ensemble":
+            raise ValueError(f"invalid parameter densities = {densities!r}: only func='ensemble' records densities")
+        kinds = ("amplitude",) if densities is True else tuple(densities)
+        bad = [k for k in kinds if k not in _DENSITIES]
+        if bad or not kinds:
+            raise ValueError(
+                f"invalid parameter densities = {densities!r}: expected True or kinds among {', '.join(_DENSITIES)}"
+            )
+        if kwargs.get("method", "direct") != "direct":
+            raise ValueError(f"invalid parameter densities = {densities!r}: densities need method='direct'")
+        if kwargs.get("amplitude_max") is None:
+            # common bins: the range the base's ensemble chooses, for every point
+            kwargs["amplitude_max"] = trirhythm._ensemble_range(base, **kwargs)
     shape = tuple(len(v) for v in values)
     indices = list(itertools.product(*(range(n) for n in shape)))
     # every point valid before any work: a bad grid value names its key, value and range
@@ -326,6 +433,8 @@ def sweep(
         "kwargs": _describe({k: v for k, v in kwargs.items() if k not in ("threads", "progress")}),
         "trirhythm": trirhythm.__version__,
     }
+    if kinds:
+        description["densities"] = list(kinds)
     fingerprint = hashlib.sha256(json.dumps(description, sort_keys=True).encode()).hexdigest()
     store = _Checkpoint(checkpoint, fingerprint, description) if checkpoint is not None else None
 
@@ -348,12 +457,12 @@ def sweep(
     if client is None:
         for ix in todo:
             if chunk_paths is None:
-                stats = _run_point(func, points[ix], int(seed), kwargs)
+                stats = _run_point(func, points[ix], int(seed), kwargs, kinds)
             else:
                 paths = kwargs.get("paths", 8)
                 chunks = [list(range(a, min(a + chunk_paths, paths))) for a in range(0, paths, chunk_paths)]
                 pieces = [_run_chunk(func, points[ix], int(seed), c, kwargs) for c in chunks]
-                stats = _merge_chunks(points[ix], int(seed), kwargs, *pieces)
+                stats = _merge_chunks(points[ix], int(seed), kwargs, *pieces, densities=kinds)
             finished(ix, stats)
     else:
         from distributed import as_completed
@@ -362,12 +471,12 @@ def sweep(
         for ix in todo:
             p = points[ix]
             if chunk_paths is None:
-                fut = client.submit(_run_point, func, p, int(seed), kwargs, pure=False)
+                fut = client.submit(_run_point, func, p, int(seed), kwargs, kinds, pure=False)
             else:
                 paths = kwargs.get("paths", 8)
                 chunks = [list(range(a, min(a + chunk_paths, paths))) for a in range(0, paths, chunk_paths)]
                 pieces = [client.submit(_run_chunk, func, p, int(seed), c, kwargs, pure=False) for c in chunks]
-                fut = client.submit(_merge_chunks, p, int(seed), kwargs, *pieces, pure=False)
+                fut = client.submit(_merge_chunks, p, int(seed), kwargs, *pieces, densities=kinds, pure=False)
             futures[fut] = ix
         try:
             for fut in as_completed(list(futures)):
@@ -377,19 +486,65 @@ def sweep(
             raise
 
     names: list[str] = []
+    binned: dict[str, int] = {}
     for ix in indices:
         for k in results[ix]:
-            if k not in names:
+            m = _BIN.match(k)
+            if m:
+                binned[m.group(1)] = max(binned.get(m.group(1), 0), int(m.group(2)) + 1)
+            elif k not in names:
                 names.append(k)
-    data = {}
+    data: dict[str, Any] = {}
     for n in names:
         val = np.full(shape, np.nan)
         err = np.full(shape, np.nan)
         for ix in indices:
             if n in results[ix]:
                 val[ix], err[ix] = results[ix][n]
-        data[n] = (keys, val)
-        data[f"{n}_stderr"] = (keys, err)
+        if n in _DIAGNOSTICS:
+            if n == "stationary" and not np.isnan(val).any():
+                val = val.astype(bool)
+            data[n] = (keys, val)
+        elif n.startswith("theory_") or n.endswith("_beyond"):
+            data[n] = (keys, val)
+        else:
+            data[n] = (keys, val)
+            data[f"{n}_stderr"] = (keys, err)
+    coords: dict[str, Any] = {k: v for k, v in zip(keys, values)}
+    for n, bins in binned.items():
+        if n.startswith("edges_"):
+            continue
+        kind = n.split("_", 1)[1].rsplit("_", 1)[0] if n.startswith("theory_") else n.split("_", 1)[1]
+        val = np.full(shape + (bins,), np.nan)
+        err = np.full(shape + (bins,), np.nan)
+        for ix in indices:
+            for i in range(bins):
+                got = results[ix].get(f"{n}[{i}]")
+                if got is not None:
+                    val[ix + (i,)], err[ix + (i,)] = got
+        data[n] = ([*keys, kind], val)
+        if not n.startswith("theory_"):
+            data[f"{n}_stderr"] = ([*keys, kind], err)
+    for kind in kinds:
+        n = binned[f"edges_{kind}"]
+        edges = np.array([[results[ix][f"edges_{kind}[{i}]"][0] for i in range(n)] for ix in indices])
+        if (edges == edges[0]).all():
+            # common bins (P(A) and the turning amplitudes always; the energy's where ω1 is)
+            e = edges[0]
+            coords[kind] = 0.5 * (e[:-1] + e[1:])
+            coords[f"{kind}_lo"] = (kind, e[:-1])
+            coords[f"{kind}_hi"] = (kind, e[1:])
+        else:
+            data[f"{kind}_edges"] = ([*keys, f"{kind}_edge"], edges.reshape(shape + (n,)))
+    if "stationary" in data:
+        st = np.asarray(data["stationary"][1])
+        bad = int(np.sum(st == 0))
+        if bad:
+            warnings.warn(
+                f"sweep: {bad} of {st.size} points not stationary (the Dataset's stationary, r_hat, ess)",
+                trirhythm.NotStationaryWarning,
+                stacklevel=2,
+            )
     attrs = {
         "func": json.dumps(description["func"]),
         "base": json.dumps(description["base"]),
@@ -399,4 +554,14 @@ def sweep(
         "trirhythm": trirhythm.__version__,
         "fingerprint": fingerprint,
     }
-    return xr.Dataset(data, coords={k: v for k, v in zip(keys, values)}, attrs=attrs)
+    if "stationary" in data:
+        attrs["stationarity"] = (
+            f"{kwargs.get('method', 'direct')} estimator; stationary: every split-R̂ (mean amplitude, well "
+            "occupancies) ≤ 1.1 and the drift between the window's halves within 3 standard errors; r_hat: "
+            "the largest split-R̂ (inf: the paths never left their wells); ess: effective sample size of "
+            "the mean amplitude"
+        )
+    if kinds:
+        attrs["amplitude_max"] = float(kwargs["amplitude_max"])
+        attrs["densities"] = ", ".join(kinds)
+    return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -7,24 +7,32 @@ use super::recording::PathStats;
 use super::spec::{EnsembleSpec, Wells};
 use serde::{Deserialize, Serialize};
 
-/// The stationarity diagnosis.
+/// The stationarity diagnosis. Its numbers may be NaN or ±∞ (R̂ = ∞ where the paths never left
+/// their wells); JSON writes those as `"NaN"`, `"inf"`, `"-inf"` ([`crate::non_finite`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Stationarity {
     /// Split-R̂ of the mean amplitude.
+    #[serde(with = "crate::non_finite")]
     pub r_hat_amplitude: f64,
     /// Split-R̂ of each well's occupancy (NaN for a well never or always occupied).
+    #[serde(with = "crate::non_finite::vec")]
     pub r_hat_wells: Vec<f64>,
     /// The largest of them (the verdict's R̂).
+    #[serde(with = "crate::non_finite")]
     pub r_hat: f64,
     /// Effective sample size of the mean amplitude.
+    #[serde(with = "crate::non_finite")]
     pub ess: f64,
     /// (second half − first half) of the mean amplitude, and that in standard errors.
+    #[serde(with = "crate::non_finite")]
     pub drift: f64,
     /// The drift in standard errors.
+    #[serde(with = "crate::non_finite")]
     pub drift_z: f64,
     /// R̂ ≤ 1.1 everywhere and |drift_z| ≤ 3.
     pub stationary: bool,
     /// Window length that the R̂ scaling suggests for R̂ ≤ 1.1 (the length used when passed).
+    #[serde(with = "crate::non_finite")]
     pub suggested_length: f64,
 }
 
