@@ -242,12 +242,20 @@ pub fn theory_refusal(terms: Option<&GeneralTerms>) -> Option<String> {
         format!("damping.rayleigh.{k} = {}", t.rayleigh[k])
     } else if let Some(f) = &t.forcing {
         format!("forcing.amplitude = {}", f.amplitude)
+    } else if let Some(w) = t.walls.first() {
+        format!(
+            "wall.0.position = {} keeping {} ({} wall(s) other than the paper's at 0)",
+            w.position,
+            w.keep.name(),
+            t.walls.len()
+        )
     } else {
         return None;
     };
     Some(format!(
         "the averaged theory does not apply: the model has {term}, and the paper's formulas \
-         (Eq. 5, Zhuravlev, P(A)) are those of h = mu0*P(U), k = omega0^2*U without forcing"
+         (Eq. 5, Zhuravlev, P(A)) are those of h = mu0*P(U), k = omega0^2*U without forcing, \
+         with the wall at 0 or none"
     ))
 }
 

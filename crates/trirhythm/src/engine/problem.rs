@@ -183,6 +183,7 @@ impl Oscillator {
             if let Some(f) = &t.forcing {
                 f.validate()?;
             }
+            check_walls(&t.walls)?;
         }
         Ok(Oscillator { general, ..self })
     }
@@ -206,6 +207,38 @@ impl Oscillator {
     pub fn noise(&self) -> Noise {
         self.noise
     }
+}
+
+/// The General kernel's walls: at most two, each valid, two ordered (the lower keeping U
+/// above it, the upper below it, δ1 < δ2), as [`Model::validate`] checks them.
+fn check_walls(walls: &[crate::model::Wall]) -> Result<()> {
+    use crate::model::Keep;
+    if walls.len() > 2 {
+        return Err(Error::invalid(
+            "wall",
+            walls.len() as f64,
+            "at most 2 walls",
+        ));
+    }
+    for (i, w) in walls.iter().enumerate() {
+        w.validate(i)?;
+    }
+    if let [lower, upper] = walls {
+        if lower.keep != Keep::Above || upper.keep != Keep::Below {
+            return Err(Error::Malformed {
+                field: "wall".into(),
+                detail: "with two walls the first keeps U above it, the second below it".into(),
+            });
+        }
+        if upper.position <= lower.position {
+            return Err(Error::invalid(
+                "wall.1.position",
+                upper.position,
+                format!("({}, 1e6] (above wall.0.position)", Exact(lower.position)),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Most starts of one problem.
@@ -287,14 +320,16 @@ impl Problem {
     /// ```
     pub fn from_model(model: &Model) -> Result<Self> {
         let (family, terms) = model.engine_terms("the engine (Problem::from_model)")?;
-        let (u0, v0) = family.start;
-        Problem::new(Oscillator::new(&family.params)?.with_terms(terms)?)
-            .with_barrier(if family.wall {
-                Barrier::On
-            } else {
-                Barrier::Off
-            })?
-            .with_start(u0, v0)
+        // the start is set with the walls: the default start may lie beyond the model's walls
+        Problem {
+            starts: vec![family.start],
+            ..Problem::new(Oscillator::new(&family.params)?.with_terms(terms)?)
+        }
+        .with_barrier(if family.wall {
+            Barrier::On
+        } else {
+            Barrier::Off
+        })
     }
 
     /// The same problem with the General kernel's terms (Duffing, Rayleigh, forcing;
@@ -394,8 +429,10 @@ impl Problem {
                 "restoring.quintic"
             } else if !t.rayleigh.is_empty() {
                 "damping.rayleigh"
-            } else {
+            } else if t.forcing.is_some() {
                 "forcing.amplitude"
+            } else {
+                "wall"
             };
             let refuse = |assumption: &str, reason: String| Error::NotApplicable {
                 method: "the engine".into(),
@@ -410,6 +447,14 @@ impl Problem {
                          system = {:?}",
                         self.system
                     ),
+                ));
+            }
+            if !t.walls.is_empty() && self.barrier == Barrier::On {
+                return Err(refuse(
+                    "the model's walls only (Barrier::Off)",
+                    "wall: the model's walls replace the paper's wall at U = 0; the barrier \
+                     must be off"
+                        .into(),
                 ));
             }
         }
@@ -435,6 +480,20 @@ impl Problem {
             }
             if self.wall() && u0 < 0.0 {
                 return Err(Error::invalid("u0", u0, "[0, ∞) with the barrier on"));
+            }
+            let walls = self.oscillator.terms().map_or(&[][..], |t| &t.walls[..]);
+            for (i, w) in walls.iter().enumerate() {
+                if !w.allows(u0) {
+                    let side = match w.keep {
+                        crate::model::Keep::Above => format!("[{}, ∞)", Exact(w.position)),
+                        crate::model::Keep::Below => format!("(−∞, {}]", Exact(w.position)),
+                    };
+                    return Err(Error::invalid(
+                        "u0",
+                        u0,
+                        format!("{side}: wall.{i} keeps U {}", w.keep.name()),
+                    ));
+                }
             }
         }
         Ok(self)

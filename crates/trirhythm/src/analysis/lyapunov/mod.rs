@@ -474,8 +474,10 @@ pub fn run_paths(
     let (transient, window) = spec.sizes(method)?;
     super::check_indices(paths, spec.paths)?;
     if spec.method == LyapunovMethod::Tangent
-        && problem.oscillator().terms().is_some()
-        && problem.wall()
+        && problem
+            .oscillator()
+            .terms()
+            .is_some_and(|t| problem.wall() || !t.walls.is_empty())
     {
         return Err(crate::engine::general_wall_tangent());
     }

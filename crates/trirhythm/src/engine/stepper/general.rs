@@ -58,6 +58,7 @@
 
 use super::affine::{hermite_limiter, predictor_weight, predictor_weight_slope, Affine};
 use super::polynomial::Polynomial;
+use super::walls::Walls;
 use crate::maths;
 use crate::model::{GeneralTerms, Harmonic};
 
@@ -128,6 +129,9 @@ pub(crate) struct General {
     cubic: f64,
     quintic: f64,
     phase: Option<Phase>,
+    /// The model's walls when not the paper's (`super::walls`); None: no wall or the paper's
+    /// wall at 0 (the stepper's `wall`).
+    pub(super) walls: Option<Walls>,
 }
 
 /// The Rayleigh parts at a velocity v (x = v²): Σd_k x^k, Σ(2k+1)d_k x^k (∂_V of its V-term),
@@ -187,12 +191,13 @@ impl General {
             cubic: terms.cubic,
             quintic: terms.quintic,
             phase: terms.forcing.as_ref().map(|f| Phase::new(f, h)),
+            walls: Walls::new(&terms.walls),
         }
     }
 
     /// k(U) = ω0²U + k3U³ + k5U⁵.
     #[inline]
-    fn restoring(&self, u: f64) -> f64 {
+    pub(super) fn restoring(&self, u: f64) -> f64 {
         let x = u * u;
         u * (self.omega2 + x * (self.cubic + self.quintic * x))
     }
@@ -284,17 +289,19 @@ impl General {
         }
     }
 
-    /// g at the wall U = 0 without its forcing: h(0, V)V (k(0) = 0).
+    /// g at a wall U = δ without its forcing: h(δ, V)V − k(δ) (at δ = 0, h(0, V)V exactly:
+    /// k(0) = +0).
     #[inline]
-    pub(super) fn wall_drift(&self, v: f64) -> f64 {
-        (self.mu_p(0.0) + self.rayleigh_at(v).h) * v
+    pub(super) fn wall_drift(&self, delta: f64, v: f64) -> f64 {
+        (self.mu_p(delta) + self.rayleigh_at(v).h) * v - self.restoring(delta)
     }
 
-    /// The scheme's velocity at an impact: the root of V = N + w(h(0, V)V + forcing) (affine in
-    /// V without Rayleigh terms: solved at once; else Newton's method from that value, to
-    /// |ΔV| ≤ 1e-14(1 + |V|), at most 50 iterations).
-    pub(super) fn wall_velocity(&self, known: f64, w: f64, forcing: f64) -> f64 {
-        let a0 = self.mu_p(0.0);
+    /// The scheme's velocity at an impact on a wall U = δ: the root of
+    /// V = N + w(h(δ, V)V + forcing), `forcing` holding −k(δ) (affine in V without Rayleigh
+    /// terms: solved at once; else Newton's method from that value, to |ΔV| ≤ 1e-14(1 + |V|),
+    /// at most 50 iterations).
+    pub(super) fn wall_velocity(&self, delta: f64, known: f64, w: f64, forcing: f64) -> f64 {
+        let a0 = self.mu_p(delta);
         let mut v = (known + w * forcing) / (1.0 - w * a0);
         if self.rayleigh.is_empty() {
             return v;

@@ -91,7 +91,7 @@ impl Stepper {
         if let Some(g) = &self.general {
             // g at the wall is h(0, V)V + F cos ψ* + η* (module docs of `general`)
             forcing += g.force_at(theta);
-            v_at = g.wall_velocity(self.base + hs, ws, forcing);
+            v_at = g.wall_velocity(0.0, self.base + hs, ws, forcing);
         }
         Crossing {
             theta,
@@ -105,7 +105,7 @@ impl Stepper {
 
     /// Count an impact at θ of the step and report it as the step's event.
     #[inline]
-    fn record_impact(&mut self, theta: f64, v_minus: f64, v_plus: f64) {
+    pub(super) fn record_impact(&mut self, theta: f64, v_minus: f64, v_plus: f64) {
         self.impacts += 1;
         self.events.impact = Some(Impact {
             time: self.time() + theta * self.h,
@@ -117,7 +117,7 @@ impl Stepper {
     /// V(t*+) = V₊ exactly: restart the memory at the impact, or shift V's Volterra constant
     /// by the jump V₊ − V(t*).
     #[inline]
-    fn memory_at_impact(&mut self, v_at: f64, v_plus: f64) {
+    pub(super) fn memory_at_impact(&mut self, v_at: f64, v_plus: f64) {
         if self.restart {
             self.history.restart();
             self.base = v_plus;
@@ -182,8 +182,8 @@ impl Stepper {
         let g = self.general.as_deref().expect("a General path");
         let split = Split {
             theta,
-            before: g.wall_drift(v_at) + c.forcing,
-            after: g.wall_drift(v_plus) + c.forcing,
+            before: g.wall_drift(0.0, v_at) + c.forcing,
+            after: g.wall_drift(0.0, v_plus) + c.forcing,
             keep_before: !self.restart,
             mass: 0.0,
         };

@@ -153,6 +153,7 @@ mod polynomial;
 mod pulse;
 mod renormalise;
 mod tangent;
+mod walls;
 pub use lanes::{detected_lanes, Lanes, LANE_WIDTHS};
 pub(crate) use lanes::{group_lanes, Group};
 pub(crate) use tangent::{general_wall_tangent, Tangent};
@@ -433,6 +434,10 @@ impl Stepper {
     /// the noise's level plus F cos ψ.
     #[inline(never)]
     fn step_general(&mut self) -> Result<()> {
+        if let Some(walls) = self.general.as_deref().and_then(|g| g.walls) {
+            // the model's walls (offset, below, two, speed-dependent r): `walls`
+            return self.step_walls(walls);
+        }
         let (b, free) = self.begin_general();
         let (u1, v1) = free.end();
         if !self.wall {
