@@ -385,9 +385,16 @@ impl PyModel {
     }
 
     /// `(params, barrier, u0, v0)` of the model as the engine steps it today; `ValueError`
-    /// naming the term it does not step yet.
-    fn _engine(&self) -> PyResult<(PyParams, bool, f64, f64)> {
-        let f = self.0.paper_family("the engine").map_err(py_err)?;
+    /// naming the term it does not step yet. With `general`, the General kernel's terms
+    /// (Duffing, Rayleigh, forcing, walls other than the paper's) are stepped too (the caller
+    /// passes the model on, as `simulate` does); without it only the paper's family.
+    #[pyo3(signature = (general=false))]
+    fn _engine(&self, general: bool) -> PyResult<(PyParams, bool, f64, f64)> {
+        let f = if general {
+            self.0.engine_terms("the engine").map_err(py_err)?.0
+        } else {
+            self.0.paper_family("the engine").map_err(py_err)?
+        };
         Ok((PyParams(f.params), f.wall, f.start.0, f.start.1))
     }
 
@@ -519,7 +526,7 @@ impl PyTheory {
 
 /// One path (`simulate`): `(t, u, v, eta, summary_json)`; `eta` empty without noise.
 #[pyfunction]
-#[pyo3(signature = (params, t_end, dt, u0, v0, seed, path, every, system, barrier, memory, tolerance, impact_memory, threads=None, progress=None))]
+#[pyo3(signature = (params, t_end, dt, u0, v0, seed, path, every, system, barrier, memory, tolerance, impact_memory, threads=None, progress=None, of_model=None))]
 #[allow(clippy::too_many_arguments)]
 fn _simulate<'py>(
     py: Python<'py>,
@@ -538,6 +545,7 @@ fn _simulate<'py>(
     impact_memory: &str,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
+    of_model: Option<PyRef<'py, PyModel>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     if every == 0 {
         return Err(PyValueError::new_err(
@@ -546,8 +554,14 @@ fn _simulate<'py>(
     }
     let m = model(system, barrier, memory, tolerance)?;
     let method = m.method(dt, impact(impact_memory)?);
+    // a model's General kernel terms (Duffing, Rayleigh, forcing, its walls), as `--model`
+    let terms = match &of_model {
+        Some(m) => m.0.engine_terms("the engine").map_err(py_err)?.1,
+        None => None,
+    };
     let problem = m
         .problem(&params.0)
+        .and_then(|p| p.with_terms(terms))
         .and_then(|p| p.with_start(u0, v0))
         .map_err(py_err)?;
     let options = Options {

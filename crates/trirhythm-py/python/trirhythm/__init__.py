@@ -114,10 +114,12 @@ def _check_params(params) -> Params:
     return params
 
 
-def _from_model(model, params, given):
+def _from_model(model, params, given, general=False):
     """``(params, barrier, u0, v0)`` of ``model`` as the engine steps it today (``ValueError``
     naming a term it does not step yet); ``given`` holds the run's arguments that the model
-    file says instead (wall, start), refused when not ``None``."""
+    file says instead (wall, start), refused when not ``None``. With ``general`` the General
+    kernel's terms (Duffing, Rayleigh, forcing, walls other than the paper's) are accepted: the
+    caller passes ``model`` on to the engine."""
     if not isinstance(model, Model):
         raise ValueError(
             f"invalid parameter model = {model!r}: expected a trirhythm.Model (Model(**tables) or Model.load(path))"
@@ -130,7 +132,7 @@ def _from_model(model, params, given):
                 f"invalid parameter {name} = {value!r}: the model says the wall and the start "
                 "(its wall and start tables); leave it out with model="
             )
-    return model._engine()
+    return model._engine(general)
 
 
 @dataclass
@@ -168,10 +170,13 @@ def simulate(
     ``"zhuravlev"``), recorded every ``every`` steps: bit-identical to ``trirhythm simulate``
     with the same arguments. ``path`` picks noise stream ``path`` of ``seed`` (0: the
     command line's path). ``u0=1``, ``v0=0``, ``barrier=True`` unless given. ``model=`` (a
-    ``trirhythm.Model``) in place of ``params``: its parameters, wall and start, as
-    ``trirhythm simulate --model FILE``."""
+    ``trirhythm.Model``) in place of ``params``: its parameters, terms, walls and start, as
+    ``trirhythm simulate --model FILE`` (the General kernel's terms too: Duffing, Rayleigh,
+    forcing, a wall off 0 or keeping below, two walls, a speed-dependent restitution)."""
     if model is not None:
-        params, barrier, u0, v0 = _from_model(model, params, dict(u0=u0, v0=v0, barrier=barrier))
+        params, barrier, u0, v0 = _from_model(
+            model, params, dict(u0=u0, v0=v0, barrier=barrier), general=True
+        )
     u0 = 1.0 if u0 is None else u0
     v0 = 0.0 if v0 is None else v0
     barrier = True if barrier is None else barrier
@@ -192,6 +197,7 @@ def simulate(
         impact_memory,
         threads,
         _progress(progress),
+        model,
     )
     eta = d["eta"] if len(d["eta"]) else None
     return Path(d["t"], d["u"], d["v"], eta, json.loads(d["summary"]))

@@ -361,18 +361,22 @@ impl Problem {
         Problem { barrier, ..self }.checked()
     }
 
-    /// One start (U(0), U̇(0)) for every path.
+    /// One start (U(0), U̇(0)) for every path (on the allowed side of every wall).
     pub fn with_start(self, u0: f64, v0: f64) -> Result<Self> {
         self.with_starts(&[(u0, v0)])
     }
 
     /// Starts (U(0), U̇(0)) taken in turn: path i starts at `starts[i mod len]`.
     pub fn with_starts(self, starts: &[(f64, f64)]) -> Result<Self> {
-        Problem {
+        let p = Problem {
             starts: starts.to_vec(),
             ..self
         }
-        .checked()
+        .checked()?;
+        for &(u0, _) in &p.starts {
+            p.check_start_in_walls(u0)?;
+        }
+        Ok(p)
     }
 
     /// The bound on |U| and |U̇| beyond which a path has blown up, in (0, ∞].
@@ -481,22 +485,29 @@ impl Problem {
             if self.wall() && u0 < 0.0 {
                 return Err(Error::invalid("u0", u0, "[0, ∞) with the barrier on"));
             }
-            let walls = self.oscillator.terms().map_or(&[][..], |t| &t.walls[..]);
-            for (i, w) in walls.iter().enumerate() {
-                if !w.allows(u0) {
-                    let side = match w.keep {
-                        crate::model::Keep::Above => format!("[{}, ∞)", Exact(w.position)),
-                        crate::model::Keep::Below => format!("(−∞, {}]", Exact(w.position)),
-                    };
-                    return Err(Error::invalid(
-                        "u0",
-                        u0,
-                        format!("{side}: wall.{i} keeps U {}", w.keep.name()),
-                    ));
-                }
-            }
         }
         Ok(self)
+    }
+
+    /// Err naming u0 when a start lies beyond one of the General kernel's walls (checked by
+    /// [`Problem::with_starts`] and by every stepper at its start, not by the other setters:
+    /// a problem may take its walls before its start).
+    pub(crate) fn check_start_in_walls(&self, u0: f64) -> Result<()> {
+        let walls = self.oscillator.terms().map_or(&[][..], |t| &t.walls[..]);
+        for (i, w) in walls.iter().enumerate() {
+            if !w.allows(u0) {
+                let side = match w.keep {
+                    crate::model::Keep::Above => format!("[{}, ∞)", Exact(w.position)),
+                    crate::model::Keep::Below => format!("(−∞, {}]", Exact(w.position)),
+                };
+                return Err(Error::invalid(
+                    "u0",
+                    u0,
+                    format!("{side}: wall.{i} keeps U {}", w.keep.name()),
+                ));
+            }
+        }
+        Ok(())
     }
 }
 

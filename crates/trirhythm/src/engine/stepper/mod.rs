@@ -286,6 +286,7 @@ impl Stepper {
         if wall && u0 < 0.0 {
             return Err(Error::invalid("u0", u0, "[0, ∞) with the barrier on"));
         }
+        problem.check_start_in_walls(u0)?;
         let noise = NoiseStream::new(oscillator.noise(), h, seed, path)?;
         let (wl, wr) = history.current_weights();
         let general = oscillator
