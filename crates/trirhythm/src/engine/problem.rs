@@ -489,6 +489,20 @@ impl Problem {
         Ok(self)
     }
 
+    /// [δ1, δ2]: the interval the General kernel's walls keep U in (±∞ where there is no
+    /// such wall; (−∞, ∞) for the paper's wall, which [`Problem::wall`] says).
+    pub(crate) fn walls_interval(&self) -> (f64, f64) {
+        let walls = self.oscillator.terms().map_or(&[][..], |t| &t.walls[..]);
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        for w in walls {
+            match w.keep {
+                crate::model::Keep::Above => lo = w.position,
+                crate::model::Keep::Below => hi = w.position,
+            }
+        }
+        (lo, hi)
+    }
+
     /// Err naming u0 when a start lies beyond one of the General kernel's walls (checked by
     /// [`Problem::with_starts`] and by every stepper at its start, not by the other setters:
     /// a problem may take its walls before its start).

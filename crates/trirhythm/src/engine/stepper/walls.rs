@@ -158,8 +158,8 @@ impl Stepper {
         };
         let mut push = true;
         let mut clamped = false;
-        if self.stuck {
-            let side = walls.at(self.u).expect("a stuck path sits on a wall");
+        // a stuck path sits on its wall (a renormalised copy pulled off it is free again)
+        if let Some(side) = walls.at(self.u).filter(|_| self.stuck) {
             let delta = walls.law(side).position;
             if side.normal() * (u1 - delta) <= 0.0 {
                 // still pressed against the wall
@@ -169,6 +169,8 @@ impl Stepper {
             } else {
                 self.stuck = false;
             }
+        } else {
+            self.stuck = false;
         }
         if !clamped {
             if let Some(side) = walls.beyond(u1) {
