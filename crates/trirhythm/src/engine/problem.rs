@@ -1,9 +1,9 @@
 //! The problem and the method of a simulation: which equation ([`Problem`]: the
 //! [`Oscillator`] — the paper family's parameters and, optionally, the General kernel's terms
-//! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing; with [`System::Fractional`], the
-//! wall at 0 or none) —, the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
-//! discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and what one trajectory
-//! records ([`Options`]). Every driver — [`super::simulate`], the ensembles, the Lyapunov
+//! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing, walls other than the paper's; with
+//! [`System::Fractional`]) —, the [`System`], the [`Barrier`], the start and the blow-up
+//! bound), how it is discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and
+//! what one trajectory records ([`Options`]). Every driver — [`super::simulate`], the ensembles, the Lyapunov
 //! exponents, the oscillation search — takes the same [`Problem`]; its spec holds only what is
 //! its own. Results are in [`super::drivers`].
 
@@ -150,7 +150,9 @@ impl Oscillator {
     }
 
     /// The same oscillator with the General kernel's terms added (Duffing k3U³ + k5U⁵,
-    /// Rayleigh Σ d_k U̇^{2k}, F cos(Ωt + φ)); `None` or empty terms: the paper's equation.
+    /// Rayleigh Σ d_k U̇^{2k}, F cos(Ωt + φ), the model's walls); `None` or empty terms: the
+    /// paper's equation. The walls: at most two, the lower keeping U above it, the upper below,
+    /// δ1 < δ2 (they need [`Barrier::Off`]: they replace the paper's wall).
     /// Validated: |k3|, |k5| ≤ 1e6, at most 20 Rayleigh coefficients each |d_k| ≤ 1e6, the
     /// forcing's F ∈ [0, 1e6], Ω ∈ (0, 1e3], |φ| ≤ 1e6 (the model file's ranges).
     pub fn with_terms(self, terms: Option<GeneralTerms>) -> Result<Self> {
@@ -299,7 +301,8 @@ impl Problem {
     /// The problem a model file describes: its equation, its wall and its start, for the
     /// models the engine steps ([`Model::engine_terms`]): the paper's Eq. 1 with the wall at 0
     /// or none, additive white or OU noise, and the General kernel's terms — Duffing
-    /// k3U³ + k5U⁵, Rayleigh Σ d_k U̇^{2k}, harmonic forcing F cos(Ωt + φ). Every other
+    /// k3U³ + k5U⁵, Rayleigh Σ d_k U̇^{2k}, harmonic forcing F cos(Ωt + φ), any other walls
+    /// (offset, keeping below, two, speed-dependent r; the barrier then off). Every other
     /// term is refused with [`Error::NotApplicable`] naming it, never dropped. For
     /// `Model::from(&p)` this is `Problem::from_params(&p)` (the same value, hence the same
     /// paths, bit for bit: `tests/model_file.rs`, `tests/pinned.rs`).
@@ -332,8 +335,9 @@ impl Problem {
         })
     }
 
-    /// The same problem with the General kernel's terms (Duffing, Rayleigh, forcing;
-    /// [`Oscillator::with_terms`]); they need [`System::Fractional`] (the wall at 0 or none).
+    /// The same problem with the General kernel's terms (Duffing, Rayleigh, forcing, walls;
+    /// [`Oscillator::with_terms`]); they need [`System::Fractional`] (and walls of their own
+    /// [`Barrier::Off`]).
     pub fn with_terms(self, terms: Option<GeneralTerms>) -> Result<Self> {
         Problem {
             oscillator: self.oscillator.clone().with_terms(terms)?,

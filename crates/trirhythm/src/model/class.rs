@@ -13,7 +13,9 @@
 //! [`Params`] converts losslessly: `Model::from(&params).paper_params() == Some(params)`.
 //! [`Model::paper_family`] is the paper's family (refusing every other term by name,
 //! [`Error::NotApplicable`]); [`Model::engine_terms`] is what the engine steps: that family plus
-//! the General kernel's terms ([`GeneralTerms`]: Duffing, Rayleigh, forcing).
+//! the General kernel's terms ([`GeneralTerms`]: Duffing, Rayleigh, forcing, and every wall set
+//! other than the paper's — a wall at any δ keeping U above or below, two walls, a
+//! speed-dependent restitution).
 //!
 //! Reference: the paper's Eq. (1) and issue 36's class; `docs/model-file.md`.
 //!
@@ -70,8 +72,9 @@ pub struct PaperFamily {
 
 /// The terms of the class beyond the paper's family that the engine's General kernel steps
 /// (`engine::stepper::general`): the odd restoring terms k3U³ + k5U⁵, the Rayleigh damping
-/// Σ d_k U̇^{2k} in h, and the harmonic forcing F cos(Ωt + φ). The rest of the equation (μ0P(U),
-/// ω0, λ, the noise, the wall) is the [`PaperFamily`] beside it ([`Model::engine_terms`]).
+/// Σ d_k U̇^{2k} in h, the harmonic forcing F cos(Ωt + φ), and walls other than the paper's
+/// (`engine::stepper::walls`). The rest of the equation (μ0P(U), ω0, λ, the noise, the paper's
+/// wall at 0 if it is the model's) is the [`PaperFamily`] beside it ([`Model::engine_terms`]).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct GeneralTerms {
     /// k3, the coefficient of U³ in k(U).

@@ -1,6 +1,27 @@
 //! Impacts inside a step (one routine for the wall and for the Zhuravlev crossing): the
 //! crossing located on the step's cubic Hermite interpolant, the jump V₊ = ∓rV₋, and the rest
 //! of the step redone from the wall (module docs of [`super`]).
+//!
+//! # Equation
+//! At the wall U = 0 (keeping U ≥ 0): U̇₊ = −rU̇₋ (Eq. 1); at Eq. 9's crossing Z = 0:
+//! Ż₊ = rŻ₋. The model's other walls (any δ, keeping below, two walls, r(|U̇₋|)) are the
+//! General kernel's, in `super::walls`, which uses [`hermite_root`] and the bookkeeping here
+//! (`record_impact`, `memory_at_impact`).
+//!
+//! # Method
+//! θ ∈ (0, 1] of the step from the cubic Hermite interpolant of (U_n, V_n) → (U₁, V₁) (Newton
+//! inside a shrinking bracket); the scheme's V(t*) = (N + J(θ) + w_s F(t*))/(1 − w_s a(0)) (for
+//! the General kernel the root of V = N + w_s(h(0, V)V + F(t*)), `General::wall_velocity` at
+//! δ = 0); the jump; the memory holds it exactly (a split piece with g before and after, the
+//! Volterra constant shifted by V₊ − V(t*), or a restart); the rest of the step redone from
+//! (0, V₊).
+//!
+//! # Reference
+//! Diethelm, Ford & Freed (2002) for the scheme; model-class.md §4 for the walls.
+//!
+//! # Tests
+//! `newton_crossing_equals_bisection` below; `tests/impacts.rs`, `tests/pinned.rs` (the paper's
+//! impacts pinned bit for bit); `tests/walls.rs` (the model's walls).
 
 use super::{predictor_weight, Free, Impact, Split, Stepper};
 
