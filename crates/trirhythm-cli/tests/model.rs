@@ -160,10 +160,6 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
             format!("{BASE}[[fractional]]\ncoefficient = 0.1\norder = 0.5\n"),
         ),
         (
-            "wall.0.position",
-            BASE.replace("position = 0.0", "position = -0.5"),
-        ),
-        (
             "noise.multiplicative.intensity",
             format!("{BASE}[noise.multiplicative]\nintensity = 0.01\n"),
         ),
@@ -533,5 +529,91 @@ fn a_duffing_model_runs_through_simulate_and_ensemble_without_the_papers_theory(
             "{args:?}: {stderr}"
         );
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_two_wall_model_runs_through_simulate_and_ensemble_without_the_papers_theory() {
+    let dir = scratch_dir("model-walls");
+    // a linear oscillator between a wall at −1 (r = 0.8) and one at 1 (speed-dependent r)
+    let text = "format = 1\nleading = { lambda = 1.0 }\n\
+                damping = { mu0 = 0.05, coefficients = [-1.0] }\n\
+                restoring = { omega0 = 1.0 }\n\
+                wall = [{ position = -1.0, keep = \"above\", restitution = 0.8 }, \
+                { position = 1.0, keep = \"below\", restitution = { r0 = 0.9, r_fast = 0.6, \
+                speed = 1.0 } }]\n\
+                noise.additive = { intensity = 0.3 }\nstart = { u0 = 0.5 }\n";
+    let file = write(&dir, "walls.toml", text);
+    let said = ok_stdout(&["model", "check", &file]);
+    assert!(
+        said.contains("the engine steps it (the General kernel") && said.contains("two walls"),
+        "{said}"
+    );
+    let out_path = dir.join("sim.csv");
+    let out = run(&[
+        "simulate",
+        "--model",
+        &file,
+        "--t-end",
+        "100",
+        "--out",
+        out_path.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(&out_path).unwrap();
+    assert!(
+        csv.contains("walls: position=-1 keep=above restitution=0.8; position=1 keep=below"),
+        "{csv}"
+    );
+    let us: Vec<f64> = csv
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with('t'))
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(us.len(), 10_001);
+    assert!(
+        us.iter().all(|u| (-1.0..=1.0).contains(u)),
+        "between the walls"
+    );
+    // it meets both walls
+    assert!(us.iter().any(|&u| u < -0.95) && us.iter().any(|&u| u > 0.95));
+    let ensemble = [
+        "ensemble",
+        "--model",
+        &file,
+        "--t-end",
+        "50",
+        "--burn-in",
+        "10",
+        "--paths",
+        "2",
+    ];
+    // no theory to choose the histogram's range from: refused, naming the walls
+    let out = run(&ensemble);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("amplitude_max") && stderr.contains("two walls"),
+        "{stderr}"
+    );
+    let json = ok_stdout(&[&ensemble[..], &["--amplitude-max", "3", "--format", "json"]].concat());
+    let doc: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert!(doc["terms"]
+        .as_str()
+        .unwrap()
+        .contains("walls: position=-1"));
+    for variant in ["paper", "consistent"] {
+        let error = doc["theory"][variant]["error"].as_str().unwrap();
+        assert!(error.contains("does not apply"), "{variant}: {error}");
+    }
+    // the tangent method refuses it, saying why
+    let out = run(&["lyapunov", "--model", &file, "--method", "tangent"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("saltation"));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -243,12 +243,20 @@ pub fn theory_refusal(terms: Option<&GeneralTerms>) -> Option<String> {
         format!("damping.rayleigh.{k} = {}", t.rayleigh[k])
     } else if let Some(f) = &t.forcing {
         format!("forcing.amplitude = {}", f.amplitude)
+    } else if let Some(w) = t.walls.first() {
+        format!(
+            "wall.0.position = {} keeping {} ({} wall(s) other than the paper's at 0)",
+            w.position,
+            w.keep.name(),
+            t.walls.len()
+        )
     } else {
         return None;
     };
     Some(format!(
         "the averaged theory does not apply: the model has {term}, and the paper's formulas \
-         (Eq. 5, Zhuravlev, P(A)) are those of h = mu0*P(U), k = omega0^2*U without forcing"
+         (Eq. 5, Zhuravlev, P(A)) are those of h = mu0*P(U), k = omega0^2*U without forcing, \
+         with the wall at 0 or none"
     ))
 }
 
@@ -267,6 +275,20 @@ fn class_model(
         m.restoring.quintic = t.quintic;
         m.damping.rayleigh = t.rayleigh.clone();
         m.forcing = t.forcing;
+        if !t.walls.is_empty() {
+            // walls other than the paper's (offset, below, two, r(v)): the model's own, with a
+            // start between them (the theory does not use it; the model must be valid)
+            m.walls = t.walls.clone();
+            use trirhythm::model::Keep;
+            let lower = t.walls.iter().find(|w| w.keep == Keep::Above);
+            let upper = t.walls.iter().find(|w| w.keep == Keep::Below);
+            m.start.u0 = match (lower, upper) {
+                (Some(l), Some(u)) => 0.5 * (l.position + u.position),
+                (Some(l), None) => l.position.max(m.start.u0),
+                (None, Some(u)) => u.position.min(m.start.u0),
+                (None, None) => m.start.u0,
+            };
+        }
     }
     m
 }

@@ -197,3 +197,31 @@ def test_the_own_oscillator_example_runs_from_its_model_file():
     assert out.returncode == 0, out.stderr
     assert "theory (consistent): occupancy 0.6571" in out.stdout
     assert out.stdout.count("inner well's occupancy") == 4
+
+
+def test_simulate_steps_a_model_with_two_walls_as_the_command_line():
+    """A linear oscillator between a wall at -0.5 and one at 0.8 with r = 1 (the General
+    kernel's walls): U stays between them, both are met, and the period is the exact
+    2(asin 0.8 + asin 0.5) of the harmonic arcs."""
+    import math
+
+    m = tr.Model(
+        leading={"lambda": 1.0},
+        damping={"mu0": 1.0, "coefficients": [0.0]},
+        restoring={"omega0": 1.0},
+        wall=[
+            {"position": -0.5, "keep": "above", "restitution": 1.0},
+            {"position": 0.8, "keep": "below", "restitution": 1.0},
+        ],
+        start={"u0": 0.0, "v0": 1.0},
+    )
+    p = tr.simulate(model=m, t_end=30.0, dt=0.005)
+    assert p.u.min() >= -0.5 and p.u.max() <= 0.8
+    assert p.summary["impacts"] > 15
+    # upward crossings of U = 0: one per period
+    ups = [p.t[i] for i in range(1, len(p.u)) if p.u[i - 1] < 0.0 <= p.u[i]]
+    period = (ups[-1] - ups[0]) / (len(ups) - 1)
+    exact = 2.0 * (math.asin(0.8) + math.asin(0.5))
+    assert abs(period - exact) < 1e-3 * exact, (period, exact)
+    with pytest.raises(ValueError, match="u0 = 2.0: the model says"):
+        tr.simulate(model=m, u0=2.0)

@@ -140,34 +140,6 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
                 }]
             }),
         ),
-        ("wall.0.position", Box::new(|m| m.walls[0].position = -0.5)),
-        (
-            "wall.0.keep",
-            Box::new(|m| {
-                m.walls[0].keep = Keep::Below;
-                m.start.u0 = -1.0;
-            }),
-        ),
-        (
-            "wall.0.restitution",
-            Box::new(|m| {
-                m.walls[0].restitution = Restitution::Speed(SpeedRestitution {
-                    r0: 0.9,
-                    r_fast: 0.5,
-                    speed: 1.0,
-                })
-            }),
-        ),
-        (
-            "wall has two walls",
-            Box::new(|m| {
-                m.walls.push(Wall {
-                    position: 3.0,
-                    keep: Keep::Below,
-                    restitution: Restitution::Constant(0.9),
-                })
-            }),
-        ),
         (
             "noise.multiplicative.intensity",
             Box::new(|m| {
@@ -225,6 +197,47 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
             assert_eq!(p.wall(), wall, "{name}");
             assert_eq!(m.paper_params(), None, "{name}");
         }
+    }
+    // walls other than the paper's (off 0, keeping below, two, speed-dependent r) are the
+    // General kernel's: stepped, the paper's barrier off
+    let walls: Vec<(&str, General)> = vec![
+        ("wall.0.position", Box::new(|m| m.walls[0].position = -0.5)),
+        (
+            "wall.0.keep",
+            Box::new(|m| {
+                m.walls[0].keep = Keep::Below;
+                m.start.u0 = -1.0;
+            }),
+        ),
+        (
+            "wall.0.restitution",
+            Box::new(|m| {
+                m.walls[0].restitution = Restitution::Speed(SpeedRestitution {
+                    r0: 0.9,
+                    r_fast: 0.5,
+                    speed: 1.0,
+                })
+            }),
+        ),
+        (
+            "two walls",
+            Box::new(|m| {
+                m.walls.push(Wall {
+                    position: 3.0,
+                    keep: Keep::Below,
+                    restitution: Restitution::Constant(0.9),
+                })
+            }),
+        ),
+    ];
+    for (name, change) in walls {
+        let mut m = base.clone();
+        change(&mut m);
+        let p = Problem::from_model(&m).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let terms = p.oscillator().terms().expect("the General kernel");
+        assert_eq!(terms.walls, m.walls, "{name}");
+        assert!(!p.wall(), "{name}");
+        assert_eq!(m.paper_params(), None, "{name}");
     }
     // present with a zero coefficient is absent: the same problem
     let mut zero = base.clone();

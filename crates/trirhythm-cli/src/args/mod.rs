@@ -178,8 +178,9 @@ impl ParamArgs {
 pub struct ModelFileArg {
     /// A model file (`trirhythm model show` prints one): the equation, the wall and the start,
     /// in place of --preset, --barrier and --u0/--v0; --param KEY=VALUE still overrides its
-    /// parameters. The engine steps the paper's family and Duffing, Rayleigh and forcing terms
-    /// (no wall or the wall at 0); other terms are refused.
+    /// parameters. The engine steps the paper's family and Duffing, Rayleigh and forcing terms,
+    /// with no wall, one wall at any position (keeping U above or below it) or two walls, each
+    /// with a constant or speed-dependent restitution; other terms are refused.
     #[arg(long = "model", value_name = "FILE", conflicts_with = "preset")]
     pub model: Option<PathBuf>,
 }
@@ -187,8 +188,8 @@ pub struct ModelFileArg {
 impl ModelFileArg {
     /// The file's model as the engine steps it (none without `--model`): read, validated,
     /// and refused by name where it has a term the engine does not step; the paper family's
-    /// part and the General kernel's terms (Duffing, Rayleigh, forcing; none for the paper's
-    /// family).
+    /// part and the General kernel's terms (Duffing, Rayleigh, forcing, walls other than the
+    /// paper's; none for the paper's family).
     #[allow(clippy::type_complexity)]
     pub fn load(
         &self,
@@ -411,7 +412,7 @@ pub struct ModelArgs {
     /// Relative tolerance of the sum-of-exponentials kernel (checked at start-up).
     #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
     pub tolerance: f64,
-    /// The General kernel's terms of a `--model` file (Duffing, Rayleigh, forcing).
+    /// The General kernel's terms of a `--model` file (Duffing, Rayleigh, forcing, walls).
     #[arg(skip)]
     pub terms: Option<trirhythm::model::GeneralTerms>,
 }

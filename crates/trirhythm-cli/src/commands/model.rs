@@ -76,11 +76,16 @@ fn check(a: &CheckArgs) -> Result<()> {
         Ok((f, terms)) => format!(
             "the engine steps it ({}, {}, {} noise): {}",
             if terms.is_some() {
-                "the General kernel: Duffing, Rayleigh or forcing terms"
+                "the General kernel: Duffing, Rayleigh, forcing or wall terms"
             } else {
                 "the paper's family"
             },
-            if f.wall { "wall at U = 0" } else { "no wall" },
+            match terms.as_ref().map_or(0, |t| t.walls.len()) {
+                0 if f.wall => "wall at U = 0",
+                0 => "no wall",
+                1 => "one wall (the General kernel's)",
+                _ => "two walls",
+            },
             if f.params.noise_intensity == 0.0 {
                 "no"
             } else if f.params.correlation_time == 0.0 {

@@ -225,8 +225,9 @@ def simulate(
     ``"zhuravlev"``), recorded every ``every`` steps: bit-identical to ``trirhythm simulate``
     with the same arguments. ``path`` picks noise stream ``path`` of ``seed`` (0: the
     command line's path). ``u0=1``, ``v0=0``, ``barrier=True`` unless given. ``model=`` (a
-    ``trirhythm.Model``) in place of ``params``: its parameters, wall and start, as
-    ``trirhythm simulate --model FILE``."""
+    ``trirhythm.Model``) in place of ``params``: its parameters, terms, walls and start, as
+    ``trirhythm simulate --model FILE`` (the General kernel's terms too: Duffing, Rayleigh,
+    forcing, a wall off 0 or keeping below, two walls, a speed-dependent restitution)."""
     if model is not None:
         params, barrier, u0, v0 = _from_model(model, params, dict(u0=u0, v0=v0, barrier=barrier))
     u0 = 1.0 if u0 is None else u0

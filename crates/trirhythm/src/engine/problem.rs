@@ -1,9 +1,9 @@
 //! The problem and the method of a simulation: which equation ([`Problem`]: the
 //! [`Oscillator`] — the paper family's parameters and, optionally, the General kernel's terms
-//! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing; with [`System::Fractional`], the
-//! wall at 0 or none) —, the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
-//! discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and what one trajectory
-//! records ([`Options`]). Every driver — [`super::simulate`], the ensembles, the Lyapunov
+//! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing, walls other than the paper's; with
+//! [`System::Fractional`]) —, the [`System`], the [`Barrier`], the start and the blow-up
+//! bound), how it is discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and
+//! what one trajectory records ([`Options`]). Every driver — [`super::simulate`], the ensembles, the Lyapunov
 //! exponents, the oscillation search — takes the same [`Problem`]; its spec holds only what is
 //! its own. Results are in [`super::drivers`].
 
@@ -150,7 +150,9 @@ impl Oscillator {
     }
 
     /// The same oscillator with the General kernel's terms added (Duffing k3U³ + k5U⁵,
-    /// Rayleigh Σ d_k U̇^{2k}, F cos(Ωt + φ)); `None` or empty terms: the paper's equation.
+    /// Rayleigh Σ d_k U̇^{2k}, F cos(Ωt + φ), the model's walls); `None` or empty terms: the
+    /// paper's equation. The walls: at most two, the lower keeping U above it, the upper below,
+    /// δ1 < δ2 (they need [`Barrier::Off`]: they replace the paper's wall).
     /// Validated: |k3|, |k5| ≤ 1e6, at most 20 Rayleigh coefficients each |d_k| ≤ 1e6, the
     /// forcing's F ∈ [0, 1e6], Ω ∈ (0, 1e3], |φ| ≤ 1e6 (the model file's ranges).
     pub fn with_terms(self, terms: Option<GeneralTerms>) -> Result<Self> {
@@ -183,6 +185,7 @@ impl Oscillator {
             if let Some(f) = &t.forcing {
                 f.validate()?;
             }
+            check_walls(&t.walls)?;
         }
         Ok(Oscillator { general, ..self })
     }
@@ -206,6 +209,38 @@ impl Oscillator {
     pub fn noise(&self) -> Noise {
         self.noise
     }
+}
+
+/// The General kernel's walls: at most two, each valid, two ordered (the lower keeping U
+/// above it, the upper below it, δ1 < δ2), as [`Model::validate`] checks them.
+fn check_walls(walls: &[crate::model::Wall]) -> Result<()> {
+    use crate::model::Keep;
+    if walls.len() > 2 {
+        return Err(Error::invalid(
+            "wall",
+            walls.len() as f64,
+            "at most 2 walls",
+        ));
+    }
+    for (i, w) in walls.iter().enumerate() {
+        w.validate(i)?;
+    }
+    if let [lower, upper] = walls {
+        if lower.keep != Keep::Above || upper.keep != Keep::Below {
+            return Err(Error::Malformed {
+                field: "wall".into(),
+                detail: "with two walls the first keeps U above it, the second below it".into(),
+            });
+        }
+        if upper.position <= lower.position {
+            return Err(Error::invalid(
+                "wall.1.position",
+                upper.position,
+                format!("({}, 1e6] (above wall.0.position)", Exact(lower.position)),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Most starts of one problem.
@@ -266,7 +301,8 @@ impl Problem {
     /// The problem a model file describes: its equation, its wall and its start, for the
     /// models the engine steps ([`Model::engine_terms`]): the paper's Eq. 1 with the wall at 0
     /// or none, additive white or OU noise, and the General kernel's terms — Duffing
-    /// k3U³ + k5U⁵, Rayleigh Σ d_k U̇^{2k}, harmonic forcing F cos(Ωt + φ). Every other
+    /// k3U³ + k5U⁵, Rayleigh Σ d_k U̇^{2k}, harmonic forcing F cos(Ωt + φ), any other walls
+    /// (offset, keeping below, two, speed-dependent r; the barrier then off). Every other
     /// term is refused with [`Error::NotApplicable`] naming it, never dropped. For
     /// `Model::from(&p)` this is `Problem::from_params(&p)` (the same value, hence the same
     /// paths, bit for bit: `tests/model_file.rs`, `tests/pinned.rs`).
@@ -287,18 +323,21 @@ impl Problem {
     /// ```
     pub fn from_model(model: &Model) -> Result<Self> {
         let (family, terms) = model.engine_terms("the engine (Problem::from_model)")?;
-        let (u0, v0) = family.start;
-        Problem::new(Oscillator::new(&family.params)?.with_terms(terms)?)
-            .with_barrier(if family.wall {
-                Barrier::On
-            } else {
-                Barrier::Off
-            })?
-            .with_start(u0, v0)
+        // the start is set with the walls: the default start may lie beyond the model's walls
+        Problem {
+            starts: vec![family.start],
+            ..Problem::new(Oscillator::new(&family.params)?.with_terms(terms)?)
+        }
+        .with_barrier(if family.wall {
+            Barrier::On
+        } else {
+            Barrier::Off
+        })
     }
 
-    /// The same problem with the General kernel's terms (Duffing, Rayleigh, forcing;
-    /// [`Oscillator::with_terms`]); they need [`System::Fractional`] (the wall at 0 or none).
+    /// The same problem with the General kernel's terms (Duffing, Rayleigh, forcing, walls;
+    /// [`Oscillator::with_terms`]); they need [`System::Fractional`] (and walls of their own
+    /// [`Barrier::Off`]).
     pub fn with_terms(self, terms: Option<GeneralTerms>) -> Result<Self> {
         Problem {
             oscillator: self.oscillator.clone().with_terms(terms)?,
@@ -326,18 +365,22 @@ impl Problem {
         Problem { barrier, ..self }.checked()
     }
 
-    /// One start (U(0), U̇(0)) for every path.
+    /// One start (U(0), U̇(0)) for every path (on the allowed side of every wall).
     pub fn with_start(self, u0: f64, v0: f64) -> Result<Self> {
         self.with_starts(&[(u0, v0)])
     }
 
     /// Starts (U(0), U̇(0)) taken in turn: path i starts at `starts[i mod len]`.
     pub fn with_starts(self, starts: &[(f64, f64)]) -> Result<Self> {
-        Problem {
+        let p = Problem {
             starts: starts.to_vec(),
             ..self
         }
-        .checked()
+        .checked()?;
+        for &(u0, _) in &p.starts {
+            p.check_start_in_walls(u0)?;
+        }
+        Ok(p)
     }
 
     /// The bound on |U| and |U̇| beyond which a path has blown up, in (0, ∞].
@@ -394,8 +437,10 @@ impl Problem {
                 "restoring.quintic"
             } else if !t.rayleigh.is_empty() {
                 "damping.rayleigh"
-            } else {
+            } else if t.forcing.is_some() {
                 "forcing.amplitude"
+            } else {
+                "wall"
             };
             let refuse = |assumption: &str, reason: String| Error::NotApplicable {
                 method: "the engine".into(),
@@ -410,6 +455,14 @@ impl Problem {
                          system = {:?}",
                         self.system
                     ),
+                ));
+            }
+            if !t.walls.is_empty() && self.barrier == Barrier::On {
+                return Err(refuse(
+                    "the model's walls only (Barrier::Off)",
+                    "wall: the model's walls replace the paper's wall at U = 0; the barrier \
+                     must be off"
+                        .into(),
                 ));
             }
         }
@@ -438,6 +491,41 @@ impl Problem {
             }
         }
         Ok(self)
+    }
+
+    /// [δ1, δ2]: the interval the General kernel's walls keep U in (±∞ where there is no
+    /// such wall; (−∞, ∞) for the paper's wall, which [`Problem::wall`] says).
+    pub(crate) fn walls_interval(&self) -> (f64, f64) {
+        let walls = self.oscillator.terms().map_or(&[][..], |t| &t.walls[..]);
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        for w in walls {
+            match w.keep {
+                crate::model::Keep::Above => lo = w.position,
+                crate::model::Keep::Below => hi = w.position,
+            }
+        }
+        (lo, hi)
+    }
+
+    /// Err naming u0 when a start lies beyond one of the General kernel's walls (checked by
+    /// [`Problem::with_starts`] and by every stepper at its start, not by the other setters:
+    /// a problem may take its walls before its start).
+    pub(crate) fn check_start_in_walls(&self, u0: f64) -> Result<()> {
+        let walls = self.oscillator.terms().map_or(&[][..], |t| &t.walls[..]);
+        for (i, w) in walls.iter().enumerate() {
+            if !w.allows(u0) {
+                let side = match w.keep {
+                    crate::model::Keep::Above => format!("[{}, ∞)", Exact(w.position)),
+                    crate::model::Keep::Below => format!("(−∞, {}]", Exact(w.position)),
+                };
+                return Err(Error::invalid(
+                    "u0",
+                    u0,
+                    format!("{side}: wall.{i} keeps U {}", w.keep.name()),
+                ));
+            }
+        }
+        Ok(())
     }
 }
 

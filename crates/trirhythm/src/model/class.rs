@@ -13,7 +13,9 @@
 //! [`Params`] converts losslessly: `Model::from(&params).paper_params() == Some(params)`.
 //! [`Model::paper_family`] is the paper's family (refusing every other term by name,
 //! [`Error::NotApplicable`]); [`Model::engine_terms`] is what the engine steps: that family plus
-//! the General kernel's terms ([`GeneralTerms`]: Duffing, Rayleigh, forcing).
+//! the General kernel's terms ([`GeneralTerms`]: Duffing, Rayleigh, forcing, and every wall set
+//! other than the paper's — a wall at any δ keeping U above or below, two walls, a
+//! speed-dependent restitution).
 //!
 //! Reference: the paper's Eq. (1) and issue 36's class; `docs/model-file.md`.
 //!
@@ -70,8 +72,9 @@ pub struct PaperFamily {
 
 /// The terms of the class beyond the paper's family that the engine's General kernel steps
 /// (`engine::stepper::general`): the odd restoring terms k3U³ + k5U⁵, the Rayleigh damping
-/// Σ d_k U̇^{2k} in h, and the harmonic forcing F cos(Ωt + φ). The rest of the equation (μ0P(U),
-/// ω0, λ, the noise, the wall) is the [`PaperFamily`] beside it ([`Model::engine_terms`]).
+/// Σ d_k U̇^{2k} in h, the harmonic forcing F cos(Ωt + φ), and walls other than the paper's
+/// (`engine::stepper::walls`). The rest of the equation (μ0P(U), ω0, λ, the noise, the paper's
+/// wall at 0 if it is the model's) is the [`PaperFamily`] beside it ([`Model::engine_terms`]).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct GeneralTerms {
     /// k3, the coefficient of U³ in k(U).
@@ -83,6 +86,11 @@ pub struct GeneralTerms {
     pub rayleigh: Vec<f64>,
     /// F cos(Ωt + φ), with F ≠ 0.
     pub forcing: Option<Harmonic>,
+    /// The walls when they are not the paper's (none, or one at U = 0 keeping U ≥ 0 with a
+    /// constant r, which stay in [`PaperFamily::wall`]): one wall at any δ keeping U above or
+    /// below it, or two at δ1 < δ2 (lower keeping above, upper keeping below), each with a
+    /// constant or speed-dependent restitution (`engine::stepper::walls`). Empty otherwise.
+    pub walls: Vec<Wall>,
 }
 
 impl GeneralTerms {
@@ -92,6 +100,7 @@ impl GeneralTerms {
             && self.quintic == 0.0
             && self.rayleigh.is_empty()
             && self.forcing.is_none()
+            && self.walls.is_empty()
     }
 
     /// `cubic=… quintic=… rayleigh=[…] forcing: amplitude=… frequency=… phase=…` (or
@@ -111,12 +120,49 @@ impl GeneralTerms {
             ),
             None => "none".to_string(),
         };
-        format!(
+        let mut line = format!(
             "cubic={} quintic={} rayleigh=[{}] forcing: {forcing}",
             Exact(self.cubic),
             Exact(self.quintic),
             rayleigh.join(",")
-        )
+        );
+        // the paper's wall (or none) is said elsewhere; so are the lines without these walls
+        if !self.walls.is_empty() {
+            let walls: Vec<String> = self.walls.iter().map(describe_wall).collect();
+            line.push_str(&format!(" walls: {}", walls.join("; ")));
+        }
+        line
+    }
+}
+
+/// `position=… keep=… restitution=…` (or `restitution=r0:…,r_fast:…,speed:…`).
+fn describe_wall(w: &Wall) -> String {
+    let r = match w.restitution {
+        Restitution::Constant(r) => Exact(r).to_string(),
+        Restitution::Speed(s) => format!(
+            "r0:{},r_fast:{},speed:{}",
+            Exact(s.r0),
+            Exact(s.r_fast),
+            Exact(s.speed)
+        ),
+    };
+    format!(
+        "position={} keep={} restitution={r}",
+        Exact(w.position),
+        w.keep.name()
+    )
+}
+
+/// Whether `walls` are the paper's: none, or one at U = 0 keeping U ≥ 0 with a constant r.
+fn paper_walls(walls: &[Wall]) -> bool {
+    match walls {
+        [] => true,
+        [w] => {
+            w.position == 0.0
+                && w.keep == Keep::Above
+                && matches!(w.restitution, Restitution::Constant(_))
+        }
+        _ => false,
     }
 }
 
@@ -367,11 +413,12 @@ impl Model {
     }
 
     /// The model as the engine steps it: the paper family's part ([`Model::paper_family`]) and
-    /// the General kernel's terms (Duffing k3, k5; Rayleigh d_k; harmonic forcing), None when
-    /// there are none (the paper's kernel, the paper's bits). Refused by name with
-    /// [`Error::NotApplicable`] for `method`: fractional terms K·D^αU, a wall off 0, below it
-    /// or two walls, a speed-dependent restitution, multiplicative noise (as by
-    /// [`Model::paper_family`]). Terms present with a zero coefficient are absent.
+    /// the General kernel's terms (Duffing k3, k5; Rayleigh d_k; harmonic forcing; walls other
+    /// than the paper's: a wall off 0, keeping U below, two walls, a speed-dependent
+    /// restitution), None when there are none (the paper's kernel, the paper's bits). Refused
+    /// by name with [`Error::NotApplicable`] for `method`: fractional terms K·D^αU and
+    /// multiplicative noise (as by [`Model::paper_family`]). Terms present with a zero
+    /// coefficient are absent.
     pub fn engine_terms(&self, method: &str) -> Result<(PaperFamily, Option<GeneralTerms>)> {
         self.validate()?;
         let mut rayleigh = self.damping.rayleigh.clone();
@@ -383,12 +430,20 @@ impl Model {
             quintic: self.restoring.quintic,
             rayleigh,
             forcing: self.forcing.filter(|f| f.amplitude != 0.0),
+            walls: if paper_walls(&self.walls) {
+                Vec::new()
+            } else {
+                self.walls.clone()
+            },
         };
         let mut paper = self.clone();
         paper.restoring.cubic = 0.0;
         paper.restoring.quintic = 0.0;
         paper.damping.rayleigh.clear();
         paper.forcing = None;
+        if !terms.walls.is_empty() {
+            paper.walls.clear();
+        }
         let family = paper.paper_family(method)?;
         if terms.is_empty() {
             return Ok((family, None));

@@ -474,8 +474,10 @@ pub fn run_paths(
     let (transient, window) = spec.sizes(method)?;
     super::check_indices(paths, spec.paths)?;
     if spec.method == LyapunovMethod::Tangent
-        && problem.oscillator().terms().is_some()
-        && problem.wall()
+        && problem
+            .oscillator()
+            .terms()
+            .is_some_and(|t| problem.wall() || !t.walls.is_empty())
     {
         return Err(crate::engine::general_wall_tangent());
     }
@@ -493,11 +495,26 @@ pub fn run_paths(
         monitor.check()
     };
     // the copy starts one unit away along U (inward where the blow-up bound is near)
+    // (within the General kernel's walls where a unit step would leave them: half the room
+    // away from 0, else half the room toward 0 short of it — the copy keeps the sign of U(0),
+    // which the stepper's side holds; the paper's problems have no such walls: the same shift)
+    let (lo, hi) = problem.walls_interval();
     let shift = |u0: f64| {
-        if u0 + 1.0 < problem.blow_up() {
+        let s = if u0 + 1.0 < problem.blow_up() {
             1.0
         } else {
             -1.0
+        };
+        if (lo..=hi).contains(&(u0 + s)) {
+            s
+        } else if u0 >= 0.0 && hi > u0 {
+            0.5 * (hi - u0)
+        } else if u0 < 0.0 && lo < u0 {
+            -0.5 * (u0 - lo)
+        } else if u0 >= 0.0 {
+            -0.5 * (u0 - lo.max(0.0))
+        } else {
+            0.5 * (hi.min(0.0) - u0)
         }
     };
     let make = |i: u64, u0: f64| {

@@ -3,7 +3,8 @@
 //! predictor–corrector as the paper's kernel ([`super::Affine`]), and its tangent.
 //!
 //! # Equation
-//! D^{1+λ}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η(t), no wall or the wall at 0, with
+//! D^{1+λ}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η(t), no wall, the wall at 0, or the model's
+//! walls (one at any δ keeping U above or below it, two at δ1 < δ2: `super::walls`), with
 //! h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k} and k(U) = ω0²U + k3U³ + k5U⁵; in Volterra form
 //! U′ = V, V = V₀ + J^λ g, g = h(U, V)V − k(U) + F cos ψ + η, ψ = Ωt + φ.
 //!
@@ -42,10 +43,16 @@
 //! tangent of such impact steps is not built yet: `lyapunov --method tangent` refuses a
 //! General model with a wall (two trajectories take it).
 //!
-//! Not yet: walls off 0 or two walls, fractional terms K·D^αU, multiplicative noise.
+//! **The model's walls** (a wall off 0, keeping U below, two walls, a speed-dependent
+//! restitution r(|U̇₋|)): `super::walls` — the same location and redone rest with g at the wall
+//! h(δ, V)V − k(δ) + F cos ψ* + η* ([`General::wall_drift`], [`General::wall_velocity`] take δ),
+//! and sticking at δ while the net force there pushes into the wall. A General path holds them
+//! in `walls`; without them no step looks further than one `Option`.
+//!
+//! Not yet: fractional terms K·D^αU, multiplicative noise, the tangent of impact steps.
 //!
 //! # Reference
-//! model-class.md §2, §3, §5 (the design); Diethelm, Ford & Freed (2002) for the scheme.
+//! model-class.md §2, §3, §4, §5 (the design); Diethelm, Ford & Freed (2002) for the scheme.
 //!
 //! # Tests
 //! `tests/general.rs`: the Duffing oscillator under white noise against its exact stationary
@@ -53,11 +60,14 @@
 //! steady amplitude against |F·H(iΩ)| at λ = 1 and λ = 0.9, with its observed convergence as Δt
 //! halves; a Rayleigh oscillator's cycle; lanes and clones give the scalar bits; at the wall,
 //! the paper kernel's bits when the terms vanish (k3 = 1e-300) and a Duffing oscillator at
-//! r = 1 keeping energy and half-period at second order. `engine/stepper/tangent.rs`: the
-//! tangent step against finite differences of the step.
+//! r = 1 keeping energy and half-period at second order. `tests/walls.rs`: the model's walls
+//! (exact periods between two walls and against an offset wall at r = 1 with the energy kept,
+//! at second order; r(|U̇₋|); sticking at δ). `engine/stepper/tangent.rs`: the tangent step
+//! against finite differences of the step.
 
 use super::affine::{hermite_limiter, predictor_weight, predictor_weight_slope, Affine};
 use super::polynomial::Polynomial;
+use super::walls::Walls;
 use crate::maths;
 use crate::model::{GeneralTerms, Harmonic};
 
@@ -128,6 +138,9 @@ pub(crate) struct General {
     cubic: f64,
     quintic: f64,
     phase: Option<Phase>,
+    /// The model's walls when not the paper's (`super::walls`); None: no wall or the paper's
+    /// wall at 0 (the stepper's `wall`).
+    pub(super) walls: Option<Walls>,
 }
 
 /// The Rayleigh parts at a velocity v (x = v²): Σd_k x^k, Σ(2k+1)d_k x^k (∂_V of its V-term),
@@ -187,12 +200,13 @@ impl General {
             cubic: terms.cubic,
             quintic: terms.quintic,
             phase: terms.forcing.as_ref().map(|f| Phase::new(f, h)),
+            walls: Walls::new(&terms.walls),
         }
     }
 
     /// k(U) = ω0²U + k3U³ + k5U⁵.
     #[inline]
-    fn restoring(&self, u: f64) -> f64 {
+    pub(super) fn restoring(&self, u: f64) -> f64 {
         let x = u * u;
         u * (self.omega2 + x * (self.cubic + self.quintic * x))
     }
@@ -284,17 +298,19 @@ impl General {
         }
     }
 
-    /// g at the wall U = 0 without its forcing: h(0, V)V (k(0) = 0).
+    /// g at a wall U = δ without its forcing: h(δ, V)V − k(δ) (at δ = 0, h(0, V)V exactly:
+    /// k(0) = +0).
     #[inline]
-    pub(super) fn wall_drift(&self, v: f64) -> f64 {
-        (self.mu_p(0.0) + self.rayleigh_at(v).h) * v
+    pub(super) fn wall_drift(&self, delta: f64, v: f64) -> f64 {
+        (self.mu_p(delta) + self.rayleigh_at(v).h) * v - self.restoring(delta)
     }
 
-    /// The scheme's velocity at an impact: the root of V = N + w(h(0, V)V + forcing) (affine in
-    /// V without Rayleigh terms: solved at once; else Newton's method from that value, to
-    /// |ΔV| ≤ 1e-14(1 + |V|), at most 50 iterations).
-    pub(super) fn wall_velocity(&self, known: f64, w: f64, forcing: f64) -> f64 {
-        let a0 = self.mu_p(0.0);
+    /// The scheme's velocity at an impact on a wall U = δ: the root of
+    /// V = N + w(h(δ, V)V + forcing), `forcing` holding −k(δ) (affine in V without Rayleigh
+    /// terms: solved at once; else Newton's method from that value, to |ΔV| ≤ 1e-14(1 + |V|),
+    /// at most 50 iterations).
+    pub(super) fn wall_velocity(&self, delta: f64, known: f64, w: f64, forcing: f64) -> f64 {
+        let a0 = self.mu_p(delta);
         let mut v = (known + w * forcing) / (1.0 - w * a0);
         if self.rayleigh.is_empty() {
             return v;

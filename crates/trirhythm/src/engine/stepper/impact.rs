@@ -1,6 +1,27 @@
 //! Impacts inside a step (one routine for the wall and for the Zhuravlev crossing): the
 //! crossing located on the step's cubic Hermite interpolant, the jump V₊ = ∓rV₋, and the rest
 //! of the step redone from the wall (module docs of [`super`]).
+//!
+//! # Equation
+//! At the wall U = 0 (keeping U ≥ 0): U̇₊ = −rU̇₋ (Eq. 1); at Eq. 9's crossing Z = 0:
+//! Ż₊ = rŻ₋. The model's other walls (any δ, keeping below, two walls, r(|U̇₋|)) are the
+//! General kernel's, in `super::walls`, which uses [`hermite_root`] and the bookkeeping here
+//! (`record_impact`, `memory_at_impact`).
+//!
+//! # Method
+//! θ ∈ (0, 1] of the step from the cubic Hermite interpolant of (U_n, V_n) → (U₁, V₁) (Newton
+//! inside a shrinking bracket); the scheme's V(t*) = (N + J(θ) + w_s F(t*))/(1 − w_s a(0)) (for
+//! the General kernel the root of V = N + w_s(h(0, V)V + F(t*)), `General::wall_velocity` at
+//! δ = 0); the jump; the memory holds it exactly (a split piece with g before and after, the
+//! Volterra constant shifted by V₊ − V(t*), or a restart); the rest of the step redone from
+//! (0, V₊).
+//!
+//! # Reference
+//! Diethelm, Ford & Freed (2002) for the scheme; model-class.md §4 for the walls.
+//!
+//! # Tests
+//! `newton_crossing_equals_bisection` below; `tests/impacts.rs`, `tests/pinned.rs` (the paper's
+//! impacts pinned bit for bit); `tests/walls.rs` (the model's walls).
 
 use super::{predictor_weight, Free, Impact, Split, Stepper};
 
@@ -91,7 +112,7 @@ impl Stepper {
         if let Some(g) = &self.general {
             // g at the wall is h(0, V)V + F cos ψ* + η* (module docs of `general`)
             forcing += g.force_at(theta);
-            v_at = g.wall_velocity(self.base + hs, ws, forcing);
+            v_at = g.wall_velocity(0.0, self.base + hs, ws, forcing);
         }
         Crossing {
             theta,
@@ -105,7 +126,7 @@ impl Stepper {
 
     /// Count an impact at θ of the step and report it as the step's event.
     #[inline]
-    fn record_impact(&mut self, theta: f64, v_minus: f64, v_plus: f64) {
+    pub(super) fn record_impact(&mut self, theta: f64, v_minus: f64, v_plus: f64) {
         self.impacts += 1;
         self.events.impact = Some(Impact {
             time: self.time() + theta * self.h,
@@ -117,7 +138,7 @@ impl Stepper {
     /// V(t*+) = V₊ exactly: restart the memory at the impact, or shift V's Volterra constant
     /// by the jump V₊ − V(t*).
     #[inline]
-    fn memory_at_impact(&mut self, v_at: f64, v_plus: f64) {
+    pub(super) fn memory_at_impact(&mut self, v_at: f64, v_plus: f64) {
         if self.restart {
             self.history.restart();
             self.base = v_plus;
@@ -182,8 +203,8 @@ impl Stepper {
         let g = self.general.as_deref().expect("a General path");
         let split = Split {
             theta,
-            before: g.wall_drift(v_at) + c.forcing,
-            after: g.wall_drift(v_plus) + c.forcing,
+            before: g.wall_drift(0.0, v_at) + c.forcing,
+            after: g.wall_drift(0.0, v_plus) + c.forcing,
             keep_before: !self.restart,
             mass: 0.0,
         };

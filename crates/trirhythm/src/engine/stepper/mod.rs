@@ -7,7 +7,8 @@
 //!
 //! The step is here; `affine` holds the paper's kernel (the arithmetic of a step of Eq. 1/5/9:
 //! predictor, corrector passes, their tangents), `general` the General kernel (Duffing,
-//! Rayleigh, harmonic forcing: the rest of the class the engine steps, no wall or the wall at 0),
+//! Rayleigh, harmonic forcing: the rest of the class the engine steps), `walls` the General
+//! kernel's walls (any δ, keeping above or below, two walls, r(|U̇₋|), sticking at δ),
 //! `impact` locates an impact inside a step and redoes the rest of it, `tangent` steps the
 //! variational equation with the path, `renormalise` pulls a perturbed copy toward its
 //! reference, `polynomial` evaluates μP.
@@ -153,6 +154,7 @@ mod polynomial;
 mod pulse;
 mod renormalise;
 mod tangent;
+mod walls;
 pub use lanes::{detected_lanes, Lanes, LANE_WIDTHS};
 pub(crate) use lanes::{group_lanes, Group};
 pub(crate) use tangent::{general_wall_tangent, Tangent};
@@ -285,6 +287,7 @@ impl Stepper {
         if wall && u0 < 0.0 {
             return Err(Error::invalid("u0", u0, "[0, ∞) with the barrier on"));
         }
+        problem.check_start_in_walls(u0)?;
         let noise = NoiseStream::new(oscillator.noise(), h, seed, path)?;
         let (wl, wr) = history.current_weights();
         let general = oscillator
@@ -433,6 +436,10 @@ impl Stepper {
     /// the noise's level plus F cos ψ.
     #[inline(never)]
     fn step_general(&mut self) -> Result<()> {
+        if let Some(walls) = self.general.as_deref().and_then(|g| g.walls) {
+            // the model's walls (offset, below, two, speed-dependent r): `walls`
+            return self.step_walls(walls);
+        }
         let (b, free) = self.begin_general();
         let (u1, v1) = free.end();
         if !self.wall {

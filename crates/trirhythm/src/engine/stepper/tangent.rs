@@ -267,9 +267,12 @@ fn fold_theta(piece: &Piece, d: &mut Split, dtheta: f64) {
 pub(crate) fn general_wall_tangent() -> crate::Error {
     crate::Error::NotApplicable {
         method: "the tangent method (lyapunov --method tangent)".into(),
-        assumption: "no wall with the General kernel's terms (Duffing, Rayleigh, forcing)".into(),
-        reason: "the tangent of the General kernel's impact steps is not built yet; use the \
-                 two-trajectory method"
+        assumption: "no wall with the General kernel's terms (Duffing, Rayleigh, forcing, a wall \
+                     off 0, keeping below, two walls, a speed-dependent restitution)"
+            .into(),
+        reason: "the tangent of the General kernel's impact steps (the saltation matrix of a \
+                 wall where the force is not zero) is not built yet; use the two-trajectory \
+                 method"
             .into(),
     }
 }
@@ -316,7 +319,7 @@ impl Stepper {
     // out of line: the paper kernel's tangent step keeps the code it had
     #[inline(never)]
     fn step_general_with_tangent(&mut self, t: &mut Tangent) -> Result<()> {
-        if self.wall {
+        if self.wall || self.general.as_deref().is_some_and(|g| g.walls.is_some()) {
             return Err(general_wall_tangent());
         }
         let (b, free) = self.begin_general();
@@ -877,6 +880,7 @@ mod tests {
                 frequency: 1.3,
                 phase: 0.2,
             }),
+            walls: Vec::new(),
         };
         let mut report = String::new();
         for lambda in [1.0, 0.998, 0.95] {
