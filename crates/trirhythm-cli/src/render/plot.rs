@@ -891,15 +891,16 @@ fn framed_with<'a, DB: Backend>(
     let mut y_ticks = (y_room / (tick * 9 / 8).max(1)).clamp(2, ticks as u32) as usize;
     // where plotters' step for that count leaves under four labelled ticks, ask for more as
     // long as the labels keep a label's height apart
-    let labelled = |n: usize| {
-        let step = key_step(y.start.min(y.end), y.start.max(y.end), n);
+    let labelled_on = |r: &Range<f64>, n: usize| {
+        let step = key_step(r.start.min(r.end), r.start.max(r.end), n);
         if step > 0.0 {
-            ((y.start.max(y.end) / step).floor() - (y.start.min(y.end) / step).ceil() + 1.0)
+            ((r.start.max(r.end) / step).floor() - (r.start.min(r.end) / step).ceil() + 1.0)
                 as usize
         } else {
             0
         }
     };
+    let labelled = |n: usize| labelled_on(&y, n);
     let most = (y_room / tick.max(1)) as usize;
     while y_labels.is_none() && labelled(y_ticks) < 4 && y_ticks < most.min(12) {
         y_ticks += 1;
@@ -914,7 +915,19 @@ fn framed_with<'a, DB: Backend>(
     // it
     let room = width.saturating_sub(y_tick_w + px(80));
     let x_tick_w = widest(&tick_formatter(&x, ticks), &x);
-    let x_ticks = (room / (x_tick_w.max(1) * 5 / 4)).clamp(2, ticks as u32) as usize;
+    let mut x_ticks = (room / (x_tick_w.max(1) * 5 / 4)).clamp(2, ticks as u32) as usize;
+    // where that leaves under four labelled ticks (a narrow inset), ask for more as long as
+    // the labels keep a tenth of a label's width apart on the plotting area's width
+    let plot_w = width.saturating_sub(y_tick_w + px(10) + 2 * margin + x_tick_w / 2);
+    let fits = |n: usize| {
+        let (lo, hi) = (x.start.min(x.end), x.start.max(x.end));
+        let step = key_step(lo, hi, n);
+        let w = widest(&tick_formatter(&x, n), &x) as f64;
+        step > 0.0 && plot_w as f64 * step / (hi - lo) >= 1.1 * w
+    };
+    while labelled_on(&x, x_ticks) < 4 && x_ticks < 12 && fits(x_ticks + 1) {
+        x_ticks += 1;
+    }
     let fx = tick_formatter(&x, x_ticks);
     let x_tick_w = widest(&fx, &x);
     let y_area = y_tick_w + px(10) + if has(y_desc) { desc * 5 / 4 } else { 0 };
