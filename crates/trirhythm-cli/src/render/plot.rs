@@ -152,6 +152,17 @@ impl Heading {
                 out.push((one_line(&v.text, room, HEADING_LINE), v.colour()));
                 continue;
             }
+            // a head too long for the line without the asides of the deciding statistic's
+            // words (the caption has them whole)
+            let short = drop_asides(&head);
+            if rich_width(&short, HEADING_LINE) <= room {
+                let rest: String = v.text.chars().skip(v.head).collect();
+                out.push((
+                    one_line(&format!("{short}{rest}"), room, HEADING_LINE),
+                    v.colour(),
+                ));
+                continue;
+            }
             // the longest run of whole words that fits, then the rest on one line
             let words: Vec<&str> = v.text.split(' ').collect();
             let mut k = 1;
@@ -191,6 +202,36 @@ impl Heading {
         }
         Ok(())
     }
+}
+
+/// `text` without its parenthesised asides inside parentheses ("a (b (c) d)" → "a (b d)"),
+/// spaces before a removed aside dropped with it.
+fn drop_asides(text: &str) -> String {
+    let mut out = String::new();
+    let mut depth = 0usize;
+    for ch in text.chars() {
+        match ch {
+            '(' => {
+                depth += 1;
+                if depth >= 2 {
+                    while out.ends_with(' ') && depth == 2 {
+                        out.pop();
+                    }
+                    continue;
+                }
+            }
+            ')' => {
+                depth = depth.saturating_sub(1);
+                if depth >= 1 {
+                    continue;
+                }
+            }
+            _ if depth >= 2 => continue,
+            _ => {}
+        }
+        out.push(ch);
+    }
+    out
 }
 
 /// A title on one line of at most `width` pixels at font size `base`: whole, else cut at
