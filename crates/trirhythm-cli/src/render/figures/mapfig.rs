@@ -441,9 +441,11 @@ fn panel_title(p: &MapPanel) -> String {
 /// The largest share of the plane (per cent) the trirhythmic region may cover and still be
 /// zoomed on in an inset.
 const INSET_BELOW: f64 = 20.0;
-/// The inset's size as a fraction of the plotting area's width and height (wide enough for
-/// four labelled x ticks).
-const INSET_FRACTION: (f64, f64) = (0.66, 0.5);
+/// The inset's size as a fraction of the plotting area's width and height (a wider one
+/// would hide curves of the panel under its tick labels).
+fn inset_fraction(_p: &MapPanel) -> (f64, f64) {
+    (0.5, 0.5)
+}
 
 /// The data ranges (display units) an inset zooms on: on a map of stable cycles, the bounding
 /// box of the trirhythmic cells (where they cover at most [`INSET_BELOW`] % of the plane); on
@@ -498,8 +500,8 @@ fn draw_inset<DB: Backend>(
     };
     let (rx, ry) = c.plotting_area().get_pixel_range();
     let (iw, ih) = (
-        ((rx.end - rx.start) as f64 * INSET_FRACTION.0) as i32,
-        ((ry.end - ry.start) as f64 * INSET_FRACTION.1) as i32,
+        ((rx.end - rx.start) as f64 * inset_fraction(p).0) as i32,
+        ((ry.end - ry.start) as f64 * inset_fraction(p).1) as i32,
     );
     let gap = pxi(6);
     // the corners first, then every position on a grid of eighths of the free room (a corner
