@@ -8,9 +8,9 @@ use crate::render::plot::{
     chart, draw_line, framed, padded_range, pe, pxi, series, stroke, Backend, ChartSize,
     LegendStrip, Marker, SeriesStyle, Symbol,
 };
-use plotters::coord::Shift;
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
+use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::ops::Range;
 use trirhythm::theory::averaging::Extremum;
@@ -133,12 +133,16 @@ fn outer_zoom(curves: &[Curve], x_end: f64) -> Option<(Range<f64>, Range<f64>)> 
     if wells.len() < 2 {
         return None;
     }
-    let (a0, a1) = wells.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), e| {
-        (a.min(e.amplitude), b.max(e.amplitude))
-    });
-    let (u0, u1) = wells.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), e| {
-        (a.min(e.potential), b.max(e.potential))
-    });
+    let (a0, a1) = wells
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), e| {
+            (a.min(e.amplitude), b.max(e.amplitude))
+        });
+    let (u0, u1) = wells
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), e| {
+            (a.min(e.potential), b.max(e.potential))
+        });
     let du = (u1 - u0).max(0.02);
     // A0 from a whole fifth below the wells to one above them, a twentieth beyond: four
     // labelled ticks on the inset's narrow axis

@@ -8,7 +8,9 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig11_amplitude_lambda`].
 
 use super::fig05_branches::runs;
-use super::montecarlo::{amplitude_key, a_range, amplitude_legend, draw_amplitude_panel, two_columns, PANEL};
+use super::montecarlo::{
+    a_range, amplitude_key, amplitude_legend, draw_amplitude_panel, two_columns, PANEL,
+};
 use crate::render::plot::{chart, pe, PALETTE};
 use plotters::prelude::*;
 use trirhythm_paper::fig11_amplitude_lambda::Fig11;

@@ -7,7 +7,9 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig13_pdf_restitution`].
 
-use super::montecarlo::{amplitude_key, amplitude_legend, draw_amplitude_columns, two_columns, PANEL};
+use super::montecarlo::{
+    amplitude_key, amplitude_legend, draw_amplitude_columns, two_columns, PANEL,
+};
 use trirhythm_paper::fig13_pdf_restitution::Fig13;
 
 picture!(Fig13, |self, root| key amplitude_key(&self.panels), size two_columns(&self.panels), draw {

@@ -8,8 +8,8 @@
 
 use super::lle::{outline, CHART_HEIGHT, PANEL_WIDTH};
 use crate::render::plot::{
-    font_px, pe, px, pxi, stroke, superscript, times_ten, Backend, LegendStrip, Marker,
-    Symbol, AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
+    font_px, pe, px, pxi, stroke, superscript, times_ten, Backend, LegendStrip, Marker, Symbol,
+    AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
 };
 use anyhow::{anyhow, Result};
 use plotters::coord::types::RangedCoordf64;

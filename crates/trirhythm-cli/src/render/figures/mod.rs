@@ -112,11 +112,14 @@ fn glossary(title: &str, lines: &[String]) -> Option<String> {
             "cp = (α0, β0, γ0, δ0), the control parameters of the damping polynomial \
              P(U) = 1 − U² + α0U⁴ − β0U⁶ + γ0U⁸ − δ0U¹⁰",
         ),
-        ("RR", "RR: the recurrence rate, the share of recurrent pairs of points"),
+        (
+            "RR",
+            "RR: the recurrence rate, the share of recurrent pairs of points",
+        ),
         (
             "DET",
-            "DET: the determinism, the share of recurrent points on diagonal lines of at \
-             least l_min points",
+            "DET: the determinism, the share of recurrent points on diagonal lines of two \
+             points or more (l_min = 2; the line of identity excluded)",
         ),
     ];
     let uses = |word: &str| {

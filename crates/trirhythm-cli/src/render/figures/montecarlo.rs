@@ -33,10 +33,7 @@ pub fn legend_entries(systems: &[&str]) -> Vec<(Symbol, String)> {
         ),
     ];
     for (i, s) in systems.iter().enumerate() {
-        e.push((
-            Symbol::Points(mc_style(i)),
-            format!("Monte Carlo, {s}"),
-        ));
+        e.push((Symbol::Points(mc_style(i)), format!("Monte Carlo, {s}")));
     }
     e
 }
@@ -279,16 +276,10 @@ pub fn amplitude_legend(panels: &[AmplitudePanel]) -> crate::render::plot::Legen
         ));
     }
     if runs().any(|r| r.estimator == "wells" || r.shown_density().1) {
-        entries.push((
-            Symbol::Mark(BY_WELLS),
-            "MC by wells".into(),
-        ));
+        entries.push((Symbol::Mark(BY_WELLS), "MC by wells".into()));
     }
     if runs().any(|r| !r.step_warnings.is_empty()) {
-        entries.push((
-            Symbol::Mark(COARSE_STEP),
-            "Δt flagged coarse".into(),
-        ));
+        entries.push((Symbol::Mark(COARSE_STEP), "Δt flagged coarse".into()));
     }
     crate::render::plot::LegendStrip { entries }
 }
