@@ -969,8 +969,34 @@ fn framed_with<'a, DB: Backend>(
     while labelled_on(&x, x_ticks) < 4 && x_ticks < 12 && fits(x_ticks + 1) {
         x_ticks += 1;
     }
-    let fx = tick_formatter(&x, x_ticks);
-    let x_tick_w = widest(&fx, &x);
+    // an inset's axis of small values whose labels still leave under four ticks: the labels
+    // in units of 10ᵉ (the largest value's decade), "×10ᵉ" written under the y labels
+    let (lo_x, hi_x) = (x.start.min(x.end), x.start.max(x.end));
+    let decade = lo_x.abs().max(hi_x.abs()).log10().floor();
+    let scaled = inset && labelled_on(&x, x_ticks) < 4 && decade.is_finite() && decade < 0.0;
+    let unit = 10f64.powf(decade);
+    let x_in_units = (lo_x / unit)..(hi_x / unit);
+    let mut unit_ticks = x_ticks;
+    if scaled {
+        let fits_units = |n: usize| {
+            let (a, b) = (x_in_units.start, x_in_units.end);
+            let step = key_step(a, b, n);
+            let w = widest(&tick_formatter(&x_in_units, n), &x_in_units) as f64;
+            step > 0.0 && plot_w as f64 * step / (b - a) >= 1.1 * w
+        };
+        while labelled_on(&x_in_units, unit_ticks) < 4
+            && unit_ticks < 12
+            && fits_units(unit_ticks + 1)
+        {
+            unit_ticks += 1;
+        }
+        x_ticks = unit_ticks;
+    }
+    let in_units = tick_formatter(&x_in_units, unit_ticks);
+    let plain_x = tick_formatter(&x, x_ticks);
+    let scaled_x = |v: &f64| in_units(&(v / unit));
+    let fx: &dyn Fn(&f64) -> String = if scaled { &scaled_x } else { &plain_x };
+    let x_tick_w = widest(fx, &x);
     let y_area = y_tick_w + px(10) + if has(y_desc) { desc * 5 / 4 } else { 0 };
     let mut c = ChartBuilder::on(area)
         .margin(margin)
@@ -989,7 +1015,7 @@ fn framed_with<'a, DB: Backend>(
     c.configure_mesh()
         .x_labels(x_ticks)
         .y_labels(y_ticks)
-        .x_label_formatter(&fx)
+        .x_label_formatter(fx)
         .y_label_formatter(&fy)
         .label_style((FONT, tick))
         .light_line_style(RGBColor(235, 235, 235))
@@ -1015,6 +1041,18 @@ fn framed_with<'a, DB: Backend>(
             (centre, (margin + line * k as u32 + line / 2) as i32),
             Pos::new(HPos::Center, VPos::Center),
             CAPTION,
+            BLACK,
+            false,
+        )?;
+    }
+    if scaled {
+        // the unit of the scaled labels, under the y labels, level with the x labels
+        rich_text(
+            area,
+            &format!("×10{}", superscript(&format!("{}", decade as i64))),
+            (x0 - pxi(4), y1 + pxi(4) + (tick / 2) as i32),
+            Pos::new(HPos::Right, VPos::Center),
+            TICK,
             BLACK,
             false,
         )?;
