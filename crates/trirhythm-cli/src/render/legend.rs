@@ -5,7 +5,7 @@
 use super::plot::{
     font_px, pe, px, pxi, rich_text, rich_width, stroke, Backend, SeriesStyle, LABEL,
 };
-use super::series::{dashed_path, marker, Dash};
+use super::series::{dashed_path, marker, Dash, Marker};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -37,6 +37,28 @@ pub enum Symbol {
     CircledCross(RGBColor),
     /// A square of the first colour outlined in the second: a box drawn on a map.
     Framed(RGBColor, RGBColor),
+    /// A marker alone (no line), filled in its colour (`true`) or open (white inside), as
+    /// drawn by the figures that mark points with [`outline`].
+    Shape(Marker, RGBColor, bool),
+}
+
+/// The outline of a marker `shape` of radius `r` around the origin (pixels), closed.
+pub fn outline(shape: Marker, r: i32) -> Vec<(i32, i32)> {
+    let q = r + r / 4;
+    match shape {
+        Marker::Square => vec![(-r, -r), (r, -r), (r, r), (-r, r), (-r, -r)],
+        Marker::Triangle => vec![(0, -q), (q, r * 3 / 4), (-q, r * 3 / 4), (0, -q)],
+        Marker::Diamond => vec![(0, -q), (q, 0), (0, q), (-q, 0), (0, -q)],
+        _ => (0..=24)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 24.0;
+                (
+                    (r as f64 * a.cos()).round() as i32,
+                    (r as f64 * a.sin()).round() as i32,
+                )
+            })
+            .collect(),
+    }
 }
 
 impl Symbol {
@@ -88,6 +110,17 @@ impl Symbol {
                 area.draw(&Cross::new(m, pxi(7) as u32, c.stroke_width(w3)))
                     .map_err(pe)?;
                 area.draw(&Circle::new(m, pxi(9) as u32, c.stroke_width(w2)))
+                    .map_err(pe)
+            }
+            Symbol::Shape(shape, c, filled) => {
+                let ring: Vec<(i32, i32)> = outline(shape, pxi(6))
+                    .into_iter()
+                    .map(|(x, y)| (m.0 + x, m.1 + y))
+                    .collect();
+                let fill = if filled { c } else { WHITE };
+                area.draw(&Polygon::new(ring.clone(), fill.filled()))
+                    .map_err(pe)?;
+                area.draw(&PathElement::new(ring, c.stroke_width(w2)))
                     .map_err(pe)
             }
             Symbol::Dot(c) => area

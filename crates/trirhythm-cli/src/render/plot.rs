@@ -152,6 +152,17 @@ impl Heading {
                 out.push((one_line(&v.text, room, HEADING_LINE), v.colour()));
                 continue;
             }
+            // a head too long for the line without the asides of the deciding statistic's
+            // words (the caption has them whole)
+            let short = drop_asides(&head);
+            if rich_width(&short, HEADING_LINE) <= room {
+                let rest: String = v.text.chars().skip(v.head).collect();
+                out.push((
+                    one_line(&format!("{short}{rest}"), room, HEADING_LINE),
+                    v.colour(),
+                ));
+                continue;
+            }
             // the longest run of whole words that fits, then the rest on one line
             let words: Vec<&str> = v.text.split(' ').collect();
             let mut k = 1;
@@ -191,6 +202,36 @@ impl Heading {
         }
         Ok(())
     }
+}
+
+/// `text` without its parenthesised asides inside parentheses ("a (b (c) d)" → "a (b d)"),
+/// spaces before a removed aside dropped with it.
+fn drop_asides(text: &str) -> String {
+    let mut out = String::new();
+    let mut depth = 0usize;
+    for ch in text.chars() {
+        match ch {
+            '(' => {
+                depth += 1;
+                if depth >= 2 {
+                    while out.ends_with(' ') && depth == 2 {
+                        out.pop();
+                    }
+                    continue;
+                }
+            }
+            ')' => {
+                depth = depth.saturating_sub(1);
+                if depth >= 1 {
+                    continue;
+                }
+            }
+            _ if depth >= 2 => continue,
+            _ => {}
+        }
+        out.push(ch);
+    }
+    out
 }
 
 /// A title on one line of at most `width` pixels at font size `base`: whole, else cut at
@@ -891,15 +932,16 @@ fn framed_with<'a, DB: Backend>(
     let mut y_ticks = (y_room / (tick * 9 / 8).max(1)).clamp(2, ticks as u32) as usize;
     // where plotters' step for that count leaves under four labelled ticks, ask for more as
     // long as the labels keep a label's height apart
-    let labelled = |n: usize| {
-        let step = key_step(y.start.min(y.end), y.start.max(y.end), n);
+    let labelled_on = |r: &Range<f64>, n: usize| {
+        let step = key_step(r.start.min(r.end), r.start.max(r.end), n);
         if step > 0.0 {
-            ((y.start.max(y.end) / step).floor() - (y.start.min(y.end) / step).ceil() + 1.0)
+            ((r.start.max(r.end) / step).floor() - (r.start.min(r.end) / step).ceil() + 1.0)
                 as usize
         } else {
             0
         }
     };
+    let labelled = |n: usize| labelled_on(&y, n);
     let most = (y_room / tick.max(1)) as usize;
     while y_labels.is_none() && labelled(y_ticks) < 4 && y_ticks < most.min(12) {
         y_ticks += 1;
@@ -914,9 +956,47 @@ fn framed_with<'a, DB: Backend>(
     // it
     let room = width.saturating_sub(y_tick_w + px(80));
     let x_tick_w = widest(&tick_formatter(&x, ticks), &x);
-    let x_ticks = (room / (x_tick_w.max(1) * 5 / 4)).clamp(2, ticks as u32) as usize;
-    let fx = tick_formatter(&x, x_ticks);
-    let x_tick_w = widest(&fx, &x);
+    let mut x_ticks = (room / (x_tick_w.max(1) * 5 / 4)).clamp(2, ticks as u32) as usize;
+    // where that leaves under four labelled ticks (a narrow inset), ask for more as long as
+    // the labels keep a tenth of a label's width apart on the plotting area's width
+    let plot_w = width.saturating_sub(y_tick_w + px(10) + 2 * margin + x_tick_w / 2);
+    let fits = |n: usize| {
+        let (lo, hi) = (x.start.min(x.end), x.start.max(x.end));
+        let step = key_step(lo, hi, n);
+        let w = widest(&tick_formatter(&x, n), &x) as f64;
+        step > 0.0 && plot_w as f64 * step / (hi - lo) >= 1.1 * w
+    };
+    while labelled_on(&x, x_ticks) < 4 && x_ticks < 12 && fits(x_ticks + 1) {
+        x_ticks += 1;
+    }
+    // an inset's axis of small values whose labels still leave under four ticks: the labels
+    // in units of 10ᵉ (the largest value's decade), "×10ᵉ" written under the y labels
+    let (lo_x, hi_x) = (x.start.min(x.end), x.start.max(x.end));
+    let decade = lo_x.abs().max(hi_x.abs()).log10().floor();
+    let scaled = inset && labelled_on(&x, x_ticks) < 4 && decade.is_finite() && decade < 0.0;
+    let unit = 10f64.powf(decade);
+    let x_in_units = (lo_x / unit)..(hi_x / unit);
+    let mut unit_ticks = x_ticks;
+    if scaled {
+        let fits_units = |n: usize| {
+            let (a, b) = (x_in_units.start, x_in_units.end);
+            let step = key_step(a, b, n);
+            let w = widest(&tick_formatter(&x_in_units, n), &x_in_units) as f64;
+            step > 0.0 && plot_w as f64 * step / (b - a) >= 1.1 * w
+        };
+        while labelled_on(&x_in_units, unit_ticks) < 4
+            && unit_ticks < 12
+            && fits_units(unit_ticks + 1)
+        {
+            unit_ticks += 1;
+        }
+        x_ticks = unit_ticks;
+    }
+    let in_units = tick_formatter(&x_in_units, unit_ticks);
+    let plain_x = tick_formatter(&x, x_ticks);
+    let scaled_x = |v: &f64| in_units(&(v / unit));
+    let fx: &dyn Fn(&f64) -> String = if scaled { &scaled_x } else { &plain_x };
+    let x_tick_w = widest(fx, &x);
     let y_area = y_tick_w + px(10) + if has(y_desc) { desc * 5 / 4 } else { 0 };
     let mut c = ChartBuilder::on(area)
         .margin(margin)
@@ -935,7 +1015,7 @@ fn framed_with<'a, DB: Backend>(
     c.configure_mesh()
         .x_labels(x_ticks)
         .y_labels(y_ticks)
-        .x_label_formatter(&fx)
+        .x_label_formatter(fx)
         .y_label_formatter(&fy)
         .label_style((FONT, tick))
         .light_line_style(RGBColor(235, 235, 235))
@@ -961,6 +1041,18 @@ fn framed_with<'a, DB: Backend>(
             (centre, (margin + line * k as u32 + line / 2) as i32),
             Pos::new(HPos::Center, VPos::Center),
             CAPTION,
+            BLACK,
+            false,
+        )?;
+    }
+    if scaled {
+        // the unit of the scaled labels, under the y labels, level with the x labels
+        rich_text(
+            area,
+            &format!("×10{}", superscript(&format!("{}", decade as i64))),
+            (x0 - pxi(4), y1 + pxi(4) + (tick / 2) as i32),
+            Pos::new(HPos::Right, VPos::Center),
+            TICK,
             BLACK,
             false,
         )?;

@@ -156,13 +156,8 @@ fn legend_entries(panel: &Panel) -> Vec<(Symbol, String)> {
             1 => Symbol::CircledCross(colour(curve)),
             _ => Symbol::Series(style(curve)),
         };
-        // (the exact boundary's damped frequency defined where it is named)
-        let label = if curve.label.contains("ω_{d}") {
-            format!("{}, ω_{{d}}² = ω0² − μ0²/4", curve.label)
-        } else {
-            curve.label.clone()
-        };
-        entries.push((symbol, label));
+        // (a label's formula after ": " goes to the caption key, [`key_of`])
+        entries.push((symbol, short_label(&curve.label).to_string()));
     }
     if panel.is_family() {
         let plain = |dash, marker| {
@@ -195,6 +190,53 @@ fn legend_entries(panel: &Panel) -> Vec<(Symbol, String)> {
         }
     }
     entries
+}
+
+/// A curve's label as its legend entry gives it: the words before a formula (": ").
+fn short_label(label: &str) -> &str {
+    label.split(": ").next().unwrap_or(label)
+}
+
+/// The caption's key to `panels`' drawing: the formulas the legend leaves out (a label's
+/// part after ": ", the exact boundary's damped frequency ω_d defined), and what the marks
+/// of the exact boundary are (rings on its dotted line; ⊗ where it is a single point).
+pub fn key_of(panels: &[Panel]) -> Vec<String> {
+    let mut key: Vec<String> = Vec::new();
+    let curves = || panels.iter().flat_map(|p| p.curves.iter());
+    for curve in curves() {
+        if let Some((head, formula)) = curve.label.split_once(": ") {
+            let mut line = format!("{head}: {formula}");
+            if formula.contains("ω_{d}") {
+                line.push_str(", with ω_{d}² = ω0² − μ0²/4 the damped frequency");
+            }
+            if !key.contains(&line) {
+                key.push(line);
+            }
+        }
+    }
+    let exact = |c: &&Curve| !matches!(c.method.as_str(), "simulation" | "averaging");
+    let points = |c: &Curve| c.points.iter().filter(|q| q.side == Side::Boundary).count();
+    let mut marks = Vec::new();
+    if curves().filter(exact).any(|c| points(c) > 1) {
+        marks.push("○ (rings on a dotted line): the exact boundary along the axis");
+    }
+    if curves().filter(exact).any(|c| points(c) == 1) {
+        marks.push(
+            "⊗ (a circled ×): the exact boundary where it is a single point (with the wall, \
+             λ = 1 only), circled to part it from the × markers of a series",
+        );
+    }
+    if !marks.is_empty() {
+        key.push(format!("marks as drawn: {}", marks.join("; ")));
+    }
+    if panels.iter().any(|p| p.is_family()) {
+        key.push(
+            "the simulated curves of a family carry their markers at every fourth point, \
+             staggered between the members, so that coinciding lines stay apart"
+                .to_string(),
+        );
+    }
+    key
 }
 
 /// One curve in its method's style ([`style`]), a single point as a marked cross.
@@ -233,6 +275,13 @@ fn draw_curve<'a, DB: Backend + 'a>(
         // (an averaging line's markers at every other point: its line stays readable)
         ("averaging", _) => {
             let every: Vec<(f64, f64)> = pts.iter().copied().skip(1).step_by(2).collect();
+            draw_markers(c, &every, st)?
+        }
+        // (a family's simulated lines may coincide: each member's markers at every fourth
+        // point, starting at its own, so that the members' markers stand apart)
+        ("simulation", _) if curve.member.is_some() => {
+            let start = curve.member.unwrap_or(0) % 4;
+            let every: Vec<(f64, f64)> = pts.iter().copied().skip(start).step_by(4).collect();
             draw_markers(c, &every, st)?
         }
         _ => draw_markers(c, &pts, st)?,

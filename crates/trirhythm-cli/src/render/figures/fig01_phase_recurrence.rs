@@ -46,8 +46,14 @@ fn key() -> LegendStrip {
     }
 }
 
+/// The caption's key: the recurrence plots' titles give RR and DET (the caption's
+/// abbreviations define them).
+fn caption_key() -> Vec<String> {
+    vec!["the recurrence plots' titles (c), (d) give their RR and DET".to_string()]
+}
+
 // The phase portraits, their legend under them, the recurrence plots.
-picture!(Fig01, |self, root| size (1300, 1300 + key().height(1300)), draw {
+picture!(Fig01, |self, root| key caption_key(), size (1300, 1300 + key().height(1300)), draw {
     let (top, rest) = root.split_vertically(650);
     let (strip, bottom) = rest.split_vertically(key().height(1300));
     let areas: Vec<_> = top

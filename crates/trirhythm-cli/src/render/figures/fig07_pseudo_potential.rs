@@ -5,12 +5,14 @@
 
 use super::lle::outline;
 use crate::render::plot::{
-    chart, draw_line, padded_range, pe, pxi, series, stroke, Backend, LegendStrip, Marker,
-    SeriesStyle, Symbol,
+    chart, draw_line, framed, padded_range, pe, pxi, series, stroke, Backend, ChartSize,
+    LegendStrip, Marker, SeriesStyle, Symbol,
 };
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
+use plotters::coord::Shift;
 use plotters::prelude::*;
+use std::ops::Range;
 use trirhythm::theory::averaging::Extremum;
 use trirhythm_paper::fig07_pseudo_potential::{Curve, Fig07, Panel};
 
@@ -74,7 +76,10 @@ pub(super) fn draw_curves<'a, DB: Backend + 'a>(
         let style = curve_style(i);
         let color = style.colour;
         draw_line(c, &cv.points, style, 2)?;
-        let inside = |e: &&Extremum| x.contains(&e.amplitude) && y.contains(&e.potential);
+        // (the rest state A0 = 0 is no cycle: left unmarked, see [`key`])
+        let inside = |e: &&Extremum| {
+            e.amplitude > 0.0 && x.contains(&e.amplitude) && y.contains(&e.potential)
+        };
         let ring = outline(shape(i), pxi(5));
         c.draw_series(cv.extrema.iter().filter(inside).map(|e| {
             let fill = if e.minimum {
@@ -112,8 +117,95 @@ fn legend_of(panel: &Panel) -> LegendStrip {
     LegendStrip { entries }
 }
 
+/// The data ranges of an inset on the outer wells (each curve's well of largest amplitude),
+/// where they lie below `x_end`: their markers would pile up at the main panel's scale.
+fn outer_zoom(curves: &[Curve], x_end: f64) -> Option<(Range<f64>, Range<f64>)> {
+    let wells: Vec<&Extremum> = curves
+        .iter()
+        .filter_map(|c| {
+            c.extrema
+                .iter()
+                .filter(|e| e.minimum && e.amplitude > 0.0)
+                .max_by(|a, b| a.amplitude.total_cmp(&b.amplitude))
+        })
+        .filter(|e| e.amplitude < x_end)
+        .collect();
+    if wells.len() < 2 {
+        return None;
+    }
+    let (a0, a1) = wells
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), e| {
+            (a.min(e.amplitude), b.max(e.amplitude))
+        });
+    let (u0, u1) = wells
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), e| {
+            (a.min(e.potential), b.max(e.potential))
+        });
+    let du = (u1 - u0).max(0.02);
+    // A0 from a whole fifth below the wells to one above them, a twentieth beyond: four
+    // labelled ticks on the inset's narrow axis
+    let (x0, x1) = (
+        ((a0 - 0.3) / 0.2).floor() * 0.2 - 0.05,
+        ((a1 + 0.25) / 0.2).ceil() * 0.2 + 0.05,
+    );
+    Some((x0..x1, (u0 - 0.2 * du)..(u1 + 0.3 * du)))
+}
+
+/// Draw the inset on the outer wells ([`outer_zoom`]) in the lower left of the main chart
+/// `c` (empty there: the curves stay above −0.2 below A0 ≈ 10), with the box it enlarges
+/// outlined on the chart.
+fn draw_outer_inset<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
+    c: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    curves: &[Curve],
+) -> Result<()> {
+    let Some((zx, zy)) = outer_zoom(curves, c.x_range().end) else {
+        return Ok(());
+    };
+    c.draw_series(std::iter::once(Rectangle::new(
+        [(zx.start, zy.start), (zx.end, zy.end)],
+        BLACK.stroke_width(stroke(1)),
+    )))
+    .map_err(pe)?;
+    let y = c.y_range();
+    let top = (-0.26f64).min(y.start + 0.5 * (y.end - y.start));
+    let (p0, p1) = (
+        c.backend_coord(&(0.3, top)),
+        c.backend_coord(&(10.2, y.start + 0.03 * (y.end - y.start))),
+    );
+    let (bx, by) = area.get_base_pixel();
+    let inset = area.clone().shrink(
+        (p0.0 - bx, p0.1 - by),
+        ((p1.0 - p0.0).max(1) as u32, (p1.1 - p0.1).max(1) as u32),
+    );
+    inset.fill(&WHITE).map_err(pe)?;
+    let mut z = framed(&inset, "", (zx, zy), ("", ""), ChartSize::Inset)?;
+    draw_curves(&mut z, curves)?;
+    let (w, h) = inset.dim_in_pixel();
+    inset
+        .draw(&Rectangle::new(
+            [(0, 0), (w as i32 - 1, h as i32 - 1)],
+            BLACK.stroke_width(stroke(1)),
+        ))
+        .map_err(pe)?;
+    Ok(())
+}
+
+/// The caption's key to the drawing: what is marked and what the insets enlarge.
+fn key() -> Vec<String> {
+    vec![
+        "marks as drawn: filled markers the wells (stable cycles), open ones the crests \
+         (unstable cycles); the rest state A0 = 0, a crest of every curve, is no cycle and \
+         left unmarked; the inset in (a) and (b) enlarges the outer wells (the box outlined \
+         around them), whose markers pile up at the panels' scale"
+            .to_string(),
+    ]
+}
+
 /// Heights of the main charts, and of the zooms on the inner well below them.
-const CHARTS: u32 = 460;
+const CHARTS: u32 = 620;
 const ZOOMS: u32 = 380;
 
 /// Where the zoom on the inner well ends: beyond the first crest past the inner well of any
@@ -136,7 +228,7 @@ fn zoom_end(curves: &[Curve]) -> Option<f64> {
 // The two panels side by side, each with its zoom on the inner well below it (the well
 // A01 is ~10⁻³ deep against ~1 for the outer ones: invisible at the main scale), and each
 // column's legend below.
-picture!(Fig07, |self, root| size {
+picture!(Fig07, |self, root| key key(), size {
     let w = 1400;
     let strip = self.panels.iter().map(|p| legend_of(p).height(w / 2)).max().unwrap_or(0);
     (w, CHARTS + ZOOMS + strip)
@@ -153,6 +245,7 @@ picture!(Fig07, |self, root| size {
         // (A0 from a little below 0: the marker at A0 = 0 clear of the y ticks)
         let mut c = chart(area, caption, -0.3..14.0, y, "A0", "U_eff(A0)")?;
         draw_curves(&mut c, &clipped)?;
+        draw_outer_inset(area, &mut c, curves)?;
         if let Some(end) = zoom_end(curves) {
             let (yz, zoomed) = frame(curves, end);
             let label = caption.split(' ').next().unwrap_or("");

@@ -8,7 +8,9 @@
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig11_amplitude_lambda`].
 
 use super::fig05_branches::runs;
-use super::montecarlo::{a_range, amplitude_legend, draw_amplitude_panel, two_columns, PANEL};
+use super::montecarlo::{
+    a_range, amplitude_key, amplitude_legend, draw_amplitude_panel, two_columns, PANEL,
+};
 use crate::render::plot::{chart, pe, PALETTE};
 use plotters::prelude::*;
 use trirhythm_paper::fig11_amplitude_lambda::Fig11;
@@ -17,7 +19,7 @@ use trirhythm_paper::fig11_amplitude_lambda::Fig11;
 const A_WIDTH: u32 = 2 * PANEL.0 * 3 / 4;
 const A_HEIGHT: u32 = 400;
 
-picture!(Fig11, |self, root| size {
+picture!(Fig11, |self, root| key amplitude_key(&self.panels), size {
     let (w, h) = two_columns(&self.panels);
     (w, h + A_HEIGHT)
 }, draw {

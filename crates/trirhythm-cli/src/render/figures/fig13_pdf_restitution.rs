@@ -7,10 +7,12 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig13_pdf_restitution`].
 
-use super::montecarlo::{amplitude_legend, draw_amplitude_columns, two_columns, PANEL};
+use super::montecarlo::{
+    amplitude_key, amplitude_legend, draw_amplitude_columns, two_columns, PANEL,
+};
 use trirhythm_paper::fig13_pdf_restitution::Fig13;
 
-picture!(Fig13, |self, root| size two_columns(&self.panels), draw {
+picture!(Fig13, |self, root| key amplitude_key(&self.panels), size two_columns(&self.panels), draw {
     let rows = self.panels.len().div_ceil(2) as u32;
     let (grid, strip) = root.split_vertically(rows * PANEL.1);
     draw_amplitude_columns(&grid, &self.panels, 2)?;

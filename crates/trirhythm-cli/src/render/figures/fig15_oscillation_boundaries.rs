@@ -8,14 +8,14 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig15_oscillation_boundaries`].
 
-use super::boundary::{draw_panel, legend_of};
+use super::boundary::{draw_panel, key_of, legend_of};
 use trirhythm_paper::fig15_oscillation_boundaries::Fig15;
 
 /// Height of the panels above the legend strip.
 const PANELS: u32 = 1500;
 
 // six panels; one legend for all of them (the styles of the first row's panels) below
-picture!(Fig15, |self, root| size {
+picture!(Fig15, |self, root| key key_of(&self.panels), size {
     let legend = legend_of(&self.panels.iter().take(2).collect::<Vec<_>>());
     (1400, PANELS + legend.height(1400))
 }, draw {

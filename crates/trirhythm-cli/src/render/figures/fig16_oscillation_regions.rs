@@ -4,7 +4,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig16_oscillation_regions`].
 
-use super::boundary::{draw_panel, legend_of};
+use super::boundary::{draw_panel, key_of, legend_of};
 use trirhythm_paper::fig16_oscillation_regions::Fig16;
 
 /// Height of a panel's chart (its legend strip comes below).
@@ -20,7 +20,7 @@ fn strip(fig: &Fig16) -> u32 {
 }
 
 // four panels, each with its legend in a strip below its chart
-picture!(Fig16, |self, root| size (1400, 2 * (CHART + strip(self))), draw {
+picture!(Fig16, |self, root| key key_of(&self.panels), size (1400, 2 * (CHART + strip(self))), draw {
     let areas = root.split_evenly((2, 2));
     for (area, panel) in areas.iter().zip(&self.panels) {
         draw_panel(area, panel, strip(self))?;

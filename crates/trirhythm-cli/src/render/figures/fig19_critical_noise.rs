@@ -8,8 +8,8 @@
 
 use super::lle::{outline, CHART_HEIGHT, PANEL_WIDTH};
 use crate::render::plot::{
-    font_px, pe, px, pxi, stroke, superscript, times_ten, Backend, Dash, LegendStrip, Marker,
-    SeriesStyle, Symbol, AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
+    font_px, pe, px, pxi, stroke, superscript, times_ten, Backend, LegendStrip, Marker, Symbol,
+    AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
 };
 use anyhow::{anyhow, Result};
 use plotters::coord::types::RangedCoordf64;
@@ -22,8 +22,8 @@ use trirhythm_paper::notes::num;
 use trirhythm_paper::verdict::rules::Bracket;
 
 /// The attractors in the order of their slots in a column, with their colours.
-/// Each attractor's marker shape (filled: a located D_c or D_c = 0; open: no D_c), so that
-/// they part in greyscale too.
+/// Each attractor's marker shape (filled for the rest regime, open for the cycles, see
+/// [`filled`]), so that they part in greyscale too.
 const SHAPES: [Marker; 4] = [
     Marker::Circle,
     Marker::Square,
@@ -84,18 +84,23 @@ fn mark_of(c: &Curve) -> Mark {
     }
 }
 
-/// The legend below the panels.
+/// Whether attractor `k`'s markers are filled: the rest regime's, as the Lyapunov figures'
+/// shared notes say ("filled: rest regime, open: cycle regime"); the cycles' are open.
+fn filled(k: usize) -> bool {
+    ATTRACTORS[k].0 == "rest"
+}
+
+/// The legend below the panels: the attractors' markers, then the marks, a few words each
+/// (the caption key, [`key`], says the rest).
 fn strip() -> LegendStrip {
+    let black = RGBColor(0, 0, 0);
     let mut entries: Vec<(Symbol, String)> = ATTRACTORS
         .iter()
         .zip(SHAPES)
-        .map(|((n, c), marker)| {
+        .enumerate()
+        .map(|(k, ((n, c), marker))| {
             (
-                Symbol::Series(SeriesStyle {
-                    colour: *c,
-                    dash: Dash::Solid,
-                    marker,
-                }),
+                Symbol::Shape(marker, *c, filled(k)),
                 if *n == "rest" {
                     "rest regime".to_string()
                 } else {
@@ -105,28 +110,30 @@ fn strip() -> LegendStrip {
         })
         .collect();
     entries.extend([
-        (
-            Symbol::Dot(RGBColor(0, 0, 0)),
-            "D_c bracket: regular at its foot, chaotic at its top; row \"0\": rest chaotic as D → 0".into(),
-        ),
-        (
-            Symbol::Ring(RGBColor(0, 0, 0)),
-            "row \"none\": never chaotic, no D_c".into(),
-        ),
-        (
-            Symbol::Mark('↑'),
-            "bar up to the row \"none\": regular at its foot, not chaotic up to the largest D".into(),
-        ),
-        (
-            Symbol::Mark('I'),
-            "bare bar down to the row \"0\": chaotic at its top, regular nowhere below".into(),
-        ),
-        (
-            Symbol::Cross(RGBColor(0, 0, 0)),
-            "undecided: no bracket".into(),
-        ),
+        (Symbol::Mark('I'), "D_c bracket".into()),
+        (Symbol::Mark('↑'), "regular up to the largest D".into()),
+        (Symbol::Cross(black), "undecided".into()),
     ]);
     LegendStrip { entries }
+}
+
+/// The caption's key to the drawing, after the shared notes of the Lyapunov figures (which
+/// this figure shares with Figs 17 and 18): what the marks mean, and that the x axes are
+/// categorical.
+fn key() -> Vec<String> {
+    vec![
+        "Fig. 19 as drawn: markers filled for the rest regime, open for the cycle regime, as \
+         above; no prediction is drawn (the dashed line of the notes is Figs 17 and 18's); the \
+         x axes are categorical: the values tried, evenly spaced whatever their differences; \
+         a bar with caps is the bracket of D_c, regular at its foot and chaotic at its top, \
+         its marker at the geometric mean of its ends, markers of one attractor in \
+         neighbouring columns joined by a thin line; a bar with an arrow (↑) up to the dotted \
+         line: regular at its foot and not chaotic up to the largest D tried; a bare bar \
+         down to the dotted line: chaotic at its top, regular nowhere below; the dotted lines \
+         are the ends of the searched range of D; row \"none\": never chaotic, no D_c; row \
+         \"0\": the rest regime chaotic as D → 0 (D_c = 0); ×: undecided, no bracket"
+            .to_string(),
+    ]
 }
 
 /// Draw attractor `k`'s marker at (`x`, `y`): its shape, filled or open (white inside).
@@ -211,7 +218,7 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
         }
     };
     c.configure_mesh()
-        .x_desc(panel.x_desc.as_str())
+        .x_desc(format!("{} (values tried, evenly spaced)", panel.x_desc))
         .y_desc("critical noise (log scale)")
         .x_labels(values.len() * 2 + 1)
         .y_labels(16)
@@ -237,12 +244,13 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
         )?;
     }
     let grey = RGBColor(150, 150, 150);
+    // the ends of the searched range, dotted (the Lyapunov figures' dashes are predictions)
     for edge in [below_edge, above_edge] {
         c.draw_series(DashedLineSeries::new(
             [(-0.5, edge), (nv - 0.5, edge)],
-            4,
-            4,
-            grey.stroke_width(1),
+            pxi(2) as u32,
+            pxi(4) as u32,
+            grey.stroke_width(stroke(1)),
         ))
         .map_err(pe)?;
     }
@@ -266,7 +274,7 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
                 let (a, b) = (a.log10(), b.log10());
                 c.draw_series(bar(a, b)).map_err(pe)?;
                 let m = 0.5 * (a + b);
-                draw_shape(&mut c, (x, m), k, colour, true)?;
+                draw_shape(&mut c, (x, m), k, colour, filled(k))?;
                 located[k].push((x, m));
             }
             Mark::Above(d) => {
@@ -282,10 +290,10 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
                 c.draw_series(bar(below_edge, d.log10())).map_err(pe)?;
             }
             Mark::Never => {
-                draw_shape(&mut c, (x, never_row), k, colour, false)?;
+                draw_shape(&mut c, (x, never_row), k, colour, filled(k))?;
             }
             Mark::Zero => {
-                draw_shape(&mut c, (x, zero_row), k, colour, true)?;
+                draw_shape(&mut c, (x, zero_row), k, colour, filled(k))?;
             }
             Mark::Undecided => {
                 c.draw_series(std::iter::once(Cross::new(
@@ -312,7 +320,7 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
     Ok(())
 }
 
-picture!(Fig19, |self, root| size (2 * PANEL_WIDTH, 2 * CHART_HEIGHT + strip().height(2 * PANEL_WIDTH) + 8), draw {
+picture!(Fig19, |self, root| key key(), size (2 * PANEL_WIDTH, 2 * CHART_HEIGHT + strip().height(2 * PANEL_WIDTH) + 8), draw {
     let (maps, legend) = root.split_vertically(2 * CHART_HEIGHT);
     for (area, map) in maps.split_evenly((2, 2)).iter().zip(&self.panels) {
         draw_dc_panel(area, map)?;

@@ -64,24 +64,7 @@ fn dash_of(attractor: &str) -> Dash {
     }
 }
 
-/// The outline of a marker `shape` of radius `r` around the origin (pixels), closed.
-pub(super) fn outline(shape: Marker, r: i32) -> Vec<(i32, i32)> {
-    let q = r + r / 4;
-    match shape {
-        Marker::Square => vec![(-r, -r), (r, -r), (r, r), (-r, r), (-r, -r)],
-        Marker::Triangle => vec![(0, -q), (q, r * 3 / 4), (-q, r * 3 / 4), (0, -q)],
-        Marker::Diamond => vec![(0, -q), (q, 0), (0, q), (-q, 0), (0, -q)],
-        _ => (0..=24)
-            .map(|k| {
-                let a = std::f64::consts::TAU * k as f64 / 24.0;
-                (
-                    (r as f64 * a.cos()).round() as i32,
-                    (r as f64 * a.sin()).round() as i32,
-                )
-            })
-            .collect(),
-    }
-}
+pub(super) use crate::render::legend::outline;
 
 fn strip(panel: &Panel) -> LegendStrip {
     let mut entries: Vec<(Symbol, String)> = Vec::new();

@@ -131,27 +131,100 @@ picture!(MapFigure, |self, root| size {
     (w, PANEL.1 * r as u32 + legend(self).height(w))
 }, draw {
     let (panels, strip) = root.split_vertically(PANEL.1 * layout(self).0 as u32);
-    for (area, p) in panels.split_evenly(layout(self)).iter().zip(&self.panels) {
-        draw_panel(area, p)?;
+    let ends = clear_ends(self);
+    for ((area, p), ends) in panels.split_evenly(layout(self)).iter().zip(&self.panels).zip(ends) {
+        draw_panel(area, p, ends)?;
     }
     legend(self).draw(&strip)
 });
+
+/// Which ends of its axes (x start, x end, y start, y end) a panel leaves a strip beyond the
+/// map at ([`END_GAP`] of the axis): those along which a printed curve runs (its points
+/// within [`ON_END`] of the axis from the end spanning [`ALONG`] of the other axis or more:
+/// drawn on the spine) or an inset's zoom box lies, so that neither sits on a spine.
+fn panel_ends(p: &MapPanel) -> [bool; 4] {
+    let mut ends = [false; 4];
+    let (gx, gy) = (&p.x.grid, &p.y.grid);
+    let (sx, sy) = (p.x.scale, p.y.scale);
+    let (wx, wy) = ((gx.stop - gx.start) / sx, (gy.stop - gy.start) / sy);
+    let bounds = [gx.start / sx, gx.stop / sx, gy.start / sy, gy.stop / sy];
+    for curve in p.printed.iter().flat_map(|f| &f.curves) {
+        for (k, &end) in bounds.iter().enumerate() {
+            let (width, other) = if k < 2 { (wx, wy) } else { (wy, wx) };
+            let (lo, hi) = curve
+                .points
+                .iter()
+                .map(|q| (q.x / sx, q.y / sy))
+                .map(|(x, y)| if k < 2 { (x, y) } else { (y, x) })
+                .filter(|(v, _)| (v - end).abs() <= ON_END * width.abs())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (_, w)| {
+                    (a.min(w), b.max(w))
+                });
+            ends[k] |= hi - lo >= ALONG * other.abs();
+        }
+    }
+    if let Some((zx, zy)) = inset_ranges(p) {
+        for (k, v) in [zx.start, zx.end, zy.start, zy.end].into_iter().enumerate() {
+            ends[k] |= (v - bounds[k]).abs() <= 1e-9 * (1.0 + v.abs());
+        }
+    }
+    ends
+}
+
+/// How near an end of an axis (a share of it) a curve is drawn on its spine.
+const ON_END: f64 = 0.03;
+/// How much of the other axis (a share of it) a curve runs along a spine before the spine
+/// moves off.
+const ALONG: f64 = 0.05;
+
+/// [`panel_ends`] of each panel, shared by the panels with the same axis (a row or column
+/// of a figure keeps one range).
+fn clear_ends(fig: &MapFigure) -> Vec<[bool; 4]> {
+    let own: Vec<[bool; 4]> = fig.panels.iter().map(panel_ends).collect();
+    let same = |a: &MapPanel, b: &MapPanel, k: usize| {
+        let (u, v) = if k < 2 { (&a.x, &b.x) } else { (&a.y, &b.y) };
+        u.grid.start == v.grid.start && u.grid.stop == v.grid.stop && u.scale == v.scale
+    };
+    fig.panels
+        .iter()
+        .map(|p| {
+            std::array::from_fn(|k| {
+                fig.panels
+                    .iter()
+                    .zip(&own)
+                    .any(|(q, e)| e[k] && same(p, q, k))
+            })
+        })
+        .collect()
+}
+
+/// The strip left beyond a map at an end [`clear_ends`] picks, as a share of the axis.
+const END_GAP: f64 = 0.03;
 
 /// Colour of the marked parameter point.
 const MARK: RGBColor = RGBColor(255, 0, 255);
 
 /// Draw one map panel: merged row runs of equal count, fold curves (named where known),
 /// cusps, the marked point. The legend is the figure's, outside the panels.
-fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, p: &MapPanel) -> Result<()> {
+fn draw_panel<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
+    p: &MapPanel,
+    ends: [bool; 4],
+) -> Result<()> {
     let (gx, gy) = (&p.x.grid, &p.y.grid);
     let (sx, sy) = (p.x.scale, p.y.scale);
     let xr = (gx.start / sx)..(gx.stop / sx);
     let yr = (gy.start / sy)..(gy.stop / sy);
+    // the axes, with a strip beyond the map at the ends a curve or zoom box would sit on
+    let gap = |r: &std::ops::Range<f64>, lo: bool, hi: bool| {
+        let g = END_GAP * (r.end - r.start);
+        (r.start - if lo { g } else { 0.0 })..(r.end + if hi { g } else { 0.0 })
+    };
     let mut c = chart(
         area,
         &panel_title(p),
-        xr.clone(),
-        yr.clone(),
+        gap(&xr, ends[0], ends[1]),
+        gap(&yr, ends[2], ends[3]),
         &p.x.desc(),
         &p.y.desc(),
     )?;
@@ -368,8 +441,11 @@ fn panel_title(p: &MapPanel) -> String {
 /// The largest share of the plane (per cent) the trirhythmic region may cover and still be
 /// zoomed on in an inset.
 const INSET_BELOW: f64 = 20.0;
-/// The inset's size as a fraction of the plotting area's width and height.
-const INSET_FRACTION: f64 = 0.5;
+/// The inset's size as a fraction of the plotting area's width and height (a wider one
+/// would hide curves of the panel under its tick labels).
+fn inset_fraction(_p: &MapPanel) -> (f64, f64) {
+    (0.5, 0.5)
+}
 
 /// The data ranges (display units) an inset zooms on: on a map of stable cycles, the bounding
 /// box of the trirhythmic cells (where they cover at most [`INSET_BELOW`] % of the plane); on
@@ -424,8 +500,8 @@ fn draw_inset<DB: Backend>(
     };
     let (rx, ry) = c.plotting_area().get_pixel_range();
     let (iw, ih) = (
-        ((rx.end - rx.start) as f64 * INSET_FRACTION) as i32,
-        ((ry.end - ry.start) as f64 * INSET_FRACTION) as i32,
+        ((rx.end - rx.start) as f64 * inset_fraction(p).0) as i32,
+        ((ry.end - ry.start) as f64 * inset_fraction(p).1) as i32,
     );
     let gap = pxi(6);
     // the corners first, then every position on a grid of eighths of the free room (a corner
@@ -454,12 +530,15 @@ fn draw_inset<DB: Backend>(
     else {
         return Ok(None);
     };
-    // the zoomed box on the panel
-    c.draw_series(std::iter::once(Rectangle::new(
-        [(zx.start, zy.start), (zx.end, zy.end)],
-        WHITE.stroke_width(stroke(2)),
-    )))
-    .map_err(pe)?;
+    // the zoomed box on the panel: white on a black rim, seen on every colour of the map
+    // and on the white beyond it
+    for (colour, width) in [(BLACK, stroke(4)), (WHITE, stroke(2))] {
+        c.draw_series(std::iter::once(Rectangle::new(
+            [(zx.start, zy.start), (zx.end, zy.end)],
+            colour.stroke_width(width),
+        )))
+        .map_err(pe)?;
+    }
     let (bx, by) = area.get_base_pixel();
     let inset = area
         .clone()

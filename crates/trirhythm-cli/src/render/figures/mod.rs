@@ -28,13 +28,19 @@ macro_rules! picture {
         picture!($figure, |$self, $root| caption $self.caption, size $size, draw $draw);
     };
     ($figure:ty, |$self:tt, $root:ident| caption $caption:expr, size $size:expr, draw $draw:block) => {
+        picture!($figure, |$self, $root| caption $caption, key Vec::new(), size $size, draw $draw);
+    };
+    ($figure:ty, |$self:tt, $root:ident| key $key:expr, size $size:expr, draw $draw:block) => {
+        picture!($figure, |$self, $root| caption $self.caption, key $key, size $size, draw $draw);
+    };
+    ($figure:ty, |$self:tt, $root:ident| caption $caption:expr, key $key:expr, size $size:expr, draw $draw:block) => {
         impl crate::render::plot::Picture for $figure {
             fn size(&$self) -> (u32, u32) {
                 $size
             }
 
             fn heading(&$self) -> crate::render::plot::Heading {
-                super::heading_of(&$caption)
+                super::heading_of(&$caption, $key)
             }
 
             fn draw<DB: crate::render::plot::Backend>(
@@ -82,11 +88,49 @@ mod montecarlo;
 use crate::render::plot::Heading;
 use trirhythm_paper::notes::Caption;
 
-/// A caption drawn as a picture's heading.
-pub fn heading_of(caption: &Caption) -> Heading {
+/// A caption drawn as a picture's heading, with the lines the drawing adds after the data's
+/// (`key`: what its marks mean where the data's notes cannot say it) and a glossary of the
+/// abbreviations the caption uses without defining them.
+pub fn heading_of(caption: &Caption, key: Vec<String>) -> Heading {
+    let mut lines = caption.lines.clone();
+    lines.extend(key);
+    let glossary = glossary(&caption.title, &lines);
+    lines.extend(glossary);
     Heading {
         title: caption.title.clone(),
-        lines: caption.lines.clone(),
+        lines,
         verdicts: Vec::new(),
     }
+}
+
+/// The abbreviations a caption uses (in its title or lines), each with what it stands for,
+/// as one line "abbreviations: …"; none where it uses none.
+fn glossary(title: &str, lines: &[String]) -> Option<String> {
+    const TERMS: [(&str, &str); 3] = [
+        (
+            "cp = ",
+            "cp = (α0, β0, γ0, δ0), the control parameters of the damping polynomial \
+             P(U) = 1 − U² + α0U⁴ − β0U⁶ + γ0U⁸ − δ0U¹⁰",
+        ),
+        (
+            "RR",
+            "RR: the recurrence rate, the share of recurrent pairs of points",
+        ),
+        (
+            "DET",
+            "DET: the determinism, the share of recurrent points on diagonal lines of two \
+             points or more (l_min = 2; the line of identity excluded)",
+        ),
+    ];
+    let uses = |word: &str| {
+        std::iter::once(title)
+            .chain(lines.iter().map(String::as_str))
+            .any(|l| l.contains(word))
+    };
+    let found: Vec<&str> = TERMS
+        .iter()
+        .filter(|(word, _)| uses(word))
+        .map(|(_, what)| *what)
+        .collect();
+    (!found.is_empty()).then(|| format!("abbreviations: {}", found.join("; ")))
 }

@@ -33,10 +33,7 @@ pub fn legend_entries(systems: &[&str]) -> Vec<(Symbol, String)> {
         ),
     ];
     for (i, s) in systems.iter().enumerate() {
-        e.push((
-            Symbol::Points(mc_style(i)),
-            format!("Monte Carlo of {s} (bar: ± 1 s.e.)"),
-        ));
+        e.push((Symbol::Points(mc_style(i)), format!("Monte Carlo, {s}")));
     }
     e
 }
@@ -60,7 +57,7 @@ fn mc_style(k: usize) -> SeriesStyle {
 /// The part of the A axis where a panel's densities are: the bins of its histograms with
 /// a density, and the theory, where they stand above a ten-thousandth of the panel's highest
 /// density (the floor of a log axis), padded by 5 % (never below A = 0) and widened to hold
-/// four ticks.
+/// four ticks where a step of the 1-2-5 ladder cannot.
 pub fn a_range(p: &AmplitudePanel) -> (f64, f64) {
     let shown: Vec<Vec<f64>> = p.runs.iter().map(|r| r.shown_density().0 .0).collect();
     let top = shown
@@ -102,7 +99,17 @@ pub fn a_range(p: &AmplitudePanel) -> (f64, f64) {
             .find(|s| *s >= raw)
             .unwrap_or(10.0 * decade)
     };
-    let inside = |lo: f64, hi: f64| (hi / step).floor() - (lo / step).ceil() + 1.0;
+    let inside_at = |lo: f64, hi: f64, step: f64| (hi / step).floor() - (lo / step).ceil() + 1.0;
+    // where the ladder's next smaller step already gives four, nothing is widened (an axis
+    // run on past the data would stand empty)
+    let smaller = {
+        let m = step / 10f64.powf(step.log10().floor());
+        step * if (m - 5.0).abs() < 1e-9 { 0.4 } else { 0.5 }
+    };
+    if inside_at(lo, hi, smaller) >= 4.0 {
+        return (lo, hi);
+    }
+    let inside = |lo: f64, hi: f64| inside_at(lo, hi, step);
     let mut up = true;
     while inside(lo, hi) < 4.0 {
         if up || lo <= 0.0 {
@@ -269,16 +276,41 @@ pub fn amplitude_legend(panels: &[AmplitudePanel]) -> crate::render::plot::Legen
         ));
     }
     if runs().any(|r| r.estimator == "wells" || r.shown_density().1) {
-        entries.push((
-            Symbol::Mark(BY_WELLS),
-            "density by wells (undetermined weights: those nearest the theory, H_min)".into(),
+        entries.push((Symbol::Mark(BY_WELLS), "MC by wells".into()));
+    }
+    if runs().any(|r| !r.step_warnings.is_empty()) {
+        entries.push((Symbol::Mark(COARSE_STEP), "Δt flagged coarse".into()));
+    }
+    crate::render::plot::LegendStrip { entries }
+}
+
+/// The caption's key to amplitude panels: what the legend's few words stand for (the marks
+/// after a panel's title, the bars).
+pub fn amplitude_key(panels: &[AmplitudePanel]) -> Vec<String> {
+    let runs = || panels.iter().flat_map(|p| p.runs.iter());
+    let mut key = vec![
+        "key: Monte Carlo markers with bars of ± 1 standard error; the marks after a panel's \
+         title follow the equation of the ensemble they concern"
+            .to_string(),
+    ];
+    if runs().any(|r| !r.stationary) {
+        key.push(format!(
+            "{NOT_STATIONARY} (Monte Carlo NOT stationary): the ensemble failed the \
+             stationarity check; its density is not a stationary result"
+        ));
+    }
+    if runs().any(|r| r.estimator == "wells" || r.shown_density().1) {
+        key.push(format!(
+            "{BY_WELLS} (MC by wells): the density drawn is the well decomposition's, the \
+             weights the data leave undetermined taken nearest the theory (the least \
+             Hellinger distance, H_min)"
         ));
     }
     if runs().any(|r| !r.step_warnings.is_empty()) {
-        entries.push((
-            Symbol::Mark(COARSE_STEP),
-            "Δt flagged coarse by the step guard".into(),
+        key.push(format!(
+            "{COARSE_STEP} (Δt flagged coarse): the step guard flagged the ensemble's Δt as \
+             coarse"
         ));
     }
-    crate::render::plot::LegendStrip { entries }
+    key
 }
