@@ -168,15 +168,6 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
                 })
             }),
         ),
-        (
-            "noise.multiplicative.intensity",
-            Box::new(|m| {
-                m.noise.multiplicative = Some(NoiseTerm {
-                    intensity: 0.1,
-                    correlation_time: 0.0,
-                })
-            }),
-        ),
     ];
     for (field, change) in cases {
         let mut m = base.clone();
@@ -212,6 +203,15 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
                 })
             }),
         ),
+        (
+            "multiplicative",
+            Box::new(|m| {
+                m.noise.multiplicative = Some(NoiseTerm {
+                    intensity: 0.1,
+                    correlation_time: 0.0,
+                })
+            }),
+        ),
     ];
     for (name, change) in general {
         for wall in [true, false] {
@@ -226,6 +226,16 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
             assert_eq!(m.paper_params(), None, "{name}");
         }
     }
+    // fractional terms are stepped without a wall (refused with one, above)
+    let mut fractional = base.clone();
+    fractional.walls.clear();
+    fractional.fractional = vec![Fractional {
+        coefficient: 0.1,
+        order: 0.5,
+    }];
+    let p = Problem::from_model(&fractional).unwrap();
+    assert_eq!(p.oscillator().terms().unwrap().fractional.len(), 1);
+    assert_eq!(fractional.paper_params(), None);
     // present with a zero coefficient is absent: the same problem
     let mut zero = base.clone();
     zero.damping.rayleigh = vec![0.0];

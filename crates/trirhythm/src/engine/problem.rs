@@ -1,7 +1,7 @@
 //! The problem and the method of a simulation: which equation ([`Problem`]: the
 //! [`Oscillator`] — the paper family's parameters and, optionally, the General kernel's terms
-//! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing; with [`System::Fractional`], the
-//! wall at 0 or none) —, the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
+//! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing, multiplicative noise, fractional
+//! terms; with [`System::Fractional`], the wall at 0 or none, fractional terms without it) —, the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
 //! discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and what one trajectory
 //! records ([`Options`]). Every driver — [`super::simulate`], the ensembles, the Lyapunov
 //! exponents, the oscillation search — takes the same [`Problem`]; its spec holds only what is
@@ -183,6 +183,48 @@ impl Oscillator {
             if let Some(f) = &t.forcing {
                 f.validate()?;
             }
+            if t.fractional.len() > 2 {
+                return Err(Error::invalid(
+                    "fractional",
+                    t.fractional.len() as f64,
+                    "at most 2 terms",
+                ));
+            }
+            for (j, f) in t.fractional.iter().enumerate() {
+                f.validate(j)?;
+            }
+            if let Some(m) = &t.multiplicative {
+                crate::model::Noises {
+                    additive: None,
+                    multiplicative: Some(*m),
+                    correlation: 0.0,
+                }
+                .validate()?;
+            }
+            if !(-1.0..=1.0).contains(&t.correlation) {
+                return Err(Error::invalid(
+                    "noise.correlation",
+                    t.correlation,
+                    "[-1, 1]",
+                ));
+            }
+            if t.correlation != 0.0 {
+                let same = t.multiplicative.is_some_and(|m| match self.noise {
+                    Noise::White { .. } => m.correlation_time == 0.0,
+                    Noise::Colored {
+                        correlation_time, ..
+                    } => m.correlation_time == correlation_time,
+                    Noise::None => false,
+                });
+                if !same {
+                    return Err(Error::invalid(
+                        "noise.correlation",
+                        t.correlation,
+                        "0 unless noise.additive (D > 0) and noise.multiplicative have one \
+                         correlation_time",
+                    ));
+                }
+            }
         }
         Ok(Oscillator { general, ..self })
     }
@@ -266,8 +308,9 @@ impl Problem {
     /// The problem a model file describes: its equation, its wall and its start, for the
     /// models the engine steps ([`Model::engine_terms`]): the paper's Eq. 1 with the wall at 0
     /// or none, additive white or OU noise, and the General kernel's terms — Duffing
-    /// k3U³ + k5U⁵, Rayleigh Σ d_k U̇^{2k}, harmonic forcing F cos(Ωt + φ). Every other
-    /// term is refused with [`Error::NotApplicable`] naming it, never dropped. For
+    /// k3U³ + k5U⁵, Rayleigh Σ d_k U̇^{2k}, harmonic forcing F cos(Ωt + φ), multiplicative
+    /// noise U·η_m, and fractional terms K_j·D^{α_j}U without a wall. Every other term is
+    /// refused with [`Error::NotApplicable`] naming it, never dropped. For
     /// `Model::from(&p)` this is `Problem::from_params(&p)` (the same value, hence the same
     /// paths, bit for bit: `tests/model_file.rs`, `tests/pinned.rs`).
     ///
@@ -282,7 +325,9 @@ impl Problem {
     /// duffing.restoring.cubic = 0.5;
     /// assert!(Problem::from_model(&duffing)?.oscillator().terms().is_some()); // General kernel
     /// duffing.fractional.push(trirhythm::model::Fractional { coefficient: 0.1, order: 0.5 });
-    /// assert!(Problem::from_model(&duffing).is_err()); // not stepped yet: refused, named
+    /// assert!(Problem::from_model(&duffing).is_err()); // with the wall: refused, named
+    /// duffing.walls.clear();
+    /// assert!(Problem::from_model(&duffing)?.oscillator().terms().is_some()); // without: stepped
     /// # Ok::<(), trirhythm::Error>(())
     /// ```
     pub fn from_model(model: &Model) -> Result<Self> {
@@ -394,8 +439,12 @@ impl Problem {
                 "restoring.quintic"
             } else if !t.rayleigh.is_empty() {
                 "damping.rayleigh"
-            } else {
+            } else if t.forcing.is_some() {
                 "forcing.amplitude"
+            } else if !t.fractional.is_empty() {
+                "fractional"
+            } else {
+                "noise.multiplicative"
             };
             let refuse = |assumption: &str, reason: String| Error::NotApplicable {
                 method: "the engine".into(),
@@ -409,6 +458,17 @@ impl Problem {
                         "{field}: the General kernel's terms have no Eq. (5)/(9) equivalent; \
                          system = {:?}",
                         self.system
+                    ),
+                ));
+            }
+            if !t.fractional.is_empty() && self.barrier == Barrier::On {
+                return Err(refuse(
+                    "no wall with a fractional term K·D^αU",
+                    format!(
+                        "fractional.0.coefficient = {} with a wall: the engine does not step it \
+                         yet (the impact step of the term's memory of U̇, split at the impact, \
+                         is not built); it steps fractional terms without a wall",
+                        Exact(t.fractional[0].coefficient)
                     ),
                 ));
             }

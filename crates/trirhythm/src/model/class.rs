@@ -13,7 +13,8 @@
 //! [`Params`] converts losslessly: `Model::from(&params).paper_params() == Some(params)`.
 //! [`Model::paper_family`] is the paper's family (refusing every other term by name,
 //! [`Error::NotApplicable`]); [`Model::engine_terms`] is what the engine steps: that family plus
-//! the General kernel's terms ([`GeneralTerms`]: Duffing, Rayleigh, forcing).
+//! the General kernel's terms ([`GeneralTerms`]: Duffing, Rayleigh, forcing, fractional terms
+//! K·D^αU, multiplicative noise U·η_m).
 //!
 //! Reference: the paper's Eq. (1) and issue 36's class; `docs/model-file.md`.
 //!
@@ -22,8 +23,8 @@
 //! `Problem::from_params(p)` against `Problem::from_model(file of p)`: identical paths).
 
 use super::terms::{
-    Dissipation, Fractional, Harmonic, Keep, Leading, Noises, Restitution, Restoring, Start, Wall,
-    MAX_FRACTIONAL, MAX_WALLS,
+    Dissipation, Fractional, Harmonic, Keep, Leading, NoiseTerm, Noises, Restitution, Restoring,
+    Start, Wall, MAX_FRACTIONAL, MAX_WALLS,
 };
 use super::{Damping, Params};
 use crate::error::{Error, Exact, Result};
@@ -70,8 +71,10 @@ pub struct PaperFamily {
 
 /// The terms of the class beyond the paper's family that the engine's General kernel steps
 /// (`engine::stepper::general`): the odd restoring terms k3U³ + k5U⁵, the Rayleigh damping
-/// Σ d_k U̇^{2k} in h, and the harmonic forcing F cos(Ωt + φ). The rest of the equation (μ0P(U),
-/// ω0, λ, the noise, the wall) is the [`PaperFamily`] beside it ([`Model::engine_terms`]).
+/// Σ d_k U̇^{2k} in h, the harmonic forcing F cos(Ωt + φ), the fractional terms K_j·D^{α_j}U
+/// and the multiplicative noise U·η_m (with its correlation to the additive noise). The rest of
+/// the equation (μ0P(U), ω0, λ, the additive noise, the wall) is the [`PaperFamily`] beside it
+/// ([`Model::engine_terms`]).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct GeneralTerms {
     /// k3, the coefficient of U³ in k(U).
@@ -83,6 +86,13 @@ pub struct GeneralTerms {
     pub rayleigh: Vec<f64>,
     /// F cos(Ωt + φ), with F ≠ 0.
     pub forcing: Option<Harmonic>,
+    /// K_j·D^{α_j}U (Caputo), at most two, each with K ≠ 0 and α ∈ (0, 1].
+    pub fractional: Vec<Fractional>,
+    /// η_m of U·η_m (white for τ = 0, ⟨η_mη_m⟩ = 2Dδ; else OU), with D ≠ 0.
+    pub multiplicative: Option<NoiseTerm>,
+    /// The correlation coefficient c ∈ [−1, 1] of η_m with the additive noise (0 without
+    /// multiplicative noise; the two of one correlation time).
+    pub correlation: f64,
 }
 
 impl GeneralTerms {
@@ -92,10 +102,14 @@ impl GeneralTerms {
             && self.quintic == 0.0
             && self.rayleigh.is_empty()
             && self.forcing.is_none()
+            && self.fractional.is_empty()
+            && self.multiplicative.is_none()
     }
 
     /// `cubic=… quintic=… rayleigh=[…] forcing: amplitude=… frequency=… phase=…` (or
-    /// `forcing: none`), with the model file's names, for header lines.
+    /// `forcing: none`), then ` fractional=[K@α,…]` and ` multiplicative: intensity=…
+    /// correlation_time=… correlation=…` when present, with the model file's names, for header
+    /// lines.
     pub fn describe(&self) -> String {
         let rayleigh: Vec<String> = self
             .rayleigh
@@ -111,12 +125,29 @@ impl GeneralTerms {
             ),
             None => "none".to_string(),
         };
-        format!(
+        let mut text = format!(
             "cubic={} quintic={} rayleigh=[{}] forcing: {forcing}",
             Exact(self.cubic),
             Exact(self.quintic),
             rayleigh.join(",")
-        )
+        );
+        if !self.fractional.is_empty() {
+            let terms: Vec<String> = self
+                .fractional
+                .iter()
+                .map(|f| format!("{}@{}", Exact(f.coefficient), Exact(f.order)))
+                .collect();
+            text.push_str(&format!(" fractional=[{}]", terms.join(",")));
+        }
+        if let Some(m) = &self.multiplicative {
+            text.push_str(&format!(
+                " multiplicative: intensity={} correlation_time={} correlation={}",
+                Exact(m.intensity),
+                Exact(m.correlation_time),
+                Exact(self.correlation)
+            ));
+        }
+        text
     }
 }
 
@@ -367,28 +398,46 @@ impl Model {
     }
 
     /// The model as the engine steps it: the paper family's part ([`Model::paper_family`]) and
-    /// the General kernel's terms (Duffing k3, k5; Rayleigh d_k; harmonic forcing), None when
-    /// there are none (the paper's kernel, the paper's bits). Refused by name with
-    /// [`Error::NotApplicable`] for `method`: fractional terms K·D^αU, a wall off 0, below it
-    /// or two walls, a speed-dependent restitution, multiplicative noise (as by
-    /// [`Model::paper_family`]). Terms present with a zero coefficient are absent.
+    /// the General kernel's terms (Duffing k3, k5; Rayleigh d_k; harmonic forcing; fractional
+    /// terms K·D^αU; multiplicative noise U·η_m), None when there are none (the paper's kernel,
+    /// the paper's bits). Refused by name with [`Error::NotApplicable`] for `method`: a wall
+    /// off 0, below it or two walls, a speed-dependent restitution (as by
+    /// [`Model::paper_family`]); fractional terms with a wall
+    /// ([`crate::engine::Problem::from_model`]). Terms present with a zero coefficient are
+    /// absent.
     pub fn engine_terms(&self, method: &str) -> Result<(PaperFamily, Option<GeneralTerms>)> {
         self.validate()?;
         let mut rayleigh = self.damping.rayleigh.clone();
         while rayleigh.last() == Some(&0.0) {
             rayleigh.pop();
         }
+        let multiplicative = self.noise.multiplicative.filter(|m| m.intensity != 0.0);
         let terms = GeneralTerms {
             cubic: self.restoring.cubic,
             quintic: self.restoring.quintic,
             rayleigh,
             forcing: self.forcing.filter(|f| f.amplitude != 0.0),
+            fractional: self
+                .fractional
+                .iter()
+                .copied()
+                .filter(|f| f.coefficient != 0.0)
+                .collect(),
+            multiplicative,
+            correlation: if multiplicative.is_some() {
+                self.noise.correlation
+            } else {
+                0.0
+            },
         };
         let mut paper = self.clone();
         paper.restoring.cubic = 0.0;
         paper.restoring.quintic = 0.0;
         paper.damping.rayleigh.clear();
         paper.forcing = None;
+        paper.fractional.clear();
+        paper.noise.multiplicative = None;
+        paper.noise.correlation = 0.0;
         let family = paper.paper_family(method)?;
         if terms.is_empty() {
             return Ok((family, None));

@@ -58,8 +58,13 @@
 
 use super::affine::{hermite_limiter, predictor_weight, predictor_weight_slope, Affine};
 use super::polynomial::Polynomial;
+use crate::engine::kernel::MIN_SOE_LAMBDA;
+use crate::engine::memory::{History, Memory, Piece};
+use crate::engine::noise::{Noise, NoiseStream};
+use crate::error::{Error, Result};
 use crate::maths;
-use crate::model::{GeneralTerms, Harmonic};
+use crate::model::{GeneralTerms, Harmonic, NoiseTerm};
+use std::sync::Mutex;
 
 /// Steps between re-anchorings of the forcing's phase.
 const REANCHOR: u64 = 256;
@@ -114,9 +119,129 @@ impl Phase {
     }
 }
 
-/// g = h(U, V)V − k(U) + F cos ψ + η of the General kernel (module docs), with the path's
-/// forcing phase.
-#[derive(Debug, Clone, PartialEq)]
+/// One fractional term K·D^αU = K·m, m = J^{1−α}V (module docs): its memory of V.
+#[derive(Debug, Clone)]
+struct FractionalMemory {
+    /// K.
+    k: f64,
+    /// The memory of J^{1−α}V over the completed steps; None at α = 1 (the term is local:
+    /// m = V).
+    history: Option<History>,
+    /// The scaled weights of V_n and V_{n+1} in m_{n+1} ((0, 1) at α = 1).
+    wl: f64,
+    wr: f64,
+}
+
+/// The multiplicative noise η_m = mix·η_a + own·η′ (module docs): η′ of η_m's law from a
+/// stream of its own, mixed with the additive noise's level for the correlation c.
+#[derive(Debug, Clone)]
+struct Parametric {
+    stream: NoiseStream,
+    /// c·√(D_m/D_a) (0 when uncorrelated).
+    mix: f64,
+    /// √(1 − c²).
+    own: f64,
+}
+
+/// The seed of η_m's stream is the run's seed XOR this (η_a's deviates, hence the paper's
+/// bits, do not move).
+const PARAMETRIC_SALT: u64 = 0x6d75_6c74_6970_6c79;
+
+/// The multiplicative noise of `term` (τ = 0: white), correlated by `c` with `additive`.
+fn parametric(
+    term: NoiseTerm,
+    c: f64,
+    additive: Noise,
+    h: f64,
+    (seed, path): (u64, u64),
+) -> Result<Parametric> {
+    let kind = if term.correlation_time == 0.0 {
+        Noise::White {
+            intensity: term.intensity,
+        }
+    } else {
+        Noise::Colored {
+            intensity: term.intensity,
+            correlation_time: term.correlation_time,
+        }
+    };
+    let d_a = match additive {
+        Noise::None => 0.0,
+        Noise::White { intensity } | Noise::Colored { intensity, .. } => intensity,
+    };
+    // one correlation time (validated): η_a and η′ are the same linear map of their deviates,
+    // so c·√(D_m/D_a)·η_a + √(1 − c²)·η′ has η_m's law and correlation c with η_a
+    let (mix, own) = if c != 0.0 && d_a > 0.0 {
+        (c * (term.intensity / d_a).sqrt(), (1.0 - c * c).sqrt())
+    } else {
+        (0.0, 1.0)
+    };
+    Ok(Parametric {
+        stream: NoiseStream::new(kind, h, seed ^ PARAMETRIC_SALT, path)?,
+        mix,
+        own,
+    })
+}
+
+/// Where the memories of the fractional terms are built: the leading memory's kind, window
+/// and horizon ([`General::new`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct MemorySetup {
+    pub(super) memory: Memory,
+    pub(super) window: usize,
+    /// The SOE kernel's certified horizon T (unused by the direct memory).
+    pub(super) horizon: f64,
+}
+
+/// Empty memories of J^{1−α}V already built (their SOE kernels verified), by (order, Δt, T,
+/// tolerance, window): an ensemble builds each once, not once per path.
+static BUILT: Mutex<Vec<([u64; 5], History)>> = Mutex::new(Vec::new());
+/// Most memories [`BUILT`] keeps.
+const BUILT_MAX: usize = 16;
+
+/// The empty memory of J^{1−α}V of term `index` (order α ∈ (0, 1)), steps of `h`.
+fn fractional_history(index: usize, order: f64, h: f64, setup: &MemorySetup) -> Result<History> {
+    let lambda = 1.0 - order;
+    if !(lambda >= MIN_SOE_LAMBDA) {
+        return Err(Error::invalid(
+            format!("fractional.{index}.order").as_str(),
+            order,
+            "(0, 1 − 1e-6] or exactly 1 (K·U̇): the memory J^{1−α}U̇ of an order closer to 1 is \
+             a near-delta the sum of exponentials does not resolve",
+        ));
+    }
+    let tolerance = match setup.memory {
+        Memory::Direct => u64::MAX,
+        Memory::SumOfExponentials { tolerance } => tolerance.to_bits(),
+    };
+    let key = [
+        order.to_bits(),
+        h.to_bits(),
+        setup.horizon.to_bits(),
+        tolerance,
+        setup.window as u64,
+    ];
+    if let Some((_, built)) = BUILT
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .iter()
+        .find(|(k, _)| *k == key)
+    {
+        return Ok(built.clone());
+    }
+    let built = History::new(lambda, h, setup.horizon, setup.memory, setup.window)?;
+    let mut cache = BUILT.lock().unwrap_or_else(|e| e.into_inner());
+    if cache.len() >= BUILT_MAX {
+        cache.remove(0);
+    }
+    cache.push((key, built.clone()));
+    Ok(built)
+}
+
+/// g = h(U, V)V − k(U) − Σ_j K_j m_j + F cos ψ + η_a + Uη_m of the General kernel (module
+/// docs), with the path's forcing phase, its memories of the fractional terms and its stream of
+/// multiplicative noise.
+#[derive(Debug, Clone)]
 pub(crate) struct General {
     /// μ0P in U².
     damping: Polynomial,
@@ -128,6 +253,21 @@ pub(crate) struct General {
     cubic: f64,
     quintic: f64,
     phase: Option<Phase>,
+    /// The fractional terms' memories.
+    memories: Vec<FractionalMemory>,
+    /// κ = Σ_j K_j ϖ_r^j: −κV_{n+1} is the fractional terms' part of g at a step's end that
+    /// depends on V_{n+1}.
+    kappa: f64,
+    /// −Σ_j K_j m_j at the current node.
+    lag: f64,
+    /// −Σ_j K_j(M_j + ϖ_l^j V_n) of the step in progress (the part of −ΣK_j m_{j,n+1} known
+    /// at its start).
+    ahead: f64,
+    parametric: Option<Parametric>,
+    /// η_m on the step in progress (0 without multiplicative noise).
+    eta_m: f64,
+    /// Fractional terms or multiplicative noise present (the step's extra work).
+    extras: bool,
 }
 
 /// The Rayleigh parts at a velocity v (x = v²): Σd_k x^k, Σ(2k+1)d_k x^k (∂_V of its V-term),
@@ -177,9 +317,39 @@ impl GeneralFree {
 }
 
 impl General {
-    /// The kernel of the paper kernel `affine`'s μ0P and ω0² with `terms`, steps of `h`.
-    pub(super) fn new(affine: &Affine, terms: &GeneralTerms, h: f64) -> Self {
-        General {
+    /// The kernel of the paper kernel `affine`'s μ0P and ω0² with `terms`, steps of `h`: the
+    /// fractional terms' memories as `setup` says (α = 1: local), the multiplicative noise
+    /// from stream `path` of `seed` (salted), correlated with the additive noise `additive`.
+    pub(super) fn new(
+        affine: &Affine,
+        terms: &GeneralTerms,
+        h: f64,
+        setup: &MemorySetup,
+        additive: Noise,
+        (seed, path): (u64, u64),
+    ) -> Result<Self> {
+        let mut memories = Vec::with_capacity(terms.fractional.len());
+        for (j, f) in terms.fractional.iter().enumerate() {
+            let (history, wl, wr) = if f.order == 1.0 {
+                (None, 0.0, 1.0)
+            } else {
+                let history = fractional_history(j, f.order, h, setup)?;
+                let (wl, wr) = history.current_weights();
+                (Some(history), wl, wr)
+            };
+            memories.push(FractionalMemory {
+                k: f.coefficient,
+                history,
+                wl,
+                wr,
+            });
+        }
+        let kappa = memories.iter().map(|m| m.k * m.wr).sum();
+        let parametric = match terms.multiplicative {
+            None => None,
+            Some(m) => Some(parametric(m, terms.correlation, additive, h, (seed, path))?),
+        };
+        Ok(General {
             damping: affine.damping.clone(),
             slope: affine.slope.clone(),
             rayleigh: terms.rayleigh.clone(),
@@ -187,7 +357,111 @@ impl General {
             cubic: terms.cubic,
             quintic: terms.quintic,
             phase: terms.forcing.as_ref().map(|f| Phase::new(f, h)),
+            extras: !memories.is_empty() || parametric.is_some(),
+            memories,
+            kappa,
+            lag: 0.0,
+            ahead: 0.0,
+            parametric,
+            eta_m: 0.0,
+        })
+    }
+
+    /// Whether the kernel has fractional terms or multiplicative noise (the tangent does not
+    /// differentiate them yet).
+    #[inline]
+    pub(super) fn extras(&self) -> bool {
+        self.extras
+    }
+
+    /// The start of a step from (u, v) whose additive noise level is `el` (η_a, before any
+    /// gain): draws η_m for the step; returns g's extra parts at the step's start,
+    /// −Σ_j K_j m_{j,n} + u·η_m, and the part of −Σ_j K_j m_{j,n+1} known now,
+    /// −Σ_j K_j(M_j + ϖ_l^j V_n).
+    #[inline]
+    pub(super) fn begin_step(&mut self, u: f64, v: f64, el: f64) -> (f64, f64) {
+        if let Some(p) = &mut self.parametric {
+            let (own, _) = p.stream.next_step();
+            self.eta_m = p.mix * el + p.own * own;
         }
+        let mut ahead = 0.0;
+        for m in &self.memories {
+            let past = m.history.as_ref().map_or(0.0, History::value);
+            ahead -= m.k * (past + m.wl * v);
+        }
+        self.ahead = ahead;
+        (self.lag + u * self.eta_m, ahead)
+    }
+
+    /// The end of the step begun by [`General::begin_step`] from V_n = `v` at (u1, v1): V's
+    /// piece into every memory; returns the part of g's extras there not in the step's known
+    /// forcing (which holds −Σ_j K_j(M_j + ϖ_l^j V_n)): −κV_{n+1} + u1·η_m.
+    #[inline]
+    pub(super) fn end_step(&mut self, v: f64, u1: f64, v1: f64) -> f64 {
+        for m in &mut self.memories {
+            if let Some(h) = &mut m.history {
+                h.push(Piece {
+                    left: v,
+                    right: v1,
+                    split: None,
+                });
+            }
+        }
+        let now = -self.kappa * v1;
+        self.lag = self.ahead + now;
+        now + u1 * self.eta_m
+    }
+
+    /// Draw η_m's future deviates from stream `path` of `seed` (salted), keeping its present
+    /// OU value ([`super::Stepper::renoise`]).
+    pub(super) fn renoise(&mut self, seed: u64, path: u64) {
+        if let Some(p) = &mut self.parametric {
+            p.stream.renoise(seed ^ PARAMETRIC_SALT, path);
+        }
+    }
+
+    /// Pull the fractional terms' memories toward `reference`'s by the factor `c`
+    /// ([`super::Stepper::contract_toward`]; they hold no split piece: no wall). False, with
+    /// nothing changed, when they cannot be combined.
+    pub(super) fn contract_toward(&mut self, reference: &General, c: f64) -> bool {
+        if self.memories.len() != reference.memories.len() {
+            return false;
+        }
+        let mut trial = self.memories.clone();
+        for (m, r) in trial.iter_mut().zip(&reference.memories) {
+            if let (Some(h), Some(hr)) = (&mut m.history, &r.history) {
+                if !h.contract_toward(hr, c) {
+                    return false;
+                }
+            }
+        }
+        self.memories = trial;
+        self.lag = reference.lag + c * (self.lag - reference.lag);
+        true
+    }
+
+    /// Whether the fractional memories and the multiplicative noise's state equal `other`'s.
+    pub(super) fn coincides_with(&self, other: &General) -> bool {
+        self.lag == other.lag
+            && self.memories.len() == other.memories.len()
+            && self.memories.iter().zip(&other.memories).all(|(a, b)| {
+                match (&a.history, &b.history) {
+                    (Some(x), Some(y)) => x.coincides(y),
+                    (None, None) => true,
+                    _ => false,
+                }
+            })
+            && self.parametric.as_ref().map(|p| p.stream.current())
+                == other.parametric.as_ref().map(|p| p.stream.current())
+            && self.phase == other.phase
+    }
+
+    /// Bytes held by the fractional terms' memories.
+    pub(super) fn memory_bytes(&self) -> usize {
+        self.memories
+            .iter()
+            .filter_map(|m| m.history.as_ref().map(History::state_bytes))
+            .sum()
     }
 
     /// k(U) = ω0²U + k3U³ + k5U⁵.
@@ -262,7 +536,16 @@ impl General {
     /// The drift and the predictor's weight at a node (u1, v1), steps of `h`.
     #[inline]
     pub(super) fn node(&self, h: f64, u1: f64, v1: f64) -> (f64, f64) {
-        (self.drift(u1, v1), predictor_weight(h, self.a(u1, v1)))
+        (
+            self.drift(u1, v1),
+            predictor_weight(h, self.slope_v(u1, v1)),
+        )
+    }
+
+    /// ∂_V g at (u, v) with the fractional terms' −κ (the predictor's weight's damping).
+    #[inline]
+    pub(super) fn slope_v(&self, u: f64, v: f64) -> f64 {
+        self.a(u, v) - self.kappa
     }
 
     /// The harmonic forcing F cos ψ at the current node (0 without forcing).
@@ -339,12 +622,18 @@ impl General {
     ) -> GeneralPass {
         let mp = self.mu_p(up);
         let r = self.rayleigh_at(vl);
-        let a = mp + r.a;
+        // κ = 0 without fractional terms: a and g's V-factor are then the same bits as before
+        let a = mp + r.a - self.kappa;
         let k = self.restoring(up);
+        let fr = if self.parametric.is_some() {
+            fr + up * self.eta_m
+        } else {
+            fr
+        };
         let inv = 1.0 / (1.0 - w * a);
         let lim = hermite_limiter(2.0 * w * a);
         let v1 = (known + w * (fr - k + r.rest)) * inv;
-        let gr = (mp + self.rayleigh_at(v1).h) * v1 - k + fr;
+        let gr = (mp + self.rayleigh_at(v1).h - self.kappa) * v1 - k + fr;
         let u1 = u + 0.5 * len * (v + v1) + len * len * (1.0 / 12.0) * lim * (g0 - gr);
         GeneralPass {
             up,
