@@ -242,6 +242,10 @@ pub fn theory_refusal(terms: Option<&GeneralTerms>) -> Option<String> {
         format!("damping.rayleigh.{k} = {}", t.rayleigh[k])
     } else if let Some(f) = &t.forcing {
         format!("forcing.amplitude = {}", f.amplitude)
+    } else if let Some(f) = t.fractional.first() {
+        format!("fractional.0.coefficient = {}", f.coefficient)
+    } else if let Some(m) = &t.multiplicative {
+        format!("noise.multiplicative.intensity = {}", m.intensity)
     } else {
         return None;
     };

@@ -76,7 +76,8 @@ fn check(a: &CheckArgs) -> Result<()> {
         Ok((f, terms)) => format!(
             "the engine steps it ({}, {}, {} noise): {}",
             if terms.is_some() {
-                "the General kernel: Duffing, Rayleigh or forcing terms"
+                "the General kernel: Duffing, Rayleigh, forcing, fractional or multiplicative \
+                 terms"
             } else {
                 "the paper's family"
             },

@@ -208,19 +208,21 @@ impl Oscillator {
                     "[-1, 1]",
                 ));
             }
+            // c correlates η_m with η_a when both are present (without η_a, e.g. a noise-free
+            // probe at D = 0, it has nothing to act on); they need one correlation time
             if t.correlation != 0.0 {
-                let same = t.multiplicative.is_some_and(|m| match self.noise {
-                    Noise::White { .. } => m.correlation_time == 0.0,
+                let differ = t.multiplicative.is_some_and(|m| match self.noise {
+                    Noise::White { .. } => m.correlation_time != 0.0,
                     Noise::Colored {
                         correlation_time, ..
-                    } => m.correlation_time == correlation_time,
+                    } => m.correlation_time != correlation_time,
                     Noise::None => false,
                 });
-                if !same {
+                if differ {
                     return Err(Error::invalid(
                         "noise.correlation",
                         t.correlation,
-                        "0 unless noise.additive (D > 0) and noise.multiplicative have one \
+                        "0 unless noise.additive and noise.multiplicative have one \
                          correlation_time",
                     ));
                 }

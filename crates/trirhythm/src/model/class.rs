@@ -439,6 +439,18 @@ impl Model {
         paper.noise.multiplicative = None;
         paper.noise.correlation = 0.0;
         let family = paper.paper_family(method)?;
+        if !terms.fractional.is_empty() && family.wall {
+            return Err(Error::NotApplicable {
+                method: method.to_string(),
+                assumption: "no wall with a fractional term K·D^αU".into(),
+                reason: format!(
+                    "fractional.0.coefficient = {} with a wall: the engine does not step it yet \
+                     (the impact step of the term's memory of U̇, split at the impact, is not \
+                     built); it steps fractional terms without a wall",
+                    Exact(terms.fractional[0].coefficient)
+                ),
+            });
+        }
         if terms.is_empty() {
             return Ok((family, None));
         }
