@@ -433,3 +433,107 @@ fn parametric_white_noise_has_the_exact_second_moments_extended() {
     parametric(0.8, 64_000, 20.0, 0.005);
     parametric(1.25, 64_000, 20.0, 0.005);
 }
+
+/// A model with two fractional terms, correlated multiplicative OU noise and a Duffing term:
+/// lanes of 4 and 8 give the scalar bits (path by path), a clone continues as its original
+/// (memories and η_m's stream carried), the two-trajectory Lyapunov method runs and the tangent
+/// method refuses it by name.
+#[test]
+fn fractional_paths_are_the_same_in_lanes_and_clones() {
+    use trirhythm::analysis::lyapunov::LyapunovMethod;
+    use trirhythm::analysis::{largest_lyapunov, LyapunovSpec};
+    use trirhythm::engine::Lanes;
+    let mut m = linear(0.95, 0.1);
+    m.restoring.cubic = 0.3;
+    m.start.u0 = 0.7;
+    m.fractional = vec![
+        Fractional {
+            coefficient: 0.3,
+            order: 0.4,
+        },
+        Fractional {
+            coefficient: 0.1,
+            order: 1.0,
+        },
+    ];
+    m.noise.additive = Some(NoiseTerm {
+        intensity: 0.05,
+        correlation_time: 0.5,
+    });
+    m.noise.multiplicative = Some(NoiseTerm {
+        intensity: 0.02,
+        correlation_time: 0.5,
+    });
+    m.noise.correlation = -0.4;
+    let problem = Problem::from_model(&m).unwrap();
+    let method = PredictorCorrector::default();
+    let steps = 3000u64;
+    let horizon = steps as f64 * method.dt;
+    let bits = |s: &Stepper| (s.u().to_bits(), s.v().to_bits());
+    let alone: Vec<_> = (0..8)
+        .map(|i| {
+            let mut s = Stepper::new(&problem, &method, (SEED, i), horizon).unwrap();
+            let mut half = None;
+            for n in 0..steps {
+                s.step().unwrap();
+                if n == steps / 2 {
+                    half = Some(s.clone());
+                }
+            }
+            let mut c = half.unwrap();
+            for _ in steps / 2 + 1..steps {
+                c.step().unwrap();
+            }
+            assert_eq!(bits(&c), bits(&s), "a clone continues as its original");
+            bits(&s)
+        })
+        .collect();
+    // the multiplicative noise moves the path: not the bits without it
+    let mut quiet = m.clone();
+    quiet.noise.multiplicative = None;
+    quiet.noise.correlation = 0.0;
+    let mut q = Stepper::new(
+        &Problem::from_model(&quiet).unwrap(),
+        &method,
+        (SEED, 0),
+        horizon,
+    )
+    .unwrap();
+    for _ in 0..steps {
+        q.step().unwrap();
+    }
+    assert_ne!(bits(&q), alone[0]);
+    for width in [4, 8] {
+        let mut paths: Vec<Stepper> = (0..8)
+            .map(|i| Stepper::new(&problem, &method, (SEED, i), horizon).unwrap())
+            .collect();
+        let mut obs: Vec<_> = (0..8).map(|_| |_: &Stepper| Flow::Continue).collect();
+        trirhythm::engine::run_lanes(&mut paths, steps, &mut obs, Lanes::Width(width), &Silent)
+            .unwrap();
+        let got: Vec<_> = paths.iter().map(bits).collect();
+        assert_eq!(got, alone, "{width} lanes");
+    }
+    let spec = |method| LyapunovSpec {
+        paths: 2,
+        transient: 20.0,
+        length: 200.0,
+        method,
+        ..Default::default()
+    };
+    let two = largest_lyapunov(
+        &problem,
+        &method,
+        &spec(LyapunovMethod::TwoTrajectory),
+        &Silent,
+    )
+    .unwrap();
+    println!(
+        "two-trajectory exponent: {} ± {}",
+        two.lle.value, two.lle.stderr
+    );
+    // the fractional memory relaxes algebraically: an exponent near 0 from below
+    assert!(two.lle.value.is_finite() && two.lle.value.abs() < 0.1);
+    let tangent = largest_lyapunov(&problem, &method, &spec(LyapunovMethod::Tangent), &Silent);
+    let text = tangent.unwrap_err().to_string();
+    assert!(text.contains("fractional"), "{text}");
+}

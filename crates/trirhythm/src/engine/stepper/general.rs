@@ -711,3 +711,53 @@ impl General {
         self.pass_tangent(f, &f.passes[1], (du, dv, dg0), first, dknown)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// η_m = c·√(D_m/D_a)·η_a + √(1 − c²)·η′ has η_m's step variance and correlation c with
+    /// η_a, white and OU (one τ), within four standard errors.
+    #[test]
+    fn correlated_multiplicative_noise_has_its_law_and_correlation() {
+        let (d_a, d_m, h, n) = (0.3, 0.05, 0.01, 200_000);
+        for (tau, c) in [(0.0, 0.6), (0.0, -1.0), (0.4, 0.3), (0.4, 0.0)] {
+            let additive = if tau == 0.0 {
+                Noise::White { intensity: d_a }
+            } else {
+                Noise::Colored {
+                    intensity: d_a,
+                    correlation_time: tau,
+                }
+            };
+            let term = NoiseTerm {
+                intensity: d_m,
+                correlation_time: tau,
+            };
+            let mut a = NoiseStream::new(additive, h, 11, 3).unwrap();
+            let mut p = parametric(term, c, additive, h, (11, 3)).unwrap();
+            let (mut saa, mut smm, mut sam) = (0.0, 0.0, 0.0);
+            for _ in 0..n {
+                let (ea, _) = a.next_step();
+                let (own, _) = p.stream.next_step();
+                let em = p.mix * ea + p.own * own;
+                saa += ea * ea;
+                smm += em * em;
+                sam += ea * em;
+            }
+            let ratio = smm / saa;
+            let corr = sam / (saa * smm).sqrt();
+            // consecutive OU step means are correlated: a wide band (≈ 1 + 2τ/h effective)
+            let sd = (2.0 / n as f64).sqrt() * (1.0 + 2.0 * tau / h).sqrt();
+            assert!(
+                (ratio - d_m / d_a).abs() < 4.0 * sd * d_m / d_a,
+                "τ = {tau}, c = {c}: variance ratio {ratio} against {}",
+                d_m / d_a
+            );
+            assert!(
+                (corr - c).abs() < 4.0 * sd,
+                "τ = {tau}, c = {c}: correlation {corr}"
+            );
+        }
+    }
+}
