@@ -537,3 +537,50 @@ fn fractional_paths_are_the_same_in_lanes_and_clones() {
     let text = tangent.unwrap_err().to_string();
     assert!(text.contains("fractional"), "{text}");
 }
+
+/// Multiplicative noise with the wall at 0 (U·η_m vanishes at the wall, so the impact's
+/// V₋ is the General kernel's as without it): paths bounce and stick, keep U ≥ 0, and give the
+/// same bits in lanes.
+#[test]
+fn multiplicative_noise_steps_with_the_wall() {
+    use trirhythm::engine::Lanes;
+    let mut m = Model::from(&trirhythm::model::preset("fig13a").unwrap().params);
+    m.noise.multiplicative = Some(NoiseTerm {
+        intensity: 0.3,
+        correlation_time: 0.0,
+    });
+    m.noise.additive = Some(NoiseTerm {
+        intensity: 0.2,
+        correlation_time: 0.0,
+    });
+    m.noise.correlation = 0.5;
+    let problem = Problem::from_model(&m).unwrap();
+    assert!(problem.wall());
+    let method = PredictorCorrector::default();
+    let steps = 4000u64;
+    let horizon = steps as f64 * method.dt;
+    let mut impacts = 0;
+    let alone: Vec<_> = (0..4)
+        .map(|i| {
+            let mut s = Stepper::new(&problem, &method, (SEED, i), horizon).unwrap();
+            for _ in 0..steps {
+                s.step().unwrap();
+                assert!(s.u() >= 0.0);
+            }
+            impacts += s.impacts();
+            (s.u().to_bits(), s.v().to_bits())
+        })
+        .collect();
+    println!("{impacts} impacts on 4 paths");
+    assert!(impacts > 10);
+    let mut paths: Vec<Stepper> = (0..4)
+        .map(|i| Stepper::new(&problem, &method, (SEED, i), horizon).unwrap())
+        .collect();
+    let mut obs: Vec<_> = (0..4).map(|_| |_: &Stepper| Flow::Continue).collect();
+    trirhythm::engine::run_lanes(&mut paths, steps, &mut obs, Lanes::Width(4), &Silent).unwrap();
+    let got: Vec<_> = paths
+        .iter()
+        .map(|s| (s.u().to_bits(), s.v().to_bits()))
+        .collect();
+    assert_eq!(got, alone);
+}
