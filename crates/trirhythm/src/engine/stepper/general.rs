@@ -1,11 +1,16 @@
 //! The General kernel: the terms of the class beyond the paper's Eq. (1) that the engine
-//! steps — an odd restoring force, Rayleigh damping and a harmonic forcing — with the same
-//! predictor–corrector as the paper's kernel ([`super::Affine`]), and its tangent.
+//! steps — an odd restoring force, Rayleigh damping, a harmonic forcing, up to two fractional
+//! terms K_j·D^{α_j}U and a multiplicative noise U·η_m — with the same predictor–corrector as
+//! the paper's kernel ([`super::Affine`]), and its tangent (not yet of the fractional terms and
+//! of U·η_m).
 //!
 //! # Equation
-//! D^{1+λ}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η(t), no wall or the wall at 0, with
-//! h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k} and k(U) = ω0²U + k3U³ + k5U⁵; in Volterra form
-//! U′ = V, V = V₀ + J^λ g, g = h(U, V)V − k(U) + F cos ψ + η, ψ = Ωt + φ.
+//! D^{1+λ}U + Σ_j K_j D^{α_j}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η_a(t) + U·η_m(t), no wall
+//! or the wall at 0 (fractional terms: no wall), with h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k},
+//! k(U) = ω0²U + k3U³ + k5U⁵, Caputo derivatives, α_j ∈ (0, 1]; in Volterra form, with
+//! m_j = J^{1−α_j}V (= D^{α_j}U, U being continuous),
+//! U′ = V, V = V₀ + J^λ g, g = h(U, V)V − k(U) − Σ_j K_j m_j + F cos ψ + η_a + Uη_m,
+//! ψ = Ωt + φ; η_a, η_m white (⟨ηη⟩ = 2Dδ) or OU (⟨ηη⟩ = (D/τ)e^{−|t−s|/τ}), with correlation c.
 //!
 //! # Method
 //! The paper kernel's step (module docs of [`super`]) with g no longer affine in V. Each
@@ -42,10 +47,39 @@
 //! tangent of such impact steps is not built yet: `lyapunov --method tangent` refuses a
 //! General model with a wall (two trajectories take it).
 //!
-//! Not yet: walls off 0 or two walls, fractional terms K·D^αU, multiplicative noise.
+//! **Fractional terms: a memory of V each.** m_j is a [`History`] of V of order 1 − α_j — the
+//! leading memory's machinery (exact window, verified sum of exponentials, lumped moments),
+//! built for the run's memory kind, window, tolerance and horizon once per ensemble (a small
+//! cache by (α, Δt, T, tolerance, window)) — into which each step pushes its piece
+//! (V_n, V_{n+1}). Over a step m_{j,n+1} = M_j + ϖ_l^j V_n + ϖ_r^j V_{n+1} (M_j the completed
+//! pieces' value, ϖ the memory's current weights), affine in V_{n+1}: the corrector stays one
+//! division, with a − κ in place of a (κ = Σ_j K_j ϖ_r^j, in the division, the Hermite limiter and
+//! the predictor's weight) and −Σ_j K_j(M_j + ϖ_l^j V_n) added to the step's known forcing F_r;
+//! g's value at the end, stored in the leading memory, has −Σ_j K_j m_{j,n+1}. α_j = 1 is local:
+//! m_j = V (ϖ = (0, 1), no history), the same as K·U̇ in h. m_j(0) = 0. A fractional term with
+//! a wall is refused ([`crate::engine::Problem`]): the impact would split each memory of V.
+//! Clones carry the memories; the two-trajectory Lyapunov method pulls them with the state.
+//!
+//! **Multiplicative noise.** η_m is piecewise constant at its exact step mean, like η_a, from a
+//! stream of its own per path (seed XOR a constant): η_a's deviates, hence every other path's
+//! bits, do not move. With correlation c to η_a (one τ), η_m = c√(D_m/D_a)η_a + √(1 − c²)η′: η_a
+//! and η′ are the same linear map of their deviates, so the mixture has η_m's law and
+//! correlation c exactly. The corrector carries U_nη_m at the left end and U^Pη_m at the right
+//! (each pass's U frozen there; U_{n+1}η_m stored): the trapezoid ½(U_n + U_{n+1})η_mΔt.
+//! **Calculus**: the coefficient U of the noise does not depend on V and has finite variation
+//! (U̇ bounded, U continuous at impacts), so [U, W] = 0 and ∫U∘dW = ∫U dW: Itô, Stratonovich and
+//! the τ → 0 limit of OU noise (Wong–Zakai) are one process, at λ = 1 and below, and there is no
+//! drift correction. The predictor U^P sees the step's deviate only at O(Δt^{3/2}), so the
+//! scheme adds no O(1) drift. At the wall U·η_m = 0: the impact code is unchanged, and the
+//! redone rest of the step carries U^Pη_m.
+//!
+//! Not yet: walls off 0 or two walls; a fractional term with a wall; the tangent of the
+//! fractional terms and of U·η_m (`lyapunov --method tangent` refuses them by name).
 //!
 //! # Reference
-//! model-class.md §2, §3, §5 (the design); Diethelm, Ford & Freed (2002) for the scheme.
+//! model-class.md §2, §3, §5 (the design); Diethelm, Ford & Freed (2002) for the scheme; Wong &
+//! Zakai, Ann. Math. Statist. 36 (1965) 1560–1564 (coloured noise's white limit is
+//! Stratonovich's).
 //!
 //! # Tests
 //! `tests/general.rs`: the Duffing oscillator under white noise against its exact stationary
@@ -53,8 +87,13 @@
 //! steady amplitude against |F·H(iΩ)| at λ = 1 and λ = 0.9, with its observed convergence as Δt
 //! halves; a Rayleigh oscillator's cycle; lanes and clones give the scalar bits; at the wall,
 //! the paper kernel's bits when the terms vanish (k3 = 1e-300) and a Duffing oscillator at
-//! r = 1 keeping energy and half-period at second order. `engine/stepper/tangent.rs`: the
-//! tangent step against finite differences of the step.
+//! r = 1 keeping energy and half-period at second order. `tests/fractional.rs`: the fractional
+//! terms' memories against the direct memory (as `tests/soe.rs` checks the leading one), α = 1
+//! against K·U̇ in h, the fractionally damped linear oscillator's stationary variances under
+//! white and OU noise against the spectral integral, the parametric oscillator's second moments
+//! against the exact moment system below and above D_c = 2ζω0³, lanes and clones, multiplicative
+//! noise at the wall. Unit test below: the correlated η_m's law. `engine/stepper/tangent.rs`:
+//! the tangent step against finite differences of the step.
 
 use super::affine::{hermite_limiter, predictor_weight, predictor_weight_slope, Affine};
 use super::polynomial::Polynomial;

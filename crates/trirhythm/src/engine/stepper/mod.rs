@@ -7,7 +7,8 @@
 //!
 //! The step is here; `affine` holds the paper's kernel (the arithmetic of a step of Eq. 1/5/9:
 //! predictor, corrector passes, their tangents), `general` the General kernel (Duffing,
-//! Rayleigh, harmonic forcing: the rest of the class the engine steps, no wall or the wall at 0),
+//! Rayleigh, harmonic forcing, fractional terms K_j·D^{α_j}U with a memory of U̇ each,
+//! multiplicative noise U·η_m: the rest of the class the engine steps, no wall or the wall at 0),
 //! `impact` locates an impact inside a step and redoes the rest of it, `tangent` steps the
 //! variational equation with the path, `renormalise` pulls a perturbed copy toward its
 //! reference, `polynomial` evaluates μP.
