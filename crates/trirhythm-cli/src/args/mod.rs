@@ -164,8 +164,9 @@ impl ParamArgs {
 pub struct ModelFileArg {
     /// A model file (`trirhythm model show` prints one): the equation, the wall and the start,
     /// in place of --preset, --barrier and --u0/--v0; --param KEY=VALUE still overrides its
-    /// parameters. The engine steps the paper's family and Duffing, Rayleigh and forcing terms
-    /// (no wall or the wall at 0); other terms are refused.
+    /// parameters. The engine steps the paper's family and Duffing, Rayleigh, forcing and
+    /// multiplicative-noise terms (no wall or the wall at 0) and fractional terms (no wall);
+    /// other terms are refused.
     #[arg(long = "model", value_name = "FILE", conflicts_with = "preset")]
     pub model: Option<PathBuf>,
 }
@@ -397,7 +398,8 @@ pub struct ModelArgs {
     /// Relative tolerance of the sum-of-exponentials kernel (checked at start-up).
     #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
     pub tolerance: f64,
-    /// The General kernel's terms of a `--model` file (Duffing, Rayleigh, forcing).
+    /// The General kernel's terms of a `--model` file (Duffing, Rayleigh, forcing, fractional,
+    /// multiplicative).
     #[arg(skip)]
     pub terms: Option<trirhythm::model::GeneralTerms>,
 }

@@ -150,9 +150,12 @@ impl Oscillator {
     }
 
     /// The same oscillator with the General kernel's terms added (Duffing k3U³ + k5U⁵,
-    /// Rayleigh Σ d_k U̇^{2k}, F cos(Ωt + φ)); `None` or empty terms: the paper's equation.
-    /// Validated: |k3|, |k5| ≤ 1e6, at most 20 Rayleigh coefficients each |d_k| ≤ 1e6, the
-    /// forcing's F ∈ [0, 1e6], Ω ∈ (0, 1e3], |φ| ≤ 1e6 (the model file's ranges).
+    /// Rayleigh Σ d_k U̇^{2k}, F cos(Ωt + φ), K_j·D^{α_j}U, U·η_m); `None` or empty terms: the
+    /// paper's equation. Validated: |k3|, |k5| ≤ 1e6, at most 20 Rayleigh coefficients each
+    /// |d_k| ≤ 1e6, the forcing's F ∈ [0, 1e6], Ω ∈ (0, 1e3], |φ| ≤ 1e6, at most two
+    /// fractional terms with K ∈ [0, 1e3], α ∈ (0, 1], the multiplicative noise's D and τ, and
+    /// a correlation c ∈ [−1, 1] between noises of one correlation time (the model file's
+    /// ranges; c acts only where the additive noise is present).
     pub fn with_terms(self, terms: Option<GeneralTerms>) -> Result<Self> {
         let general = terms.filter(|t| !t.is_empty());
         if let Some(t) = &general {
@@ -344,8 +347,9 @@ impl Problem {
             .with_start(u0, v0)
     }
 
-    /// The same problem with the General kernel's terms (Duffing, Rayleigh, forcing;
-    /// [`Oscillator::with_terms`]); they need [`System::Fractional`] (the wall at 0 or none).
+    /// The same problem with the General kernel's terms (Duffing, Rayleigh, forcing, fractional
+    /// terms, multiplicative noise; [`Oscillator::with_terms`]); they need
+    /// [`System::Fractional`] (the wall at 0 or none; fractional terms: no wall).
     pub fn with_terms(self, terms: Option<GeneralTerms>) -> Result<Self> {
         Problem {
             oscillator: self.oscillator.clone().with_terms(terms)?,
