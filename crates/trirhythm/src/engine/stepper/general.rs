@@ -241,7 +241,7 @@ const BUILT_MAX: usize = 16;
 /// The empty memory of J^{1−α}V of term `index` (order α ∈ (0, 1)), steps of `h`.
 fn fractional_history(index: usize, order: f64, h: f64, setup: &MemorySetup) -> Result<History> {
     let lambda = 1.0 - order;
-    if !(lambda >= MIN_SOE_LAMBDA) {
+    if lambda < MIN_SOE_LAMBDA {
         return Err(Error::invalid(
             format!("fractional.{index}.order").as_str(),
             order,
