@@ -495,6 +495,14 @@ impl General {
             && self.phase == other.phase
     }
 
+    /// Exponentials of the fractional terms' SOE memories, all together.
+    pub(super) fn exponentials(&self) -> usize {
+        self.memories
+            .iter()
+            .filter_map(|m| m.history.as_ref().map(History::exponentials))
+            .sum()
+    }
+
     /// Bytes held by the fractional terms' memories.
     pub(super) fn memory_bytes(&self) -> usize {
         self.memories

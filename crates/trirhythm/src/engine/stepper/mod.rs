@@ -393,9 +393,10 @@ impl Stepper {
         self.events
     }
 
-    /// Number of exponentials of the SOE memory (0 for Direct or λ = 1).
+    /// Number of exponentials of the SOE memory (0 for Direct or λ = 1), the fractional terms'
+    /// memories included.
     pub fn exponentials(&self) -> usize {
-        self.history.exponentials()
+        self.history.exponentials() + self.general.as_ref().map_or(0, |g| g.exponentials())
     }
 
     /// The SOE kernel's verified maximal relative error (0 when unused).
