@@ -460,21 +460,19 @@ impl General {
     }
 
     /// Pull the fractional terms' memories toward `reference`'s by the factor `c`
-    /// ([`super::Stepper::contract_toward`]; they hold no split piece: no wall). False, with
-    /// nothing changed, when they cannot be combined.
+    /// ([`super::Stepper::contract_toward`]; they hold no split piece: no wall). False when they
+    /// cannot be combined, possibly after some were pulled: the caller works on a copy.
     pub(super) fn contract_toward(&mut self, reference: &General, c: f64) -> bool {
         if self.memories.len() != reference.memories.len() {
             return false;
         }
-        let mut trial = self.memories.clone();
-        for (m, r) in trial.iter_mut().zip(&reference.memories) {
+        for (m, r) in self.memories.iter_mut().zip(&reference.memories) {
             if let (Some(h), Some(hr)) = (&mut m.history, &r.history) {
                 if !h.contract_toward(hr, c) {
                     return false;
                 }
             }
         }
-        self.memories = trial;
         self.lag = reference.lag + c * (self.lag - reference.lag);
         true
     }
