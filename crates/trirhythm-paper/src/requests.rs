@@ -243,6 +243,10 @@ pub fn theory_refusal(terms: Option<&GeneralTerms>) -> Option<String> {
         format!("damping.rayleigh.{k} = {}", t.rayleigh[k])
     } else if let Some(f) = &t.forcing {
         format!("forcing.amplitude = {}", f.amplitude)
+    } else if let Some(f) = t.fractional.first() {
+        format!("fractional.0.coefficient = {}", f.coefficient)
+    } else if let Some(m) = &t.multiplicative {
+        format!("noise.multiplicative.intensity = {}", m.intensity)
     } else if let Some(w) = t.walls.first() {
         format!(
             "wall.0.position = {} keeping {} ({} wall(s) other than the paper's at 0)",
@@ -275,6 +279,9 @@ fn class_model(
         m.restoring.quintic = t.quintic;
         m.damping.rayleigh = t.rayleigh.clone();
         m.forcing = t.forcing;
+        m.fractional = t.fractional.clone();
+        m.noise.multiplicative = t.multiplicative;
+        m.noise.correlation = t.correlation;
         if !t.walls.is_empty() {
             // walls other than the paper's (offset, below, two, r(v)): the model's own, with a
             // start between them (the theory does not use it; the model must be valid)

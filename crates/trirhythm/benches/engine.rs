@@ -73,7 +73,7 @@ fn general_vs_paper(c: &mut Criterion) {
             frequency: 0.9,
             phase: 0.0,
         }),
-        walls: Vec::new(),
+        ..Default::default()
     };
     for lambda in [0.998, 1.0] {
         let (paper, m, o) =

@@ -143,6 +143,7 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
         (
             "noise.multiplicative.intensity",
             Box::new(|m| {
+                m.walls[0].position = -0.5;
                 m.noise.multiplicative = Some(NoiseTerm {
                     intensity: 0.1,
                     correlation_time: 0.0,
@@ -181,6 +182,15 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
                     amplitude: 0.1,
                     frequency: 1.0,
                     phase: 0.0,
+                })
+            }),
+        ),
+        (
+            "multiplicative",
+            Box::new(|m| {
+                m.noise.multiplicative = Some(NoiseTerm {
+                    intensity: 0.1,
+                    correlation_time: 0.0,
                 })
             }),
         ),
@@ -239,6 +249,16 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
         assert!(!p.wall(), "{name}");
         assert_eq!(m.paper_params(), None, "{name}");
     }
+    // fractional terms are stepped without a wall (refused with one, above)
+    let mut fractional = base.clone();
+    fractional.walls.clear();
+    fractional.fractional = vec![Fractional {
+        coefficient: 0.1,
+        order: 0.5,
+    }];
+    let p = Problem::from_model(&fractional).unwrap();
+    assert_eq!(p.oscillator().terms().unwrap().fractional.len(), 1);
+    assert_eq!(fractional.paper_params(), None);
     // present with a zero coefficient is absent: the same problem
     let mut zero = base.clone();
     zero.damping.rayleigh = vec![0.0];

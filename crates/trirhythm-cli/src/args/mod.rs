@@ -178,9 +178,10 @@ impl ParamArgs {
 pub struct ModelFileArg {
     /// A model file (`trirhythm model show` prints one): the equation, the wall and the start,
     /// in place of --preset, --barrier and --u0/--v0; --param KEY=VALUE still overrides its
-    /// parameters. The engine steps the paper's family and Duffing, Rayleigh and forcing terms,
-    /// with no wall, one wall at any position (keeping U above or below it) or two walls, each
-    /// with a constant or speed-dependent restitution; other terms are refused.
+    /// parameters. The engine steps the paper's family and Duffing, Rayleigh, forcing,
+    /// multiplicative-noise (no wall, the wall at 0) and fractional terms (no wall), with no
+    /// wall, one wall at any position (keeping U above or below it) or two walls, each with a
+    /// constant or speed-dependent restitution; other terms are refused.
     #[arg(long = "model", value_name = "FILE", conflicts_with = "preset")]
     pub model: Option<PathBuf>,
 }
@@ -412,7 +413,8 @@ pub struct ModelArgs {
     /// Relative tolerance of the sum-of-exponentials kernel (checked at start-up).
     #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true)]
     pub tolerance: f64,
-    /// The General kernel's terms of a `--model` file (Duffing, Rayleigh, forcing, walls).
+    /// The General kernel's terms of a `--model` file (Duffing, Rayleigh, forcing, fractional,
+    /// multiplicative, walls).
     #[arg(skip)]
     pub terms: Option<trirhythm::model::GeneralTerms>,
 }

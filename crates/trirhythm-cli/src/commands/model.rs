@@ -76,7 +76,8 @@ fn check(a: &CheckArgs) -> Result<()> {
         Ok((f, terms)) => format!(
             "the engine steps it ({}, {}, {} noise): {}",
             if terms.is_some() {
-                "the General kernel: Duffing, Rayleigh, forcing or wall terms"
+                "the General kernel: Duffing, Rayleigh, forcing, fractional, multiplicative or \
+                 wall terms"
             } else {
                 "the paper's family"
             },

@@ -1,9 +1,10 @@
 //! The problem and the method of a simulation: which equation ([`Problem`]: the
 //! [`Oscillator`] — the paper family's parameters and, optionally, the General kernel's terms
-//! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing, walls other than the paper's; with
-//! [`System::Fractional`]) —, the [`System`], the [`Barrier`], the start and the blow-up
-//! bound), how it is discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and
-//! what one trajectory records ([`Options`]). Every driver — [`super::simulate`], the ensembles, the Lyapunov
+//! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing, multiplicative noise, fractional
+//! terms, walls other than the paper's; with [`System::Fractional`], fractional terms without
+//! a wall) —, the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
+//! discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and what one trajectory
+//! records ([`Options`]). Every driver — [`super::simulate`], the ensembles, the Lyapunov
 //! exponents, the oscillation search — takes the same [`Problem`]; its spec holds only what is
 //! its own. Results are in [`super::drivers`].
 
@@ -150,11 +151,14 @@ impl Oscillator {
     }
 
     /// The same oscillator with the General kernel's terms added (Duffing k3U³ + k5U⁵,
-    /// Rayleigh Σ d_k U̇^{2k}, F cos(Ωt + φ), the model's walls); `None` or empty terms: the
-    /// paper's equation. The walls: at most two, the lower keeping U above it, the upper below,
-    /// δ1 < δ2 (they need [`Barrier::Off`]: they replace the paper's wall).
-    /// Validated: |k3|, |k5| ≤ 1e6, at most 20 Rayleigh coefficients each |d_k| ≤ 1e6, the
-    /// forcing's F ∈ [0, 1e6], Ω ∈ (0, 1e3], |φ| ≤ 1e6 (the model file's ranges).
+    /// Rayleigh Σ d_k U̇^{2k}, F cos(Ωt + φ), K_j·D^{α_j}U, U·η_m, the model's walls); `None`
+    /// or empty terms: the paper's equation. The walls: at most two, the lower keeping U above
+    /// it, the upper below, δ1 < δ2 (they need [`Barrier::Off`]: they replace the paper's
+    /// wall). Validated: |k3|, |k5| ≤ 1e6, at most 20 Rayleigh coefficients each |d_k| ≤ 1e6,
+    /// the forcing's F ∈ [0, 1e6], Ω ∈ (0, 1e3], |φ| ≤ 1e6, at most two fractional terms with
+    /// K ∈ [0, 1e3], α ∈ (0, 1], the multiplicative noise's D and τ, and a correlation
+    /// c ∈ [−1, 1] between noises of one correlation time (the model file's ranges; c acts only
+    /// where the additive noise is present).
     pub fn with_terms(self, terms: Option<GeneralTerms>) -> Result<Self> {
         let general = terms.filter(|t| !t.is_empty());
         if let Some(t) = &general {
@@ -186,6 +190,50 @@ impl Oscillator {
                 f.validate()?;
             }
             check_walls(&t.walls)?;
+            if t.fractional.len() > 2 {
+                return Err(Error::invalid(
+                    "fractional",
+                    t.fractional.len() as f64,
+                    "at most 2 terms",
+                ));
+            }
+            for (j, f) in t.fractional.iter().enumerate() {
+                f.validate(j)?;
+            }
+            if let Some(m) = &t.multiplicative {
+                crate::model::Noises {
+                    additive: None,
+                    multiplicative: Some(*m),
+                    correlation: 0.0,
+                }
+                .validate()?;
+            }
+            if !(-1.0..=1.0).contains(&t.correlation) {
+                return Err(Error::invalid(
+                    "noise.correlation",
+                    t.correlation,
+                    "[-1, 1]",
+                ));
+            }
+            // c correlates η_m with η_a when both are present (without η_a, e.g. a noise-free
+            // probe at D = 0, it has nothing to act on); they need one correlation time
+            if t.correlation != 0.0 {
+                let differ = t.multiplicative.is_some_and(|m| match self.noise {
+                    Noise::White { .. } => m.correlation_time != 0.0,
+                    Noise::Colored {
+                        correlation_time, ..
+                    } => m.correlation_time != correlation_time,
+                    Noise::None => false,
+                });
+                if differ {
+                    return Err(Error::invalid(
+                        "noise.correlation",
+                        t.correlation,
+                        "0 unless noise.additive and noise.multiplicative have one \
+                         correlation_time",
+                    ));
+                }
+            }
         }
         Ok(Oscillator { general, ..self })
     }
@@ -301,9 +349,10 @@ impl Problem {
     /// The problem a model file describes: its equation, its wall and its start, for the
     /// models the engine steps ([`Model::engine_terms`]): the paper's Eq. 1 with the wall at 0
     /// or none, additive white or OU noise, and the General kernel's terms — Duffing
-    /// k3U³ + k5U⁵, Rayleigh Σ d_k U̇^{2k}, harmonic forcing F cos(Ωt + φ), any other walls
-    /// (offset, keeping below, two, speed-dependent r; the barrier then off). Every other
-    /// term is refused with [`Error::NotApplicable`] naming it, never dropped. For
+    /// k3U³ + k5U⁵, Rayleigh Σ d_k U̇^{2k}, harmonic forcing F cos(Ωt + φ), multiplicative
+    /// noise U·η_m (with the wall at 0 or none), fractional terms K_j·D^{α_j}U without a wall,
+    /// any other walls (offset, keeping below, two, speed-dependent r; the barrier then off).
+    /// Every other term is refused with [`Error::NotApplicable`] naming it, never dropped. For
     /// `Model::from(&p)` this is `Problem::from_params(&p)` (the same value, hence the same
     /// paths, bit for bit: `tests/model_file.rs`, `tests/pinned.rs`).
     ///
@@ -318,7 +367,9 @@ impl Problem {
     /// duffing.restoring.cubic = 0.5;
     /// assert!(Problem::from_model(&duffing)?.oscillator().terms().is_some()); // General kernel
     /// duffing.fractional.push(trirhythm::model::Fractional { coefficient: 0.1, order: 0.5 });
-    /// assert!(Problem::from_model(&duffing).is_err()); // not stepped yet: refused, named
+    /// assert!(Problem::from_model(&duffing).is_err()); // with the wall: refused, named
+    /// duffing.walls.clear();
+    /// assert!(Problem::from_model(&duffing)?.oscillator().terms().is_some()); // without: stepped
     /// # Ok::<(), trirhythm::Error>(())
     /// ```
     pub fn from_model(model: &Model) -> Result<Self> {
@@ -335,9 +386,9 @@ impl Problem {
         })
     }
 
-    /// The same problem with the General kernel's terms (Duffing, Rayleigh, forcing, walls;
-    /// [`Oscillator::with_terms`]); they need [`System::Fractional`] (and walls of their own
-    /// [`Barrier::Off`]).
+    /// The same problem with the General kernel's terms (Duffing, Rayleigh, forcing, fractional
+    /// terms, multiplicative noise, walls; [`Oscillator::with_terms`]); they need
+    /// [`System::Fractional`] (fractional terms: no wall; walls of their own: [`Barrier::Off`]).
     pub fn with_terms(self, terms: Option<GeneralTerms>) -> Result<Self> {
         Problem {
             oscillator: self.oscillator.clone().with_terms(terms)?,
@@ -439,6 +490,10 @@ impl Problem {
                 "damping.rayleigh"
             } else if t.forcing.is_some() {
                 "forcing.amplitude"
+            } else if !t.fractional.is_empty() {
+                "fractional"
+            } else if t.multiplicative.is_some() {
+                "noise.multiplicative"
             } else {
                 "wall"
             };
@@ -463,6 +518,28 @@ impl Problem {
                     "wall: the model's walls replace the paper's wall at U = 0; the barrier \
                      must be off"
                         .into(),
+                ));
+            }
+            if !t.fractional.is_empty() && (self.barrier == Barrier::On || !t.walls.is_empty()) {
+                return Err(refuse(
+                    "no wall with a fractional term K·D^αU",
+                    format!(
+                        "fractional.0.coefficient = {} with a wall: the engine does not step it \
+                         yet (the impact step of the term's memory of U̇, split at the impact, \
+                         is not built); it steps fractional terms without a wall",
+                        Exact(t.fractional[0].coefficient)
+                    ),
+                ));
+            }
+            if let (Some(m), false) = (t.multiplicative, t.walls.is_empty()) {
+                return Err(refuse(
+                    "multiplicative noise with no wall or the wall at 0",
+                    format!(
+                        "noise.multiplicative.intensity = {} with a wall other than the \
+                         paper's: the engine does not step it yet (U·η_m does not vanish at a \
+                         wall off 0, and the impact step does not carry it)",
+                        Exact(m.intensity)
+                    ),
                 ));
             }
         }

@@ -13,9 +13,9 @@
 //! [`Params`] converts losslessly: `Model::from(&params).paper_params() == Some(params)`.
 //! [`Model::paper_family`] is the paper's family (refusing every other term by name,
 //! [`Error::NotApplicable`]); [`Model::engine_terms`] is what the engine steps: that family plus
-//! the General kernel's terms ([`GeneralTerms`]: Duffing, Rayleigh, forcing, and every wall set
-//! other than the paper's — a wall at any δ keeping U above or below, two walls, a
-//! speed-dependent restitution).
+//! the General kernel's terms ([`GeneralTerms`]: Duffing, Rayleigh, forcing, fractional terms
+//! K·D^αU, multiplicative noise U·η_m, and every wall set other than the paper's — a wall at
+//! any δ keeping U above or below, two walls, a speed-dependent restitution).
 //!
 //! Reference: the paper's Eq. (1) and issue 36's class; `docs/model-file.md`.
 //!
@@ -24,8 +24,8 @@
 //! `Problem::from_params(p)` against `Problem::from_model(file of p)`: identical paths).
 
 use super::terms::{
-    Dissipation, Fractional, Harmonic, Keep, Leading, Noises, Restitution, Restoring, Start, Wall,
-    MAX_FRACTIONAL, MAX_WALLS,
+    Dissipation, Fractional, Harmonic, Keep, Leading, NoiseTerm, Noises, Restitution, Restoring,
+    Start, Wall, MAX_FRACTIONAL, MAX_WALLS,
 };
 use super::{Damping, Params};
 use crate::error::{Error, Exact, Result};
@@ -72,9 +72,11 @@ pub struct PaperFamily {
 
 /// The terms of the class beyond the paper's family that the engine's General kernel steps
 /// (`engine::stepper::general`): the odd restoring terms k3U³ + k5U⁵, the Rayleigh damping
-/// Σ d_k U̇^{2k} in h, the harmonic forcing F cos(Ωt + φ), and walls other than the paper's
-/// (`engine::stepper::walls`). The rest of the equation (μ0P(U), ω0, λ, the noise, the paper's
-/// wall at 0 if it is the model's) is the [`PaperFamily`] beside it ([`Model::engine_terms`]).
+/// Σ d_k U̇^{2k} in h, the harmonic forcing F cos(Ωt + φ), the fractional terms K_j·D^{α_j}U,
+/// the multiplicative noise U·η_m (with its correlation to the additive noise), and walls other
+/// than the paper's (`engine::stepper::walls`). The rest of the equation (μ0P(U), ω0, λ, the
+/// additive noise, the paper's wall at 0 if it is the model's) is the [`PaperFamily`] beside it
+/// ([`Model::engine_terms`]).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct GeneralTerms {
     /// k3, the coefficient of U³ in k(U).
@@ -91,6 +93,13 @@ pub struct GeneralTerms {
     /// below it, or two at δ1 < δ2 (lower keeping above, upper keeping below), each with a
     /// constant or speed-dependent restitution (`engine::stepper::walls`). Empty otherwise.
     pub walls: Vec<Wall>,
+    /// K_j·D^{α_j}U (Caputo), at most two, each with K ≠ 0 and α ∈ (0, 1].
+    pub fractional: Vec<Fractional>,
+    /// η_m of U·η_m (white for τ = 0, ⟨η_mη_m⟩ = 2Dδ; else OU), with D ≠ 0.
+    pub multiplicative: Option<NoiseTerm>,
+    /// The correlation coefficient c ∈ [−1, 1] of η_m with the additive noise (0 without
+    /// multiplicative noise; the two of one correlation time).
+    pub correlation: f64,
 }
 
 impl GeneralTerms {
@@ -101,10 +110,14 @@ impl GeneralTerms {
             && self.rayleigh.is_empty()
             && self.forcing.is_none()
             && self.walls.is_empty()
+            && self.fractional.is_empty()
+            && self.multiplicative.is_none()
     }
 
     /// `cubic=… quintic=… rayleigh=[…] forcing: amplitude=… frequency=… phase=…` (or
-    /// `forcing: none`), with the model file's names, for header lines.
+    /// `forcing: none`), then ` fractional=[K@α,…]` and ` multiplicative: intensity=…
+    /// correlation_time=… correlation=…` when present, with the model file's names, for header
+    /// lines.
     pub fn describe(&self) -> String {
         let rayleigh: Vec<String> = self
             .rayleigh
@@ -126,6 +139,22 @@ impl GeneralTerms {
             Exact(self.quintic),
             rayleigh.join(",")
         );
+        if !self.fractional.is_empty() {
+            let terms: Vec<String> = self
+                .fractional
+                .iter()
+                .map(|f| format!("{}@{}", Exact(f.coefficient), Exact(f.order)))
+                .collect();
+            line.push_str(&format!(" fractional=[{}]", terms.join(",")));
+        }
+        if let Some(m) = &self.multiplicative {
+            line.push_str(&format!(
+                " multiplicative: intensity={} correlation_time={} correlation={}",
+                Exact(m.intensity),
+                Exact(m.correlation_time),
+                Exact(self.correlation)
+            ));
+        }
         // the paper's wall (or none) is said elsewhere; so are the lines without these walls
         if !self.walls.is_empty() {
             let walls: Vec<String> = self.walls.iter().map(describe_wall).collect();
@@ -413,18 +442,19 @@ impl Model {
     }
 
     /// The model as the engine steps it: the paper family's part ([`Model::paper_family`]) and
-    /// the General kernel's terms (Duffing k3, k5; Rayleigh d_k; harmonic forcing; walls other
-    /// than the paper's: a wall off 0, keeping U below, two walls, a speed-dependent
-    /// restitution), None when there are none (the paper's kernel, the paper's bits). Refused
-    /// by name with [`Error::NotApplicable`] for `method`: fractional terms K·D^αU and
-    /// multiplicative noise (as by [`Model::paper_family`]). Terms present with a zero
-    /// coefficient are absent.
+    /// the General kernel's terms (Duffing k3, k5; Rayleigh d_k; harmonic forcing; fractional
+    /// terms K·D^αU; multiplicative noise U·η_m; walls other than the paper's: a wall off 0,
+    /// keeping U below, two walls, a speed-dependent restitution), None when there are none
+    /// (the paper's kernel, the paper's bits). Refused by name with [`Error::NotApplicable`]
+    /// for `method`: fractional terms with a wall ([`crate::engine::Problem::from_model`]).
+    /// Terms present with a zero coefficient are absent.
     pub fn engine_terms(&self, method: &str) -> Result<(PaperFamily, Option<GeneralTerms>)> {
         self.validate()?;
         let mut rayleigh = self.damping.rayleigh.clone();
         while rayleigh.last() == Some(&0.0) {
             rayleigh.pop();
         }
+        let multiplicative = self.noise.multiplicative.filter(|m| m.intensity != 0.0);
         let terms = GeneralTerms {
             cubic: self.restoring.cubic,
             quintic: self.restoring.quintic,
@@ -435,6 +465,18 @@ impl Model {
             } else {
                 self.walls.clone()
             },
+            fractional: self
+                .fractional
+                .iter()
+                .copied()
+                .filter(|f| f.coefficient != 0.0)
+                .collect(),
+            multiplicative,
+            correlation: if multiplicative.is_some() {
+                self.noise.correlation
+            } else {
+                0.0
+            },
         };
         let mut paper = self.clone();
         paper.restoring.cubic = 0.0;
@@ -444,7 +486,34 @@ impl Model {
         if !terms.walls.is_empty() {
             paper.walls.clear();
         }
+        paper.fractional.clear();
+        paper.noise.multiplicative = None;
+        paper.noise.correlation = 0.0;
         let family = paper.paper_family(method)?;
+        if !terms.fractional.is_empty() && (family.wall || !terms.walls.is_empty()) {
+            return Err(Error::NotApplicable {
+                method: method.to_string(),
+                assumption: "no wall with a fractional term K·D^αU".into(),
+                reason: format!(
+                    "fractional.0.coefficient = {} with a wall: the engine does not step it yet \
+                     (the impact step of the term's memory of U̇, split at the impact, is not \
+                     built); it steps fractional terms without a wall",
+                    Exact(terms.fractional[0].coefficient)
+                ),
+            });
+        }
+        if let (Some(m), false) = (terms.multiplicative, terms.walls.is_empty()) {
+            return Err(Error::NotApplicable {
+                method: method.to_string(),
+                assumption: "multiplicative noise with no wall or the wall at 0".into(),
+                reason: format!(
+                    "noise.multiplicative.intensity = {} with a wall other than the paper's: \
+                     the engine does not step it yet (U·η_m does not vanish at a wall off 0, \
+                     and the impact step does not carry it)",
+                    Exact(m.intensity)
+                ),
+            });
+        }
         if terms.is_empty() {
             return Ok((family, None));
         }

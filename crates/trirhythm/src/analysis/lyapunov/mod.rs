@@ -473,13 +473,10 @@ pub fn run_paths(
 ) -> Result<Vec<PathRun>> {
     let (transient, window) = spec.sizes(method)?;
     super::check_indices(paths, spec.paths)?;
-    if spec.method == LyapunovMethod::Tangent
-        && problem
-            .oscillator()
-            .terms()
-            .is_some_and(|t| problem.wall() || !t.walls.is_empty())
-    {
-        return Err(crate::engine::general_wall_tangent());
+    if spec.method == LyapunovMethod::Tangent {
+        if let Some(refusal) = crate::engine::tangent_refusal(problem) {
+            return Err(refusal);
+        }
     }
     monitor.check()?;
     if paths.is_empty() {

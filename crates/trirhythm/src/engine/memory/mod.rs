@@ -3,7 +3,9 @@
 //!
 //! # Equation
 //! J^λ g(t) = (1/Γ(λ)) ∫₀ᵗ (t − s)^{λ−1} g(s) ds for g piecewise linear on the grid t_n = n·h
-//! (split at impacts), λ ∈ (0, 1]: the memory term of the Caputo derivative in Eq. (1).
+//! (split at impacts), λ ∈ (0, 1]: the memory term of the Caputo derivative in Eq. (1). The same
+//! [`History`] keeps each fractional term's m_j = J^{1−α_j}U̇ = D^{α_j}U (the memory of V, order
+//! 1 − α_j; module docs of `engine::stepper::general`).
 //!
 //! # Method
 //! The last w − 1 pieces of g (piecewise linear, split in two at impacts) are held as
@@ -69,7 +71,8 @@
 //! not, agrees with `Direct` to 10⁻¹⁰; a point mass and two lines are the θ-derivative of a
 //! split piece, against differences in θ, in the window and in the modes, for both memories;
 //! the rates in θ against differences of `at_fraction` and `current_split`);
-//! `tests/soe.rs` (SOE against Direct on Eq. 1).
+//! `tests/soe.rs` (SOE against Direct on Eq. 1); `tests/fractional.rs` (the fractional terms'
+//! memories of V against Direct, and their known answers).
 //!
 //! # Layout
 //! - `window`: the exact local window (the mirrored ring of the last pieces, its dot product);

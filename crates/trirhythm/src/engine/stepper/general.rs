@@ -1,12 +1,18 @@
 //! The General kernel: the terms of the class beyond the paper's Eq. (1) that the engine
-//! steps — an odd restoring force, Rayleigh damping and a harmonic forcing — with the same
-//! predictor–corrector as the paper's kernel ([`super::Affine`]), and its tangent.
+//! steps — an odd restoring force, Rayleigh damping, a harmonic forcing, up to two fractional
+//! terms K_j·D^{α_j}U and a multiplicative noise U·η_m — with the same predictor–corrector as
+//! the paper's kernel ([`super::Affine`]), and its tangent (not yet of the fractional terms and
+//! of U·η_m).
 //!
 //! # Equation
-//! D^{1+λ}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η(t), no wall, the wall at 0, or the model's
-//! walls (one at any δ keeping U above or below it, two at δ1 < δ2: `super::walls`), with
-//! h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k} and k(U) = ω0²U + k3U³ + k5U⁵; in Volterra form
-//! U′ = V, V = V₀ + J^λ g, g = h(U, V)V − k(U) + F cos ψ + η, ψ = Ωt + φ.
+//! D^{1+λ}U + Σ_j K_j D^{α_j}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η_a(t) + U·η_m(t), no wall,
+//! the wall at 0, or the model's walls (one at any δ keeping U above or below it, two at
+//! δ1 < δ2: `super::walls`; fractional terms: no wall; multiplicative noise: no wall or the
+//! wall at 0), with h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k}, k(U) = ω0²U + k3U³ + k5U⁵, Caputo
+//! derivatives, α_j ∈ (0, 1]; in Volterra form, with m_j = J^{1−α_j}V (= D^{α_j}U, U being
+//! continuous),
+//! U′ = V, V = V₀ + J^λ g, g = h(U, V)V − k(U) − Σ_j K_j m_j + F cos ψ + η_a + Uη_m,
+//! ψ = Ωt + φ; η_a, η_m white (⟨ηη⟩ = 2Dδ) or OU (⟨ηη⟩ = (D/τ)e^{−|t−s|/τ}), with correlation c.
 //!
 //! # Method
 //! The paper kernel's step (module docs of [`super`]) with g no longer affine in V. Each
@@ -49,10 +55,40 @@
 //! and sticking at δ while the net force there pushes into the wall. A General path holds them
 //! in `walls`; without them no step looks further than one `Option`.
 //!
-//! Not yet: fractional terms K·D^αU, multiplicative noise, the tangent of impact steps.
+//! **Fractional terms: a memory of V each.** m_j is a [`History`] of V of order 1 − α_j — the
+//! leading memory's machinery (exact window, verified sum of exponentials, lumped moments),
+//! built for the run's memory kind, window, tolerance and horizon once per ensemble (a small
+//! cache by (α, Δt, T, tolerance, window)) — into which each step pushes its piece
+//! (V_n, V_{n+1}). Over a step m_{j,n+1} = M_j + ϖ_l^j V_n + ϖ_r^j V_{n+1} (M_j the completed
+//! pieces' value, ϖ the memory's current weights), affine in V_{n+1}: the corrector stays one
+//! division, with a − κ in place of a (κ = Σ_j K_j ϖ_r^j, in the division, the Hermite limiter and
+//! the predictor's weight) and −Σ_j K_j(M_j + ϖ_l^j V_n) added to the step's known forcing F_r;
+//! g's value at the end, stored in the leading memory, has −Σ_j K_j m_{j,n+1}. α_j = 1 is local:
+//! m_j = V (ϖ = (0, 1), no history), the same as K·U̇ in h. m_j(0) = 0. A fractional term with
+//! a wall is refused ([`crate::engine::Problem`]): the impact would split each memory of V.
+//! Clones carry the memories; the two-trajectory Lyapunov method pulls them with the state.
+//!
+//! **Multiplicative noise.** η_m is piecewise constant at its exact step mean, like η_a, from a
+//! stream of its own per path (seed XOR a constant): η_a's deviates, hence every other path's
+//! bits, do not move. With correlation c to η_a (one τ), η_m = c√(D_m/D_a)η_a + √(1 − c²)η′: η_a
+//! and η′ are the same linear map of their deviates, so the mixture has η_m's law and
+//! correlation c exactly. The corrector carries U_nη_m at the left end and U^Pη_m at the right
+//! (each pass's U frozen there; U_{n+1}η_m stored): the trapezoid ½(U_n + U_{n+1})η_mΔt.
+//! **Calculus**: the coefficient U of the noise does not depend on V and has finite variation
+//! (U̇ bounded, U continuous at impacts), so [U, W] = 0 and ∫U∘dW = ∫U dW: Itô, Stratonovich and
+//! the τ → 0 limit of OU noise (Wong–Zakai) are one process, at λ = 1 and below, and there is no
+//! drift correction. The predictor U^P sees the step's deviate only at O(Δt^{3/2}), so the
+//! scheme adds no O(1) drift. At the wall U·η_m = 0: the impact code is unchanged, and the
+//! redone rest of the step carries U^Pη_m.
+//!
+//! Not yet: a fractional term with a wall; multiplicative noise with a wall other than the
+//! paper's; the tangent of impact steps, of the fractional terms and of U·η_m
+//! (`lyapunov --method tangent` refuses them by name).
 //!
 //! # Reference
-//! model-class.md §2, §3, §4, §5 (the design); Diethelm, Ford & Freed (2002) for the scheme.
+//! model-class.md §2, §3, §4, §5 (the design); Diethelm, Ford & Freed (2002) for the scheme;
+//! Wong & Zakai, Ann. Math. Statist. 36 (1965) 1560–1564 (coloured noise's white limit is
+//! Stratonovich's).
 //!
 //! # Tests
 //! `tests/general.rs`: the Duffing oscillator under white noise against its exact stationary
@@ -62,14 +98,24 @@
 //! the paper kernel's bits when the terms vanish (k3 = 1e-300) and a Duffing oscillator at
 //! r = 1 keeping energy and half-period at second order. `tests/walls.rs`: the model's walls
 //! (exact periods between two walls and against an offset wall at r = 1 with the energy kept,
-//! at second order; r(|U̇₋|); sticking at δ). `engine/stepper/tangent.rs`: the tangent step
-//! against finite differences of the step.
+//! at second order; r(|U̇₋|); sticking at δ). `tests/fractional.rs`: the fractional
+//! terms' memories against the direct memory (as `tests/soe.rs` checks the leading one), α = 1
+//! against K·U̇ in h, the fractionally damped linear oscillator's stationary variances under
+//! white and OU noise against the spectral integral, the parametric oscillator's second moments
+//! against the exact moment system below and above D_c = 2ζω0³, lanes and clones, multiplicative
+//! noise at the wall. Unit test below: the correlated η_m's law. `engine/stepper/tangent.rs`:
+//! the tangent step against finite differences of the step.
 
 use super::affine::{hermite_limiter, predictor_weight, predictor_weight_slope, Affine};
 use super::polynomial::Polynomial;
 use super::walls::Walls;
+use crate::engine::kernel::MIN_SOE_LAMBDA;
+use crate::engine::memory::{History, Memory, Piece};
+use crate::engine::noise::{Noise, NoiseStream};
+use crate::error::{Error, Result};
 use crate::maths;
-use crate::model::{GeneralTerms, Harmonic};
+use crate::model::{GeneralTerms, Harmonic, NoiseTerm};
+use std::sync::Mutex;
 
 /// Steps between re-anchorings of the forcing's phase.
 const REANCHOR: u64 = 256;
@@ -124,9 +170,129 @@ impl Phase {
     }
 }
 
-/// g = h(U, V)V − k(U) + F cos ψ + η of the General kernel (module docs), with the path's
-/// forcing phase.
-#[derive(Debug, Clone, PartialEq)]
+/// One fractional term K·D^αU = K·m, m = J^{1−α}V (module docs): its memory of V.
+#[derive(Debug, Clone)]
+struct FractionalMemory {
+    /// K.
+    k: f64,
+    /// The memory of J^{1−α}V over the completed steps; None at α = 1 (the term is local:
+    /// m = V).
+    history: Option<History>,
+    /// The scaled weights of V_n and V_{n+1} in m_{n+1} ((0, 1) at α = 1).
+    wl: f64,
+    wr: f64,
+}
+
+/// The multiplicative noise η_m = mix·η_a + own·η′ (module docs): η′ of η_m's law from a
+/// stream of its own, mixed with the additive noise's level for the correlation c.
+#[derive(Debug, Clone)]
+struct Parametric {
+    stream: NoiseStream,
+    /// c·√(D_m/D_a) (0 when uncorrelated).
+    mix: f64,
+    /// √(1 − c²).
+    own: f64,
+}
+
+/// The seed of η_m's stream is the run's seed XOR this (η_a's deviates, hence the paper's
+/// bits, do not move).
+const PARAMETRIC_SALT: u64 = 0x6d75_6c74_6970_6c79;
+
+/// The multiplicative noise of `term` (τ = 0: white), correlated by `c` with `additive`.
+fn parametric(
+    term: NoiseTerm,
+    c: f64,
+    additive: Noise,
+    h: f64,
+    (seed, path): (u64, u64),
+) -> Result<Parametric> {
+    let kind = if term.correlation_time == 0.0 {
+        Noise::White {
+            intensity: term.intensity,
+        }
+    } else {
+        Noise::Colored {
+            intensity: term.intensity,
+            correlation_time: term.correlation_time,
+        }
+    };
+    let d_a = match additive {
+        Noise::None => 0.0,
+        Noise::White { intensity } | Noise::Colored { intensity, .. } => intensity,
+    };
+    // one correlation time (validated): η_a and η′ are the same linear map of their deviates,
+    // so c·√(D_m/D_a)·η_a + √(1 − c²)·η′ has η_m's law and correlation c with η_a
+    let (mix, own) = if c != 0.0 && d_a > 0.0 {
+        (c * (term.intensity / d_a).sqrt(), (1.0 - c * c).sqrt())
+    } else {
+        (0.0, 1.0)
+    };
+    Ok(Parametric {
+        stream: NoiseStream::new(kind, h, seed ^ PARAMETRIC_SALT, path)?,
+        mix,
+        own,
+    })
+}
+
+/// Where the memories of the fractional terms are built: the leading memory's kind, window
+/// and horizon ([`General::new`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct MemorySetup {
+    pub(super) memory: Memory,
+    pub(super) window: usize,
+    /// The SOE kernel's certified horizon T (unused by the direct memory).
+    pub(super) horizon: f64,
+}
+
+/// Empty memories of J^{1−α}V already built (their SOE kernels verified), by (order, Δt, T,
+/// tolerance, window): an ensemble builds each once, not once per path.
+static BUILT: Mutex<Vec<([u64; 5], History)>> = Mutex::new(Vec::new());
+/// Most memories [`BUILT`] keeps.
+const BUILT_MAX: usize = 16;
+
+/// The empty memory of J^{1−α}V of term `index` (order α ∈ (0, 1)), steps of `h`.
+fn fractional_history(index: usize, order: f64, h: f64, setup: &MemorySetup) -> Result<History> {
+    let lambda = 1.0 - order;
+    if lambda < MIN_SOE_LAMBDA {
+        return Err(Error::invalid(
+            format!("fractional.{index}.order").as_str(),
+            order,
+            "(0, 1 − 1e-6] or exactly 1 (K·U̇): the memory J^{1−α}U̇ of an order closer to 1 is \
+             a near-delta the sum of exponentials does not resolve",
+        ));
+    }
+    let tolerance = match setup.memory {
+        Memory::Direct => u64::MAX,
+        Memory::SumOfExponentials { tolerance } => tolerance.to_bits(),
+    };
+    let key = [
+        order.to_bits(),
+        h.to_bits(),
+        setup.horizon.to_bits(),
+        tolerance,
+        setup.window as u64,
+    ];
+    if let Some((_, built)) = BUILT
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .iter()
+        .find(|(k, _)| *k == key)
+    {
+        return Ok(built.clone());
+    }
+    let built = History::new(lambda, h, setup.horizon, setup.memory, setup.window)?;
+    let mut cache = BUILT.lock().unwrap_or_else(|e| e.into_inner());
+    if cache.len() >= BUILT_MAX {
+        cache.remove(0);
+    }
+    cache.push((key, built.clone()));
+    Ok(built)
+}
+
+/// g = h(U, V)V − k(U) − Σ_j K_j m_j + F cos ψ + η_a + Uη_m of the General kernel (module
+/// docs), with the path's forcing phase, its memories of the fractional terms and its stream of
+/// multiplicative noise.
+#[derive(Debug, Clone)]
 pub(crate) struct General {
     /// μ0P in U².
     damping: Polynomial,
@@ -141,6 +307,21 @@ pub(crate) struct General {
     /// The model's walls when not the paper's (`super::walls`); None: no wall or the paper's
     /// wall at 0 (the stepper's `wall`).
     pub(super) walls: Option<Walls>,
+    /// The fractional terms' memories.
+    memories: Vec<FractionalMemory>,
+    /// κ = Σ_j K_j ϖ_r^j: −κV_{n+1} is the fractional terms' part of g at a step's end that
+    /// depends on V_{n+1}.
+    kappa: f64,
+    /// −Σ_j K_j m_j at the current node.
+    lag: f64,
+    /// −Σ_j K_j(M_j + ϖ_l^j V_n) of the step in progress (the part of −ΣK_j m_{j,n+1} known
+    /// at its start).
+    ahead: f64,
+    parametric: Option<Parametric>,
+    /// η_m on the step in progress (0 without multiplicative noise).
+    eta_m: f64,
+    /// Fractional terms or multiplicative noise present (the step's extra work).
+    extras: bool,
 }
 
 /// The Rayleigh parts at a velocity v (x = v²): Σd_k x^k, Σ(2k+1)d_k x^k (∂_V of its V-term),
@@ -190,9 +371,39 @@ impl GeneralFree {
 }
 
 impl General {
-    /// The kernel of the paper kernel `affine`'s μ0P and ω0² with `terms`, steps of `h`.
-    pub(super) fn new(affine: &Affine, terms: &GeneralTerms, h: f64) -> Self {
-        General {
+    /// The kernel of the paper kernel `affine`'s μ0P and ω0² with `terms`, steps of `h`: the
+    /// fractional terms' memories as `setup` says (α = 1: local), the multiplicative noise
+    /// from stream `path` of `seed` (salted), correlated with the additive noise `additive`.
+    pub(super) fn new(
+        affine: &Affine,
+        terms: &GeneralTerms,
+        h: f64,
+        setup: &MemorySetup,
+        additive: Noise,
+        (seed, path): (u64, u64),
+    ) -> Result<Self> {
+        let mut memories = Vec::with_capacity(terms.fractional.len());
+        for (j, f) in terms.fractional.iter().enumerate() {
+            let (history, wl, wr) = if f.order == 1.0 {
+                (None, 0.0, 1.0)
+            } else {
+                let history = fractional_history(j, f.order, h, setup)?;
+                let (wl, wr) = history.current_weights();
+                (Some(history), wl, wr)
+            };
+            memories.push(FractionalMemory {
+                k: f.coefficient,
+                history,
+                wl,
+                wr,
+            });
+        }
+        let kappa = memories.iter().map(|m| m.k * m.wr).sum();
+        let parametric = match terms.multiplicative {
+            None => None,
+            Some(m) => Some(parametric(m, terms.correlation, additive, h, (seed, path))?),
+        };
+        Ok(General {
             damping: affine.damping.clone(),
             slope: affine.slope.clone(),
             rayleigh: terms.rayleigh.clone(),
@@ -201,7 +412,117 @@ impl General {
             quintic: terms.quintic,
             phase: terms.forcing.as_ref().map(|f| Phase::new(f, h)),
             walls: Walls::new(&terms.walls),
+            extras: !memories.is_empty() || parametric.is_some(),
+            memories,
+            kappa,
+            lag: 0.0,
+            ahead: 0.0,
+            parametric,
+            eta_m: 0.0,
+        })
+    }
+
+    /// Whether the kernel has fractional terms or multiplicative noise (the tangent does not
+    /// differentiate them yet).
+    #[inline]
+    pub(super) fn extras(&self) -> bool {
+        self.extras
+    }
+
+    /// The start of a step from (u, v) whose additive noise level is `el` (η_a, before any
+    /// gain): draws η_m for the step; returns g's extra parts at the step's start,
+    /// −Σ_j K_j m_{j,n} + u·η_m, and the part of −Σ_j K_j m_{j,n+1} known now,
+    /// −Σ_j K_j(M_j + ϖ_l^j V_n).
+    #[inline]
+    pub(super) fn begin_step(&mut self, u: f64, v: f64, el: f64) -> (f64, f64) {
+        if let Some(p) = &mut self.parametric {
+            let (own, _) = p.stream.next_step();
+            self.eta_m = p.mix * el + p.own * own;
         }
+        let mut ahead = 0.0;
+        for m in &self.memories {
+            let past = m.history.as_ref().map_or(0.0, History::value);
+            ahead -= m.k * (past + m.wl * v);
+        }
+        self.ahead = ahead;
+        (self.lag + u * self.eta_m, ahead)
+    }
+
+    /// The end of the step begun by [`General::begin_step`] from V_n = `v` at (u1, v1): V's
+    /// piece into every memory; returns the part of g's extras there not in the step's known
+    /// forcing (which holds −Σ_j K_j(M_j + ϖ_l^j V_n)): −κV_{n+1} + u1·η_m.
+    #[inline]
+    pub(super) fn end_step(&mut self, v: f64, u1: f64, v1: f64) -> f64 {
+        for m in &mut self.memories {
+            if let Some(h) = &mut m.history {
+                h.push(Piece {
+                    left: v,
+                    right: v1,
+                    split: None,
+                });
+            }
+        }
+        let now = -self.kappa * v1;
+        self.lag = self.ahead + now;
+        now + u1 * self.eta_m
+    }
+
+    /// Draw η_m's future deviates from stream `path` of `seed` (salted), keeping its present
+    /// OU value ([`super::Stepper::renoise`]).
+    pub(super) fn renoise(&mut self, seed: u64, path: u64) {
+        if let Some(p) = &mut self.parametric {
+            p.stream.renoise(seed ^ PARAMETRIC_SALT, path);
+        }
+    }
+
+    /// Pull the fractional terms' memories toward `reference`'s by the factor `c`
+    /// ([`super::Stepper::contract_toward`]; they hold no split piece: no wall). False when they
+    /// cannot be combined, possibly after some were pulled: the caller works on a copy.
+    pub(super) fn contract_toward(&mut self, reference: &General, c: f64) -> bool {
+        if self.memories.len() != reference.memories.len() {
+            return false;
+        }
+        for (m, r) in self.memories.iter_mut().zip(&reference.memories) {
+            if let (Some(h), Some(hr)) = (&mut m.history, &r.history) {
+                if !h.contract_toward(hr, c) {
+                    return false;
+                }
+            }
+        }
+        self.lag = reference.lag + c * (self.lag - reference.lag);
+        true
+    }
+
+    /// Whether the fractional memories and the multiplicative noise's state equal `other`'s.
+    pub(super) fn coincides_with(&self, other: &General) -> bool {
+        self.lag == other.lag
+            && self.memories.len() == other.memories.len()
+            && self.memories.iter().zip(&other.memories).all(|(a, b)| {
+                match (&a.history, &b.history) {
+                    (Some(x), Some(y)) => x.coincides(y),
+                    (None, None) => true,
+                    _ => false,
+                }
+            })
+            && self.parametric.as_ref().map(|p| p.stream.current())
+                == other.parametric.as_ref().map(|p| p.stream.current())
+            && self.phase == other.phase
+    }
+
+    /// Exponentials of the fractional terms' SOE memories, all together.
+    pub(super) fn exponentials(&self) -> usize {
+        self.memories
+            .iter()
+            .filter_map(|m| m.history.as_ref().map(History::exponentials))
+            .sum()
+    }
+
+    /// Bytes held by the fractional terms' memories.
+    pub(super) fn memory_bytes(&self) -> usize {
+        self.memories
+            .iter()
+            .filter_map(|m| m.history.as_ref().map(History::state_bytes))
+            .sum()
     }
 
     /// k(U) = ω0²U + k3U³ + k5U⁵.
@@ -276,7 +597,16 @@ impl General {
     /// The drift and the predictor's weight at a node (u1, v1), steps of `h`.
     #[inline]
     pub(super) fn node(&self, h: f64, u1: f64, v1: f64) -> (f64, f64) {
-        (self.drift(u1, v1), predictor_weight(h, self.a(u1, v1)))
+        (
+            self.drift(u1, v1),
+            predictor_weight(h, self.slope_v(u1, v1)),
+        )
+    }
+
+    /// ∂_V g at (u, v) with the fractional terms' −κ (the predictor's weight's damping).
+    #[inline]
+    pub(super) fn slope_v(&self, u: f64, v: f64) -> f64 {
+        self.a(u, v) - self.kappa
     }
 
     /// The harmonic forcing F cos ψ at the current node (0 without forcing).
@@ -355,12 +685,18 @@ impl General {
     ) -> GeneralPass {
         let mp = self.mu_p(up);
         let r = self.rayleigh_at(vl);
-        let a = mp + r.a;
+        // κ = 0 without fractional terms: a and g's V-factor are then the same bits as before
+        let a = mp + r.a - self.kappa;
         let k = self.restoring(up);
+        let fr = if self.parametric.is_some() {
+            fr + up * self.eta_m
+        } else {
+            fr
+        };
         let inv = 1.0 / (1.0 - w * a);
         let lim = hermite_limiter(2.0 * w * a);
         let v1 = (known + w * (fr - k + r.rest)) * inv;
-        let gr = (mp + self.rayleigh_at(v1).h) * v1 - k + fr;
+        let gr = (mp + self.rayleigh_at(v1).h - self.kappa) * v1 - k + fr;
         let u1 = u + 0.5 * len * (v + v1) + len * len * (1.0 / 12.0) * lim * (g0 - gr);
         GeneralPass {
             up,
@@ -436,5 +772,55 @@ impl General {
         let dup = du + f.len * dv + f.pw * dg0 + f.g0 * dpw;
         let first = self.pass_tangent(f, &f.passes[0], (du, dv, dg0), (dup, dv), dknown);
         self.pass_tangent(f, &f.passes[1], (du, dv, dg0), first, dknown)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// η_m = c·√(D_m/D_a)·η_a + √(1 − c²)·η′ has η_m's step variance and correlation c with
+    /// η_a, white and OU (one τ), within four standard errors.
+    #[test]
+    fn correlated_multiplicative_noise_has_its_law_and_correlation() {
+        let (d_a, d_m, h, n) = (0.3, 0.05, 0.01, 200_000);
+        for (tau, c) in [(0.0, 0.6), (0.0, -1.0), (0.4, 0.3), (0.4, 0.0)] {
+            let additive = if tau == 0.0 {
+                Noise::White { intensity: d_a }
+            } else {
+                Noise::Colored {
+                    intensity: d_a,
+                    correlation_time: tau,
+                }
+            };
+            let term = NoiseTerm {
+                intensity: d_m,
+                correlation_time: tau,
+            };
+            let mut a = NoiseStream::new(additive, h, 11, 3).unwrap();
+            let mut p = parametric(term, c, additive, h, (11, 3)).unwrap();
+            let (mut saa, mut smm, mut sam) = (0.0, 0.0, 0.0);
+            for _ in 0..n {
+                let (ea, _) = a.next_step();
+                let (own, _) = p.stream.next_step();
+                let em = p.mix * ea + p.own * own;
+                saa += ea * ea;
+                smm += em * em;
+                sam += ea * em;
+            }
+            let ratio = smm / saa;
+            let corr = sam / (saa * smm).sqrt();
+            // consecutive OU step means are correlated: a wide band (≈ 1 + 2τ/h effective)
+            let sd = (2.0 / n as f64).sqrt() * (1.0 + 2.0 * tau / h).sqrt();
+            assert!(
+                (ratio - d_m / d_a).abs() < 4.0 * sd * d_m / d_a,
+                "τ = {tau}, c = {c}: variance ratio {ratio} against {}",
+                d_m / d_a
+            );
+            assert!(
+                (corr - c).abs() < 4.0 * sd,
+                "τ = {tau}, c = {c}: correlation {corr}"
+            );
+        }
     }
 }

@@ -7,7 +7,8 @@
 //!
 //! The step is here; `affine` holds the paper's kernel (the arithmetic of a step of Eq. 1/5/9:
 //! predictor, corrector passes, their tangents), `general` the General kernel (Duffing,
-//! Rayleigh, harmonic forcing: the rest of the class the engine steps), `walls` the General
+//! Rayleigh, harmonic forcing, fractional terms K_j·D^{α_j}U with a memory of U̇ each,
+//! multiplicative noise U·η_m: the rest of the class the engine steps), `walls` the General
 //! kernel's walls (any δ, keeping above or below, two walls, r(|U̇₋|), sticking at δ),
 //! `impact` locates an impact inside a step and redoes the rest of it, `tangent` steps the
 //! variational equation with the path, `renormalise` pulls a perturbed copy toward its
@@ -157,7 +158,7 @@ mod tangent;
 mod walls;
 pub use lanes::{detected_lanes, Lanes, LANE_WIDTHS};
 pub(crate) use lanes::{group_lanes, Group};
-pub(crate) use tangent::{general_wall_tangent, Tangent};
+pub(crate) use tangent::{tangent_refusal, Tangent};
 
 /// What a step needs from the state and the noise ([`Stepper::begin`]).
 #[derive(Debug, Clone, Copy, Default)]
@@ -290,9 +291,18 @@ impl Stepper {
         problem.check_start_in_walls(u0)?;
         let noise = NoiseStream::new(oscillator.noise(), h, seed, path)?;
         let (wl, wr) = history.current_weights();
-        let general = oscillator
-            .terms()
-            .map(|t| Box::new(General::new(&rhs, t, h)));
+        let general = match oscillator.terms() {
+            None => None,
+            Some(t) => {
+                let setup = general::MemorySetup {
+                    memory: method.memory,
+                    window: method.window,
+                    horizon: history.kernel().map_or(0.0, |k| k.to),
+                };
+                let g = General::new(&rhs, t, h, &setup, oscillator.noise(), (seed, path))?;
+                Some(Box::new(g))
+            }
+        };
         let (drift, pw) = match &general {
             None => (rhs.drift(u0, v0), predictor_weight(h, rhs.damping(u0))),
             Some(g) => g.node(h, u0, v0),
@@ -329,6 +339,9 @@ impl Stepper {
     /// past and has an independent future.
     pub fn renoise(&mut self, seed: u64, path: u64) {
         self.noise.renoise(seed, path);
+        if let Some(g) = &mut self.general {
+            g.renoise(seed, path);
+        }
     }
 
     /// Time t_n = nΔt.
@@ -383,9 +396,10 @@ impl Stepper {
         self.events
     }
 
-    /// Number of exponentials of the SOE memory (0 for Direct or λ = 1).
+    /// Number of exponentials of the SOE memory (0 for Direct or λ = 1), the fractional terms'
+    /// memories included.
     pub fn exponentials(&self) -> usize {
-        self.history.exponentials()
+        self.history.exponentials() + self.general.as_ref().map_or(0, |g| g.exponentials())
     }
 
     /// The SOE kernel's verified maximal relative error (0 when unused).
@@ -395,7 +409,7 @@ impl Stepper {
 
     /// Bytes of memory state held.
     pub fn memory_bytes(&self) -> usize {
-        self.history.state_bytes()
+        self.history.state_bytes() + self.general.as_ref().map_or(0, |g| g.memory_bytes())
     }
 
     /// Hold the oscillator at rest on the wall at the end of a step whose free value was V = v1:
@@ -448,10 +462,16 @@ impl Stepper {
         // the wall at 0: the paper kernel's events (impact, sticking), the General kernel's
         // arithmetic inside them (`impact`)
         let mut end = self.end_events(&b, u1, v1)?;
-        let g = self.general.as_deref().expect("a General path");
+        let g = self.general.as_deref_mut().expect("a General path");
         (self.drift, self.pw) = g.node(self.h, end.u1, end.v1);
+        // with the wall only the multiplicative noise's U·η_m (no fractional term: Problem)
+        let extra = if g.extras() {
+            g.end_step(b.v, end.u1, end.v1)
+        } else {
+            0.0
+        };
         if end.push {
-            end.piece.right = self.drift + b.fr;
+            end.piece.right = self.drift + b.fr + extra;
             self.history.push(end.piece);
         }
         self.u = end.u1;
@@ -465,9 +485,15 @@ impl Stepper {
         let g = self.general.as_deref_mut().expect("a General path");
         let (fl, fr) = g.forces();
         let (u, v) = (self.u, self.v);
-        let gl = self.drift + self.rhs.forcing(el, self.side) + fl;
+        let mut gl = self.drift + self.rhs.forcing(el, self.side) + fl;
+        let mut fr = self.rhs.forcing(er, self.side) + fr;
+        if g.extras() {
+            // −Σ K_j m_j and U·η_m (module docs of `general`)
+            let (xl, xr) = g.begin_step(u, v, el);
+            gl += xl;
+            fr += xr;
+        }
         let known = self.base + self.history.value() + self.wl * gl;
-        let fr = self.rhs.forcing(er, self.side) + fr;
         let free = g.advance(self.h, (u, v, gl), self.pw, known, self.wr, fr);
         let b = Begin {
             el,
@@ -486,11 +512,16 @@ impl Stepper {
         self.events = StepEvents::default();
         self.steps += 1;
         self.check_blow_up((b.u, b.v), (u1, v1))?;
-        let g = self.general.as_deref().expect("a General path");
+        let g = self.general.as_deref_mut().expect("a General path");
         (self.drift, self.pw) = g.node(self.h, u1, v1);
+        let extra = if g.extras() {
+            g.end_step(b.v, u1, v1)
+        } else {
+            0.0
+        };
         self.history.push(Piece {
             left: b.gl,
-            right: self.drift + b.fr,
+            right: self.drift + b.fr + extra,
             split: None,
         });
         self.u = u1;

@@ -34,7 +34,17 @@ impl Stepper {
         {
             return false;
         }
-        if !self.history.contract_toward(&reference.history, c) {
+        if let (Some(g), Some(r)) = (&self.general, &reference.general) {
+            // the fractional terms' memories hold no split piece (no wall): they combine
+            // whenever the leading memory does; tried first on a copy, so that nothing changes
+            // on a refusal
+            let mut trial = g.clone();
+            if !trial.contract_toward(r, c) || !self.history.contract_toward(&reference.history, c)
+            {
+                return false;
+            }
+            self.general = Some(trial);
+        } else if !self.history.contract_toward(&reference.history, c) {
             return false;
         }
         let pull = |r: f64, x: f64| r + c * (x - r);
@@ -44,7 +54,7 @@ impl Stepper {
         self.drift = pull(reference.drift, self.drift);
         self.pw = match &self.general {
             None => predictor_weight(self.h, self.rhs.damping(self.u)),
-            Some(g) => predictor_weight(self.h, g.a(self.u, self.v)),
+            Some(g) => predictor_weight(self.h, g.slope_v(self.u, self.v)),
         };
         true
     }
@@ -65,5 +75,10 @@ impl Stepper {
             && self.drift == other.drift
             && self.noise.current() == other.noise.current()
             && self.history.coincides(&other.history)
+            && match (&self.general, &other.general) {
+                (Some(a), Some(b)) => a.coincides_with(b),
+                (None, None) => true,
+                _ => false,
+            }
     }
 }

@@ -277,6 +277,32 @@ pub(crate) fn general_wall_tangent() -> crate::Error {
     }
 }
 
+/// The refusal of the tangent of a General path with fractional terms or multiplicative noise
+/// (their memories and U·η_m are not differentiated yet).
+pub(crate) fn general_extras_tangent() -> crate::Error {
+    crate::Error::NotApplicable {
+        method: "the tangent method (lyapunov --method tangent)".into(),
+        assumption: "no fractional term K·D^αU and no multiplicative noise U·η_m".into(),
+        reason: "the tangent of the fractional terms' memories and of U·η_m is not built yet; \
+                 use the two-trajectory method"
+            .into(),
+    }
+}
+
+/// The tangent's refusal of `problem`, if any: a General path with a wall
+/// ([`general_wall_tangent`]), or with fractional terms or multiplicative noise
+/// ([`general_extras_tangent`]).
+pub(crate) fn tangent_refusal(problem: &crate::engine::Problem) -> Option<crate::Error> {
+    let t = problem.oscillator().terms()?;
+    if problem.wall() || !t.walls.is_empty() {
+        return Some(general_wall_tangent());
+    }
+    if !t.fractional.is_empty() || t.multiplicative.is_some() {
+        return Some(general_extras_tangent());
+    }
+    None
+}
+
 impl Stepper {
     /// δ(μP(U)V − ω²U) at the current node along (δU, δV) (of h(U, V)V − k(U) for the
     /// General kernel).
@@ -321,6 +347,9 @@ impl Stepper {
     fn step_general_with_tangent(&mut self, t: &mut Tangent) -> Result<()> {
         if self.wall || self.general.as_deref().is_some_and(|g| g.walls.is_some()) {
             return Err(general_wall_tangent());
+        }
+        if self.general.as_deref().is_some_and(|g| g.extras()) {
+            return Err(general_extras_tangent());
         }
         let (b, free) = self.begin_general();
         let (u1, v1) = free.end();
@@ -880,7 +909,7 @@ mod tests {
                 frequency: 1.3,
                 phase: 0.2,
             }),
-            walls: Vec::new(),
+            ..Default::default()
         };
         let mut report = String::new();
         for lambda in [1.0, 0.998, 0.95] {
