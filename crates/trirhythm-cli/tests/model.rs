@@ -418,46 +418,59 @@ fn theory_commands_refuse_a_model_the_theory_does_not_cover() {
 }
 
 /// The Rayleigh oscillator Ü − μ0(1 − U̇²)U̇ + U = η (h = μ0 + d1U̇², d1 = −μ0) under weak
-/// white noise, stepped by the General kernel: its ensemble is compared with the model's own
-/// averaged theory (phase quadrature, consistent variant), which chose its range and well.
+/// white noise, stepped by the General kernel, without and with fractional damping
+/// 0.01·D^0.5U: each ensemble is compared with the model's own averaged theory (phase
+/// quadrature, the fractional term by harmonic balance, consistent variant), which chose its
+/// range and well.
 #[test]
 fn a_rayleigh_ensemble_agrees_with_its_averaged_theory() {
     let dir = scratch_dir("model-rayleigh-mc");
-    let text = "format = 1\nleading = { lambda = 1.0 }\n\
-                damping = { mu0 = 0.05, coefficients = [1.0], rayleigh = [-0.05] }\n\
-                restoring = { omega0 = 1.0 }\n\
-                noise.additive = { intensity = 0.0005 }\nstart = { u0 = 1.0 }\n";
-    let file = write(&dir, "rayleigh.toml", text);
-    let doc = common::ok_json(&[
-        "ensemble",
-        "--model",
-        &file,
-        "--paths",
-        "8",
-        "--t-end",
-        "5000",
-        "--burn-in",
-        "500",
-        "--format",
-        "json",
-    ]);
-    assert_eq!(doc["stationarity"]["stationary"], true);
-    let theory = &doc["theory"]["consistent"];
-    let mc = doc["mean_amplitude"]["value"].as_f64().unwrap();
-    let se = doc["mean_amplitude"]["stderr"].as_f64().unwrap();
-    let th = theory["mean_amplitude"].as_f64().unwrap();
-    // the cycle of averaging is 2/√3 = 1.1547 (1.1590 with the noise's drift); the mean
-    // amplitude within four standard errors and the first-order method's O(μ0) = 0.5 %
-    assert!(
-        (mc - th).abs() < 4.0 * se + 0.005 * th,
-        "{mc} ± {se} vs {th}"
-    );
-    let h = theory["hellinger"]["value"].as_f64().unwrap();
-    assert!(h < 0.08, "Hellinger {h}");
-    assert!(doc["theory"]["paper"]["error"]
-        .as_str()
-        .unwrap()
-        .contains("Rayleigh"));
+    for (name, fractional) in [
+        ("rayleigh", ""),
+        (
+            "rayleigh-fractional",
+            "fractional = [{ coefficient = 0.01, order = 0.5 }]\n",
+        ),
+    ] {
+        let text = format!(
+            "format = 1\nleading = {{ lambda = 1.0 }}\n\
+             damping = {{ mu0 = 0.05, coefficients = [1.0], rayleigh = [-0.05] }}\n\
+             restoring = {{ omega0 = 1.0 }}\n{fractional}\
+             noise.additive = {{ intensity = 0.0005 }}\nstart = {{ u0 = 1.0 }}\n"
+        );
+        let file = write(&dir, &format!("{name}.toml"), &text);
+        let doc = common::ok_json(&[
+            "ensemble",
+            "--model",
+            &file,
+            "--paths",
+            "8",
+            "--t-end",
+            "5000",
+            "--burn-in",
+            "500",
+            "--format",
+            "json",
+        ]);
+        assert_eq!(doc["stationarity"]["stationary"], true, "{name}");
+        let theory = &doc["theory"]["consistent"];
+        let mc = doc["mean_amplitude"]["value"].as_f64().unwrap();
+        let se = doc["mean_amplitude"]["stderr"].as_f64().unwrap();
+        let th = theory["mean_amplitude"].as_f64().unwrap();
+        // without the fractional term the cycle of averaging is 2/√3 = 1.1547 (1.1590 with
+        // the noise's drift); the mean amplitude within four standard errors and the
+        // first-order method's O(μ0) = 0.5 %
+        assert!(
+            (mc - th).abs() < 4.0 * se + 0.005 * th,
+            "{name}: {mc} ± {se} vs {th}"
+        );
+        let h = theory["hellinger"]["value"].as_f64().unwrap();
+        assert!(h < 0.08, "{name}: Hellinger {h}");
+        assert!(doc["theory"]["paper"]["error"]
+            .as_str()
+            .unwrap()
+            .contains("Rayleigh"));
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

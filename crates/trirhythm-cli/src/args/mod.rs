@@ -237,7 +237,8 @@ impl TheoryModelArg {
             Ok(f) => f,
             Err(e) => {
                 return bad(format!(
-                    "--param overrides the paper family's parameters; --model {} is outside                      it ({e}): change the file instead",
+                    "--param overrides the paper family's parameters; --model {} is outside it \
+                     ({e}): change the file instead",
                     path.display()
                 ))
             }

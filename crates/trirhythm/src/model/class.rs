@@ -317,10 +317,12 @@ impl Model {
             .map(|f| f.params)
     }
 
-    /// The model as the engine steps it today: h = μ0P(U), k = ω0²U, the wall at 0 keeping
-    /// U ≥ 0 with a constant r or no wall, additive white or OU noise, no fractional term, no
-    /// forcing. Any other term is refused by name with [`Error::NotApplicable`] for `method`:
-    /// never dropped. Terms present with a zero coefficient are absent.
+    /// The model as one of the paper's family (what the paper's kernel steps and `--param`
+    /// edits): h = μ0P(U), k = ω0²U, the wall at 0 keeping U ≥ 0 with a constant r or no
+    /// wall, additive white or OU noise, no fractional term, no forcing. Any other term is
+    /// refused by name with [`Error::NotApplicable`] for `method` (the General kernel's terms
+    /// are [`Model::engine_terms`]'s): never dropped. Terms present with a zero coefficient are
+    /// absent.
     pub fn paper_family(&self, method: &str) -> Result<PaperFamily> {
         self.validate()?;
         let refuse = |assumption: &str, reason: String| Error::NotApplicable {
@@ -328,7 +330,7 @@ impl Model {
             assumption: assumption.to_string(),
             reason,
         };
-        let not_yet = "the engine does not step it yet";
+        let not_yet = "outside the paper's family (its Eq. (1) with the wall at 0 or none)";
         if let Some(k) = self.damping.rayleigh.iter().position(|&d| d != 0.0) {
             return Err(refuse(
                 "h = μ0·P(U) (no Rayleigh term)",
