@@ -139,6 +139,7 @@ impl Command {
             Command::Lyapunov(a) => Some(&a.sim.file),
             Command::CriticalNoise(a) => Some(&a.file),
             Command::Oscillation(a) => Some(&a.file),
+            Command::PhaseResponse(a) => Some(&a.file),
             _ => None,
         }
         .filter(|f| f.model.is_some())
@@ -197,6 +198,14 @@ impl Command {
                 theory_free("critical-noise")?;
                 a.params.base = Some(family.params);
                 a.model.barrier = barrier;
+            }
+            // the cycle reached from the file's start (at rest), named by the theory
+            Command::PhaseResponse(a) => {
+                theory_free("phase-response")?;
+                at_rest("phase-response")?;
+                a.params.base = Some(family.params);
+                a.model.barrier = barrier;
+                a.u0 = Some(u0);
             }
             Command::Oscillation(a) => {
                 theory_free("oscillation")?;

@@ -120,6 +120,31 @@ fn model_files_give_the_presets_output() {
         };
         assert_eq!(strip(&a), strip(&b), "{args:?}");
     }
+    // phase-response starts from the file's start: Fig. 17(a)'s outer cycle from U(0) = 12
+    let outer = write(
+        &dir,
+        "fig17a.toml",
+        &ok_stdout(&["model", "show", "--preset", "fig17a"]).replace("u0 = 1.0", "u0 = 12.0"),
+    );
+    let args = [
+        "phase-response",
+        "--phases",
+        "8",
+        "--periods",
+        "6",
+        "--format",
+        "json",
+    ];
+    let a = ok_stdout(&[&args[..], &["--model", outer.as_str()]].concat());
+    let b = ok_stdout(&[&args[..], &["--preset", "fig17a", "--u0", "12"]].concat());
+    let strip = |s: &str| {
+        let mut v: serde_json::Value = serde_json::from_str(s).unwrap();
+        v.as_object_mut()
+            .unwrap()
+            .retain(|k, _| !k.contains("time"));
+        v
+    };
+    assert_eq!(strip(&a), strip(&b));
     let _ = std::fs::remove_dir_all(&dir);
 }
 

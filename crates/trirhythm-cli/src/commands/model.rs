@@ -95,9 +95,11 @@ fn check(a: &CheckArgs) -> Result<()> {
                 "Ornstein-Uhlenbeck"
             },
             if terms.is_some() {
-                "simulate, ensemble (no theory comparison), lyapunov take it with --model"
+                "simulate, ensemble (compared with the model's own theory where it holds), \
+                 lyapunov take it with --model"
             } else {
-                "simulate, ensemble, lyapunov, critical-noise, oscillation take it with --model"
+                "simulate, ensemble, lyapunov, critical-noise, oscillation, phase-response take \
+                 it with --model"
             }
         ),
         Err(e) => format!("valid, but not stepped yet: {e}"),

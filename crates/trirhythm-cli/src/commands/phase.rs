@@ -3,7 +3,7 @@
 //! exponent λ ≈ −c·D under weak OU noise (the library's `analysis::lyapunov::phase_response`).
 //! Keys, columns and flags are a contract: keep them.
 
-use crate::args::{guard_step, ImpactMemoryArg, ModelArgs, Named, ParamArgs};
+use crate::args::{guard_step, ImpactMemoryArg, ModelArgs, ModelFileArg, Named, ParamArgs};
 use crate::error::allowed;
 use crate::io::progress::Bar;
 use crate::io::{emit, num, params_json, pretty, Csv};
@@ -35,6 +35,8 @@ pub struct PhaseArgs {
     pub params: ParamArgs,
     #[command(flatten)]
     pub model: ModelArgs,
+    #[command(flatten)]
+    pub file: ModelFileArg,
     /// U(0) of the noise-free start (default: the largest stable amplitude of the averaged
     /// theory, the outer cycle).
     #[arg(long, allow_hyphen_values = true)]
