@@ -628,6 +628,25 @@ impl General {
         }
     }
 
+    /// d/dθ of [`General::force_at`] (0 without forcing): the instant ψ* moves with θ at
+    /// the rate ΩΔt.
+    pub(super) fn force_at_rate(&self, theta: f64) -> f64 {
+        match &self.phase {
+            None => 0.0,
+            Some(p) => {
+                let back = (1.0 - theta) * p.angle;
+                let (c, s) = p.now;
+                p.amplitude * p.angle * (c * maths::sin(back) - s * maths::cos(back))
+            }
+        }
+    }
+
+    /// δ of [`General::a`] along (δu, δv).
+    #[inline]
+    pub(super) fn a_derivative(&self, u: f64, v: f64, du: f64, dv: f64) -> f64 {
+        self.mu_p_slope(u) * du + self.rayleigh_at(v).a_slope * dv
+    }
+
     /// g at a wall U = δ without its forcing: h(δ, V)V − k(δ) (at δ = 0, h(0, V)V exactly:
     /// k(0) = +0).
     #[inline]
@@ -772,6 +791,65 @@ impl General {
         let dup = du + f.len * dv + f.pw * dg0 + f.g0 * dpw;
         let first = self.pass_tangent(f, &f.passes[0], (du, dv, dg0), (dup, dv), dknown);
         self.pass_tangent(f, &f.passes[1], (du, dv, dg0), first, dknown)
+    }
+
+    /// The derivative of [`General::advance`] from (u, v) = `start` when the step's length and
+    /// its weight of g at the end move as well (the redone rest of an impact step: length
+    /// (1 − θ)Δt, weights following θ): along (δu, δv, δg0), δpw, δknown and (δlen, δw), the
+    /// forcing frozen. Returns (δU₁, δV₁).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn advance_tangent_moving(
+        &self,
+        f: &GeneralFree,
+        (_, v): (f64, f64),
+        (du, dv, dg0): (f64, f64, f64),
+        dpw: f64,
+        dknown: f64,
+        (dlen, dw): (f64, f64),
+    ) -> (f64, f64) {
+        let dup = du + dlen * v + f.len * dv + f.pw * dg0 + f.g0 * dpw;
+        let moving = (v, dlen, dw);
+        let start = (du, dv, dg0);
+        let first = self.pass_tangent_moving(f, &f.passes[0], moving, start, (dup, dv), dknown);
+        self.pass_tangent_moving(f, &f.passes[1], moving, start, first, dknown)
+    }
+
+    /// [`General::pass_tangent`] with the length and the weight moving: `moving` = (v at the
+    /// start, δlen, δw). With X = F_r − k(up) + (h(up, vl) − a)vl (so that V₁(1 − wa) =
+    /// known + wX): δV₁ = inv·(δknown + δw·X + w·δX + V₁·(δw·a + w·δa)), δL = −L²(z/6)·2δ(wa),
+    /// and U₁'s terms in len differentiated as well.
+    fn pass_tangent_moving(
+        &self,
+        f: &GeneralFree,
+        p: &GeneralPass,
+        (v, dlen, dw): (f64, f64, f64),
+        (du, dv, dg0): (f64, f64, f64),
+        (dup, dvl): (f64, f64),
+        dknown: f64,
+    ) -> (f64, f64) {
+        let mp = self.mu_p(p.up);
+        let mps = self.mu_p_slope(p.up);
+        let r = self.rayleigh_at(p.vl);
+        let da = mps * dup + r.a_slope * dvl;
+        let kp = self.restoring_slope(p.up);
+        let end = self.rayleigh_at(p.v1);
+        // F_r − k(up) = g_r − h(up, V₁)V₁
+        let x = p.gr - (mp + end.h - self.kappa) * p.v1 + r.rest;
+        let dx = r.rest_slope * dvl - kp * dup;
+        let dwa = dw * p.a + f.w * da;
+        let dv1 = p.inv * (dknown + dw * x + f.w * dx + p.v1 * dwa);
+        let a_end = mp + end.a;
+        let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup;
+        let z = 2.0 * f.w * p.a;
+        let dlim = -p.lim * p.lim * (z / 6.0) * 2.0 * dwa;
+        let c = f.len * f.len / 12.0;
+        let dc = f.len * dlen / 6.0;
+        let du1 = du
+            + 0.5 * dlen * (v + p.v1)
+            + 0.5 * f.len * (dv + dv1)
+            + dc * p.lim * (f.g0 - p.gr)
+            + c * (dlim * (f.g0 - p.gr) + p.lim * (dg0 - dgr));
+        (du1, dv1)
     }
 }
 

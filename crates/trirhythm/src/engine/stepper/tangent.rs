@@ -118,6 +118,7 @@
 //! the point mass and the rates in θ against differences in θ. `tests/lyapunov.rs`: the exponent by the tangent against the
 //! damped oscillator's −μ0/2 and against two trajectories.
 
+use super::walls::Walls;
 use super::{predictor_weight_len_slope, predictor_weight_slope, Begin, Piece, Split, Stepper};
 use crate::engine::History;
 use crate::error::Result;
@@ -126,11 +127,11 @@ use crate::error::Result;
 /// and the memory of δg, with the reference's layout.
 #[derive(Debug, Clone)]
 pub(crate) struct Tangent {
-    u: f64,
-    v: f64,
-    drift: f64,
-    base: f64,
-    history: History,
+    pub(super) u: f64,
+    pub(super) v: f64,
+    pub(super) drift: f64,
+    pub(super) base: f64,
+    pub(super) history: History,
 }
 
 impl Tangent {
@@ -181,7 +182,7 @@ impl Tangent {
     }
 
     /// The tangent of a state clamped at rest on the wall whose free value was V + δV.
-    fn stick(&mut self, dv1: f64, restart: bool) {
+    pub(super) fn stick(&mut self, dv1: f64, restart: bool) {
         if restart {
             self.history.restart();
             self.base = 0.0;
@@ -221,7 +222,7 @@ pub(super) struct TangentEnd {
 }
 
 /// The cubic Hermite basis (h00, h10, h01, h11) at t ∈ [0, 1].
-fn hermite_basis(t: f64) -> [f64; 4] {
+pub(super) fn hermite_basis(t: f64) -> [f64; 4] {
     let t2 = t * t;
     let t3 = t2 * t;
     [
@@ -233,7 +234,7 @@ fn hermite_basis(t: f64) -> [f64; 4] {
 }
 
 /// The derivatives in t of [`hermite_basis`].
-fn hermite_basis_slope(t: f64) -> [f64; 4] {
+pub(super) fn hermite_basis_slope(t: f64) -> [f64; 4] {
     let t2 = t * t;
     [
         6.0 * t2 - 6.0 * t,
@@ -250,7 +251,7 @@ fn hermite_basis_slope(t: f64) -> [f64; 4] {
 /// before it and from −(g_{n+1} − g₊)/(1 − θ)·δθ at t* to 0 at t_{n+1} after it (the two
 /// linear parts stretching). Exact for every J^λ: the derivative of the piece's integrals
 /// against any kernel under their moving limits.
-fn fold_theta(piece: &Piece, d: &mut Split, dtheta: f64) {
+pub(super) fn fold_theta(piece: &Piece, d: &mut Split, dtheta: f64) {
     let s = piece.split.expect("a split piece");
     let theta = s.theta;
     if s.keep_before {
@@ -260,21 +261,6 @@ fn fold_theta(piece: &Piece, d: &mut Split, dtheta: f64) {
         d.mass -= s.after * dtheta;
     }
     d.after -= (piece.right - s.after) / (1.0 - theta) * dtheta;
-}
-
-/// The refusal of the tangent of a General path with a wall (its impact steps are not
-/// differentiated yet).
-pub(crate) fn general_wall_tangent() -> crate::Error {
-    crate::Error::NotApplicable {
-        method: "the tangent method (lyapunov --method tangent)".into(),
-        assumption: "no wall with the General kernel's terms (Duffing, Rayleigh, forcing, a wall \
-                     off 0, keeping below, two walls, a speed-dependent restitution)"
-            .into(),
-        reason: "the tangent of the General kernel's impact steps (the saltation matrix of a \
-                 wall where the force is not zero) is not built yet; use the two-trajectory \
-                 method"
-            .into(),
-    }
 }
 
 /// The refusal of the tangent of a General path with fractional terms or multiplicative noise
@@ -289,14 +275,11 @@ pub(crate) fn general_extras_tangent() -> crate::Error {
     }
 }
 
-/// The tangent's refusal of `problem`, if any: a General path with a wall
-/// ([`general_wall_tangent`]), or with fractional terms or multiplicative noise
-/// ([`general_extras_tangent`]).
+/// The tangent's refusal of `problem`, if any: a General path with fractional terms or
+/// multiplicative noise ([`general_extras_tangent`]). Walls are no refusal: the tangent goes
+/// through the General kernel's impact steps (`super::walls`).
 pub(crate) fn tangent_refusal(problem: &crate::engine::Problem) -> Option<crate::Error> {
     let t = problem.oscillator().terms()?;
-    if problem.wall() || !t.walls.is_empty() {
-        return Some(general_wall_tangent());
-    }
     if !t.fractional.is_empty() || t.multiplicative.is_some() {
         return Some(general_extras_tangent());
     }
@@ -345,11 +328,14 @@ impl Stepper {
     // out of line: the paper kernel's tangent step keeps the code it had
     #[inline(never)]
     fn step_general_with_tangent(&mut self, t: &mut Tangent) -> Result<()> {
-        if self.wall || self.general.as_deref().is_some_and(|g| g.walls.is_some()) {
-            return Err(general_wall_tangent());
-        }
         if self.general.as_deref().is_some_and(|g| g.extras()) {
             return Err(general_extras_tangent());
+        }
+        // the model's walls, or the paper's wall at 0 as a lower wall (the same steps bit for
+        // bit: `Walls::paper`)
+        let walls = self.general.as_deref().and_then(|g| g.walls);
+        if let Some(walls) = walls.or(self.wall.then(|| Walls::paper(self.rhs.restitution))) {
+            return self.step_walls_with_tangent(walls, t);
         }
         let (b, free) = self.begin_general();
         let (u1, v1) = free.end();
@@ -788,9 +774,19 @@ mod tests {
     /// [`TOLERANCE`] relative or within the rounding resolution of that difference
     /// (‖T − R‖ ≤ TOLERANCE·‖R‖ + ρ). Returns the worst relative error and report lines.
     fn assert_derivative(label: &str, s: &Stepper, steps: usize) -> (f64, String) {
+        assert_derivative_along(label, s, steps, &DIRECTIONS)
+    }
+
+    /// [`assert_derivative`] along the directions `dirs`.
+    fn assert_derivative_along(
+        label: &str,
+        s: &Stepper,
+        steps: usize,
+        dirs: &[Direction],
+    ) -> (f64, String) {
         let mut worst: f64 = 0.0;
         let mut report = String::new();
-        for d in DIRECTIONS {
+        for &d in dirs {
             let best = LADDER
                 .iter()
                 .filter_map(|&eps| check(s, d, steps, eps))
@@ -1068,6 +1064,213 @@ mod tests {
                         report += &r;
                         assert!(worst < TOLERANCE);
                     }
+                }
+            }
+        }
+        eprintln!("{report}");
+    }
+
+    /// A General model (fig13a's damping at μ0 = 0.05, Duffing k3 = 0.5, Rayleigh d1 = −0.02,
+    /// a forcing 0.4·cos(1.3t + 0.2), OU noise D = 0.3, τ = 0.5) at `lambda` with `walls`,
+    /// from (u0, 0).
+    fn walled(lambda: f64, walls: Vec<crate::model::Wall>, u0: f64) -> Problem {
+        let mut m = crate::model::Model::from(&params("fig13a", &[]));
+        m.leading.lambda = lambda;
+        m.damping.mu0 = 0.05;
+        m.damping.rayleigh = vec![-0.02];
+        m.restoring.cubic = 0.5;
+        m.forcing = Some(crate::model::Harmonic {
+            amplitude: 0.4,
+            frequency: 1.3,
+            phase: 0.2,
+        });
+        m.noise.additive = Some(crate::model::NoiseTerm {
+            intensity: 0.3,
+            correlation_time: 0.5,
+        });
+        m.walls = walls;
+        m.start.u0 = u0;
+        m.start.v0 = 0.0;
+        Problem::from_model(&m).unwrap()
+    }
+
+    fn wall(position: f64, keep: crate::model::Keep, r: f64) -> crate::model::Wall {
+        crate::model::Wall {
+            position,
+            keep,
+            restitution: crate::model::Restitution::Constant(r),
+        }
+    }
+
+    fn speed_wall(position: f64, keep: crate::model::Keep) -> crate::model::Wall {
+        crate::model::Wall {
+            position,
+            keep,
+            restitution: crate::model::Restitution::Speed(crate::model::SpeedRestitution {
+                r0: 0.95,
+                r_fast: 0.5,
+                speed: 0.8,
+            }),
+        }
+    }
+
+    /// The General kernel's walls: an offset lower wall (δ = 0.3, r = 0.8), an upper wall
+    /// (δ = 0.5, r(|V₋|)), two walls (δ1 = −0.6 with r(|V₋|), δ2 = 0.7 with r = 0.9; an impact
+    /// on each) and the paper's wall at 0 with the General terms (r = 0.7), all with k3 ≠ 0
+    /// (k(δ) ≠ 0), Rayleigh damping, forcing and noise; λ = 1 and 0.95.
+    fn wall_cases() -> Vec<(String, Problem)> {
+        use crate::model::Keep::{Above, Below};
+        let mut cases = vec![];
+        for lambda in [1.0, 0.95] {
+            cases.push((
+                format!("offset lower wall δ = 0.3, λ = {lambda}"),
+                walled(lambda, vec![wall(0.3, Above, 0.8)], 1.5),
+            ));
+            cases.push((
+                format!("upper wall δ = 0.5, r(|V₋|), λ = {lambda}"),
+                walled(lambda, vec![speed_wall(0.5, Below)], -1.0),
+            ));
+            cases.push((
+                format!("two walls, λ = {lambda}"),
+                walled(
+                    lambda,
+                    vec![speed_wall(-0.6, Above), wall(0.7, Below, 0.9)],
+                    0.2,
+                ),
+            ));
+            cases.push((
+                format!("the wall at 0 with General terms, λ = {lambda}"),
+                walled(lambda, vec![wall(0.0, Above, 0.7)], 1.5),
+            ));
+        }
+        cases
+    }
+
+    #[test]
+    fn general_walls_advance_the_reference_bit_for_bit() {
+        // impacts, sticking and leaving on every wall case, both impact memories: the path
+        // advanced with its tangent is the path advanced by `step`
+        for (label, problem) in wall_cases() {
+            for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+                let mut a = of(problem.clone(), memory, Memory::default());
+                assert!(a.general.is_some(), "{label}");
+                let mut b = a.clone();
+                let mut t = Tangent::new(&b, (1.0, 0.0));
+                for n in 0..1500 {
+                    a.step().unwrap();
+                    b.step_with_tangent(&mut t).unwrap();
+                    assert_eq!(
+                        (a.u, a.v, a.base, a.stuck),
+                        (b.u, b.v, b.base, b.stuck),
+                        "{label}, {memory:?}, step {n}"
+                    );
+                    assert!(t.norm().is_finite());
+                    if n % 50 == 0 {
+                        t.scale(1.0 / t.norm().max(1e-300));
+                    }
+                }
+                assert!(a.impacts() > 3, "{label}: {} impacts", a.impacts());
+            }
+        }
+    }
+
+    #[test]
+    fn general_impact_steps_are_the_derivative_of_the_discrete_step() {
+        // the first impacts of each wall case (on two walls: the first on each wall), both
+        // impact memories: the impact step alone and with 3 and 19 more steps, against
+        // central differences of the stepper (relative error ≤ 1e-8, or within rounding)
+        let mut report = String::new();
+        let mut worst_all: f64 = 0.0;
+        for (label, problem) in wall_cases() {
+            for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+                let s = of(problem.clone(), memory, Memory::default());
+                let mut starts = vec![];
+                let first = before(&s, 100_000, |_, q| q.events().impact.is_some());
+                starts.push(first.clone());
+                if label.starts_with("two walls") {
+                    // the first impact on the other wall
+                    let mut probe = first.clone();
+                    probe.step().unwrap();
+                    let sign = probe.events().impact.unwrap().v_minus.signum();
+                    starts.push(before(&probe, 100_000, |_, q| {
+                        q.events().impact.is_some_and(|i| i.v_minus.signum() == -sign)
+                    }));
+                }
+                for s in &starts {
+                    let mut probe = s.clone();
+                    probe.step().unwrap();
+                    let i = probe.events().impact.unwrap();
+                    let theta = (i.time - s.time()) / s.h;
+                    let label = format!("{label}, {memory:?}, V₋ = {:.3}", i.v_minus);
+                    report += &format!("{label}: θ = {theta:.3}\n");
+                    for steps in [1, 4, 20] {
+                        let (worst, r) = assert_derivative(&label, s, steps);
+                        report += &r;
+                        worst_all = worst_all.max(worst);
+                        assert!(worst < TOLERANCE, "{r}");
+                    }
+                }
+            }
+        }
+        eprintln!("{report}worst relative error {worst_all:.1e}");
+    }
+
+    #[test]
+    fn general_sticking_steps_are_the_derivative_of_the_discrete_step() {
+        // a mass settling on a lower wall at δ = 0.5 where k(δ) > 0 pushes it in (r = 0.5,
+        // Duffing, no forcing, weak noise): the impact that ends stuck, a sticking step (with
+        // the restarting memory the derivative is 0), and leaving the wall, alone and with 29
+        // more steps
+        use crate::model::Keep::Above;
+        let mut report = String::new();
+        let mut m = crate::model::Model::from(&params("fig13a", &[]));
+        m.damping.mu0 = 0.05;
+        m.restoring.cubic = 0.5;
+        m.forcing = Some(crate::model::Harmonic {
+            amplitude: 0.7,
+            frequency: 0.3,
+            phase: 0.0,
+        });
+        m.noise.additive = Some(crate::model::NoiseTerm {
+            intensity: 0.05,
+            correlation_time: 0.5,
+        });
+        m.walls = vec![wall(0.5, Above, 0.5)];
+        m.start.u0 = 2.0;
+        m.start.v0 = 0.0;
+        let problem = Problem::from_model(&m).unwrap();
+        for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+            let s = of(problem.clone(), memory, Memory::default());
+            let limit = 1_000_000;
+            let cases = [
+                (
+                    "impact, then stuck",
+                    before(&s, limit, |_, q| {
+                        q.events().impact.is_some() && q.events().stuck
+                    }),
+                ),
+                (
+                    "sticking",
+                    before(&s, limit, |p, q| p.stuck && q.events().stuck),
+                ),
+                (
+                    "leaving the wall",
+                    before(&s, limit, |p, q| p.stuck && !q.stuck),
+                ),
+            ];
+            for (what, s) in &cases {
+                let label = format!("{what} at δ = 0.5, {memory:?}");
+                // a path at rest on a wall off 0 moved by δU is off the wall (or beyond it):
+                // the map switches there, so from rest only δV, the constant and the memory
+                let dirs = if s.stuck {
+                    &DIRECTIONS[1..]
+                } else {
+                    &DIRECTIONS[..]
+                };
+                for steps in [1, 30] {
+                    let (worst, r) = assert_derivative_along(&label, s, steps, dirs);
+                    report += &r;
+                    assert!(worst < TOLERANCE, "{r}");
                 }
             }
         }

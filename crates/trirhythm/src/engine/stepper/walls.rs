@@ -48,8 +48,10 @@
 //! the force pushes into it, and staying; the lanes give the scalar bits.
 
 use super::super::memory::{Piece, Split};
-use super::general::General;
+use super::general::{General, GeneralFree};
+use super::affine::{predictor_weight_len_slope, predictor_weight_slope};
 use super::impact::hermite_root;
+use super::tangent::{fold_theta, hermite_basis, hermite_basis_slope, Tangent};
 use super::{predictor_weight, Begin, StepEvents, Stepper};
 use crate::error::{Error, Exact, Result};
 use crate::model::{Keep, Restitution, Wall};
@@ -99,6 +101,20 @@ impl Walls {
             }
         }
         Some(out)
+    }
+
+    /// The paper's wall at 0 (keeping U ≥ 0, constant `r`) as a lower wall: the General
+    /// kernel's steps at it are those of `super::impact` bit for bit (k(0) = 0, the same
+    /// location, jump and redone rest), so the tangent of [`Stepper::step_walls_with_tangent`]
+    /// serves both.
+    pub(super) fn paper(r: f64) -> Self {
+        Walls {
+            lower: Some(Law {
+                position: 0.0,
+                restitution: Restitution::Constant(r),
+            }),
+            upper: None,
+        }
     }
 
     fn law(&self, side: Side) -> Law {
@@ -174,9 +190,9 @@ impl Stepper {
         }
         if !clamped {
             if let Some(side) = walls.beyond(u1) {
-                let (split, u2, v2) = self.impact_wall(walls.law(side), side, &b, (u1, v1));
-                piece.split = Some(split);
-                (u1, v1) = (u2, v2);
+                let hit = self.impact_wall(walls.law(side), side, &b, (u1, v1));
+                piece.split = Some(hit.split);
+                (u1, v1) = hit.free.end();
                 match walls.beyond(u1) {
                     None => {}
                     Some(again) if again == side => {
@@ -214,7 +230,7 @@ impl Stepper {
 
     /// The impact on wall `law` (on `side`) inside the current step whose free end was
     /// (u1, v1): locate it, jump by the restitution law, redo the rest of the step from the
-    /// wall. Returns the split of g and the end of the step.
+    /// wall. Returns what it found and did (the split, V(t*), the jump, the redone rest).
     #[cold]
     fn impact_wall(
         &mut self,
@@ -222,7 +238,7 @@ impl Stepper {
         side: Side,
         b: &Begin,
         (u1, v1): (f64, f64),
-    ) -> (Split, f64, f64) {
+    ) -> WallImpact {
         let h = self.h;
         let delta = law.position;
         let theta = hermite_root(self.u - delta, self.v, u1 - delta, v1, h);
@@ -260,7 +276,226 @@ impl Stepper {
             wr_s,
             b.fr,
         );
-        let (u_end, v_end) = free.end();
-        (split, u_end, v_end)
+        WallImpact {
+            split,
+            ws,
+            v_at,
+            v_minus,
+            v_plus,
+            free,
+        }
+    }
+}
+
+/// What [`Stepper::impact_wall`] found and did, kept for the tangent.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct WallImpact {
+    /// The split of g at the instant (θ in it).
+    pub(super) split: Split,
+    /// The scaled weight of g at the instant in V(t*).
+    pub(super) ws: f64,
+    /// The scheme's V(t*−), before the wall's clipping.
+    pub(super) v_at: f64,
+    pub(super) v_minus: f64,
+    pub(super) v_plus: f64,
+    /// The redone rest of the step, from (δ, V₊).
+    pub(super) free: GeneralFree,
+}
+
+/// dr/dv of the restitution law at the impact speed v (0 for a constant r).
+fn restitution_slope(r: Restitution, speed: f64) -> f64 {
+    match r {
+        Restitution::Constant(_) => 0.0,
+        Restitution::Speed(s) => {
+            -(s.r0 - s.r_fast) / s.speed * crate::maths::exp(-speed.abs() / s.speed)
+        }
+    }
+}
+
+impl Stepper {
+    /// [`Stepper::step_walls`] with its tangent `t` (module docs of `super::tangent`, "Walls of
+    /// the General kernel"): the path advanced bit for bit as by `step_walls`, the tangent the
+    /// derivative of the step taken (free, clamped, or an impact with the redone rest).
+    pub(super) fn step_walls_with_tangent(&mut self, walls: Walls, t: &mut Tangent) -> Result<()> {
+        let (b, free) = self.begin_general();
+        let (mut u1, mut v1) = free.end();
+        let dgl = t.drift;
+        let dknown = t.base + t.history.value() + self.wl * dgl;
+        let g = self.general.as_deref().expect("a General path");
+        let (mut du1, mut dv1) = g.advance_tangent(&free, (b.u, b.v), (t.u, t.v, dgl), dknown);
+        self.events = StepEvents::default();
+        let mut piece = Piece {
+            left: b.gl,
+            right: 0.0,
+            split: None,
+        };
+        let mut dpiece = Piece {
+            left: dgl,
+            right: 0.0,
+            split: None,
+        };
+        let mut dtheta = 0.0;
+        let mut push = true;
+        let mut clamped = false;
+        if let Some(side) = walls.at(self.u).filter(|_| self.stuck) {
+            let delta = walls.law(side).position;
+            if side.normal() * (u1 - delta) <= 0.0 {
+                push = self.stick(v1);
+                t.stick(dv1, self.restart);
+                (u1, v1, du1, dv1) = (delta, 0.0, 0.0, 0.0);
+                clamped = true;
+            } else {
+                self.stuck = false;
+            }
+        } else {
+            self.stuck = false;
+        }
+        if !clamped {
+            if let Some(side) = walls.beyond(u1) {
+                let law = walls.law(side);
+                let (split, dsplit, dth, end) =
+                    self.impact_wall_with_tangent(t, law, side, &b, dgl, [u1, v1, du1, dv1]);
+                [u1, v1, du1, dv1] = end;
+                piece.split = Some(split);
+                dpiece.split = Some(dsplit);
+                dtheta = dth;
+                match walls.beyond(u1) {
+                    None => {}
+                    Some(again) if again == side => {
+                        push = self.stick(v1);
+                        t.stick(dv1, self.restart);
+                        (u1, v1, du1, dv1) = (law.position, 0.0, 0.0, 0.0);
+                        self.stuck = true;
+                    }
+                    Some(_) => {
+                        return Err(Error::invalid(
+                            "dt",
+                            self.h,
+                            format!(
+                                "a step that meets one wall at most: at t = {} the step meets \
+                                 both walls (their distance is too small for this Δt)",
+                                Exact(self.time())
+                            ),
+                        ))
+                    }
+                }
+            }
+        }
+        self.steps += 1;
+        self.check_blow_up((b.u, b.v), (u1, v1))?;
+        let g = self.general.as_deref().expect("a General path");
+        (self.drift, self.pw) = g.node(self.h, u1, v1);
+        let ddrift = g.drift_derivative(u1, v1, du1, dv1);
+        if push {
+            piece.right = self.drift + b.fr;
+            self.history.push(piece);
+            dpiece.right = ddrift;
+            if dtheta != 0.0 {
+                if let Some(d) = dpiece.split.as_mut() {
+                    fold_theta(&piece, d, dtheta);
+                }
+            }
+            t.history.push(dpiece);
+        }
+        self.u = u1;
+        self.v = v1;
+        t.u = du1;
+        t.v = dv1;
+        t.drift = ddrift;
+        Ok(())
+    }
+
+    /// [`Stepper::impact_wall`] with the derivative of the impact step: `free` is the free end
+    /// (U₁, V₁, δU₁, δV₁), `dgl` δg at the step's start. Returns the reference's split, the
+    /// tangent's (its values' derivatives with θ held; [`fold_theta`] adds the θ-derivative
+    /// when the piece is complete), δθ and the end (U, V, δU, δV).
+    #[cold]
+    fn impact_wall_with_tangent(
+        &mut self,
+        t: &mut Tangent,
+        law: Law,
+        side: Side,
+        b: &Begin,
+        dgl: f64,
+        [u1, v1, du1, dv1]: [f64; 4],
+    ) -> (Split, Split, f64, [f64; 4]) {
+        let h = self.h;
+        let delta = law.position;
+        // δθ: θ is the root of the Hermite interpolant of U − δ over the free step
+        let theta = hermite_root(self.u - delta, self.v, u1 - delta, v1, h);
+        let hb = hermite_basis(theta);
+        let db = hermite_basis_slope(theta);
+        let dh = hb[0] * t.u + hb[1] * h * t.v + hb[2] * du1 + hb[3] * h * dv1;
+        let slope =
+            db[0] * (self.u - delta) + db[1] * h * self.v + db[2] * (u1 - delta) + db[3] * h * v1;
+        let mut dtheta = -dh / slope;
+        if !(dtheta.is_finite() && theta > 0.0 && theta < 1.0) {
+            // the interpolant touches the wall (H′ = 0) or the impact ends the step: θ held
+            dtheta = 0.0;
+        }
+        // the reference's memory at the moving instant, before a restart clears it
+        let (dhs, _) = t.history.at_fraction(theta, dgl);
+        let (rate_hs, rate_ws) = if dtheta != 0.0 {
+            self.history.at_fraction_rate(theta, b.gl)
+        } else {
+            (0.0, 0.0)
+        };
+        let hit = self.impact_wall(law, side, b, (u1, v1));
+        debug_assert_eq!(hit.split.theta, theta);
+        let g: &General = self.general.as_deref().expect("a General path");
+        // δ of g's forcing at the instant: the noise interpolated over the step and F cos ψ*
+        let dforcing =
+            (self.rhs.forcing(b.er - b.el, self.side) + g.force_at_rate(theta)) * dtheta;
+        // V(t*) = N + w_s(h(δ, V)V + at_wall): (1 − w_s ∂_V(hV))δV = δN + δw_s·g(t*) + w_s δF
+        let g_at = hit.split.before;
+        let dws = rate_ws * dtheta;
+        let dv_at = (t.base + dhs + rate_hs * dtheta + dws * g_at + hit.ws * dforcing)
+            / (1.0 - hit.ws * g.a(delta, hit.v_at));
+        // V₋ = V(t*) unless the wall clipped it; V₊ = −r(|V₋|)V₋
+        let dv_minus = if hit.v_minus == hit.v_at { dv_at } else { 0.0 };
+        let speed = hit.v_minus.abs();
+        let dv_plus = -(law.restitution.at(speed)
+            + restitution_slope(law.restitution, speed) * speed)
+            * dv_minus;
+        let keep = !self.restart;
+        let dsplit = Split {
+            theta,
+            before: g.a(delta, hit.v_at) * dv_at + dforcing,
+            after: g.a(delta, hit.v_plus) * dv_plus + dforcing,
+            keep_before: keep,
+            mass: 0.0,
+        };
+        if keep {
+            t.base += dv_plus - dv_at;
+        } else {
+            t.history.restart();
+            t.base = dv_plus;
+        }
+        // the redone rest from (δ, V₊) over (1 − θ)Δt: its known part, weight, length and
+        // predictor weight follow θ and V₊
+        let (dknown_s, _) = t.history.current_split(dgl, &dsplit);
+        let (rate_known, rate_w) = if dtheta != 0.0 {
+            self.history.current_split_rate(b.gl, &hit.split)
+        } else {
+            (0.0, 0.0)
+        };
+        let dknown = t.base + t.history.value() + dknown_s + rate_known * dtheta;
+        let g: &General = self.general.as_deref().expect("a General path");
+        let len = (1.0 - theta) * h;
+        let dlen = -h * dtheta;
+        let a_plus = g.a(delta, hit.v_plus);
+        let da_plus = g.a_derivative(delta, hit.v_plus, 0.0, dv_plus);
+        let dpw = predictor_weight_len_slope(len, a_plus) * dlen
+            + predictor_weight_slope(len, a_plus, da_plus);
+        let (du_end, dv_end) = g.advance_tangent_moving(
+            &hit.free,
+            (delta, hit.v_plus),
+            (0.0, dv_plus, dsplit.after),
+            dpw,
+            dknown,
+            (dlen, rate_w * dtheta),
+        );
+        let (u_end, v_end) = hit.free.end();
+        (hit.split, dsplit, dtheta, [u_end, v_end, du_end, dv_end])
     }
 }
