@@ -489,7 +489,13 @@ fn tangent_exponents_between_two_walls() {
         let method = PredictorCorrector::default();
         let mut s = Stepper::new(&problem, &method, (SEED, 0), t_end).unwrap();
         let mut obs = |_: &Stepper| Flow::Continue;
-        run(&mut s, (t_end / method.dt).round() as u64, &mut obs, &Silent).unwrap();
+        run(
+            &mut s,
+            (t_end / method.dt).round() as u64,
+            &mut obs,
+            &Silent,
+        )
+        .unwrap();
         s.impacts()
     };
     // the transient's impacts (the exponent over it), then the decay beside the walls
@@ -524,4 +530,3 @@ fn starts_beyond_the_walls_and_walls_with_the_paper_barrier_are_refused() {
         Err(trirhythm::Error::NotApplicable { .. })
     ));
 }
-

@@ -46,8 +46,8 @@
 //! the scheme's V₋ solves V = N + w_s(h(0, V)V + F cos ψ* + η*), affine without Rayleigh terms
 //! and else by Newton's method; ψ* = ψ_{n+1} − (1 − θ)ΩΔt; the rest of the step is this
 //! kernel's step from (0, V₊); sticking and leaving the wall as for the paper's kernel. The
-//! tangent of such impact steps is not built yet: `lyapunov --method tangent` refuses a
-//! General model with a wall (two trajectories take it).
+//! tangent of such impact steps is that of the model's walls below (`super::walls`, with this
+//! wall as a lower wall at 0).
 //!
 //! **The model's walls** (a wall off 0, keeping U below, two walls, a speed-dependent
 //! restitution r(|U̇₋|)): `super::walls` — the same location and redone rest with g at the wall
@@ -82,7 +82,7 @@
 //! redone rest of the step carries U^Pη_m.
 //!
 //! Not yet: a fractional term with a wall; multiplicative noise with a wall other than the
-//! paper's; the tangent of impact steps, of the fractional terms and of U·η_m
+//! paper's; the tangent of the fractional terms and of U·η_m
 //! (`lyapunov --method tangent` refuses them by name).
 //!
 //! # Reference

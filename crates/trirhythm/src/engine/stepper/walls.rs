@@ -32,6 +32,13 @@
 //! other is an impact on the other. A step whose redone rest ends beyond the *other* wall
 //! (two impacts within one step) is refused with [`crate::Error::InvalidParameter`] naming Δt.
 //!
+//! **The tangent** (`step_walls_with_tangent`; module docs of `super::tangent`, "Walls of the
+//! General kernel"): the derivative of the step taken — δθ from the interpolant of U − δ, δV(t*)
+//! from the root's equation with the memory and forcing at the moving instant (the force at the
+//! wall, −k(δ) + F cos ψ*, enters with δθ: the saltation of a wall where the force is not zero),
+//! δV₊ = −(r(|V₋|) + r′(|V₋|)|V₋|)δV₋, the redone rest with its moving length and weights. A
+//! clamped step's tangent is 0 in U and V.
+//!
 //! **Cost.** The paper's model never comes here: its problem has no General kernel
 //! (`super::Stepper::step` takes the paper kernel's branch); General paths without these walls
 //! take one more `Option` test per step.
@@ -45,11 +52,13 @@
 //! above and below) at r = 1: the period against the exact time between the walls along arcs of
 //! the harmonic solution, the energy kept, and the observed order as Δt halves; one impact with
 //! a speed-dependent restitution (V₊ = r(|V₋|)·|V₋|); a mass settling onto a wall at δ where
-//! the force pushes into it, and staying; the lanes give the scalar bits.
+//! the force pushes into it, and staying; the lanes give the scalar bits; the tangent's
+//! exponents between two walls (elastic: ≈ 0; damped: negative). `super::tangent`'s unit tests:
+//! the tangent step through impacts on these walls against central differences of the step.
 
 use super::super::memory::{Piece, Split};
-use super::general::{General, GeneralFree};
 use super::affine::{predictor_weight_len_slope, predictor_weight_slope};
+use super::general::{General, GeneralFree};
 use super::impact::hermite_root;
 use super::tangent::{fold_theta, hermite_basis, hermite_basis_slope, Tangent};
 use super::{predictor_weight, Begin, StepEvents, Stepper};
@@ -232,13 +241,7 @@ impl Stepper {
     /// (u1, v1): locate it, jump by the restitution law, redo the rest of the step from the
     /// wall. Returns what it found and did (the split, V(t*), the jump, the redone rest).
     #[cold]
-    fn impact_wall(
-        &mut self,
-        law: Law,
-        side: Side,
-        b: &Begin,
-        (u1, v1): (f64, f64),
-    ) -> WallImpact {
+    fn impact_wall(&mut self, law: Law, side: Side, b: &Begin, (u1, v1): (f64, f64)) -> WallImpact {
         let h = self.h;
         let delta = law.position;
         let theta = hermite_root(self.u - delta, self.v, u1 - delta, v1, h);
@@ -444,8 +447,7 @@ impl Stepper {
         debug_assert_eq!(hit.split.theta, theta);
         let g: &General = self.general.as_deref().expect("a General path");
         // δ of g's forcing at the instant: the noise interpolated over the step and F cos ψ*
-        let dforcing =
-            (self.rhs.forcing(b.er - b.el, self.side) + g.force_at_rate(theta)) * dtheta;
+        let dforcing = (self.rhs.forcing(b.er - b.el, self.side) + g.force_at_rate(theta)) * dtheta;
         // V(t*) = N + w_s(h(δ, V)V + at_wall): (1 − w_s ∂_V(hV))δV = δN + δw_s·g(t*) + w_s δF
         let g_at = hit.split.before;
         let dws = rate_ws * dtheta;
