@@ -273,14 +273,14 @@ fn draw_panel<DB: Backend>(
             pts.clone(),
             pxi(14) as u32,
             pxi(8) as u32,
-            BLACK.stroke_width(stroke(5)),
+            BLACK.stroke_width(stroke(4)),
         ))
         .map_err(pe)?;
         c.draw_series(DashedLineSeries::new(
             pts,
             pxi(14) as u32,
             pxi(8) as u32,
-            PRINTED.stroke_width(stroke(3)),
+            PRINTED.stroke_width(stroke(2)),
         ))
         .map_err(pe)?;
     }
@@ -378,11 +378,18 @@ fn short_name(name: &str) -> &str {
 
 /// The names drawn beside a panel's fold curves: the short name ("L1"), a second curve of
 /// the same name primed ("L1′"), a third double-primed, so that no two curves of a panel
-/// carry one name.
+/// carry one name; of two curves of one name the one higher up (mean y) is unprimed, the
+/// same in every panel.
 fn display_names(p: &MapPanel) -> Vec<(usize, String)> {
+    let mean_y = |i: usize| {
+        let pts = &p.folds.curves[i].points;
+        pts.iter().map(|q| q.y).sum::<f64>() / pts.len().max(1) as f64
+    };
+    let mut order: Vec<&(usize, String)> = p.fold_names.iter().collect();
+    order.sort_by(|a, b| mean_y(b.0).total_cmp(&mean_y(a.0)));
     let mut seen: Vec<&str> = Vec::new();
-    p.fold_names
-        .iter()
+    order
+        .into_iter()
         .map(|(i, name)| {
             let short = short_name(name);
             let primes = seen.iter().filter(|&&n| n == short).count();
@@ -411,7 +418,7 @@ fn map_key(fig: &MapFigure) -> Vec<String> {
         key.push(
             "L1 and L1′ (likewise L2′, L3′): two saddle-node lines of one panel named after the \
              same cycle, each by the cycles present at its middle (L1: no larger cycle there, \
-             the outer cycle's fold); the prime tells the two lines apart"
+             the outer cycle's fold); the prime tells the two lines apart, L1 the higher one"
                 .to_string(),
         );
     }
