@@ -19,11 +19,17 @@ use trirhythm_paper::fig07_pseudo_potential::{Curve, Fig07, Panel};
 /// A y-range framing the extrema of `curves` that lie below `x_end` (the walls of U_eff at
 /// A → 0 and A → ∞ would otherwise flatten everything), and the curves' points inside it.
 pub(super) fn frame(curves: &[Curve], x_end: f64) -> (std::ops::Range<f64>, Vec<Curve>) {
-    frame_above(curves, x_end, 0.6)
+    frame_with(curves, x_end, 0.6, false)
 }
 
-/// [`frame`] with room `above` the extrema (a share of their span).
-fn frame_above(curves: &[Curve], x_end: f64, above: f64) -> (std::ops::Range<f64>, Vec<Curve>) {
+/// [`frame`] with room `above` the extrema (a share of their span), and, `to_lowest`, down
+/// to just below the lowest point of a curve drawn instead of a share below the extrema.
+fn frame_with(
+    curves: &[Curve],
+    x_end: f64,
+    above: f64,
+    to_lowest: bool,
+) -> (std::ops::Range<f64>, Vec<Curve>) {
     let levels = curves
         .iter()
         .flat_map(|c| c.extrema.iter())
@@ -41,7 +47,12 @@ fn frame_above(curves: &[Curve], x_end: f64, above: f64) -> (std::ops::Range<f64
         .map(|p| p.1)
         .fold(lo, f64::min);
     let span = (hi - lo).max(1e-9);
-    let y = padded_range([lowest - 0.06 * span, hi + above * span]);
+    let bottom = if to_lowest {
+        lowest - 0.06 * span
+    } else {
+        lo - 0.3 * span
+    };
+    let y = padded_range([bottom, hi + above * span]);
     let clipped = curves
         .iter()
         .map(|c| Curve {
@@ -262,13 +273,13 @@ picture!(Fig07, |self, root| key key(), size {
     }
     for (k, (area, Panel { caption, curves, .. })) in areas.iter().zip(&self.panels).enumerate() {
         // (room above the curves for the inset on the outer wells)
-        let (y, clipped) = frame_above(curves, 14.0, 0.9);
+        let (y, clipped) = frame_with(curves, 14.0, 0.9, true);
         // (A0 from a little below 0: the marker at A0 = 0 clear of the y ticks)
         let mut c = chart(area, caption, -0.3..14.0, y, "A0", "U_eff(A0)")?;
         draw_curves(&mut c, &clipped)?;
         draw_outer_inset(area, &mut c, curves)?;
         if let Some(end) = zoom_end(curves) {
-            let (yz, zoomed) = frame(curves, end);
+            let (yz, zoomed) = frame_with(curves, end, 0.6, true);
             let label = caption.split(' ').next().unwrap_or("");
             // the zooms continue the lettering: (c), (d)
             let letter = ["(c)", "(d)"][k.min(1)];
