@@ -193,10 +193,7 @@ fn draw_differences<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -
         &format!("Δμ0 from {first}"),
     )?;
     z.draw_series(std::iter::once(PathElement::new(
-        [
-            (panel.x_range.0 - xpad, 0.0),
-            (panel.x_range.1 + xpad, 0.0),
-        ],
+        [(panel.x_range.0 - xpad, 0.0), (panel.x_range.1 + xpad, 0.0)],
         BLACK.stroke_width(stroke(2)),
     )))
     .map_err(pe)?;

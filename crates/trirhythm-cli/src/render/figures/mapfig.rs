@@ -246,10 +246,26 @@ fn draw_panel<DB: Backend>(
             }
             // (the cells on the map's edge reach on over the strip beyond it to the axis:
             // no white band with grid between the map and its spine)
-            let x0 = if ix == 0 { ax.start } else { clampx(gx.value(ix) / sx - hx / 2.0) };
-            let x1 = if jx + 1 == nx { ax.end } else { clampx(gx.value(jx) / sx + hx / 2.0) };
-            let y0 = if iy == 0 { ay.start } else { clampy(y - hy / 2.0) };
-            let y1 = if iy + 1 == ny { ay.end } else { clampy(y + hy / 2.0) };
+            let x0 = if ix == 0 {
+                ax.start
+            } else {
+                clampx(gx.value(ix) / sx - hx / 2.0)
+            };
+            let x1 = if jx + 1 == nx {
+                ax.end
+            } else {
+                clampx(gx.value(jx) / sx + hx / 2.0)
+            };
+            let y0 = if iy == 0 {
+                ay.start
+            } else {
+                clampy(y - hy / 2.0)
+            };
+            let y1 = if iy + 1 == ny {
+                ay.end
+            } else {
+                clampy(y + hy / 2.0)
+            };
             rects.push(Rectangle::new(
                 [(x0, y0), (x1, y1)],
                 count_colour(cnt).filled(),
