@@ -422,7 +422,8 @@ fn map_key(fig: &MapFigure) -> Vec<String> {
     if fig.panels.iter().any(|p| inset_ranges(p).is_some()) {
         key.push(
             "inset: the box outlined on its panel enlarged, on the panel's own axes and units \
-             (its x axis the panel's x, its y axis the panel's y)"
+             (its x axis the panel's x, its y axis the panel's y; an axis marked ×10ᵉ under \
+             its labels is in units of 10ᵉ)"
                 .to_string(),
         );
     }
@@ -469,7 +470,7 @@ fn place_name(
     if curve.len() < 2 || length < 2.0 * w as f64 {
         return None;
     }
-    let gap = pxi(6);
+    let gap = pxi(3);
     let overlaps =
         |a: &PixelBox, b: &PixelBox| a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
     let mut best: Option<(u64, PixelBox)> = None;
