@@ -20,6 +20,8 @@ pub enum Symbol {
     Line(RGBColor),
     /// A dashed line.
     Dashed(RGBColor),
+    /// A dashed line on a wider black dashed underlay (the maps' "Eq. 36-37 as printed").
+    Underlaid(RGBColor),
     /// An open circle.
     Ring(RGBColor),
     /// A cross.
@@ -92,6 +94,11 @@ impl Symbol {
                 .map_err(pe),
             Symbol::Dashed(c) => {
                 dashed_path(area, &[(m.0 - h, m.1), (m.0 + h, m.1)], Dash::Dashed, c, w3)
+            }
+            Symbol::Underlaid(c) => {
+                let line = [(m.0 - h, m.1), (m.0 + h, m.1)];
+                dashed_path(area, &line, Dash::Dashed, BLACK, stroke(4))?;
+                dashed_path(area, &line, Dash::Dashed, c, w2)
             }
             Symbol::Ring(c) => area
                 .draw(&Circle::new(m, pxi(6) as u32, c.stroke_width(w2)))

@@ -95,7 +95,7 @@ fn legend(fig: &MapFigure) -> LegendStrip {
         .iter()
         .any(|p| p.printed.as_ref().is_some_and(|f| !f.curves.is_empty()))
     {
-        entries.push((Symbol::Dashed(PRINTED), "Eq. 36-37 as printed".into()));
+        entries.push((Symbol::Underlaid(PRINTED), "Eq. 36-37 as printed".into()));
     }
     if fig.panels.iter().any(|p| !p.folds.cusps.is_empty()) {
         entries.push((Symbol::Ring(FOLD), "cusp".into()));
