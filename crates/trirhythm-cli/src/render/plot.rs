@@ -4,8 +4,8 @@
 //! [`save`] draws it as SVG and rasterises that SVG (resvg) to the PNG ([`rasterise`]):
 //! [`PNG_WIDTH`] = 2100 px, 7 in at 300 dpi, one picture in both formats, written atomically.
 //! One style for every figure (Rougier et al., "Ten simple rules for better figures"): [`save`]
-//! draws the [`Heading`]'s title on one line above the picture and one one-line verdict badge
-//! per claim below it; the explanations (parameters, formula variant, the values chosen where
+//! draws the [`Heading`]'s title on one line above the picture and one short verdict badge
+//! per claim below it, never cut (one summary line for more than three claims); the explanations (parameters, formula variant, the values chosen where
 //! the paper is silent, the verdicts' details) are the caption: the heading's lines, written
 //! to the figure's CSV notes, the report page and the contact sheet, never drawn inside the
 //! plot.
