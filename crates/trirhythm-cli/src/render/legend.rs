@@ -20,6 +20,8 @@ pub enum Symbol {
     Line(RGBColor),
     /// A dashed line.
     Dashed(RGBColor),
+    /// A dashed line on a wider black dashed underlay (the maps' "Eq. 36-37 as printed").
+    Underlaid(RGBColor),
     /// An open circle.
     Ring(RGBColor),
     /// A cross.
@@ -33,8 +35,6 @@ pub enum Symbol {
     Mark(char),
     /// A series' marker on a vertical error bar: points with standard errors.
     Points(SeriesStyle),
-    /// A cross in a circle: a single exact value.
-    CircledCross(RGBColor),
     /// A square of the first colour outlined in the second: a box drawn on a map.
     Framed(RGBColor, RGBColor),
     /// A marker alone (no line), filled in its colour (`true`) or open (white inside), as
@@ -76,9 +76,12 @@ impl Symbol {
                 let corners = [(m.0 - pxi(8), m.1 - pxi(8)), (m.0 + pxi(8), m.1 + pxi(8))];
                 area.draw(&Rectangle::new(corners, fill.filled()))
                     .map_err(pe)?;
+                // (a white square is outlined at its edge: white on the white page is not
+                // seen otherwise)
+                let k = if fill == WHITE { 0 } else { pxi(3) };
                 let inner = [
-                    (corners[0].0 + pxi(3), corners[0].1 + pxi(3)),
-                    (corners[1].0 - pxi(3), corners[1].1 - pxi(3)),
+                    (corners[0].0 + k, corners[0].1 + k),
+                    (corners[1].0 - k, corners[1].1 - k),
                 ];
                 area.draw(&Rectangle::new(inner, line.stroke_width(w2)))
                     .map_err(pe)
@@ -91,6 +94,11 @@ impl Symbol {
                 .map_err(pe),
             Symbol::Dashed(c) => {
                 dashed_path(area, &[(m.0 - h, m.1), (m.0 + h, m.1)], Dash::Dashed, c, w3)
+            }
+            Symbol::Underlaid(c) => {
+                let line = [(m.0 - h, m.1), (m.0 + h, m.1)];
+                dashed_path(area, &line, Dash::Dashed, BLACK, stroke(4))?;
+                dashed_path(area, &line, Dash::Dashed, c, w2)
             }
             Symbol::Ring(c) => area
                 .draw(&Circle::new(m, pxi(6) as u32, c.stroke_width(w2)))
@@ -105,12 +113,6 @@ impl Symbol {
                 ))
                 .map_err(pe)?;
                 marker(area, m, s.marker, s.colour)
-            }
-            Symbol::CircledCross(c) => {
-                area.draw(&Cross::new(m, pxi(7) as u32, c.stroke_width(w3)))
-                    .map_err(pe)?;
-                area.draw(&Circle::new(m, pxi(9) as u32, c.stroke_width(w2)))
-                    .map_err(pe)
             }
             Symbol::Shape(shape, c, filled) => {
                 let ring: Vec<(i32, i32)> = outline(shape, pxi(6))

@@ -260,11 +260,17 @@ pub fn verdict_lines(verdicts: &[ClaimVerdict]) -> Vec<VerdictLine> {
         .iter()
         .map(|v| {
             let (text, full, head) = verdict_text(v);
+            let tag = v.decision.verdict.tag().to_string();
+            let badge = match v.decision.decisive() {
+                Some(c) => format!("{} — {tag} ({})", v.claim.id, c.statistic_words()),
+                None => format!("{} — {tag}", v.claim.id),
+            };
             VerdictLine {
-                tag: v.decision.verdict.tag().to_string(),
+                tag,
                 text,
                 full,
                 head,
+                badge,
             }
         })
         .collect()

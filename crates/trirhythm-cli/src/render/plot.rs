@@ -4,8 +4,8 @@
 //! [`save`] draws it as SVG and rasterises that SVG (resvg) to the PNG ([`rasterise`]):
 //! [`PNG_WIDTH`] = 2100 px, 7 in at 300 dpi, one picture in both formats, written atomically.
 //! One style for every figure (Rougier et al., "Ten simple rules for better figures"): [`save`]
-//! draws the [`Heading`]'s title on one line above the picture and one one-line verdict badge
-//! per claim below it; the explanations (parameters, formula variant, the values chosen where
+//! draws the [`Heading`]'s title on one line above the picture and one short verdict badge
+//! per claim below it, never cut (one summary line for more than three claims); the explanations (parameters, formula variant, the values chosen where
 //! the paper is silent, the verdicts' details) are the caption: the heading's lines, written
 //! to the figure's CSV notes, the report page and the contact sheet, never drawn inside the
 //! plot.
@@ -89,9 +89,20 @@ pub struct VerdictLine {
     /// the badge never cuts them.
     #[serde(default)]
     pub head: usize,
+    /// The badge drawn under the picture: `{claim} — {verdict} ({deciding statistic})`.
+    #[serde(default)]
+    pub badge: String,
 }
 
 impl VerdictLine {
+    /// `{claim} — {verdict}`: the opening of the line, which a badge always shows.
+    fn short(&self) -> String {
+        match self.text.split_once(" — ") {
+            Some((claim, _)) => format!("{claim} — {}", self.tag),
+            None => self.tag.clone(),
+        }
+    }
+
     /// The colour of a verdict (Okabe–Ito: blue, vermillion, and a dark grey).
     fn colour(&self) -> RGBColor {
         match self.tag.as_str() {
@@ -140,40 +151,45 @@ impl Heading {
         )
     }
 
-    /// The verdict badges in their colours: one line each, cut with "…" to `width` pixels
-    /// after the claim, the verdict and the deciding number, which are never cut (a head
-    /// longer than the line goes on over a second, the rest cut there).
+    /// The verdict badges in their colours, each one short line never cut: the claim, the
+    /// verdict and, where it fits, the deciding statistic, else "(see caption)"; more than
+    /// three verdicts are one summary line ("verdicts: 2 confirmed, 1 refuted (see
+    /// caption)"). The caption has every verdict whole.
     fn badges(&self, width: u32) -> Vec<(String, RGBColor)> {
         let room = width.saturating_sub(2 * px(12));
-        let mut out = Vec::new();
-        for v in &self.verdicts {
-            let head: String = v.text.chars().take(v.head).collect();
-            if rich_width(&head, HEADING_LINE) <= room {
-                out.push((one_line(&v.text, room, HEADING_LINE), v.colour()));
-                continue;
+        let fits = |t: &str| rich_width(t, HEADING_LINE) <= room;
+        if self.verdicts.len() > 3 {
+            let mut counts: Vec<(&str, usize)> = Vec::new();
+            for v in &self.verdicts {
+                match counts.iter_mut().find(|(t, _)| *t == v.tag) {
+                    Some((_, n)) => *n += 1,
+                    None => counts.push((&v.tag, 1)),
+                }
             }
-            // a head too long for the line without the asides of the deciding statistic's
-            // words (the caption has them whole)
-            let short = drop_asides(&head);
-            if rich_width(&short, HEADING_LINE) <= room {
-                let rest: String = v.text.chars().skip(v.head).collect();
-                out.push((
-                    one_line(&format!("{short}{rest}"), room, HEADING_LINE),
-                    v.colour(),
-                ));
-                continue;
-            }
-            // the longest run of whole words that fits, then the rest on one line
-            let words: Vec<&str> = v.text.split(' ').collect();
-            let mut k = 1;
-            while k < words.len() && rich_width(&words[..=k].join(" "), HEADING_LINE) <= room {
-                k += 1;
-            }
-            out.push((words[..k].join(" "), v.colour()));
-            let rest = format!("    {}", words[k..].join(" "));
-            out.push((one_line(&rest, room, HEADING_LINE), v.colour()));
+            let words: Vec<String> = counts.iter().map(|(t, n)| format!("{n} {t}")).collect();
+            let worst = self
+                .verdicts
+                .iter()
+                .find(|v| v.tag == "refuted")
+                .unwrap_or(&self.verdicts[0]);
+            let line = format!("verdicts: {} (see caption)", words.join(", "));
+            return vec![(one_line(&line, room, HEADING_LINE), worst.colour())];
         }
-        out
+        self.verdicts
+            .iter()
+            .map(|v| {
+                let short = v.short();
+                let line = [
+                    v.badge.clone(),
+                    drop_asides(&v.badge),
+                    format!("{short} (see caption)"),
+                ]
+                .into_iter()
+                .find(|t| !t.is_empty() && fits(t))
+                .unwrap_or_else(|| one_line(&short, room, HEADING_LINE));
+                (line, v.colour())
+            })
+            .collect()
     }
 
     /// The height of the badge strip below the picture, `width` pixels wide (nothing without

@@ -4,6 +4,7 @@
 //!
 //! Drawing only: the boundaries and their distances are [`trirhythm_paper::boundary`].
 
+use crate::render::legend::outline;
 use crate::render::plot::{
     chart, draw_line, draw_markers, pe, pxi, series, stroke, Backend, Dash, LegendStrip, Marker,
     SeriesStyle, Symbol, PALETTE,
@@ -44,6 +45,7 @@ pub fn draw_panel<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
     panel: &Panel,
     strip: u32,
+    differences: bool,
 ) -> Result<()> {
     // the legend in a strip `strip` pixels high below the chart (none when 0), outside the data
     let h = area.dim_in_pixel().1;
@@ -51,6 +53,13 @@ pub fn draw_panel<DB: Backend>(
     if strip > 0 {
         legend_of(&[panel]).draw(&below)?;
     }
+    // (a panel whose members lie close together: its chart above, their differences below)
+    let (area, lower) = if differences {
+        let (a, b) = area.split_vertically(area.dim_in_pixel().1 * 3 / 5);
+        (a, Some(b))
+    } else {
+        (area, None)
+    };
     let area = &area;
     let top = panel
         .curves
@@ -93,6 +102,105 @@ pub fn draw_panel<DB: Backend>(
     }
     for curve in &panel.curves {
         draw_curve(&mut c, curve)?;
+    }
+    if let Some(lower) = &lower {
+        draw_differences(lower, panel)?;
+    }
+    Ok(())
+}
+
+/// A family member's boundary (`method`) as (x, μ0) points.
+fn boundary_of(panel: &Panel, member: usize, method: &str) -> Vec<(f64, f64)> {
+    panel
+        .curves
+        .iter()
+        .filter(|c| c.member == Some(member) && c.method == method)
+        .flat_map(|c| c.points.iter())
+        .filter(|q| q.side == Side::Boundary)
+        .map(|q| (q.x, q.y))
+        .collect()
+}
+
+/// `pts` at `x`, linearly interpolated (none outside them).
+fn at(pts: &[(f64, f64)], x: f64) -> Option<f64> {
+    pts.windows(2).find_map(|w| {
+        let ((xa, ya), (xb, yb)) = (w[0], w[1]);
+        let (lo, hi) = (xa.min(xb), xa.max(xb));
+        (x >= lo - 1e-12 && x <= hi + 1e-12).then(|| {
+            if (xb - xa).abs() < 1e-15 {
+                ya
+            } else {
+                ya + (yb - ya) * (x - xa) / (xb - xa)
+            }
+        })
+    })
+}
+
+/// Below a family panel whose members' boundaries lie close together, on `area`: each
+/// member's boundary less the first member's (simulation solid, averaging dashed, in the
+/// member's colour with its marker), so that the members' differences are read.
+fn draw_differences<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> Result<()> {
+    let members = panel
+        .curves
+        .iter()
+        .filter_map(|c| c.member)
+        .max()
+        .map_or(0, |m| m + 1);
+    let mut lines: Vec<(Vec<(f64, f64)>, SeriesStyle)> = Vec::new();
+    for method in ["simulation", "averaging"] {
+        let reference = boundary_of(panel, 0, method);
+        for m in 1..members {
+            let d: Vec<(f64, f64)> = boundary_of(panel, m, method)
+                .into_iter()
+                .filter_map(|(x, y)| at(&reference, x).map(|r| (x, y - r)))
+                .collect();
+            if d.len() >= 2 {
+                let dash = if method == "simulation" {
+                    Dash::Solid
+                } else {
+                    Dash::Dashed
+                };
+                let st = SeriesStyle {
+                    colour: PALETTE[m % PALETTE.len()],
+                    dash,
+                    marker: series(m).marker,
+                };
+                lines.push((d, st));
+            }
+        }
+    }
+    let ys = lines.iter().flat_map(|(d, _)| d.iter().map(|p| p.1));
+    let (lo, hi) = ys.fold((0.0f64, 0.0f64), |(a, b), y| (a.min(y), b.max(y)));
+    if lines.is_empty() || hi - lo <= 0.0 {
+        return Ok(());
+    }
+    let pad = 0.08 * (hi - lo);
+    let xpad = 0.06 * (panel.x_range.1 - panel.x_range.0);
+    let first = short_label(
+        &panel
+            .curves
+            .iter()
+            .find(|c| c.member == Some(0) && !c.label.is_empty())
+            .map_or(String::new(), |c| c.label.clone()),
+    )
+    .to_string();
+    let mut z = chart(
+        area,
+        "",
+        panel.x_range.0 - xpad..panel.x_range.1 + xpad,
+        (lo - pad).min(0.0)..hi + pad,
+        &panel.x_desc,
+        &format!("Δμ0 from {first}"),
+    )?;
+    z.draw_series(std::iter::once(PathElement::new(
+        [(panel.x_range.0 - xpad, 0.0), (panel.x_range.1 + xpad, 0.0)],
+        BLACK.stroke_width(stroke(2)),
+    )))
+    .map_err(pe)?;
+    for (d, st) in &lines {
+        draw_line(&z, d, *st, if st.dash == Dash::Solid { 3 } else { 2 })?;
+        let every: Vec<(f64, f64)> = d.iter().copied().step_by(4).collect();
+        draw_markers(&z, &every, *st)?;
     }
     Ok(())
 }
@@ -153,7 +261,7 @@ fn legend_entries(panel: &Panel) -> Vec<(Symbol, String)> {
             .count();
         let symbol = match points {
             0 => continue,
-            1 => Symbol::CircledCross(colour(curve)),
+            1 => Symbol::Shape(Marker::Diamond, colour(curve), true),
             _ => Symbol::Series(style(curve)),
         };
         // (a label's formula after ": " goes to the caption key, [`key_of`])
@@ -186,7 +294,10 @@ fn legend_entries(panel: &Panel) -> Vec<(Symbol, String)> {
             ));
         }
         if exact_points(false) {
-            entries.push((Symbol::CircledCross(BLACK), "exact (one point)".into()));
+            entries.push((
+                Symbol::Shape(Marker::Diamond, BLACK, true),
+                "exact (one point)".into(),
+            ));
         }
     }
     entries
@@ -222,12 +333,21 @@ pub fn key_of(panels: &[Panel]) -> Vec<String> {
     }
     if curves().filter(exact).any(|c| points(c) == 1) {
         marks.push(
-            "⊗ (a circled ×): the exact boundary where it is a single point (with the wall, \
-             λ = 1 only), circled to part it from the × markers of a series",
+            "◆ (a filled diamond): the exact linearisation where it is a single point (with \
+             the wall, λ = 1 only), the mark the caption's \"○ / ×\" stands for where it is \
+             one point; no series carries a filled diamond",
         );
     }
     if !marks.is_empty() {
         key.push(format!("marks as drawn: {}", marks.join("; ")));
+    }
+    if panels.iter().any(|p| p.is_family() && p.x_desc == "r") {
+        key.push(
+            "under the family panel in r, its members' differences: each member's boundary \
+             less the first member's (Δμ0 against r; solid simulation, dashed averaging, in \
+             the member's colour and marker; the black line Δμ0 = 0 is the first member)"
+                .to_string(),
+        );
     }
     if panels.iter().any(|p| p.is_family()) {
         key.push(
@@ -255,10 +375,11 @@ fn draw_curve<'a, DB: Backend + 'a>(
     }
     let color = colour(curve);
     if pts.len() == 1 {
+        let diamond = outline(Marker::Diamond, pxi(5));
         c.draw_series(std::iter::once(
             EmptyElement::at(pts[0])
-                + Cross::new((0, 0), pxi(7), color.stroke_width(stroke(3)))
-                + Circle::new((0, 0), pxi(9), color.stroke_width(stroke(2))),
+                + Polygon::new(diamond.clone(), color.filled())
+                + PathElement::new(diamond, WHITE.stroke_width(stroke(1))),
         ))
         .map_err(pe)?;
         return Ok(());

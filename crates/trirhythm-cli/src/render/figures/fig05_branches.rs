@@ -46,7 +46,7 @@ picture!(Fig05, |self, root| size (1500, 1380), draw {
             // below zero, so that the births at A0 = 0 sit above the axis
             -0.05 * amax..amax * 1.08,
             "r",
-            "A0",
+            "A_0",
         )?;
         for b in &bd.branches {
             for (stable, pts) in runs(&b.points) {
@@ -67,10 +67,10 @@ picture!(Fig05, |self, root| size (1500, 1380), draw {
     if let Some(free) = areas.get(self.panels.len()) {
         let legend = LegendStrip {
             entries: vec![
-                (Symbol::Series(STABLE), "stable (df/dA0 < 0)".into()),
+                (Symbol::Series(STABLE), "stable (df/dA_{0} < 0)".into()),
                 (Symbol::Series(UNSTABLE), "unstable".into()),
                 (Symbol::Dot(FOLD_DOT), "fold (saddle-node)".into()),
-                (Symbol::Swatch(BORN), "branch born at A0 = 0".into()),
+                (Symbol::Swatch(BORN), "branch born at A_0 = 0".into()),
             ],
         };
         let (w, h) = free.dim_in_pixel();

@@ -19,6 +19,17 @@ use trirhythm_paper::fig07_pseudo_potential::{Curve, Fig07, Panel};
 /// A y-range framing the extrema of `curves` that lie below `x_end` (the walls of U_eff at
 /// A → 0 and A → ∞ would otherwise flatten everything), and the curves' points inside it.
 pub(super) fn frame(curves: &[Curve], x_end: f64) -> (std::ops::Range<f64>, Vec<Curve>) {
+    frame_with(curves, x_end, 0.6, false)
+}
+
+/// [`frame`] with room `above` the extrema (a share of their span), and, `to_lowest`, down
+/// to just below the lowest point of a curve drawn instead of a share below the extrema.
+fn frame_with(
+    curves: &[Curve],
+    x_end: f64,
+    above: f64,
+    to_lowest: bool,
+) -> (std::ops::Range<f64>, Vec<Curve>) {
     let levels = curves
         .iter()
         .flat_map(|c| c.extrema.iter())
@@ -27,8 +38,21 @@ pub(super) fn frame(curves: &[Curve], x_end: f64) -> (std::ops::Range<f64>, Vec<
     let (lo, hi) = levels.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
         (a.min(v), b.max(v))
     });
+    // (down to the lowest point of a curve drawn, which may lie below every extremum at the
+    // zoom's end)
+    let lowest = curves
+        .iter()
+        .flat_map(|c| c.points.iter())
+        .filter(|p| p.0 <= x_end)
+        .map(|p| p.1)
+        .fold(lo, f64::min);
     let span = (hi - lo).max(1e-9);
-    let y = padded_range([lo - 0.3 * span, hi + 0.6 * span]);
+    let bottom = if to_lowest {
+        lowest - 0.06 * span
+    } else {
+        lo - 0.3 * span
+    };
+    let y = padded_range([bottom, hi + above * span]);
     let clipped = curves
         .iter()
         .map(|c| Curve {
@@ -153,8 +177,8 @@ fn outer_zoom(curves: &[Curve], x_end: f64) -> Option<(Range<f64>, Range<f64>)> 
     Some((x0..x1, (u0 - 0.2 * du)..(u1 + 0.3 * du)))
 }
 
-/// Draw the inset on the outer wells ([`outer_zoom`]) in the lower left of the main chart
-/// `c` (empty there: the curves stay above −0.2 below A0 ≈ 10), with the box it enlarges
+/// Draw the inset on the outer wells ([`outer_zoom`]) in the upper left of the main chart
+/// `c` (empty there: the curves stay below their highest crest up to A0 ≈ 13), with the box it enlarges
 /// outlined on the chart.
 fn draw_outer_inset<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
@@ -169,11 +193,17 @@ fn draw_outer_inset<DB: Backend>(
         BLACK.stroke_width(stroke(1)),
     )))
     .map_err(pe)?;
+    // (above the curves, which stay below the highest crest up to A0 ≈ 13; the frame leaves
+    // room there)
     let y = c.y_range();
-    let top = (-0.26f64).min(y.start + 0.5 * (y.end - y.start));
+    let crest = curves
+        .iter()
+        .flat_map(|cv| cv.extrema.iter())
+        .map(|e| e.potential)
+        .fold(0.0f64, f64::max);
     let (p0, p1) = (
-        c.backend_coord(&(0.3, top)),
-        c.backend_coord(&(10.2, y.start + 0.03 * (y.end - y.start))),
+        c.backend_coord(&(0.3, y.end - 0.02 * (y.end - y.start))),
+        c.backend_coord(&(10.2, crest + 0.08 * (y.end - y.start))),
     );
     let (bx, by) = area.get_base_pixel();
     let inset = area.clone().shrink(
@@ -199,7 +229,8 @@ fn key() -> Vec<String> {
         "marks as drawn: filled markers the wells (stable cycles), open ones the crests \
          (unstable cycles); the rest state A0 = 0, a crest of every curve, is no cycle and \
          left unmarked; the inset in (a) and (b) enlarges the outer wells (the box outlined \
-         around them), whose markers pile up at the panels' scale"
+         around them), whose markers pile up at the panels' scale; the inset's axes are its \
+         panel's, A0 across and U_eff(A0) up"
             .to_string(),
     ]
 }
@@ -241,13 +272,14 @@ picture!(Fig07, |self, root| key key(), size {
         legend_of(p).draw(strip)?;
     }
     for (k, (area, Panel { caption, curves, .. })) in areas.iter().zip(&self.panels).enumerate() {
-        let (y, clipped) = frame(curves, 14.0);
+        // (room above the curves for the inset on the outer wells)
+        let (y, clipped) = frame_with(curves, 14.0, 0.9, true);
         // (A0 from a little below 0: the marker at A0 = 0 clear of the y ticks)
         let mut c = chart(area, caption, -0.3..14.0, y, "A0", "U_eff(A0)")?;
         draw_curves(&mut c, &clipped)?;
         draw_outer_inset(area, &mut c, curves)?;
         if let Some(end) = zoom_end(curves) {
-            let (yz, zoomed) = frame(curves, end);
+            let (yz, zoomed) = frame_with(curves, end, 0.6, true);
             let label = caption.split(' ').next().unwrap_or("");
             // the zooms continue the lettering: (c), (d)
             let letter = ["(c)", "(d)"][k.min(1)];

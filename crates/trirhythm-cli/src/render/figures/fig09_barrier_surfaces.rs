@@ -19,7 +19,7 @@ const BAR: u32 = 180;
 fn key() -> LegendStrip {
     LegendStrip {
         entries: vec![(
-            Symbol::Framed(WHITE, RGBColor(150, 150, 150)),
+            Symbol::Framed(WHITE, RGBColor(110, 110, 110)),
             "white: fewer than three wells, the barrier undefined".into(),
         )],
     }

@@ -92,7 +92,7 @@ picture!(Fig14, |self, root| size (2 * PANEL.0 + BAR, 4 * PANEL.1), draw {
         )?;
         colour_bar_vertical(
             &bar,
-            "log10 P(U, dU/dt)",
+            "log₁₀ P(U, dU/dt)",
             top.log10() - DECADES,
             top.log10(),
         )?;

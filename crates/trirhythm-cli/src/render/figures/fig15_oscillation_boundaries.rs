@@ -21,7 +21,7 @@ picture!(Fig15, |self, root| key key_of(&self.panels), size {
 }, draw {
     let (panels, strip) = root.split_vertically(PANELS);
     for (area, panel) in panels.split_evenly((3, 2)).iter().zip(&self.panels) {
-        draw_panel(area, panel, 0)?;
+        draw_panel(area, panel, 0, false)?;
     }
     legend_of(&self.panels.iter().take(2).collect::<Vec<_>>()).draw(&strip)
 });

@@ -23,7 +23,10 @@ fn strip(fig: &Fig16) -> u32 {
 picture!(Fig16, |self, root| key key_of(&self.panels), size (1400, 2 * (CHART + strip(self))), draw {
     let areas = root.split_evenly((2, 2));
     for (area, panel) in areas.iter().zip(&self.panels) {
-        draw_panel(area, panel, strip(self))?;
+        // (the (μ0, r) family's boundaries lie within a hundredth of μ0: an inset draws their
+        // differences)
+        let differences = panel.is_family() && panel.x_desc == "r";
+        draw_panel(area, panel, strip(self), differences)?;
     }
     Ok(())
 });

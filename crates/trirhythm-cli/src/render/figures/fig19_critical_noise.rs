@@ -40,7 +40,7 @@ const ATTRACTORS: [(&str, RGBColor); 4] = [
 
 /// Horizontal offset of an attractor's slot within its column.
 fn slot(k: usize) -> f64 {
-    -0.27 + 0.18 * k as f64
+    -0.15 + 0.1 * k as f64
 }
 
 /// The attractor's index in [`ATTRACTORS`] (its first word: `rest`, `inner`, …).

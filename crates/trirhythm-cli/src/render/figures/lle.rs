@@ -91,6 +91,7 @@ fn strip(panel: &Panel) -> LegendStrip {
     for (word, dash, name) in [
         ("inner", Dash::Dotted, "inner cycle"),
         ("middle", Dash::Chain, "middle cycle"),
+        ("outer", Dash::Solid, "solid: outer cycle (or rest)"),
     ] {
         if panel
             .curves
@@ -229,6 +230,11 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
         } else {
             vec![]
         };
+        // (only where it is on the chart: no dash below or above the axes)
+        let line: Vec<(f64, f64)> = line
+            .into_iter()
+            .filter(|&(_, v)| v >= y.start && v <= y.end)
+            .collect();
         if line.len() >= 2 {
             c.draw_series(DashedLineSeries::new(line, 6, 4, colour.stroke_width(1)))
                 .map_err(pe)?;

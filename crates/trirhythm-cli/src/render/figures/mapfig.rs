@@ -95,7 +95,7 @@ fn legend(fig: &MapFigure) -> LegendStrip {
         .iter()
         .any(|p| p.printed.as_ref().is_some_and(|f| !f.curves.is_empty()))
     {
-        entries.push((Symbol::Dashed(PRINTED), "Eq. 36-37 as printed".into()));
+        entries.push((Symbol::Underlaid(PRINTED), "Eq. 36-37 as printed".into()));
     }
     if fig.panels.iter().any(|p| !p.folds.cusps.is_empty()) {
         entries.push((Symbol::Ring(FOLD), "cusp".into()));
@@ -125,7 +125,7 @@ fn layout(fig: &MapFigure) -> (usize, usize) {
 }
 
 // A map figure: its panels, one legend strip for all of them below.
-picture!(MapFigure, |self, root| size {
+picture!(MapFigure, |self, root| key map_key(self), size {
     let (r, c) = layout(self);
     let w = PANEL.0 * c as u32;
     (w, PANEL.1 * r as u32 + legend(self).height(w))
@@ -220,11 +220,12 @@ fn draw_panel<DB: Backend>(
         let g = END_GAP * (r.end - r.start);
         (r.start - if lo { g } else { 0.0 })..(r.end + if hi { g } else { 0.0 })
     };
+    let (ax, ay) = (gap(&xr, ends[0], ends[1]), gap(&yr, ends[2], ends[3]));
     let mut c = chart(
         area,
         &panel_title(p),
-        gap(&xr, ends[0], ends[1]),
-        gap(&yr, ends[2], ends[3]),
+        ax.clone(),
+        ay.clone(),
         &p.x.desc(),
         &p.y.desc(),
     )?;
@@ -243,10 +244,30 @@ fn draw_panel<DB: Backend>(
             while jx + 1 < nx && p.count(jx + 1, iy) == cnt {
                 jx += 1;
             }
-            let x0 = clampx(gx.value(ix) / sx - hx / 2.0);
-            let x1 = clampx(gx.value(jx) / sx + hx / 2.0);
+            // (the cells on the map's edge reach on over the strip beyond it to the axis:
+            // no white band with grid between the map and its spine)
+            let x0 = if ix == 0 {
+                ax.start
+            } else {
+                clampx(gx.value(ix) / sx - hx / 2.0)
+            };
+            let x1 = if jx + 1 == nx {
+                ax.end
+            } else {
+                clampx(gx.value(jx) / sx + hx / 2.0)
+            };
+            let y0 = if iy == 0 {
+                ay.start
+            } else {
+                clampy(y - hy / 2.0)
+            };
+            let y1 = if iy + 1 == ny {
+                ay.end
+            } else {
+                clampy(y + hy / 2.0)
+            };
             rects.push(Rectangle::new(
-                [(x0, clampy(y - hy / 2.0)), (x1, clampy(y + hy / 2.0))],
+                [(x0, y0), (x1, y1)],
                 count_colour(cnt).filled(),
             ));
             ix = jx + 1;
@@ -263,8 +284,21 @@ fn draw_panel<DB: Backend>(
     }
     for curve in p.printed.iter().flat_map(|f| &f.curves) {
         let pts: Vec<(f64, f64)> = curve.points.iter().map(|q| (q.x / sx, q.y / sy)).collect();
-        c.draw_series(DashedLineSeries::new(pts, 7, 5, PRINTED.stroke_width(2)))
-            .map_err(pe)?;
+        // (long dashes on a black underlay, wider than a fold: apart from a fold it runs on)
+        c.draw_series(DashedLineSeries::new(
+            pts.clone(),
+            pxi(14) as u32,
+            pxi(8) as u32,
+            BLACK.stroke_width(stroke(4)),
+        ))
+        .map_err(pe)?;
+        c.draw_series(DashedLineSeries::new(
+            pts,
+            pxi(14) as u32,
+            pxi(8) as u32,
+            PRINTED.stroke_width(stroke(2)),
+        ))
+        .map_err(pe)?;
     }
     // the inset (and the outline of the box it zooms on) first: the names go beside them
     let mut taken: Vec<PixelBox> = Vec::new();
@@ -306,13 +340,13 @@ fn draw_panel<DB: Backend>(
     let (rx, ry) = c.plotting_area().get_pixel_range();
     let plot = [rx.start, ry.start, rx.end, ry.end];
     let (bx, by) = area.get_base_pixel();
-    for (i, name) in &p.fold_names {
-        let curve: Vec<(i32, i32)> = p.folds.curves[*i]
+    for (i, name) in display_names(p) {
+        let curve: Vec<(i32, i32)> = p.folds.curves[i]
             .points
             .iter()
             .map(|q| c.backend_coord(&(q.x / sx, q.y / sy)))
             .collect();
-        let name = short_name(name);
+        let name = name.as_str();
         let Some([x0, y0, x1, y1]) = place_name(name, &curve, &fold_px, &taken, plot) else {
             continue;
         };
@@ -358,6 +392,63 @@ fn short_name(name: &str) -> &str {
     name.split_whitespace().next().unwrap_or(name)
 }
 
+/// The names drawn beside a panel's fold curves: the short name ("L1"), a second curve of
+/// the same name primed ("L1′"), a third double-primed, so that no two curves of a panel
+/// carry one name; of two curves of one name the one higher up (mean y) is unprimed, the
+/// same in every panel.
+fn display_names(p: &MapPanel) -> Vec<(usize, String)> {
+    let mean_y = |i: usize| {
+        let pts = &p.folds.curves[i].points;
+        pts.iter().map(|q| q.y).sum::<f64>() / pts.len().max(1) as f64
+    };
+    let mut order: Vec<&(usize, String)> = p.fold_names.iter().collect();
+    order.sort_by(|a, b| mean_y(b.0).total_cmp(&mean_y(a.0)));
+    let mut seen: Vec<&str> = Vec::new();
+    order
+        .into_iter()
+        .map(|(i, name)| {
+            let short = short_name(name);
+            let primes = seen.iter().filter(|&&n| n == short).count();
+            seen.push(short);
+            (*i, format!("{short}{}", "′".repeat(primes)))
+        })
+        .collect()
+}
+
+/// The caption's key to a map figure's drawing: what the insets' axes are, and why two
+/// fold curves of a panel share a name (primed on the picture).
+fn map_key(fig: &MapFigure) -> Vec<String> {
+    let mut key = Vec::new();
+    if fig.panels.iter().any(|p| inset_ranges(p).is_some()) {
+        key.push(
+            "inset: the box outlined on its panel enlarged, on the panel's own axes and units \
+             (its x axis the panel's x, its y axis the panel's y; an axis marked ×10ᵉ under \
+             its labels is in units of 10ᵉ)"
+                .to_string(),
+        );
+    }
+    if fig
+        .panels
+        .iter()
+        .any(|p| display_names(p).iter().any(|(_, n)| n.contains('′')))
+    {
+        key.push(
+            "L1 and L1′ (likewise L2′, L3′): two saddle-node lines of one panel named after the \
+             same cycle, each by the cycles present at its middle (L1: no larger cycle there, \
+             the outer cycle's fold); the prime tells the two lines apart, L1 the higher one"
+                .to_string(),
+        );
+    }
+    if clear_ends(fig).iter().any(|e| e.iter().any(|&b| b)) {
+        key.push(
+            "a map's edge cells are drawn on over the narrow strip between the computed grid \
+             and the axis (kept so that no curve lies on a spine)"
+                .to_string(),
+        );
+    }
+    key
+}
+
 /// Where the name of a fold curve (`curve`, backend pixels) goes: a box beside one of its
 /// points (from its middle outwards), on the side that covers no point of any fold curve
 /// (`folds`), no box `taken` (the inset, the zoom box's edges, marks, other names) and stays
@@ -379,7 +470,7 @@ fn place_name(
     if curve.len() < 2 || length < 2.0 * w as f64 {
         return None;
     }
-    let gap = pxi(6);
+    let gap = pxi(3);
     let overlaps =
         |a: &PixelBox, b: &PixelBox| a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
     let mut best: Option<(u64, PixelBox)> = None;

@@ -56,9 +56,23 @@ macro_rules! picture {
 /// figures and the LLE-against-noise figures.
 macro_rules! picture_through {
     ($figure:ty) => {
-        picture!($figure, |self, root| caption self.0.caption, size self.0.size(), draw {
-            self.0.draw(root)
-        });
+        // (the shared picture's heading, with the key its drawing adds)
+        impl crate::render::plot::Picture for $figure {
+            fn size(&self) -> (u32, u32) {
+                self.0.size()
+            }
+
+            fn heading(&self) -> crate::render::plot::Heading {
+                self.0.heading()
+            }
+
+            fn draw<DB: crate::render::plot::Backend>(
+                &self,
+                root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+            ) -> anyhow::Result<()> {
+                self.0.draw(root)
+            }
+        }
     };
 }
 

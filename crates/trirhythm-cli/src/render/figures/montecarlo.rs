@@ -187,24 +187,10 @@ pub fn draw_amplitude_panel<DB: Backend>(
             "P(A) (log scale)",
         )?
     } else {
-        chart(area, &caption, x_min..x_max, 0.0..y_max * 1.05, "A", "P(A)")?
+        chart(area, &caption, x_min..x_max, 0.0..y_max * 1.12, "A", "P(A)")?
     };
     let in_view = |x: f64| x >= x_min && x <= x_max;
-    for (i, (_, xs, ys)) in p.theory.iter().enumerate() {
-        // the runs of points inside the view (and above the floor of a log axis)
-        let mut run: Vec<(f64, f64)> = Vec::new();
-        for (&x, &y) in xs.iter().zip(ys) {
-            if in_view(x) && y.is_finite() && (!log || y >= floor) {
-                run.push((x, yv(y)));
-            } else if !run.is_empty() {
-                draw_line(&c, &run, theory_style(i), 2)?;
-                run.clear();
-            }
-        }
-        if !run.is_empty() {
-            draw_line(&c, &run, theory_style(i), 2)?;
-        }
-    }
+    // the Monte Carlo first, the theory drawn on top of it
     for (k, (r, ((density, stderr), _))) in p.runs.iter().zip(&shown).enumerate() {
         let style = mc_style(k);
         let mids: Vec<(f64, f64, f64)> = r
@@ -228,8 +214,58 @@ pub fn draw_amplitude_panel<DB: Backend>(
                 1,
             )?;
         }
-        let centres: Vec<(f64, f64)> = mids.iter().map(|&(x, d, _)| (x, yv(d))).collect();
+        // wide bins (few in view) as a step outline, so that a bin's width is seen against
+        // a narrow theory peak
+        let bins: Vec<(f64, f64, f64)> = r
+            .edges
+            .windows(2)
+            .zip(density.iter())
+            .filter(|(w, d)| d.is_finite() && in_view(w[0]) && in_view(w[1]))
+            .map(|(w, &d)| (w[0], w[1], d))
+            .collect();
+        if !bins.is_empty() && bins.len() < 30 {
+            let mut step: Vec<(f64, f64)> = Vec::new();
+            for &(a, b, d) in &bins {
+                let y = if log { yv(d.max(floor)) } else { d };
+                step.push((a, y));
+                step.push((b, y));
+            }
+            draw_line(
+                &c,
+                &step,
+                SeriesStyle {
+                    dash: Dash::Solid,
+                    marker: Marker::None,
+                    ..style
+                },
+                1,
+            )?;
+        }
+        // markers on at most about 30 bins (every k-th): many merge into a band that hides
+        // the theory
+        let every = mids.len().div_ceil(30).max(1);
+        let centres: Vec<(f64, f64)> = mids
+            .iter()
+            .skip(k % every)
+            .step_by(every)
+            .map(|&(x, d, _)| (x, yv(d)))
+            .collect();
         draw_markers(&c, &centres, style)?;
+    }
+    for (i, (_, xs, ys)) in p.theory.iter().enumerate() {
+        // the runs of points inside the view (and above the floor of a log axis)
+        let mut run: Vec<(f64, f64)> = Vec::new();
+        for (&x, &y) in xs.iter().zip(ys) {
+            if in_view(x) && y.is_finite() && (!log || y >= floor) {
+                run.push((x, yv(y)));
+            } else if !run.is_empty() {
+                draw_line(&c, &run, theory_style(i), 3)?;
+                run.clear();
+            }
+        }
+        if !run.is_empty() {
+            draw_line(&c, &run, theory_style(i), 3)?;
+        }
     }
     Ok(())
 }
@@ -289,8 +325,11 @@ pub fn amplitude_legend(panels: &[AmplitudePanel]) -> crate::render::plot::Legen
 pub fn amplitude_key(panels: &[AmplitudePanel]) -> Vec<String> {
     let runs = || panels.iter().flat_map(|p| p.runs.iter());
     let mut key = vec![
-        "key: Monte Carlo markers with bars of ± 1 standard error; the marks after a panel's \
-         title follow the equation of the ensemble they concern"
+        "key: Monte Carlo bars of ± 1 standard error on every bin, markers on every bin or, \
+         where more than 30 bins are in view, on every k-th bin (at most about 30); a panel \
+         with fewer than 30 bins in view draws its histogram as a thin step outline too; the \
+         theory curves are drawn over the Monte Carlo; the marks after a panel's title \
+         (†, and the others below) follow the equation of the ensemble they concern"
             .to_string(),
     ];
     if runs().any(|r| !r.stationary) {
