@@ -28,6 +28,8 @@ pub enum Symbol {
     Cross(RGBColor),
     /// A filled circle.
     Dot(RGBColor),
+    /// A solid line with a filled dot on it: a line marked with dots at its points.
+    DottedLine(RGBColor),
     /// A series' line (its colour and dash) with its marker, as [`draw_line`] and
     /// [`draw_markers`] draw it.
     Series(SeriesStyle),
@@ -128,6 +130,15 @@ impl Symbol {
             Symbol::Dot(c) => area
                 .draw(&Circle::new(m, pxi(6) as u32, c.filled()))
                 .map_err(pe),
+            Symbol::DottedLine(c) => {
+                area.draw(&PathElement::new(
+                    [(m.0 - h, m.1), (m.0 + h, m.1)],
+                    c.stroke_width(w3),
+                ))
+                .map_err(pe)?;
+                area.draw(&Circle::new(m, pxi(5) as u32, c.filled()))
+                    .map_err(pe)
+            }
             Symbol::Series(s) => {
                 let half = pxi(14);
                 dashed_path(

@@ -262,6 +262,10 @@ fn legend_entries(panel: &Panel) -> Vec<(Symbol, String)> {
         let symbol = match points {
             0 => continue,
             1 => Symbol::Shape(Marker::Diamond, colour(curve), true),
+            // (an unmarked simulated line carries a dot at each point, as [`draw_curve`] draws)
+            _ if curve.method == "simulation" && style(curve).marker == Marker::None => {
+                Symbol::DottedLine(colour(curve))
+            }
             _ => Symbol::Series(style(curve)),
         };
         // (a label's formula after ": " goes to the caption key, [`key_of`])
@@ -327,16 +331,54 @@ pub fn key_of(panels: &[Panel]) -> Vec<String> {
     }
     let exact = |c: &&Curve| !matches!(c.method.as_str(), "simulation" | "averaging");
     let points = |c: &Curve| c.points.iter().filter(|q| q.side == Side::Boundary).count();
-    let mut marks = Vec::new();
-    if curves().filter(exact).any(|c| points(c) > 1) {
-        marks.push("○ (rings on a dotted line): the exact boundary along the axis");
-    }
-    if curves().filter(exact).any(|c| points(c) == 1) {
-        marks.push(
-            "◆ (a filled diamond): the exact linearisation where it is a single point (with \
-             the wall, λ = 1 only), the mark the caption's \"○ / ×\" stands for where it is \
-             one point; no series carries a filled diamond",
-        );
+    let family = panels.iter().any(|p| p.is_family());
+    let many = |free: bool| {
+        curves()
+            .filter(exact)
+            .any(|c| points(c) > 1 && (c.method == "exact, no wall") == free)
+    };
+    let single = curves().filter(exact).any(|c| points(c) == 1);
+    let mut marks: Vec<&str> = Vec::new();
+    if !family {
+        if curves().any(|c| c.method == "simulation" && c.member.is_none() && points(c) > 1) {
+            marks.push(
+                "● on the solid black line: the simulated boundary, one dot per simulated point",
+            );
+        }
+        if many(false) {
+            marks.push(
+                "○ on a dotted line in colour: the exact boundary with the wall along the axis",
+            );
+        }
+        if many(true) {
+            marks.push(
+                "grey ○ on a grey dotted line (\"exact without the wall\"): the exact \
+                 linearisation at U = 0 of the oscillator with the wall removed (no impacts), \
+                 drawn for reference only",
+            );
+        }
+        if single {
+            marks.push(
+                "◆ (a filled diamond): the exact linearisation with the wall where it is a \
+                 single point (λ = 1 only)",
+            );
+        }
+    } else {
+        let mut drawn = Vec::new();
+        if single {
+            drawn.push("the filled diamond ◆ (one point: with the wall, λ = 1 only)");
+        }
+        if many(false) || many(true) {
+            drawn.push("the dotted line with rings (along the axis)");
+        }
+        if !drawn.is_empty() {
+            key.push(format!(
+                "the caption's \"○ / ×: exact linearisation\" is drawn here as {}; in this \
+                 drawing ○ and × are markers of the r and λ family members, not the exact \
+                 linearisation",
+                drawn.join(" and ")
+            ));
+        }
     }
     if !marks.is_empty() {
         key.push(format!("marks as drawn: {}", marks.join("; ")));

@@ -67,6 +67,12 @@ fn dash_of(attractor: &str) -> Dash {
 pub(super) use crate::render::legend::outline;
 
 fn strip(panel: &Panel) -> LegendStrip {
+    strip_of(panel, panel)
+}
+
+/// The legend strip of `panel`, its colours and shapes those of `parent` (a sub-panel keeps
+/// the colours of the panel it was split from).
+fn strip_of(panel: &Panel, parent: &Panel) -> LegendStrip {
     let mut entries: Vec<(Symbol, String)> = Vec::new();
     let mut seen: Vec<f64> = Vec::new();
     for c in &panel.curves {
@@ -77,9 +83,9 @@ fn strip(panel: &Panel) -> LegendStrip {
         let name = c.label.split(',').next().unwrap_or("").to_string();
         entries.push((
             Symbol::Series(SeriesStyle {
-                colour: colour_of(panel, c.value),
+                colour: colour_of(parent, c.value),
                 dash: Dash::Solid,
-                marker: shape_of(panel, c.value),
+                marker: shape_of(parent, c.value),
             }),
             name,
         ));
@@ -141,6 +147,67 @@ pub fn panel_height(panels: &[Panel]) -> u32 {
         + 8
 }
 
+/// A panel with more curves than this is drawn as sub-panels, one per value of its
+/// parameter, on shared axes (so its attractors' lines and markers can be told apart).
+const SPLIT_ABOVE: usize = 8;
+
+/// The panels as drawn: (panel drawn, panel its colours come from, shared axes ranges).
+fn drawn(panels: &[Panel]) -> Vec<(Panel, &Panel, Option<(Range<f64>, Range<f64>)>)> {
+    let mut out = Vec::new();
+    for p in panels {
+        let vs = values(p);
+        if p.curves.len() <= SPLIT_ABOVE || vs.len() < 2 {
+            out.push((p.clone(), p, None));
+            continue;
+        }
+        let ranges = ranges_of(p);
+        let (head, rest) = match p.caption.find(')') {
+            Some(i) if p.caption.starts_with('(') => (&p.caption[1..i], p.caption[i + 1..].trim()),
+            _ => ("", p.caption.as_str()),
+        };
+        for (k, v) in vs.iter().enumerate() {
+            let curves: Vec<_> = p.curves.iter().filter(|c| c.value == *v).cloned().collect();
+            let name = curves[0]
+                .label
+                .split(',')
+                .next()
+                .unwrap_or("")
+                .trim()
+                .to_string();
+            let caption = if head.is_empty() {
+                format!("{rest}, {name}")
+            } else {
+                format!("({head}{}) {rest}, {name}", k + 1)
+            };
+            let mut sub = p.clone();
+            sub.caption = caption;
+            sub.curves = curves;
+            out.push((sub, p, Some(ranges.clone())));
+        }
+    }
+    out
+}
+
+/// The x (log10 D) and y ranges of a panel's data.
+fn ranges_of(panel: &Panel) -> (Range<f64>, Range<f64>) {
+    let x = padded_range(
+        panel
+            .curves
+            .iter()
+            .flat_map(|c| c.points.iter().map(|q| q.x.log10())),
+    );
+    let mut ys: Vec<f64> = panel
+        .curves
+        .iter()
+        .flat_map(|c| c.points.iter())
+        .filter(|q| q.flag == Flag::Value)
+        .flat_map(|q| [q.lo, q.hi, q.y])
+        .collect();
+    ys.push(0.0);
+    // the range is the data's (the panel's verdicts are in the caption, not over the data)
+    (x, padded_range(ys))
+}
+
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// A chart whose x axis is log10 D, its ticks labelled with D itself.
@@ -178,25 +245,15 @@ fn log_x_chart<'a, DB: Backend>(
 /// Draw one LLE-against-D panel: log D axis, error bars, zero line, filled (rest regime) and
 /// open (cycle regime) markers, legend strip below. Merged points are drawn as
 /// crosses on the lower edge.
-pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> Result<()> {
+pub fn draw_panel<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
+    panel: &Panel,
+    parent: &Panel,
+    ranges: Option<(Range<f64>, Range<f64>)>,
+) -> Result<()> {
     let (top, bottom) = area.split_vertically(CHART_HEIGHT);
     let lx = |d: f64| d.log10();
-    let x = padded_range(
-        panel
-            .curves
-            .iter()
-            .flat_map(|c| c.points.iter().map(|q| lx(q.x))),
-    );
-    let mut ys: Vec<f64> = panel
-        .curves
-        .iter()
-        .flat_map(|c| c.points.iter())
-        .filter(|q| q.flag == Flag::Value)
-        .flat_map(|q| [q.lo, q.hi, q.y])
-        .collect();
-    ys.push(0.0);
-    // the range is the data's (the panel's verdicts are in the caption, not over the data)
-    let y = padded_range(ys);
+    let (x, y) = ranges.unwrap_or_else(|| ranges_of(panel));
     let mut c = log_x_chart(
         &top,
         &panel.caption,
@@ -214,7 +271,7 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
         let Some(r) = curve.regime.as_ref() else {
             continue;
         };
-        let colour = colour_of(panel, curve.value);
+        let colour = colour_of(parent, curve.value);
         let ds: Vec<f64> = curve.points.iter().map(|q| q.x).collect();
         let line: Vec<(f64, f64)> = if let Some(rest) = r.rest.as_ref().filter(|r| r.d_c_zero) {
             ds.iter()
@@ -242,7 +299,7 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
     }
     let n = panel.curves.len().max(1) as f64;
     for (i, curve) in panel.curves.iter().enumerate() {
-        let colour = colour_of(panel, curve.value);
+        let colour = colour_of(parent, curve.value);
         let open = curve.start == StartKind::Cycle;
         // a small horizontal offset per curve keeps overlapping error bars apart
         let shift = (x.end - x.start) * 0.003 * (i as f64 - (n - 1.0) / 2.0);
@@ -276,7 +333,7 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
             ])
             .map_err(pe)?;
             // the value's shape, open (white inside a thick outline) or filled
-            let ring = outline(shape_of(panel, curve.value), pxi(4));
+            let ring = outline(shape_of(parent, curve.value), pxi(4));
             let fill = if open { WHITE } else { colour };
             c.draw_series(std::iter::once(
                 EmptyElement::at((xq, q.y))
@@ -286,13 +343,33 @@ pub fn draw_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> 
             .map_err(pe)?;
         }
     }
-    strip(panel).draw(&bottom)
+    strip_of(panel, parent).draw(&bottom)
 }
 
-// An LLE-against-noise figure (Figs 17, 18): the two panels side by side.
-picture!(LleAgainstNoise, |self, root| size (2 * PANEL_WIDTH, panel_height(&self.panels)), draw {
-    for (area, panel) in root.split_evenly((1, 2)).iter().zip(&self.panels) {
-        draw_panel(area, panel)?;
+/// Rows of the figure: its drawn panels two to a row.
+fn rows(panels: &[Panel]) -> u32 {
+    drawn(panels).len().div_ceil(2) as u32
+}
+
+/// Height of a row of drawn panels.
+fn row_height(panels: &[Panel]) -> u32 {
+    let subs: Vec<Panel> = drawn(panels).into_iter().map(|(p, _, _)| p).collect();
+    panel_height(&subs)
+}
+
+// An LLE-against-noise figure (Figs 17, 18): the panels two to a row (a panel with many
+// curves split into one sub-panel per value on shared axes; a last lone panel centred).
+picture!(LleAgainstNoise, |self, root| size (2 * PANEL_WIDTH, rows(&self.panels) * row_height(&self.panels)), draw {
+    let panels = drawn(&self.panels);
+    let h = row_height(&self.panels) as i32;
+    let w = PANEL_WIDTH as i32;
+    let n = panels.len();
+    for (k, (panel, parent, ranges)) in panels.iter().enumerate() {
+        let row = (k / 2) as i32;
+        let lone = k + 1 == n && n % 2 == 1;
+        let left = if lone { w / 2 } else { (k % 2) as i32 * w };
+        let area = root.clone().shrink((left, row * h), (w as u32, h as u32));
+        draw_panel(&area, panel, parent, ranges.clone())?;
     }
     Ok(())
 });
