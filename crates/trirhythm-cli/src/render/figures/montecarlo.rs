@@ -202,7 +202,16 @@ pub fn draw_amplitude_panel<DB: Backend>(
             })
             .map(|(w, (&d, &s))| (0.5 * (w[0] + w[1]), d, if s.is_finite() { s } else { 0.0 }))
             .collect();
-        for &(x, d, s) in &mids {
+        // markers on at most about 30 bins (every k-th): many merge into a band that hides
+        // the theory; the error bars only on the marked bins (a bar alone reads as a dash)
+        let every = mids.len().div_ceil(30).max(1);
+        let marked: Vec<(f64, f64, f64)> = mids
+            .iter()
+            .copied()
+            .skip(k % every)
+            .step_by(every)
+            .collect();
+        for &(x, d, s) in &marked {
             let bar = [(x, yv((d - s).max(0.0))), (x, yv(d + s))];
             draw_line(
                 &c,
@@ -241,27 +250,40 @@ pub fn draw_amplitude_panel<DB: Backend>(
                 1,
             )?;
         }
-        // markers on at most about 30 bins (every k-th): many merge into a band that hides
-        // the theory
-        let every = mids.len().div_ceil(30).max(1);
-        let centres: Vec<(f64, f64)> = mids
-            .iter()
-            .skip(k % every)
-            .step_by(every)
-            .map(|&(x, d, _)| (x, yv(d)))
-            .collect();
+        let centres: Vec<(f64, f64)> = marked.iter().map(|&(x, d, _)| (x, yv(d))).collect();
         draw_markers(&c, &centres, style)?;
     }
     for (i, (_, xs, ys)) in p.theory.iter().enumerate() {
         // the runs of points inside the view (and above the floor of a log axis)
+        // (on a log axis the theory runs down to the axis' bottom: where it crosses it, the
+        // line between its two points is drawn to the crossing)
+        let bottom = floor * 10f64.powf(-0.25);
+        let tv = |v: f64| if log { v.log10() } else { v };
         let mut run: Vec<(f64, f64)> = Vec::new();
+        let mut last: Option<(f64, f64)> = None;
         for (&x, &y) in xs.iter().zip(ys) {
-            if in_view(x) && y.is_finite() && (!log || y >= floor) {
-                run.push((x, yv(y)));
+            let above = |y: f64| y.is_finite() && (!log || y >= bottom);
+            let crossing = |(x0, y0): (f64, f64)| {
+                let (l0, l1, lb) = (y0.log10(), y.log10(), bottom.log10());
+                (x0 + (x - x0) * (lb - l0) / (l1 - l0), lb)
+            };
+            if in_view(x) && above(y) {
+                if let Some((x0, y0)) = last.filter(|&(x0, y0)| {
+                    log && run.is_empty() && in_view(x0) && y0.is_finite() && y0 > 0.0
+                }) {
+                    run.push(crossing((x0, y0)));
+                }
+                run.push((x, tv(y)));
             } else if !run.is_empty() {
+                if let Some((x0, y0)) = last {
+                    if log && in_view(x) && y.is_finite() && y > 0.0 {
+                        run.push(crossing((x0, y0)));
+                    }
+                }
                 draw_line(&c, &run, theory_style(i), 3)?;
                 run.clear();
             }
+            last = Some((x, y));
         }
         if !run.is_empty() {
             draw_line(&c, &run, theory_style(i), 3)?;
@@ -325,8 +347,8 @@ pub fn amplitude_legend(panels: &[AmplitudePanel]) -> crate::render::plot::Legen
 pub fn amplitude_key(panels: &[AmplitudePanel]) -> Vec<String> {
     let runs = || panels.iter().flat_map(|p| p.runs.iter());
     let mut key = vec![
-        "key: Monte Carlo bars of ± 1 standard error on every bin, markers on every bin or, \
-         where more than 30 bins are in view, on every k-th bin (at most about 30); a panel \
+        "key: Monte Carlo markers with bars of ± 1 standard error on every bin or, where \
+         more than 30 bins are in view, on every k-th bin only (at most about 30); a panel \
          with fewer than 30 bins in view draws its histogram as a thin step outline too; the \
          theory curves are drawn over the Monte Carlo; the marks after a panel's title \
          (†, and the others below) follow the equation of the ensemble they concern"
