@@ -174,7 +174,16 @@ fn outer_zoom(curves: &[Curve], x_end: f64) -> Option<(Range<f64>, Range<f64>)> 
         ((a0 - 0.3) / 0.2).floor() * 0.2 - 0.05,
         ((a1 + 0.25) / 0.2).ceil() * 0.2 + 0.05,
     );
-    Some((x0..x1, (u0 - 0.2 * du)..(u1 + 0.3 * du)))
+    // (U_eff from a fifth of the wells' spread below them to three tenths above, widened to
+    // take in four whole steps of its decade: at least four labelled ticks)
+    let (mut y0, mut y1) = (u0 - 0.2 * du, u1 + 0.3 * du);
+    let step = 10f64.powf((y1 - y0).log10().floor());
+    let count = |a: f64, b: f64| ((b / step).floor() - (a / step).ceil() + 1.0) as i64;
+    if step.is_finite() && step > 0.0 && count(y0, y1) < 4 {
+        y0 = y0.min((y0 / step).floor() * step - 0.2 * step);
+        y1 = y1.max((y1 / step).ceil() * step + 0.2 * step);
+    }
+    Some((x0..x1, y0..y1))
 }
 
 /// Draw the inset on the outer wells ([`outer_zoom`]) in the upper left of the main chart
@@ -275,7 +284,7 @@ picture!(Fig07, |self, root| key key(), size {
         // (room above the curves for the inset on the outer wells)
         let (y, clipped) = frame_with(curves, 14.0, 0.9, true);
         // (A0 from a little below 0: the marker at A0 = 0 clear of the y ticks)
-        let mut c = chart(area, caption, -0.3..14.0, y, "A0", "U_eff(A0)")?;
+        let mut c = chart(area, caption, -0.3..14.0, y, "A_0", "U_eff(A_0)")?;
         draw_curves(&mut c, &clipped)?;
         draw_outer_inset(area, &mut c, curves)?;
         if let Some(end) = zoom_end(curves) {
@@ -288,8 +297,8 @@ picture!(Fig07, |self, root| key key(), size {
                 &format!("{letter} {label} enlarged: inner well, A0 ≤ {end:.1}"),
                 -0.02 * end..end,
                 yz,
-                "A0",
-                "U_eff(A0)",
+                "A_0",
+                "U_eff(A_0)",
             )?;
             draw_curves(&mut z, &zoomed)?;
         }

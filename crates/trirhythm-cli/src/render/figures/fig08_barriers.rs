@@ -32,7 +32,7 @@ fn draw_panel<DB: Backend>(
     x_end: f64,
 ) -> Result<()> {
     let (y, clipped) = frame(std::slice::from_ref(&fig.curve), x_end);
-    let mut c = chart(area, caption, 0.0..x_end, y, "A0", "U_eff(A0)")?;
+    let mut c = chart(area, caption, 0.0..x_end, y, "A_0", "U_eff(A_0)")?;
     let clipped = &clipped[0];
     draw_curves(&mut c, std::slice::from_ref(clipped))?;
     let bar_x = |b: &Barrier| {

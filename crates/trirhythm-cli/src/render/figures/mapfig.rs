@@ -567,10 +567,23 @@ fn inset_ranges(p: &MapPanel) -> Option<(std::ops::Range<f64>, std::ops::Range<f
         let (lo, hi) = (g.start / s, g.stop / s);
         (a - pad).max(lo)..(b + pad).min(hi)
     };
-    Some((
-        zoom(&p.x.grid, p.x.scale, ix0, ix1),
-        zoom(&p.y.grid, p.y.scale, iy0, iy1),
-    ))
+    // (an inset's x axis on a map of stable cycles takes in four whole steps of its decade,
+    // widened downward then upward within the plane: at least four labelled ticks)
+    let mut zx = zoom(&p.x.grid, p.x.scale, ix0, ix1);
+    if p.what == What::Rhythmicity {
+        let (lo, hi) = (p.x.grid.start / p.x.scale, p.x.grid.stop / p.x.scale);
+        let step = 10f64.powf((zx.end - zx.start).log10().floor());
+        let count = |r: &std::ops::Range<f64>| {
+            ((r.end / step).floor() - (r.start / step).ceil() + 1.0) as i64
+        };
+        if step.is_finite() && step > 0.0 && count(&zx) < 4 {
+            zx.start = ((zx.start / step).floor() * step - 0.1 * step).max(lo);
+            if count(&zx) < 4 {
+                zx.end = ((zx.end / step).ceil() * step + 0.1 * step).min(hi);
+            }
+        }
+    }
+    Some((zx, zoom(&p.y.grid, p.y.scale, iy0, iy1)))
 }
 
 /// The largest extent (fraction of an axis) of a region an inset enlarges on a map of modes.
