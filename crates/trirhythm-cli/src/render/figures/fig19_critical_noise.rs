@@ -129,9 +129,9 @@ fn key() -> Vec<String> {
          its marker at the geometric mean of its ends, markers of one attractor in \
          neighbouring columns joined by a thin line; a bar with an arrow (↑) up to the dotted \
          line: regular at its foot and not chaotic up to the largest D tried; a bare bar \
-         down to the dotted line: chaotic at its top, regular nowhere below; the dotted lines \
+         down to the dotted line, its marker at its top: chaotic at its top, regular nowhere below; the dotted lines \
          are the ends of the searched range of D; row \"none\": never chaotic, no D_c; row \
-         \"0\": the rest regime chaotic as D → 0 (D_c = 0); ×: undecided, no bracket"
+         \"0\": the rest regime chaotic as D → 0 (D_c = 0); ×, on the row \"undecided\": undecided, no bracket (the row's height is no value)"
             .to_string(),
     ]
 }
@@ -177,11 +177,17 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
     } else {
         (-3.0, 1.0)
     };
-    // the rows outside the searched range, 0.7 decades beyond its ends
+    // the rows outside the searched range, 0.7 decades beyond its ends (and "undecided" above
+    // "none" where a panel has one)
     let (zero_row, never_row) = (lo - 0.7, hi + 0.7);
+    let undecided = panel
+        .curves
+        .iter()
+        .any(|c| matches!(mark_of(c), Mark::Undecided));
+    let undecided_row = hi + 1.4;
     let (below_edge, above_edge) = (lo - 0.35, hi + 0.35);
     // room beyond the rows, so that their markers stay inside the plotting area
-    let y = (lo - 1.2)..(hi + 1.2);
+    let y = (lo - 1.2)..(hi + if undecided { 1.9 } else { 1.2 });
     let caption = panel
         .caption
         .split(' ')
@@ -193,7 +199,7 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
         .margin(px(10))
         .margin_right(px(26))
         .x_label_area_size(px(45))
-        .y_label_area_size(px(80))
+        .y_label_area_size(px(if undecided { 110 } else { 80 }))
         .build_cartesian_2d(-0.5..nv - 0.5, y.clone())
         .map_err(|e| anyhow!("{e}"))?;
     let xf = |v: &f64| {
@@ -227,11 +233,16 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
         .disable_x_mesh()
         .axis_desc_style((FONT, font_px(AXIS_DESC)))
         .label_style((FONT, font_px(TICK)))
-        .light_line_style(RGBColor(235, 235, 235))
+        // (no minor grid: the decades' lines alone)
+        .light_line_style(TRANSPARENT)
         .draw()
         .map_err(|e| anyhow!("{e}"))?;
     let base = area.get_base_pixel();
-    for (row, text) in [(never_row, "none"), (zero_row, "0")] {
+    let mut rows = vec![(never_row, "none"), (zero_row, "0")];
+    if undecided {
+        rows.push((undecided_row, "undecided"));
+    }
+    for (row, text) in rows {
         let at = c.backend_coord(&(-0.5, row));
         crate::render::plot::rich_text(
             area,
@@ -288,6 +299,8 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
             }
             Mark::Below(d) => {
                 c.draw_series(bar(below_edge, d.log10())).map_err(pe)?;
+                // (its attractor's marker at its top: the smallest D found chaotic)
+                draw_shape(&mut c, (x, d.log10()), k, colour, filled(k))?;
             }
             Mark::Never => {
                 draw_shape(&mut c, (x, never_row), k, colour, filled(k))?;
@@ -297,7 +310,7 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
             }
             Mark::Undecided => {
                 c.draw_series(std::iter::once(Cross::new(
-                    (x, 0.5 * (lo + hi)),
+                    (x, undecided_row),
                     6,
                     colour.stroke_width(2),
                 )))
