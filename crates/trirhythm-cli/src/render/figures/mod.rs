@@ -111,10 +111,34 @@ pub fn heading_of(caption: &Caption, key: Vec<String>) -> Heading {
     let glossary = glossary(&caption.title, &lines);
     lines.extend(glossary);
     Heading {
-        title: caption.title.clone(),
-        lines,
+        title: untex(&caption.title),
+        lines: lines.iter().map(|l| untex(l)).collect(),
         verdicts: Vec::new(),
     }
+}
+
+/// A caption line without TeX's subscript braces: `A_{01}` as A₀₁ (digits as subscripts),
+/// `ω_{d}` as ω_d (other subscripts after a bare underscore).
+fn untex(line: &str) -> String {
+    const DIGITS: [char; 10] = ['₀', '₁', '₂', '₃', '₄', '₅', '₆', '₇', '₈', '₉'];
+    let mut out = String::with_capacity(line.len());
+    let mut rest = line;
+    while let Some(i) = rest.find("_{") {
+        let Some(j) = rest[i + 2..].find('}') else {
+            break;
+        };
+        let inner = &rest[i + 2..i + 2 + j];
+        out.push_str(&rest[..i]);
+        if !inner.is_empty() && inner.chars().all(|c| c.is_ascii_digit()) {
+            out.extend(inner.chars().map(|c| DIGITS[c as usize - '0' as usize]));
+        } else {
+            out.push('_');
+            out.push_str(inner);
+        }
+        rest = &rest[i + 3 + j..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// The abbreviations a caption uses (in its title or lines), each with what it stands for,
