@@ -151,8 +151,11 @@ pub fn panel_height(panels: &[Panel]) -> u32 {
 /// parameter, on shared axes (so its attractors' lines and markers can be told apart).
 const SPLIT_ABOVE: usize = 8;
 
-/// The panels as drawn: (panel drawn, panel its colours come from, shared axes ranges).
-fn drawn(panels: &[Panel]) -> Vec<(Panel, &Panel, Option<(Range<f64>, Range<f64>)>)> {
+/// A panel as drawn: the panel, the panel its colours come from, its shared axes' ranges.
+type Drawn<'a> = (Panel, &'a Panel, Option<(Range<f64>, Range<f64>)>);
+
+/// The panels as drawn ([`Drawn`]).
+fn drawn(panels: &[Panel]) -> Vec<Drawn<'_>> {
     let mut out = Vec::new();
     for p in panels {
         let vs = values(p);
