@@ -7,6 +7,8 @@
 mod common;
 
 use common::{ok_output, scratch_dir};
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 /// The part of the contact sheet `sheet` that shows figure `n`.
 fn sheet_figure(sheet: &str, n: u32) -> &str {
@@ -26,6 +28,22 @@ fn svg_texts(svg: &str) -> Vec<String> {
             Some(body[..body.find("</text>")?].trim().to_string())
         })
         .collect()
+}
+
+/// `figure all --quick` of the paper's variant, drawn once for the tests that read it.
+fn quick_figures() -> &'static Path {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let dir = scratch_dir("quick-figures");
+        ok_output(&[
+            "figure",
+            "all",
+            "--quick",
+            "--out-dir",
+            dir.to_str().unwrap(),
+        ]);
+        dir
+    })
 }
 
 #[test]
@@ -117,9 +135,7 @@ fn svg_font_sizes(svg: &str) -> Vec<f64> {
 /// a 72nd of the canvas width, in every figure drawn at the scale of its canvas.
 #[test]
 fn text_prints_at_seven_points_or_more() {
-    let dir = scratch_dir("print_size");
-    let d = dir.to_str().unwrap();
-    ok_output(&["figure", "all", "--quick", "--out-dir", d]);
+    let dir = quick_figures();
     let mut checked = 0;
     for n in 1..=19u32 {
         let path = dir.join(format!("fig{n:02}.svg"));
@@ -145,10 +161,7 @@ fn text_prints_at_seven_points_or_more() {
 /// Subscripts are drawn as their own, smaller text runs: U_eff's "eff", ΔU_1's "1", D_c's "c".
 #[test]
 fn subscripts_are_drawn_lowered_and_smaller() {
-    let dir = scratch_dir("subscripts");
-    let d = dir.to_str().unwrap();
-    ok_output(&["figure", "8", "--quick", "--out-dir", d]);
-    let svg = std::fs::read_to_string(dir.join("fig08.svg")).unwrap();
+    let svg = std::fs::read_to_string(quick_figures().join("fig08.svg")).unwrap();
     assert!(
         !svg_texts(&svg).iter().any(|t| t.contains("U_eff")),
         "a raw U_eff"
@@ -582,16 +595,11 @@ const PENDING: &[u32] = &[];
 /// 7 in; and the contact sheet `index.html` shows every figure.
 #[test]
 fn every_picture_is_laid_out_for_print() {
-    let given = std::env::var_os("TRIRHYTHM_PICTURES").map(std::path::PathBuf::from);
-    let dir = given.clone().unwrap_or_else(|| scratch_dir("layout"));
+    let given = std::env::var_os("TRIRHYTHM_PICTURES").map(PathBuf::from);
+    let dir = given
+        .clone()
+        .unwrap_or_else(|| quick_figures().to_path_buf());
     if given.is_none() {
-        ok_output(&[
-            "figure",
-            "all",
-            "--quick",
-            "--out-dir",
-            dir.to_str().unwrap(),
-        ]);
         let sheet = std::fs::read_to_string(dir.join("index.html")).expect("a contact sheet");
         for n in 1..=19 {
             assert!(
@@ -619,9 +627,6 @@ fn every_picture_is_laid_out_for_print() {
         } else {
             all.extend(defects);
         }
-    }
-    if given.is_none() {
-        let _ = std::fs::remove_dir_all(&dir);
     }
     assert!(
         all.is_empty(),
