@@ -55,7 +55,7 @@ pub fn draw_panel<DB: Backend>(
     }
     // (a panel whose members lie close together: its chart above, their differences below)
     let (area, lower) = if differences {
-        let (a, b) = area.split_vertically(area.dim_in_pixel().1 * 3 / 5);
+        let (a, b) = area.split_vertically(area.dim_in_pixel().1 * 2 / 3);
         (a, Some(b))
     } else {
         (area, None)

@@ -9,6 +9,9 @@ use trirhythm_paper::fig16_oscillation_regions::Fig16;
 
 /// Height of a panel's chart (its legend strip comes below).
 const CHART: u32 = 550;
+/// Height of the second row's charts: (d) holds its members' differences under its chart,
+/// which keeps about [`CHART`] (and (c) beside it the same height).
+const CHART_LOW: u32 = 3 * CHART / 2;
 
 /// The height of the legend strips: the tallest panel's, so that charts side by side align.
 fn strip(fig: &Fig16) -> u32 {
@@ -20,9 +23,11 @@ fn strip(fig: &Fig16) -> u32 {
 }
 
 // four panels, each with its legend in a strip below its chart
-picture!(Fig16, |self, root| key key_of(&self.panels), size (1400, 2 * (CHART + strip(self))), draw {
-    let areas = root.split_evenly((2, 2));
-    for (area, panel) in areas.iter().zip(&self.panels) {
+picture!(Fig16, |self, root| key key_of(&self.panels), size (1400, CHART + CHART_LOW + 2 * strip(self)), draw {
+    let (high, low) = root.split_vertically(CHART + strip(self));
+    let (a, b) = high.split_horizontally(700);
+    let (c, d) = low.split_horizontally(700);
+    for (area, panel) in [a, b, c, d].iter().zip(&self.panels) {
         // (the (μ0, r) family's boundaries lie within a hundredth of μ0: an inset draws their
         // differences)
         let differences = panel.is_family() && panel.x_desc == "r";

@@ -3,6 +3,9 @@
 //! greyscale), filled markers for the rest regime and open markers for the cycle regime.
 //! Each panel keeps its legend in a strip below its chart, so no legend covers data; the
 //! panel's verdict details are in the caption (the CSV notes), and the y range is the data's.
+//! A panel with many curves is split into one sub-panel per value on shared axes; there the
+//! value is the sub-panel's title, so colour and shape tell the attractors apart, and the
+//! sub-panels share one legend below them.
 //!
 //! Drawing only: the runs and verdicts are [`trirhythm_paper::lle`].
 
@@ -15,7 +18,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::ops::Range;
-use trirhythm_paper::lle::{Flag, LleAgainstNoise, Panel, StartKind};
+use trirhythm_paper::lle::{Curve, Flag, LleAgainstNoise, Panel, StartKind};
 
 /// Height of the chart part of a panel.
 pub const CHART_HEIGHT: u32 = 440;
@@ -64,15 +67,49 @@ fn dash_of(attractor: &str) -> Dash {
     }
 }
 
-pub(super) use crate::render::legend::outline;
+/// The attractors a split panel's curves are told apart by, in the legend's order: the first
+/// word of [`Curve::attractor`](trirhythm_paper::lle::Curve) and its name in the legend.
+const ATTRACTORS: [(&str, &str); 4] = [
+    ("rest", "rest"),
+    ("inner", "inner cycle"),
+    ("middle", "middle cycle"),
+    ("outer", "outer cycle"),
+];
 
-fn strip(panel: &Panel) -> LegendStrip {
-    strip_of(panel, panel)
+/// The index of `attractor` in [`ATTRACTORS`] (an unknown word: the outer cycle's).
+fn attractor_index(attractor: &str) -> usize {
+    let word = attractor.split_whitespace().next().unwrap_or("");
+    ATTRACTORS
+        .iter()
+        .position(|(w, _)| *w == word)
+        .unwrap_or(ATTRACTORS.len() - 1)
 }
 
-/// The legend strip of `panel`, its colours and shapes those of `parent` (a sub-panel keeps
-/// the colours of the panel it was split from).
-fn strip_of(panel: &Panel, parent: &Panel) -> LegendStrip {
+/// How a curve is drawn: its colour, marker shape and line dash. In a panel of its own the
+/// colour and shape are its value's and the dash its attractor's ([`dash_of`]); in a split
+/// panel (one value) colour and shape are its attractor's, the line solid.
+fn look(curve: &Curve, parent: &Panel, split: bool) -> (RGBColor, Marker, Dash) {
+    if split {
+        let k = attractor_index(&curve.attractor);
+        (
+            PALETTE[k % PALETTE.len()],
+            SHAPES[k % SHAPES.len()],
+            Dash::Solid,
+        )
+    } else {
+        (
+            colour_of(parent, curve.value),
+            shape_of(parent, curve.value),
+            dash_of(&curve.attractor),
+        )
+    }
+}
+
+pub(super) use crate::render::legend::outline;
+
+/// The legend strip of a panel of its own: a colour and shape per value, the attractors by
+/// their lines' dash.
+fn strip(panel: &Panel) -> LegendStrip {
     let mut entries: Vec<(Symbol, String)> = Vec::new();
     let mut seen: Vec<f64> = Vec::new();
     for c in &panel.curves {
@@ -83,9 +120,9 @@ fn strip_of(panel: &Panel, parent: &Panel) -> LegendStrip {
         let name = c.label.split(',').next().unwrap_or("").to_string();
         entries.push((
             Symbol::Series(SeriesStyle {
-                colour: colour_of(parent, c.value),
+                colour: colour_of(panel, c.value),
                 dash: Dash::Solid,
-                marker: shape_of(parent, c.value),
+                marker: shape_of(panel, c.value),
             }),
             name,
         ));
@@ -114,16 +151,44 @@ fn strip_of(panel: &Panel, parent: &Panel) -> LegendStrip {
             ));
         }
     }
+    finish_strip(entries, &panel.curves)
+}
+
+/// The one legend of the sub-panels a panel was split into: a colour and shape per attractor
+/// met in any of them.
+fn split_strip(panel: &Panel) -> LegendStrip {
+    let mut entries: Vec<(Symbol, String)> = Vec::new();
+    for (k, (_, name)) in ATTRACTORS.iter().enumerate() {
+        if panel
+            .curves
+            .iter()
+            .any(|c| attractor_index(&c.attractor) == k)
+        {
+            entries.push((
+                Symbol::Series(SeriesStyle {
+                    colour: PALETTE[k % PALETTE.len()],
+                    dash: Dash::Solid,
+                    marker: SHAPES[k % SHAPES.len()],
+                }),
+                (*name).into(),
+            ));
+        }
+    }
+    let black = RGBColor(0, 0, 0);
+    entries.push((Symbol::Dot(black), "filled: rest regime".into()));
+    entries.push((Symbol::Ring(black), "open: cycle regime".into()));
+    finish_strip(entries, &panel.curves)
+}
+
+/// `entries` followed by the entries every LLE legend ends with: the predictions' dash and
+/// the marks of the points without a value among `curves`.
+fn finish_strip(mut entries: Vec<(Symbol, String)>, curves: &[Curve]) -> LegendStrip {
+    let black = RGBColor(0, 0, 0);
     entries.push((
         Symbol::Dashed(black),
         "dashed: prediction (its series' colour)".into(),
     ));
-    let flagged = |f: Flag| {
-        panel
-            .curves
-            .iter()
-            .any(|c| c.points.iter().any(|q| q.flag == f))
-    };
+    let flagged = |f: Flag| curves.iter().any(|c| c.points.iter().any(|q| q.flag == f));
     if flagged(Flag::Merged) {
         entries.push((
             Symbol::Cross(black),
@@ -136,39 +201,28 @@ fn strip_of(panel: &Panel, parent: &Panel) -> LegendStrip {
     LegendStrip { entries }
 }
 
-/// Height of a panel with its legend strip.
-pub fn panel_height(panels: &[Panel]) -> u32 {
-    CHART_HEIGHT
-        + panels
-            .iter()
-            .map(|p| strip(p).height(PANEL_WIDTH))
-            .max()
-            .unwrap_or(0)
-        + 8
-}
-
 /// A panel with more curves than this is drawn as sub-panels, one per value of its
 /// parameter, on shared axes (so its attractors' lines and markers can be told apart).
 const SPLIT_ABOVE: usize = 8;
 
-/// A panel as drawn: the panel, the panel its colours come from, its shared axes' ranges.
+/// A panel as drawn: the panel, the panel it was split from (or itself), and the shared axes'
+/// ranges of a sub-panel (`None`: a panel of its own).
 type Drawn<'a> = (Panel, &'a Panel, Option<(Range<f64>, Range<f64>)>);
 
-/// The panels as drawn ([`Drawn`]).
-fn drawn(panels: &[Panel]) -> Vec<Drawn<'_>> {
-    let mut out = Vec::new();
-    for p in panels {
-        let vs = values(p);
-        if p.curves.len() <= SPLIT_ABOVE || vs.len() < 2 {
-            out.push((p.clone(), p, None));
-            continue;
-        }
-        let ranges = ranges_of(p);
-        let (head, rest) = match p.caption.find(')') {
-            Some(i) if p.caption.starts_with('(') => (&p.caption[1..i], p.caption[i + 1..].trim()),
-            _ => ("", p.caption.as_str()),
-        };
-        for (k, v) in vs.iter().enumerate() {
+/// A panel as drawn ([`Drawn`]): itself, or its sub-panels.
+fn drawn(p: &Panel) -> Vec<Drawn<'_>> {
+    let vs = values(p);
+    if p.curves.len() <= SPLIT_ABOVE || vs.len() < 2 {
+        return vec![(p.clone(), p, None)];
+    }
+    let ranges = ranges_of(p);
+    let (head, rest) = match p.caption.find(')') {
+        Some(i) if p.caption.starts_with('(') => (&p.caption[1..i], p.caption[i + 1..].trim()),
+        _ => ("", p.caption.as_str()),
+    };
+    vs.iter()
+        .enumerate()
+        .map(|(k, v)| {
             let curves: Vec<_> = p.curves.iter().filter(|c| c.value == *v).cloned().collect();
             let name = curves[0]
                 .label
@@ -185,10 +239,9 @@ fn drawn(panels: &[Panel]) -> Vec<Drawn<'_>> {
             let mut sub = p.clone();
             sub.caption = caption;
             sub.curves = curves;
-            out.push((sub, p, Some(ranges.clone())));
-        }
-    }
-    out
+            (sub, p, Some(ranges.clone()))
+        })
+        .collect()
 }
 
 /// The x (log10 D) and y ranges of a panel's data.
@@ -246,17 +299,16 @@ fn log_x_chart<'a, DB: Backend>(
 }
 
 /// Draw one LLE-against-D panel: log D axis, error bars, zero line, filled (rest regime) and
-/// open (cycle regime) markers, legend strip below. Merged points are drawn as
-/// crosses on the lower edge.
-pub fn draw_panel<DB: Backend>(
+/// open (cycle regime) markers, and (a panel of its own) its legend strip below. Merged points
+/// are drawn as crosses on the lower edge.
+fn draw_panel<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
-    panel: &Panel,
-    parent: &Panel,
-    ranges: Option<(Range<f64>, Range<f64>)>,
+    (panel, parent, ranges): &Drawn,
 ) -> Result<()> {
+    let split = ranges.is_some();
     let (top, bottom) = area.split_vertically(CHART_HEIGHT);
     let lx = |d: f64| d.log10();
-    let (x, y) = ranges.unwrap_or_else(|| ranges_of(panel));
+    let (x, y) = ranges.clone().unwrap_or_else(|| ranges_of(panel));
     let mut c = log_x_chart(
         &top,
         &panel.caption,
@@ -274,7 +326,7 @@ pub fn draw_panel<DB: Backend>(
         let Some(r) = curve.regime.as_ref() else {
             continue;
         };
-        let colour = colour_of(parent, curve.value);
+        let (colour, _, _) = look(curve, parent, split);
         let ds: Vec<f64> = curve.points.iter().map(|q| q.x).collect();
         let line: Vec<(f64, f64)> = if let Some(rest) = r.rest.as_ref().filter(|r| r.d_c_zero) {
             ds.iter()
@@ -302,15 +354,16 @@ pub fn draw_panel<DB: Backend>(
     }
     let n = panel.curves.len().max(1) as f64;
     for (i, curve) in panel.curves.iter().enumerate() {
-        let colour = colour_of(parent, curve.value);
+        let (colour, shape, dash) = look(curve, parent, split);
         let open = curve.start == StartKind::Cycle;
         // a small horizontal offset per curve keeps overlapping error bars apart
         let shift = (x.end - x.start) * 0.003 * (i as f64 - (n - 1.0) / 2.0);
-        // the line in its attractor's dash (inner dotted, middle chain, rest and outer solid,
-        // the rest regime's thicker): the attractors of one value part in greyscale
+        // in a panel of its own the line in its attractor's dash (inner dotted, middle chain,
+        // rest and outer solid, the rest regime's thicker): the attractors of one value part
+        // in greyscale
         let style = SeriesStyle {
             colour,
-            dash: dash_of(&curve.attractor),
+            dash,
             marker: Marker::None,
         };
         for run in curve.points.split(|q| q.flag != Flag::Value) {
@@ -336,7 +389,7 @@ pub fn draw_panel<DB: Backend>(
             ])
             .map_err(pe)?;
             // the value's shape, open (white inside a thick outline) or filled
-            let ring = outline(shape_of(parent, curve.value), pxi(4));
+            let ring = outline(shape, pxi(4));
             let fill = if open { WHITE } else { colour };
             c.draw_series(std::iter::once(
                 EmptyElement::at((xq, q.y))
@@ -346,33 +399,87 @@ pub fn draw_panel<DB: Backend>(
             .map_err(pe)?;
         }
     }
-    strip_of(panel, parent).draw(&bottom)
+    if split {
+        Ok(())
+    } else {
+        strip(panel).draw(&bottom)
+    }
 }
 
-/// Rows of the figure: its drawn panels two to a row.
-fn rows(panels: &[Panel]) -> u32 {
-    drawn(panels).len().div_ceil(2) as u32
+/// A row of the figure: up to two drawn panels, or the legend of a split panel's sub-panels.
+enum Row<'a> {
+    Panels(Vec<Drawn<'a>>),
+    Legend(LegendStrip),
 }
 
-/// Height of a row of drawn panels.
-fn row_height(panels: &[Panel]) -> u32 {
-    let subs: Vec<Panel> = drawn(panels).into_iter().map(|(p, _, _)| p).collect();
-    panel_height(&subs)
+impl Row<'_> {
+    /// Its height: a chart, with the tallest legend strip of its panels of their own.
+    fn height(&self) -> u32 {
+        match self {
+            Row::Panels(cells) => {
+                CHART_HEIGHT
+                    + cells
+                        .iter()
+                        .filter(|(_, _, ranges)| ranges.is_none())
+                        .map(|(p, _, _)| strip(p).height(PANEL_WIDTH))
+                        .max()
+                        .unwrap_or(0)
+                    + 8
+            }
+            Row::Legend(strip) => strip.height(2 * PANEL_WIDTH) + 8,
+        }
+    }
+}
+
+/// The figure's rows: its panels two to a row, a split panel's sub-panels two to a row
+/// followed by their one legend.
+fn rows(panels: &[Panel]) -> Vec<Row<'_>> {
+    let mut out = Vec::new();
+    let mut single: Vec<Drawn> = Vec::new();
+    for p in panels {
+        let subs = drawn(p);
+        if subs.len() == 1 {
+            single.extend(subs);
+            if single.len() == 2 {
+                out.push(Row::Panels(std::mem::take(&mut single)));
+            }
+            continue;
+        }
+        if !single.is_empty() {
+            out.push(Row::Panels(std::mem::take(&mut single)));
+        }
+        let mut subs = subs.into_iter().peekable();
+        while subs.peek().is_some() {
+            out.push(Row::Panels(subs.by_ref().take(2).collect()));
+        }
+        out.push(Row::Legend(split_strip(p)));
+    }
+    if !single.is_empty() {
+        out.push(Row::Panels(single));
+    }
+    out
 }
 
 // An LLE-against-noise figure (Figs 17, 18): the panels two to a row (a panel with many
-// curves split into one sub-panel per value on shared axes; a last lone panel centred).
-picture!(LleAgainstNoise, |self, root| size (2 * PANEL_WIDTH, rows(&self.panels) * row_height(&self.panels)), draw {
-    let panels = drawn(&self.panels);
-    let h = row_height(&self.panels) as i32;
+// curves split into one sub-panel per value on shared axes, with one legend; a lone panel
+// centred).
+picture!(LleAgainstNoise, |self, root| size (2 * PANEL_WIDTH, rows(&self.panels).iter().map(Row::height).sum()), draw {
     let w = PANEL_WIDTH as i32;
-    let n = panels.len();
-    for (k, (panel, parent, ranges)) in panels.iter().enumerate() {
-        let row = (k / 2) as i32;
-        let lone = k + 1 == n && n % 2 == 1;
-        let left = if lone { w / 2 } else { (k % 2) as i32 * w };
-        let area = root.clone().shrink((left, row * h), (w as u32, h as u32));
-        draw_panel(&area, panel, parent, ranges.clone())?;
+    let mut top = 0;
+    for row in rows(&self.panels) {
+        let h = row.height();
+        let area = root.clone().shrink((0, top), (2 * PANEL_WIDTH, h));
+        match &row {
+            Row::Legend(strip) => strip.draw(&area)?,
+            Row::Panels(cells) => {
+                for (k, cell) in cells.iter().enumerate() {
+                    let left = if cells.len() == 1 { w / 2 } else { k as i32 * w };
+                    let panel = area.clone().shrink((left, 0), (PANEL_WIDTH, h));
+                    draw_panel(&panel, cell)?;
+                }
+            }
+        }
+        top += h as i32;
     }
     Ok(())
 });

@@ -39,6 +39,8 @@ pub fn count_colour(c: u8) -> RGBColor {
 pub const FOLD: RGBColor = RGBColor(230, 40, 40);
 /// Printed-Eq. 37 curve colour.
 pub const PRINTED: RGBColor = RGBColor(255, 170, 0);
+/// The strip beyond the computed grid (no data).
+const BEYOND: RGBColor = RGBColor(228, 228, 228);
 
 /// One legend for every panel: the counts met in any panel, the curves and markers drawn.
 fn legend(fig: &MapFigure) -> LegendStrip {
@@ -234,7 +236,11 @@ fn draw_panel<DB: Backend>(
     let hy = (gy.stop - gy.start) / (ny - 1) as f64 / sy;
     let clampx = |v: f64| v.clamp(xr.start, xr.end);
     let clampy = |v: f64| v.clamp(yr.start, yr.end);
-    let mut rects = Vec::new();
+    // the strip beyond the computed grid, where one is kept: light grey, no data
+    let mut rects = vec![Rectangle::new(
+        [(ax.start, ay.start), (ax.end, ay.end)],
+        BEYOND.filled(),
+    )];
     for iy in 0..ny {
         let y = gy.value(iy) / sy;
         let mut ix = 0;
@@ -244,28 +250,12 @@ fn draw_panel<DB: Backend>(
             while jx + 1 < nx && p.count(jx + 1, iy) == cnt {
                 jx += 1;
             }
-            // (the cells on the map's edge reach on over the strip beyond it to the axis:
-            // no white band with grid between the map and its spine)
-            let x0 = if ix == 0 {
-                ax.start
-            } else {
-                clampx(gx.value(ix) / sx - hx / 2.0)
-            };
-            let x1 = if jx + 1 == nx {
-                ax.end
-            } else {
-                clampx(gx.value(jx) / sx + hx / 2.0)
-            };
-            let y0 = if iy == 0 {
-                ay.start
-            } else {
-                clampy(y - hy / 2.0)
-            };
-            let y1 = if iy + 1 == ny {
-                ay.end
-            } else {
-                clampy(y + hy / 2.0)
-            };
+            // (the cells on the grid's edge end there, half a cell wide: nothing drawn past
+            // the computed range, e.g. past λ = 1 or r = 1)
+            let x0 = clampx(gx.value(ix) / sx - hx / 2.0);
+            let x1 = clampx(gx.value(jx) / sx + hx / 2.0);
+            let y0 = clampy(y - hy / 2.0);
+            let y1 = clampy(y + hy / 2.0);
             rects.push(Rectangle::new(
                 [(x0, y0), (x1, y1)],
                 count_colour(cnt).filled(),
@@ -441,8 +431,8 @@ fn map_key(fig: &MapFigure) -> Vec<String> {
     }
     if clear_ends(fig).iter().any(|e| e.iter().any(|&b| b)) {
         key.push(
-            "a map's edge cells are drawn on over the narrow strip between the computed grid \
-             and the axis (kept so that no curve lies on a spine)"
+            "light grey: the narrow strip between the computed grid and the axis, no data \
+             (kept so that no curve lies on a spine)"
                 .to_string(),
         );
     }
@@ -532,8 +522,9 @@ fn panel_title(p: &MapPanel) -> String {
 /// The largest share of the plane (per cent) the trirhythmic region may cover and still be
 /// zoomed on in an inset.
 const INSET_BELOW: f64 = 20.0;
-/// The inset's size as a fraction of the plotting area's width and height (a wider one
-/// would hide curves of the panel under its tick labels).
+/// The inset's size as a fraction of the plotting area's width and height (a larger one
+/// would hide curves of the panel; where four decimal x tick labels do not fit, they are
+/// written in units of a power of ten).
 fn inset_fraction(_p: &MapPanel) -> (f64, f64) {
     (0.5, 0.5)
 }
@@ -721,10 +712,37 @@ fn draw_inset<DB: Backend>(
         ))
         .map_err(pe)?;
     let [a, b] = zoom_box;
-    Ok(Some((
-        [ax, ay, ax + iw, ay + ih],
-        [a.0.min(b.0), a.1.min(b.1), a.0.max(b.0), a.1.max(b.1)],
-    )))
+    let zoomed = [a.0.min(b.0), a.1.min(b.1), a.0.max(b.0), a.1.max(b.1)];
+    let framed = [ax, ay, ax + iw, ay + ih];
+    // two leader lines from the zoomed box to the inset's facing corners (white on a black
+    // rim, as the box), so a thin box is found at once
+    for (from, to) in leaders(zoomed, framed) {
+        for (colour, width) in [(BLACK, stroke(3)), (WHITE, stroke(1))] {
+            area.draw(&PathElement::new(
+                [(from.0 - bx, from.1 - by), (to.0 - bx, to.1 - by)],
+                colour.stroke_width(width),
+            ))
+            .map_err(pe)?;
+        }
+    }
+    Ok(Some((framed, zoomed)))
+}
+
+/// The leader lines from a zoomed box to its inset (boxes `[left, top, right, bottom]`,
+/// pixels): from the box's side that faces the inset to the inset's facing side, corner to
+/// corner (below or above where the inset clears the box vertically, else beside it).
+fn leaders(zoomed: PixelBox, inset: PixelBox) -> [((i32, i32), (i32, i32)); 2] {
+    let [zl, zt, zr, zb] = zoomed;
+    let [il, it, ir, ib] = inset;
+    if it >= zb {
+        [((zl, zb), (il, it)), ((zr, zb), (ir, it))]
+    } else if ib <= zt {
+        [((zl, zt), (il, ib)), ((zr, zt), (ir, ib))]
+    } else if il >= zr {
+        [((zr, zt), (il, it)), ((zr, zb), (il, ib))]
+    } else {
+        [((zl, zt), (ir, it)), ((zl, zb), (ir, ib))]
+    }
 }
 
 /// What an inset at `corner` (backend pixels, top left) of `size` would hide on the panel:
