@@ -100,7 +100,11 @@ pub fn draw_panel<DB: Backend>(
                 .map_err(pe)?;
         }
     }
-    for curve in &panel.curves {
+    // a family's first member (the reference, e.g. λ = 1) drawn last, on top of the others
+    // that run close to it
+    let mut order: Vec<&Curve> = panel.curves.iter().collect();
+    order.sort_by_key(|c| std::cmp::Reverse(c.member));
+    for curve in order {
         draw_curve(&mut c, curve)?;
     }
     if let Some(lower) = &lower {
@@ -206,7 +210,7 @@ fn draw_differences<DB: Backend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -
 }
 
 /// How a curve is drawn: simulation solid (a family member with its [`series`] marker),
-/// averaging dashed, exact dotted with rings.
+/// averaging dashed, exact dotted with upright crosses (a mark no member has).
 fn style(curve: &Curve) -> SeriesStyle {
     let colour = colour(curve);
     match curve.method.as_str() {
@@ -225,7 +229,7 @@ fn style(curve: &Curve) -> SeriesStyle {
         _ => SeriesStyle {
             colour,
             dash: Dash::Dotted,
-            marker: Marker::Circle,
+            marker: Marker::Plus,
         },
     }
 }
@@ -284,7 +288,8 @@ fn legend_entries(panel: &Panel) -> Vec<(Symbol, String)> {
             plain(Dash::Dashed, Marker::None),
             "dashed: averaging".into(),
         ));
-        // the exact boundaries: dotted with rings, or a cross where a curve has one point
+        // the exact boundaries: dotted with upright crosses, or a diamond where a curve has
+        // one point
         let exact_points = |many: bool| {
             panel.curves.iter().any(|c| {
                 let n = c.points.iter().filter(|q| q.side == Side::Boundary).count();
@@ -293,8 +298,8 @@ fn legend_entries(panel: &Panel) -> Vec<(Symbol, String)> {
         };
         if exact_points(true) {
             entries.push((
-                plain(Dash::Dotted, Marker::Circle),
-                "dotted with rings: exact".into(),
+                plain(Dash::Dotted, Marker::Plus),
+                "dotted with +: exact".into(),
             ));
         }
         if exact_points(false) {
@@ -314,7 +319,7 @@ fn short_label(label: &str) -> &str {
 
 /// The caption's key to `panels`' drawing: the formulas the legend leaves out (a label's
 /// part after ": ", the exact boundary's damped frequency ω_d defined), and what the marks
-/// of the exact boundary are (rings on its dotted line; ⊗ where it is a single point).
+/// of the exact boundary are (+ on its dotted line; ◆ where it is a single point).
 pub fn key_of(panels: &[Panel]) -> Vec<String> {
     let mut key: Vec<String> = Vec::new();
     let curves = || panels.iter().flat_map(|p| p.curves.iter());
@@ -347,12 +352,12 @@ pub fn key_of(panels: &[Panel]) -> Vec<String> {
         }
         if many(false) {
             marks.push(
-                "○ on a dotted line in colour: the exact boundary with the wall along the axis",
+                "+ on a dotted line in colour: the exact boundary with the wall along the axis",
             );
         }
         if many(true) {
             marks.push(
-                "grey ○ on a grey dotted line (\"exact without the wall\"): the exact \
+                "grey + on a grey dotted line (\"exact without the wall\"): the exact \
                  linearisation at U = 0 of the oscillator with the wall removed (no impacts), \
                  drawn for reference only",
             );
@@ -369,7 +374,7 @@ pub fn key_of(panels: &[Panel]) -> Vec<String> {
             drawn.push("the filled diamond ◆ (one point: with the wall, λ = 1 only)");
         }
         if many(false) || many(true) {
-            drawn.push("the dotted line with rings (along the axis)");
+            drawn.push("the dotted line with upright crosses + (along the axis)");
         }
         if !drawn.is_empty() {
             key.push(format!(

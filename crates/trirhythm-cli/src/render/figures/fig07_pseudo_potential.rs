@@ -69,6 +69,9 @@ fn frame_with(
     (y, clipped)
 }
 
+/// The radius of the extrema's markers (before scaling).
+pub(super) const MARKER: i32 = 5;
+
 /// The style of curve `i` of a panel: [`series`] colour and dash, no marker (the markers
 /// are the extrema).
 pub(super) fn curve_style(i: usize) -> SeriesStyle {
@@ -93,6 +96,7 @@ fn shape(i: usize) -> Marker {
 pub(super) fn draw_curves<'a, DB: Backend + 'a>(
     c: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     curves: &[Curve],
+    radius: i32,
 ) -> Result<()> {
     let y = c.y_range();
     let x = c.x_range();
@@ -104,7 +108,7 @@ pub(super) fn draw_curves<'a, DB: Backend + 'a>(
         let inside = |e: &&Extremum| {
             e.amplitude > 0.0 && x.contains(&e.amplitude) && y.contains(&e.potential)
         };
-        let ring = outline(shape(i), pxi(5));
+        let ring = outline(shape(i), pxi(radius));
         c.draw_series(cv.extrema.iter().filter(inside).map(|e| {
             let fill = if e.minimum {
                 color.filled()
@@ -174,16 +178,18 @@ fn outer_zoom(curves: &[Curve], x_end: f64) -> Option<(Range<f64>, Range<f64>)> 
         ((a0 - 0.3) / 0.2).floor() * 0.2 - 0.05,
         ((a1 + 0.25) / 0.2).ceil() * 0.2 + 0.05,
     );
-    // (U_eff from a fifth of the wells' spread below them to three tenths above, widened to
-    // take in four whole steps of its decade: at least four labelled ticks)
-    let (mut y0, mut y1) = (u0 - 0.2 * du, u1 + 0.3 * du);
-    let step = 10f64.powf((y1 - y0).log10().floor());
-    let count = |a: f64, b: f64| ((b / step).floor() - (a / step).ceil() + 1.0) as i64;
-    if step.is_finite() && step > 0.0 && count(y0, y1) < 4 {
-        y0 = y0.min((y0 / step).floor() * step - 0.2 * step);
-        y1 = y1.max((y1 / step).ceil() * step + 0.2 * step);
-    }
-    Some((x0..x1, y0..y1))
+    // (U_eff over four labelled ticks of the finest 1-2-5 step whose three steps span the
+    // wells with a sixth of their spread below and a fifth above: the markers as far apart
+    // as four labelled ticks allow)
+    let (lo, hi) = (u0 - du / 6.0, u1 + 0.2 * du);
+    let decade = 10f64.powf((hi - lo).log10().floor() - 1.0);
+    let step = [1.0, 2.0, 5.0, 10.0, 20.0, 50.0]
+        .iter()
+        .map(|m| m * decade)
+        .find(|s| (lo / s).floor() * s + 3.0 * s >= hi)
+        .unwrap_or(hi - lo);
+    let first = (lo / step).floor() * step;
+    Some((x0..x1, (first - 0.15 * step)..(first + 3.15 * step)))
 }
 
 /// Draw the inset on the outer wells ([`outer_zoom`]) in the upper left of the main chart
@@ -212,7 +218,7 @@ fn draw_outer_inset<DB: Backend>(
         .fold(0.0f64, f64::max);
     let (p0, p1) = (
         c.backend_coord(&(0.3, y.end - 0.02 * (y.end - y.start))),
-        c.backend_coord(&(10.2, crest + 0.08 * (y.end - y.start))),
+        c.backend_coord(&(10.2, crest + 0.04 * (y.end - y.start))),
     );
     let (bx, by) = area.get_base_pixel();
     let inset = area.clone().shrink(
@@ -221,7 +227,8 @@ fn draw_outer_inset<DB: Backend>(
     );
     inset.fill(&WHITE).map_err(pe)?;
     let mut z = framed(&inset, "", (zx, zy), ("", ""), ChartSize::Inset)?;
-    draw_curves(&mut z, curves)?;
+    // (smaller markers: the wells lie close together even here)
+    draw_curves(&mut z, curves, 3)?;
     let (w, h) = inset.dim_in_pixel();
     inset
         .draw(&Rectangle::new(
@@ -285,7 +292,7 @@ picture!(Fig07, |self, root| key key(), size {
         let (y, clipped) = frame_with(curves, 14.0, 0.9, true);
         // (A0 from a little below 0: the marker at A0 = 0 clear of the y ticks)
         let mut c = chart(area, caption, -0.3..14.0, y, "A_0", "U_eff(A_0)")?;
-        draw_curves(&mut c, &clipped)?;
+        draw_curves(&mut c, &clipped, MARKER)?;
         draw_outer_inset(area, &mut c, curves)?;
         if let Some(end) = zoom_end(curves) {
             let (yz, zoomed) = frame_with(curves, end, 0.6, true);
@@ -300,7 +307,7 @@ picture!(Fig07, |self, root| key key(), size {
                 "A_0",
                 "U_eff(A_0)",
             )?;
-            draw_curves(&mut z, &zoomed)?;
+            draw_curves(&mut z, &zoomed, MARKER)?;
         }
     }
     Ok(())

@@ -2,7 +2,7 @@
 //!
 //! Rendering only: the data and its computation are [`trirhythm_paper::fig08_barriers`].
 
-use super::fig07_pseudo_potential::{draw_curves, frame};
+use super::fig07_pseudo_potential::{draw_curves, frame, MARKER};
 use crate::render::plot::{
     chart, font_px, pe, pxi, rich_text, Backend, LegendStrip, Symbol, AXIS_DESC,
 };
@@ -34,7 +34,7 @@ fn draw_panel<DB: Backend>(
     let (y, clipped) = frame(std::slice::from_ref(&fig.curve), x_end);
     let mut c = chart(area, caption, 0.0..x_end, y, "A_0", "U_eff(A_0)")?;
     let clipped = &clipped[0];
-    draw_curves(&mut c, std::slice::from_ref(clipped))?;
+    draw_curves(&mut c, std::slice::from_ref(clipped), MARKER)?;
     let bar_x = |b: &Barrier| {
         b.well + if b.side == Side::Left { -0.12 } else { 0.12 } * (b.well - b.crest).abs()
     };

@@ -186,7 +186,7 @@ fn finish_strip(mut entries: Vec<(Symbol, String)>, curves: &[Curve]) -> LegendS
     let black = RGBColor(0, 0, 0);
     entries.push((
         Symbol::Dashed(black),
-        "dashed: prediction (its series' colour)".into(),
+        "dashed: prediction (ends in its series' shape)".into(),
     ));
     let flagged = |f: Flag| curves.iter().any(|c| c.points.iter().any(|q| q.flag == f));
     if flagged(Flag::Merged) {
@@ -348,8 +348,19 @@ fn draw_panel<DB: Backend>(
             .filter(|&(_, v)| v >= y.start && v <= y.end)
             .collect();
         if line.len() >= 2 {
+            // its series' shape, small and open, at its end: the predictions part without
+            // colour too
+            let (_, shape, _) = look(curve, parent, split);
+            let end = line[line.len() - 1];
             c.draw_series(DashedLineSeries::new(line, 6, 4, colour.stroke_width(1)))
                 .map_err(pe)?;
+            let ring = outline(shape, pxi(3));
+            c.draw_series(std::iter::once(
+                EmptyElement::at(end)
+                    + Polygon::new(ring.clone(), WHITE.filled())
+                    + PathElement::new(ring, colour.stroke_width(stroke(1))),
+            ))
+            .map_err(pe)?;
         }
     }
     let n = panel.curves.len().max(1) as f64;
@@ -413,6 +424,14 @@ enum Row<'a> {
 }
 
 impl Row<'_> {
+    /// The width of each of its panels: a lone panel of its own takes the row's width.
+    fn panel_width(&self) -> u32 {
+        match self {
+            Row::Panels(cells) if cells.len() == 1 && cells[0].2.is_none() => 2 * PANEL_WIDTH,
+            _ => PANEL_WIDTH,
+        }
+    }
+
     /// Its height: a chart, with the tallest legend strip of its panels of their own.
     fn height(&self) -> u32 {
         match self {
@@ -421,7 +440,7 @@ impl Row<'_> {
                     + cells
                         .iter()
                         .filter(|(_, _, ranges)| ranges.is_none())
-                        .map(|(p, _, _)| strip(p).height(PANEL_WIDTH))
+                        .map(|(p, _, _)| strip(p).height(self.panel_width()))
                         .max()
                         .unwrap_or(0)
                     + 8
@@ -462,7 +481,7 @@ fn rows(panels: &[Panel]) -> Vec<Row<'_>> {
 
 // An LLE-against-noise figure (Figs 17, 18): the panels two to a row (a panel with many
 // curves split into one sub-panel per value on shared axes, with one legend; a lone panel
-// centred).
+// the row's width).
 picture!(LleAgainstNoise, |self, root| size (2 * PANEL_WIDTH, rows(&self.panels).iter().map(Row::height).sum()), draw {
     let w = PANEL_WIDTH as i32;
     let mut top = 0;
@@ -472,9 +491,11 @@ picture!(LleAgainstNoise, |self, root| size (2 * PANEL_WIDTH, rows(&self.panels)
         match &row {
             Row::Legend(strip) => strip.draw(&area)?,
             Row::Panels(cells) => {
+                let width = row.panel_width();
                 for (k, cell) in cells.iter().enumerate() {
-                    let left = if cells.len() == 1 { w / 2 } else { k as i32 * w };
-                    let panel = area.clone().shrink((left, 0), (PANEL_WIDTH, h));
+                    // (a lone sub-panel centred)
+                    let left = if cells.len() == 1 && width == PANEL_WIDTH { w / 2 } else { k as i32 * w };
+                    let panel = area.clone().shrink((left, 0), (width, h));
                     draw_panel(&panel, cell)?;
                 }
             }

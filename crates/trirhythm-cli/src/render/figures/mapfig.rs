@@ -413,7 +413,17 @@ fn map_key(fig: &MapFigure) -> Vec<String> {
         key.push(
             "inset: the box outlined on its panel enlarged, on the panel's own axes and units \
              (its x axis the panel's x, its y axis the panel's y; an axis marked ×10ᵉ under \
-             its labels is in units of 10ᵉ)"
+             its labels is in units of 10ᵉ), joined to the box by two leader lines"
+                .to_string(),
+        );
+    }
+    if fig
+        .panels
+        .iter()
+        .any(|p| p.what != What::Rhythmicity && inset_ranges(p).is_some())
+    {
+        key.push(
+            "in the inset of a map of modes, each square is one point of the computed grid              (its colour: that point's number of modes), with white between them; the fold              curve is computed exactly and runs between the grid's points"
                 .to_string(),
         );
     }
@@ -577,6 +587,10 @@ fn inset_ranges(p: &MapPanel) -> Option<(std::ops::Range<f64>, std::ops::Range<f
     Some((zx, zoom(&p.y.grid, p.y.scale, iy0, iy1)))
 }
 
+/// The side of a grid point's cell in the inset of a map of modes, as a fraction of the
+/// grid's spacing, along an axis where the cells are large.
+const SAMPLE: f64 = 0.6;
+
 /// The largest extent (fraction of an axis) of a region an inset enlarges on a map of modes.
 const SLIVER: f64 = 0.02;
 
@@ -650,6 +664,17 @@ fn draw_inset<DB: Backend>(
     let (sx, sy) = (p.x.scale, p.y.scale);
     let hx = (gx.stop - gx.start) / (gx.count - 1) as f64 / sx;
     let hy = (gy.stop - gy.start) / (gy.count - 1) as f64 / sy;
+    // on a map of modes the grid's points with white between them along an axis where a
+    // cell is large in the inset (the fold curve is exact and runs between the points; whole
+    // cells would read as its position)
+    let part = |h: f64, r: &std::ops::Range<f64>| {
+        if p.what != What::Rhythmicity && h > (r.end - r.start) / 30.0 {
+            SAMPLE
+        } else {
+            1.0
+        }
+    };
+    let (fx, fy) = (part(hx, &zx), part(hy, &zy));
     let mut rects = Vec::new();
     for iy in 0..gy.count {
         let y = gy.value(iy) / sy;
@@ -665,8 +690,8 @@ fn draw_inset<DB: Backend>(
             let cy = |v: f64| v.clamp(zy.start, zy.end);
             rects.push(Rectangle::new(
                 [
-                    (cx(x - hx / 2.0), cy(y - hy / 2.0)),
-                    (cx(x + hx / 2.0), cy(y + hy / 2.0)),
+                    (cx(x - fx * hx / 2.0), cy(y - fy * hy / 2.0)),
+                    (cx(x + fx * hx / 2.0), cy(y + fy * hy / 2.0)),
                 ],
                 count_colour(p.count(ix, iy)).filled(),
             ));
