@@ -898,17 +898,30 @@ pub fn amplitude_table(notes: &[String], panels: &[AmplitudePanel]) -> Table {
             }
         }
         for r in &p.runs {
-            for (i, w) in r.edges.windows(2).enumerate() {
-                let s = r.stderr[i];
-                csv.row([
-                    p.caption.clone(),
-                    format!("MC {}", r.system),
-                    num(w[0]),
-                    num(w[1]),
-                    num(r.density[i]),
-                    // one path: no standard error (said in the notes)
-                    if s.is_finite() { num(s) } else { "inf".into() },
-                ]);
+            // the histogram, and where the picture draws the wells' mixture instead
+            // ([`McRun::shown_density`]) that mixture too, as its own series
+            let ((density, stderr), mixture) = r.shown_density();
+            let mut series = vec![(format!("MC {}", r.system), &r.density, &r.stderr)];
+            if mixture {
+                series.push((
+                    format!("MC {}, wells' mixture (drawn)", r.system),
+                    &density,
+                    &stderr,
+                ));
+            }
+            for (name, density, stderr) in series {
+                for (i, w) in r.edges.windows(2).enumerate() {
+                    let s = stderr[i];
+                    csv.row([
+                        p.caption.clone(),
+                        name.clone(),
+                        num(w[0]),
+                        num(w[1]),
+                        num(density[i]),
+                        // one path: no standard error (said in the notes)
+                        if s.is_finite() { num(s) } else { "inf".into() },
+                    ]);
+                }
             }
         }
     }

@@ -186,7 +186,7 @@ fn finish_strip(mut entries: Vec<(Symbol, String)>, curves: &[Curve]) -> LegendS
     let black = RGBColor(0, 0, 0);
     entries.push((
         Symbol::Dashed(black),
-        "dashed: prediction (ends in its series' shape)".into(),
+        "dashed: prediction (its series' colour)".into(),
     ));
     let flagged = |f: Flag| curves.iter().any(|c| c.points.iter().any(|q| q.flag == f));
     if flagged(Flag::Merged) {
@@ -348,19 +348,8 @@ fn draw_panel<DB: Backend>(
             .filter(|&(_, v)| v >= y.start && v <= y.end)
             .collect();
         if line.len() >= 2 {
-            // its series' shape, small and open, at its end: the predictions part without
-            // colour too
-            let (_, shape, _) = look(curve, parent, split);
-            let end = line[line.len() - 1];
             c.draw_series(DashedLineSeries::new(line, 6, 4, colour.stroke_width(1)))
                 .map_err(pe)?;
-            let ring = outline(shape, pxi(3));
-            c.draw_series(std::iter::once(
-                EmptyElement::at(end)
-                    + Polygon::new(ring.clone(), WHITE.filled())
-                    + PathElement::new(ring, colour.stroke_width(stroke(1))),
-            ))
-            .map_err(pe)?;
         }
     }
     let n = panel.curves.len().max(1) as f64;
