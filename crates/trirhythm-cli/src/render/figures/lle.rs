@@ -10,13 +10,15 @@
 //! Drawing only: the runs and verdicts are [`trirhythm_paper::lle`].
 
 use crate::render::plot::{
-    draw_line, font_px, padded_range, pe, px, pxi, stroke, tick_formatter, times_ten, Backend,
-    Dash, LegendStrip, Marker, SeriesStyle, Symbol, AXIS_DESC, CAPTION, FONT, PALETTE, TICK,
+    draw_line, font_px, padded_range, pe, px, pxi, rich_text, stroke, tick_formatter, times_ten,
+    Backend, Dash, LegendStrip, Marker, SeriesStyle, Symbol, AXIS_DESC, CAPTION, FONT, PALETTE,
+    TICK,
 };
 use anyhow::{anyhow, Result};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::ops::Range;
 use trirhythm_paper::lle::{Curve, Flag, LleAgainstNoise, Panel, StartKind};
 
@@ -192,11 +194,11 @@ fn finish_strip(mut entries: Vec<(Symbol, String)>, curves: &[Curve]) -> LegendS
     if flagged(Flag::Merged) {
         entries.push((
             Symbol::Cross(black),
-            "× at the bottom: copies merged (−∞)".into(),
+            "× in the band −∞: copies merged".into(),
         ));
     }
     if flagged(Flag::Undefined) {
-        entries.push((Symbol::Cross(black), "× at the bottom: no value".into()));
+        entries.push((Symbol::Cross(black), "× in the band −∞: no value".into()));
     }
     LegendStrip { entries }
 }
@@ -260,8 +262,38 @@ fn ranges_of(panel: &Panel) -> (Range<f64>, Range<f64>) {
         .flat_map(|q| [q.lo, q.hi, q.y])
         .collect();
     ys.push(0.0);
-    // the range is the data's (the panel's verdicts are in the caption, not over the data)
-    (x, padded_range(ys))
+    // the range is the data's (the panel's verdicts are in the caption, not over the data),
+    // and below it a band for the points without a value ([`BAND`])
+    let y = padded_range(ys);
+    let unvalued = panel
+        .curves
+        .iter()
+        .any(|c| c.points.iter().any(|q| q.flag != Flag::Value));
+    let band = if unvalued {
+        BAND * (y.end - y.start)
+    } else {
+        0.0
+    };
+    (x, (y.start - band)..y.end)
+}
+
+/// The height of the band below a panel's data for the points without a value (copies
+/// merged: −∞; no value), as a fraction of the data's range: the band is labelled "−∞" on the
+/// y axis, set off by a grey line, and carries no numeric tick.
+const BAND: f64 = 0.12;
+
+/// The bottom of a panel's data range above its band of points without a value (`y.start`
+/// where the panel has none).
+fn band_top(panel: &Panel, y: &Range<f64>) -> f64 {
+    let unvalued = panel
+        .curves
+        .iter()
+        .any(|c| c.points.iter().any(|q| q.flag != Flag::Value));
+    if unvalued {
+        y.start + BAND / (1.0 + BAND) * (y.end - y.start)
+    } else {
+        y.start
+    }
 }
 
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
@@ -272,6 +304,7 @@ fn log_x_chart<'a, DB: Backend>(
     caption: &str,
     (x, y): (Range<f64>, Range<f64>),
     (x_desc, y_desc): (&str, &str),
+    floor: f64,
 ) -> Result<Chart<'a, DB>> {
     let mut c = ChartBuilder::on(area)
         .caption(caption, (FONT, font_px(CAPTION)))
@@ -282,7 +315,15 @@ fn log_x_chart<'a, DB: Backend>(
         .build_cartesian_2d(x, y.clone())
         .map_err(|e| anyhow!("{e}"))?;
     let pow = |v: &f64| times_ten(10f64.powf(*v), 2);
-    let plain = tick_formatter(&y, 10);
+    let numbers = tick_formatter(&y, 10);
+    // (no numeric label in the band below `floor`)
+    let plain = |v: &f64| {
+        if *v < floor {
+            String::new()
+        } else {
+            numbers(v)
+        }
+    };
     c.configure_mesh()
         .x_desc(x_desc)
         .y_desc(y_desc)
@@ -299,8 +340,9 @@ fn log_x_chart<'a, DB: Backend>(
 }
 
 /// Draw one LLE-against-D panel: log D axis, error bars, zero line, filled (rest regime) and
-/// open (cycle regime) markers, and (a panel of its own) its legend strip below. Merged points
-/// are drawn as crosses on the lower edge.
+/// open (cycle regime) markers, and (a panel of its own) its legend strip below. Points
+/// without a value (copies merged: −∞) are drawn as crosses in a band below the data
+/// labelled "−∞".
 fn draw_panel<DB: Backend>(
     area: &DrawingArea<DB, Shift>,
     (panel, parent, ranges): &Drawn,
@@ -309,12 +351,34 @@ fn draw_panel<DB: Backend>(
     let (top, bottom) = area.split_vertically(CHART_HEIGHT);
     let lx = |d: f64| d.log10();
     let (x, y) = ranges.clone().unwrap_or_else(|| ranges_of(panel));
+    let floor = band_top(parent, &y);
     let mut c = log_x_chart(
         &top,
         &panel.caption,
         (x.clone(), y.clone()),
         (&panel.x_desc, &panel.y_desc),
+        floor,
     )?;
+    let band = (y.start + floor) / 2.0;
+    if floor > y.start {
+        c.draw_series(std::iter::once(PathElement::new(
+            [(x.start, floor), (x.end, floor)],
+            RGBColor(150, 150, 150).stroke_width(stroke(1)),
+        )))
+        .map_err(pe)?;
+        // "−∞" where the band's tick label would be
+        let (px, py) = c.backend_coord(&(x.start, band));
+        let (bx, by) = top.get_base_pixel();
+        rich_text(
+            &top,
+            "−∞",
+            (px - bx - pxi(8), py - by),
+            Pos::new(HPos::Right, VPos::Center),
+            TICK,
+            BLACK,
+            false,
+        )?;
+    }
     c.draw_series(std::iter::once(PathElement::new(
         [(x.start, 0.0), (x.end, 0.0)],
         RGBColor(120, 120, 120).stroke_width(1),
@@ -337,7 +401,7 @@ fn draw_panel<DB: Backend>(
             // only where the prediction is on the chart (its order-D validity ends earlier)
             ds.iter()
                 .map(|&d| (lx(d), -r.coefficient * d))
-                .filter(|&(_, v)| v >= y.start)
+                .filter(|&(_, v)| v >= floor)
                 .collect()
         } else {
             vec![]
@@ -345,7 +409,7 @@ fn draw_panel<DB: Backend>(
         // (only where it is on the chart: no dash below or above the axes)
         let line: Vec<(f64, f64)> = line
             .into_iter()
-            .filter(|&(_, v)| v >= y.start && v <= y.end)
+            .filter(|&(_, v)| v >= floor && v <= y.end)
             .collect();
         if line.len() >= 2 {
             c.draw_series(DashedLineSeries::new(line, 6, 4, colour.stroke_width(1)))
@@ -375,7 +439,7 @@ fn draw_panel<DB: Backend>(
             let xq = lx(q.x) + shift;
             if q.flag != Flag::Value {
                 c.draw_series(std::iter::once(Cross::new(
-                    (xq, y.start + 0.02 * (y.end - y.start)),
+                    (xq, band),
                     5,
                     colour.stroke_width(2),
                 )))
