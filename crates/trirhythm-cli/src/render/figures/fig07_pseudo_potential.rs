@@ -71,6 +71,8 @@ fn frame_with(
 
 /// The radius of the extrema's markers (before scaling).
 pub(super) const MARKER: i32 = 5;
+/// The radius of the markers in the enlargements, where neighbouring extrema lie close.
+const ZOOM_MARKER: i32 = 4;
 
 /// The style of curve `i` of a panel: [`series`] colour and dash, no marker (the markers
 /// are the extrema).
@@ -246,7 +248,8 @@ fn key() -> Vec<String> {
          (unstable cycles); the rest state A0 = 0, a crest of every curve, is no cycle and \
          left unmarked; the inset in (a) and (b) enlarges the outer wells (the box outlined \
          around them), whose markers pile up at the panels' scale; the inset's axes are its \
-         panel's, A0 across and U_eff(A0) up"
+         panel's, A0 across and U_eff(A0) up; (c), (d) enlarge the inner well and (e), (f) \
+         the middle well and the crests beside it, with smaller markers"
             .to_string(),
     ]
 }
@@ -272,18 +275,76 @@ fn zoom_end(curves: &[Curve]) -> Option<f64> {
     (end > 0.0 && end < 14.0).then_some(end)
 }
 
+/// The A0 window of the enlargement on the extrema between the inner well's zoom (ending at
+/// `end`) and the outer well: the middle well and the crests beside it, whose markers pile up
+/// at the main scale; `None` where there are none.
+fn middle_window(curves: &[Curve], end: f64) -> Option<Range<f64>> {
+    let outer = curves
+        .iter()
+        .filter_map(|c| {
+            c.extrema
+                .iter()
+                .filter(|e| e.minimum)
+                .map(|e| e.amplitude)
+                .max_by(f64::total_cmp)
+        })
+        .fold(f64::INFINITY, f64::min);
+    let between: Vec<f64> = curves
+        .iter()
+        .flat_map(|c| c.extrema.iter())
+        .map(|e| e.amplitude)
+        .filter(|&a| a > end && a < outer - 0.5)
+        .collect();
+    let (lo, hi) = between
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    (lo <= hi).then(|| (lo - 0.8).max(end)..(hi + 0.6).min(outer))
+}
+
+/// A y range framing the extrema of `curves` in the A0 window `x` (a fifth of their span
+/// below, three tenths above), and the curves' points inside both.
+fn frame_window(curves: &[Curve], x: &Range<f64>) -> (Range<f64>, Vec<Curve>) {
+    let (lo, hi) = curves
+        .iter()
+        .flat_map(|c| c.extrema.iter())
+        .filter(|e| x.contains(&e.amplitude))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), e| {
+            (a.min(e.potential), b.max(e.potential))
+        });
+    let span = (hi - lo).max(1e-9);
+    let y = padded_range([lo - 0.2 * span, hi + 0.3 * span]);
+    let clipped = curves
+        .iter()
+        .map(|c| Curve {
+            label: c.label.clone(),
+            points: c
+                .points
+                .iter()
+                .copied()
+                .filter(|p| x.contains(&p.0) && y.contains(&p.1))
+                .collect(),
+            extrema: c.extrema.clone(),
+        })
+        .collect();
+    (y, clipped)
+}
+
 // The two panels side by side, each with its zoom on the inner well below it (the well
-// A01 is ~10⁻³ deep against ~1 for the outer ones: invisible at the main scale), and each
-// column's legend below.
+// A01 is ~10⁻³ deep against ~1 for the outer ones: invisible at the main scale) and on the
+// middle well and crests below that, and each column's legend below.
 picture!(Fig07, |self, root| key key(), size {
     let w = 1400;
     let strip = self.panels.iter().map(|p| legend_of(p).height(w / 2)).max().unwrap_or(0);
-    (w, CHARTS + ZOOMS + strip)
+    (w, CHARTS + 2 * ZOOMS + strip)
 }, draw {
     let (charts, rest) = root.split_vertically(CHARTS);
-    let (zooms, strips) = rest.split_vertically(ZOOMS);
+    let (zooms, rest) = rest.split_vertically(ZOOMS);
+    let (middles, strips) = rest.split_vertically(ZOOMS);
     let areas = charts.split_evenly((1, 2));
     let zoom_areas = zooms.split_evenly((1, 2));
+    let middle_areas = middles.split_evenly((1, 2));
     for (strip, p) in strips.split_evenly((1, 2)).iter().zip(&self.panels) {
         legend_of(p).draw(strip)?;
     }
@@ -307,7 +368,23 @@ picture!(Fig07, |self, root| key key(), size {
                 "A_0",
                 "U_eff(A_0)",
             )?;
-            draw_curves(&mut z, &zoomed, MARKER)?;
+            draw_curves(&mut z, &zoomed, ZOOM_MARKER)?;
+            if let Some(x) = middle_window(curves, end) {
+                let (ym, framed) = frame_window(curves, &x);
+                let letter = ["(e)", "(f)"][k.min(1)];
+                let mut m = chart(
+                    &middle_areas[k],
+                    &format!(
+                        "{letter} {label} enlarged: {:.1} ≤ A0 ≤ {:.1}",
+                        x.start, x.end
+                    ),
+                    x,
+                    ym,
+                    "A_0",
+                    "U_eff(A_0)",
+                )?;
+                draw_curves(&mut m, &framed, ZOOM_MARKER)?;
+            }
         }
     }
     Ok(())
