@@ -454,21 +454,15 @@ impl Stepper {
             keep_before: keep,
             mass: 0.0,
         };
-        if keep {
-            t.base += dv_plus - dv_at;
-        } else {
-            t.history.restart();
-            t.base = dv_plus;
-        }
         // the redone rest from (δ, V₊) over (1 − θ)Δt: its known part, weight, length and
         // predictor weight follow θ and V₊
-        let (dknown_s, _) = t.history.current_split(dgl, &dsplit);
-        let (rate_known, rate_w) = if dtheta != 0.0 {
-            self.history.current_split_rate(b.gl, &hit.split)
-        } else {
-            (0.0, 0.0)
-        };
-        let dknown = t.base + t.history.value() + dknown_s + rate_known * dtheta;
+        let (dknown, rate_w) = self.tangent_across_impact(
+            t,
+            (b.gl, dgl),
+            (&hit.split, &dsplit),
+            dtheta,
+            (dv_at, dv_plus),
+        );
         let g: &General = self.general.as_deref().expect("a General path");
         let len = (1.0 - theta) * h;
         let dlen = -h * dtheta;
