@@ -203,5 +203,19 @@ pub fn applies(model: &Model, variant: Variant) -> Result<Vec<Assumption>> {
 /// with [`Error::NotApplicable`] naming the first term outside it, its value and why
 /// ([`Model::paper_family`]).
 pub fn closed_forms(model: &Model) -> Result<PaperFamily> {
-    model.paper_family(METHOD)
+    model.paper_family(METHOD).map_err(|e| match e {
+        Error::NotApplicable {
+            method,
+            assumption,
+            reason,
+        } => Error::NotApplicable {
+            method,
+            assumption,
+            reason: format!(
+                "{reason}; the paper's closed forms (Eq. 5, Zhuravlev, P(A)) are those of \
+                 h = μ0P(U), k = ω0²U without forcing, with the wall at 0 or none"
+            ),
+        },
+        other => other,
+    })
 }
