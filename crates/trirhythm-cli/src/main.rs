@@ -149,18 +149,19 @@ impl Command {
     /// the engine does not step yet) and put its parameters, wall and start in the command's
     /// arguments, so that the run and its header lines are those of the file.
     fn apply_model_file(&mut self) -> Result<()> {
-        let Some((family, terms)) = self.model_file().map(|f| f.load()).transpose()?.flatten()
+        let Some((model, family, terms)) =
+            self.model_file().map(|f| f.load()).transpose()?.flatten()
         else {
             return Ok(());
         };
-        let theory_free =
-            |command: &str| match trirhythm_paper::requests::theory_refusal(terms.as_ref()) {
-                Some(why) => error::bad(format!(
-                    "--model: {command} is built on the paper's averaged theory (its cycles and \
+        // the library decides where the paper's closed forms apply; the refusal names the term
+        let theory_free = |command: &str| match trirhythm::theory::averaging::closed_forms(&model) {
+            Err(why) => error::bad(format!(
+                "--model: {command} is built on the paper's averaged theory (its cycles and \
                  boundaries): {why}"
-                )),
-                None => Ok(()),
-            };
+            )),
+            Ok(_) => Ok(()),
+        };
         let barrier = args::on_off(family.wall);
         let (u0, v0) = family.start;
         let at_rest = |command: &str| {

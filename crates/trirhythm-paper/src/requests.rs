@@ -231,39 +231,6 @@ pub struct EnsembleRequest {
     pub terms: Option<GeneralTerms>,
 }
 
-/// Why the paper's averaged theory does not apply to a model with the General kernel's
-/// `terms` (the term named), or None without such terms.
-pub fn theory_refusal(terms: Option<&GeneralTerms>) -> Option<String> {
-    let t = terms?;
-    let term = if t.cubic != 0.0 {
-        format!("restoring.cubic = {}", t.cubic)
-    } else if t.quintic != 0.0 {
-        format!("restoring.quintic = {}", t.quintic)
-    } else if let Some(k) = t.rayleigh.iter().position(|&d| d != 0.0) {
-        format!("damping.rayleigh.{k} = {}", t.rayleigh[k])
-    } else if let Some(f) = &t.forcing {
-        format!("forcing.amplitude = {}", f.amplitude)
-    } else if let Some(f) = t.fractional.first() {
-        format!("fractional.0.coefficient = {}", f.coefficient)
-    } else if let Some(m) = &t.multiplicative {
-        format!("noise.multiplicative.intensity = {}", m.intensity)
-    } else if let Some(w) = t.walls.first() {
-        format!(
-            "wall.0.position = {} keeping {} ({} wall(s) other than the paper's at 0)",
-            w.position,
-            w.keep.name(),
-            t.walls.len()
-        )
-    } else {
-        return None;
-    };
-    Some(format!(
-        "the averaged theory does not apply: the model has {term}, and the paper's formulas \
-         (Eq. 5, Zhuravlev, P(A)) are those of h = mu0*P(U), k = omega0^2*U without forcing, \
-         with the wall at 0 or none"
-    ))
-}
-
 /// The model of the class of `params`' Eq. (1) with `barrier` and the General kernel's `terms`.
 fn class_model(
     params: &Params,

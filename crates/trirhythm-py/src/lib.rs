@@ -187,15 +187,19 @@ fn terms_of(model: Option<PyRef<'_, PyModel>>) -> PyResult<Option<model::General
     }
 }
 
-/// `call` for a `model=` of the General kernel's terms: refused with the reason, since `call`
-/// is built on the paper's averaged theory (its cycles and boundaries), as on the command line.
+/// `call` for a `model=` outside the paper's family: refused with the library's reason
+/// ([`trirhythm::theory::averaging::closed_forms`]), since `call` is built on the paper's
+/// averaged theory (its cycles and boundaries), as on the command line.
 fn theory_only(model: Option<PyRef<'_, PyModel>>, call: &str) -> PyResult<()> {
-    match trirhythm_paper::requests::theory_refusal(terms_of(model)?.as_ref()) {
-        Some(why) => Err(PyValueError::new_err(format!(
-            "model: {call} is built on the paper's averaged theory (its cycles and \
-             boundaries): {why}"
-        ))),
-        None => Ok(()),
+    match model.map(|m| trirhythm::theory::averaging::closed_forms(&m.0)) {
+        Some(Err(why @ trirhythm::Error::NotApplicable { .. })) => {
+            Err(PyValueError::new_err(format!(
+                "model: {call} is built on the paper's averaged theory (its cycles and \
+                 boundaries): {why}"
+            )))
+        }
+        Some(Err(e)) => Err(py_err(e)),
+        _ => Ok(()),
     }
 }
 

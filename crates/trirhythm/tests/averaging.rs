@@ -1082,4 +1082,38 @@ mod class {
         assert!(th.multiplicative_diffusion() > 0.0);
         let _ = DUFFING_LIMIT;
     }
+
+    /// The routines built on the paper's closed forms (critical noise, oscillation
+    /// boundaries, phase response) take the paper's family and refuse any other model, naming
+    /// the term: a Rayleigh model the quadrature covers is refused by them.
+    #[test]
+    fn the_closed_forms_take_the_papers_family_only() {
+        use trirhythm::theory::averaging::closed_forms;
+        let paper = Model::from(&trirhythm::model::preset("fig13a").unwrap().params);
+        let family = closed_forms(&paper).unwrap();
+        assert_eq!(
+            family.params,
+            trirhythm::model::preset("fig13a").unwrap().params
+        );
+        let mut rayleigh = paper.clone();
+        rayleigh.damping.rayleigh = vec![-0.1];
+        assert!(Theory::from_model(&rayleigh, Variant::Consistent).is_ok());
+        let mut duffing = paper;
+        duffing.restoring.cubic = 1.0;
+        for (named, m) in [
+            ("damping.rayleigh.0 = -0.1", rayleigh),
+            ("restoring.cubic = 1", duffing),
+        ] {
+            match closed_forms(&m) {
+                Err(e @ Error::NotApplicable { .. }) => {
+                    let msg = e.to_string();
+                    assert!(
+                        msg.contains(named) && msg.contains("the averaged theory does not apply"),
+                        "{msg}"
+                    );
+                }
+                other => panic!("{named}: not refused: {:?}", other.map(|f| f.params)),
+            }
+        }
+    }
 }

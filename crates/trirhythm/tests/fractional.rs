@@ -27,33 +27,12 @@
 //!
 //! Measured values are printed with `--nocapture`; the extended (ignored) variants run longer.
 
+mod common;
+
+use common::{averages, linear, mean_se, same_alone_as_clones_and_in_lanes, SEED};
 use trirhythm::engine::{run, Flow, Memory, PredictorCorrector, Problem, Stepper};
 use trirhythm::model::{Fractional, Model, NoiseTerm};
 use trirhythm::monitor::Silent;
-
-const SEED: u64 = 20_261_127;
-
-/// The paper's fig1 model made linear: λ, h ≡ −c (μ0 = c, P ≡ −1), ω0 = 1, no wall, no noise,
-/// start (0, 0).
-fn linear(lambda: f64, c: f64) -> Model {
-    let mut m = Model::from(&trirhythm::model::preset("fig1").unwrap().params);
-    m.leading.lambda = lambda;
-    m.damping.mu0 = c;
-    m.damping.coefficients = vec![-1.0];
-    m.restoring.omega0 = 1.0;
-    m.walls.clear();
-    m.noise.additive = None;
-    m.start.u0 = 0.0;
-    m
-}
-
-/// Mean and standard error of the mean.
-fn mean_se(xs: &[f64]) -> (f64, f64) {
-    let n = xs.len() as f64;
-    let m = xs.iter().sum::<f64>() / n;
-    let var = xs.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0);
-    (m, (var / n).sqrt())
-}
 
 /// `f(path)` for paths 0..paths, on every core (scoped threads), in path order.
 fn each_path<T: Send>(paths: u64, f: impl Fn(u64) -> T + Sync) -> Vec<T> {
@@ -217,28 +196,6 @@ fn spectral_variances(k: f64, alpha: f64, omega0: f64, d: f64, tau: f64) -> (f64
     (a * scale, b * scale)
 }
 
-/// Time averages of U² and U̇² over [transient, transient + length] of path `path`.
-fn averages(problem: &Problem, dt: f64, path: u64, (transient, length): (f64, f64)) -> (f64, f64) {
-    let method = PredictorCorrector {
-        dt,
-        ..Default::default()
-    };
-    let skip = (transient / dt).round() as u64;
-    let steps = skip + (length / dt).round() as u64;
-    let mut s = Stepper::new(problem, &method, (SEED, path), steps as f64 * dt).unwrap();
-    let (mut n, mut u2, mut v2) = (0u64, 0.0, 0.0);
-    let mut obs = |s: &Stepper| {
-        if s.steps() > skip {
-            n += 1;
-            u2 += s.u() * s.u();
-            v2 += s.v() * s.v();
-        }
-        Flow::Continue
-    };
-    run(&mut s, steps, &mut obs, &Silent).unwrap();
-    (u2 / n as f64, v2 / n as f64)
-}
-
 /// Measured (mean, se) at 2Δt and Δt against `exact`: within four standard errors at Δt plus
 /// the bias estimated from the change beyond two standard errors of it.
 fn check(label: &str, name: &str, coarse: (f64, f64), fine: (f64, f64), exact: f64) {
@@ -268,6 +225,7 @@ fn check(label: &str, name: &str, coarse: (f64, f64), fine: (f64, f64), exact: f
 fn fractional_variances(tau: f64, paths: u64, length: f64, dt: f64) {
     let (k, alpha, d) = (0.4, 0.5, 0.1);
     let mut m = linear(1.0, 1.0);
+    m.start.u0 = 0.0;
     m.damping.coefficients = vec![0.0];
     m.fractional = vec![Fractional {
         coefficient: k,
@@ -454,7 +412,6 @@ fn parametric_white_noise_has_the_exact_second_moments_extended() {
 fn fractional_paths_are_the_same_in_lanes_and_clones() {
     use trirhythm::analysis::lyapunov::LyapunovMethod;
     use trirhythm::analysis::{largest_lyapunov, LyapunovSpec};
-    use trirhythm::engine::Lanes;
     let mut m = linear(0.95, 0.1);
     m.restoring.cubic = 0.3;
     m.start.u0 = 0.7;
@@ -482,24 +439,7 @@ fn fractional_paths_are_the_same_in_lanes_and_clones() {
     let steps = 3000u64;
     let horizon = steps as f64 * method.dt;
     let bits = |s: &Stepper| (s.u().to_bits(), s.v().to_bits());
-    let alone: Vec<_> = (0..8)
-        .map(|i| {
-            let mut s = Stepper::new(&problem, &method, (SEED, i), horizon).unwrap();
-            let mut half = None;
-            for n in 0..steps {
-                s.step().unwrap();
-                if n == steps / 2 {
-                    half = Some(s.clone());
-                }
-            }
-            let mut c = half.unwrap();
-            for _ in steps / 2 + 1..steps {
-                c.step().unwrap();
-            }
-            assert_eq!(bits(&c), bits(&s), "a clone continues as its original");
-            bits(&s)
-        })
-        .collect();
+    let alone = same_alone_as_clones_and_in_lanes(&problem, &method, steps, bits, |_| {}, "");
     // the multiplicative noise moves the path: not the bits without it
     let mut quiet = m.clone();
     quiet.noise.multiplicative = None;
@@ -515,16 +455,6 @@ fn fractional_paths_are_the_same_in_lanes_and_clones() {
         q.step().unwrap();
     }
     assert_ne!(bits(&q), alone[0]);
-    for width in [4, 8] {
-        let mut paths: Vec<Stepper> = (0..8)
-            .map(|i| Stepper::new(&problem, &method, (SEED, i), horizon).unwrap())
-            .collect();
-        let mut obs: Vec<_> = (0..8).map(|_| |_: &Stepper| Flow::Continue).collect();
-        trirhythm::engine::run_lanes(&mut paths, steps, &mut obs, Lanes::Width(width), &Silent)
-            .unwrap();
-        let got: Vec<_> = paths.iter().map(bits).collect();
-        assert_eq!(got, alone, "{width} lanes");
-    }
     let spec = |method| LyapunovSpec {
         paths: 2,
         transient: 20.0,

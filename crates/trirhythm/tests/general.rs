@@ -28,53 +28,12 @@
 //! Measured values are printed with `--nocapture`; the extended (ignored) variant of the
 //! Duffing check runs 16 times the path-time.
 
-use trirhythm::engine::{run, Flow, Lanes, PredictorCorrector, Problem, Stepper};
+mod common;
+
+use common::{averages, chattering, linear, mean_se, same_alone_as_clones_and_in_lanes, SEED};
+use trirhythm::engine::{run, Flow, PredictorCorrector, Problem, Stepper};
 use trirhythm::model::{Harmonic, Model, NoiseTerm};
 use trirhythm::monitor::Silent;
-
-const SEED: u64 = 20_261_127;
-
-/// The paper's fig1 model made linear: λ, h ≡ −c (μ0 = c, P ≡ −1), ω0 = 1, no wall, no noise.
-fn linear(lambda: f64, c: f64) -> Model {
-    let mut m = Model::from(&trirhythm::model::preset("fig1").unwrap().params);
-    m.leading.lambda = lambda;
-    m.damping.mu0 = c;
-    m.damping.coefficients = vec![-1.0];
-    m.restoring.omega0 = 1.0;
-    m.walls.clear();
-    m.noise.additive = None;
-    m
-}
-
-/// Time averages of U² and U̇² over [transient, transient + length] of path `path`.
-fn averages(problem: &Problem, dt: f64, path: u64, (transient, length): (f64, f64)) -> (f64, f64) {
-    let method = PredictorCorrector {
-        dt,
-        ..Default::default()
-    };
-    let skip = (transient / dt).round() as u64;
-    let steps = skip + (length / dt).round() as u64;
-    let mut s = Stepper::new(problem, &method, (SEED, path), steps as f64 * dt).unwrap();
-    let (mut n, mut u2, mut v2) = (0u64, 0.0, 0.0);
-    let mut obs = |s: &Stepper| {
-        if s.steps() > skip {
-            n += 1;
-            u2 += s.u() * s.u();
-            v2 += s.v() * s.v();
-        }
-        Flow::Continue
-    };
-    run(&mut s, steps, &mut obs, &Silent).unwrap();
-    (u2 / n as f64, v2 / n as f64)
-}
-
-/// Mean and standard error of the mean.
-fn mean_se(xs: &[f64]) -> (f64, f64) {
-    let n = xs.len() as f64;
-    let m = xs.iter().sum::<f64>() / n;
-    let var = xs.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0);
-    (m, (var / n).sqrt())
-}
 
 /// ⟨U²⟩ under p(U) ∝ exp(−(ω²U²/2 + k3U⁴/4)/T) by Simpson's rule on [−L, L].
 fn exact_u2(omega2: f64, k3: f64, temperature: f64) -> f64 {
@@ -310,37 +269,8 @@ fn general_paths_are_the_same_in_lanes_and_clones() {
     });
     let problem = Problem::from_model(&m).unwrap();
     let method = PredictorCorrector::default();
-    let steps = 3000u64;
-    let horizon = steps as f64 * method.dt;
     let bits = |s: &Stepper| (s.u().to_bits(), s.v().to_bits());
-    let alone: Vec<_> = (0..8)
-        .map(|i| {
-            let mut s = Stepper::new(&problem, &method, (SEED, i), horizon).unwrap();
-            let mut half = None;
-            for n in 0..steps {
-                s.step().unwrap();
-                if n == steps / 2 {
-                    half = Some(s.clone());
-                }
-            }
-            let mut c = half.unwrap();
-            for _ in steps / 2 + 1..steps {
-                c.step().unwrap();
-            }
-            assert_eq!(bits(&c), bits(&s), "a clone continues as its original");
-            bits(&s)
-        })
-        .collect();
-    for width in [4, 8] {
-        let mut paths: Vec<Stepper> = (0..8)
-            .map(|i| Stepper::new(&problem, &method, (SEED, i), horizon).unwrap())
-            .collect();
-        let mut obs: Vec<_> = (0..8).map(|_| |_: &Stepper| Flow::Continue).collect();
-        trirhythm::engine::run_lanes(&mut paths, steps, &mut obs, Lanes::Width(width), &Silent)
-            .unwrap();
-        let got: Vec<_> = paths.iter().map(bits).collect();
-        assert_eq!(got, alone, "{width} lanes");
-    }
+    same_alone_as_clones_and_in_lanes(&problem, &method, 3000, bits, |_| {}, "");
 }
 
 /// The General kernel at the wall (U = 0) reduces to the paper's kernel when its terms vanish:
@@ -354,13 +284,7 @@ fn the_general_kernel_at_the_wall_gives_the_paper_kernels_bits_when_its_terms_va
         trirhythm::engine::ImpactMemory::Continuous,
         trirhythm::engine::ImpactMemory::Restart,
     ] {
-        let p = trirhythm::model::preset("fig13a")
-            .unwrap()
-            .params
-            .with("r", 0.3)
-            .unwrap()
-            .with("D", 0.5)
-            .unwrap();
+        let p = chattering();
         let paper = Problem::from_params(&p).unwrap();
         let mut m = Model::from(&p);
         m.restoring.cubic = 1e-300;

@@ -30,21 +30,18 @@
 //!
 //! Measured values are printed with `--nocapture`.
 
-use trirhythm::engine::{run, Flow, ImpactMemory, Lanes, PredictorCorrector, Problem, Stepper};
+mod common;
+
+use common::{chattering, linear, same_alone_as_clones_and_in_lanes, SEED};
+use trirhythm::engine::{run, Flow, ImpactMemory, PredictorCorrector, Problem, Stepper};
 use trirhythm::model::{Harmonic, Keep, Model, NoiseTerm, Restitution, SpeedRestitution, Wall};
 use trirhythm::monitor::Silent;
 
-const SEED: u64 = 20_261_127;
-
 /// Ü + U = 0 (λ = 1, h ≡ 0, ω0 = 1, no noise) with `walls`, from (u0, v0).
 fn harmonic(walls: Vec<Wall>, (u0, v0): (f64, f64)) -> Model {
-    let mut m = Model::from(&trirhythm::model::preset("fig1").unwrap().params);
-    m.leading.lambda = 1.0;
-    m.damping.mu0 = 1.0;
+    let mut m = linear(1.0, 1.0);
     m.damping.coefficients = vec![0.0];
-    m.restoring.omega0 = 1.0;
     m.walls = walls;
-    m.noise.additive = None;
     m.start.u0 = u0;
     m.start.v0 = v0;
     m
@@ -158,17 +155,6 @@ fn a_linear_oscillator_against_an_offset_wall_keeps_the_exact_period_and_its_ene
             1.0,
         );
     }
-}
-
-/// fig13a with r = 0.3, D = 0.5 (λ = 0.998, OU noise: impacts, chattering, sticking).
-fn chattering() -> trirhythm::model::Params {
-    trirhythm::model::preset("fig13a")
-        .unwrap()
-        .params
-        .with("r", 0.3)
-        .unwrap()
-        .with("D", 0.5)
-        .unwrap()
 }
 
 #[test]
@@ -388,39 +374,12 @@ fn paths_with_walls_are_the_same_in_lanes_and_clones_and_take_both_lyapunov_meth
             impact_memory: memory,
             ..Default::default()
         };
-        let steps = 3000u64;
-        let horizon = steps as f64 * method.dt;
         let bits = |s: &Stepper| (s.u().to_bits(), s.v().to_bits(), s.impacts());
-        let alone: Vec<_> = (0..8)
-            .map(|i| {
-                let mut s = Stepper::new(&problem, &method, (SEED, i), horizon).unwrap();
-                let mut half = None;
-                for n in 0..steps {
-                    s.step().unwrap();
-                    assert!((-0.6..=0.9).contains(&s.u()), "between the walls");
-                    if n == steps / 2 {
-                        half = Some(s.clone());
-                    }
-                }
-                let mut c = half.unwrap();
-                for _ in steps / 2 + 1..steps {
-                    c.step().unwrap();
-                }
-                assert_eq!(bits(&c), bits(&s), "a clone continues as its original");
-                bits(&s)
-            })
-            .collect();
+        let between = |s: &Stepper| assert!((-0.6..=0.9).contains(&s.u()), "between the walls");
+        let label = format!("{memory:?}: ");
+        let alone =
+            same_alone_as_clones_and_in_lanes(&problem, &method, 3000, bits, between, &label);
         assert!(alone.iter().all(|b| b.2 > 5), "{alone:?}");
-        for width in [4, 8] {
-            let mut paths: Vec<Stepper> = (0..8)
-                .map(|i| Stepper::new(&problem, &method, (SEED, i), horizon).unwrap())
-                .collect();
-            let mut obs: Vec<_> = (0..8).map(|_| |_: &Stepper| Flow::Continue).collect();
-            trirhythm::engine::run_lanes(&mut paths, steps, &mut obs, Lanes::Width(width), &Silent)
-                .unwrap();
-            let got: Vec<_> = paths.iter().map(bits).collect();
-            assert_eq!(got, alone, "{memory:?}: {width} lanes");
-        }
     }
     // both Lyapunov methods take the model (the tangent through the impact steps)
     use trirhythm::analysis::lyapunov::LyapunovMethod;

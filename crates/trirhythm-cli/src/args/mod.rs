@@ -190,12 +190,14 @@ impl ModelFileArg {
     /// The file's model as the engine steps it (none without `--model`): read, validated,
     /// and refused by name where it has a term the engine does not step; the paper family's
     /// part and the General kernel's terms (Duffing, Rayleigh, forcing, walls other than the
-    /// paper's; none for the paper's family).
+    /// paper's; none for the paper's family), with the model itself (the commands built on the
+    /// theory ask it whether the theory applies).
     #[allow(clippy::type_complexity)]
     pub fn load(
         &self,
     ) -> Result<
         Option<(
+            trirhythm::model::Model,
             trirhythm::model::PaperFamily,
             Option<trirhythm::model::GeneralTerms>,
         )>,
@@ -204,10 +206,10 @@ impl ModelFileArg {
             return Ok(None);
         };
         let model = crate::io::files::read_model(path, "--model")?;
-        let engine = model
+        let (family, terms) = model
             .engine_terms("the engine")
             .with_context(|| format!("--model {}", path.display()))?;
-        Ok(Some(engine))
+        Ok(Some((model, family, terms)))
     }
 }
 

@@ -22,7 +22,7 @@ from __future__ import annotations
 import json
 import warnings
 from dataclasses import dataclass, field
-from typing import Any, Iterable, Literal, NamedTuple, Sequence, overload
+from typing import Any, Iterable, Literal, NamedTuple, Protocol, Sequence, cast, overload
 
 import numpy as np
 
@@ -1445,82 +1445,62 @@ def _plane(params, x, y, what, variant, threads, progress, folds):
     return PlaneMapFolds(xs, ys, counts, Folds._of(json.loads(traced)))
 
 
-@overload
-def rhythmicity_map(
-    params: Params,
-    x: tuple[str, float, float, int],
-    y: tuple[str, float, float, int],
-    variant: str = ...,
-    *,
-    folds: Literal[False] = ...,
-    threads: int | None = ...,
-    progress: Any = ...,
-) -> PlaneMap: ...
-@overload
-def rhythmicity_map(
-    params: Params,
-    x: tuple[str, float, float, int],
-    y: tuple[str, float, float, int],
-    variant: str = ...,
-    *,
-    folds: Literal[True],
-    threads: int | None = ...,
-    progress: Any = ...,
-) -> PlaneMapFolds: ...
-def rhythmicity_map(
-    params: Params,
-    x: tuple[str, float, float, int],
-    y: tuple[str, float, float, int],
-    variant: str = "paper",
-    *,
-    folds: bool = False,
-    threads: int | None = None,
-    progress=None,
-) -> PlaneMap | PlaneMapFolds:
+# An axis of a map: (key, start, stop, count).
+_PlaneAxis = tuple[str, float, float, int]
+
+
+class _PlaneMapper(Protocol):
+    """The type of ``rhythmicity_map`` and ``modes_map``: a ``PlaneMap``, or with
+    ``folds=True`` a ``PlaneMapFolds``."""
+
+    @overload
+    def __call__(
+        self, params: Params, x: _PlaneAxis, y: _PlaneAxis, variant: str = ..., *,
+        folds: Literal[False] = ..., threads: int | None = ..., progress: Any = ...,
+    ) -> PlaneMap: ...
+    @overload
+    def __call__(
+        self, params: Params, x: _PlaneAxis, y: _PlaneAxis, variant: str = ..., *,
+        folds: Literal[True], threads: int | None = ..., progress: Any = ...,
+    ) -> PlaneMapFolds: ...
+
+
+def _plane_mapper(name: str, what: str, doc: str) -> _PlaneMapper:
+    """The public map function ``name`` classifying each point of a plane by ``what``."""
+
+    def mapper(
+        params: Params,
+        x: tuple[str, float, float, int],
+        y: tuple[str, float, float, int],
+        variant: str = "paper",
+        *,
+        folds: bool = False,
+        threads: int | None = None,
+        progress=None,
+    ) -> PlaneMap | PlaneMapFolds:
+        return _plane(params, x, y, what, variant, threads, progress, folds)
+
+    mapper.__name__ = mapper.__qualname__ = name
+    mapper.__doc__ = doc
+    return cast(_PlaneMapper, mapper)
+
+
+rhythmicity_map = _plane_mapper(
+    "rhythmicity_map",
+    "rhythmicity",
     """Stable-cycle counts of the averaged theory over the plane ``x = (key, start, stop,
     count)`` × ``y = (…)``: a ``PlaneMap`` ``(xs, ys, counts)`` with ``counts[iy, ix]``
     (``trirhythm map``); ``folds=True`` traces the fold curves through the map's transitions
     (``trirhythm map --folds``, the same curves): a ``PlaneMapFolds`` ``(xs, ys, counts,
-    folds)``."""
-    return _plane(params, x, y, "rhythmicity", variant, threads, progress, folds)
-
-
-@overload
-def modes_map(
-    params: Params,
-    x: tuple[str, float, float, int],
-    y: tuple[str, float, float, int],
-    variant: str = ...,
-    *,
-    folds: Literal[False] = ...,
-    threads: int | None = ...,
-    progress: Any = ...,
-) -> PlaneMap: ...
-@overload
-def modes_map(
-    params: Params,
-    x: tuple[str, float, float, int],
-    y: tuple[str, float, float, int],
-    variant: str = ...,
-    *,
-    folds: Literal[True],
-    threads: int | None = ...,
-    progress: Any = ...,
-) -> PlaneMapFolds: ...
-def modes_map(
-    params: Params,
-    x: tuple[str, float, float, int],
-    y: tuple[str, float, float, int],
-    variant: str = "paper",
-    *,
-    folds: bool = False,
-    threads: int | None = None,
-    progress=None,
-) -> PlaneMap | PlaneMapFolds:
+    folds)``.""",
+)
+modes_map = _plane_mapper(
+    "modes_map",
+    "modes",
     """Counts of the modes of the stationary P(A) (D > 0) over a plane, as ``rhythmicity_map``
     (``trirhythm map --what modes``; ``folds=True``: the curves where two extrema of P(A)
-    meet)."""
-    return _plane(params, x, y, "modes", variant, threads, progress, folds)
+    meet).""",
+)
 
 
 class BranchCurve(NamedTuple):

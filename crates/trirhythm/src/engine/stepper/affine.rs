@@ -116,6 +116,44 @@ pub(super) fn hermite_limiter(z: f64) -> f64 {
     1.0 / (1.0 + z * z * (1.0 / 12.0))
 }
 
+/// δU₁ of one corrector pass, the tail of the pass tangents of both kernels ([`Affine`]'s and
+/// `super::general`'s): `step` = (len, w, g0), `pass` = (a, lim, g_r) at the pass, along
+/// (δu, δv, δg0) with (δV₁, δg_r, δa) of the pass already formed. With z = 2w·a,
+/// δL = −L²(z/6)·2w·δa and δU₁ = δu + (len/2)(δv + δV₁) + (len²/12)(δL(g0 − g_r) + L(δg0 − δg_r)).
+#[inline(always)]
+pub(super) fn pass_tangent_u1(
+    (len, w, g0): (f64, f64, f64),
+    (a, lim, gr): (f64, f64, f64),
+    (du, dv, dg0): (f64, f64, f64),
+    (dv1, dgr, da): (f64, f64, f64),
+) -> f64 {
+    let z = 2.0 * w * a;
+    let dlim = -lim * lim * (z / 6.0) * 2.0 * w * da;
+    let c = len * len / 12.0;
+    du + 0.5 * len * (dv + dv1) + c * (dlim * (g0 - gr) + lim * (dg0 - dgr))
+}
+
+/// [`pass_tangent_u1`] with the step's length and weight moving (the rest of an impact step):
+/// `pass` = (a, lim, g_r, V₁), `moving` = (v at the start, δlen, δ(wa)), so that
+/// δL = −L²(z/6)·2δ(wa) and U₁'s terms in len are differentiated as well.
+#[inline(always)]
+pub(super) fn pass_tangent_u1_moving(
+    (len, w, g0): (f64, f64, f64),
+    (a, lim, gr, v1): (f64, f64, f64, f64),
+    (v, dlen, dwa): (f64, f64, f64),
+    (du, dv, dg0): (f64, f64, f64),
+    (dv1, dgr): (f64, f64),
+) -> f64 {
+    let z = 2.0 * w * a;
+    let dlim = -lim * lim * (z / 6.0) * 2.0 * dwa;
+    let c = len * len / 12.0;
+    let dc = len * dlen / 6.0;
+    du + 0.5 * dlen * (v + v1)
+        + 0.5 * len * (dv + dv1)
+        + dc * lim * (g0 - gr)
+        + c * (dlim * (g0 - gr) + lim * (dg0 - dgr))
+}
+
 /// One pass of the linearly implicit corrector: U frozen at `up` in μP and ω²U.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Pass {
@@ -248,10 +286,8 @@ impl Affine {
         let da = slope * dup;
         let dv1 = p.inv * (dknown - f.w * self.omega2 * dup + p.v1 * f.w * da);
         let dgr = da * p.v1 + p.a * dv1 - self.omega2 * dup;
-        let z = 2.0 * f.w * p.a;
-        let dlim = -p.lim * p.lim * (z / 6.0) * 2.0 * f.w * da;
-        let c = f.len * f.len / 12.0;
-        let du1 = du + 0.5 * f.len * (dv + dv1) + c * (dlim * (f.g0 - p.gr) + p.lim * (dg0 - dgr));
+        let step = (f.len, f.w, f.g0);
+        let du1 = pass_tangent_u1(step, (p.a, p.lim, p.gr), (du, dv, dg0), (dv1, dgr, da));
         (du1, dv1)
     }
 
@@ -310,15 +346,9 @@ impl Affine {
         let free_part = p.gr - p.a * p.v1;
         let dv1 = p.inv * (dknown + dw * free_part - f.w * self.omega2 * dup + p.v1 * dwa);
         let dgr = da * p.v1 + p.a * dv1 - self.omega2 * dup;
-        let z = 2.0 * f.w * p.a;
-        let dlim = -p.lim * p.lim * (z / 6.0) * 2.0 * dwa;
-        let c = f.len * f.len / 12.0;
-        let dc = f.len * dlen / 6.0;
-        let du1 = du
-            + 0.5 * dlen * (v + p.v1)
-            + 0.5 * f.len * (dv + dv1)
-            + dc * p.lim * (f.g0 - p.gr)
-            + c * (dlim * (f.g0 - p.gr) + p.lim * (dg0 - dgr));
+        let step = (f.len, f.w, f.g0);
+        let pass = (p.a, p.lim, p.gr, p.v1);
+        let du1 = pass_tangent_u1_moving(step, pass, (v, dlen, dwa), (du, dv, dg0), (dv1, dgr));
         (du1, dv1)
     }
 

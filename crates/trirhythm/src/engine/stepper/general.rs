@@ -106,7 +106,10 @@
 //! noise at the wall. Unit test below: the correlated η_m's law. `engine/stepper/tangent.rs`:
 //! the tangent step against finite differences of the step.
 
-use super::affine::{hermite_limiter, predictor_weight, predictor_weight_slope, Affine};
+use super::affine::{
+    hermite_limiter, pass_tangent_u1, pass_tangent_u1_moving, predictor_weight,
+    predictor_weight_slope, Affine,
+};
 use super::polynomial::Polynomial;
 use super::walls::Walls;
 use crate::engine::kernel::MIN_SOE_LAMBDA;
@@ -769,10 +772,8 @@ impl General {
         let dv1 = p.inv * (dknown + f.w * (r.rest_slope * dvl - kp * dup) + p.v1 * f.w * da);
         let a_end = self.mu_p(p.up) + self.rayleigh_at(p.v1).a;
         let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup;
-        let z = 2.0 * f.w * p.a;
-        let dlim = -p.lim * p.lim * (z / 6.0) * 2.0 * f.w * da;
-        let c = f.len * f.len / 12.0;
-        let du1 = du + 0.5 * f.len * (dv + dv1) + c * (dlim * (f.g0 - p.gr) + p.lim * (dg0 - dgr));
+        let step = (f.len, f.w, f.g0);
+        let du1 = pass_tangent_u1(step, (p.a, p.lim, p.gr), (du, dv, dg0), (dv1, dgr, da));
         (du1, dv1)
     }
 
@@ -840,15 +841,9 @@ impl General {
         let dv1 = p.inv * (dknown + dw * x + f.w * dx + p.v1 * dwa);
         let a_end = mp + end.a;
         let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup;
-        let z = 2.0 * f.w * p.a;
-        let dlim = -p.lim * p.lim * (z / 6.0) * 2.0 * dwa;
-        let c = f.len * f.len / 12.0;
-        let dc = f.len * dlen / 6.0;
-        let du1 = du
-            + 0.5 * dlen * (v + p.v1)
-            + 0.5 * f.len * (dv + dv1)
-            + dc * p.lim * (f.g0 - p.gr)
-            + c * (dlim * (f.g0 - p.gr) + p.lim * (dg0 - dgr));
+        let step = (f.len, f.w, f.g0);
+        let pass = (p.a, p.lim, p.gr, p.v1);
+        let du1 = pass_tangent_u1_moving(step, pass, (v, dlen, dwa), (du, dv, dg0), (dv1, dgr));
         (du1, dv1)
     }
 }

@@ -571,21 +571,15 @@ impl Stepper {
             keep_before: keep,
             mass: 0.0,
         };
-        if keep {
-            t.base += dv_plus - dv_at;
-        } else {
-            t.history.restart();
-            t.base = dv_plus;
-        }
         // the rest of the step, [t*, t_{n+1}] from (0, V₊): its known part, weight and length
         // follow θ
-        let (dknown_s, _) = t.history.current_split(dgl, &dsplit);
-        let (rate_known, rate_w) = if dtheta != 0.0 {
-            self.history.current_split_rate(gl, &rest.split)
-        } else {
-            (0.0, 0.0)
-        };
-        let dknown = t.base + t.history.value() + dknown_s + rate_known * dtheta;
+        let (dknown, rate_w) = self.tangent_across_impact(
+            t,
+            (gl, dgl),
+            (&rest.split, &dsplit),
+            dtheta,
+            (dv_at, dv_plus),
+        );
         let f = &rest.free;
         let dlen = -h * dtheta;
         let dpw = predictor_weight_len_slope(f.len, c.a0) * dlen;
@@ -599,6 +593,37 @@ impl Stepper {
         );
         let (u_end, v_end) = f.end();
         (rest.split, dsplit, dtheta, [u_end, v_end, du_end, dv_end])
+    }
+
+    /// The tangent's memory across an impact at θ of the current step (the reference's g at
+    /// the step's start `gl`, the tangent's `dgl`; the reference's `split` of g at the instant
+    /// and the tangent's `dsplit`; δV(t*) = `dv_at`, δV₊ = `dv_plus`): the jump kept in the
+    /// Volterra constant, or the memory restarted at δV₊. Returns the redone rest's δknown
+    /// (its weight moving with θ at the rate returned second).
+    pub(super) fn tangent_across_impact(
+        &self,
+        t: &mut Tangent,
+        (gl, dgl): (f64, f64),
+        (split, dsplit): (&Split, &Split),
+        dtheta: f64,
+        (dv_at, dv_plus): (f64, f64),
+    ) -> (f64, f64) {
+        if !self.restart {
+            t.base += dv_plus - dv_at;
+        } else {
+            t.history.restart();
+            t.base = dv_plus;
+        }
+        let (dknown_s, _) = t.history.current_split(dgl, dsplit);
+        let (rate_known, rate_w) = if dtheta != 0.0 {
+            self.history.current_split_rate(gl, split)
+        } else {
+            (0.0, 0.0)
+        };
+        (
+            t.base + t.history.value() + dknown_s + rate_known * dtheta,
+            rate_w,
+        )
     }
 }
 

@@ -182,59 +182,78 @@ impl Stepper {
             split: None,
         };
         let mut push = true;
-        let mut clamped = false;
-        // a stuck path sits on its wall (a renormalised copy pulled off it is free again)
+        if let Some(delta) = self.pressed(walls, u1) {
+            push = self.stick(v1);
+            (u1, v1) = (delta, 0.0);
+        } else if let Some(side) = walls.beyond(u1) {
+            let hit = self.impact_wall(walls.law(side), side, &b, (u1, v1));
+            piece.split = Some(hit.split);
+            (u1, v1) = hit.free.end();
+            if self.beyond_again(walls, side, u1)? {
+                // the next impact would come within this step: stick
+                push = self.stick(v1);
+                (u1, v1) = (walls.law(side).position, 0.0);
+                self.stuck = true;
+            }
+        }
+        self.end_wall_step(&b, (u1, v1), push.then_some(piece))?;
+        Ok(())
+    }
+
+    /// Whether a stuck path is still pressed against its wall at the free end U₁ = `u1`
+    /// (n(U₁ − δ) ≤ 0): then δ, to clamp at; otherwise the path is free (a renormalised copy
+    /// pulled off the wall is free again).
+    fn pressed(&mut self, walls: Walls, u1: f64) -> Option<f64> {
         if let Some(side) = walls.at(self.u).filter(|_| self.stuck) {
             let delta = walls.law(side).position;
             if side.normal() * (u1 - delta) <= 0.0 {
-                // still pressed against the wall
-                push = self.stick(v1);
-                (u1, v1) = (delta, 0.0);
-                clamped = true;
-            } else {
-                self.stuck = false;
-            }
-        } else {
-            self.stuck = false;
-        }
-        if !clamped {
-            if let Some(side) = walls.beyond(u1) {
-                let hit = self.impact_wall(walls.law(side), side, &b, (u1, v1));
-                piece.split = Some(hit.split);
-                (u1, v1) = hit.free.end();
-                match walls.beyond(u1) {
-                    None => {}
-                    Some(again) if again == side => {
-                        // the next impact would come within this step: stick
-                        push = self.stick(v1);
-                        (u1, v1) = (walls.law(side).position, 0.0);
-                        self.stuck = true;
-                    }
-                    Some(_) => {
-                        return Err(Error::invalid(
-                            "dt",
-                            self.h,
-                            format!(
-                                "a step that meets one wall at most: at t = {} the step meets \
-                                 both walls (their distance is too small for this Δt)",
-                                Exact(self.time())
-                            ),
-                        ))
-                    }
-                }
+                return Some(delta);
             }
         }
+        self.stuck = false;
+        None
+    }
+
+    /// Whether the redone rest of an impact step on `side`, ending at U = `u1`, lies beyond
+    /// the same wall again (the path then sticks); a refusal if it lies beyond the other wall
+    /// (a step meets one wall at most).
+    fn beyond_again(&self, walls: Walls, side: Side, u1: f64) -> Result<bool> {
+        match walls.beyond(u1) {
+            None => Ok(false),
+            Some(again) if again == side => Ok(true),
+            Some(_) => Err(Error::invalid(
+                "dt",
+                self.h,
+                format!(
+                    "a step that meets one wall at most: at t = {} the step meets both walls \
+                     (their distance is too small for this Δt)",
+                    Exact(self.time())
+                ),
+            )),
+        }
+    }
+
+    /// The end of a step with walls, at (U₁, V₁): the blow-up check, the node, the piece of g
+    /// completed and pushed (`None`: a stuck step pushes none), the state. Returns the piece
+    /// as pushed.
+    fn end_wall_step(
+        &mut self,
+        b: &Begin,
+        (u1, v1): (f64, f64),
+        piece: Option<Piece>,
+    ) -> Result<Option<Piece>> {
         self.steps += 1;
         self.check_blow_up((b.u, b.v), (u1, v1))?;
         let g = self.general.as_deref().expect("a General path");
         (self.drift, self.pw) = g.node(self.h, u1, v1);
-        if push {
+        let piece = piece.map(|mut piece| {
             piece.right = self.drift + b.fr;
             self.history.push(piece);
-        }
+            piece
+        });
         self.u = u1;
         self.v = v1;
-        Ok(())
+        Ok(piece)
     }
 
     /// The impact on wall `law` (on `side`) inside the current step whose free end was
@@ -339,59 +358,29 @@ impl Stepper {
         };
         let mut dtheta = 0.0;
         let mut push = true;
-        let mut clamped = false;
-        if let Some(side) = walls.at(self.u).filter(|_| self.stuck) {
-            let delta = walls.law(side).position;
-            if side.normal() * (u1 - delta) <= 0.0 {
+        if let Some(delta) = self.pressed(walls, u1) {
+            push = self.stick(v1);
+            t.stick(dv1, self.restart);
+            (u1, v1, du1, dv1) = (delta, 0.0, 0.0, 0.0);
+        } else if let Some(side) = walls.beyond(u1) {
+            let law = walls.law(side);
+            let (split, dsplit, dth, end) =
+                self.impact_wall_with_tangent(t, law, side, &b, dgl, [u1, v1, du1, dv1]);
+            [u1, v1, du1, dv1] = end;
+            piece.split = Some(split);
+            dpiece.split = Some(dsplit);
+            dtheta = dth;
+            if self.beyond_again(walls, side, u1)? {
                 push = self.stick(v1);
                 t.stick(dv1, self.restart);
-                (u1, v1, du1, dv1) = (delta, 0.0, 0.0, 0.0);
-                clamped = true;
-            } else {
-                self.stuck = false;
-            }
-        } else {
-            self.stuck = false;
-        }
-        if !clamped {
-            if let Some(side) = walls.beyond(u1) {
-                let law = walls.law(side);
-                let (split, dsplit, dth, end) =
-                    self.impact_wall_with_tangent(t, law, side, &b, dgl, [u1, v1, du1, dv1]);
-                [u1, v1, du1, dv1] = end;
-                piece.split = Some(split);
-                dpiece.split = Some(dsplit);
-                dtheta = dth;
-                match walls.beyond(u1) {
-                    None => {}
-                    Some(again) if again == side => {
-                        push = self.stick(v1);
-                        t.stick(dv1, self.restart);
-                        (u1, v1, du1, dv1) = (law.position, 0.0, 0.0, 0.0);
-                        self.stuck = true;
-                    }
-                    Some(_) => {
-                        return Err(Error::invalid(
-                            "dt",
-                            self.h,
-                            format!(
-                                "a step that meets one wall at most: at t = {} the step meets \
-                                 both walls (their distance is too small for this Δt)",
-                                Exact(self.time())
-                            ),
-                        ))
-                    }
-                }
+                (u1, v1, du1, dv1) = (law.position, 0.0, 0.0, 0.0);
+                self.stuck = true;
             }
         }
-        self.steps += 1;
-        self.check_blow_up((b.u, b.v), (u1, v1))?;
+        let pushed = self.end_wall_step(&b, (u1, v1), push.then_some(piece))?;
         let g = self.general.as_deref().expect("a General path");
-        (self.drift, self.pw) = g.node(self.h, u1, v1);
         let ddrift = g.drift_derivative(u1, v1, du1, dv1);
-        if push {
-            piece.right = self.drift + b.fr;
-            self.history.push(piece);
+        if let Some(piece) = pushed {
             dpiece.right = ddrift;
             if dtheta != 0.0 {
                 if let Some(d) = dpiece.split.as_mut() {
@@ -400,8 +389,6 @@ impl Stepper {
             }
             t.history.push(dpiece);
         }
-        self.u = u1;
-        self.v = v1;
         t.u = du1;
         t.v = dv1;
         t.drift = ddrift;
@@ -467,21 +454,15 @@ impl Stepper {
             keep_before: keep,
             mass: 0.0,
         };
-        if keep {
-            t.base += dv_plus - dv_at;
-        } else {
-            t.history.restart();
-            t.base = dv_plus;
-        }
         // the redone rest from (δ, V₊) over (1 − θ)Δt: its known part, weight, length and
         // predictor weight follow θ and V₊
-        let (dknown_s, _) = t.history.current_split(dgl, &dsplit);
-        let (rate_known, rate_w) = if dtheta != 0.0 {
-            self.history.current_split_rate(b.gl, &hit.split)
-        } else {
-            (0.0, 0.0)
-        };
-        let dknown = t.base + t.history.value() + dknown_s + rate_known * dtheta;
+        let (dknown, rate_w) = self.tangent_across_impact(
+            t,
+            (b.gl, dgl),
+            (&hit.split, &dsplit),
+            dtheta,
+            (dv_at, dv_plus),
+        );
         let g: &General = self.general.as_deref().expect("a General path");
         let len = (1.0 - theta) * h;
         let dlen = -h * dtheta;

@@ -18,6 +18,10 @@
 //! strength β2·max|h − c − Σc_j|/ω1 on the largest cycle, the Duffing shift there and the
 //! frequency shift |Δω|/ω1 it causes (the response leaves the balance frequency).
 //!
+//! The routines built on the paper's closed forms rather than on the phase quadrature (the
+//! critical noise, the oscillation boundaries, the phase response, the attractor's starts) ask
+//! [`closed_forms`]: they take the paper's family only.
+//!
 //! Reference: Khasminskii's averaging theorem (first order in the small parameters reported
 //! here); Zhuravlev's transformation; `model-class.md` §6 of the project's design notes.
 //!
@@ -27,7 +31,7 @@
 
 use super::Variant;
 use crate::error::{Error, Exact, Result};
-use crate::model::{Keep, Model, Restitution};
+use crate::model::{Keep, Model, PaperFamily, Restitution};
 use serde::{Deserialize, Serialize};
 
 /// The method's name in its refusals.
@@ -190,4 +194,28 @@ pub fn applies(model: &Model, variant: Variant) -> Result<Vec<Assumption>> {
             BALANCE_LIMIT,
         ),
     ])
+}
+
+/// Whether the paper's closed forms apply to `model`: Eq. (5)'s equivalents, Zhuravlev's
+/// transformation and P(A) of h = μ0P(U), k = ω0²U without forcing, with the wall at 0 or
+/// none, on which the critical noise, the oscillation boundaries, the phase response and the
+/// attractor's starts are built. Returns the model's paper family, or refuses any other model
+/// with [`Error::NotApplicable`] naming the first term outside it, its value and why
+/// ([`Model::paper_family`]).
+pub fn closed_forms(model: &Model) -> Result<PaperFamily> {
+    model.paper_family(METHOD).map_err(|e| match e {
+        Error::NotApplicable {
+            method,
+            assumption,
+            reason,
+        } => Error::NotApplicable {
+            method,
+            assumption,
+            reason: format!(
+                "{reason}; the paper's closed forms (Eq. 5, Zhuravlev, P(A)) are those of \
+                 h = μ0P(U), k = ω0²U without forcing, with the wall at 0 or none"
+            ),
+        },
+        other => other,
+    })
 }

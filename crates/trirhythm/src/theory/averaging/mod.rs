@@ -50,7 +50,8 @@ mod shape;
 mod variant;
 
 pub use applies::{
-    applies, Assumption, BALANCE_LIMIT, DAMPING_LIMIT, DUFFING_LIMIT, MEMORY_LIMIT, METHOD,
+    applies, closed_forms, Assumption, BALANCE_LIMIT, DAMPING_LIMIT, DUFFING_LIMIT, MEMORY_LIMIT,
+    METHOD,
 };
 pub use general::{
     linearise, linearise_at, linearise_with, phase_average, Balance, Linearised, PHASE_NODES,
