@@ -307,13 +307,23 @@ pub fn table(notes: &[String], panels: &[Panel]) -> Table {
     csv
 }
 
-/// The rows of a panel.
+/// The rows of a panel; a curve without a label of its own (a family member's averaging or
+/// exact boundary, drawn unlabelled) is named by its member's label, else by its method.
 fn rows(csv: &mut Table, panel: &Panel) {
     for c in &panel.curves {
+        let name = if !c.label.is_empty() {
+            c.label.as_str()
+        } else {
+            panel
+                .curves
+                .iter()
+                .find(|o| c.member.is_some() && o.member == c.member && !o.label.is_empty())
+                .map_or(c.method.as_str(), |o| o.label.as_str())
+        };
         for q in c.points.iter().filter(|q| q.side == Side::Boundary) {
             csv.row([
                 panel.label.clone(),
-                c.label.replace(',', ";"),
+                name.replace(',', ";"),
                 c.method.clone(),
                 num(q.x),
                 num(q.y),

@@ -79,6 +79,10 @@ impl Figure for Fig04 {
             for &(a, f) in &p.curve {
                 csv.row([p.label.clone(), num(p.r), num(a), num(f)]);
             }
+            // the dashed curve: the same control parameters at r = 1
+            for &(a, f) in p.reference.iter().flatten() {
+                csv.row([p.label.clone(), num(1.0), num(a), num(f)]);
+            }
         }
         vec![csv]
     }

@@ -207,8 +207,21 @@ impl Figure for Fig11 {
         for s in &self.settled {
             csv.row([num(s.lambda), num(s.u0), num(s.amplitude), num(s.spread)]);
         }
+        // (a)'s lines: the averaging's branches against λ
+        let mut branches = Table::new(&self.notes, &["branch", "lambda", "A", "stable"]);
+        for (i, b) in self.branches.branches.iter().enumerate() {
+            for q in &b.points {
+                branches.row([
+                    i.to_string(),
+                    num(q.param),
+                    num(q.amplitude),
+                    u8::from(q.stable).to_string(),
+                ]);
+            }
+        }
         vec![
             csv,
+            branches.named("_branches"),
             amplitude_table(&self.notes, &self.panels).named("_pdf"),
         ]
     }

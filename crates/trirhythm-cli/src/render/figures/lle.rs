@@ -134,7 +134,7 @@ fn strip(panel: &Panel) -> LegendStrip {
     entries.push((Symbol::Ring(black), "open: cycle regime".into()));
     // the attractors met, by their lines' dash (the rest regime's line thicker)
     for (word, dash, name) in [
-        ("inner", Dash::Dotted, "inner cycle"),
+        ("inner", Dash::Dotted, "inner cycle (smaller markers)"),
         ("middle", Dash::Chain, "middle cycle"),
         ("outer", Dash::Solid, "solid: outer cycle (or rest)"),
     ] {
@@ -453,7 +453,10 @@ fn draw_panel<DB: Backend>(
             ])
             .map_err(pe)?;
             // the value's shape, open (white inside a thick outline) or filled
-            let ring = outline(shape, pxi(4));
+            // (in a panel of its own the inner cycle's markers smaller: apart from the outer
+            // cycle's of the same value)
+            let inner = !split && attractor_index(&curve.attractor) == 1;
+            let ring = outline(shape, pxi(if inner { 3 } else { 4 }));
             let fill = if open { WHITE } else { colour };
             c.draw_series(std::iter::once(
                 EmptyElement::at((xq, q.y))
@@ -468,6 +471,17 @@ fn draw_panel<DB: Backend>(
     } else {
         strip(panel).draw(&bottom)
     }
+}
+
+/// The caption's key to the drawing: where markers are set apart, the inner cycle's marks.
+fn key() -> Vec<String> {
+    vec![
+        "the markers and error bars of the curves of a panel are set apart sideways, each \
+         curve by a fixed share of the axis (at most a tenth of a decade in D), so that points \
+         at the same D stay visible; the CSV holds each point's D; in a panel with one colour \
+         per value the inner cycle's markers are the smaller ones, on a dotted line"
+            .to_string(),
+    ]
 }
 
 /// A row of the figure: up to two drawn panels, or the legend of a split panel's sub-panels.
@@ -535,7 +549,7 @@ fn rows(panels: &[Panel]) -> Vec<Row<'_>> {
 // An LLE-against-noise figure (Figs 17, 18): the panels two to a row (a panel with many
 // curves split into one sub-panel per value on shared axes, with one legend; a lone panel
 // the row's width).
-picture!(LleAgainstNoise, |self, root| size (2 * PANEL_WIDTH, rows(&self.panels).iter().map(Row::height).sum()), draw {
+picture!(LleAgainstNoise, |self, root| key key(), size (2 * PANEL_WIDTH, rows(&self.panels).iter().map(Row::height).sum()), draw {
     let w = PANEL_WIDTH as i32;
     let mut top = 0;
     for row in rows(&self.panels) {

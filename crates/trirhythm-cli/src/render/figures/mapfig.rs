@@ -584,8 +584,28 @@ fn inset_ranges(p: &MapPanel) -> Option<(std::ops::Range<f64>, std::ops::Range<f
             }
         }
     }
-    Some((zx, zoom(&p.y.grid, p.y.scale, iy0, iy1)))
+    let zy = zoom(&p.y.grid, p.y.scale, iy0, iy1);
+    // an inset only where it enlarges: by MAGNIFY or more along one axis and by at least
+    // KEEP along the other (its plotting area taken as INSET_PLOT of its share of the panel)
+    let (fx, fy) = inset_fraction(p);
+    let scale = |r: &std::ops::Range<f64>, g: &trirhythm::theory::bifurcation::Axis, s: f64, f| {
+        f * INSET_PLOT * (g.stop - g.start).abs() / s / (r.end - r.start)
+    };
+    let (mx, my) = (
+        scale(&zx, &p.x.grid, p.x.scale, fx),
+        scale(&zy, &p.y.grid, p.y.scale, fy),
+    );
+    (mx.max(my) >= MAGNIFY && mx.min(my) >= KEEP).then_some((zx, zy))
 }
+
+/// The least enlargement of an inset along its more enlarged axis (an inset that would show
+/// its box at about the size it has on the panel is not drawn).
+const MAGNIFY: f64 = 1.5;
+/// The least scale of an inset along its other axis (a thin box enlarged across its length
+/// may be drawn a little shorter along it).
+const KEEP: f64 = 0.75;
+/// The share of an inset's width and height its plotting area takes (the rest: tick labels).
+const INSET_PLOT: f64 = 0.75;
 
 /// The side of a grid point's cell in the inset of a map of modes, as a fraction of the
 /// grid's spacing, along an axis where the cells are large.
