@@ -130,7 +130,8 @@ fn key() -> Vec<String> {
          neighbouring columns joined by a thin line; a bar with an arrow (↑) up to the dotted \
          line: regular at its foot and not chaotic up to the largest D tried; a bare bar \
          down to the dotted line, its marker at its top: chaotic at its top, regular nowhere below; the dotted lines \
-         are the ends of the searched range of D; row \"none\": never chaotic, no D_c; row \
+         lie a third of a decade beyond the ends of the searched range of D (a bar reaching \
+         one is one-sided); row \"none\": never chaotic, no D_c; row \
          \"0\": the rest regime chaotic as D → 0 (D_c = 0); ×, on the row \"undecided\": undecided, no bracket (the row's height is no value)"
             .to_string(),
     ]
@@ -283,9 +284,10 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
         match mark_of(curve) {
             Mark::Located(a, b) => {
                 let (a, b) = (a.log10(), b.log10());
-                c.draw_series(bar(a, b)).map_err(pe)?;
                 let m = 0.5 * (a + b);
+                // (the bar over its marker: a bracket shorter than the marker stays seen)
                 draw_shape(&mut c, (x, m), k, colour, filled(k))?;
+                c.draw_series(bar(a, b)).map_err(pe)?;
                 located[k].push((x, m));
             }
             Mark::Above(d) => {
