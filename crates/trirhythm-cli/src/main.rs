@@ -257,6 +257,9 @@ impl Command {
     }
 }
 
+/// The environment variable that asks for a command's parallel profile (`1`).
+const PROFILE_VAR: &str = "TRIRHYTHM_PROFILE";
+
 fn run(mut cli: Cli, given: &args::Given) -> Result<()> {
     // an output that cannot be written (a directory, a missing or read-only directory) is
     // refused before any work starts, for every command
@@ -282,7 +285,15 @@ fn run(mut cli: Cli, given: &args::Given) -> Result<()> {
     if !matches!(cli.command, Command::Presets | Command::Model(_)) {
         io::progress::start_ticker(cli.command.name());
     }
-    let done = dispatch(&cli);
+    // TRIRHYTHM_PROFILE=1: the command's parallel profile on stderr (any command; `figure` and
+    // `report` also per figure with --profile)
+    let done = if std::env::var_os(PROFILE_VAR).is_some_and(|v| v == "1") {
+        let (done, profile) = trirhythm::profile::record(|| dispatch(&cli));
+        eprintln!("{} profile: {}", cli.command.name(), profile.line());
+        done
+    } else {
+        dispatch(&cli)
+    };
     io::progress::end_ticker();
     done?;
     std::io::stdout()

@@ -445,9 +445,11 @@ pub fn critical_noise(request: &CriticalRequest, monitor: &dyn Monitor) -> Resul
     let sizes = &request.sizes;
     let mut notes = Vec::new();
     let mut plans: Vec<(Option<f64>, Vec<PlannedCurve>)> = Vec::new();
-    for (v, p) in &sets {
+    let planned_sets = crate::each(&sets, |(v, p)| {
         monitor.check()?;
-        let (planned, n) = plan_value(p, v.unwrap_or(f64::NAN), &grid, sizes, request.variant)?;
+        plan_value(p, v.unwrap_or(f64::NAN), &grid, sizes, request.variant)
+    })?;
+    for ((v, _), (planned, n)) in sets.iter().zip(planned_sets) {
         notes.extend(n);
         plans.push((*v, planned));
     }
@@ -456,13 +458,17 @@ pub fn critical_noise(request: &CriticalRequest, monitor: &dyn Monitor) -> Resul
         .flat_map(|(_, p)| p.iter().map(PlannedCurve::most_points))
         .sum();
     let key = request.sweep.as_ref().map_or("", |(k, _)| k.as_str());
-    let mut step = 0;
+    let progress = crate::Progress::new(0, total);
+    // every curve of every value side by side
+    let jobs: Vec<&PlannedCurve> = plans.iter().flat_map(|(_, p)| p).collect();
+    let mut computed = crate::each(&jobs, |c| {
+        run_curve(monitor, "critical-noise", key, c, sizes, &progress)
+    })?
+    .into_iter();
     let mut results = Vec::new();
     for (value, planned) in &plans {
         let mut curves = Vec::new();
-        for c in planned {
-            let (curve, n) =
-                run_curve(monitor, "critical-noise", key, c, sizes, (&mut step, total))?;
+        for (curve, n) in computed.by_ref().take(planned.len()) {
             notes.extend(n);
             curves.push(RegimeCurve::of(&curve));
         }

@@ -16,7 +16,6 @@ use crate::notes::{caption, table_notes, Caption};
 use crate::table::Table;
 use crate::{Figure, FigureOptions, Monitor};
 
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use trirhythm::engine::{run, Flow, ImpactMemory, PredictorCorrector, Problem, Stepper, System};
 use trirhythm::model::{preset, Params};
@@ -117,26 +116,57 @@ impl Figure for Fig11 {
         };
         let quiet = pre.params.with("D", 0.0)?;
         monitor.check()?;
-        let branches = trace_branches(
-            &quiet,
-            ctx.variant,
-            What::Rhythmicity,
-            "lambda",
-            0.9,
-            1.0,
-            step,
-        )?;
         let jobs: Vec<(f64, f64)> = LAMBDAS_A
             .iter()
             .flat_map(|&l| STARTS_A.iter().map(move |&u| (l, u)))
             .collect();
-        let settled = jobs
-            .par_iter()
-            .map(|&(l, u)| {
-                monitor.check()?;
-                settle(&quiet.with("lambda", l)?, u, t_settle)
-            })
-            .collect::<Result<Vec<_>>>()?;
+        // (a)'s branches and simulations and (b)'s panels, all side by side
+        let progress = crate::Progress::new(0, LAMBDAS_B.len());
+        let b = |(i, &l): (usize, &f64)| {
+            let p = pre.params.with("lambda", l)?;
+            let panel = amplitude_panel(
+                monitor,
+                format!("(b{}) λ = {l}", i + 1),
+                &p,
+                ctx.variant,
+                &[System::Fractional, System::Equivalent],
+                sz,
+            )?;
+            progress.advance(monitor, 1)?;
+            Ok(panel)
+        };
+        let indexed: Vec<(usize, &f64)> = LAMBDAS_B.iter().enumerate().collect();
+        let (branches, (settled, computed)) = trirhythm::profile::parallel(|stage| {
+            rayon::join(
+                || {
+                    stage.task(|| {
+                        trace_branches(
+                            &quiet,
+                            ctx.variant,
+                            What::Rhythmicity,
+                            "lambda",
+                            0.9,
+                            1.0,
+                            step,
+                        )
+                    })
+                },
+                || {
+                    rayon::join(
+                        || {
+                            stage.task(|| {
+                                crate::each(&jobs, |&(l, u)| {
+                                    monitor.check()?;
+                                    settle(&quiet.with("lambda", l)?, u, t_settle)
+                                })
+                            })
+                        },
+                        || stage.task(|| crate::each(&indexed, |&x| b(x))),
+                    )
+                },
+            )
+        });
+        let (branches, settled, computed) = (branches?, settled?, computed?);
         let mut notes: Vec<String> = pre.notes.iter().map(|s| s.to_string()).collect();
         notes.push(format!(
             "(a): branches of f(A) = 0 (Eq. 18, D = 0) by continuation in λ; simulations of Eq. 1 at D = 0 (impact memory restarted) from U(0) ∈ {STARTS_A:?} for {t_settle} time units, amplitude = mean of the maxima of U over the last tenth (0: the path came to rest)"
@@ -156,17 +186,7 @@ impl Figure for Fig11 {
         });
         notes.push(format!("(b): λ ∈ {LAMBDAS_B:?} chosen (the paper does not print them): 1, 2, 3 and 2 peaks in the theory; ensembles: {}", sz.describe()));
         let mut panels = Vec::new();
-        for (i, &l) in LAMBDAS_B.iter().enumerate() {
-            crate::step(monitor, i, LAMBDAS_B.len())?;
-            let p = pre.params.with("lambda", l)?;
-            let (panel, n) = amplitude_panel(
-                monitor,
-                format!("(b{}) λ = {l}", i + 1),
-                &p,
-                ctx.variant,
-                &[System::Fractional, System::Equivalent],
-                sz,
-            )?;
+        for (panel, n) in computed {
             notes.extend(n);
             panels.push(panel);
         }

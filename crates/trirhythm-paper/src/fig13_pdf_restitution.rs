@@ -57,12 +57,13 @@ impl Figure for Fig13 {
             "the paper prints r for (a) only; (b) shows four r from its range 0.7–0.999".into(),
         ];
         let mut panels = Vec::new();
-        for (i, (name, label, r)) in PANELS.into_iter().enumerate() {
-            crate::step(monitor, i, PANELS.len())?;
+        // every panel side by side
+        let progress = crate::Progress::new(0, PANELS.len());
+        let computed = crate::each(&PANELS, |&(name, label, r)| {
             let pre = preset(name)?;
             let p = pre.params.with("r", r)?;
             let mu0 = p.mu0;
-            let (panel, n) = amplitude_panel(
+            let panel = amplitude_panel(
                 monitor,
                 format!("({label}) μ0 = {mu0}, r = {r}"),
                 &p,
@@ -70,6 +71,10 @@ impl Figure for Fig13 {
                 &[System::Fractional, System::Equivalent],
                 sz,
             )?;
+            progress.advance(monitor, 1)?;
+            Ok(panel)
+        })?;
+        for (panel, n) in computed {
             notes.extend(n);
             panels.push(panel);
         }

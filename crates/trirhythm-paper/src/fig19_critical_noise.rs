@@ -101,16 +101,18 @@ impl Figure for Fig19 {
             ),
             "the caption prints r = 9.998: 0.998 is meant; ω0 is not printed: 0.9 (as in Fig. 17); the swept values and the D grid are chosen (not printed)".into(),
         ];
-        let mut plans = Vec::new();
-        for (_, key, values, _) in PANELS {
-            let (planned, n) = plan_curves(
+        let planned_panels = crate::each(&PANELS, |(_, key, values, _)| {
+            plan_curves(
                 &base,
                 key,
-                &values,
+                values,
                 &d,
                 &sz,
                 (options.variant, options.quick),
-            )?;
+            )
+        })?;
+        let mut plans = Vec::new();
+        for (planned, n) in planned_panels {
             notes.extend(n);
             plans.push(planned);
         }
@@ -118,12 +120,21 @@ impl Figure for Fig19 {
             .iter()
             .flat_map(|p| p.iter().map(crate::lle::PlannedCurve::most_points))
             .sum();
-        let mut step = 0;
+        let progress = crate::Progress::new(0, total);
+        // every curve of both panels side by side
+        let jobs: Vec<(&str, &str, &crate::lle::PlannedCurve)> = PANELS
+            .iter()
+            .zip(&plans)
+            .flat_map(|(&(label, key, _, _), planned)| planned.iter().map(move |c| (label, key, c)))
+            .collect();
+        let mut computed = crate::each(&jobs, |&(label, key, c)| {
+            run_curve(monitor, label, key, c, &sz, &progress)
+        })?
+        .into_iter();
         let mut panels = Vec::new();
         for ((label, key, values, claim), planned) in PANELS.into_iter().zip(&plans) {
             let mut curves = Vec::new();
-            for c in planned {
-                let (curve, n) = run_curve(monitor, label, key, c, &sz, (&mut step, total))?;
+            for (curve, n) in computed.by_ref().take(planned.len()) {
                 notes.extend(n);
                 curves.push(curve);
             }

@@ -201,3 +201,41 @@ pub(crate) fn step(monitor: &dyn Monitor, done: usize, total: usize) -> Result<(
     monitor.progress(done as u64, total as u64);
     monitor.check()
 }
+
+/// The points or panels of a figure done so far, shared by the tasks that run them side by
+/// side: each finished one is reported to the monitor, which may stop the run.
+pub struct Progress {
+    done: std::sync::atomic::AtomicUsize,
+    total: usize,
+}
+
+impl Progress {
+    /// `first` of `total` done.
+    pub fn new(first: usize, total: usize) -> Progress {
+        Progress {
+            done: first.into(),
+            total,
+        }
+    }
+
+    /// `n` more done (skipped or finished): reported to `monitor`, then stop if it asks.
+    pub fn advance(&self, monitor: &dyn Monitor, n: usize) -> Result<()> {
+        let done = self.done.fetch_add(n, std::sync::atomic::Ordering::Relaxed) + n;
+        step(monitor, done.min(self.total), self.total)
+    }
+}
+
+/// `f` of each of `items`, as independent tasks of one stage of the pool (rayon, profiled by
+/// [`trirhythm::profile`]), in the order of `items` whatever the threads.
+pub(crate) fn each<'a, T: Sync, R: Send>(
+    items: &'a [T],
+    f: impl Fn(&'a T) -> Result<R> + Sync,
+) -> Result<Vec<R>> {
+    use rayon::prelude::*;
+    trirhythm::profile::parallel(|stage| {
+        items
+            .par_iter()
+            .map(|x| stage.task(|| f(x)))
+            .collect::<Result<Vec<R>>>()
+    })
+}

@@ -964,8 +964,10 @@ pub fn plan_curves(
     let grid = NoiseGrid::figure(noises, quick);
     let mut planned = Vec::new();
     let mut notes = Vec::new();
-    for &v in values {
-        let (p, n) = plan_value(&base.with(key, v)?, v, &grid, sizes, variant)?;
+    let plans = crate::each(values, |&v| {
+        plan_value(&base.with(key, v)?, v, &grid, sizes, variant)
+    })?;
+    for (p, n) in plans {
         planned.extend(p);
         notes.extend(n);
     }
@@ -1027,22 +1029,20 @@ pub fn rest_start(kind: StartKind, u0: f64, d: f64) -> f64 {
 }
 
 /// Compute one planned curve: its points, its regime decision, its points' signs from the
-/// calls; `step` counts the progress over `total`. `key` names the parameter the curve's value
-/// sets (empty: none, the curve labelled by its attractor alone).
+/// calls; `progress` counts the points done. `key` names the parameter the curve's value sets
+/// (empty: none, the curve labelled by its attractor alone). The grid's points and the phase
+/// prediction run side by side; the extension, one D at a time, waits for each decision.
 pub fn run_curve(
     monitor: &dyn Monitor,
     what: &str,
     key: &str,
     c: &PlannedCurve,
     sizes: &Sizes,
-    (step, total): (&mut usize, usize),
+    progress: &crate::Progress,
 ) -> Result<(Curve, Vec<String>)> {
-    let mut points = Vec::new();
-    let mut notes = Vec::new();
     let u0 = c.start.u0;
-    let mut run = |d: f64, points: &mut Vec<Point>, step: &mut usize| -> Result<()> {
-        crate::step(monitor, *step, total)?;
-        *step += 1;
+    let run = |&d: &f64| -> Result<(Point, Vec<String>)> {
+        monitor.check()?;
         let start = rest_start(c.start.kind, u0, d);
         let at = format!(
             "{what}, {}{} from U(0) = {}, D = {}",
@@ -1052,18 +1052,22 @@ pub fn run_curve(
             sig(d, 4)
         );
         let (q, note) = lle_point(monitor, &c.params.with("D", d)?, start, d, sizes, &at)?;
-        points.push(q);
-        notes.extend(note);
-        Ok(())
+        progress.advance(monitor, 1)?;
+        Ok((q, note.into_iter().collect()))
     };
-    for &d in &c.noises {
-        run(d, &mut points, step)?;
-    }
+    let predict = || match c.start.kind {
+        StartKind::Cycle => phase_prediction(&c.params, sizes, u0, monitor).map(Some),
+        StartKind::Rest => Ok(None),
+    };
+    let (grid, prediction) = trirhythm::profile::parallel(|stage| {
+        rayon::join(
+            || stage.task(|| crate::each(&c.noises, run)),
+            || stage.task(predict),
+        )
+    });
+    let (mut points, mut notes): (Vec<Point>, Vec<Vec<String>>) = grid?.into_iter().unzip();
+    let prediction = prediction?;
     let method = sizes.method(c.params.correlation_time);
-    let prediction = match c.start.kind {
-        StartKind::Cycle => Some(phase_prediction(&c.params, sizes, u0, monitor)?),
-        StartKind::Rest => None,
-    };
     let decide = |points: &[Point]| {
         decide_regime(c.start.kind, points, prediction.as_ref(), sizes.spec.length)
     };
@@ -1072,19 +1076,22 @@ pub fn run_curve(
     // time, until chaos
     let mut left = c.extension.iter();
     while !regime.calls.contains(&Call::Chaotic) {
-        let Some(&d) = left.next() else { break };
-        run(d, &mut points, step)?;
+        let Some(d) = left.next() else { break };
+        let (q, note) = run(d)?;
+        points.push(q);
+        notes.push(note);
         regime = decide(&points);
     }
-    *step += left.count();
+    progress.advance(monitor, left.count())?;
     // a located bracket on a cycle: did the reference paths leave the cycle's well at its ends?
     if let (Bracket::Located { lo, hi }, Some(well)) = (regime.bracket, c.well) {
-        for d in [lo, hi] {
+        regime.escape = crate::each(&[lo, hi], |&d| {
             let problem = Problem::from_params(&c.params.with("D", d)?)?.with_start(u0, 0.0)?;
             let escape = well_escape(&problem, &method, &sizes.spec, well, &OnlyCancel(monitor))?;
-            regime.escape.push(EscapeAt { d, escape });
-        }
+            Ok(EscapeAt { d, escape })
+        })?;
     }
+    let notes: Vec<String> = notes.into_iter().flatten().collect();
     let name = c
         .start
         .attractor
@@ -1157,13 +1164,14 @@ pub fn lle_against_noise(
     planned: &[PlannedCurve],
     key: &str,
     sizes: &Sizes,
-    (first, total): (usize, usize),
+    progress: &crate::Progress,
 ) -> Result<(Panel, Vec<String>)> {
     let mut curves = Vec::new();
     let mut notes = Vec::new();
-    let mut step = first;
-    for c in planned {
-        let (curve, n) = run_curve(monitor, caption, key, c, sizes, (&mut step, total))?;
+    let run = crate::each(planned, |c| {
+        run_curve(monitor, caption, key, c, sizes, progress)
+    })?;
+    for (curve, n) in run {
         notes.extend(n);
         notes.extend(curve.regime_note(&format!("{caption},")));
         curves.push(curve);
@@ -1330,16 +1338,15 @@ pub fn dt_check(figure: &LleNoiseFigure, sizes: &Sizes, monitor: &dyn Monitor) -
         },
         ..sizes.spec.clone()
     };
-    let mut points = Vec::new();
-    for f in DT_CHECK_FACTORS {
+    let points = crate::each(&DT_CHECK_FACTORS, |&f| {
         let dt = dt_rule * f;
         let method = PredictorCorrector {
             dt,
             ..sizes.method(p.correlation_time)
         };
         let r = largest_lyapunov(&problem, &method, &spec, &OnlyCancel(monitor))?;
-        points.push(point_of(dt, &r));
-    }
+        Ok(point_of(dt, &r))
+    })?;
     Ok(DtCheck {
         what,
         panel: letter,
@@ -1448,8 +1455,7 @@ pub fn lle_against_noise_figure(
         ),
         "error bars: ± one standard error over noise realisations; a point's call against the margin δ = 1/W (one-sided Student's t on the unmerged realisations, Bonferroni over the curve's points at 0.05): chaotic, not chaotic, synchronised (at least half the realisations merged) or undecided; rest-regime curves also at D = 1e-6, 1e-5, 1e-4; the exponents are finite-time exponents over the window stated (λ < 1: Mittag-Leffler tails, README \"Lyapunov exponents\")".into(),
     ];
-    let mut plans = Vec::new();
-    for panel in &figure.panels {
+    let planned_panels = crate::each(&figure.panels, |panel| {
         let base = preset(panel.preset)?.params;
         let (planned, n) = plan_curves(
             &base,
@@ -1459,31 +1465,44 @@ pub fn lle_against_noise_figure(
             &sz,
             (options.variant, options.quick),
         )?;
+        Ok((panel, base, planned, n))
+    })?;
+    let mut plans = Vec::new();
+    for (panel, base, planned, n) in planned_panels {
         notes.extend(n);
-        plans.push((base, planned));
+        plans.push((panel, base, planned));
     }
     let total: usize = plans
         .iter()
-        .flat_map(|(_, p)| p.iter().map(PlannedCurve::most_points))
+        .flat_map(|(_, _, p)| p.iter().map(PlannedCurve::most_points))
         .sum();
-    let mut first = None;
-    let mut done = 0;
-    for (panel, (base, planned)) in figure.panels.iter().zip(&plans) {
-        let (p, n) = lle_against_noise(
-            monitor,
-            panel.caption,
-            planned,
-            panel.key,
-            &sz,
-            (done, total),
-        )?;
-        done += planned.iter().map(PlannedCurve::most_points).sum::<usize>();
-        first.get_or_insert(base.clone());
+    let progress = crate::Progress::new(0, total);
+    // the panels' curves and the Δt check, side by side
+    let (computed, check) = trirhythm::profile::parallel(|stage| {
+        rayon::join(
+            || {
+                stage.task(|| {
+                    crate::each(&plans, |(panel, _, planned)| {
+                        lle_against_noise(
+                            monitor,
+                            panel.caption,
+                            planned,
+                            panel.key,
+                            &sz,
+                            &progress,
+                        )
+                    })
+                })
+            },
+            || stage.task(|| dt_check(figure, &sz, monitor)),
+        )
+    });
+    for (p, n) in computed? {
         panels.push(p);
         notes.extend(n);
     }
-    let base = first.expect("two panels");
-    let check = dt_check(figure, &sz, monitor)?;
+    let base = plans.first().expect("two panels").1.clone();
+    let check = check?;
     let lines = check.lines();
     notes.push(format!("{} {}", lines[0], lines[1..].join("; ")));
     if let Some(p) = panels

@@ -698,9 +698,11 @@ pub fn amplitude_panel(
     let mut runs = Vec::new();
     let mut notes = Vec::new();
     let mut a_max = 0.0f64;
-    for &system in systems {
-        let (r, step_warnings, estimator, wells) =
-            stationary_ensemble(monitor, params, variant, system, sizes, 8)?;
+    // the systems' ensembles side by side
+    let ensembles = crate::each(systems, |&system| {
+        stationary_ensemble(monitor, params, variant, system, sizes, 8)
+    })?;
+    for (&system, (r, step_warnings, estimator, wells)) in systems.iter().zip(ensembles) {
         notes.extend(step_warnings.iter().map(|w| {
             format!(
                 "{caption}, MC of {}: step warning: {w}",

@@ -21,7 +21,8 @@
 //! - [`monitor`]: the one convention for watching a long call (progress, finished pieces,
 //!   cancellation);
 //! - [`known_answers`]: problems with exact solutions, shared by tests and benchmarks;
-//! - [`non_finite`]: serde for numbers that may be NaN or ±∞.
+//! - [`non_finite`]: serde for numbers that may be NaN or ±∞;
+//! - [`profile`]: the parallel profile of a long call (CPU time, critical path, speed-up bound).
 //!
 //! The library computes; it does no file I/O and prints nothing. The `trirhythm` binary writes.
 
@@ -33,6 +34,7 @@ pub mod maths;
 pub mod model;
 pub mod monitor;
 pub mod non_finite;
+pub mod profile;
 pub mod special;
 pub mod theory;
 

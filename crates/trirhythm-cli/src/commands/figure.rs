@@ -38,6 +38,11 @@ pub struct FigureArgs {
     /// quality are those of the file.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["quick", "variant"])]
     pub from_data: Option<PathBuf>,
+    /// Print each figure's parallel profile to stderr: the CPU time of its tasks, the critical
+    /// path (the longest chain of work that must run one after the other) and the speed-up
+    /// bound total / critical path.
+    #[arg(long, conflicts_with = "from_data")]
+    pub profile: bool,
 }
 
 /// `figure`: compute (or read back) and draw one figure or all.
@@ -73,10 +78,13 @@ pub fn figure(args: &FigureArgs) -> Result<()> {
         vec![r]
     };
     let request = match &args.from_data {
-        None => Request::Compute(FigureOptions {
-            quick: args.quick,
-            variant: args.variant.into(),
-        }),
+        None => Request::Compute {
+            options: FigureOptions {
+                quick: args.quick,
+                variant: args.variant.into(),
+            },
+            profile: args.profile,
+        },
         Some(dir) => Request::FromData(dir.as_path()),
     };
     let all = args.figure == "all";
@@ -94,6 +102,9 @@ pub fn figure(args: &FigureArgs) -> Result<()> {
             entry.title,
             start.elapsed().as_secs_f64()
         );
+        if let Some(p) = made.profile {
+            eprintln!("figure {} profile: {}", entry.number, p.line());
+        }
         let text: String = files.iter().map(|f| format!("{}\n", f.display())).collect();
         stdout_write(text.as_bytes())?;
     }

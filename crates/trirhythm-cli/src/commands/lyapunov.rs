@@ -293,12 +293,23 @@ fn sweep_lyapunov(
         }
     }
     let bar = progress(values.len() as u64, "lyapunov sweep");
-    let mut rows = Vec::new();
-    for (i, p) in points.iter().enumerate() {
-        let r = largest_lyapunov(&problem.with_params(p)?, method, spec, &Silent)?;
-        rows.push((values[i], r));
-        bar.set_position(i as u64 + 1);
-    }
+    // the points are independent tasks of the pool (each runs its realisations as tasks too)
+    let done = std::sync::atomic::AtomicU64::new(0);
+    let rows: Vec<(f64, LyapunovResult)> = trirhythm::profile::parallel(|stage| {
+        use rayon::prelude::*;
+        points
+            .par_iter()
+            .zip(&values)
+            .map(|(p, &v)| {
+                stage.task(|| {
+                    let r = largest_lyapunov(&problem.with_params(p)?, method, spec, &Silent)?;
+                    let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                    bar.set_position(n);
+                    Ok((v, r))
+                })
+            })
+            .collect::<Result<_>>()
+    })?;
     bar.finish_and_clear();
     let text = match args.format.unwrap_or(SimFormat::Csv) {
         SimFormat::Csv => Csv::of(&views::lle_sweep_table(&header, &key, &rows))?,

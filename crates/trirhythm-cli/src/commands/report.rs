@@ -71,6 +71,9 @@ pub struct ReportArgs {
     /// everything; the data files stay in figures/, named but not linked.
     #[arg(long)]
     pub single_file: bool,
+    /// Print each figure's parallel profile to stderr (as `figure --profile`).
+    #[arg(long, conflicts_with = "from_data")]
+    pub profile: bool,
 }
 
 /// `report`: compute or read every figure, judge every claim, write the page.
@@ -84,7 +87,11 @@ pub fn report(args: &ReportArgs) -> Result<()> {
                 quick: args.quick,
                 variant: args.variant.into(),
             };
-            (options, Request::Compute(options), None)
+            let request = Request::Compute {
+                options,
+                profile: args.profile,
+            };
+            (options, request, None)
         }
         Some(dir) => {
             let (options, present) = data_dir_options(dir)?;
@@ -124,6 +131,9 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         let made = (entry.make)(&request, &figures_dir, true, Some(&mut figures))?;
         let seconds = t.elapsed().as_secs_f64();
         eprintln!("figure {} ({}): {seconds:.1} s", entry.number, entry.title);
+        if let Some(p) = &made.profile {
+            eprintln!("figure {} profile: {}", entry.number, p.line());
+        }
         let files = made
             .files
             .iter()

@@ -18,6 +18,7 @@ use crate::render::plot::{save, Heading, Picture, VerdictLine};
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
+use trirhythm::profile::Profile;
 use trirhythm::theory::averaging::Variant;
 use trirhythm_paper::notes::sig;
 use trirhythm_paper::table::Table;
@@ -48,8 +49,13 @@ struct DataFile<F> {
 /// Where a figure's data comes from.
 #[derive(Clone, Copy)]
 pub enum Request<'a> {
-    /// Computed with these options.
-    Compute(FigureOptions),
+    /// Computed with these options; with `profile`, its parallel profile recorded.
+    Compute {
+        /// Quality and variant.
+        options: FigureOptions,
+        /// Record the computation's parallel profile ([`Made::profile`]).
+        profile: bool,
+    },
     /// Read from `DIR/figNN.json`.
     FromData(&'a Path),
 }
@@ -61,6 +67,8 @@ pub struct Made {
     /// The picture's heading: title, caption lines (parameters, variant, choices) and the
     /// verdicts drawn under it.
     pub heading: Heading,
+    /// The computation's parallel profile, when asked.
+    pub profile: Option<Profile>,
 }
 
 /// Make a figure's files: `(request, out_dir, write figNN.json, collect the data here)`.
@@ -115,14 +123,28 @@ fn make<F: Slot + Picture>(
     data: bool,
     figures: Option<&mut Figures>,
 ) -> Result<Made> {
+    let mut profile = None;
     let file = match request {
-        Request::Compute(options) => DataFile {
-            figure: F::NUMBER,
-            trirhythm: env!("CARGO_PKG_VERSION").to_string(),
-            variant: options.variant,
-            quick: options.quick,
-            data: F::compute(options, &Bar::new(&format!("figure {}", F::NUMBER)))?,
-        },
+        Request::Compute {
+            options,
+            profile: profiled,
+        } => {
+            let bar = Bar::new(&format!("figure {}", F::NUMBER));
+            let data = if *profiled {
+                let (data, p) = trirhythm::profile::record(|| F::compute(options, &bar));
+                profile = Some(p);
+                data?
+            } else {
+                F::compute(options, &bar)?
+            };
+            DataFile {
+                figure: F::NUMBER,
+                trirhythm: env!("CARGO_PKG_VERSION").to_string(),
+                variant: options.variant,
+                quick: options.quick,
+                data,
+            }
+        }
         Request::FromData(dir) => read_data::<F>(dir)?,
     };
     std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
@@ -136,7 +158,7 @@ fn make<F: Slot + Picture>(
     };
     let from = match request {
         Request::FromData(dir) => Some(stem(dir, F::NUMBER).with_extension("json")),
-        Request::Compute(_) => None,
+        Request::Compute { .. } => None,
     };
     let write = || write_files::<F>(file, &staged, data, &options, from.as_deref());
     let (files, data) = match &from {
@@ -149,7 +171,11 @@ fn make<F: Slot + Picture>(
     if let Some(figures) = figures {
         *F::slot(figures) = Some(data);
     }
-    Ok(Made { files, heading })
+    Ok(Made {
+        files,
+        heading,
+        profile,
+    })
 }
 
 /// Write a figure's files under `stem` (JSON when asked, CSV, PNG, SVG); returns the paths

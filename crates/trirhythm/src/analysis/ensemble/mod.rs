@@ -152,52 +152,57 @@ pub fn run_paths(
     // that every thread has one (a path's bits do not depend on its group)
     let width = group_lanes(spec.lanes, paths.len(), 1)?;
     let lanes = Lanes::Width(width);
-    let groups: Vec<Vec<PathStats>> = paths
-        .par_chunks(width)
-        .map(|group| {
-            monitor.check()?;
-            let mut steppers = group_steppers(problem, method, spec.seed, group, &history)?;
-            let mut recorders: Vec<_> = group
-                .iter()
-                .map(|&i| {
-                    let u0 = problem.start(i).0;
-                    Recorder::new(&layout, sizes.burn, spec.sample_every, i, u0)
-                })
-                .collect();
-            let mut observers: Vec<_> = recorders
-                .iter_mut()
-                .map(|rec| {
-                    let counter = &counter;
-                    move |st: &Stepper| {
-                        let f = rec.observe(st);
-                        if st.steps() % TICK == 0 {
-                            let d = counter.fetch_add(TICK, Ordering::Relaxed) + TICK;
-                            monitor.progress(d.min(total), total);
-                            if monitor.cancelled() {
-                                return Flow::Stop;
+    let groups: Vec<Vec<PathStats>> = crate::profile::parallel(|stage| {
+        paths
+            .par_chunks(width)
+            .map(|group| {
+                stage.task(|| {
+                    monitor.check()?;
+                    let mut steppers = group_steppers(problem, method, spec.seed, group, &history)?;
+                    let mut recorders: Vec<_> = group
+                        .iter()
+                        .map(|&i| {
+                            let u0 = problem.start(i).0;
+                            Recorder::new(&layout, sizes.burn, spec.sample_every, i, u0)
+                        })
+                        .collect();
+                    let mut observers: Vec<_> = recorders
+                        .iter_mut()
+                        .map(|rec| {
+                            let counter = &counter;
+                            move |st: &Stepper| {
+                                let f = rec.observe(st);
+                                if st.steps() % TICK == 0 {
+                                    let d = counter.fetch_add(TICK, Ordering::Relaxed) + TICK;
+                                    monitor.progress(d.min(total), total);
+                                    if monitor.cancelled() {
+                                        return Flow::Stop;
+                                    }
+                                }
+                                f
                             }
-                        }
-                        f
+                        })
+                        .collect();
+                    let taken = run_lanes(&mut steppers, steps, &mut observers, lanes, &Silent)?;
+                    drop(observers);
+                    let mut out = Vec::with_capacity(group.len());
+                    for (((&i, s), rec), t) in group.iter().zip(&steppers).zip(recorders).zip(taken)
+                    {
+                        t.map_err(|e| Error::InPath {
+                            path: i,
+                            u0: problem.start(i).0,
+                            error: Box::new(e),
+                        })?;
+                        monitor.check()?;
+                        let stats = rec.finish(s);
+                        monitor.finished(&stats)?;
+                        out.push(stats);
                     }
+                    Ok(out)
                 })
-                .collect();
-            let taken = run_lanes(&mut steppers, steps, &mut observers, lanes, &Silent)?;
-            drop(observers);
-            let mut out = Vec::with_capacity(group.len());
-            for (((&i, s), rec), t) in group.iter().zip(&steppers).zip(recorders).zip(taken) {
-                t.map_err(|e| Error::InPath {
-                    path: i,
-                    u0: problem.start(i).0,
-                    error: Box::new(e),
-                })?;
-                monitor.check()?;
-                let stats = rec.finish(s);
-                monitor.finished(&stats)?;
-                out.push(stats);
-            }
-            Ok(out)
-        })
-        .collect::<Result<_>>()?;
+            })
+            .collect::<Result<_>>()
+    })?;
     Ok(groups.into_iter().flatten().collect())
 }
 

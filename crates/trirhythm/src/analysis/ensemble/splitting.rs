@@ -62,6 +62,7 @@
 use super::spec::Wells;
 use crate::error::{Error, Result};
 use crate::monitor::Monitor;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// The cores of the wells on the order parameter: disjoint, ascending intervals [lo, hi], one
@@ -534,6 +535,59 @@ fn excursion<W: Walker>(
     })
 }
 
+/// The replica that replaces a killed one at level `z`: a branch of `parent` where its replay
+/// first passes `z` (where it starts, if it starts above), then run with stream `stream` until
+/// it lands; with the steps computed and whether its excursion was cut.
+fn branch<W: Walker>(
+    parent: &Replica<W>,
+    z: f64,
+    stream: u64,
+    run: &(impl Fn(&Replica<W>, Option<f64>) -> Result<Excursion<W>> + Sync),
+) -> Result<(Replica<W>, u64, u64)> {
+    let mut steps = 0;
+    let found = if parent.start_score > z {
+        // the parent starts above the level: the branch starts where it does
+        Some(Branch::Above(parent.start.clone(), parent.start_score))
+    } else {
+        let e = run(parent, Some(z))?;
+        steps += e.steps;
+        e.branch
+    };
+    let (w, s, landed) = match found {
+        Some(Branch::Above(w, s)) => (w, s, false),
+        // the parent entered the target before its score passed the level: the branch is that
+        // success
+        Some(Branch::Landed) => (parent.start.clone(), parent.start_score, true),
+        None => {
+            return Err(Error::Undefined {
+                what: "an AMS branch",
+                why: "the replay of a survivor did not pass its own maximum (the walker is not \
+                      deterministic given its stream)"
+                    .into(),
+            })
+        }
+    };
+    let mut r = Replica {
+        start: w,
+        start_score: s,
+        stream,
+        max: f64::NEG_INFINITY,
+        success: false,
+    };
+    let mut unended = 0;
+    if landed {
+        r.max = f64::INFINITY;
+        r.success = true;
+    } else {
+        let e = run(&r, None)?;
+        steps += e.steps;
+        unended += e.unended as u64;
+        r.max = if e.success { f64::INFINITY } else { e.max };
+        r.success = e.success;
+    }
+    Ok((r, steps, unended))
+}
+
 /// The probability that an exit of well `from` in direction `d` reaches the core of `to`
 /// before any other core, by AMS from the exit states `starts`.
 #[allow(clippy::too_many_arguments)]
@@ -596,20 +650,35 @@ pub(super) fn ams<W: Walker>(
             above,
         )
     };
+    // the excursions of a stage are independent tasks; their streams and parents are drawn
+    // in order beforehand, and their results put back in order: the bits do not depend on
+    // the threads
+    let streams: Vec<u64> = (0..n).map(|_| next_stream()).collect();
+    let first: Vec<(Replica<W>, u64, u64)> = crate::profile::parallel(|stage| {
+        starts
+            .into_par_iter()
+            .zip(streams)
+            .map(|((w, a), stream)| {
+                stage.task(|| {
+                    let mut r = Replica {
+                        start: w,
+                        start_score: d.score(a),
+                        stream,
+                        max: f64::NEG_INFINITY,
+                        success: false,
+                    };
+                    let e = run(&r, None)?;
+                    r.max = if e.success { f64::INFINITY } else { e.max };
+                    r.success = e.success;
+                    Ok((r, e.steps, e.unended as u64))
+                })
+            })
+            .collect::<Result<_>>()
+    })?;
     let mut reps = Vec::with_capacity(n);
-    for (w, a) in starts {
-        let mut r = Replica {
-            start: w,
-            start_score: d.score(a),
-            stream: next_stream(),
-            max: f64::NEG_INFINITY,
-            success: false,
-        };
-        let e = run(&r, None)?;
-        t.steps += e.steps;
-        t.unended += e.unended as u64;
-        r.max = if e.success { f64::INFINITY } else { e.max };
-        r.success = e.success;
+    for (r, steps, unended) in first {
+        t.steps += steps;
+        t.unended += unended;
         reps.push(r);
     }
     let mut draws = Draws::new(stream(replica, from, purpose + 100, 0));
@@ -639,52 +708,25 @@ pub(super) fn ams<W: Walker>(
         t.level = d.score(z);
         t.level_probability = crate::maths::exp(log_p);
         let survivors: Vec<usize> = (0..n).filter(|&k| reps[k].max > z).collect();
-        for &k in &killed {
-            let parent = survivors[draws.below(survivors.len())];
-            let branch = if reps[parent].start_score > z {
-                // the parent starts above the level: the branch starts where it does
-                Some(Branch::Above(
-                    reps[parent].start.clone(),
-                    reps[parent].start_score,
-                ))
-            } else {
-                let e = run(&reps[parent], Some(z))?;
-                t.steps += e.steps;
-                e.branch
-            };
-            let (w, s, landed) = match branch {
-                Some(Branch::Above(w, s)) => (w, s, false),
-                // the parent entered the target before its score passed the level: the branch
-                // is that success
-                Some(Branch::Landed) => {
-                    (reps[parent].start.clone(), reps[parent].start_score, true)
-                }
-                None => {
-                    return Err(Error::Undefined {
-                        what: "an AMS branch",
-                        why: "the replay of a survivor did not pass its own maximum (the walker \
-                              is not deterministic given its stream)"
-                            .into(),
+        // (killed replica, its parent among the survivors, its stream), drawn in order
+        let jobs: Vec<(usize, usize, u64)> = killed
+            .iter()
+            .map(|&k| (k, survivors[draws.below(survivors.len())], next_stream()))
+            .collect();
+        let reps_now = &reps;
+        let branches: Vec<(usize, Replica<W>, u64, u64)> = crate::profile::parallel(|stage| {
+            jobs.par_iter()
+                .map(|&(k, parent, stream)| {
+                    stage.task(|| {
+                        let (r, steps, unended) = branch(&reps_now[parent], z, stream, &run)?;
+                        Ok((k, r, steps, unended))
                     })
-                }
-            };
-            let mut r = Replica {
-                start: w,
-                start_score: s,
-                stream: next_stream(),
-                max: f64::NEG_INFINITY,
-                success: false,
-            };
-            if landed {
-                r.max = f64::INFINITY;
-                r.success = true;
-            } else {
-                let e = run(&r, None)?;
-                t.steps += e.steps;
-                t.unended += e.unended as u64;
-                r.max = if e.success { f64::INFINITY } else { e.max };
-                r.success = e.success;
-            }
+                })
+                .collect::<Result<_>>()
+        })?;
+        for (k, r, steps, unended) in branches {
+            t.steps += steps;
+            t.unended += unended;
             reps[k] = r;
         }
     }

@@ -382,64 +382,70 @@ pub fn run_wells(
     let theory_wells = wells;
     let nt = theory_wells.len();
     let pilot_steps = sizes.burn + (sizes.window / 4).max(1);
-    let pilots: Vec<Pilot> = (0..nt)
-        .into_par_iter()
-        .map(|i| {
-            let mut w = oscillator(theory_wells.modes[i], 0)?;
-            w.renoise(spec.seed, stream(u64::MAX, i, 3, 0));
-            // every turning amplitude after the burn-in, and those before the first landing in
-            // another well's core (the pilot's time in label i)
-            let mut seen = Vec::new();
-            let mut own = Vec::new();
-            let mut stay: Option<u64> = None;
-            let mut turnings = 0u64;
-            for n in 0..pilot_steps {
-                if let Some(a) = w.advance()?.label {
-                    turnings += 1;
-                    if stay.is_none() {
-                        let k = theory_wells.well_of(a);
+    let pilots: Vec<Pilot> = crate::profile::parallel(|stage| {
+        (0..nt)
+            .into_par_iter()
+            .map(|i| {
+                stage.task(|| {
+                    let mut w = oscillator(theory_wells.modes[i], 0)?;
+                    w.renoise(spec.seed, stream(u64::MAX, i, 3, 0));
+                    // every turning amplitude after the burn-in, and those before the first landing in
+                    // another well's core (the pilot's time in label i)
+                    let mut seen = Vec::new();
+                    let mut own = Vec::new();
+                    let mut stay: Option<u64> = None;
+                    let mut turnings = 0u64;
+                    for n in 0..pilot_steps {
+                        if let Some(a) = w.advance()?.label {
+                            turnings += 1;
+                            if stay.is_none() {
+                                let k = theory_wells.well_of(a);
+                                let (lo, hi) = theory_wells.core(k);
+                                if k != i && a >= lo && a <= hi {
+                                    stay = Some(turnings - 1);
+                                }
+                            }
+                            if n >= sizes.burn {
+                                seen.push(a);
+                                if stay.is_none() {
+                                    own.push(a);
+                                }
+                            }
+                        }
+                        if n % (1 << 16) == 0 {
+                            monitor.check()?;
+                        }
+                    }
+                    let in_core = |k: usize, of: &[f64]| {
                         let (lo, hi) = theory_wells.core(k);
-                        if k != i && a >= lo && a <= hi {
-                            stay = Some(turnings - 1);
-                        }
-                    }
-                    if n >= sizes.burn {
-                        seen.push(a);
-                        if stay.is_none() {
-                            own.push(a);
-                        }
-                    }
-                }
-                if n % (1 << 16) == 0 {
-                    monitor.check()?;
-                }
-            }
-            let in_core = |k: usize, of: &[f64]| {
-                let (lo, hi) = theory_wells.core(k);
-                of.iter().filter(|&&a| a >= lo && a <= hi).count() as f64 / of.len().max(1) as f64
-            };
-            let share: Vec<f64> = (0..nt).map(|k| in_core(k, &seen)).collect();
-            let inside = in_core(i, &own);
-            let (lo, hi) = theory_wells.core(i);
-            own.sort_by(f64::total_cmp);
-            let q =
-                |f: f64| own[((f * (own.len() - 1) as f64).round() as usize).min(own.len() - 1)];
-            let core = if own.len() >= 10 && inside >= MIN_INSIDE {
-                (
-                    q(wspec.core_quantile).max(lo),
-                    q(1.0 - wspec.core_quantile).min(hi),
-                )
-            } else {
-                (lo, hi)
-            };
-            Ok(Pilot {
-                share,
-                inside,
-                stay,
-                core,
+                        of.iter().filter(|&&a| a >= lo && a <= hi).count() as f64
+                            / of.len().max(1) as f64
+                    };
+                    let share: Vec<f64> = (0..nt).map(|k| in_core(k, &seen)).collect();
+                    let inside = in_core(i, &own);
+                    let (lo, hi) = theory_wells.core(i);
+                    own.sort_by(f64::total_cmp);
+                    let q = |f: f64| {
+                        own[((f * (own.len() - 1) as f64).round() as usize).min(own.len() - 1)]
+                    };
+                    let core = if own.len() >= 10 && inside >= MIN_INSIDE {
+                        (
+                            q(wspec.core_quantile).max(lo),
+                            q(1.0 - wspec.core_quantile).min(hi),
+                        )
+                    } else {
+                        (lo, hi)
+                    };
+                    Ok(Pilot {
+                        share,
+                        inside,
+                        stay,
+                        core,
+                    })
+                })
             })
-        })
-        .collect::<Result<_>>()?;
+            .collect::<Result<_>>()
+    })?;
     let pilot_inside: Vec<f64> = pilots.iter().map(|p| p.inside).collect();
     let (kept, mut missing, mut refusals) = simulated_wells(&pilots);
     for m in &mut missing {
@@ -464,36 +470,41 @@ pub fn run_wells(
         let d = finished.fetch_add(1, Ordering::Relaxed) + 1;
         monitor.progress(d, total);
     };
-    let runs: Vec<WellRun> = units
-        .par_iter()
-        .map(|&(r, i)| {
-            monitor.check()?;
-            let start = (wells.modes[i], 0.0);
-            let w = oscillator(wells.modes[i], 0)?;
-            let mut rec = Recorder::new(&layout, sizes.burn, spec.sample_every, r as u64, start.0);
-            let mut counts = (0, 0);
-            let (path, exits) = well_path(
-                w,
-                i,
-                &cores,
-                &sp,
-                r as u64,
-                monitor,
-                &mut |o: &Oscillator| {
-                    let _ = crate::engine::Observer::observe(&mut rec, &o.s);
-                    counts = (o.s.impacts(), o.s.sticking_steps());
-                },
-            )
-            .map_err(|e| Error::InPath {
-                path: r as u64,
-                u0: start.0,
-                error: Box::new(e),
-            })?;
-            let stats = rec.finish_counted(counts);
-            tick();
-            Ok((stats, path, exits))
-        })
-        .collect::<Result<_>>()?;
+    let runs: Vec<WellRun> = crate::profile::parallel(|stage| {
+        units
+            .par_iter()
+            .map(|&(r, i)| {
+                stage.task(|| {
+                    monitor.check()?;
+                    let start = (wells.modes[i], 0.0);
+                    let w = oscillator(wells.modes[i], 0)?;
+                    let mut rec =
+                        Recorder::new(&layout, sizes.burn, spec.sample_every, r as u64, start.0);
+                    let mut counts = (0, 0);
+                    let (path, exits) = well_path(
+                        w,
+                        i,
+                        &cores,
+                        &sp,
+                        r as u64,
+                        monitor,
+                        &mut |o: &Oscillator| {
+                            let _ = crate::engine::Observer::observe(&mut rec, &o.s);
+                            counts = (o.s.impacts(), o.s.sticking_steps());
+                        },
+                    )
+                    .map_err(|e| Error::InPath {
+                        path: r as u64,
+                        u0: start.0,
+                        error: Box::new(e),
+                    })?;
+                    let stats = rec.finish_counted(counts);
+                    tick();
+                    Ok((stats, path, exits))
+                })
+            })
+            .collect::<Result<_>>()
+    })?;
     // 2. the AMS of every (replica, transition)
     let mut exits: Vec<Option<super::splitting::Exits<Oscillator>>> = Vec::new();
     let mut stats: Vec<PathStats> = Vec::new();
@@ -520,14 +531,17 @@ pub fn run_wells(
         }
     }
     drop(exits);
-    let mut transitions: Vec<Transition> = jobs
-        .into_par_iter()
-        .map(|(r, i, j, d, starts)| {
-            let t = ams(starts, i, j, d, &cores, &sp, r as u64, monitor);
-            tick();
-            t
-        })
-        .collect::<Result<_>>()?;
+    let mut transitions: Vec<Transition> = crate::profile::parallel(|stage| {
+        jobs.into_par_iter()
+            .map(|(r, i, j, d, starts)| {
+                stage.task(|| {
+                    let t = ams(starts, i, j, d, &cores, &sp, r as u64, monitor);
+                    tick();
+                    t
+                })
+            })
+            .collect::<Result<_>>()
+    })?;
     for (k, t) in transitions.iter_mut().enumerate() {
         let r = k / pairs.len();
         let p = &paths[r * nw + t.from];

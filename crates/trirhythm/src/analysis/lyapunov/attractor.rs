@@ -429,10 +429,12 @@ pub fn attractor_starts(
     starts.extend([1.0, 0.01]);
     let found: Vec<StartAttractor> = {
         use rayon::prelude::*;
-        starts
-            .par_iter()
-            .map(|&u0| classify_start(problem, method, u0, spec))
-            .collect::<Result<_>>()?
+        crate::profile::parallel(|stage| {
+            starts
+                .par_iter()
+                .map(|&u0| stage.task(|| classify_start(problem, method, u0, spec)))
+                .collect::<Result<_>>()
+        })?
     };
     let mut kept: Vec<StartAttractor> = vec![];
     for s in found {

@@ -101,13 +101,17 @@ pub fn well_escape(
     let (transient, window) = spec.sizes(method)?;
     let steps = transient + window;
     monitor.check()?;
-    let times: Vec<Option<f64>> = (0..spec.paths as u64)
-        .into_par_iter()
-        .map(|i| {
-            monitor.check()?;
-            first_escape(problem, method, (spec.seed, i), (lo, hi), steps)
-        })
-        .collect::<Result<_>>()?;
+    let times: Vec<Option<f64>> = crate::profile::parallel(|stage| {
+        (0..spec.paths as u64)
+            .into_par_iter()
+            .map(|i| {
+                stage.task(|| {
+                    monitor.check()?;
+                    first_escape(problem, method, (spec.seed, i), (lo, hi), steps)
+                })
+            })
+            .collect::<Result<_>>()
+    })?;
     let mut left: Vec<f64> = times.iter().flatten().copied().collect();
     left.sort_by(f64::total_cmp);
     let median_time = match left.len() {

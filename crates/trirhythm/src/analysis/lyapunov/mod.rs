@@ -540,20 +540,25 @@ pub fn run_paths(
         // realisations, narrower groups so that every thread has one (the bits do not depend
         // on the grouping)
         let lanes = group_lanes(spec.lanes, paths.len(), 2)?;
-        let groups: Vec<Vec<PathRun>> = paths
-            .par_chunks(lanes / 2)
-            .map(|group| {
-                monitor.check()?;
-                let mut steppers = Vec::with_capacity(2 * group.len());
-                for &i in group {
-                    let (a, b) = pair(i)?;
-                    steppers.extend([a, b]);
-                }
-                let d0 = spec.separation;
-                let results = pairs_in_lanes(steppers, d0, group, spec, sizes, lanes, &tick)?;
-                finished_runs(results, monitor)
-            })
-            .collect::<Result<_>>()?;
+        let groups: Vec<Vec<PathRun>> = crate::profile::parallel(|stage| {
+            paths
+                .par_chunks(lanes / 2)
+                .map(|group| {
+                    stage.task(|| {
+                        monitor.check()?;
+                        let mut steppers = Vec::with_capacity(2 * group.len());
+                        for &i in group {
+                            let (a, b) = pair(i)?;
+                            steppers.extend([a, b]);
+                        }
+                        let d0 = spec.separation;
+                        let results =
+                            pairs_in_lanes(steppers, d0, group, spec, sizes, lanes, &tick)?;
+                        finished_runs(results, monitor)
+                    })
+                })
+                .collect::<Result<_>>()
+        })?;
         return Ok(groups.into_iter().flatten().collect());
     }
     if spec.method == LyapunovMethod::Tangent && lanes > 1 {
@@ -564,46 +569,54 @@ pub fn run_paths(
             Lanes::Auto => 4,
             given => group_lanes(given, paths.len(), 1)?,
         };
-        let groups: Vec<Vec<PathRun>> = paths
-            .par_chunks(lanes)
-            .map(|group| {
-                monitor.check()?;
-                let (mut refs, mut tangents) = (vec![], vec![]);
-                for &i in group {
-                    let u0 = problem.start(i).0;
-                    let a = make(i, u0)?;
-                    tangents.push(Tangent::new(&a, (shift(u0), 0.0)));
-                    refs.push(a);
-                }
-                let results =
-                    tangents_in_lanes((refs, tangents), group, spec, sizes, lanes, &tick)?;
-                finished_runs(results, monitor)
-            })
-            .collect::<Result<_>>()?;
+        let groups: Vec<Vec<PathRun>> = crate::profile::parallel(|stage| {
+            paths
+                .par_chunks(lanes)
+                .map(|group| {
+                    stage.task(|| {
+                        monitor.check()?;
+                        let (mut refs, mut tangents) = (vec![], vec![]);
+                        for &i in group {
+                            let u0 = problem.start(i).0;
+                            let a = make(i, u0)?;
+                            tangents.push(Tangent::new(&a, (shift(u0), 0.0)));
+                            refs.push(a);
+                        }
+                        let results =
+                            tangents_in_lanes((refs, tangents), group, spec, sizes, lanes, &tick)?;
+                        finished_runs(results, monitor)
+                    })
+                })
+                .collect::<Result<_>>()
+        })?;
         return Ok(groups.into_iter().flatten().collect());
     }
-    paths
-        .par_iter()
-        .map(|&i| {
-            monitor.check()?;
-            let (exponent, running) = match spec.method {
-                LyapunovMethod::TwoTrajectory => {
-                    let (a, b) = pair(i)?;
-                    let d0 = spec.separation;
-                    one_path(TwoPaths { a, b, d0 }, spec, sizes, i, &tick)
-                }
-                LyapunovMethod::Tangent => {
-                    let u0 = problem.start(i).0;
-                    let a = make(i, u0)?;
-                    let t = Tangent::new(&a, (shift(u0), 0.0));
-                    one_path(PathAndTangent { a, t }, spec, sizes, i, &tick)
-                }
-            }?;
-            let run = PathRun { exponent, running };
-            monitor.finished(&run)?;
-            Ok(run)
-        })
-        .collect()
+    crate::profile::parallel(|stage| {
+        paths
+            .par_iter()
+            .map(|&i| {
+                stage.task(|| {
+                    monitor.check()?;
+                    let (exponent, running) = match spec.method {
+                        LyapunovMethod::TwoTrajectory => {
+                            let (a, b) = pair(i)?;
+                            let d0 = spec.separation;
+                            one_path(TwoPaths { a, b, d0 }, spec, sizes, i, &tick)
+                        }
+                        LyapunovMethod::Tangent => {
+                            let u0 = problem.start(i).0;
+                            let a = make(i, u0)?;
+                            let t = Tangent::new(&a, (shift(u0), 0.0));
+                            one_path(PathAndTangent { a, t }, spec, sizes, i, &tick)
+                        }
+                    }?;
+                    let run = PathRun { exponent, running };
+                    monitor.finished(&run)?;
+                    Ok(run)
+                })
+            })
+            .collect()
+    })
 }
 
 /// Merge the realisations 0..`spec.paths` (from [`run_paths`], in any split and order) into the

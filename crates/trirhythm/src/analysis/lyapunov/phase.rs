@@ -375,30 +375,36 @@ pub fn phase_response(
     let done = AtomicU64::new(0);
     let total = nodes.len() as u64;
     let n = spec.periods;
-    let shifts: Vec<(f64, f64, f64)> = nodes
-        .par_iter()
-        .map(|(_, node)| -> Result<(f64, f64, f64)> {
-            monitor.check()?;
-            let run = |mass: f64| -> Result<Vec<f64>> {
-                let mut copy = node.clone();
-                if !copy.pulse(mass) {
-                    return Err(Error::Undefined {
-                        what: "phase response",
-                        why: "the cycle sticks at the wall at a kick node".into(),
-                    });
-                }
-                sections(&mut copy, n, wall, max_steps * n as u64)
-            };
-            let (p1, m1, p2, m2) = (run(m)?, run(-m)?, run(2.0 * m)?, run(-2.0 * m)?);
-            let half = |a: &[f64], b: &[f64], i: usize| 0.5 * (a[i] - b[i]);
-            let (d1, last) = aitken([n / 3 - 1, 2 * n / 3 - 1, n - 1].map(|i| half(&p1, &m1, i)));
-            let (d2, _) = aitken([n / 3 - 1, 2 * n / 3 - 1, n - 1].map(|i| half(&p2, &m2, i)));
-            let k = done.fetch_add(1, Ordering::Relaxed) + 1;
-            monitor.progress(k, total);
-            let z = |d: f64, mass: f64| -omega * d / mass;
-            Ok((z(d1, m), z(d2, 2.0 * m), z(d1 - last, m)))
-        })
-        .collect::<Result<_>>()?;
+    let shifts: Vec<(f64, f64, f64)> = crate::profile::parallel(|stage| {
+        nodes
+            .par_iter()
+            .map(|(_, node)| {
+                stage.task(|| -> Result<(f64, f64, f64)> {
+                    monitor.check()?;
+                    let run = |mass: f64| -> Result<Vec<f64>> {
+                        let mut copy = node.clone();
+                        if !copy.pulse(mass) {
+                            return Err(Error::Undefined {
+                                what: "phase response",
+                                why: "the cycle sticks at the wall at a kick node".into(),
+                            });
+                        }
+                        sections(&mut copy, n, wall, max_steps * n as u64)
+                    };
+                    let (p1, m1, p2, m2) = (run(m)?, run(-m)?, run(2.0 * m)?, run(-2.0 * m)?);
+                    let half = |a: &[f64], b: &[f64], i: usize| 0.5 * (a[i] - b[i]);
+                    let (d1, last) =
+                        aitken([n / 3 - 1, 2 * n / 3 - 1, n - 1].map(|i| half(&p1, &m1, i)));
+                    let (d2, _) =
+                        aitken([n / 3 - 1, 2 * n / 3 - 1, n - 1].map(|i| half(&p2, &m2, i)));
+                    let k = done.fetch_add(1, Ordering::Relaxed) + 1;
+                    monitor.progress(k, total);
+                    let z = |d: f64, mass: f64| -omega * d / mass;
+                    Ok((z(d1, m), z(d2, 2.0 * m), z(d1 - last, m)))
+                })
+            })
+            .collect::<Result<_>>()
+    })?;
     let samples: Vec<PhaseSample> = nodes
         .iter()
         .zip(shifts)
