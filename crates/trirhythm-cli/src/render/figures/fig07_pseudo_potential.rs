@@ -53,7 +53,14 @@ fn frame_with(
         lo - 0.3 * span
     };
     let y = padded_range([bottom, hi + above * span]);
-    let clipped = curves
+    let clipped = clip(curves, &(f64::NEG_INFINITY..x_end), &y);
+    (y, clipped)
+}
+
+/// The curves with only their points inside the window `x` × `y` (A0 up to and including
+/// `x.end`).
+fn clip(curves: &[Curve], x: &Range<f64>, y: &Range<f64>) -> Vec<Curve> {
+    curves
         .iter()
         .map(|c| Curve {
             label: c.label.clone(),
@@ -61,12 +68,11 @@ fn frame_with(
                 .points
                 .iter()
                 .copied()
-                .filter(|p| p.0 <= x_end && y.contains(&p.1))
+                .filter(|p| p.0 >= x.start && p.0 <= x.end && y.contains(&p.1))
                 .collect(),
             extrema: c.extrema.clone(),
         })
-        .collect();
-    (y, clipped)
+        .collect()
 }
 
 /// The radius of the extrema's markers (before scaling).
@@ -315,19 +321,7 @@ fn frame_window(curves: &[Curve], x: &Range<f64>) -> (Range<f64>, Vec<Curve>) {
         });
     let span = (hi - lo).max(1e-9);
     let y = padded_range([lo - 0.2 * span, hi + 0.3 * span]);
-    let clipped = curves
-        .iter()
-        .map(|c| Curve {
-            label: c.label.clone(),
-            points: c
-                .points
-                .iter()
-                .copied()
-                .filter(|p| x.contains(&p.0) && y.contains(&p.1))
-                .collect(),
-            extrema: c.extrema.clone(),
-        })
-        .collect();
+    let clipped = clip(curves, x, &y);
     (y, clipped)
 }
 
