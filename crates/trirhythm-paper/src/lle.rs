@@ -305,16 +305,21 @@ pub enum Flag {
     /// A finite exponent with its standard error.
     #[default]
     Value,
-    /// A realisation's copy merged with its reference: the mean is −∞ (no sign).
+    /// At least half the realisations' copies merged with their references: the median
+    /// realisation synchronised, the mean is −∞ (no sign). A minority of merged realisations
+    /// leaves a [`Flag::Value`]: the mean of the others, their number kept in
+    /// [`Point::merged`].
     Merged,
     /// No value (no standard error with one realisation, or a non-finite result).
     Undefined,
 }
 
 impl Flag {
-    /// The flag of an exponent `y ± se` from realisations of which `merged` merged.
-    pub fn of(merged: usize, y: f64, se: f64) -> Flag {
-        if merged > 0 {
+    /// The flag of an exponent `y ± se` (the mean of the realisations that did not merge) from
+    /// `n` realisations of which `merged` merged: merged when at least half did (the rule of
+    /// a point's call, `verdict::rules::regime`).
+    pub fn of(merged: usize, n: usize, y: f64, se: f64) -> Flag {
+        if merged > 0 && 2 * merged >= n {
             Flag::Merged
         } else if y.is_finite() && se.is_finite() {
             Flag::Value
@@ -784,8 +789,9 @@ impl Panel {
     }
 }
 
-/// A curve's points as the sign-change rule reads them: the value, its standard error and
-/// realisations − 1 degrees of freedom (no test where the flag is not a value).
+/// A curve's points as the sign-change and trend rules read them: the value (the mean of the
+/// realisations that did not merge), its standard error and those realisations − 1 degrees
+/// of freedom (no test where the flag is not a value).
 pub fn lle_curve(c: &Curve) -> LleCurve {
     LleCurve {
         label: c.label.clone(),
@@ -796,7 +802,7 @@ pub fn lle_curve(c: &Curve) -> LleCurve {
                 d: q.x,
                 lle: if q.flag == Flag::Value { q.y } else { f64::NAN },
                 se: q.se,
-                dof: Some(q.n.saturating_sub(1).max(1) as f64),
+                dof: Some(q.n.saturating_sub(q.merged + 1).max(1) as f64),
             })
             .collect(),
     }
@@ -813,8 +819,8 @@ pub fn mark_signs(curves: &mut [&mut Curve]) {
     }
 }
 
-/// One LLE at parameters `p` from `u0`: a point at abscissa `x` (merged realisations: −∞, flagged),
-/// and a note when a realisation merged.
+/// One LLE at parameters `p` from `u0`: a point at abscissa `x` ([`point_of`]), and a note
+/// when a realisation merged.
 pub fn lle_point(
     monitor: &dyn Monitor,
     p: &Params,
@@ -836,12 +842,18 @@ pub fn lle_point(
                     .map(|t| format!("{} at t = {}", q.path, sig(t, 4)))
             })
             .collect();
+        let n = r.per_path.len();
         note = Some(format!(
-            "{what}: LLE −∞, not drawn: {} of {} realisations merged (the copy became identical to its reference, both stuck at the wall on the same step with the memory restarted; path {}); the other {}: {}",
+            "{what}: {}: {} of {} realisations merged (the copy became identical to its reference, both stuck at the wall on the same step with the memory restarted; path {}); the other {}: {}",
+            if 2 * r.merged >= n {
+                "LLE −∞ (at least half merged), not drawn"
+            } else {
+                "drawn: the mean of the realisations that did not merge"
+            },
             r.merged,
-            r.per_path.len(),
+            n,
             when.join(", path "),
-            r.per_path.len() - r.merged,
+            n - r.merged,
             if r.unmerged.value.is_finite() {
                 format!("{} ± {}", sig(r.unmerged.value, 3), sig(r.unmerged.stderr, 2))
             } else {
@@ -852,19 +864,24 @@ pub fn lle_point(
     Ok((point_of(x, &r), note))
 }
 
-/// The point at abscissa `x` of an estimate (merged realisations: −∞, flagged, their number
-/// and the others' mean kept).
+/// The point at abscissa `x` of an estimate: the mean of the realisations that did not merge
+/// (the mean of all when none merged); flagged merged (−∞, not drawn) when at least half
+/// merged. The merged realisations' number and the others' mean are kept either way.
 fn point_of(x: f64, r: &trirhythm::analysis::lyapunov::LyapunovResult) -> Point {
-    let (y, se) = (r.lle.value, r.lle.stderr);
-    let flag = Flag::of(r.merged, y, se);
+    let n = r.per_path.len();
+    let flag = Flag::of(r.merged, n, r.unmerged.value, r.unmerged.stderr);
     let ok = flag == Flag::Value;
+    let (y, se) = match flag {
+        Flag::Merged => (f64::NEG_INFINITY, f64::NAN),
+        _ => (r.unmerged.value, r.unmerged.stderr),
+    };
     Point {
         x,
         y,
         lo: if ok { y - se } else { f64::NAN },
         hi: if ok { y + se } else { f64::NAN },
         se: if ok { se } else { f64::NAN },
-        n: r.per_path.len(),
+        n,
         flag,
         sign: PointSign::Undefined,
         merged: r.merged,
@@ -1527,15 +1544,17 @@ pub fn lle_against_noise_figure(
     })
 }
 
-/// The table of panels: `panel,curve,start,u0,dt,x_key,x,y_key,y,y_lo,y_hi,se,n,sign,flag`;
-/// every point is a row, one without a value (merged realisations, undefined) with `y`,
-/// `y_lo`, `y_hi`, `se` empty and its `flag` set (`merged`, `undefined`).
+/// The table of panels:
+/// `panel,curve,start,u0,dt,x_key,x,y_key,y,y_lo,y_hi,se,n,merged,sign,flag`; every point is
+/// a row (`y` the mean of the `n − merged` realisations that did not merge), one without a
+/// value (at least half merged, undefined) with `y`, `y_lo`, `y_hi`, `se` empty and its
+/// `flag` set (`merged`, `undefined`).
 pub fn panels_table(notes: &[String], panels: &[Panel]) -> Table {
     let mut csv = Table::new(
         notes,
         &[
             "panel", "curve", "start", "u0", "dt", "x_key", "x", "y_key", "y", "y_lo", "y_hi",
-            "se", "n", "sign", "flag",
+            "se", "n", "merged", "sign", "flag",
         ],
     );
     let cell = |v: f64, flag: Flag| {
@@ -1567,6 +1586,7 @@ pub fn panels_table(notes: &[String], panels: &[Panel]) -> Table {
                     cell(q.hi, q.flag),
                     cell(q.se, q.flag),
                     q.n.to_string(),
+                    q.merged.to_string(),
                     sign_name(q.sign).into(),
                     q.flag.name().into(),
                 ]);

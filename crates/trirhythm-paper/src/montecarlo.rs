@@ -821,21 +821,36 @@ pub fn amplitude_panel(
     ))
 }
 
-/// The Monte Carlo mass left out of the histograms (A beyond the last edge), in one line: the
-/// largest fraction over `panels` and where.
+/// The Monte Carlo mass the drawn densities leave out, in one line: the largest over
+/// `panels` and where. For a histogram it is the mass beyond its last edge; for a wells'
+/// mixture ([`McRun::shown_density`]) 1 − ∫ of the mixture over the bins, which adds the mass
+/// its wells' paths spent beyond the edge.
 pub fn beyond_line(panels: &[AmplitudePanel]) -> String {
     let largest = panels
         .iter()
         .flat_map(|p| {
-            p.runs
-                .iter()
-                .map(move |r| (r.beyond, &p.caption, &r.system))
+            p.runs.iter().map(move |r| {
+                let ((density, _), mixture) = r.shown_density();
+                let held: f64 = r
+                    .edges
+                    .windows(2)
+                    .zip(&density)
+                    .map(|(w, d)| (w[1] - w[0]) * d)
+                    .sum();
+                let left = if mixture {
+                    (1.0 - held).max(0.0)
+                } else {
+                    r.beyond
+                };
+                (left, mixture, &p.caption, &r.system)
+            })
         })
         .max_by(|a, b| a.0.total_cmp(&b.0));
     match largest {
-        Some((b, caption, system)) => format!(
-            "Monte Carlo mass beyond each histogram's A_max (not drawn; the densities integrate to 1 minus it): at most {:.2} % ({caption}, {system}); each ensemble's in the CSV notes",
-            100.0 * b
+        Some((b, mixture, caption, system)) => format!(
+            "Monte Carlo mass the drawn densities leave out (A beyond each histogram's A_max; for a wells' mixture also its wells' mass there; the drawn densities integrate to 1 minus it): at most {:.2} % ({caption}, {system}{}); each ensemble's in the CSV notes",
+            100.0 * b,
+            if mixture { ", the wells' mixture" } else { "" }
         ),
         None => "no Monte Carlo ensemble".into(),
     }

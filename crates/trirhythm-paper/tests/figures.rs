@@ -246,6 +246,47 @@ fn lyapunov_figures_run_one_curve_per_attractor_and_keep_every_point() {
     assert_eq!(t.rows[1][col("y")], "");
     assert_eq!(t.rows[0][col("y")], "0.12");
     assert_eq!(t.rows[0][col("flag")], "");
+    assert_eq!(t.rows[0][col("merged")], "0");
+}
+
+/// A point is merged (−∞, not drawn) only when at least half its realisations merged, as a
+/// point's call reads it; a minority leaves the others' mean, tested on their own degrees of
+/// freedom.
+#[test]
+fn a_point_is_merged_when_half_its_realisations_merged() {
+    use trirhythm_paper::lle::{lle_curve, Curve, Flag, Point, StartKind};
+    use trirhythm_paper::verdict::rules::PointSign;
+    assert_eq!(Flag::of(0, 16, 0.1, 0.01), Flag::Value);
+    assert_eq!(Flag::of(1, 16, 0.1, 0.01), Flag::Value);
+    assert_eq!(Flag::of(7, 16, 0.1, 0.01), Flag::Value);
+    assert_eq!(Flag::of(8, 16, 0.1, 0.01), Flag::Merged);
+    assert_eq!(Flag::of(16, 16, f64::NAN, f64::NAN), Flag::Merged);
+    assert_eq!(Flag::of(0, 1, 0.1, f64::NAN), Flag::Undefined);
+    let point = |merged: usize| Point {
+        x: 0.1,
+        y: 0.1,
+        lo: 0.09,
+        hi: 0.11,
+        se: 0.01,
+        n: 16,
+        flag: Flag::Value,
+        sign: PointSign::NotSignificant,
+        merged,
+        unmerged: 0.1,
+        unmerged_se: 0.01,
+    };
+    let curve = Curve {
+        label: "r = 0.8, rest".into(),
+        value: 0.8,
+        start: StartKind::Rest,
+        u0: 1.0,
+        dt: 0.0025,
+        attractor: "rest".into(),
+        points: vec![point(0), point(3)],
+        regime: None,
+    };
+    let dof: Vec<Option<f64>> = lle_curve(&curve).points.iter().map(|q| q.dof).collect();
+    assert_eq!(dof, vec![Some(15.0), Some(12.0)]);
 }
 
 #[test]

@@ -194,7 +194,7 @@ fn finish_strip(mut entries: Vec<(Symbol, String)>, curves: &[Curve]) -> LegendS
     if flagged(Flag::Merged) {
         entries.push((
             Symbol::Cross(black),
-            "× in the band −∞: copies merged".into(),
+            "× in the band −∞: ≥ half the copies merged".into(),
         ));
     }
     if flagged(Flag::Undefined) {

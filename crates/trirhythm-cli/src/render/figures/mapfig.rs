@@ -330,6 +330,27 @@ fn draw_panel<DB: Backend>(
     let (rx, ry) = c.plotting_area().get_pixel_range();
     let plot = [rx.start, ry.start, rx.end, ry.end];
     let (bx, by) = area.get_base_pixel();
+    // the grid's first and last points in pixels: a pixel's nearest grid cell
+    let (gx, gy) = (&p.x.grid, &p.y.grid);
+    let first = c.backend_coord(&(gx.start / sx, gy.start / sy));
+    let last = c.backend_coord(&(gx.stop / sx, gy.stop / sy));
+    let cell = |px_: i32, py: i32| {
+        let at = |v: i32, a: i32, b: i32, n: usize| {
+            let f = f64::from(v - a) / f64::from(b - a) * (n - 1) as f64;
+            (f >= -0.5 && f <= n as f64 - 0.5).then(|| f.round().max(0.0) as usize)
+        };
+        Some((
+            at(px_, first.0, last.0, gx.count)?,
+            at(py, first.1, last.1, gy.count)?,
+        ))
+    };
+    let minority = |b: &PixelBox| {
+        (0..5)
+            .flat_map(|i| (0..3).map(move |j| (i, j)))
+            .filter_map(|(i, j)| cell(b[0] + (b[2] - b[0]) * i / 4, b[1] + (b[3] - b[1]) * j / 2))
+            .filter(|&(ix, iy)| p.share(p.count(ix, iy) as usize) < MINORITY)
+            .count() as u64
+    };
     for (i, name) in display_names(p) {
         let curve: Vec<(i32, i32)> = p.folds.curves[i]
             .points
@@ -337,7 +358,8 @@ fn draw_panel<DB: Backend>(
             .map(|q| c.backend_coord(&(q.x / sx, q.y / sy)))
             .collect();
         let name = name.as_str();
-        let Some([x0, y0, x1, y1]) = place_name(name, &curve, &fold_px, &taken, plot) else {
+        let Some([x0, y0, x1, y1]) = place_name(name, &curve, &fold_px, &taken, plot, &minority)
+        else {
             continue;
         };
         taken.push([x0, y0, x1, y1]);
@@ -449,17 +471,24 @@ fn map_key(fig: &MapFigure) -> Vec<String> {
     key
 }
 
+/// A region covering less than this share of its panel (per cent) is one a name must not
+/// cover (Figs 3 and 6: the trirhythmic wedge).
+const MINORITY: f64 = 10.0;
+
 /// Where the name of a fold curve (`curve`, backend pixels) goes: a box beside one of its
 /// points (from its middle outwards), on the side that covers no point of any fold curve
-/// (`folds`), no box `taken` (the inset, the zoom box's edges, marks, other names) and stays
-/// inside the plotting area `plot`; the one nearest the curve's middle among the best. None
-/// for a curve too short to name (under two names' widths long).
+/// (`folds`), no box `taken` (the inset, the zoom box's edges, marks, other names), the
+/// fewest cells of a small region (`minority`: of 15 sample points in the box, those on a
+/// region under [`MINORITY`] per cent of the panel) and stays inside the plotting area
+/// `plot`; the one nearest the curve's middle among the best. None for a curve too short to
+/// name (under two names' widths long).
 fn place_name(
     name: &str,
     curve: &[(i32, i32)],
     folds: &[(i32, i32)],
     taken: &[PixelBox],
     plot: PixelBox,
+    minority: &dyn Fn(&PixelBox) -> u64,
 ) -> Option<PixelBox> {
     let w = rich_width(name, LABEL) as i32 + pxi(8);
     let h = font_px(LABEL) as i32 * 5 / 4;
@@ -500,6 +529,7 @@ fn place_name(
             let cost = 1_000_000 * u64::from(outside)
                 + 10_000 * blocked
                 + 1_000 * hits
+                + 1_000 * minority(&b)
                 + 8 * rank as u64
                 + side as u64;
             if best.is_none_or(|(c, _)| cost < c) {
