@@ -6,7 +6,10 @@
 //! on a rayon pool of `threads` threads in a second thread, and from the calling thread poll
 //! Python's signal handlers and report progress to a Python callback about every 100 ms; a
 //! `KeyboardInterrupt` (or an exception in the callback) cancels the run through the
-//! library's [`CancelFlag`] and is raised once the run has stopped.
+//! library's [`CancelFlag`] and is raised once the run has stopped. Between
+//! [`_profile_start`] and [`_profile_stop`] on one Python thread, each long call it makes is
+//! run under [`trirhythm::profile::record`] and the profiles add up (the calls run one after
+//! another): `trirhythm.profiled` and the sweeps' `profile=True`.
 //!
 //! Tests: the package's pytest suite (`crates/trirhythm-py/tests`).
 
@@ -14,6 +17,7 @@ use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use std::cell::Cell;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 use trirhythm::analysis::ensemble::{self as ens, PathStats};
@@ -22,6 +26,7 @@ use trirhythm::analysis::oscillation::{self as osc, Classifier, Search};
 use trirhythm::engine::{simulate_with, ImpactMemory, Options, System};
 use trirhythm::model::{self, Params};
 use trirhythm::monitor::{CancelFlag, Monitor};
+use trirhythm::profile::Profile;
 use trirhythm::theory::averaging::{Theory, Variant};
 use trirhythm::theory::bifurcation::{self as bif, Axis, What};
 use trirhythm_paper::critical::{critical_noise, log_noises, CriticalRequest};
@@ -82,6 +87,34 @@ impl<T: ?Sized> Monitor<T> for Watch {
 /// How often the calling thread checks for signals and reports progress.
 const POLL: Duration = Duration::from_millis(100);
 
+thread_local! {
+    /// The profile of this Python thread's long calls since [`_profile_start`] (`None`: not
+    /// profiling).
+    static PROFILING: Cell<Option<Profile>> = const { Cell::new(None) };
+}
+
+/// Profile this thread's long calls from now on, from zero.
+#[pyfunction]
+fn _profile_start() {
+    PROFILING.with(|p| {
+        p.set(Some(Profile {
+            total_cpu_s: 0.0,
+            critical_path_s: 0.0,
+            tasks: 0,
+            wall_s: 0.0,
+        }))
+    });
+}
+
+/// Stop profiling this thread's long calls: their profile since [`_profile_start`] as
+/// `(total_cpu_s, critical_path_s, tasks, wall_s)` (None when it was not started).
+#[pyfunction]
+fn _profile_stop() -> Option<(f64, f64, usize, f64)> {
+    PROFILING
+        .with(|p| p.take())
+        .map(|q| (q.total_cpu_s, q.critical_path_s, q.tasks, q.wall_s))
+}
+
 /// Run `work` without the GIL on a pool of `threads` threads (`None`: one per core) in a
 /// second thread, while this thread polls Python's signals and calls `progress(done, total)`
 /// (at most every 100 ms, when it changed). A `KeyboardInterrupt` or an exception of the
@@ -102,9 +135,19 @@ fn long_call<T: Send>(
         .build()
         .map_err(|e| PyRuntimeError::new_err(format!("starting the thread pool: {e}")))?;
     let watch = Watch::default();
+    let profiling = PROFILING.with(|p| p.get()).is_some();
     let (result, raised) = py.detach(|| {
         std::thread::scope(|s| {
-            let handle = s.spawn(|| pool.install(|| work(&watch)));
+            let handle = s.spawn(|| {
+                pool.install(|| {
+                    if profiling {
+                        let (r, p) = trirhythm::profile::record(|| work(&watch));
+                        r.map(|v| (v, Some(p)))
+                    } else {
+                        work(&watch).map(|v| (v, None))
+                    }
+                })
+            });
             let mut raised: Option<PyErr> = None;
             let mut last = (u64::MAX, u64::MAX);
             let mut next_report = Instant::now();
@@ -145,7 +188,18 @@ fn long_call<T: Send>(
     if let Some(e) = raised {
         return Err(e);
     }
-    let value = result.map_err(py_err)?;
+    let (value, profile) = result.map_err(py_err)?;
+    if let Some(q) = profile {
+        // calls of one thread run one after another: their critical paths add up
+        PROFILING.with(|p| {
+            p.set(p.get().map(|a| Profile {
+                total_cpu_s: a.total_cpu_s + q.total_cpu_s,
+                critical_path_s: a.critical_path_s + q.critical_path_s,
+                tasks: a.tasks + q.tasks,
+                wall_s: a.wall_s + q.wall_s,
+            }))
+        });
+    }
     if let Some(cb) = &progress {
         let t = watch.total.load(Ordering::Relaxed);
         if t > 0 {
@@ -1418,6 +1472,8 @@ fn _trirhythm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyTheory>()?;
     m.add_class::<PyModel>()?;
     m.add_function(wrap_pyfunction!(preset, m)?)?;
+    m.add_function(wrap_pyfunction!(_profile_start, m)?)?;
+    m.add_function(wrap_pyfunction!(_profile_stop, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(_params_from_dict, m)?)?;
     m.add_function(wrap_pyfunction!(_simulate, m)?)?;

@@ -257,3 +257,33 @@ def test_density_sweeps_take_a_given_range_and_other_kinds(base):
         tr.sweep("lyapunov", {"r": [0.9]}, base=base, densities=True)
     with pytest.raises(ValueError, match="densities"):
         tr.sweep("ensemble", {"r": [0.9]}, base=base, densities=["wobbly"])
+
+
+def test_a_profiled_call_gives_the_same_result_and_a_consistent_profile(base):
+    plain = tr.lyapunov(base, paths=4, t_end=20.0, seed=1)
+    same, prof = tr.profiled(tr.lyapunov, base, paths=4, t_end=20.0, seed=1)
+    def stable(d):
+        return {k: v for k, v in d.items() if k not in ("wall_time_s", "steps_per_second")}
+
+    assert stable(same) == stable(plain)
+    # four realisations run as parallel tasks (two lanes of two); the critical path is one
+    assert prof.tasks >= 2
+    assert 0 < prof.critical_path_s <= prof.total_cpu_s * (1 + 1e-9)
+    assert prof.speedup_bound >= 1
+    # profiling stops with the call: a later call is not counted anywhere
+    assert tr._native._profile_stop() is None
+
+
+def test_a_profiled_sweep_adds_a_profile_per_point_and_changes_nothing_else(base, serial):
+    profiled = tr.sweep("ensemble", GRID, base=base, seed=3, profile=True, **KW)
+    chunked = tr.sweep("ensemble", GRID, base=base, seed=3, chunk_paths=2, profile=True, **KW)
+    for ds in (profiled, chunked):
+        for v in serial.data_vars:
+            np.testing.assert_array_equal(ds[v].values, serial[v].values)
+        cpu = ds["profile_total_cpu_s"].values
+        crit = ds["profile_critical_path_s"].values
+        assert (cpu > 0).all() and (crit > 0).all() and (crit <= cpu * (1 + 1e-9)).all()
+        assert "bound on the speed-up" in ds.attrs["profile"]
+    # two chunks of two paths run side by side: the point's tasks are the chunks' tasks
+    assert (chunked["profile_tasks"].values >= 2).all()
+    assert "profile" not in serial.attrs and "profile_total_cpu_s" not in serial

@@ -69,10 +69,55 @@ __all__ = [
     "BranchCurve",
     "figure_data",
     "sweep",
+    "profiled",
+    "Profile",
     "version",
 ]
 
 __version__ = version()
+
+
+@dataclass(frozen=True)
+class Profile:
+    """A parallel profile of a call's native work (``trirhythm::profile``): the CPU seconds of
+    all its work on every thread, the critical path (the longest chain of work that must run
+    one after the other, in CPU seconds), the independent tasks handed to the thread pool and
+    the wall seconds. ``speedup_bound`` = total / critical path is the largest speed-up any
+    number of cores can give the call. Several native calls made by one call run one after
+    another: their totals, critical paths, tasks and wall times add up."""
+
+    total_cpu_s: float
+    critical_path_s: float
+    tasks: int
+    wall_s: float
+
+    @property
+    def speedup_bound(self) -> float:
+        return self.total_cpu_s / self.critical_path_s if self.critical_path_s > 0 else 1.0
+
+    def __str__(self) -> str:
+        return (
+            f"total CPU {self.total_cpu_s:.3g} s, critical path {self.critical_path_s:.3g} s, "
+            f"bound {self.speedup_bound:.1f}x, {self.tasks} tasks, wall {self.wall_s:.3g} s"
+        )
+
+
+def profiled(func, *args, **kwargs):
+    """Call ``func(*args, **kwargs)`` (any trirhythm function, or a function of yours that calls
+    them on this thread) and return ``(result, Profile)``: the parallel profile of the native
+    work it ran. The result is the same as without profiling, bit for bit.
+
+    >>> import trirhythm as tr
+    >>> e, prof = tr.profiled(tr.lyapunov, tr.preset("fig4c"), paths=4, t_end=20.0, seed=1)
+    >>> prof.tasks >= 2 and 0 < prof.critical_path_s <= prof.total_cpu_s
+    True
+    """
+    _native._profile_start()
+    try:
+        result = func(*args, **kwargs)
+    finally:
+        got = _native._profile_stop()
+    return result, Profile(*got)
 
 
 def presets() -> dict[str, str]:

@@ -35,6 +35,9 @@ _SPLITTABLE = {"ensemble"}
 _DIAGNOSTICS = ("stationary", "r_hat", "ess")
 # the densities a sweep can record on common bins
 _DENSITIES = ("amplitude", "turning", "energy")
+# a point's parallel profile (``profile=True``): machine-dependent, no standard error
+_PROFILE = "profile_"
+_PROFILE_FIELDS = ("total_cpu_s", "critical_path_s", "tasks", "wall_s")
 # a density's bin i in a point's statistics (``density_amplitude[3]``), gathered into one
 # variable with a bin dimension when the Dataset is made
 _BIN = re.compile(r"^(.+)\[(\d+)\]$")
@@ -169,11 +172,29 @@ def _ensemble_statistics(result, point, densities, kwargs):
     return out
 
 
-def _run_point(func, params, seed, kwargs, densities=()):
+def _call(profile, f, *args, **kwargs):
+    """``f(*args, **kwargs)``, and with ``profile`` its parallel profile (else None)."""
+    import trirhythm
+
+    if profile:
+        return trirhythm.profiled(f, *args, **kwargs)
+    return f(*args, **kwargs), None
+
+
+def _profile_statistics(prof) -> dict[str, tuple[float, float]]:
+    """A point's profile as statistics (machine-dependent: no standard error)."""
+    nan = float("nan")
+    if prof is None:
+        return {}
+    return {f"{_PROFILE}{k}": (float(getattr(prof, k)), nan) for k in _PROFILE_FIELDS}
+
+
+def _run_point(func, params, seed, kwargs, densities=(), profile=False):
     """One point (runs on a worker): the function's statistics (an ensemble's
     ``NotStationaryWarning`` is not warned here: the sweep records ``stationary``, ``r_hat``
-    and ``ess`` per point and warns once). A function without a seed (a deterministic one,
-    such as an oscillation boundary) is called without it."""
+    and ``ess`` per point and warns once), with ``profile`` also its parallel profile
+    (``profile_*``). A function without a seed (a deterministic one, such as an oscillation
+    boundary) is called without it."""
     import trirhythm
 
     f = _named(func) if isinstance(func, str) else func
@@ -181,32 +202,49 @@ def _run_point(func, params, seed, kwargs, densities=()):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", trirhythm.NotStationaryWarning)
         if _takes_seed(f):
-            result = f(*args, seed=seed, **given, **kwargs)
+            result, prof = _call(profile, f, *args, seed=seed, **given, **kwargs)
         else:
-            result = f(*args, **given, **kwargs)
+            result, prof = _call(profile, f, *args, **given, **kwargs)
     if densities:
-        return _ensemble_statistics(result, params, densities, kwargs)
-    return statistics(result)
+        out = _ensemble_statistics(result, params, densities, kwargs)
+    else:
+        out = statistics(result)
+    out.update(_profile_statistics(prof))
+    return out
 
 
-def _run_chunk(func, params, seed, which, kwargs):
-    """Some paths of one point's ensemble (runs on a worker)."""
+def _run_chunk(func, params, seed, which, kwargs, profile=False):
+    """Some paths of one point's ensemble (runs on a worker), and with ``profile`` their
+    parallel profile."""
     import trirhythm
 
     args, given = _point_args(func, params)
-    return trirhythm.ensemble_paths(*(args or (None,)), which, seed=seed, **given, **kwargs)
+    return _call(profile, trirhythm.ensemble_paths, *(args or (None,)), which, seed=seed, **given, **kwargs)
 
 
-def _merge_chunks(params, seed, kwargs, *pieces, densities=()):
-    """One point's ensemble from its pieces (runs on a worker)."""
+def _merge_chunks(params, seed, kwargs, *chunks, densities=(), profile=False):
+    """One point's ensemble from its chunks (runs on a worker). With ``profile`` the point's
+    profile: the chunks' CPU and tasks added up, the critical path and wall time of the
+    longest chunk (chunks run side by side) plus the merge's."""
     import trirhythm
 
     kw = {k: v for k, v in kwargs.items() if k not in ("threads", "progress")}
     args, given = _point_args("ensemble", params)
+    pieces = [c[0] for c in chunks]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", trirhythm.NotStationaryWarning)
-        result = trirhythm.merge_paths(*(args or (None,)), pieces, seed=seed, **given, **kw)
-    return _ensemble_statistics(result, params, densities, kwargs)
+        result, prof = _call(profile, trirhythm.merge_paths, *(args or (None,)), pieces, seed=seed, **given, **kw)
+    out = _ensemble_statistics(result, params, densities, kwargs)
+    if prof is not None:
+        parts = [c[1] for c in chunks]
+        prof = trirhythm.Profile(
+            total_cpu_s=prof.total_cpu_s + sum(p.total_cpu_s for p in parts),
+            critical_path_s=prof.critical_path_s + max(p.critical_path_s for p in parts),
+            tasks=prof.tasks + sum(p.tasks for p in parts),
+            wall_s=prof.wall_s + max(p.wall_s for p in parts),
+        )
+    out.update(_profile_statistics(prof))
+    return out
 
 
 def _describe(x):
@@ -330,6 +368,7 @@ def sweep(
     checkpoint: str | os.PathLike | None = None,
     progress=None,
     densities: bool | Sequence[str] = False,
+    profile: bool = False,
     **kwargs,
 ):
     """Run ``func`` at every point of ``grid`` around ``base``: a ``Params`` (grid keys are
@@ -355,6 +394,11 @@ def sweep(
       of kinds: ``"amplitude"``, ``"turning"``, ``"energy"``) on common bins: the histogram
       range ``amplitude_max`` is the one given, else the one the base's ensemble would choose,
       the same at every point.
+    - ``profile``: ``True`` records each point's parallel profile (``trirhythm.profiled``):
+      variables ``profile_total_cpu_s``, ``profile_critical_path_s``, ``profile_tasks`` and
+      ``profile_wall_s`` (machine-dependent, NaN for points resumed from a checkpoint made
+      without it), and the attribute ``profile``: the sweep's total CPU, its longest point's
+      critical path and the bound they put on the speed-up (the points being independent).
 
     Returns an ``xarray.Dataset`` with one dimension per key of ``grid`` (named as the key, and
     ``"lambda"`` for ``"lambda_"``) and, for every statistic, a variable and its standard error
@@ -457,12 +501,12 @@ def sweep(
     if client is None:
         for ix in todo:
             if chunk_paths is None:
-                stats = _run_point(func, points[ix], int(seed), kwargs, kinds)
+                stats = _run_point(func, points[ix], int(seed), kwargs, kinds, profile)
             else:
                 paths = kwargs.get("paths", 8)
                 chunks = [list(range(a, min(a + chunk_paths, paths))) for a in range(0, paths, chunk_paths)]
-                pieces = [_run_chunk(func, points[ix], int(seed), c, kwargs) for c in chunks]
-                stats = _merge_chunks(points[ix], int(seed), kwargs, *pieces, densities=kinds)
+                pieces = [_run_chunk(func, points[ix], int(seed), c, kwargs, profile) for c in chunks]
+                stats = _merge_chunks(points[ix], int(seed), kwargs, *pieces, densities=kinds, profile=profile)
             finished(ix, stats)
     else:
         from distributed import as_completed
@@ -471,12 +515,14 @@ def sweep(
         for ix in todo:
             p = points[ix]
             if chunk_paths is None:
-                fut = client.submit(_run_point, func, p, int(seed), kwargs, kinds, pure=False)
+                fut = client.submit(_run_point, func, p, int(seed), kwargs, kinds, profile, pure=False)
             else:
                 paths = kwargs.get("paths", 8)
                 chunks = [list(range(a, min(a + chunk_paths, paths))) for a in range(0, paths, chunk_paths)]
-                pieces = [client.submit(_run_chunk, func, p, int(seed), c, kwargs, pure=False) for c in chunks]
-                fut = client.submit(_merge_chunks, p, int(seed), kwargs, *pieces, densities=kinds, pure=False)
+                pieces = [client.submit(_run_chunk, func, p, int(seed), c, kwargs, profile, pure=False) for c in chunks]
+                fut = client.submit(
+                    _merge_chunks, p, int(seed), kwargs, *pieces, densities=kinds, profile=profile, pure=False
+                )
             futures[fut] = ix
         try:
             for fut in as_completed(list(futures)):
@@ -505,7 +551,7 @@ def sweep(
             if n == "stationary" and not np.isnan(val).any():
                 val = val.astype(bool)
             data[n] = (keys, val)
-        elif n.startswith("theory_") or n.endswith("_beyond"):
+        elif n.startswith("theory_") or n.endswith("_beyond") or n.startswith(_PROFILE):
             data[n] = (keys, val)
         else:
             data[n] = (keys, val)
@@ -561,7 +607,26 @@ def sweep(
             "the largest split-R̂ (inf: the paths never left their wells); ess: effective sample size of "
             "the mean amplitude"
         )
+    if profile:
+        attrs["profile"] = _profile_line(data)
     if kinds:
         attrs["amplitude_max"] = float(kwargs["amplitude_max"])
         attrs["densities"] = ", ".join(kinds)
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _profile_line(data) -> str:
+    """The sweep's profile in one line: the points' total CPU, the longest critical path of a
+    point, and their ratio, the bound on the speed-up (the points are independent tasks)."""
+    cpu = np.asarray(data.get(f"{_PROFILE}total_cpu_s", ((), np.nan))[1], dtype=float)
+    crit = np.asarray(data.get(f"{_PROFILE}critical_path_s", ((), np.nan))[1], dtype=float)
+    seen = np.isfinite(cpu) & np.isfinite(crit)
+    if not seen.any():
+        return "no point was profiled here (all resumed from a checkpoint)"
+    total, longest = float(cpu[seen].sum()), float(crit[seen].max())
+    bound = total / longest if longest > 0 else 1.0
+    return (
+        f"{int(seen.sum())} of {cpu.size} points profiled: total CPU {total:.3g} s, the longest "
+        f"point's critical path {longest:.3g} s, bound on the speed-up {bound:.1f}x "
+        "(machine-dependent; per point: profile_*)"
+    )
