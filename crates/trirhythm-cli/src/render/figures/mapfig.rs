@@ -344,11 +344,12 @@ fn draw_panel<DB: Backend>(
             at(py, first.1, last.1, gy.count)?,
         ))
     };
+    let shares: Vec<f64> = (0..5).map(|k| p.share(k)).collect();
     let minority = |b: &PixelBox| {
         (0..5)
             .flat_map(|i| (0..3).map(move |j| (i, j)))
             .filter_map(|(i, j)| cell(b[0] + (b[2] - b[0]) * i / 4, b[1] + (b[3] - b[1]) * j / 2))
-            .filter(|&(ix, iy)| p.share(p.count(ix, iy) as usize) < MINORITY)
+            .filter(|&(ix, iy)| shares[(p.count(ix, iy) as usize).min(4)] < MINORITY)
             .count() as u64
     };
     for (i, name) in display_names(p) {
