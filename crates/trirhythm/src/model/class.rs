@@ -449,7 +449,7 @@ impl Model {
     /// keeping U below, two walls, a speed-dependent restitution), None when there are none
     /// (the paper's kernel, the paper's bits). Refused by name with [`Error::NotApplicable`]
     /// for `method`: multiplicative noise with a wall other than the paper's
-    /// ([`multiplicative_wall_refusal`]; [`crate::engine::Problem::from_model`]).
+    /// (one source of its text with [`crate::engine::Problem::from_model`]'s own check).
     /// Terms present with a zero coefficient are absent.
     pub fn engine_terms(&self, method: &str) -> Result<(PaperFamily, Option<GeneralTerms>)> {
         self.validate()?;
