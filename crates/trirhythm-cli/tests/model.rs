@@ -181,8 +181,11 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
     let dir = scratch_dir("model-refused");
     for (field, text) in [
         (
-            "fractional.0.coefficient",
-            format!("{BASE}[[fractional]]\ncoefficient = 0.1\norder = 0.5\n"),
+            "noise.multiplicative.intensity",
+            format!(
+                "{BASE}[[wall]]\nposition = 3.0\nkeep = \"below\"\nrestitution = 0.9\n\
+                 [noise.multiplicative]\nintensity = 0.01\n"
+            ),
         ),
         (
             "noise.multiplicative.intensity",
