@@ -94,6 +94,8 @@
 //! (`lyapunov --method tangent` refuses fractional terms by name, with or without a wall).
 //! Cost: only an impact step of a path with fractional terms does any of this (cold code); a
 //! path without them takes the branches it took before (`fractional()` false: the same bits).
+//! The lanes step such paths one by one with this scalar step (as every General path), so an
+//! ensemble gives each path's scalar bits (`tests/fractional_walls.rs`, 4 and 8 lanes).
 //!
 //! **Multiplicative noise.** η_m is piecewise constant at its exact step mean, like η_a, from a
 //! stream of its own per path (seed XOR a constant): η_a's deviates, hence every other path's
