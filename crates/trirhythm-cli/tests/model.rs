@@ -181,8 +181,11 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
     let dir = scratch_dir("model-refused");
     for (field, text) in [
         (
-            "fractional.0.coefficient",
-            format!("{BASE}[[fractional]]\ncoefficient = 0.1\norder = 0.5\n"),
+            "noise.multiplicative.intensity",
+            format!(
+                "{BASE}[[wall]]\nposition = 3.0\nkeep = \"below\"\nrestitution = 0.9\n\
+                 [noise.multiplicative]\nintensity = 0.01\n"
+            ),
         ),
         (
             "noise.multiplicative.intensity",
@@ -728,15 +731,20 @@ fn a_fractional_model_with_multiplicative_noise_runs_through_simulate_and_ensemb
         "{}",
         doc["theory"]["consistent"]
     );
-    // a fractional term with the wall: refused by name
+    // fractional terms with the wall: stepped, U kept above it
     let walled = write(
         &dir,
         "walled.toml",
         &format!("{text}[[wall]]\nposition = 0.0\nkeep = \"above\"\nrestitution = 0.9\n"),
     );
-    let out = run(&["simulate", "--model", &walled, "--t-end", "5"]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("fractional.0.coefficient"), "{stderr}");
+    let csv = ok_stdout(&["simulate", "--model", &walled, "--t-end", "20"]);
+    let u: Vec<f64> = csv
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with('t'))
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(u.len(), 2001);
+    assert!(u.iter().all(|&u| u >= 0.0), "{csv}");
+    assert!(u.iter().any(|&u| u < 0.05), "the wall is met: {csv}");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -86,12 +86,23 @@ def test_what_the_model_says_is_not_given_twice():
 
 
 def test_a_term_the_engine_does_not_step_is_refused_by_name():
+    offset = [{"position": -0.5, "keep": "above", "restitution": 0.9}]
+    noise = {**FIG13A["noise"], "multiplicative": {"intensity": 0.1}}
+    parametric = tr.Model(**{**FIG13A, "wall": offset, "noise": noise})
+    assert parametric.paper_params() is None
+    match = r"noise\.multiplicative\.intensity = 0\.1 .*does not step it yet"
+    with pytest.raises(ValueError, match=match):
+        tr.simulate(model=parametric, t_end=1.0)
+    with pytest.raises(ValueError, match=r"noise\.multiplicative\.intensity"):
+        tr.ensemble(model=parametric, paths=1, t_end=1.0)
+
+
+def test_a_fractional_term_with_a_wall_is_stepped():
+    """K·D^αU beside the paper's wall at 0: the path stays above the wall and meets it."""
     fractional = tr.Model(**{**FIG13A, "fractional": [{"coefficient": 0.2, "order": 0.5}]})
     assert fractional.paper_params() is None
-    with pytest.raises(ValueError, match=r"fractional\.0\.coefficient = 0\.2 .*does not step it yet"):
-        tr.simulate(model=fractional, t_end=1.0)
-    with pytest.raises(ValueError, match=r"fractional\.0\.coefficient"):
-        tr.ensemble(model=fractional, paths=1, t_end=1.0)
+    t = tr.simulate(model=fractional.with_(**{"start.u0": 1.0}), t_end=20.0, seed=3)
+    assert np.all(t.u >= 0.0) and np.min(t.u) < 0.05
 
 
 # Duffing under additive white noise: Ü + cU̇ + ω0²U + k3U³ = η, ⟨η(t)η(s)⟩ = 2Dδ(t − s)

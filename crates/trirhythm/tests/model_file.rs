@@ -130,27 +130,16 @@ fn malformed_files_are_refused_with_the_field_named() {
 fn terms_the_engine_does_not_step_are_refused_by_name() {
     let base = Model::from_toml_str(BASE).unwrap();
     type Change = Box<dyn Fn(&mut Model)>;
-    let cases: Vec<(&str, Change)> = vec![
-        (
-            "fractional.0.coefficient",
-            Box::new(|m| {
-                m.fractional = vec![Fractional {
-                    coefficient: 0.1,
-                    order: 0.5,
-                }]
-            }),
-        ),
-        (
-            "noise.multiplicative.intensity",
-            Box::new(|m| {
-                m.walls[0].position = -0.5;
-                m.noise.multiplicative = Some(NoiseTerm {
-                    intensity: 0.1,
-                    correlation_time: 0.0,
-                })
-            }),
-        ),
-    ];
+    let cases: Vec<(&str, Change)> = vec![(
+        "noise.multiplicative.intensity",
+        Box::new(|m| {
+            m.walls[0].position = -0.5;
+            m.noise.multiplicative = Some(NoiseTerm {
+                intensity: 0.1,
+                correlation_time: 0.0,
+            })
+        }),
+    )];
     for (field, change) in cases {
         let mut m = base.clone();
         change(&mut m);
@@ -183,6 +172,15 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
                     frequency: 1.0,
                     phase: 0.0,
                 })
+            }),
+        ),
+        (
+            "fractional",
+            Box::new(|m| {
+                m.fractional = vec![Fractional {
+                    coefficient: 0.1,
+                    order: 0.5,
+                }]
             }),
         ),
         (
@@ -249,15 +247,16 @@ fn terms_the_engine_does_not_step_are_refused_by_name() {
         assert!(!p.wall(), "{name}");
         assert_eq!(m.paper_params(), None, "{name}");
     }
-    // fractional terms are stepped without a wall (refused with one, above)
+    // fractional terms are stepped with the model's walls too
     let mut fractional = base.clone();
-    fractional.walls.clear();
+    fractional.walls[0].position = -0.5;
     fractional.fractional = vec![Fractional {
         coefficient: 0.1,
         order: 0.5,
     }];
     let p = Problem::from_model(&fractional).unwrap();
     assert_eq!(p.oscillator().terms().unwrap().fractional.len(), 1);
+    assert_eq!(p.oscillator().terms().unwrap().walls, fractional.walls);
     assert_eq!(fractional.paper_params(), None);
     // present with a zero coefficient is absent: the same problem
     let mut zero = base.clone();

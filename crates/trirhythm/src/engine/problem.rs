@@ -1,8 +1,7 @@
 //! The problem and the method of a simulation: which equation ([`Problem`]: the
 //! [`Oscillator`] — the paper family's parameters and, optionally, the General kernel's terms
 //! ([`GeneralTerms`]: Duffing, Rayleigh, harmonic forcing, multiplicative noise, fractional
-//! terms, walls other than the paper's; with [`System::Fractional`], fractional terms without
-//! a wall) —, the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
+//! terms, walls other than the paper's; with [`System::Fractional`]) —, the [`System`], the [`Barrier`], the start and the blow-up bound), how it is
 //! discretised ([`PredictorCorrector`], [`Memory`], [`ImpactMemory`]) and what one trajectory
 //! records ([`Options`]). Every driver — [`super::simulate`], the ensembles, the Lyapunov
 //! exponents, the oscillation search — takes the same [`Problem`]; its spec holds only what is
@@ -11,7 +10,7 @@
 use super::memory::{Memory, DEFAULT_WINDOW};
 use super::noise::Noise;
 use crate::error::{Error, Exact, Result};
-use crate::model::{Equivalents, GeneralTerms, Model, Params};
+use crate::model::{multiplicative_wall_refusal, Equivalents, GeneralTerms, Model, Params};
 
 /// What the memory does at an impact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -350,8 +349,8 @@ impl Problem {
     /// models the engine steps ([`Model::engine_terms`]): the paper's Eq. 1 with the wall at 0
     /// or none, additive white or OU noise, and the General kernel's terms — Duffing
     /// k3U³ + k5U⁵, Rayleigh Σ d_k U̇^{2k}, harmonic forcing F cos(Ωt + φ), multiplicative
-    /// noise U·η_m (with the wall at 0 or none), fractional terms K_j·D^{α_j}U without a wall,
-    /// any other walls (offset, keeping below, two, speed-dependent r; the barrier then off).
+    /// noise U·η_m (with the wall at 0 or none), fractional terms K_j·D^{α_j}U (with any wall
+    /// or none), any other walls (offset, keeping below, two, speed-dependent r; the barrier then off).
     /// Every other term is refused with [`Error::NotApplicable`] naming it, never dropped. For
     /// `Model::from(&p)` this is `Problem::from_params(&p)` (the same value, hence the same
     /// paths, bit for bit: `tests/model_file.rs`, `tests/pinned.rs`).
@@ -367,9 +366,13 @@ impl Problem {
     /// duffing.restoring.cubic = 0.5;
     /// assert!(Problem::from_model(&duffing)?.oscillator().terms().is_some()); // General kernel
     /// duffing.fractional.push(trirhythm::model::Fractional { coefficient: 0.1, order: 0.5 });
-    /// assert!(Problem::from_model(&duffing).is_err()); // with the wall: refused, named
-    /// duffing.walls.clear();
-    /// assert!(Problem::from_model(&duffing)?.oscillator().terms().is_some()); // without: stepped
+    /// assert!(Problem::from_model(&duffing)?.wall()); // with the paper's wall: stepped
+    /// duffing.walls[0].position = -0.5;
+    /// duffing.noise.multiplicative = Some(trirhythm::model::NoiseTerm {
+    ///     intensity: 0.1,
+    ///     correlation_time: 0.0,
+    /// });
+    /// assert!(Problem::from_model(&duffing).is_err()); // U·η_m at a wall off 0: refused, named
     /// # Ok::<(), trirhythm::Error>(())
     /// ```
     pub fn from_model(model: &Model) -> Result<Self> {
@@ -388,7 +391,7 @@ impl Problem {
 
     /// The same problem with the General kernel's terms (Duffing, Rayleigh, forcing, fractional
     /// terms, multiplicative noise, walls; [`Oscillator::with_terms`]); they need
-    /// [`System::Fractional`] (fractional terms: no wall; walls of their own: [`Barrier::Off`]).
+    /// [`System::Fractional`] (walls of their own: [`Barrier::Off`]).
     pub fn with_terms(self, terms: Option<GeneralTerms>) -> Result<Self> {
         Problem {
             oscillator: self.oscillator.clone().with_terms(terms)?,
@@ -520,27 +523,8 @@ impl Problem {
                         .into(),
                 ));
             }
-            if !t.fractional.is_empty() && (self.barrier == Barrier::On || !t.walls.is_empty()) {
-                return Err(refuse(
-                    "no wall with a fractional term K·D^αU",
-                    format!(
-                        "fractional.0.coefficient = {} with a wall: the engine does not step it \
-                         yet (the impact step of the term's memory of U̇, split at the impact, \
-                         is not built); it steps fractional terms without a wall",
-                        Exact(t.fractional[0].coefficient)
-                    ),
-                ));
-            }
             if let (Some(m), false) = (t.multiplicative, t.walls.is_empty()) {
-                return Err(refuse(
-                    "multiplicative noise with no wall or the wall at 0",
-                    format!(
-                        "noise.multiplicative.intensity = {} with a wall other than the \
-                         paper's: the engine does not step it yet (U·η_m does not vanish at a \
-                         wall off 0, and the impact step does not carry it)",
-                        Exact(m.intensity)
-                    ),
-                ));
+                return Err(multiplicative_wall_refusal("the engine", m.intensity));
             }
         }
         let b = self.blow_up;

@@ -5,7 +5,7 @@
 //! J^λ g(t) = (1/Γ(λ)) ∫₀ᵗ (t − s)^{λ−1} g(s) ds for g piecewise linear on the grid t_n = n·h
 //! (split at impacts), λ ∈ (0, 1]: the memory term of the Caputo derivative in Eq. (1). The same
 //! [`History`] keeps each fractional term's m_j = J^{1−α_j}U̇ = D^{α_j}U (the memory of V, order
-//! 1 − α_j; module docs of `engine::stepper::general`).
+//! 1 − α_j, its pieces split at impacts where V jumps; module docs of `engine::stepper::general`).
 //!
 //! # Method
 //! The last w − 1 pieces of g (piecewise linear, split in two at impacts) are held as

@@ -7,8 +7,8 @@
 //! # Equation
 //! D^{1+λ}U + Σ_j K_j D^{α_j}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η_a(t) + U·η_m(t), no wall,
 //! the wall at 0, or the model's walls (one at any δ keeping U above or below it, two at
-//! δ1 < δ2: `super::walls`; fractional terms: no wall; multiplicative noise: no wall or the
-//! wall at 0), with h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k}, k(U) = ω0²U + k3U³ + k5U⁵, Caputo
+//! δ1 < δ2: `super::walls`; fractional terms with any of these; multiplicative noise: no wall
+//! or the wall at 0), with h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k}, k(U) = ω0²U + k3U³ + k5U⁵, Caputo
 //! derivatives, α_j ∈ (0, 1]; in Volterra form, with m_j = J^{1−α_j}V (= D^{α_j}U, U being
 //! continuous),
 //! U′ = V, V = V₀ + J^λ g, g = h(U, V)V − k(U) − Σ_j K_j m_j + F cos ψ + η_a + Uη_m,
@@ -64,9 +64,38 @@
 //! division, with a − κ in place of a (κ = Σ_j K_j ϖ_r^j, in the division, the Hermite limiter and
 //! the predictor's weight) and −Σ_j K_j(M_j + ϖ_l^j V_n) added to the step's known forcing F_r;
 //! g's value at the end, stored in the leading memory, has −Σ_j K_j m_{j,n+1}. α_j = 1 is local:
-//! m_j = V (ϖ = (0, 1), no history), the same as K·U̇ in h. m_j(0) = 0. A fractional term with
-//! a wall is refused ([`crate::engine::Problem`]): the impact would split each memory of V.
-//! Clones carry the memories; the two-trajectory Lyapunov method pulls them with the state.
+//! m_j = V (ϖ = (0, 1), no history), the same as K·U̇ in h. m_j(0) = 0 for α_j < 1 and V(0)
+//! at α_j = 1. Clones carry the memories; the two-trajectory Lyapunov method pulls them with the
+//! state (split pieces included: they combine when the leading memory's do).
+//!
+//! **Fractional terms at a wall.** Caputo's D^αU = J^{1−α}U̇ and U̇ jumps at an impact, so each
+//! memory of V is split there exactly as the leading memory of g is (`super::impact`): V's piece
+//! of the impact step is two linear pieces, V_n → V(t*) on [t_n, t*] and V₊ → V_{n+1} on
+//! [t*, t_{n+1}] (the memory's [`Split`], held exactly in the window and entering the modes
+//! exactly). The step, at a wall U = δ (the paper's at 0 or the model's):
+//! - at the instant t* = t_n + θΔt, m_j(t*) = A_j + c_j V(t*) with (A_j, c_j) the memory's
+//!   value of the completed pieces and of [t_n, t*] ([`History::at_fraction`], from V_n), and
+//!   m_j(t*) = V(t*) at α_j = 1 ([`General::memories_at`]); so g at the wall,
+//!   h(δ, V)V − k(δ) + F cos ψ* + η* − Σ_j K_j m_j(t*), stays affine in V(t*) (plus the Rayleigh
+//!   terms) and V(t*) is the root of V = N + w_s·g as before, with κ* = Σ_j K_j c_j taken off
+//!   ∂_V g ([`General::wall_velocity_lagged`]);
+//! - the leading memory's split piece of g has −Σ K_j m_j(t*) on both sides: J^{1−α}V is
+//!   continuous for α < 1, so only the α = 1 terms follow V to V₊;
+//! - the redone rest [t*, t_{n+1}] from (δ, V₊): m_{j,n+1} = M_j + (the split step's known part
+//!   from V_n, V(t*), V₊) + ϖ_j^s V_{n+1} ([`History::current_split`]), so the corrector is the
+//!   same one division with κ_s = Σ_j K_j ϖ_j^s in place of κ and −Σ_j K_j(M_j + known_j) in
+//!   the known forcing ([`General::split_memories`], [`General::advance_split`]);
+//! - the step's end pushes V's split piece into each memory, and −Σ_j K_j m_{j,n+1} at the node.
+//!
+//! With [`crate::engine::ImpactMemory::Restart`] the fractional terms' memories restart with the
+//! leading one (at the instant of an impact, and at the end of a sticking step): the whole
+//! fractional state forgets the past, m_j = 0 just after t* for α_j < 1. Sticking at δ clamps V
+//! to 0: the step's piece of V ends at 0, as g's does. The tangent of these steps is not built
+//! (`lyapunov --method tangent` refuses fractional terms by name, with or without a wall).
+//! Cost: only an impact step of a path with fractional terms does any of this (cold code); a
+//! path without them takes the branches it took before (`fractional()` false: the same bits).
+//! The lanes step such paths one by one with this scalar step (as every General path), so an
+//! ensemble gives each path's scalar bits (`tests/fractional_walls.rs`, 4 and 8 lanes).
 //!
 //! **Multiplicative noise.** η_m is piecewise constant at its exact step mean, like η_a, from a
 //! stream of its own per path (seed XOR a constant): η_a's deviates, hence every other path's
@@ -81,9 +110,8 @@
 //! scheme adds no O(1) drift. At the wall U·η_m = 0: the impact code is unchanged, and the
 //! redone rest of the step carries U^Pη_m.
 //!
-//! Not yet: a fractional term with a wall; multiplicative noise with a wall other than the
-//! paper's; the tangent of the fractional terms and of U·η_m
-//! (`lyapunov --method tangent` refuses them by name).
+//! Not yet: multiplicative noise with a wall other than the paper's; the tangent of the
+//! fractional terms and of U·η_m (`lyapunov --method tangent` refuses them by name).
 //!
 //! # Reference
 //! model-class.md §2, §3, §4, §5 (the design); Diethelm, Ford & Freed (2002) for the scheme;
@@ -103,7 +131,11 @@
 //! against K·U̇ in h, the fractionally damped linear oscillator's stationary variances under
 //! white and OU noise against the spectral integral, the parametric oscillator's second moments
 //! against the exact moment system below and above D_c = 2ζω0³, lanes and clones, multiplicative
-//! noise at the wall. Unit test below: the correlated η_m's law. `engine/stepper/tangent.rs`:
+//! noise at the wall. `tests/fractional_walls.rs`: fractional terms with the paper's wall and
+//! the model's walls (α = 1 against K·U̇ in h to rounding and against the exact damped arcs at
+//! second order; α = 0.5 at its observed order with impacts; SOE against Direct through
+//! impacts and sticking, both impact memories; K = 1e-12 against no term; lanes and clones).
+//! Unit test below: the correlated η_m's law. `engine/stepper/tangent.rs`:
 //! the tangent step against finite differences of the step.
 
 use super::affine::{
@@ -113,7 +145,7 @@ use super::affine::{
 use super::polynomial::Polynomial;
 use super::walls::Walls;
 use crate::engine::kernel::MIN_SOE_LAMBDA;
-use crate::engine::memory::{History, Memory, Piece};
+use crate::engine::memory::{History, Memory, Piece, Split};
 use crate::engine::noise::{Noise, NoiseStream};
 use crate::error::{Error, Result};
 use crate::maths;
@@ -325,6 +357,21 @@ pub(crate) struct General {
     eta_m: f64,
     /// Fractional terms or multiplicative noise present (the step's extra work).
     extras: bool,
+    /// The fractional terms' memories at an impact inside the step in progress
+    /// ([`General::split_memories`]; taken by [`General::end_step`]).
+    pending: Option<SplitMemories>,
+}
+
+/// The fractional terms' memories of V split at an impact inside the step in progress: V
+/// jumps from V(t*) to V₊ at the fraction θ (module docs, "Fractional terms at a wall").
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct SplitMemories {
+    /// The split of V's piece: θ, V(t*) before, V₊ after.
+    split: Split,
+    /// −Σ_j K_j(M_j + known_j): the part of −Σ_j K_j m_{j,n+1} known after the impact.
+    ahead: f64,
+    /// Σ_j K_j ϖ_j^s: the weight of V_{n+1} in Σ_j K_j m_{j,n+1} on the split step.
+    kappa: f64,
 }
 
 /// The Rayleigh parts at a velocity v (x = v²): Σd_k x^k, Σ(2k+1)d_k x^k (∂_V of its V-term),
@@ -422,7 +469,19 @@ impl General {
             ahead: 0.0,
             parametric,
             eta_m: 0.0,
+            pending: None,
         })
+    }
+
+    /// Start the path at V(0) = `v0`: −Σ_j K_j m_j(0) = −Σ_{α_j = 1} K_j·v0 (m_j(0) =
+    /// J^{1−α_j}V(0) = 0 for α_j < 1, but an α = 1 term is V itself).
+    pub(super) fn start(&mut self, v0: f64) {
+        self.lag = 0.0;
+        for m in &self.memories {
+            if m.history.is_none() {
+                self.lag -= m.k * v0;
+            }
+        }
     }
 
     /// Whether the kernel has fractional terms or multiplicative noise (the tangent does not
@@ -456,6 +515,9 @@ impl General {
     /// forcing (which holds −Σ_j K_j(M_j + ϖ_l^j V_n)): −κV_{n+1} + u1·η_m.
     #[inline]
     pub(super) fn end_step(&mut self, v: f64, u1: f64, v1: f64) -> f64 {
+        if self.pending.is_some() {
+            return self.end_split_step(v, u1, v1);
+        }
         for m in &mut self.memories {
             if let Some(h) = &mut m.history {
                 h.push(Piece {
@@ -470,6 +532,96 @@ impl General {
         now + u1 * self.eta_m
     }
 
+    /// [`General::end_step`] of a step with an impact ([`General::split_memories`]): V's split
+    /// piece (V_n → V(t*), V₊ → V_{n+1}) into every memory; −Σ_j K_j m_{j,n+1} from the split
+    /// step's known part and weight. Returns the same quantity as `end_step`, relative to the
+    /// step's known forcing (which holds the unsplit −Σ_j K_j(M_j + ϖ_l^j V_n)).
+    #[cold]
+    fn end_split_step(&mut self, v: f64, u1: f64, v1: f64) -> f64 {
+        let s = self.pending.take().expect("a split step");
+        for m in &mut self.memories {
+            if let Some(h) = &mut m.history {
+                h.push(Piece {
+                    left: v,
+                    right: v1,
+                    split: Some(s.split),
+                });
+            }
+        }
+        self.lag = s.ahead - s.kappa * v1;
+        (self.lag - self.ahead) + u1 * self.eta_m
+    }
+
+    /// Whether the kernel has fractional terms K_j·D^{α_j}U.
+    #[inline]
+    pub(super) fn fractional(&self) -> bool {
+        !self.memories.is_empty()
+    }
+
+    /// −Σ_j K_j m_j at the instant t* = t_n + θΔt inside the step in progress (from V_n = `v`)
+    /// as (known part, weight of V(t*) of the terms with a memory, Σ K_j of the α = 1 terms):
+    /// −Σ_j K_j m_j(t*−) = known − (weight + local)·V(t*) (each memory's
+    /// [`History::at_fraction`]; an α = 1 term is V(t*) itself). After the instant the terms
+    /// with a memory keep their value (J^{1−α}V is continuous for α < 1) and the α = 1 terms
+    /// follow V to V₊. (0, 0, 0) without fractional terms.
+    pub(super) fn memories_at(&self, theta: f64, v: f64) -> (f64, f64, f64) {
+        let (mut known, mut weight, mut local) = (0.0, 0.0, 0.0);
+        for m in &self.memories {
+            match &m.history {
+                None => local += m.k,
+                Some(h) => {
+                    let (past, w) = h.at_fraction(theta, v);
+                    known -= m.k * past;
+                    weight += m.k * w;
+                }
+            }
+        }
+        (known, weight, local)
+    }
+
+    /// Split the fractional terms' memories at an impact inside the step in progress (module
+    /// docs, "Fractional terms at a wall"): V jumps from V(t*) = `v_at` to V₊ = `v_plus` at
+    /// the fraction θ = `split.theta`; with `restart` (the memory restarts at impacts) each
+    /// memory restarts at t* and forgets the part before. Returns (the part of
+    /// −Σ_j K_j m_{j,n+1} known now, Σ_j K_j ϖ_j^s: the weight of V_{n+1}) for the redone rest
+    /// of the step ([`General::advance_split`]); [`General::end_step`] pushes the split pieces.
+    pub(super) fn split_memories(&mut self, v: f64, split: Split) -> (f64, f64) {
+        let (mut ahead, mut kappa) = (0.0, 0.0);
+        for m in &mut self.memories {
+            match &mut m.history {
+                None => kappa += m.k,
+                Some(h) => {
+                    if !split.keep_before {
+                        h.restart();
+                    }
+                    let (known, w) = h.current_split(v, &split);
+                    ahead -= m.k * (h.value() + known);
+                    kappa += m.k * w;
+                }
+            }
+        }
+        self.pending = Some(SplitMemories {
+            split,
+            ahead,
+            kappa,
+        });
+        (ahead, kappa)
+    }
+
+    /// The fractional terms' memories restart at the end of the step in progress (a sticking
+    /// step with the memory restarting, [`super::Stepper`]'s `stick`): nothing of the step
+    /// enters them, and −Σ_j K_j m_j = 0 at the node.
+    pub(super) fn restart_memories(&mut self) {
+        for m in &mut self.memories {
+            if let Some(h) = &mut m.history {
+                h.restart();
+            }
+        }
+        self.pending = None;
+        self.lag = 0.0;
+        self.ahead = 0.0;
+    }
+
     /// Draw η_m's future deviates from stream `path` of `seed` (salted), keeping its present
     /// OU value ([`super::Stepper::renoise`]).
     pub(super) fn renoise(&mut self, seed: u64, path: u64) {
@@ -479,8 +631,9 @@ impl General {
     }
 
     /// Pull the fractional terms' memories toward `reference`'s by the factor `c`
-    /// ([`super::Stepper::contract_toward`]; they hold no split piece: no wall). False when they
-    /// cannot be combined, possibly after some were pulled: the caller works on a copy.
+    /// ([`super::Stepper::contract_toward`]; split pieces combine when both memories hold them
+    /// at the same θ, as the leading memory's). False when they cannot be combined, possibly
+    /// after some were pulled: the caller works on a copy.
     pub(super) fn contract_toward(&mut self, reference: &General, c: f64) -> bool {
         if self.memories.len() != reference.memories.len() {
             return false;
@@ -662,7 +815,25 @@ impl General {
     /// terms: solved at once; else Newton's method from that value, to |ΔV| ≤ 1e-14(1 + |V|),
     /// at most 50 iterations).
     pub(super) fn wall_velocity(&self, delta: f64, known: f64, w: f64, forcing: f64) -> f64 {
-        let a0 = self.mu_p(delta);
+        self.wall_velocity_lagged(delta, known, w, forcing, 0.0)
+    }
+
+    /// [`General::wall_velocity`] with the fractional terms at the instant: g at the wall has
+    /// −Σ_j K_j m_j(t*) = (its known part, in `forcing`) − `kappa`·V ([`General::memories_at`]),
+    /// so the root is of V = N + w((h(δ, V) − κ*)V + forcing). `kappa` = 0: the same bits.
+    pub(super) fn wall_velocity_lagged(
+        &self,
+        delta: f64,
+        known: f64,
+        w: f64,
+        forcing: f64,
+        kappa: f64,
+    ) -> f64 {
+        let a0 = if kappa == 0.0 {
+            self.mu_p(delta)
+        } else {
+            self.mu_p(delta) - kappa
+        };
         let mut v = (known + w * forcing) / (1.0 - w * a0);
         if self.rayleigh.is_empty() {
             return v;
@@ -698,6 +869,7 @@ impl General {
     #[allow(clippy::too_many_arguments)]
     fn pass(
         &self,
+        kappa: f64,
         len: f64,
         (u, v, g0): (f64, f64, f64),
         (up, vl): (f64, f64),
@@ -708,7 +880,7 @@ impl General {
         let mp = self.mu_p(up);
         let r = self.rayleigh_at(vl);
         // κ = 0 without fractional terms: a and g's V-factor are then the same bits as before
-        let a = mp + r.a - self.kappa;
+        let a = mp + r.a - kappa;
         let k = self.restoring(up);
         let fr = if self.parametric.is_some() {
             fr + up * self.eta_m
@@ -718,7 +890,7 @@ impl General {
         let inv = 1.0 / (1.0 - w * a);
         let lim = hermite_limiter(2.0 * w * a);
         let v1 = (known + w * (fr - k + r.rest)) * inv;
-        let gr = (mp + self.rayleigh_at(v1).h - self.kappa) * v1 - k + fr;
+        let gr = (mp + self.rayleigh_at(v1).h - kappa) * v1 - k + fr;
         let u1 = u + 0.5 * len * (v + v1) + len * len * (1.0 / 12.0) * lim * (g0 - gr);
         GeneralPass {
             up,
@@ -744,9 +916,27 @@ impl General {
         w: f64,
         fr: f64,
     ) -> GeneralFree {
+        self.advance_split(self.kappa, len, (u, v, g0), pw, known, w, fr)
+    }
+
+    /// [`General::advance`] with `kappa` = Σ_j K_j ϖ_j in place of the unsplit step's κ: the
+    /// redone rest of an impact step, whose fractional memories are split
+    /// ([`General::split_memories`]; `fr` then holds their known part).
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    pub(super) fn advance_split(
+        &self,
+        kappa: f64,
+        len: f64,
+        (u, v, g0): (f64, f64, f64),
+        pw: f64,
+        known: f64,
+        w: f64,
+        fr: f64,
+    ) -> GeneralFree {
         let start = (u, v, g0);
-        let first = self.pass(len, start, (u + len * v + pw * g0, v), known, w, fr);
-        let second = self.pass(len, start, (first.u1, first.v1), known, w, fr);
+        let first = self.pass(kappa, len, start, (u + len * v + pw * g0, v), known, w, fr);
+        let second = self.pass(kappa, len, start, (first.u1, first.v1), known, w, fr);
         GeneralFree {
             len,
             w,

@@ -6,7 +6,9 @@
 //! At the wall U = 0 (keeping U ≥ 0): U̇₊ = −rU̇₋ (Eq. 1); at Eq. 9's crossing Z = 0:
 //! Ż₊ = rŻ₋. The model's other walls (any δ, keeping below, two walls, r(|U̇₋|)) are the
 //! General kernel's, in `super::walls`, which uses [`hermite_root`] and the bookkeeping here
-//! (`record_impact`, `memory_at_impact`).
+//! (`record_impact`, `memory_at_impact`). A General path with fractional terms K_j·D^{α_j}U also
+//! splits each term's memory of V at the instant ([`split_fractional`]; module docs of
+//! `super::general`, "Fractional terms at a wall").
 //!
 //! # Method
 //! θ ∈ (0, 1] of the step from the cubic Hermite interpolant of (U_n, V_n) → (U₁, V₁) (Newton
@@ -21,8 +23,10 @@
 //!
 //! # Tests
 //! `newton_crossing_equals_bisection` below; `tests/impacts.rs`, `tests/pinned.rs` (the paper's
-//! impacts pinned bit for bit); `tests/walls.rs` (the model's walls).
+//! impacts pinned bit for bit); `tests/walls.rs` (the model's walls); `tests/fractional_walls.rs`
+//! (fractional terms at the walls).
 
+use super::general::General;
 use super::{predictor_weight, Free, Impact, Split, Stepper};
 
 /// θ ∈ (0, 1] where the cubic Hermite interpolant of (u0, v0) → (u1, v1) over a step h
@@ -109,10 +113,19 @@ impl Stepper {
         let mut forcing = self.rhs.forcing(eta_star, self.side);
         // the scheme's own V(t*−); at a grazing wall impact it may come out ≥ 0: then V₋ = 0
         let mut v_at = (self.base + hs + ws * forcing) / (1.0 - ws * a0);
+        let mut memories = (0.0, 0.0, 0.0);
         if let Some(g) = &self.general {
             // g at the wall is h(0, V)V + F cos ψ* + η* (module docs of `general`)
             forcing += g.force_at(theta);
-            v_at = g.wall_velocity(0.0, self.base + hs, ws, forcing);
+            if g.fractional() {
+                // and −Σ K_j m_j(t*), affine in V(t*)
+                memories = g.memories_at(theta, self.v);
+                let (lag, weight, local) = memories;
+                let kappa = weight + local;
+                v_at = g.wall_velocity_lagged(0.0, self.base + hs, ws, forcing + lag, kappa);
+            } else {
+                v_at = g.wall_velocity(0.0, self.base + hs, ws, forcing);
+            }
         }
         Crossing {
             theta,
@@ -121,6 +134,7 @@ impl Stepper {
             ws,
             forcing,
             v_at,
+            memories,
         }
     }
 
@@ -200,12 +214,30 @@ impl Stepper {
         let v_plus = -self.rhs.restitution * v_minus;
         self.record_impact(theta, v_minus, v_plus);
         self.memory_at_impact(v_at, v_plus);
-        let g = self.general.as_deref().expect("a General path");
+        let (v_n, keep_before) = (self.v, !self.restart);
+        let g = self.general.as_deref_mut().expect("a General path");
+        if g.fractional() {
+            let split = split_fractional(g, c, 0.0, v_n, keep_before, (v_at, v_plus), h);
+            let (known_s, wr_s) = self.history.current_split(gl, &split.split);
+            let known = self.base + self.history.value() + known_s;
+            let fr = self.rhs.forcing(er, self.side) + g.force_now() + split.ahead;
+            let free = g.advance_split(
+                split.kappa,
+                split.len,
+                (0.0, v_plus, split.split.after),
+                split.pw,
+                known,
+                wr_s,
+                fr,
+            );
+            let (u_end, v_end) = free.end();
+            return (split.split, u_end, v_end);
+        }
         let split = Split {
             theta,
             before: g.wall_drift(0.0, v_at) + c.forcing,
             after: g.wall_drift(0.0, v_plus) + c.forcing,
-            keep_before: !self.restart,
+            keep_before,
             mass: 0.0,
         };
         let (known_s, wr_s) = self.history.current_split(gl, &split);
@@ -216,6 +248,68 @@ impl Stepper {
         let free = g.advance(hh, (0.0, v_plus, split.after), pw, known, wr_s, fr);
         let (u_end, v_end) = free.end();
         (split, u_end, v_end)
+    }
+}
+
+/// The split of an impact step of a General path with fractional terms, on a wall at δ
+/// (module docs of `general`, "Fractional terms at a wall"): g's split piece for the leading
+/// memory, with −Σ_j K_j m_j(t*) at the instant on both sides (continuous in t; 0 after the
+/// instant when the memories restart there), and what the redone rest of the step needs.
+pub(super) struct FractionalSplit {
+    /// g's split (for the leading memory).
+    pub(super) split: Split,
+    /// The part of −Σ_j K_j m_{j,n+1} known after the impact (into the rest's forcing).
+    pub(super) ahead: f64,
+    /// The weight of V_{n+1} in Σ_j K_j m_{j,n+1} on the split step.
+    pub(super) kappa: f64,
+    /// The rest's length (1 − θ)Δt and its predictor's weight.
+    pub(super) len: f64,
+    pub(super) pw: f64,
+}
+
+/// [`FractionalSplit`] at the crossing `c` on the wall at `delta`, from V_n = `v_n`, V jumping
+/// from V(t*) to V₊: splits the fractional memories ([`General::split_memories`]).
+pub(super) fn split_fractional(
+    g: &mut General,
+    c: &Crossing,
+    delta: f64,
+    v_n: f64,
+    keep_before: bool,
+    (v_at, v_plus): (f64, f64),
+    h: f64,
+) -> FractionalSplit {
+    // the terms with a memory are continuous at the instant (0 after it when they restart
+    // there), the α = 1 terms follow V
+    let (lag, weight, local) = c.memories;
+    let at = lag - (weight + local) * v_at;
+    let kept = if keep_before {
+        lag - weight * v_at
+    } else {
+        0.0
+    };
+    let after = kept - local * v_plus;
+    let memories = Split {
+        theta: c.theta,
+        before: v_at,
+        after: v_plus,
+        keep_before,
+        mass: 0.0,
+    };
+    let (ahead, kappa) = g.split_memories(v_n, memories);
+    let split = Split {
+        theta: c.theta,
+        before: g.wall_drift(delta, v_at) + c.forcing + at,
+        after: g.wall_drift(delta, v_plus) + c.forcing + after,
+        keep_before,
+        mass: 0.0,
+    };
+    let len = (1.0 - c.theta) * h;
+    FractionalSplit {
+        split,
+        ahead,
+        kappa,
+        len,
+        pw: predictor_weight(len, g.a(delta, v_plus) - kappa),
     }
 }
 
@@ -234,6 +328,10 @@ pub(super) struct Crossing {
     pub(super) forcing: f64,
     /// The scheme's V(t*−), before the wall's clipping of a grazing impact.
     pub(super) v_at: f64,
+    /// −Σ_j K_j m_j(t*−) of a General path's fractional terms as (known part, weight of V(t*)
+    /// of the terms with a memory, Σ K_j of the α = 1 terms) ([`General::memories_at`]);
+    /// zeros without them.
+    pub(super) memories: (f64, f64, f64),
 }
 
 /// The jump and the redone rest of an impact step ([`Stepper::jump`]).

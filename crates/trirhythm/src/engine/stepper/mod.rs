@@ -299,7 +299,8 @@ impl Stepper {
                     window: method.window,
                     horizon: history.kernel().map_or(0.0, |k| k.to),
                 };
-                let g = General::new(&rhs, t, h, &setup, oscillator.noise(), (seed, path))?;
+                let mut g = General::new(&rhs, t, h, &setup, oscillator.noise(), (seed, path))?;
+                g.start(v0);
                 Some(Box::new(g))
             }
         };
@@ -464,11 +465,15 @@ impl Stepper {
         let mut end = self.end_events(&b, u1, v1)?;
         let g = self.general.as_deref_mut().expect("a General path");
         (self.drift, self.pw) = g.node(self.h, end.u1, end.v1);
-        // with the wall only the multiplicative noise's U·η_m (no fractional term: Problem)
-        let extra = if g.extras() {
-            g.end_step(b.v, end.u1, end.v1)
-        } else {
+        // U·η_m and the fractional terms' −Σ K_j m_j (their pieces of V split at an impact;
+        // a step that sticks with the memory restarting pushes nothing: they restart too)
+        let extra = if !g.extras() {
             0.0
+        } else if !end.push && g.fractional() {
+            g.restart_memories();
+            0.0
+        } else {
+            g.end_step(b.v, end.u1, end.v1)
         };
         if end.push {
             end.piece.right = self.drift + b.fr + extra;

@@ -35,8 +35,8 @@ impl Stepper {
             return false;
         }
         if let (Some(g), Some(r)) = (&self.general, &reference.general) {
-            // the fractional terms' memories hold no split piece (no wall): they combine
-            // whenever the leading memory does; tried first on a copy, so that nothing changes
+            // the fractional terms' memories hold their split pieces where the leading memory
+            // holds its own (the same impacts); tried first on a copy, so that nothing changes
             // on a refusal
             let mut trial = g.clone();
             if !trial.contract_toward(r, c) || !self.history.contract_toward(&reference.history, c)

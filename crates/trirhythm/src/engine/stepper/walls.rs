@@ -19,7 +19,10 @@
 //! g at the wall), clipped to nV₋ ≤ 0 (a grazing impact); V₊ = −r(|V₋|)V₋; the memory holds
 //! the jump exactly (the split piece with g before and after the instant, the Volterra
 //! constant shifted by V₊ − V₋, or a restart); the rest of the step, of length (1 − θ)Δt, is
-//! the General step from (δ, V₊).
+//! the General step from (δ, V₊). With fractional terms K_j·D^{α_j}U, g at the wall has
+//! −Σ_j K_j m_j(t*) too and each term's memory of V is split at the instant
+//! (`Stepper::impact_wall_fractional`; module docs of `super::general`, "Fractional terms at a
+//! wall").
 //!
 //! **Sticking at δ.** If the redone rest ends beyond the same wall again (the next impact
 //! would come within the step), the mass is clamped at (δ, 0) and the wall's reaction goes
@@ -53,13 +56,14 @@
 //! the harmonic solution, the energy kept, and the observed order as Δt halves; one impact with
 //! a speed-dependent restitution (V₊ = r(|V₋|)·|V₋|); a mass settling onto a wall at δ where
 //! the force pushes into it, and staying; the lanes give the scalar bits; the tangent's
-//! exponents between two walls (elastic: ≈ 0; damped: negative). `super::tangent`'s unit tests:
+//! exponents between two walls (elastic: ≈ 0; damped: negative). `tests/fractional_walls.rs`:
+//! fractional terms at these walls. `super::tangent`'s unit tests:
 //! the tangent step through impacts on these walls against central differences of the step.
 
 use super::super::memory::{Piece, Split};
 use super::affine::{predictor_weight_len_slope, predictor_weight_slope};
 use super::general::{General, GeneralFree};
-use super::impact::hermite_root;
+use super::impact::{hermite_root, split_fractional, Crossing};
 use super::tangent::{fold_theta, hermite_basis, hermite_basis_slope, Tangent};
 use super::{predictor_weight, Begin, StepEvents, Stepper};
 use crate::error::{Error, Exact, Result};
@@ -244,8 +248,28 @@ impl Stepper {
     ) -> Result<Option<Piece>> {
         self.steps += 1;
         self.check_blow_up((b.u, b.v), (u1, v1))?;
-        let g = self.general.as_deref().expect("a General path");
+        let g = self.general.as_deref_mut().expect("a General path");
         (self.drift, self.pw) = g.node(self.h, u1, v1);
+        if g.fractional() {
+            // the fractional terms' pieces of V (split at an impact); a step that sticks with
+            // the memory restarting pushes nothing: the memories restart too
+            let extra = match piece {
+                Some(_) => g.end_step(b.v, u1, v1),
+                None => {
+                    g.restart_memories();
+                    0.0
+                }
+            };
+            let right = self.drift + b.fr + extra;
+            let piece = piece.map(|mut piece| {
+                piece.right = right;
+                self.history.push(piece);
+                piece
+            });
+            self.u = u1;
+            self.v = v1;
+            return Ok(piece);
+        }
         let piece = piece.map(|mut piece| {
             piece.right = self.drift + b.fr;
             self.history.push(piece);
@@ -270,13 +294,42 @@ impl Stepper {
         // the forcing at the instant (noise and harmonic) and the wall's force −k(δ)
         let forcing = self.rhs.forcing(eta_star, self.side) + g.force_at(theta);
         let at_wall = forcing - g.restoring(delta);
-        let v_at = g.wall_velocity(delta, self.base + hs, ws, at_wall);
+        let fractional = g.fractional();
+        let (v_at, memories) = if fractional {
+            // and the fractional terms' −Σ K_j m_j(t*), affine in V(t*)
+            let memories = g.memories_at(theta, self.v);
+            let (lag, weight, local) = memories;
+            let kappa = weight + local;
+            let v = g.wall_velocity_lagged(delta, self.base + hs, ws, at_wall + lag, kappa);
+            (v, memories)
+        } else {
+            (
+                g.wall_velocity(delta, self.base + hs, ws, at_wall),
+                (0.0, 0.0, 0.0),
+            )
+        };
         // the scheme's V(t*−) may point away from the wall at a grazing impact: then V₋ = 0
         let v_minus = match side {
             Side::Lower => v_at.min(0.0),
             Side::Upper => v_at.max(0.0),
         };
         let v_plus = -law.restitution.at(v_minus.abs()) * v_minus;
+        if fractional {
+            return self.impact_wall_fractional(
+                b,
+                Crossing {
+                    theta,
+                    eta_star,
+                    a0: 0.0,
+                    ws,
+                    forcing,
+                    v_at,
+                    memories,
+                },
+                delta,
+                (v_minus, v_plus),
+            );
+        }
         let split = Split {
             theta,
             before: g.wall_drift(delta, v_at) + forcing,
@@ -302,6 +355,49 @@ impl Stepper {
             split,
             ws,
             v_at,
+            v_minus,
+            v_plus,
+            free,
+        }
+    }
+}
+
+impl Stepper {
+    /// The jump and the redone rest of [`Stepper::impact_wall`] for a path with fractional
+    /// terms (module docs of `super::general`, "Fractional terms at a wall"): their memories
+    /// split at the instant, g's split piece with −Σ_j K_j m_j(t*), the rest with the split
+    /// memories' known part and weight. (No tangent: refused for fractional terms.)
+    #[cold]
+    fn impact_wall_fractional(
+        &mut self,
+        b: &Begin,
+        c: Crossing,
+        delta: f64,
+        (v_minus, v_plus): (f64, f64),
+    ) -> WallImpact {
+        let h = self.h;
+        self.record_impact(c.theta, v_minus, v_plus);
+        self.memory_at_impact(c.v_at, v_plus);
+        let (v_n, keep_before) = (self.v, !self.restart);
+        let g = self.general.as_deref_mut().expect("a General path");
+        let split = split_fractional(g, &c, delta, v_n, keep_before, (c.v_at, v_plus), h);
+        let (known_s, wr_s) = self.history.current_split(b.gl, &split.split);
+        let known = self.base + self.history.value() + known_s;
+        // the step's known forcing without the unsplit memories' part, with the split's
+        let fr = self.rhs.forcing(b.er, self.side) + g.force_now() + split.ahead;
+        let free = g.advance_split(
+            split.kappa,
+            split.len,
+            (delta, v_plus, split.split.after),
+            split.pw,
+            known,
+            wr_s,
+            fr,
+        );
+        WallImpact {
+            split: split.split,
+            ws: c.ws,
+            v_at: c.v_at,
             v_minus,
             v_plus,
             free,
