@@ -14,8 +14,8 @@
 //! `tests/verdicts.rs`.
 
 use crate::lle::{
-    log_spaced, lyapunov_caption, panels_table, plan_curves, run_curve, starts_line, Curve, Panel,
-    StartKind,
+    log_spaced, lyapunov_caption, panels_table, plan_curves, run_curve, starts_line, Curve,
+    NoiseGrid, Panel, StartKind,
 };
 use crate::notes::{num, symbol, table_notes, Caption};
 use crate::table::Table;
@@ -23,7 +23,7 @@ use crate::verdict::rules::{Bracket, Located};
 use crate::{Figure, FigureOptions, Monitor};
 
 use serde::{Deserialize, Serialize};
-use trirhythm::model::preset;
+use trirhythm::model::{preset, Params};
 use trirhythm::Result;
 
 /// (panel, key, values, the paper's claimed trend of D_c).
@@ -52,6 +52,50 @@ pub fn noises(quick: bool) -> Vec<f64> {
     } else {
         log_spaced(0.002, 2.0, 9)
     }
+}
+
+/// The panels in one caption line: each varies one parameter over its values, the others
+/// held at the base point.
+fn panels_line(base: &Params) -> Result<String> {
+    let mut held = Vec::new();
+    for &(_, key, _, _) in &PANELS {
+        held.push(format!("{} = {}", symbol(key), num(base.get(key)?)));
+    }
+    let varied: Vec<String> = PANELS
+        .iter()
+        .map(|(label, key, values, _)| {
+            let vs: Vec<String> = values.iter().map(|&v| num(v)).collect();
+            format!("{label} {} ∈ {{{}}}", symbol(key), vs.join(", "))
+        })
+        .collect();
+    Ok(format!(
+        "each panel varies one parameter, the others held at the base point {}: {}",
+        held.join(", "),
+        varied.join("; ")
+    ))
+}
+
+/// The D searched for D_c, in one caption line.
+fn searched_line(grid: &NoiseGrid) -> String {
+    let list = |v: &[f64]| v.iter().map(|&x| num(x)).collect::<Vec<_>>().join(", ");
+    let mut line = format!(
+        "D searched: {} values log-spaced in [{}, {}]",
+        grid.noises.len(),
+        num(grid.noises[0]),
+        num(grid.noises[grid.noises.len() - 1])
+    );
+    if !grid.rest_below.is_empty() {
+        line.push_str(&format!("; rest curves also at {}", list(&grid.rest_below)));
+    }
+    if !grid.extension.is_empty() {
+        line.push_str(&format!(
+            "; a cycle curve not chaotic up to {} is extended to {} (so \"none\" means no D_c up to D = {})",
+            num(grid.noises[grid.noises.len() - 1]),
+            list(&grid.extension),
+            num(grid.extension[grid.extension.len() - 1])
+        ));
+    }
+    line
 }
 
 /// One panel: D_c against one parameter, from the curves of the LLE against D behind it.
@@ -166,7 +210,12 @@ impl Figure for Fig19 {
             options,
             &base,
             &["mu0", "tau", "lambda", "r", "D"],
-            vec![sz.describe(), starts_line(options.variant)],
+            vec![
+                panels_line(&base)?,
+                searched_line(&NoiseGrid::figure(&d, options.quick)),
+                sz.describe(),
+                starts_line(options.variant),
+            ],
         );
         Ok(Fig19 {
             caption,

@@ -38,9 +38,10 @@ const ATTRACTORS: [(&str, RGBColor); 4] = [
     ("outer", PALETTE[2]),
 ];
 
-/// Horizontal offset of an attractor's slot within its column.
+/// Horizontal offset of an attractor's slot within its column: the four slots a marker's
+/// width or more apart (a column is about 0.5 in wide at print size).
 fn slot(k: usize) -> f64 {
-    -0.15 + 0.1 * k as f64
+    -0.36 + 0.24 * k as f64
 }
 
 /// The attractor's index in [`ATTRACTORS`] (its first word: `rest`, `inner`, …).
@@ -130,8 +131,8 @@ fn key() -> Vec<String> {
          neighbouring columns joined by a thin line; a bar with an arrow (↑) up to the dotted \
          line: regular at its foot and not chaotic up to the largest D tried; a bare bar \
          down to the dotted line, its marker at its top: chaotic at its top, regular nowhere below; the dotted lines \
-         lie a third of a decade beyond the ends of the searched range of D (a bar reaching \
-         one is one-sided); row \"none\": never chaotic, no D_c; row \
+         lie just beyond the ends of the searched range of D, no value (a bar reaching one is \
+         one-sided); row \"none\": never chaotic, no D_c; row \
          \"0\": the rest regime chaotic as D → 0 (D_c = 0); ×, on the row \"undecided\": undecided, no bracket (the row's height is no value)"
             .to_string(),
     ]
@@ -178,17 +179,20 @@ fn draw_dc_panel<DB: Backend>(area: &DrawingArea<DB, Shift>, map: &SignMap) -> R
     } else {
         (-3.0, 1.0)
     };
-    // the rows outside the searched range, 0.7 decades beyond its ends (and "undecided" above
-    // "none" where a panel has one)
-    let (zero_row, never_row) = (lo - 0.7, hi + 0.7);
+    // the rows outside the searched range, two units beyond its ends (and "undecided" two
+    // more above "none" where a panel has one), the dotted edges one unit beyond: a unit of
+    // 0.35 decades, or a twentieth of the axis where it spans more (so that a row's markers
+    // stay clear of the dotted line at any span)
+    let u = 0.35f64.max(0.05 * (hi - lo + 2.4));
+    let (zero_row, never_row) = (lo - 2.0 * u, hi + 2.0 * u);
     let undecided = panel
         .curves
         .iter()
         .any(|c| matches!(mark_of(c), Mark::Undecided));
-    let undecided_row = hi + 1.4;
-    let (below_edge, above_edge) = (lo - 0.35, hi + 0.35);
+    let undecided_row = hi + 4.0 * u;
+    let (below_edge, above_edge) = (lo - u, hi + u);
     // room beyond the rows, so that their markers stay inside the plotting area
-    let y = (lo - 1.2)..(hi + if undecided { 1.9 } else { 1.2 });
+    let y = (lo - 3.4 * u)..(hi + if undecided { 5.4 } else { 3.4 } * u);
     let caption = panel
         .caption
         .split(' ')

@@ -235,7 +235,13 @@ pub fn draw_amplitude_panel<DB: Backend>(
         if !bins.is_empty() && bins.len() < 30 {
             let mut step: Vec<(f64, f64)> = Vec::new();
             for &(a, b, d) in &bins {
-                let y = if log { yv(d.max(floor)) } else { d };
+                // (on a log axis a bin below the floor drops to the axis' bottom, as the
+                // theory does: never a false plateau at the floor)
+                let y = match log {
+                    true if d >= floor => d.log10(),
+                    true => floor.log10() - 0.25,
+                    false => d,
+                };
                 step.push((a, y));
                 step.push((b, y));
             }
