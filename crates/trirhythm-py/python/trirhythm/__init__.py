@@ -109,6 +109,12 @@ def _finite(name: str, value: float) -> float:
     return v
 
 
+def _tolerance(value) -> float | None:
+    """The sum-of-exponentials tolerance: ``None`` (the library's default of the step,
+    1e-5·dt² within [1e-10, 1e-6]) or a finite number."""
+    return None if value is None else _finite("tolerance", value)
+
+
 def _count(name: str, value, low: int = 0, high: int | None = None) -> int:
     """An integer in [low, high] (``high=None``: no upper end), or ``ValueError`` naming
     ``name``, its value and the range (never ``OverflowError``: a value past what the engine
@@ -215,7 +221,7 @@ def simulate(
     barrier: bool | None = None,
     impact_memory: str = "continuous",
     memory: str = "soe",
-    tolerance: float = 1e-10,
+    tolerance: float | None = None,
     threads: int | None = None,
     progress=None,
     *,
@@ -246,7 +252,7 @@ def simulate(
         system,
         bool(barrier),
         memory,
-        _finite("tolerance", tolerance),
+        _tolerance(tolerance),
         impact_memory,
         model=model,
         threads=threads,
@@ -423,7 +429,7 @@ _ENSEMBLE_DEFAULTS = dict(
     system="fractional",
     barrier=True,
     memory="soe",
-    tolerance=1e-10,
+    tolerance=None,
     impact_memory="restart",
     bins=100,
     joint_bins=48,
@@ -461,7 +467,7 @@ def _ensemble_args(params, paths, t_end, burn_in, seed, options):
         o["system"],
         bool(o["barrier"]),
         o["memory"],
-        _finite("tolerance", o["tolerance"]),
+        _tolerance(o["tolerance"]),
         o["impact_memory"],
         _count("bins", o["bins"]),
         _count("joint_bins", o["joint_bins"]),
@@ -619,7 +625,7 @@ _LLE_DEFAULTS = dict(
     system="fractional",
     barrier=True,
     memory="soe",
-    tolerance=1e-10,
+    tolerance=None,
 )
 
 
@@ -643,7 +649,7 @@ def _lle_args(params, paths, t_end, seed, options):
         system=o["system"],
         barrier=bool(o["barrier"]),
         memory=o["memory"],
-        tolerance=_finite("tolerance", o["tolerance"]),
+        tolerance=_tolerance(o["tolerance"]),
     )
 
 
@@ -920,7 +926,7 @@ _CRITICAL_DEFAULTS = dict(
     system="fractional",
     barrier=True,
     memory="soe",
-    tolerance=1e-10,
+    tolerance=None,
     variant="paper",
 )
 
@@ -1003,7 +1009,7 @@ def critical_noise(
         o["system"],
         bool(o["barrier"]),
         o["memory"],
-        _finite("tolerance", o["tolerance"]),
+        _tolerance(o["tolerance"]),
         o["variant"],
         model=model,
         threads=threads,
@@ -1015,7 +1021,7 @@ def critical_noise(
     return r
 
 
-_MODEL_DEFAULTS = dict(system="fractional", barrier=True, memory="soe", tolerance=1e-10)
+_MODEL_DEFAULTS = dict(system="fractional", barrier=True, memory="soe", tolerance=None)
 
 
 def _model_args(options):
@@ -1027,7 +1033,7 @@ def _model_args(options):
         system=o["system"],
         barrier=bool(o["barrier"]),
         memory=o["memory"],
-        tolerance=_finite("tolerance", o["tolerance"]),
+        tolerance=_tolerance(o["tolerance"]),
     )
 
 
