@@ -1,6 +1,9 @@
 //! The sum-of-exponentials memory against the exact (Direct) memory on Eq. (1) without impacts
 //! (barrier off, μ0 = 0.1, U(0) = 2, Δt = 0.01). The error of J^λ g grows like
 //! tolerance × T × |g|, so the kernel tolerance is 1e-11 at 1e4 steps and 1e-12 at 1e5 steps.
+//! And the default memory's size (`Memory::Auto`, 1e-5·Δt²) by its error in the solution: on
+//! the fig13a set with the wall, deterministic and noisy, below a tenth of the scheme's own
+//! error (module docs of `engine::memory`, Memory size).
 
 use std::time::Instant;
 use trirhythm::engine::*;
