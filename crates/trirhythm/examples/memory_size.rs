@@ -15,6 +15,11 @@
 //!
 //! REFERENCE is `direct` (default: the exact memory, O(N²): about 10 s per path at 10⁵ steps)
 //! or `soe` (a 1e-13 kernel, for long runs).
+//!
+//! `-- one LAMBDA D old|auto STEPS` runs one path (the same set, Δt = 0.01, continuous impact
+//! memory) with the previous default (1e-10) or `Memory::Auto` and prints its time and
+//! exponentials: for counting its instructions, e.g. under
+//! `valgrind --tool=cachegrind --cache-sim=no`, where timings on a shared machine are too noisy.
 
 use std::time::Instant;
 use trirhythm::engine::{
@@ -57,6 +62,45 @@ fn list(s: &str) -> Vec<f64> {
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
+    if args.get(1).is_some_and(|a| a == "one") {
+        let lambda: f64 = args[2].parse().unwrap();
+        let d: f64 = args[3].parse().unwrap();
+        let memory = match args[4].as_str() {
+            "old" => Memory::SumOfExponentials {
+                tolerance: trirhythm::engine::PREVIOUS_DEFAULT_TOLERANCE,
+            },
+            _ => Memory::Auto,
+        };
+        let steps: f64 = args[5].parse().unwrap();
+        let p = preset("fig13a")
+            .unwrap()
+            .params
+            .with("lambda", lambda)
+            .unwrap()
+            .with("D", d)
+            .unwrap();
+        let mut o = Options {
+            t_end: steps * 0.01,
+            seed: 1,
+            ..Default::default()
+        };
+        o.record_every = steps as usize;
+        let problem = Problem::from_params(&p)
+            .and_then(|q| q.with_start(7.0, 0.0))
+            .unwrap();
+        let m = PredictorCorrector {
+            memory,
+            ..Default::default()
+        };
+        let start = Instant::now();
+        let tr = simulate(&problem, &m, &o).unwrap();
+        println!(
+            "{:.4} s, {} exponentials",
+            start.elapsed().as_secs_f64(),
+            tr.exponentials
+        );
+        return;
+    }
     let t_end: f64 = args.get(1).map_or(1000.0, |s| s.parse().unwrap());
     let dt: f64 = args.get(2).map_or(0.01, |s| s.parse().unwrap());
     let lambdas = args.get(3).map_or_else(
