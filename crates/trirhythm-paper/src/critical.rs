@@ -421,8 +421,9 @@ pub struct CriticalNoise {
     pub barrier: String,
     /// How the fractional memory is kept.
     pub memory: String,
-    /// Its tolerance.
-    pub tolerance: f64,
+    /// Its tolerance (`None`: the library's default of each curve's step,
+    /// [`trirhythm::engine::step_tolerance`]).
+    pub tolerance: Option<f64>,
     /// The averaged theory's variant that gives the starts and names the cycles.
     pub variant: String,
     /// The margin δ = 1/W of the calls.

@@ -274,7 +274,7 @@ fn texts(
             ctx.variant.name()
         ),
         format!(
-            "predictor-corrector dt = {dt}, T = {t_end}, SOE memory (tolerance 1e-10), impact memory continuous; Eq. (5) by the same driver at lambda = 1"
+            "predictor-corrector dt = {dt}, T = {t_end}, SOE memory (tolerance {:e}, the default 1e-5·dt²), impact memory continuous; Eq. (5) by the same driver at lambda = 1", trirhythm::engine::step_tolerance(dt)
         ),
         format!(
             "phase portraits and recurrence plots over the last {window} time units; epsilon = {EPSILON}, Euclidean norm; DET with l_min = 2, main diagonal excluded"

@@ -64,7 +64,7 @@ pub struct Sizes {
     /// Paths, transient, window (and the method that follows the perturbation).
     pub spec: LyapunovSpec,
     /// The equation, the wall and the memory (the figures: Eq. 1 with the wall, the
-    /// sum-of-exponentials memory at 1e-10).
+    /// sum-of-exponentials memory at the default tolerance 1e-5·Δt²).
     pub model: Model,
     /// The step Δt; `None`: the figures' rule, [`dt_for`] of each parameter set's τ.
     pub dt: Option<f64>,

@@ -135,8 +135,9 @@ pub struct Model {
     pub barrier: Barrier,
     /// How the fractional memory is kept.
     pub memory: MemoryKind,
-    /// Relative tolerance of the sum-of-exponentials kernel.
-    pub tolerance: f64,
+    /// Relative tolerance of the sum-of-exponentials kernel; `None`: the library's default,
+    /// [`trirhythm::engine::step_tolerance`] of the step (10⁻⁵·Δt²).
+    pub tolerance: Option<f64>,
 }
 
 impl Default for Model {
@@ -145,7 +146,7 @@ impl Default for Model {
             system: System::Fractional,
             barrier: Barrier::On,
             memory: MemoryKind::Soe,
-            tolerance: 1e-10,
+            tolerance: None,
         }
     }
 }
@@ -163,7 +164,10 @@ impl Model {
         format!(
             "memory={} tolerance={} impact_memory={} barrier={} system={}",
             self.memory.name(),
-            self.tolerance,
+            match self.tolerance {
+                Some(t) => t.to_string(),
+                None => "auto".to_string(),
+            },
             impact_memory.name(),
             self.barrier.name(),
             self.system.name()
@@ -176,8 +180,9 @@ impl Model {
             dt,
             memory: match self.memory {
                 MemoryKind::Direct => Memory::Direct,
-                MemoryKind::Soe => Memory::SumOfExponentials {
-                    tolerance: self.tolerance,
+                MemoryKind::Soe => match self.tolerance {
+                    Some(tolerance) => Memory::SumOfExponentials { tolerance },
+                    None => Memory::Auto,
                 },
             },
             impact_memory,
@@ -656,7 +661,7 @@ mod tests {
         let r = EnsembleRequest::new(Params::default());
         assert_eq!(
             r.method_line(),
-            "method: predictor-corrector dt=0.01 memory=soe tolerance=0.0000000001 \
+            "method: predictor-corrector dt=0.01 memory=soe tolerance=auto \
              impact_memory=restart barrier=on system=fractional paths=8 burn_in=100 t_end=1000 \
              seed=1 sample_every=1"
         );

@@ -209,8 +209,9 @@ fn long_call<T: Send>(
     Ok(value)
 }
 
-/// The model choices of a call: `system`, `barrier`, `memory`, `tolerance`.
-fn model(system: &str, barrier: bool, memory: &str, tolerance: f64) -> PyResult<Model> {
+/// The model choices of a call: `system`, `barrier`, `memory`, `tolerance` (`None`: the
+/// library's default of the step, `trirhythm::engine::step_tolerance`).
+fn model(system: &str, barrier: bool, memory: &str, tolerance: Option<f64>) -> PyResult<Model> {
     Ok(Model {
         system: System::parse(system).map_err(py_err)?,
         barrier: if barrier {
@@ -771,7 +772,7 @@ fn _simulate<'py>(
     system: &str,
     barrier: bool,
     memory: &str,
-    tolerance: f64,
+    tolerance: Option<f64>,
     impact_memory: &str,
     model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
@@ -835,7 +836,7 @@ fn ensemble_request(
     system: &str,
     barrier: bool,
     memory: &str,
-    tolerance: f64,
+    tolerance: Option<f64>,
     impact_memory: &str,
     bins: usize,
     joint_bins: usize,
@@ -881,7 +882,7 @@ fn _ensemble(
     system: &str,
     barrier: bool,
     memory: &str,
-    tolerance: f64,
+    tolerance: Option<f64>,
     impact_memory: &str,
     bins: usize,
     joint_bins: usize,
@@ -993,7 +994,7 @@ fn _ensemble_wells(
     system: &str,
     barrier: bool,
     memory: &str,
-    tolerance: f64,
+    tolerance: Option<f64>,
     impact_memory: &str,
     bins: usize,
     joint_bins: usize,
@@ -1064,7 +1065,7 @@ fn _lyapunov(
     system: &str,
     barrier: bool,
     memory: &str,
-    tolerance: f64,
+    tolerance: Option<f64>,
     model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
@@ -1133,7 +1134,7 @@ fn _critical_noise(
     system: &str,
     barrier: bool,
     memory: &str,
-    tolerance: f64,
+    tolerance: Option<f64>,
     variant: &str,
     model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
@@ -1192,7 +1193,7 @@ fn _attractor(
     system: &str,
     barrier: bool,
     memory: &str,
-    tolerance: f64,
+    tolerance: Option<f64>,
     model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
 ) -> PyResult<String> {
@@ -1248,7 +1249,7 @@ fn _phase_response(
     system: &str,
     barrier: bool,
     memory: &str,
-    tolerance: f64,
+    tolerance: Option<f64>,
     model: Option<PyRef<'_, PyModel>>,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
@@ -1320,7 +1321,7 @@ fn _oscillation_boundary(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
     theory_only(model, "oscillation_boundary")?;
-    let m = self::model("fractional", barrier, "soe", 1e-10)?;
+    let m = self::model("fractional", barrier, "soe", Some(1e-10))?;
     let template = m.problem(&params.0).map_err(py_err)?;
     let plane =
         osc::Plane::new(&template, (x_key, x), (y_key, y_range.0, y_range.1)).map_err(py_err)?;

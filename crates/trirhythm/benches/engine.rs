@@ -5,7 +5,10 @@
 //! - SOE against Direct memory at 1e4, 3e4 and 1e5 steps (Direct is O(N²));
 //! - the scalar known-answer problem (Diethelm's benchmark) with both memories;
 //! - the General kernel (Duffing, Rayleigh, harmonic forcing) against the paper's kernel on the
-//!   same path (fig1 with the wall, μ0 = 0.1), λ = 0.998 and 1, 1e5 steps.
+//!   same path (fig1 with the wall, μ0 = 0.1), λ = 0.998 and 1, 1e5 steps;
+//! - the default memory (`Memory::Auto`, tolerance 1e-5·Δt² = 1e-9 at Δt = 0.01) against the
+//!   previous default (1e-10) side by side, on the noisy fig13a path (λ = 0.998 and 0.8, OU
+//!   noise D = 0.1, τ = 0.5, wall on, U(0) = 7, seed 1), 1e5 and 1e6 steps.
 //!
 //! Long runs (1e6, 1e7 steps) are timed by `examples/engine_timing.rs`, not here.
 
@@ -13,7 +16,9 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
 use std::time::Duration;
 use trirhythm::engine::simulate;
-use trirhythm::engine::{solve_scalar, Memory};
+use trirhythm::engine::{
+    solve_scalar, Memory, Options, PredictorCorrector, Problem, PREVIOUS_DEFAULT_TOLERANCE,
+};
 use trirhythm::known_answers::{diethelm_rhs, engine_benchmark_case};
 use trirhythm::model::{GeneralTerms, Harmonic};
 
@@ -88,11 +93,56 @@ fn general_vs_paper(c: &mut Criterion) {
     g.finish();
 }
 
+/// The noisy fig13a path at order λ with `memory`, `steps` steps of 0.01: its final amplitude.
+fn fig13a_path(lambda: f64, steps: usize, memory: Memory) -> f64 {
+    let p = trirhythm::model::preset("fig13a")
+        .unwrap()
+        .params
+        .with("lambda", lambda)
+        .unwrap();
+    let problem = Problem::from_params(&p)
+        .and_then(|q| q.with_start(7.0, 0.0))
+        .unwrap();
+    let m = PredictorCorrector {
+        dt: 0.01,
+        memory,
+        ..Default::default()
+    };
+    let o = Options {
+        t_end: steps as f64 * 0.01,
+        seed: 1,
+        record_every: steps,
+        ..Default::default()
+    };
+    simulate(&problem, &m, &o).unwrap().final_amplitude
+}
+
+/// The default memory against the previous default, one run.
+fn default_memory(c: &mut Criterion) {
+    let mut g = c.benchmark_group("default_memory");
+    g.sample_size(10).measurement_time(Duration::from_secs(3));
+    let previous = Memory::SumOfExponentials {
+        tolerance: PREVIOUS_DEFAULT_TOLERANCE,
+    };
+    for steps in [100_000usize, 1_000_000] {
+        for lambda in [0.998, 0.8] {
+            for (name, memory) in [("tolerance_1e-10", previous), ("auto", Memory::Auto)] {
+                let id = BenchmarkId::new(format!("{name}/lambda_{lambda}"), steps);
+                g.bench_with_input(id, &steps, |b, &n| {
+                    b.iter(|| fig13a_path(black_box(lambda), n, memory))
+                });
+            }
+        }
+    }
+    g.finish();
+}
+
 criterion_group!(
     benches,
     soe_vs_lambda_one,
     soe_vs_direct,
     scalar,
-    general_vs_paper
+    general_vs_paper,
+    default_memory
 );
 criterion_main!(benches);

@@ -77,7 +77,7 @@ impl ExponentArgs {
         &self,
         (paths, seed): (usize, u64),
         (transient, t_end): (f64, f64),
-        tolerance: f64,
+        tolerance: Option<f64>,
     ) -> Result<LyapunovSpec> {
         let d0 = self.separation;
         allowed(
@@ -86,12 +86,14 @@ impl ExponentArgs {
             num(d0),
             "[1e-12, 1e-4]",
         )?;
-        allowed(
-            tolerance > 0.0 && tolerance < 1e-2,
-            "--tolerance",
-            num(tolerance),
-            "(0, 1e-2)",
-        )?;
+        if let Some(tolerance) = tolerance {
+            allowed(
+                tolerance > 0.0 && tolerance < 1e-2,
+                "--tolerance",
+                num(tolerance),
+                "(0, 1e-2)",
+            )?;
+        }
         allowed(
             (1..=1_000_000).contains(&self.renormalise_every),
             "--renormalise-every",

@@ -154,6 +154,12 @@ def _finite(name: str, value: float) -> float:
     return v
 
 
+def _tolerance(value) -> float | None:
+    """The sum-of-exponentials tolerance: ``None`` (the library's default of the step,
+    1e-5·dt² within [1e-10, 1e-6]) or a finite number."""
+    return None if value is None else _finite("tolerance", value)
+
+
 def _count(name: str, value, low: int = 0, high: int | None = None) -> int:
     """An integer in [low, high] (``high=None``: no upper end), or ``ValueError`` naming
     ``name``, its value and the range (never ``OverflowError``: a value past what the engine
@@ -260,7 +266,7 @@ def simulate(
     barrier: bool | None = None,
     impact_memory: str = "continuous",
     memory: str = "soe",
-    tolerance: float = 1e-10,
+    tolerance: float | None = None,
     threads: int | None = None,
     progress=None,
     *,
@@ -291,7 +297,7 @@ def simulate(
         system,
         bool(barrier),
         memory,
-        _finite("tolerance", tolerance),
+        _tolerance(tolerance),
         impact_memory,
         model=model,
         threads=threads,
@@ -468,7 +474,7 @@ _ENSEMBLE_DEFAULTS = dict(
     system="fractional",
     barrier=True,
     memory="soe",
-    tolerance=1e-10,
+    tolerance=None,
     impact_memory="restart",
     bins=100,
     joint_bins=48,
@@ -506,7 +512,7 @@ def _ensemble_args(params, paths, t_end, burn_in, seed, options):
         o["system"],
         bool(o["barrier"]),
         o["memory"],
-        _finite("tolerance", o["tolerance"]),
+        _tolerance(o["tolerance"]),
         o["impact_memory"],
         _count("bins", o["bins"]),
         _count("joint_bins", o["joint_bins"]),
@@ -664,7 +670,7 @@ _LLE_DEFAULTS = dict(
     system="fractional",
     barrier=True,
     memory="soe",
-    tolerance=1e-10,
+    tolerance=None,
 )
 
 
@@ -688,7 +694,7 @@ def _lle_args(params, paths, t_end, seed, options):
         system=o["system"],
         barrier=bool(o["barrier"]),
         memory=o["memory"],
-        tolerance=_finite("tolerance", o["tolerance"]),
+        tolerance=_tolerance(o["tolerance"]),
     )
 
 
@@ -965,7 +971,7 @@ _CRITICAL_DEFAULTS = dict(
     system="fractional",
     barrier=True,
     memory="soe",
-    tolerance=1e-10,
+    tolerance=None,
     variant="paper",
 )
 
@@ -1048,7 +1054,7 @@ def critical_noise(
         o["system"],
         bool(o["barrier"]),
         o["memory"],
-        _finite("tolerance", o["tolerance"]),
+        _tolerance(o["tolerance"]),
         o["variant"],
         model=model,
         threads=threads,
@@ -1060,7 +1066,7 @@ def critical_noise(
     return r
 
 
-_MODEL_DEFAULTS = dict(system="fractional", barrier=True, memory="soe", tolerance=1e-10)
+_MODEL_DEFAULTS = dict(system="fractional", barrier=True, memory="soe", tolerance=None)
 
 
 def _model_args(options):
@@ -1072,7 +1078,7 @@ def _model_args(options):
         system=o["system"],
         barrier=bool(o["barrier"]),
         memory=o["memory"],
-        tolerance=_finite("tolerance", o["tolerance"]),
+        tolerance=_tolerance(o["tolerance"]),
     )
 
 

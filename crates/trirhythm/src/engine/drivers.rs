@@ -14,7 +14,7 @@
 //! use trirhythm::monitor::Silent;
 //!
 //! let problem = Problem::from_params(&preset("fig1")?.params)?.with_start(6.78, 0.0)?; // Eq. 1
-//! let method = PredictorCorrector { dt: 0.01, ..Default::default() }; // SOE memory, 1e-10
+//! let method = PredictorCorrector { dt: 0.01, ..Default::default() }; // SOE memory, 1e-5·Δt² = 1e-9
 //! let options = Options { t_end: 50.0, seed: 42, ..Default::default() }; // path 0 of seed 42
 //! let path = simulate(&problem, &method, &options)?;
 //! assert_eq!(path.steps, 5000);

@@ -30,7 +30,9 @@
 //!   (O(N) work per step, O(N²) per path); `SumOfExponentials` keeps a short local window of
 //!   exact weights and moves older intervals into the exponential modes, each advanced by the
 //!   exact recursion Y ← e^{−sℓ}Y + ℓψ(sℓ) g_start + ℓ(φ(sℓ) − ψ(sℓ)) g_end for a linear g
-//!   (O(modes) work and memory per step, independent of N).
+//!   (O(modes) work and memory per step, independent of N). The default tolerance is sized by
+//!   the error it causes in the solution, not in the kernel: 10⁻⁵·Δt² (module docs of
+//!   `engine::memory`, Memory size).
 //! - **Mittag-Leffler** ([`crate::special::mittag_leffler`]): the power series in log-space terms, with an error
 //!   estimate from the largest term; refused where cancellation would cost more than 1e-10.
 //!

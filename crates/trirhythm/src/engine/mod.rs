@@ -34,7 +34,9 @@ pub use drivers::{
 };
 pub(crate) use memory::History;
 pub use memory::{
-    probe_memory, solve_scalar, Memory, DEFAULT_WINDOW, MAX_TOLERANCE, MIN_TOLERANCE,
+    probe_memory, solve_scalar, step_tolerance, Memory, AUTO_TOLERANCE_MAX, AUTO_TOLERANCE_MIN,
+    AUTO_TOLERANCE_PER_DT2, DEFAULT_WINDOW, MAX_TOLERANCE, MIN_TOLERANCE,
+    PREVIOUS_DEFAULT_TOLERANCE,
 };
 pub use problem::{
     Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, Problem, System,

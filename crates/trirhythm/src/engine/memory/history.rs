@@ -124,7 +124,7 @@ impl History {
             moments: [0.0; LUMPED_TERMS],
             cached: 0.0,
         };
-        if let Memory::SumOfExponentials { tolerance } = memory {
+        if let Some(tolerance) = memory.tolerance(dt) {
             // the modes serve kernel arguments ≥ (w−1)h (impact instants inside a step)
             let from = (window as f64 - 1.0) * dt;
             let k = SoeKernel::new(lambda, from, t_end.max(from * 1.0001), tolerance)?;

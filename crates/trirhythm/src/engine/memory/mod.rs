@@ -60,6 +60,34 @@
 //! and every step its own output weights (about 6 instead of 7 flops per mode and step at
 //! B = 4), so it is not used.
 //!
+//! # Memory size
+//! The default [`Memory::Auto`] asks the kernel for the tolerance ε = 10⁻⁵·Δt² ([`step_tolerance`],
+//! within [10⁻¹⁰, 10⁻⁶]; 10⁻⁹ at Δt = 0.01), chosen by the error the memory causes in the
+//! solution rather than in the kernel: max |U_SOE(ε) − U_Direct| over a path must stay below a
+//! tenth of the scheme's own error max |U_Δt − U_Δt/2|. Measured on the fig13a set (μ0 = 0.005,
+//! r = 0.99, wall on, U(0) = 7, T = 1000) at λ ∈ {0.3, 0.5, 0.8, 0.95, 0.995, 0.998, 0.999}:
+//! - the memory's error grows like ε·T and does not depend on Δt (λ = 0.998, ε = 10⁻¹⁰:
+//!   1.04·10⁻⁷ at Δt = 0.01 and at Δt = 0.001); the scheme's like Δt²·T (2.3·10⁻² and
+//!   2.3·10⁻⁴). Their ratio depends on ε/Δt² only, hence the rule's form;
+//! - at Δt = 0.01 the deterministic paths allow ε = 10⁻⁷ (worst ratio 0.062, λ = 0.95); the
+//!   noisy paths (OU noise D = 0.1, τ = 0.5, seed 1, both impact memories, measured against the
+//!   deterministic path's scheme error, since the noise is not nested under halving Δt) bring it
+//!   to 10⁻⁹ (λ = 0.998 continuous: 0.014 at 10⁻⁹, 0.15 at 10⁻⁸; λ = 0.8 restart: 4·10⁻⁴ at
+//!   10⁻⁹, 0.014 at 3·10⁻⁹, 0.067 at 10⁻⁸);
+//! - a noisy path that amplifies every perturbation breaks the bound: λ = 0.999 continuous at
+//!   every tolerance (0.17 at 10⁻¹³), every noisy λ = 0.998 path by T = 10⁴, and λ = 0.995
+//!   restart at 10⁻⁹ (0.30 of the scheme's error; 0.052 at 10⁻¹⁰). Only the statistics of such
+//!   paths are defined, and those are what the figures compare (CHANGELOG, the memory's size).
+//!
+//! The kernel needs about a fifth fewer exponentials at 10⁻⁹ than at 10⁻¹⁰ (λ = 0.998: 26
+//! against 32 at 10⁵ steps, 29 against 36 at 10⁶), but the modes are a small part of a step
+//! (Cost, above): a noisy path takes 1.4–2.3 % fewer instructions at 10⁶ steps (λ = 0.5 …
+//! 0.998, counted by cachegrind), a gain below what timings on a shared machine resolve.
+//! [`Memory::SumOfExponentials`] keeps any tolerance explicitly
+//! ([`PREVIOUS_DEFAULT_TOLERANCE`] reproduces the earlier paths). `tests/soe.rs` checks the
+//! bound on a deterministic and a noisy path at λ = 0.998 and 0.8, and that a 10⁴ times
+//! looser kernel breaks it.
+//!
 //! # Reference
 //! Diethelm, Ford & Freed, Nonlinear Dyn. 29 (2002) 3–22 (product trapezoidal rule); Jiang,
 //! Zhang, Zhang & Zhang, Commun. Comput. Phys. 21 (2017) 650–678 (sum of exponentials).
@@ -110,10 +138,35 @@ pub enum Memory {
     Direct,
     /// Exact weights over a short local window, a verified sum of exponentials beyond it.
     SumOfExponentials {
-        /// Relative tolerance of the kernel approximation on [window·Δt, T] (e.g. 1e-10).
+        /// Relative tolerance of the kernel approximation on [window·Δt, T] (e.g. 1e-9).
         tolerance: f64,
     },
+    /// The default: [`Memory::SumOfExponentials`] with the tolerance [`step_tolerance`]`(Δt)`,
+    /// sized by the error it causes in the solution (a tenth of the scheme's own at most;
+    /// module docs, Memory size).
+    Auto,
 }
+
+/// The kernel tolerance of [`Memory::Auto`] for the step Δt: 10⁻⁵·Δt² (10⁻⁹ at Δt = 0.01,
+/// 2.5·10⁻¹⁰ at 0.005), kept in [[`AUTO_TOLERANCE_MIN`], [`AUTO_TOLERANCE_MAX`]]. The memory's
+/// error in the solution grows like tolerance × T and the scheme's own like Δt² × T (both
+/// measured; module docs, Memory size), so their ratio depends on tolerance/Δt² only: the
+/// constant is the largest (in steps of 10^{1/2}) for which the memory's error stayed below a
+/// tenth of the scheme's on the measured paths at Δt = 0.01.
+pub fn step_tolerance(dt: f64) -> f64 {
+    (AUTO_TOLERANCE_PER_DT2 * dt * dt).clamp(AUTO_TOLERANCE_MIN, AUTO_TOLERANCE_MAX)
+}
+
+/// The constant c of [`step_tolerance`] = c·Δt².
+pub const AUTO_TOLERANCE_PER_DT2: f64 = 1e-5;
+/// Smallest tolerance [`Memory::Auto`] asks for: the previous default, reached at Δt ≈ 0.0032
+/// (below it the default paths are those of earlier versions, bit for bit). At Δt = 0.001 it
+/// keeps the memory's error below 0.0023 of the scheme's on the measured paths that do not
+/// amplify perturbations; a tighter kernel costs exponentials (λ = 0.998, 10⁷ steps: 45 at
+/// 10⁻¹¹ against 40) and is not certified for every λ (λ = 10⁻⁶ fails at 10⁻¹¹).
+pub const AUTO_TOLERANCE_MIN: f64 = PREVIOUS_DEFAULT_TOLERANCE;
+/// Largest tolerance [`Memory::Auto`] asks for (Δt above about 0.3).
+pub const AUTO_TOLERANCE_MAX: f64 = 1e-6;
 
 /// Smallest tolerance of [`Memory::SumOfExponentials`] (exclusive): the kernel's quadrature
 /// cannot certify less in double precision.
@@ -127,7 +180,7 @@ impl Memory {
     /// ([`MIN_TOLERANCE`], [`MAX_TOLERANCE`]).
     pub fn validate(&self) -> Result<()> {
         match *self {
-            Memory::Direct => Ok(()),
+            Memory::Direct | Memory::Auto => Ok(()),
             Memory::SumOfExponentials { tolerance } => {
                 if tolerance > MIN_TOLERANCE && tolerance < MAX_TOLERANCE {
                     Ok(())
@@ -139,9 +192,26 @@ impl Memory {
     }
 }
 
+impl Memory {
+    /// The kernel tolerance of this memory at step `dt` (None for [`Memory::Direct`]).
+    pub fn tolerance(&self, dt: f64) -> Option<f64> {
+        match *self {
+            Memory::Direct => None,
+            Memory::SumOfExponentials { tolerance } => Some(tolerance),
+            Memory::Auto => Some(step_tolerance(dt)),
+        }
+    }
+}
+
+/// The tolerance of [`Memory::default`] before [`Memory::Auto`] (for every Δt): keep it explicitly with
+/// `Memory::SumOfExponentials { tolerance: PREVIOUS_DEFAULT_TOLERANCE }` to reproduce earlier
+/// paths bit for bit.
+pub const PREVIOUS_DEFAULT_TOLERANCE: f64 = 1e-10;
+
 impl Default for Memory {
+    /// [`Memory::Auto`].
     fn default() -> Self {
-        Memory::SumOfExponentials { tolerance: 1e-10 }
+        Memory::Auto
     }
 }
 

@@ -296,10 +296,7 @@ fn fractional_history(index: usize, order: f64, h: f64, setup: &MemorySetup) -> 
              a near-delta the sum of exponentials does not resolve",
         ));
     }
-    let tolerance = match setup.memory {
-        Memory::Direct => u64::MAX,
-        Memory::SumOfExponentials { tolerance } => tolerance.to_bits(),
-    };
+    let tolerance = setup.memory.tolerance(h).map_or(u64::MAX, f64::to_bits);
     let key = [
         order.to_bits(),
         h.to_bits(),
