@@ -54,11 +54,9 @@ fn mc_style(k: usize) -> SeriesStyle {
     }
 }
 
-/// The part of the A axis where a panel's densities are: the bins of its histograms with
-/// a density, and the theory, where they stand above a ten-thousandth of the panel's highest
-/// density (the floor of a log axis), padded by 5 % (never below A = 0) and widened to hold
-/// four ticks where a step of the 1-2-5 ladder cannot.
-pub fn a_range(p: &AmplitudePanel) -> (f64, f64) {
+/// Where a panel's densities (the shown histograms and the theory) stand at or above
+/// `fraction` of the panel's highest density: (lo, hi), empty (lo ≥ hi) where none does.
+fn span_above(p: &AmplitudePanel, fraction: f64) -> (f64, f64) {
     let shown: Vec<Vec<f64>> = p.runs.iter().map(|r| r.shown_density().0 .0).collect();
     let top = shown
         .iter()
@@ -67,7 +65,7 @@ pub fn a_range(p: &AmplitudePanel) -> (f64, f64) {
         .copied()
         .filter(|y| y.is_finite())
         .fold(0.0f64, f64::max);
-    let seen = |y: f64| y.is_finite() && y > 0.0 && y >= 1e-4 * top;
+    let seen = |y: f64| y.is_finite() && y > 0.0 && y >= fraction * top;
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for (r, density) in p.runs.iter().zip(&shown) {
         for (w, &d) in r.edges.windows(2).zip(density) {
@@ -83,6 +81,30 @@ pub fn a_range(p: &AmplitudePanel) -> (f64, f64) {
             }
         }
     }
+    (lo, hi)
+}
+
+/// The lowest density a panel's A range holds, as a fraction of its highest (the floor of a
+/// log axis).
+const RANGE_FLOOR: f64 = 1e-4;
+/// What a linear axis shows of a density: from this fraction of its top up.
+const LINEAR_SEEN: f64 = 1e-2;
+
+/// A panel whose A range is more than twice as wide as the part a linear axis shows (where a
+/// density stands over [`LINEAR_SEEN`] of the top): a second mode or a long tail that only a
+/// log axis can show (Fig. 13 (a3): the outer cycle's mode at A ≈ 12.5, 0.3 % of the mass).
+pub fn hidden_on_linear(p: &AmplitudePanel) -> bool {
+    let (lo, hi) = span_above(p, RANGE_FLOOR);
+    let (a, b) = span_above(p, LINEAR_SEEN);
+    lo < hi && a < b && hi - lo > 2.0 * (b - a)
+}
+
+/// The part of the A axis where a panel's densities are: the bins of its histograms with
+/// a density, and the theory, where they stand at or above [`RANGE_FLOOR`] of the panel's
+/// highest density (the floor of a log axis), padded by 5 % (never below A = 0) and widened
+/// to hold four ticks where a step of the 1-2-5 ladder cannot.
+pub fn a_range(p: &AmplitudePanel) -> (f64, f64) {
+    let (lo, hi) = span_above(p, RANGE_FLOOR);
     if lo >= hi {
         return (0.0, 1.0);
     }
@@ -132,7 +154,8 @@ pub const COARSE_STEP: char = '§';
 
 /// Draw one amplitude panel over A ∈ `x` (where the densities are, [`a_range`]). The y
 /// range holds every histogram with its error bars and the theory's peaks, none cut: on a
-/// log axis where a theory peak stands over three times the histograms, the theory drawn only
+/// log axis where a theory peak stands over three times the histograms or the densities
+/// reach far beyond what a linear axis shows ([`hidden_on_linear`]), the theory drawn only
 /// above the axis' floor (a density below it is not drawn along the axis); the title is the
 /// panel's label with each system's marks ([`NOT_STATIONARY`] …), the details in the caption.
 pub fn draw_amplitude_panel<DB: Backend>(
@@ -172,9 +195,10 @@ pub fn draw_amplitude_panel<DB: Backend>(
     if !marks.is_empty() {
         caption.push_str(&format!(" · {}", marks.join(", ")));
     }
-    // a theory peak far above the histograms: a log axis shows both, none cut
-    let log = theory_max > 3.0 * mc_max && mc_max > 0.0;
-    let floor = y_max * 1e-4;
+    // a theory peak far above the histograms, or densities a linear axis hides: a log axis
+    // shows both, none cut
+    let log = (theory_max > 3.0 * mc_max && mc_max > 0.0) || hidden_on_linear(p);
+    let floor = y_max * RANGE_FLOOR;
     let yv = |v: f64| if log { v.max(floor).log10() } else { v };
     let c = if log {
         chart_log_y(
