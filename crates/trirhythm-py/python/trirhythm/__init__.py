@@ -22,7 +22,7 @@ from __future__ import annotations
 import json
 import warnings
 from dataclasses import dataclass, field
-from typing import Any, Iterable, Literal, NamedTuple, Protocol, Sequence, cast, overload
+from typing import Any, Callable, Iterable, Literal, NamedTuple, Protocol, Sequence, TypeVar, cast, overload
 
 import numpy as np
 
@@ -102,7 +102,10 @@ class Profile:
         )
 
 
-def profiled(func, *args, **kwargs):
+_R = TypeVar("_R")
+
+
+def profiled(func: Callable[..., _R], *args: Any, **kwargs: Any) -> tuple[_R, Profile]:
     """Call ``func(*args, **kwargs)`` (any trirhythm function, or a function of yours that calls
     them on this thread) and return ``(result, Profile)``: the parallel profile of the native
     work it ran. The result is the same as without profiling, bit for bit.
@@ -117,6 +120,8 @@ def profiled(func, *args, **kwargs):
         result = func(*args, **kwargs)
     finally:
         got = _native._profile_stop()
+    if got is None:  # (stopped by the call itself: nothing recorded)
+        got = (0.0, 0.0, 0, 0.0)
     return result, Profile(*got)
 
 
