@@ -819,8 +819,9 @@ pub fn mark_signs(curves: &mut [&mut Curve]) {
     }
 }
 
-/// One LLE at parameters `p` from `u0`: a point at abscissa `x` ([`point_of`]), and a note
-/// when a realisation merged.
+/// One LLE at parameters `p` from `u0`: a point at abscissa `x` (the mean of the realisations
+/// that did not merge; merged, −∞, where at least half did: [`Flag::of`]), and a note when a
+/// realisation merged.
 pub fn lle_point(
     monitor: &dyn Monitor,
     p: &Params,
