@@ -269,7 +269,7 @@ fn unescape(text: &str) -> String {
 /// same decision: the same verdict and the same deciding number (the strongest check's
 /// statistic against its threshold, in the words of `Check::statistic_words`); the
 /// picture's badge quotes it where it fits, else says "(see caption)", and a figure of more
-/// than three verdicts counts them on one summary line.
+/// than one verdict counts them on one summary line.
 #[test]
 fn every_rendering_of_a_verdict_quotes_the_same_deciding_number() {
     use trirhythm_paper::verdict::claims::ClaimVerdict;
@@ -311,7 +311,7 @@ fn every_rendering_of_a_verdict_quotes_the_same_deciding_number() {
             unescape(&std::fs::read_to_string(out.join(format!("figures/fig{n:02}.svg"))).unwrap())
         });
         // the picture's badge: one short line, the number where it fits, else "(see
-        // caption)"; a figure of more than three verdicts draws one summary line
+        // caption)"; a figure of more than one verdict draws one summary line
         match svg.lines().find(|l| l.contains(&format!("{id} — "))) {
             Some(drawn) => assert!(
                 drawn.contains(&format!("{id} — {tag} ({number}"))

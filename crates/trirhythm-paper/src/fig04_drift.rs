@@ -39,6 +39,42 @@ pub struct Panel {
     pub outermost_at_r1: f64,
 }
 
+impl Panel {
+    /// The roots of this panel's own f at r = 1 (ascending), the reference of its cycles'
+    /// names ([`cycle_names`]): its cycles where r = 1; else the sign changes of its r = 1
+    /// curve (`reference`), located by linear interpolation, stable where f falls through 0;
+    /// None where the panel has no r = 1 curve.
+    pub fn reference_cycles(&self) -> Option<Vec<Cycle>> {
+        if self.r == 1.0 {
+            return Some(self.cycles.clone());
+        }
+        let curve = self.reference.as_ref()?;
+        // the points off zero (A > 0), in order; a root between two of opposite signs: an
+        // exact zero between them, else the linear interpolation
+        let signed: Vec<usize> = (0..curve.len())
+            .filter(|&i| curve[i].0 > 0.0 && curve[i].1 != 0.0 && curve[i].1.is_finite())
+            .collect();
+        let roots = signed
+            .windows(2)
+            .filter(|w| (curve[w[0]].1 > 0.0) != (curve[w[1]].1 > 0.0))
+            .map(|w| {
+                let ((a0, f0), (a1, f1)) = (curve[w[0]], curve[w[1]]);
+                let amplitude = if w[1] > w[0] + 1 {
+                    curve[(w[0] + w[1]) / 2].0
+                } else {
+                    a0 + (a1 - a0) * f0 / (f0 - f1)
+                };
+                Cycle {
+                    amplitude,
+                    stable: f0 > 0.0,
+                    fold: false,
+                }
+            })
+            .collect();
+        Some(roots)
+    }
+}
+
 /// Fig. 4's data: f(A0) on a grid, its roots, per panel.
 #[derive(Serialize, Deserialize)]
 pub struct Fig04 {
@@ -154,7 +190,7 @@ fn compute(ctx: &FigureOptions, monitor: &dyn Monitor) -> Result<Fig04> {
 }
 
 /// The naming rule of [`cycle_names`] in one line, for the captions of Figs 1 and 4.
-pub const CYCLE_NAMING: &str = "cycle names: A_{01}, A_{02}, … are the roots of f at r = 1 by increasing amplitude; at another r a root takes the name of the r = 1 root of its stability at the same rank from the largest amplitude";
+pub const CYCLE_NAMING: &str = "cycle names: A_{01}, A_{02}, … are the roots of f at r = 1 (the panel's own control parameters) by increasing amplitude; at another r a root takes the name of the r = 1 root of its stability at the same rank from the largest amplitude";
 
 /// The names of a panel's roots `cycles` (ascending amplitude), in the paper's convention:
 /// the roots at r = 1 (`reference`, ascending) are A_01, A_02, … by amplitude (stable odd,
@@ -234,5 +270,32 @@ mod tests {
             ["A_{05}", "A_{06}", "A_{01}", "A_{02}", "A_{03}"]
         );
         assert!(cycle_names(&[], &b).iter().all(|n| !n.is_empty()));
+    }
+
+    /// A panel at r < 1 takes its names from its own r = 1 curve's roots (Fig. 4 (c): five
+    /// roots at r = 1, so its outer pair is A_04, A_05).
+    #[test]
+    fn a_panel_is_named_after_its_own_r1_curve() {
+        // f = −(A − 1)(A − 2)(A − 3)(A − 4)(A − 5)·A on a grid: stable 1, 3, 5
+        let f = |a: f64| -(1..=5).map(|k| a - k as f64).product::<f64>() * a;
+        let grid: Vec<(f64, f64)> = (0..=600).map(|i| (i as f64 * 0.01, 0.0)).collect();
+        let reference: Vec<(f64, f64)> = grid.iter().map(|&(a, _)| (a, f(a))).collect();
+        let panel = Panel {
+            label: "c".into(),
+            r: 0.95,
+            curve: grid,
+            reference: Some(reference),
+            cycles: roots("us", &[3.9, 4.8]),
+            cp: [0.0; 4],
+            outermost_at_r1: 5.0,
+        };
+        let r1 = panel.reference_cycles().unwrap();
+        let found: Vec<(f64, bool)> = r1.iter().map(|c| (c.amplitude, c.stable)).collect();
+        assert_eq!(found.len(), 5, "{found:?}");
+        for (k, (a, stable)) in found.iter().enumerate() {
+            assert!((a - (k + 1) as f64).abs() < 1e-9, "{found:?}");
+            assert_eq!(*stable, k % 2 == 0);
+        }
+        assert_eq!(cycle_names(&r1, &panel.cycles), ["A_{04}", "A_{05}"]);
     }
 }

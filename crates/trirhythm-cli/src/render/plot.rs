@@ -5,7 +5,7 @@
 //! [`PNG_WIDTH`] = 2100 px, 7 in at 300 dpi, one picture in both formats, written atomically.
 //! One style for every figure (Rougier et al., "Ten simple rules for better figures"): [`save`]
 //! draws the [`Heading`]'s title on one line above the picture and one short verdict badge
-//! per claim below it, never cut (one summary line for more than three claims); the explanations (parameters, formula variant, the values chosen where
+//! below it, never cut (a figure's one claim, or one summary line of several); the explanations (parameters, formula variant, the values chosen where
 //! the paper is silent, the verdicts' details) are the caption: the heading's lines, written
 //! to the figure's CSV notes, the report page and the contact sheet, never drawn inside the
 //! plot.
@@ -151,14 +151,15 @@ impl Heading {
         )
     }
 
-    /// The verdict badges in their colours, each one short line never cut: the claim, the
-    /// verdict and, where it fits, the deciding statistic, else "(see caption)"; more than
-    /// three verdicts are one summary line ("verdicts: 2 confirmed, 1 refuted (see
-    /// caption)"). The caption has every verdict whole.
+    /// The verdict badge in its colour, one short line never cut: a figure's one verdict as
+    /// the claim, the verdict and, where it fits, the deciding statistic, else "(see
+    /// caption)"; several verdicts as one summary line ("verdicts: 2 confirmed, 1 refuted
+    /// (see caption)", in the colour of a refutation where there is one). The caption has
+    /// every verdict whole.
     fn badges(&self, width: u32) -> Vec<(String, RGBColor)> {
         let room = width.saturating_sub(2 * px(12));
         let fits = |t: &str| rich_width(t, HEADING_LINE) <= room;
-        if self.verdicts.len() > 3 {
+        if self.verdicts.len() > 1 {
             let mut counts: Vec<(&str, usize)> = Vec::new();
             for v in &self.verdicts {
                 match counts.iter_mut().find(|(t, _)| *t == v.tag) {

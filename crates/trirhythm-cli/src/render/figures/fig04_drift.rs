@@ -49,14 +49,16 @@ picture!(Fig04, |self, root| size {
     let (panels, strip) = root.split_vertically(ROW * rows as u32);
     key().draw(&strip)?;
     let areas = panels.split_evenly((rows, 2));
-    // roots are named after the r = 1 panel's (see `cycle_names`)
-    let reference = self
+    // roots are named after their panel's own r = 1 curve's (see `cycle_names`), or the
+    // r = 1 panel's where a panel has none
+    let fallback = self
         .panels
         .iter()
         .find(|p| p.r == 1.0)
-        .map_or(&[][..], |p| &p.cycles[..]);
+        .map_or(vec![], |p| p.cycles.clone());
     for (area, p) in areas.iter().zip(&self.panels) {
-        draw_panel(area, p, &cycle_names(reference, &p.cycles))?;
+        let reference = p.reference_cycles().unwrap_or_else(|| fallback.clone());
+        draw_panel(area, p, &cycle_names(&reference, &p.cycles))?;
     }
     // the zooms continue the lettering: (e), (f)
     for ((area, p), letter) in areas[4..].iter().zip(zoomed).zip(["e", "f"]) {
