@@ -17,33 +17,15 @@
 use std::hint::black_box;
 use std::time::Instant;
 use trirhythm::engine::noise::NoiseStream;
-use trirhythm::engine::{
-    probe_memory, simulate, Memory, Options, Oscillator, PredictorCorrector, Problem,
-};
-use trirhythm::known_answers::engine_benchmark_case;
+use trirhythm::engine::{probe_memory, simulate, Memory, Oscillator, PredictorCorrector};
+use trirhythm::known_answers::{engine_benchmark_case, memory_case};
 use trirhythm::model::preset;
 
 fn speed_case(lambda: f64, d: f64, steps: usize) -> (f64, usize, f64) {
-    let p = preset("fig13a")
-        .unwrap()
-        .params
-        .with("lambda", lambda)
-        .unwrap()
-        .with("D", d)
-        .unwrap();
-    let problem = Problem::from_params(&p)
-        .and_then(|q| q.with_start(7.0, 0.0))
-        .unwrap();
-    let m = PredictorCorrector {
-        dt: 0.01,
-        ..Default::default()
-    };
-    let o = Options {
-        t_end: steps as f64 * 0.01,
-        seed: 1,
-        record_every: steps,
-        ..Default::default()
-    };
+    let t_end = steps as f64 * 0.01;
+    let im = PredictorCorrector::default().impact_memory;
+    let (problem, m, o) =
+        memory_case(lambda, d, (0.01, t_end, steps), Memory::default(), im).unwrap();
     let start = Instant::now();
     let tr = simulate(&problem, &m, &o).unwrap();
     (

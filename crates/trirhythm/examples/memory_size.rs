@@ -22,27 +22,17 @@
 //! `valgrind --tool=cachegrind --cache-sim=no`, where timings on a shared machine are too noisy.
 
 use std::time::Instant;
-use trirhythm::engine::{
-    simulate, ImpactMemory, Memory, Options, PredictorCorrector, Problem, Trajectory,
-};
-use trirhythm::model::{preset, Params};
+use trirhythm::engine::{simulate, ImpactMemory, Memory, PredictorCorrector, Trajectory};
+use trirhythm::known_answers::memory_case;
 
-fn run(p: &Params, dt: f64, t_end: f64, memory: Memory, im: ImpactMemory) -> (Trajectory, f64) {
-    let problem = Problem::from_params(p)
-        .and_then(|q| q.with_start(7.0, 0.0))
-        .unwrap();
-    let m = PredictorCorrector {
-        dt,
-        memory,
-        impact_memory: im,
-        ..Default::default()
-    };
-    let o = Options {
-        t_end,
-        seed: 1,
-        record_every: 1,
-        ..Default::default()
-    };
+fn run(
+    (lambda, d): (f64, f64),
+    dt: f64,
+    t_end: f64,
+    memory: Memory,
+    im: ImpactMemory,
+) -> (Trajectory, f64) {
+    let (problem, m, o) = memory_case(lambda, d, (dt, t_end, 1), memory, im).unwrap();
     let start = Instant::now();
     let tr = simulate(&problem, &m, &o).unwrap();
     (tr, start.elapsed().as_secs_f64())
@@ -72,26 +62,10 @@ fn main() {
             _ => Memory::Auto,
         };
         let steps: f64 = args[5].parse().unwrap();
-        let p = preset("fig13a")
-            .unwrap()
-            .params
-            .with("lambda", lambda)
-            .unwrap()
-            .with("D", d)
-            .unwrap();
-        let mut o = Options {
-            t_end: steps * 0.01,
-            seed: 1,
-            ..Default::default()
-        };
-        o.record_every = steps as usize;
-        let problem = Problem::from_params(&p)
-            .and_then(|q| q.with_start(7.0, 0.0))
-            .unwrap();
-        let m = PredictorCorrector {
-            memory,
-            ..Default::default()
-        };
+        let im = PredictorCorrector::default().impact_memory;
+        let t_end = steps * 0.01;
+        let (problem, m, o) =
+            memory_case(lambda, d, (0.01, t_end, steps as usize), memory, im).unwrap();
         let start = Instant::now();
         let tr = simulate(&problem, &m, &o).unwrap();
         println!(
@@ -118,39 +92,28 @@ fn main() {
         "# T = {t_end}, dt = {dt}, reference {}",
         if direct { "Direct" } else { "SOE 1e-13" }
     );
-    let base = preset("fig13a").unwrap().params;
     for &lambda in &lambdas {
         // the scheme's own error, on the deterministic path
-        let det = base
-            .clone()
-            .with("lambda", lambda)
-            .unwrap()
-            .with("D", 0.0)
-            .unwrap();
-        let (coarse, _) = run(&det, dt, t_end, reference, ImpactMemory::Continuous);
-        let (half, _) = run(&det, dt / 2.0, t_end, fine, ImpactMemory::Continuous);
+        let det = (lambda, 0.0);
+        let (coarse, _) = run(det, dt, t_end, reference, ImpactMemory::Continuous);
+        let (half, _) = run(det, dt / 2.0, t_end, fine, ImpactMemory::Continuous);
         let scheme = max_gap(&coarse.u, &half.u, 2);
         for (name, d, im) in [
             ("deterministic", 0.0, ImpactMemory::Continuous),
             ("noisy, continuous", 0.1, ImpactMemory::Continuous),
             ("noisy, restart", 0.1, ImpactMemory::Restart),
         ] {
-            let p = base
-                .clone()
-                .with("lambda", lambda)
-                .unwrap()
-                .with("D", d)
-                .unwrap();
-            let (r, _) = run(&p, dt, t_end, reference, im);
+            let p = (lambda, d);
+            let (r, _) = run(p, dt, t_end, reference, im);
             println!(
                 "lambda {lambda} {name}: {} impacts, scheme error {scheme:.3e}",
                 r.impacts
             );
             for &e in &eps {
                 let memory = Memory::SumOfExponentials { tolerance: e };
-                let (s, mut best) = run(&p, dt, t_end, memory, im);
+                let (s, mut best) = run(p, dt, t_end, memory, im);
                 for _ in 0..2 {
-                    best = best.min(run(&p, dt, t_end, memory, im).1);
+                    best = best.min(run(p, dt, t_end, memory, im).1);
                 }
                 let err = max_gap(&r.u, &s.u, 1);
                 println!(

@@ -29,7 +29,7 @@
 //! checks the exact solutions against their equations where that is elementary.
 
 use crate::engine::Memory;
-use crate::engine::{Barrier, Options, PredictorCorrector, Problem};
+use crate::engine::{Barrier, ImpactMemory, Options, PredictorCorrector, Problem};
 use crate::error::Result;
 use crate::model::{Damping, Params};
 use crate::special::{gamma, mittag_leffler};
@@ -115,6 +115,40 @@ pub fn engine_benchmark_case(
         .with_barrier(Barrier::On)?
         .with_start(2.0, 0.0)?;
     Ok((problem, method, options))
+}
+
+/// The memory-size case, shared by `tests/soe.rs`, `examples/memory_size.rs` and
+/// `examples/engine_timing.rs`: the fig13a set at order λ and noise intensity D (OU noise,
+/// the wall on), from (U, U̇) = (7, 0), seed 1, Δt `dt` with `memory` and `impact_memory`, to
+/// `t_end`, recording every `every` steps.
+pub fn memory_case(
+    lambda: f64,
+    d: f64,
+    (dt, t_end, every): (f64, f64, usize),
+    memory: Memory,
+    impact_memory: ImpactMemory,
+) -> Result<(Problem, PredictorCorrector, Options)> {
+    let params = crate::model::preset("fig13a")?
+        .params
+        .with("lambda", lambda)?
+        .with("D", d)?;
+    let method = PredictorCorrector {
+        dt,
+        memory,
+        impact_memory,
+        ..Default::default()
+    };
+    let options = Options {
+        t_end,
+        seed: 1,
+        record_every: every,
+        ..Default::default()
+    };
+    Ok((
+        Problem::from_params(&params)?.with_start(7.0, 0.0)?,
+        method,
+        options,
+    ))
 }
 
 /// Stationary (Var U, Var U̇) of the linear fractional oscillator D^{1+λ}U + μU̇ + ω²U = η,

@@ -8,6 +8,7 @@
 use std::time::Instant;
 use trirhythm::engine::*;
 use trirhythm::engine::{kernel::SoeKernel, Memory};
+use trirhythm::known_answers::memory_case;
 use trirhythm::model::preset;
 
 fn compare(lambda: f64, steps: usize, tolerance: f64) -> (f64, f64, usize) {
@@ -93,27 +94,8 @@ fn soe_sizes_for_long_horizons() {
 /// U of the fig13a set at order λ (μ0 = 0.005, wall on, r = 0.99, OU noise τ = 0.5 of
 /// intensity `d`, seed 1, continuous impact memory) from U(0) = 7, every step to `t_end`.
 fn fig13a_path(lambda: f64, d: f64, dt: f64, t_end: f64, memory: Memory) -> (Vec<f64>, usize) {
-    let p = preset("fig13a")
-        .unwrap()
-        .params
-        .with("lambda", lambda)
-        .unwrap()
-        .with("D", d)
-        .unwrap();
-    let problem = Problem::from_params(&p)
-        .and_then(|q| q.with_start(7.0, 0.0))
-        .unwrap();
-    let m = PredictorCorrector {
-        dt,
-        memory,
-        ..Default::default()
-    };
-    let o = Options {
-        t_end,
-        seed: 1,
-        record_every: 1,
-        ..Default::default()
-    };
+    let im = PredictorCorrector::default().impact_memory;
+    let (problem, m, o) = memory_case(lambda, d, (dt, t_end, 1), memory, im).unwrap();
     let tr = simulate(&problem, &m, &o).unwrap();
     (tr.u, tr.exponentials)
 }
