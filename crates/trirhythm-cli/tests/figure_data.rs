@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{csv_rows, ok_output, run, scratch_dir};
+use common::{csv_rows, ok_output, quick_data, run, scratch_dir};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -26,9 +26,9 @@ fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
 #[test]
 fn figures_render_identically_from_their_data_read_back() {
     let dir = scratch_dir("figure-data");
-    let (computed, rendered) = (dir.join("computed"), dir.join("rendered"));
+    // `figure all --quick --data`, computed once for the CLI's tests
+    let (computed, rendered) = (quick_data().to_path_buf(), dir.join("rendered"));
     let (c, r) = (computed.to_str().unwrap(), rendered.to_str().unwrap());
-    ok_output(&["figure", "all", "--quick", "--data", "--out-dir", c]);
     ok_output(&["figure", "all", "--from-data", c, "--data", "--out-dir", r]);
     let (a, b) = (files(&computed), files(&rendered));
     let figures = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12];

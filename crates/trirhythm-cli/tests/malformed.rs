@@ -10,7 +10,7 @@
 
 mod common;
 
-use common::{ok_output, run, scratch_dir};
+use common::{ok_output, quick_data, run, scratch_dir};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -180,17 +180,8 @@ const FIGURES: [u32; 19] = [
 #[test]
 fn mutated_figure_data_is_rendered_or_refused_never_panics() {
     let dir = scratch_dir("malformed");
-    let computed = dir.join("computed");
-    for n in FIGURES {
-        ok_output(&[
-            "figure",
-            &n.to_string(),
-            "--quick",
-            "--data",
-            "--out-dir",
-            computed.to_str().unwrap(),
-        ]);
-    }
+    // every figure's `--quick --data`, computed once for the CLI's tests
+    let computed = quick_data();
     let mut refused = 0;
     let mut total = 0;
     for n in FIGURES {

@@ -6,9 +6,8 @@
 
 mod common;
 
-use common::{ok_output, scratch_dir};
+use common::{ok_output, quick_data, scratch_dir};
 use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
 
 /// The part of the contact sheet `sheet` that shows figure `n`.
 fn sheet_figure(sheet: &str, n: u32) -> &str {
@@ -30,20 +29,9 @@ fn svg_texts(svg: &str) -> Vec<String> {
         .collect()
 }
 
-/// `figure all --quick` of the paper's variant, drawn once for the tests that read it.
+/// `figure all --quick` of the paper's variant (with its data), drawn once for the CLI's tests.
 fn quick_figures() -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let dir = scratch_dir("quick-figures");
-        ok_output(&[
-            "figure",
-            "all",
-            "--quick",
-            "--out-dir",
-            dir.to_str().unwrap(),
-        ]);
-        dir
-    })
+    quick_data()
 }
 
 #[test]

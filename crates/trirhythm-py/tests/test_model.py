@@ -85,16 +85,14 @@ def test_what_the_model_says_is_not_given_twice():
         tr.ensemble(model=m, barrier=False)
 
 
-def test_a_term_the_engine_does_not_step_is_refused_by_name():
+def test_multiplicative_noise_at_a_wall_off_zero_is_stepped():
+    """U·η_m beside a wall at δ = −0.5: δ·η_m acts at the wall, the path stays above it."""
     offset = [{"position": -0.5, "keep": "above", "restitution": 0.9}]
     noise = {**FIG13A["noise"], "multiplicative": {"intensity": 0.1}}
     parametric = tr.Model(**{**FIG13A, "wall": offset, "noise": noise})
     assert parametric.paper_params() is None
-    match = r"noise\.multiplicative\.intensity = 0\.1 .*does not step it yet"
-    with pytest.raises(ValueError, match=match):
-        tr.simulate(model=parametric, t_end=1.0)
-    with pytest.raises(ValueError, match=r"noise\.multiplicative\.intensity"):
-        tr.ensemble(model=parametric, paths=1, t_end=1.0)
+    t = tr.simulate(model=parametric.with_(**{"start.u0": 1.0}), t_end=50.0, seed=3)
+    assert np.all(t.u >= -0.5) and np.min(t.u) < -0.45
 
 
 def test_a_fractional_term_with_a_wall_is_stepped():

@@ -23,6 +23,11 @@
 //!   while −0.5 + F cos ψ ≤ 0 and leaves at t = 2π/(3Ω).
 //! - **Lanes and clones** give the scalar bits; both Lyapunov methods (the tangent and two
 //!   trajectories) take these models.
+//! - **Multiplicative noise at a wall off 0**: with W = U − s the oscillator
+//!   Ü + cU̇ + U = √D_a ξ + U√D_m ξ against a wall at δ is the oscillator
+//!   Ẅ + cẆ + W = −s + (√D_a + s√D_m)ξ + W√D_m ξ against a wall at δ − s, so δ·η_m acts at
+//!   the wall; the two paths agree to rounding through the impacts (one lower wall moved to 0,
+//!   an upper wall, two walls; white and OU noise; started above and below 0).
 //! - **Lyapunov exponents by the tangent**: an elastic (r = 1) undamped linear oscillator
 //!   between two walls is periodic and conservative: |λ| < 2e-3 over T = 2000 (the tangent grows
 //!   at most linearly); damped (h = −0.1) with r = 0.9 the exponent is negative over the impacts
@@ -488,4 +493,124 @@ fn starts_beyond_the_walls_and_walls_with_the_paper_barrier_are_refused() {
         problem.with_barrier(trirhythm::engine::Barrier::On),
         Err(trirhythm::Error::NotApplicable { .. })
     ));
+}
+
+/// Ü + cU̇ + U = √D_a·ξ + U·√D_m·ξ (one deviate stream: correlation c = 1; c = 0.05,
+/// D_a = 0.01, D_m = 0.04, r = 0.95) against `walls`, from (u0, 1); `shift` moves the whole
+/// problem by W = U − s: walls at δ − s, the static force −s as F cos(Ωt + φ) with Ω = 1e-9
+/// (cos ψ = ∓1 to 2e-14 over T = 20), the additive noise's gain √D_a + s√D_m.
+fn parametric(walls: &[(f64, Keep)], u0: f64, tau: f64, shift: f64) -> Problem {
+    let (da, dm, c) = (0.01f64, 0.04f64, 0.05);
+    let mut m = linear(1.0, c);
+    m.walls = walls
+        .iter()
+        .map(|&(position, keep)| wall(position - shift, keep, 0.95))
+        .collect();
+    m.start.u0 = u0 - shift;
+    m.start.v0 = 1.0;
+    let gain = da.sqrt() + shift * dm.sqrt();
+    m.noise.additive = Some(NoiseTerm {
+        intensity: gain * gain,
+        correlation_time: tau,
+    });
+    m.noise.multiplicative = Some(NoiseTerm {
+        intensity: dm,
+        correlation_time: tau,
+    });
+    m.noise.correlation = 1.0;
+    if shift != 0.0 {
+        m.forcing = Some(Harmonic {
+            amplitude: shift.abs(),
+            frequency: 1e-9,
+            phase: if shift > 0.0 {
+                std::f64::consts::PI
+            } else {
+                0.0
+            },
+        });
+    }
+    Problem::from_model(&m).unwrap()
+}
+
+#[test]
+fn multiplicative_noise_at_a_moved_wall_is_the_moved_oscillator() {
+    // With W = U − s, Ü + cU̇ + U = √D_a ξ + U√D_m ξ against a wall at δ is
+    // Ẅ + cẆ + W = −s + (√D_a + s√D_m)ξ + W√D_m ξ against a wall at δ − s: the force of the
+    // multiplicative noise at the wall, δ√D_m ξ, becomes part of the additive noise. The paths
+    // agree to rounding over the impacts, for a lower wall moved to 0 (the paper's wall: the
+    // impact code of `stepper::impact`, where U·η_m = 0), an upper wall and two walls (the
+    // walls' code at other positions), white and OU noise, paths started above and below 0
+    // (the additive noise enters as side·η_a, side = −1 below 0: η_m follows it). Measured
+    // (`--nocapture`): 5–8 impacts each over T = 20, differences 5e-15 … 4e-10 (the two walls'
+    // grows with the impacts, as it does without U·η_m); without δ·η_m at the wall 5e-3.
+    let method = PredictorCorrector {
+        dt: 0.005,
+        ..Default::default()
+    };
+    let steps = 4_000u64; // T = 20
+    for (name, walls, u0, tau, shift) in [
+        (
+            "lower wall at -0.3, white",
+            vec![(-0.3, Keep::Above)],
+            1.2,
+            0.0,
+            -0.3,
+        ),
+        ("no wall OU", vec![], -1.2, 0.5, 0.4),
+        (
+            "upper wall at 0.4, white",
+            vec![(0.4, Keep::Below)],
+            -1.2,
+            0.0,
+            0.4,
+        ),
+        (
+            "upper wall at 0.4, OU",
+            vec![(0.4, Keep::Below)],
+            -1.2,
+            0.5,
+            0.4,
+        ),
+        (
+            "walls at -0.7 and 0.6, white",
+            vec![(-0.7, Keep::Above), (0.6, Keep::Below)],
+            0.5,
+            0.0,
+            0.25,
+        ),
+    ] {
+        let path = |shift: f64| {
+            let problem = parametric(&walls, u0, tau, shift);
+            let mut s = Stepper::new(&problem, &method, (SEED, 0), steps as f64 * 0.005).unwrap();
+            let mut out = Vec::with_capacity(steps as usize);
+            let mut impacts = 0usize;
+            let mut obs = |s: &Stepper| {
+                impacts += usize::from(s.events().impact.is_some());
+                out.push((s.u() + shift, s.v()));
+                Flow::Continue
+            };
+            run(&mut s, steps, &mut obs, &Silent).unwrap();
+            (out, impacts, s.sticking_steps())
+        };
+        let (at, impacts, sticking) = path(0.0);
+        let (moved, impacts_moved, sticking_moved) = path(shift);
+        let worst = at
+            .iter()
+            .zip(&moved)
+            .map(|(a, b)| (a.0 - b.0).abs().max((a.1 - b.1).abs()))
+            .fold(0.0f64, f64::max);
+        eprintln!(
+            "{name}: {impacts} impacts, {sticking} sticking steps, largest difference {worst:e}"
+        );
+        assert!(
+            walls.is_empty() || impacts >= 3,
+            "{name}: {impacts} impacts"
+        );
+        assert_eq!(
+            (impacts, sticking),
+            (impacts_moved, sticking_moved),
+            "{name}"
+        );
+        assert!(worst <= 1e-8, "{name}: {worst:e}");
+    }
 }

@@ -60,3 +60,47 @@ pub fn scratch_dir(name: &str) -> PathBuf {
     std::fs::create_dir_all(&d).unwrap();
     d
 }
+
+/// `figure all --quick --data` of this build's binary (the paper's variant: each figure's
+/// `figNN.json`, its SVG and PNG, the contact sheet), computed once and read by every test
+/// binary that needs it (cargo runs them one after the other): a directory under Cargo's
+/// target tmp named by the binary's size and modification time, so that a rebuilt binary
+/// computes it afresh (older ones are removed). Tests read it and never write into it.
+pub fn quick_data() -> &'static std::path::Path {
+    static DIR: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        let bin = std::fs::metadata(env!("CARGO_BIN_EXE_trirhythm")).expect("the binary");
+        let stamp = bin
+            .modified()
+            .expect("a modification time")
+            .duration_since(std::time::UNIX_EPOCH)
+            .expect("after 1970")
+            .as_nanos();
+        let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+        let name = format!("quick-data-{}-{stamp}", bin.len());
+        let dir = root.join(&name);
+        // the marker beside the directory: written once the directory is whole
+        let marker = root.join(format!("{name}.complete"));
+        if marker.exists() {
+            return dir;
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+        ok_output(&[
+            "figure",
+            "all",
+            "--quick",
+            "--data",
+            "--out-dir",
+            dir.to_str().unwrap(),
+        ]);
+        std::fs::write(&marker, b"").unwrap();
+        for entry in std::fs::read_dir(&root).unwrap().flatten() {
+            let other = entry.file_name().to_string_lossy().into_owned();
+            if other.starts_with("quick-data-") && !other.starts_with(&name) {
+                let _ = std::fs::remove_dir_all(entry.path());
+                let _ = std::fs::remove_file(entry.path());
+            }
+        }
+        dir
+    })
+}

@@ -10,7 +10,7 @@
 use super::memory::{Memory, DEFAULT_WINDOW};
 use super::noise::Noise;
 use crate::error::{Error, Exact, Result};
-use crate::model::{multiplicative_wall_refusal, Equivalents, GeneralTerms, Model, Params};
+use crate::model::{Equivalents, GeneralTerms, Model, Params};
 
 /// What the memory does at an impact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -372,7 +372,7 @@ impl Problem {
     ///     intensity: 0.1,
     ///     correlation_time: 0.0,
     /// });
-    /// assert!(Problem::from_model(&duffing).is_err()); // U·η_m at a wall off 0: refused, named
+    /// assert!(Problem::from_model(&duffing).is_ok()); // U·η_m at a wall off 0: δ·η_m there
     /// # Ok::<(), trirhythm::Error>(())
     /// ```
     pub fn from_model(model: &Model) -> Result<Self> {
@@ -522,9 +522,6 @@ impl Problem {
                      must be off"
                         .into(),
                 ));
-            }
-            if let (Some(m), false) = (t.multiplicative, t.walls.is_empty()) {
-                return Err(multiplicative_wall_refusal("the engine", m.intensity));
             }
         }
         let b = self.blow_up;

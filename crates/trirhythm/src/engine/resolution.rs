@@ -54,7 +54,8 @@
 //! # Tests
 //! Unit tests below: the default step passes on the paper's presets at their cycles; Δt = 1 on
 //! Fig. 13(a) is refused and the refusal names `dt`; a coarse step warns; the deviation falls
-//! by about 2^p when Δt halves (an observed order); coloured noise with Δt > τ/10 warns.
+//! by about 2^p when Δt halves (an observed order); coloured noise with Δt > τ/10 warns; a
+//! model with multiplicative noise is checked as the same model without it (noise-free).
 
 use super::drivers::simulate;
 use super::problem::{Options, PredictorCorrector, Problem};
@@ -140,7 +141,16 @@ impl Resolution {
         list.sort_by(f64::total_cmp);
         list.dedup_by(|a, b| (*a - *b).abs() <= 1e-6 * b.abs());
         list.truncate(MAX_CHECK_AMPLITUDES);
-        let quiet = problem.with_params(&params.clone().with("D", 0.0)?)?;
+        // noise-free: the additive noise off, and the multiplicative U·η_m too
+        let mut quiet = problem.with_params(&params.clone().with("D", 0.0)?)?;
+        if let Some(terms) = quiet.oscillator().terms() {
+            if terms.multiplicative.is_some() {
+                let mut terms = terms.clone();
+                terms.multiplicative = None;
+                terms.correlation = 0.0;
+                quiet = quiet.with_terms((!terms.is_empty()).then_some(terms))?;
+            }
+        }
         let steps = (CHECK_PERIODS * steps_per_period).ceil();
         let t_end = steps * method.dt;
         for a in list {
@@ -324,6 +334,23 @@ mod tests {
                 r.halvings
             );
         }
+    }
+
+    #[test]
+    fn the_check_is_noise_free_for_multiplicative_noise_too() {
+        // U·η_m is noise: the check of a model with it is that of the model without it
+        let model = crate::model::Model::from(&preset("fig13a").unwrap().params);
+        let mut parametric = model.clone();
+        parametric.noise.multiplicative = Some(crate::model::NoiseTerm {
+            intensity: 0.05,
+            correlation_time: 0.0,
+        });
+        let method = PredictorCorrector::default();
+        let [with, without] = [&parametric, &model].map(|m| {
+            let problem = Problem::from_model(m).unwrap();
+            Resolution::check(&problem, &method, &[7.49]).unwrap()
+        });
+        assert_eq!(with.halvings, without.halvings);
     }
 
     #[test]

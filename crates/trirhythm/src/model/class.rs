@@ -447,9 +447,7 @@ impl Model {
     /// the General kernel's terms (Duffing k3, k5; Rayleigh d_k; harmonic forcing; fractional
     /// terms K·D^αU; multiplicative noise U·η_m; walls other than the paper's: a wall off 0,
     /// keeping U below, two walls, a speed-dependent restitution), None when there are none
-    /// (the paper's kernel, the paper's bits). Refused by name with [`Error::NotApplicable`]
-    /// for `method`: multiplicative noise with a wall other than the paper's
-    /// (one source of its text with [`crate::engine::Problem::from_model`]'s own check).
+    /// (the paper's kernel, the paper's bits). Errors are the paper family's, for `method`.
     /// Terms present with a zero coefficient are absent.
     pub fn engine_terms(&self, method: &str) -> Result<(PaperFamily, Option<GeneralTerms>)> {
         self.validate()?;
@@ -493,9 +491,6 @@ impl Model {
         paper.noise.multiplicative = None;
         paper.noise.correlation = 0.0;
         let family = paper.paper_family(method)?;
-        if let (Some(m), false) = (terms.multiplicative, terms.walls.is_empty()) {
-            return Err(multiplicative_wall_refusal(method, m.intensity));
-        }
         if terms.is_empty() {
             return Ok((family, None));
         }
@@ -507,21 +502,5 @@ impl Model {
         Damping {
             coefficients: self.damping.coefficients.clone(),
         }
-    }
-}
-
-/// The refusal of multiplicative noise U·η_m with a wall other than the paper's (the one source
-/// of its text for [`Model::engine_terms`] and [`crate::engine::Problem`]'s own check), for
-/// `method`.
-pub(crate) fn multiplicative_wall_refusal(method: &str, intensity: f64) -> Error {
-    Error::NotApplicable {
-        method: method.to_string(),
-        assumption: "multiplicative noise with no wall or the wall at 0".into(),
-        reason: format!(
-            "noise.multiplicative.intensity = {} with a wall other than the paper's: the engine \
-             does not step it yet (U·η_m does not vanish at a wall off 0, and the impact step \
-             does not carry it)",
-            Exact(intensity)
-        ),
     }
 }

@@ -19,7 +19,6 @@ mod equivalents;
 mod file;
 pub mod terms;
 
-pub(crate) use class::multiplicative_wall_refusal;
 pub use class::{GeneralTerms, Model, PaperFamily};
 pub use equivalents::Equivalents;
 pub use file::FORMAT;

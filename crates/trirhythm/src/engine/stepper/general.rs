@@ -7,8 +7,7 @@
 //! # Equation
 //! D^{1+λ}U + Σ_j K_j D^{α_j}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η_a(t) + U·η_m(t), no wall,
 //! the wall at 0, or the model's walls (one at any δ keeping U above or below it, two at
-//! δ1 < δ2: `super::walls`; fractional terms with any of these; multiplicative noise: no wall
-//! or the wall at 0), with h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k}, k(U) = ω0²U + k3U³ + k5U⁵, Caputo
+//! δ1 < δ2: `super::walls`; fractional terms and multiplicative noise with any of these), with h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k}, k(U) = ω0²U + k3U³ + k5U⁵, Caputo
 //! derivatives, α_j ∈ (0, 1]; in Volterra form, with m_j = J^{1−α_j}V (= D^{α_j}U, U being
 //! continuous),
 //! U′ = V, V = V₀ + J^λ g, g = h(U, V)V − k(U) − Σ_j K_j m_j + F cos ψ + η_a + Uη_m,
@@ -101,17 +100,22 @@
 //! stream of its own per path (seed XOR a constant): η_a's deviates, hence every other path's
 //! bits, do not move. With correlation c to η_a (one τ), η_m = c√(D_m/D_a)η_a + √(1 − c²)η′: η_a
 //! and η′ are the same linear map of their deviates, so the mixture has η_m's law and
-//! correlation c exactly. The corrector carries U_nη_m at the left end and U^Pη_m at the right
+//! correlation c exactly. η_a here is the additive noise as it enters g, side·η_a (a path
+//! started below 0 carries side = −1: `super`), so c is the correlation of the equation's
+//! terms whichever side the path starts on. The corrector carries U_nη_m at the left end and U^Pη_m at the right
 //! (each pass's U frozen there; U_{n+1}η_m stored): the trapezoid ½(U_n + U_{n+1})η_mΔt.
 //! **Calculus**: the coefficient U of the noise does not depend on V and has finite variation
 //! (U̇ bounded, U continuous at impacts), so [U, W] = 0 and ∫U∘dW = ∫U dW: Itô, Stratonovich and
 //! the τ → 0 limit of OU noise (Wong–Zakai) are one process, at λ = 1 and below, and there is no
 //! drift correction. The predictor U^P sees the step's deviate only at O(Δt^{3/2}), so the
-//! scheme adds no O(1) drift. At the wall U·η_m = 0: the impact code is unchanged, and the
-//! redone rest of the step carries U^Pη_m.
+//! scheme adds no O(1) drift. At the wall at 0, U·η_m = 0: the impact code is unchanged, and
+//! the redone rest of the step carries U^Pη_m. At a wall U = δ ≠ 0 (`super::walls`) the force
+//! δ·η_m ([`General::parametric_at`]; η_m is constant over the step) is part of g at the
+//! instant: in the scheme's V(t*), the split piece of g on both sides (U is continuous) and
+//! the net force that decides sticking.
 //!
-//! Not yet: multiplicative noise with a wall other than the paper's; the tangent of the
-//! fractional terms and of U·η_m (`lyapunov --method tangent` refuses them by name).
+//! Not yet: the tangent of the fractional terms and of U·η_m (`lyapunov --method tangent`
+//! refuses them by name).
 //!
 //! # Reference
 //! model-class.md §2, §3, §4, §5 (the design); Diethelm, Ford & Freed (2002) for the scheme;
@@ -131,7 +135,9 @@
 //! against K·U̇ in h, the fractionally damped linear oscillator's stationary variances under
 //! white and OU noise against the spectral integral, the parametric oscillator's second moments
 //! against the exact moment system below and above D_c = 2ζω0³, lanes and clones, multiplicative
-//! noise at the wall. `tests/fractional_walls.rs`: fractional terms with the paper's wall and
+//! noise at the wall; `tests/walls.rs`: multiplicative noise at a wall off 0 against the same
+//! oscillator moved to put its wall at 0 (δ·η_m becomes additive noise: the paths agree to
+//! rounding). `tests/fractional_walls.rs`: fractional terms with the paper's wall and
 //! the model's walls (α = 1 against K·U̇ in h to rounding and against the exact damped arcs at
 //! second order; α = 0.5 at its observed order with impacts; SOE against Direct through
 //! impacts and sticking, both impact memories; K = 1e-12 against no term; lanes and clones).
@@ -549,6 +555,12 @@ impl General {
         (self.lag - self.ahead) + u1 * self.eta_m
     }
 
+    /// Whether the kernel has multiplicative noise U·η_m.
+    #[inline]
+    pub(super) fn multiplicative(&self) -> bool {
+        self.parametric.is_some()
+    }
+
     /// Whether the kernel has fractional terms K_j·D^{α_j}U.
     #[inline]
     pub(super) fn fractional(&self) -> bool {
@@ -760,6 +772,18 @@ impl General {
     #[inline]
     pub(super) fn slope_v(&self, u: f64, v: f64) -> f64 {
         self.a(u, v) - self.kappa
+    }
+
+    /// The multiplicative noise's force U·η_m at a wall U = δ on the step in progress: δ·η_m
+    /// (η_m is constant over the step). Exactly 0 at δ = 0 and without multiplicative noise, so
+    /// that a path at the wall at 0 keeps its bits.
+    #[inline]
+    pub(super) fn parametric_at(&self, delta: f64) -> f64 {
+        if self.multiplicative() && delta != 0.0 {
+            delta * self.eta_m
+        } else {
+            0.0
+        }
     }
 
     /// The harmonic forcing F cos ψ at the current node (0 without forcing).

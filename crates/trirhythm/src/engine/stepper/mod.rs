@@ -493,8 +493,9 @@ impl Stepper {
         let mut gl = self.drift + self.rhs.forcing(el, self.side) + fl;
         let mut fr = self.rhs.forcing(er, self.side) + fr;
         if g.extras() {
-            // −Σ K_j m_j and U·η_m (module docs of `general`)
-            let (xl, xr) = g.begin_step(u, v, el);
+            // −Σ K_j m_j and U·η_m (module docs of `general`); η_m is correlated with the
+            // additive noise as it enters g, side·η_a (side = −1 on a path started below 0)
+            let (xl, xr) = g.begin_step(u, v, self.side * el);
             gl += xl;
             fr += xr;
         }

@@ -250,15 +250,16 @@ impl Stepper {
         self.check_blow_up((b.u, b.v), (u1, v1))?;
         let g = self.general.as_deref_mut().expect("a General path");
         (self.drift, self.pw) = g.node(self.h, u1, v1);
-        if g.fractional() {
-            // the fractional terms' pieces of V (split at an impact); a step that sticks with
-            // the memory restarting pushes nothing: the memories restart too
+        if g.extras() {
+            // U·η_m at the node and the fractional terms' pieces of V (split at an impact); a
+            // step that sticks with the memory restarting pushes nothing: the memories restart
+            // too
             let extra = match piece {
-                Some(_) => g.end_step(b.v, u1, v1),
-                None => {
+                None if g.fractional() => {
                     g.restart_memories();
                     0.0
                 }
+                _ => g.end_step(b.v, u1, v1),
             };
             let right = self.drift + b.fr + extra;
             let piece = piece.map(|mut piece| {
@@ -291,8 +292,13 @@ impl Stepper {
         let eta_star = b.el + theta * (b.er - b.el);
         let (hs, ws) = self.history.at_fraction(theta, b.gl);
         let g: &General = self.general.as_deref().expect("a General path");
-        // the forcing at the instant (noise and harmonic) and the wall's force −k(δ)
+        // the forcing at the instant (noise, harmonic and δ·η_m) and the wall's force −k(δ)
         let forcing = self.rhs.forcing(eta_star, self.side) + g.force_at(theta);
+        let forcing = if g.multiplicative() {
+            forcing + g.parametric_at(delta)
+        } else {
+            forcing
+        };
         let at_wall = forcing - g.restoring(delta);
         let fractional = g.fractional();
         let (v_at, memories) = if fractional {
