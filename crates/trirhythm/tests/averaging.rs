@@ -577,7 +577,7 @@ mod class {
     /// the whole of the difference was that exponent term (the normalisation ln(mass) and the
     /// exponent's evaluation from equal coefficients contributed ≤ 2e-12 and ≤ 1e-15), P(A) up
     /// to 1.14e-12 over the presets (fig8, paper) and 5.7e-11 over 300 random sets; after,
-    /// coefficients, cycles and P(A) 0 over the presets and over 1500 random sets (both
+    /// coefficients, cycles and P(A) 0 over the presets and over 3000 random sets (both
     /// variants).
     fn within(d: [f64; 3]) -> bool {
         d.iter().all(|&x| x <= 1e-12)

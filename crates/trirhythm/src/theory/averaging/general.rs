@@ -22,10 +22,10 @@
 //! polynomials; [`phase_average`] integrates ⟨cos^{2i}φ sin^{2j}φ⟩ exactly by the periodic
 //! trapezoidal rule on [`PHASE_NODES`] nodes (more than the degree 2(i + j) ≤ 44), carried in
 //! double-double so that each average is the exact rational (2i − 1)!!(2j − 1)!!/(2(i + j))!!
-//! rounded once (the closed form's weights bit for bit: the two routes' P(A) then differ by
-//! nothing, where the trapezoid in doubles, two ulps off in w_1 and w_3, moved ln P(A) by up
-//! to 9e-11 relative at small σ1), and
-//! f/A = g(x), x = A², is assembled as a polynomial: the certified roots of
+//! rounded once (the closed form's weights bit for bit, so that for the paper's model the two
+//! routes' g and P(A) are equal; the trapezoid in doubles, two ulps off in w_1 and w_3, moved
+//! ln P(A) by up to 9e-11 relative at small σ1), and f/A = g(x), x = A², is assembled as a
+//! polynomial: the certified roots of
 //! [`crate::theory::polynomial`] give the cycles unchanged. The noise's phase correlations
 //! C(ψ) = ⟨G(φ)G(φ + ψ)⟩ are sums of cos(nψ) (the harmonics of G are known), so the
 //! integrals against the OU correlation are the spectrum at those harmonics, exactly;
@@ -63,8 +63,8 @@ pub const PHASE_NODES: usize = 128;
 /// ⟨cos^{2i}φ sin^{2j}φ⟩ over a period, by the periodic trapezoidal rule on [`PHASE_NODES`]
 /// nodes (exact for 2(i + j) < [`PHASE_NODES`]), in double-double: the nodes' cos²φ and sin²φ
 /// from Taylor series on the first octant, the powers and the sum carried to ~1e-30, so that
-/// the rule's value is the exact average rounded once (the closed form
-/// [`super::phase_average_weight`]'s bits where that is exact, as for every k ≤ 27 of
+/// the rule's value is the exact average rounded once (checked for i + j ≤ 22; the closed
+/// form [`super::phase_average_weight`]'s bits where that is exact, as for every k ≤ 27 of
 /// ⟨cos^{2k}φ sin²φ⟩).
 pub fn phase_average(i: usize, j: usize) -> f64 {
     let nodes = phase_nodes();
@@ -87,9 +87,13 @@ pub fn phase_average(i: usize, j: usize) -> f64 {
     (sum.0 + sum.1) / PHASE_NODES as f64
 }
 
+/// A double-double: the unevaluated sum hi + lo, |lo| ≤ ulp(hi)/2.
+type DoubleDouble = (f64, f64);
+
 /// cos²φ and sin²φ at the nodes φ = 2πm/n, m = 0..=n/4, as double-doubles.
-fn phase_nodes() -> &'static [((f64, f64), (f64, f64))] {
-    static NODES: std::sync::OnceLock<Vec<((f64, f64), (f64, f64))>> = std::sync::OnceLock::new();
+fn phase_nodes() -> &'static [(DoubleDouble, DoubleDouble)] {
+    static NODES: std::sync::OnceLock<Vec<(DoubleDouble, DoubleDouble)>> =
+        std::sync::OnceLock::new();
     NODES.get_or_init(|| {
         const _: () = assert!(PHASE_NODES % 8 == 0);
         let (quarter, eighth) = (PHASE_NODES / 4, PHASE_NODES / 8);
@@ -114,11 +118,11 @@ fn phase_nodes() -> &'static [((f64, f64), (f64, f64))] {
 }
 
 /// 2π as a double-double.
-const TWO_PI: (f64, f64) = (6.283185307179586, 2.4492935982947064e-16);
+const TWO_PI: DoubleDouble = (std::f64::consts::TAU, 2.4492935982947064e-16);
 
 /// cos x and sin x for 0 ≤ x ≤ π/4 (a double-double) by their Taylor series in double-double:
-/// the terms fall by x²/((2n + 1)(2n + 2)) ≤ 0.62/((2n + 1)(2n + 2)), below 1e-33 by n = 13.
-fn cos_sin_octant(x: (f64, f64)) -> ((f64, f64), (f64, f64)) {
+/// the n-th terms are at most 0.62^n/(2n)!, below 1e-33 from n = 15 (16 are taken).
+fn cos_sin_octant(x: DoubleDouble) -> (DoubleDouble, DoubleDouble) {
     let x2 = dd_mul(x, x);
     let (mut c, mut s) = ((1.0, 0.0), x);
     let (mut tc, mut ts) = ((1.0, 0.0), x);
@@ -134,28 +138,28 @@ fn cos_sin_octant(x: (f64, f64)) -> ((f64, f64), (f64, f64)) {
 }
 
 /// a + b exactly as (sum, error).
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
+fn two_sum(a: f64, b: f64) -> DoubleDouble {
     let s = a + b;
     let bb = s - a;
     (s, (a - (s - bb)) + (b - bb))
 }
 
 /// Double-double sum.
-fn dd_add(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+fn dd_add(a: DoubleDouble, b: DoubleDouble) -> DoubleDouble {
     let (s, e) = two_sum(a.0, b.0);
     let (hi, lo) = two_sum(s, e + a.1 + b.1);
     (hi, lo)
 }
 
 /// Double-double product.
-fn dd_mul(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+fn dd_mul(a: DoubleDouble, b: DoubleDouble) -> DoubleDouble {
     let p = a.0 * b.0;
     let e = a.0.mul_add(b.0, -p) + a.0 * b.1 + a.1 * b.0;
     two_sum(p, e)
 }
 
 /// A double-double divided by a double (an integer here, exact in f64).
-fn dd_div(a: (f64, f64), d: f64) -> (f64, f64) {
+fn dd_div(a: DoubleDouble, d: f64) -> DoubleDouble {
     let q = a.0 / d;
     // the remainder a − q·d, exact up to a.1's rounding
     let p = q * d;
