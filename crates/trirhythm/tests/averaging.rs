@@ -573,12 +573,14 @@ mod class {
     /// rationals, the trapezoid's ([`phase_average`]) the exact averages rounded once, so g
     /// agrees bit for bit and so does P(A). With the trapezoid summed in doubles, w_1 and w_3
     /// were two ulps off, and ln P(A) = ln A + [G(A²) − G(A_p²)]/σ1 − ln(mass) amplified that by
-    /// Σ_k |G_k|·|A^{2k} − A_p^{2k}|/σ1 (thousands at small σ1): measured on 2026-11-27 before,
-    /// the whole of the difference was that exponent term (the normalisation ln(mass) and the
-    /// exponent's evaluation from equal coefficients contributed ≤ 2e-12 and ≤ 1e-15), P(A) up
-    /// to 1.14e-12 over the presets (fig8, paper) and 5.7e-11 over 300 random sets; after,
-    /// coefficients, cycles and P(A) 0 over the presets and over 3000 random sets (both
-    /// variants).
+    /// Σ_k |G_k|·|A^{2k} − A_p^{2k}|/σ1 (thousands at small σ1). Measured on 2026-11-27 (ln P's
+    /// difference split at each set's worst point): before, the exponent [G(A²) − G(A_p²)]/σ1
+    /// from the two routes' coefficients made the difference, P(A) up to 1.14e-12 over the
+    /// presets (fig8, paper) and 5.7e-11 over 300 random sets; ln(mass) added at most 1.7e-12
+    /// (its quadrature's own error, ≤ 2e-12 at peaks 1e5 times narrower than their amplitude,
+    /// told the two densities apart), the exponent's evaluation from equal coefficients
+    /// ≤ 1e-15. After, coefficients, cycles and P(A) 0 over the presets and over 3000 random
+    /// sets (both variants): what error P(A) keeps of its own is the same in both routes.
     fn within(d: [f64; 3]) -> bool {
         d.iter().all(|&x| x <= 1e-12)
     }
