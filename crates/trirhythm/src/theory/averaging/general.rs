@@ -20,8 +20,12 @@
 //!
 //! Method: h is a polynomial in U² and U̇², so the phase averages are trigonometric
 //! polynomials; [`phase_average`] integrates ⟨cos^{2i}φ sin^{2j}φ⟩ exactly by the periodic
-//! trapezoidal rule on [`PHASE_NODES`] nodes (more than the degree 2(i + j) ≤ 44), and
-//! f/A = g(x), x = A², is assembled as a polynomial: the certified roots of
+//! trapezoidal rule on [`PHASE_NODES`] nodes (more than the degree 2(i + j) ≤ 44), carried in
+//! double-double so that each average is the exact rational (2i − 1)!!(2j − 1)!!/(2(i + j))!!
+//! rounded once (the closed form's weights bit for bit, so that for the paper's model the two
+//! routes' g and P(A) are equal; the trapezoid in doubles, two ulps off in w_1 and w_3, moved
+//! ln P(A) by up to 9e-11 relative at small σ1), and f/A = g(x), x = A², is assembled as a
+//! polynomial: the certified roots of
 //! [`crate::theory::polynomial`] give the cycles unchanged. The noise's phase correlations
 //! C(ψ) = ⟨G(φ)G(φ + ψ)⟩ are sums of cos(nψ) (the harmonics of G are known), so the
 //! integrals against the OU correlation are the spectrum at those harmonics, exactly;
@@ -37,7 +41,7 @@
 //! Ü + 2ζωU̇ + ω²U = Uη_m; `model-class.md` §6 of the project's design notes.
 //!
 //! Tests: `tests/averaging.rs`: `quadrature_is_the_closed_form` (the paper family both ways to
-//! 1e-12, the weights to 1e-15), `multiplicative_noise_gives_the_exact_moment_boundary`,
+//! 1e-12, every phase average the exact rational rounded once), `multiplicative_noise_gives_the_exact_moment_boundary`,
 //! `rayleigh_van_der_pol_cycle_is_its_closed_form`, `duffing_leaves_the_drift_and_shifts_the_frequency`,
 //! `fractional_damping_enters_as_its_harmonic_balance`.
 
@@ -57,17 +61,110 @@ use std::f64::consts::PI;
 pub const PHASE_NODES: usize = 128;
 
 /// ⟨cos^{2i}φ sin^{2j}φ⟩ over a period, by the periodic trapezoidal rule on [`PHASE_NODES`]
-/// nodes (exact for 2(i + j) < [`PHASE_NODES`]).
+/// nodes (exact for 2(i + j) < [`PHASE_NODES`]), in double-double: the nodes' cos²φ and sin²φ
+/// from Taylor series on the first octant, the powers and the sum carried to ~1e-30, so that
+/// the rule's value is the exact average rounded once (checked for i + j ≤ 22; the closed
+/// form [`super::phase_average_weight`]'s bits where that is exact, as for every k ≤ 27 of
+/// ⟨cos^{2k}φ sin²φ⟩).
 pub fn phase_average(i: usize, j: usize) -> f64 {
-    let n = PHASE_NODES;
-    let (pi, pj) = (2 * i as i32, 2 * j as i32);
-    let sum: f64 = (0..n)
-        .map(|k| {
-            let p = 2.0 * PI * k as f64 / n as f64;
-            p.cos().powi(pi) * p.sin().powi(pj)
-        })
-        .sum();
-    sum / n as f64
+    let nodes = phase_nodes();
+    let quarter = PHASE_NODES / 4;
+    // cos² and sin² have period π and are even about 0 and π/2: node m of the first quadrant
+    // stands for 4 of the n nodes (2 for m = 0 and m = n/4)
+    let mut sum = (0.0, 0.0);
+    for (m, &(c2, s2)) in nodes.iter().enumerate() {
+        let mut term = (1.0, 0.0);
+        for _ in 0..i {
+            term = dd_mul(term, c2);
+        }
+        for _ in 0..j {
+            term = dd_mul(term, s2);
+        }
+        let copies = if m == 0 || m == quarter { 2.0 } else { 4.0 };
+        sum = dd_add(sum, (copies * term.0, copies * term.1));
+    }
+    // n is a power of two: the division is exact
+    (sum.0 + sum.1) / PHASE_NODES as f64
+}
+
+/// A double-double: the unevaluated sum hi + lo, |lo| ≤ ulp(hi)/2.
+type DoubleDouble = (f64, f64);
+
+/// cos²φ and sin²φ at the nodes φ = 2πm/n, m = 0..=n/4, as double-doubles.
+fn phase_nodes() -> &'static [(DoubleDouble, DoubleDouble)] {
+    static NODES: std::sync::OnceLock<Vec<(DoubleDouble, DoubleDouble)>> =
+        std::sync::OnceLock::new();
+    NODES.get_or_init(|| {
+        const _: () = assert!(PHASE_NODES % 8 == 0);
+        let (quarter, eighth) = (PHASE_NODES / 4, PHASE_NODES / 8);
+        (0..=quarter)
+            .map(|m| {
+                // φ = 2πm/n, or its complement π/2 − φ on the second octant (cos ↔ sin)
+                let (k, swap) = if m <= eighth {
+                    (m, false)
+                } else {
+                    (quarter - m, true)
+                };
+                let (c, s) = cos_sin_octant(dd_mul(TWO_PI, (k as f64 / PHASE_NODES as f64, 0.0)));
+                let (c2, s2) = (dd_mul(c, c), dd_mul(s, s));
+                if swap {
+                    (s2, c2)
+                } else {
+                    (c2, s2)
+                }
+            })
+            .collect()
+    })
+}
+
+/// 2π as a double-double.
+const TWO_PI: DoubleDouble = (std::f64::consts::TAU, 2.4492935982947064e-16);
+
+/// cos x and sin x for 0 ≤ x ≤ π/4 (a double-double) by their Taylor series in double-double:
+/// the n-th terms are at most 0.62^n/(2n)!, below 1e-33 from n = 15 (16 are taken).
+fn cos_sin_octant(x: DoubleDouble) -> (DoubleDouble, DoubleDouble) {
+    let x2 = dd_mul(x, x);
+    let (mut c, mut s) = ((1.0, 0.0), x);
+    let (mut tc, mut ts) = ((1.0, 0.0), x);
+    for n in 1..=16 {
+        let k = (2 * n) as f64;
+        // tc ← −tc·x²/((2n − 1)2n), ts ← −ts·x²/(2n(2n + 1))
+        tc = dd_div(dd_mul(tc, x2), -(k - 1.0) * k);
+        ts = dd_div(dd_mul(ts, x2), -k * (k + 1.0));
+        c = dd_add(c, tc);
+        s = dd_add(s, ts);
+    }
+    (c, s)
+}
+
+/// a + b exactly as (sum, error).
+fn two_sum(a: f64, b: f64) -> DoubleDouble {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// Double-double sum.
+fn dd_add(a: DoubleDouble, b: DoubleDouble) -> DoubleDouble {
+    let (s, e) = two_sum(a.0, b.0);
+    let (hi, lo) = two_sum(s, e + a.1 + b.1);
+    (hi, lo)
+}
+
+/// Double-double product.
+fn dd_mul(a: DoubleDouble, b: DoubleDouble) -> DoubleDouble {
+    let p = a.0 * b.0;
+    let e = a.0.mul_add(b.0, -p) + a.0 * b.1 + a.1 * b.0;
+    two_sum(p, e)
+}
+
+/// A double-double divided by a double (an integer here, exact in f64).
+fn dd_div(a: DoubleDouble, d: f64) -> DoubleDouble {
+    let q = a.0 / d;
+    // the remainder a − q·d, exact up to a.1's rounding
+    let p = q * d;
+    let r = (a.0 - p) - q.mul_add(d, -p) + a.1;
+    two_sum(q, r / d)
 }
 
 /// The equivalent linearisation of a model at ω_b = ω0: Eq. 5's μ1, β1, ω1, β2 generalised
