@@ -143,6 +143,7 @@ use super::affine::{
     predictor_weight_slope, Affine,
 };
 use super::polynomial::Polynomial;
+use super::tangent::Tangent;
 use super::walls::Walls;
 use crate::engine::kernel::MIN_SOE_LAMBDA;
 use crate::engine::memory::{History, Memory, Piece, Split};
@@ -405,6 +406,8 @@ pub(super) struct GeneralFree {
     w: f64,
     g0: f64,
     pw: f64,
+    /// The κ of its corrector (the split step's on an impact's redone rest).
+    kappa: f64,
     passes: [GeneralPass; 2],
 }
 
@@ -481,11 +484,64 @@ impl General {
         }
     }
 
-    /// Whether the kernel has fractional terms or multiplicative noise (the tangent does not
-    /// differentiate them yet).
+    /// Whether the kernel has fractional terms or multiplicative noise (the step's extra work,
+    /// [`General::begin_step`] and [`General::end_step`]).
     #[inline]
     pub(super) fn extras(&self) -> bool {
         self.extras
+    }
+
+    /// The tangent's memories of δV: one per fractional term with a memory (α < 1), in the
+    /// terms' order, with the reference's layout and every number 0.
+    pub(super) fn tangent_memories(&self) -> Vec<History> {
+        self.memories
+            .iter()
+            .filter_map(|m| m.history.clone())
+            .map(|mut h| {
+                h.scale_state(0.0);
+                h
+            })
+            .collect()
+    }
+
+    /// The tangent's part of [`General::begin_step`] (after it: η_m drawn), for the tangent
+    /// `t` at the step's start: δ of g's extras there, δ(−Σ_j K_j m_{j,n}) + δU_n·η_m, and of
+    /// the part of −Σ_j K_j m_{j,n+1} known now, −Σ_j K_j(δM_j + ϖ_l^j δV_n) (δM_j the tangent
+    /// memory's value).
+    #[inline]
+    pub(super) fn begin_tangent(&self, t: &Tangent) -> (f64, f64) {
+        let mut ahead = 0.0;
+        let mut held = t.fractional.iter();
+        for m in &self.memories {
+            if m.history.is_some() {
+                let past = held.next().expect("a tangent memory per memory").value();
+                ahead -= m.k * (past + m.wl * t.v);
+            }
+        }
+        (t.lag + t.u * self.eta_m, ahead)
+    }
+
+    /// The tangent's part of [`General::end_step`] of a step without an impact, from δV_n = `dv`
+    /// with the known part `dahead` ([`General::begin_tangent`]) to (δU₁, δV₁): δV's piece into
+    /// every tangent memory, δ(−Σ_j K_j m_{j,n+1}) = δahead − κδV₁ into `t.lag`; returns δ of
+    /// `end_step`'s value, −κδV₁ + δU₁·η_m.
+    pub(super) fn end_tangent(
+        &self,
+        t: &mut Tangent,
+        dv: f64,
+        dahead: f64,
+        (du1, dv1): (f64, f64),
+    ) -> f64 {
+        for h in &mut t.fractional {
+            h.push(Piece {
+                left: dv,
+                right: dv1,
+                split: None,
+            });
+        }
+        let now = -self.kappa * dv1;
+        t.lag = dahead + now;
+        now + du1 * self.eta_m
     }
 
     /// The start of a step from (u, v) whose additive noise level is `el` (η_a, before any
@@ -939,41 +995,49 @@ impl General {
             w,
             g0,
             pw,
+            kappa,
             passes: [first, second],
         }
     }
 
-    /// The derivative of one pass along (δu, δv, δg0), δup, δvl, δknown: (δU₁, δV₁).
+    /// The derivative of one pass along (δu, δv, δg0), δup, δvl, δknown and δ of the known
+    /// forcing F_r (the fractional terms' known part; U^P·η_m with η_m frozen is added here):
+    /// (δU₁, δV₁).
     fn pass_tangent(
         &self,
         f: &GeneralFree,
         p: &GeneralPass,
         (du, dv, dg0): (f64, f64, f64),
         (dup, dvl): (f64, f64),
-        dknown: f64,
+        (dknown, dfr): (f64, f64),
     ) -> (f64, f64) {
         let mps = self.mu_p_slope(p.up);
         let r = self.rayleigh_at(p.vl);
         let da = mps * dup + r.a_slope * dvl;
         let kp = self.restoring_slope(p.up);
-        let dv1 = p.inv * (dknown + f.w * (r.rest_slope * dvl - kp * dup) + p.v1 * f.w * da);
-        let a_end = self.mu_p(p.up) + self.rayleigh_at(p.v1).a;
-        let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup;
+        let dfr = dfr + dup * self.eta_m;
+        let dv1 =
+            p.inv * (dknown + f.w * (dfr + r.rest_slope * dvl - kp * dup) + p.v1 * f.w * da);
+        // g at the end has −κV₁ (the fractional terms)
+        let a_end = self.mu_p(p.up) + self.rayleigh_at(p.v1).a - f.kappa;
+        let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup + dfr;
         let step = (f.len, f.w, f.g0);
         let du1 = pass_tangent_u1(step, (p.a, p.lim, p.gr), (du, dv, dg0), (dv1, dgr, da));
         (du1, dv1)
     }
 
-    /// The derivative of [`General::advance`] from (u, v) along (δu, δv, δg0) and δknown (the
-    /// forcing frozen: noise and phase): (δU₁, δV₁).
+    /// The derivative of [`General::advance`] from (u, v) along (δu, δv, δg0), δknown and δ of
+    /// the known forcing F_r (the fractional terms' known part, [`General::begin_tangent`]; the
+    /// noise and the phase frozen): (δU₁, δV₁).
     pub(super) fn advance_tangent(
         &self,
         f: &GeneralFree,
         (u, v): (f64, f64),
         (du, dv, dg0): (f64, f64, f64),
-        dknown: f64,
+        dknown: (f64, f64),
     ) -> (f64, f64) {
-        let a0 = self.a(u, v);
+        // the node's predictor weight has ∂_V g = a − κ
+        let a0 = self.a(u, v) - f.kappa;
         let da0 = self.mu_p_slope(u) * du + self.rayleigh_at(v).a_slope * dv;
         let dpw = predictor_weight_slope(f.len, a0, da0);
         let dup = du + f.len * dv + f.pw * dg0 + f.g0 * dpw;
@@ -984,7 +1048,8 @@ impl General {
     /// The derivative of [`General::advance`] from (u, v) = `start` when the step's length and
     /// its weight of g at the end move as well (the redone rest of an impact step: length
     /// (1 − θ)Δt, weights following θ): along (δu, δv, δg0), δpw, δknown and (δlen, δw), the
-    /// forcing frozen. Returns (δU₁, δV₁).
+    /// forcing frozen (`dknown`: δknown and δ of the known forcing, as in
+    /// [`General::advance_tangent`]). Returns (δU₁, δV₁).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn advance_tangent_moving(
         &self,
@@ -992,7 +1057,7 @@ impl General {
         (_, v): (f64, f64),
         (du, dv, dg0): (f64, f64, f64),
         dpw: f64,
-        dknown: f64,
+        dknown: (f64, f64),
         (dlen, dw): (f64, f64),
     ) -> (f64, f64) {
         let dup = du + dlen * v + f.len * dv + f.pw * dg0 + f.g0 * dpw;
@@ -1013,7 +1078,7 @@ impl General {
         (v, dlen, dw): (f64, f64, f64),
         (du, dv, dg0): (f64, f64, f64),
         (dup, dvl): (f64, f64),
-        dknown: f64,
+        (dknown, dfr): (f64, f64),
     ) -> (f64, f64) {
         let mp = self.mu_p(p.up);
         let mps = self.mu_p_slope(p.up);
@@ -1021,13 +1086,14 @@ impl General {
         let da = mps * dup + r.a_slope * dvl;
         let kp = self.restoring_slope(p.up);
         let end = self.rayleigh_at(p.v1);
-        // F_r − k(up) = g_r − h(up, V₁)V₁
-        let x = p.gr - (mp + end.h - self.kappa) * p.v1 + r.rest;
-        let dx = r.rest_slope * dvl - kp * dup;
+        // F_r − k(up) = g_r − (h(up, V₁) − κ)V₁ (F_r with U^P·η_m)
+        let x = p.gr - (mp + end.h - f.kappa) * p.v1 + r.rest;
+        let dfr = dfr + dup * self.eta_m;
+        let dx = dfr + r.rest_slope * dvl - kp * dup;
         let dwa = dw * p.a + f.w * da;
         let dv1 = p.inv * (dknown + dw * x + f.w * dx + p.v1 * dwa);
-        let a_end = mp + end.a;
-        let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup;
+        let a_end = mp + end.a - f.kappa;
+        let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup + dfr;
         let step = (f.len, f.w, f.g0);
         let pass = (p.a, p.lim, p.gr, p.v1);
         let du1 = pass_tangent_u1_moving(step, pass, (v, dlen, dwa), (du, dv, dg0), (dv1, dgr));

@@ -157,14 +157,21 @@ use crate::engine::History;
 use crate::error::Result;
 
 /// The tangent of a path: δU, δV, δ of the Volterra constant, δg at the node (without noise)
-/// and the memory of δg, with the reference's layout.
+/// and the memory of δg, with the reference's layout; for a General path with fractional terms
+/// also δ(−Σ_j K_j m_j) at the node and the memories of δV.
 #[derive(Debug, Clone)]
 pub(crate) struct Tangent {
     pub(super) u: f64,
     pub(super) v: f64,
+    /// δ(h(U, V)V − k(U)) at the node (the fractional terms and U·η_m apart).
     pub(super) drift: f64,
     pub(super) base: f64,
     pub(super) history: History,
+    /// δ(−Σ_j K_j m_j) at the node (0 without fractional terms).
+    pub(super) lag: f64,
+    /// The memories of δV of the fractional terms with one (α_j < 1), in the terms' order, with
+    /// the reference's layouts (none without fractional terms).
+    pub(super) fractional: Vec<History>,
 }
 
 impl Tangent {
@@ -173,12 +180,18 @@ impl Tangent {
     pub fn new(reference: &Stepper, (du, dv): (f64, f64)) -> Self {
         let mut history = reference.history.clone();
         history.scale_state(0.0);
+        let fractional = reference
+            .general
+            .as_deref()
+            .map_or_else(Vec::new, |g| g.tangent_memories());
         Tangent {
             u: du,
             v: dv,
             drift: reference.drift_derivative(du, dv),
             base: dv,
             history,
+            lag: 0.0,
+            fractional,
         }
     }
 
@@ -188,30 +201,50 @@ impl Tangent {
     }
 
     /// Whether the whole tangent state is zero (δU, δV, δ of the Volterra constant, δg at the
-    /// node and the tangent memory): the perturbation has vanished for good.
+    /// node, the tangent memory, and the fractional terms' δ(−Σ_j K_j m_j) and memories of δV):
+    /// the perturbation has vanished for good.
     pub fn is_zero(&self) -> bool {
         self.u == 0.0
             && self.v == 0.0
             && self.drift == 0.0
             && self.base == 0.0
             && self.history.is_zero()
+            && self.lag == 0.0
+            && self.fractional.iter().all(History::is_zero)
     }
 
     /// Multiply the whole tangent state by `c`: δU, δV, δ of the Volterra constant, δg at the
-    /// node and every number of the tangent memory (the variational system is linear).
+    /// node, every number of the tangent memory and, with fractional terms, δ(−Σ_j K_j m_j)
+    /// and every number of their memories of δV (the variational system is linear).
     pub fn scale(&mut self, c: f64) {
         self.u *= c;
         self.v *= c;
         self.drift *= c;
         self.base *= c;
         self.history.scale_state(c);
+        self.lag *= c;
+        for h in &mut self.fractional {
+            h.scale_state(c);
+        }
     }
 
     /// Every number of the tangent state that a step reads, as bits (δU, δV, δg at the node, δ
-    /// of the Volterra constant, the tangent memory's value).
+    /// of the Volterra constant, the tangent memory's value, δ(−Σ_j K_j m_j) and the values
+    /// of the memories of δV).
     #[cfg(test)]
-    pub(crate) fn bits(&self) -> [u64; 5] {
-        [self.u, self.v, self.drift, self.base, self.history.value()].map(f64::to_bits)
+    pub(crate) fn bits(&self) -> Vec<u64> {
+        let mut out: Vec<u64> = [
+            self.u,
+            self.v,
+            self.drift,
+            self.base,
+            self.history.value(),
+            self.lag,
+        ]
+        .map(f64::to_bits)
+        .to_vec();
+        out.extend(self.fractional.iter().map(|h| h.value().to_bits()));
+        out
     }
 
     /// The tangent of a state clamped at rest on the wall whose free value was V + δV.
@@ -296,25 +329,26 @@ pub(super) fn fold_theta(piece: &Piece, d: &mut Split, dtheta: f64) {
     d.after -= (piece.right - s.after) / (1.0 - theta) * dtheta;
 }
 
-/// The refusal of the tangent of a General path with fractional terms or multiplicative noise
-/// (their memories and U·η_m are not differentiated yet).
-pub(crate) fn general_extras_tangent() -> crate::Error {
+/// The refusal of the tangent of a General path with fractional terms and a wall (the
+/// derivative of their memories split at an impact is not built yet).
+pub(crate) fn fractional_wall_tangent() -> crate::Error {
     crate::Error::NotApplicable {
         method: "the tangent method (lyapunov --method tangent)".into(),
-        assumption: "no fractional term K·D^αU and no multiplicative noise U·η_m".into(),
-        reason: "the tangent of the fractional terms' memories and of U·η_m is not built yet; \
-                 use the two-trajectory method"
+        assumption: "no fractional term K·D^αU together with a wall".into(),
+        reason: "the tangent of the fractional terms' memories split at an impact is not built \
+                 yet (without a wall it is); use the two-trajectory method"
             .into(),
     }
 }
 
-/// The tangent's refusal of `problem`, if any: a General path with fractional terms or
-/// multiplicative noise ([`general_extras_tangent`]). Walls are no refusal: the tangent goes
-/// through the General kernel's impact steps (`super::walls`).
+/// The tangent's refusal of `problem`, if any: a General path with fractional terms and a
+/// wall, the paper's or the model's ([`fractional_wall_tangent`]). Fractional terms without a
+/// wall, multiplicative noise and walls are no refusal: the tangent differentiates their
+/// memories, U·η_m and the General kernel's impact steps (`super::walls`).
 pub(crate) fn tangent_refusal(problem: &crate::engine::Problem) -> Option<crate::Error> {
     let t = problem.oscillator().terms()?;
-    if !t.fractional.is_empty() || t.multiplicative.is_some() {
-        return Some(general_extras_tangent());
+    if !t.fractional.is_empty() && (problem.wall() || !t.walls.is_empty()) {
+        return Some(fractional_wall_tangent());
     }
     None
 }
@@ -361,27 +395,40 @@ impl Stepper {
     // out of line: the paper kernel's tangent step keeps the code it had
     #[inline(never)]
     fn step_general_with_tangent(&mut self, t: &mut Tangent) -> Result<()> {
-        if self.general.as_deref().is_some_and(|g| g.extras()) {
-            return Err(general_extras_tangent());
-        }
         // the model's walls, or the paper's wall at 0 as a lower wall (the same steps bit for
         // bit: `Walls::paper`)
         let walls = self.general.as_deref().and_then(|g| g.walls);
         if let Some(walls) = walls.or(self.wall.then(|| Walls::paper(self.rhs.restitution))) {
+            if self.general.as_deref().is_some_and(|g| g.fractional()) {
+                return Err(fractional_wall_tangent());
+            }
             return self.step_walls_with_tangent(walls, t);
         }
         let (b, free) = self.begin_general();
         let (u1, v1) = free.end();
-        let dknown = t.base + t.history.value() + self.wl * t.drift;
         let g = self.general.as_deref().expect("a General path");
-        let (du1, dv1) = g.advance_tangent(&free, (b.u, b.v), (t.u, t.v, t.drift), dknown);
-        let dgl = t.drift;
+        // the fractional terms and U·η_m (module docs, "Fractional terms and multiplicative
+        // noise"): δ of g's extras at the start and of the known part of the end's
+        let (dxl, dahead) = if g.extras() {
+            g.begin_tangent(t)
+        } else {
+            (0.0, 0.0)
+        };
+        let dgl = t.drift + dxl;
+        let dknown = t.base + t.history.value() + self.wl * dgl;
+        let (du1, dv1) = g.advance_tangent(&free, (b.u, b.v), (t.u, t.v, dgl), (dknown, dahead));
         self.end_general(&b, u1, v1)?;
         let g = self.general.as_deref().expect("a General path");
         let ddrift = g.drift_derivative(u1, v1, du1, dv1);
+        let right = if g.extras() {
+            let dv = t.v;
+            ddrift + dahead + g.end_tangent(t, dv, dahead, (du1, dv1))
+        } else {
+            ddrift
+        };
         t.history.push(Piece {
             left: dgl,
-            right: ddrift,
+            right,
             split: None,
         });
         t.u = du1;

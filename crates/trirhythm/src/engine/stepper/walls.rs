@@ -250,15 +250,15 @@ impl Stepper {
         self.check_blow_up((b.u, b.v), (u1, v1))?;
         let g = self.general.as_deref_mut().expect("a General path");
         (self.drift, self.pw) = g.node(self.h, u1, v1);
-        if g.fractional() {
-            // the fractional terms' pieces of V (split at an impact); a step that sticks with
-            // the memory restarting pushes nothing: the memories restart too
-            let extra = match piece {
-                Some(_) => g.end_step(b.v, u1, v1),
-                None => {
-                    g.restart_memories();
-                    0.0
-                }
+        if g.extras() {
+            // the fractional terms' pieces of V (split at an impact) and U·η_m at the end (as
+            // `Stepper::step_general` at the wall at 0); a step that sticks with the memory
+            // restarting pushes nothing: the fractional memories restart too
+            let extra = if piece.is_none() && g.fractional() {
+                g.restart_memories();
+                0.0
+            } else {
+                g.end_step(b.v, u1, v1)
             };
             let right = self.drift + b.fr + extra;
             let piece = piece.map(|mut piece| {
@@ -437,10 +437,17 @@ impl Stepper {
     pub(super) fn step_walls_with_tangent(&mut self, walls: Walls, t: &mut Tangent) -> Result<()> {
         let (b, free) = self.begin_general();
         let (mut u1, mut v1) = free.end();
-        let dgl = t.drift;
-        let dknown = t.base + t.history.value() + self.wl * dgl;
         let g = self.general.as_deref().expect("a General path");
-        let (mut du1, mut dv1) = g.advance_tangent(&free, (b.u, b.v), (t.u, t.v, dgl), dknown);
+        // U·η_m (the fractional terms do not come here: refused with a wall)
+        let (dxl, dahead) = if g.extras() {
+            g.begin_tangent(t)
+        } else {
+            (0.0, 0.0)
+        };
+        let dgl = t.drift + dxl;
+        let dknown = t.base + t.history.value() + self.wl * dgl;
+        let (mut du1, mut dv1) =
+            g.advance_tangent(&free, (b.u, b.v), (t.u, t.v, dgl), (dknown, dahead));
         self.events = StepEvents::default();
         let mut piece = Piece {
             left: b.gl,
@@ -460,8 +467,14 @@ impl Stepper {
             (u1, v1, du1, dv1) = (delta, 0.0, 0.0, 0.0);
         } else if let Some(side) = walls.beyond(u1) {
             let law = walls.law(side);
-            let (split, dsplit, dth, end) =
-                self.impact_wall_with_tangent(t, law, side, &b, dgl, [u1, v1, du1, dv1]);
+            let (split, dsplit, dth, end) = self.impact_wall_with_tangent(
+                t,
+                law,
+                side,
+                &b,
+                (dgl, dahead),
+                [u1, v1, du1, dv1],
+            );
             [u1, v1, du1, dv1] = end;
             piece.split = Some(split);
             dpiece.split = Some(dsplit);
@@ -476,8 +489,15 @@ impl Stepper {
         let pushed = self.end_wall_step(&b, (u1, v1), push.then_some(piece))?;
         let g = self.general.as_deref().expect("a General path");
         let ddrift = g.drift_derivative(u1, v1, du1, dv1);
+        // δ(U·η_m) at the end (0 at the wall at 0, where a clamped step ends)
+        let dextra = if g.extras() {
+            let dv = t.v;
+            dahead + g.end_tangent(t, dv, dahead, (du1, dv1))
+        } else {
+            0.0
+        };
         if let Some(piece) = pushed {
-            dpiece.right = ddrift;
+            dpiece.right = ddrift + dextra;
             if dtheta != 0.0 {
                 if let Some(d) = dpiece.split.as_mut() {
                     fold_theta(&piece, d, dtheta);
@@ -492,7 +512,8 @@ impl Stepper {
     }
 
     /// [`Stepper::impact_wall`] with the derivative of the impact step: `free` is the free end
-    /// (U₁, V₁, δU₁, δV₁), `dgl` δg at the step's start. Returns the reference's split, the
+    /// (U₁, V₁, δU₁, δV₁), `dgl` δg at the step's start, `dahead` δ of the known forcing's
+    /// part from the fractional terms (0: they are refused with a wall). Returns the reference's split, the
     /// tangent's (its values' derivatives with θ held; [`fold_theta`] adds the θ-derivative
     /// when the piece is complete), δθ and the end (U, V, δU, δV).
     #[cold]
@@ -502,7 +523,7 @@ impl Stepper {
         law: Law,
         side: Side,
         b: &Begin,
-        dgl: f64,
+        (dgl, dahead): (f64, f64),
         [u1, v1, du1, dv1]: [f64; 4],
     ) -> (Split, Split, f64, [f64; 4]) {
         let h = self.h;
@@ -571,7 +592,7 @@ impl Stepper {
             (delta, hit.v_plus),
             (0.0, dv_plus, dsplit.after),
             dpw,
-            dknown,
+            (dknown, dahead),
             (dlen, rate_w * dtheta),
         );
         let (u_end, v_end) = hit.free.end();
