@@ -702,6 +702,70 @@ impl General {
         true
     }
 
+    /// Multiply the fractional terms' memories of V and −Σ_j K_j m_j at the node by `c` (a
+    /// direction of the state for the tangent's tests).
+    #[cfg(test)]
+    pub(super) fn scale_memories(&mut self, c: f64) {
+        for h in self.memories.iter_mut().filter_map(|m| m.history.as_mut()) {
+            h.scale_state(c);
+        }
+        self.lag *= c;
+    }
+
+    /// The tangent's (δ(−Σ_j K_j m_j), memories of δV) along [`General::scale_memories`]'s
+    /// direction, `s` times.
+    #[cfg(test)]
+    pub(super) fn scaled_memories(&self, s: f64) -> (f64, Vec<History>) {
+        let mut held = self.tangent_memories();
+        for (t, h) in held
+            .iter_mut()
+            .zip(self.memories.iter().filter_map(|m| m.history.as_ref()))
+        {
+            *t = h.clone();
+            t.scale_state(s);
+        }
+        (s * self.lag, held)
+    }
+
+    /// −Σ_j K_j m_j at the node and Σ_j K_j·(memory j's value) (what the tangent's tests
+    /// compare).
+    #[cfg(test)]
+    pub(super) fn memories_seen(&self) -> (f64, f64) {
+        let value = self
+            .memories
+            .iter()
+            .filter_map(|m| m.history.as_ref().map(|h| m.k * h.value()))
+            .sum();
+        (self.lag, value)
+    }
+
+    /// Σ_j K_j·(the value of the tangent's memory j of δV).
+    #[cfg(test)]
+    pub(super) fn tangent_memories_seen(&self, t: &Tangent) -> f64 {
+        self.memories
+            .iter()
+            .filter(|m| m.history.is_some())
+            .zip(&t.fractional)
+            .map(|(m, h)| m.k * h.value())
+            .sum()
+    }
+
+    /// Whether the tangent's memories of δV hold their pieces in the layouts of the reference's
+    /// memories of V.
+    #[cfg(test)]
+    pub(super) fn memories_in_layout(&self, t: &Tangent) -> bool {
+        let held: Vec<&History> = self
+            .memories
+            .iter()
+            .filter_map(|m| m.history.as_ref())
+            .collect();
+        held.len() == t.fractional.len()
+            && held
+                .iter()
+                .zip(&t.fractional)
+                .all(|(h, d)| d.same_layout_as(h))
+    }
+
     /// Whether the fractional memories and the multiplicative noise's state equal `other`'s.
     pub(super) fn coincides_with(&self, other: &General) -> bool {
         self.lag == other.lag
@@ -1016,8 +1080,7 @@ impl General {
         let da = mps * dup + r.a_slope * dvl;
         let kp = self.restoring_slope(p.up);
         let dfr = dfr + dup * self.eta_m;
-        let dv1 =
-            p.inv * (dknown + f.w * (dfr + r.rest_slope * dvl - kp * dup) + p.v1 * f.w * da);
+        let dv1 = p.inv * (dknown + f.w * (dfr + r.rest_slope * dvl - kp * dup) + p.v1 * f.w * da);
         // g at the end has −κV₁ (the fractional terms)
         let a_end = self.mu_p(p.up) + self.rayleigh_at(p.v1).a - f.kappa;
         let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup + dfr;

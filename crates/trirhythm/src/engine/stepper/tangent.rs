@@ -714,13 +714,15 @@ mod tests {
         o.stepper(&problem, &method).unwrap()
     }
 
-    /// A direction in the state: δU, δV, δbase and the memory scaled by (1 + s).
+    /// A direction in the state: δU, δV, δbase, the memory scaled by (1 + s) and the fractional
+    /// terms' memories of V with −Σ_j K_j m_j at the node scaled by (1 + s).
     #[derive(Clone, Copy, Debug)]
     struct Direction {
         u: f64,
         v: f64,
         base: f64,
         memory: f64,
+        fractional: f64,
     }
 
     const DIRECTIONS: [Direction; 4] = [
@@ -729,26 +731,39 @@ mod tests {
             v: 0.0,
             base: 0.0,
             memory: 0.0,
+            fractional: 0.0,
         },
         Direction {
             u: 0.0,
             v: 1.0,
             base: 0.0,
             memory: 0.0,
+            fractional: 0.0,
         },
         Direction {
             u: 0.0,
             v: 0.0,
             base: 1.0,
             memory: 0.0,
+            fractional: 0.0,
         },
         Direction {
             u: 0.0,
             v: 0.0,
             base: 0.0,
             memory: 1.0,
+            fractional: 0.0,
         },
     ];
+
+    /// The fractional terms' memories (and −Σ_j K_j m_j at the node).
+    const FRACTIONAL: Direction = Direction {
+        u: 0.0,
+        v: 0.0,
+        base: 0.0,
+        memory: 0.0,
+        fractional: 1.0,
+    };
 
     fn perturbed(s: &Stepper, eps: f64, d: Direction) -> Stepper {
         let mut p = s.clone();
@@ -756,6 +771,9 @@ mod tests {
         p.v += eps * d.v;
         p.base += eps * d.base;
         p.history.scale_state(1.0 + eps * d.memory);
+        if let Some(g) = p.general.as_deref_mut() {
+            g.scale_memories(1.0 + eps * d.fractional);
+        }
         match &p.general {
             Some(g) => (p.drift, p.pw) = g.node(p.h, p.u, p.v),
             None => {
@@ -770,6 +788,9 @@ mod tests {
         t.base = d.base;
         t.history = s.history.clone();
         t.history.scale_state(d.memory);
+        if let Some(g) = s.general.as_deref() {
+            (t.lag, t.fractional) = g.scaled_memories(d.fractional);
+        }
         t
     }
 
@@ -780,12 +801,18 @@ mod tests {
     }
 
     /// The numbers a tangent is compared on: U, V, the Volterra constant and the memory's
-    /// value for the next step (the last two carry what a sticking step keeps).
-    fn observed(s: &Stepper) -> [f64; 4] {
-        [s.u, s.v, s.base, s.history.value()]
+    /// value for the next step (the last two carry what a sticking step keeps); a General
+    /// path's −Σ_j K_j m_j at the node and Σ_j K_j·(the value of memory j of V) (0 without
+    /// fractional terms).
+    fn observed(s: &Stepper) -> [f64; 6] {
+        let (lag, memories) = s
+            .general
+            .as_deref()
+            .map_or((0.0, 0.0), |g| g.memories_seen());
+        [s.u, s.v, s.base, s.history.value(), lag, memories]
     }
 
-    fn norm(x: &[f64; 4]) -> f64 {
+    fn norm(x: &[f64; 6]) -> f64 {
         x.iter().map(|a| a * a).sum::<f64>().sqrt()
     }
 
@@ -796,7 +823,7 @@ mod tests {
         s: &Stepper,
         d: Direction,
         steps: usize,
-    ) -> ([f64; 4], [f64; 4], Vec<[bool; 3]>) {
+    ) -> ([f64; 6], [f64; 6], Vec<[bool; 3]>) {
         let mut reference = s.clone();
         let mut t = tangent(s, d);
         let mut kinds = vec![];
@@ -804,7 +831,11 @@ mod tests {
             reference.step_with_tangent(&mut t).unwrap();
             kinds.push(kind(&reference));
         }
-        let dx = [t.u, t.v, t.base, t.history.value()];
+        let (lag, memories) = reference
+            .general
+            .as_deref()
+            .map_or((0.0, 0.0), |g| (t.lag, g.tangent_memories_seen(&t)));
+        let dx = [t.u, t.v, t.base, t.history.value(), lag, memories];
         (dx, observed(&reference), kinds)
     }
 
@@ -812,7 +843,7 @@ mod tests {
     /// [`Stepper::step`] whose kinds are `kinds`; None when a perturbed path takes a step of
     /// another kind (the difference would straddle a switch of the map: an impact more or
     /// less, a step that sticks or leaves the wall).
-    fn central(s: &Stepper, d: Direction, eps: f64, kinds: &[[bool; 3]]) -> Option<[f64; 4]> {
+    fn central(s: &Stepper, d: Direction, eps: f64, kinds: &[[bool; 3]]) -> Option<[f64; 6]> {
         let (mut plus, mut minus) = (perturbed(s, eps, d), perturbed(s, -eps, d));
         for k in kinds {
             plus.step().unwrap();
@@ -847,7 +878,7 @@ mod tests {
         let (t, x, kinds) = tangent_after(s, d, steps);
         let d1 = central(s, d, eps, &kinds)?;
         let d2 = central(s, d, 2.0 * eps, &kinds)?;
-        let r: [f64; 4] = std::array::from_fn(|i| (4.0 * d1[i] - d2[i]) / 3.0);
+        let r: [f64; 6] = std::array::from_fn(|i| (4.0 * d1[i] - d2[i]) / 3.0);
         let size = norm(&r);
         let diff = norm(&std::array::from_fn(|i| t[i] - r[i]));
         let plain = norm(&std::array::from_fn(|i| d1[i] - r[i]));
@@ -898,9 +929,17 @@ mod tests {
                 .min_by(|a, b| a.err.total_cmp(&b.err))
                 .unwrap_or_else(|| panic!("{label}, {d:?}: every ε straddles a switch"));
             report += &format!(
-                "{label}, {steps} steps, δ(U, V, base, memory) = ({}, {}, {}, {}): error \
-                 {:.1e} at ε = {:.0e} (plain difference {:.1e}, rounding {:.1e})\n",
-                d.u, d.v, d.base, d.memory, best.err, best.eps, best.plain, best.rounding
+                "{label}, {steps} steps, δ(U, V, base, memory, fractional) = ({}, {}, {}, {}, \
+                 {}): error {:.1e} at ε = {:.0e} (plain difference {:.1e}, rounding {:.1e})\n",
+                d.u,
+                d.v,
+                d.base,
+                d.memory,
+                d.fractional,
+                best.err,
+                best.eps,
+                best.plain,
+                best.rounding
             );
             assert!(
                 best.diff <= TOLERANCE * best.size + best.rho,
@@ -1429,5 +1468,195 @@ mod tests {
                 "λ = {lambda}: {impacts} impacts, {err:e}"
             );
         }
+    }
+
+    /// A General model (fig17a's damping at μ0 = 0.2, Duffing k3 = 0.3, Rayleigh d1 = −0.05, a
+    /// forcing 0.4·cos(1.3t + 0.2), OU noise D = 0.3, τ = 0.5) at `lambda` with the fractional
+    /// terms `fractional` (K, α), the multiplicative noise `multiplicative` (D_m, τ_m) — OU
+    /// ones correlated with the additive noise by c = 0.4 —, `walls`, from (u0, 0.3).
+    fn extras_model(
+        lambda: f64,
+        fractional: &[(f64, f64)],
+        multiplicative: Option<(f64, f64)>,
+        walls: Vec<crate::model::Wall>,
+        u0: f64,
+    ) -> Problem {
+        let mut m = crate::model::Model::from(&params("fig17a", &[]));
+        m.leading.lambda = lambda;
+        m.damping.mu0 = 0.2;
+        m.damping.rayleigh = vec![-0.05];
+        m.restoring.cubic = 0.3;
+        m.forcing = Some(crate::model::Harmonic {
+            amplitude: 0.4,
+            frequency: 1.3,
+            phase: 0.2,
+        });
+        m.noise.additive = Some(crate::model::NoiseTerm {
+            intensity: 0.3,
+            correlation_time: 0.5,
+        });
+        m.fractional = fractional
+            .iter()
+            .map(|&(coefficient, order)| crate::model::Fractional { coefficient, order })
+            .collect();
+        if let Some((intensity, correlation_time)) = multiplicative {
+            m.noise.multiplicative = Some(crate::model::NoiseTerm {
+                intensity,
+                correlation_time,
+            });
+            if correlation_time == 0.5 {
+                m.noise.correlation = 0.4;
+            }
+        }
+        m.walls = walls;
+        m.start.u0 = u0;
+        m.start.v0 = 0.3;
+        Problem::from_model(&m).unwrap()
+    }
+
+    /// Fractional terms and multiplicative noise without a wall: one term α = 0.5; two terms
+    /// α = 0.5 and 0.8; α = 0.5 with an α = 1 term; each at λ = 1 and 0.95, with white or OU
+    /// multiplicative noise (and alone: no fractional term).
+    fn extras_cases() -> Vec<(String, Problem)> {
+        let terms: [(&str, &[(f64, f64)]); 4] = [
+            ("no fractional term", &[]),
+            ("α = 0.5", &[(0.6, 0.5)]),
+            ("α = 0.5, 0.8", &[(0.6, 0.5), (0.3, 0.8)]),
+            ("α = 0.5, 1", &[(0.6, 0.5), (0.2, 1.0)]),
+        ];
+        let mut cases = vec![];
+        for lambda in [1.0, 0.95] {
+            for (k, (what, fractional)) in terms.iter().enumerate() {
+                // white and OU multiplicative noise in turn, none with the second case
+                let (noise, multiplicative) = match k {
+                    0 | 3 => ("white η_m", Some((0.05, 0.0))),
+                    1 => ("no η_m", None),
+                    _ => ("OU η_m, c = 0.4", Some((0.05, 0.5))),
+                };
+                let problem = extras_model(lambda, fractional, multiplicative, vec![], 1.5);
+                cases.push((format!("{what}, {noise}, λ = {lambda}"), problem));
+            }
+        }
+        cases
+    }
+
+    #[test]
+    fn fractional_terms_and_multiplicative_noise_advance_the_reference_bit_for_bit() {
+        // no wall (every case above) and the wall at 0 with multiplicative noise (impacts and
+        // sticking): the path advanced with its tangent is the path advanced by `step`, the
+        // tangent's memories of δV keep the reference's layouts
+        let mut cases = extras_cases();
+        for (noise, tau) in [("white", 0.0), ("OU", 0.5)] {
+            let wall = vec![wall(0.0, crate::model::Keep::Above, 0.7)];
+            let problem = extras_model(1.0, &[], Some((0.05, tau)), wall, 1.5);
+            cases.push((format!("{noise} η_m, the wall at 0"), problem));
+        }
+        for (label, problem) in cases {
+            let mut a = of(problem, ImpactMemory::Continuous, Memory::default());
+            assert!(a.general.is_some(), "{label}");
+            let mut b = a.clone();
+            let mut t = Tangent::new(&b, (1.0, 0.0));
+            for n in 0..1500 {
+                a.step().unwrap();
+                b.step_with_tangent(&mut t).unwrap();
+                assert_eq!((a.u, a.v, a.base), (b.u, b.v, b.base), "{label}, step {n}");
+                assert!(t.norm().is_finite() && t.norm() > 0.0, "{label}, step {n}");
+                if n % 50 == 0 {
+                    t.scale(1.0 / t.norm());
+                }
+            }
+            let g = b.general.as_deref().unwrap();
+            let layouts = g.memories_in_layout(&t);
+            assert!(layouts, "{label}");
+            if label.contains("wall") {
+                assert!(a.impacts() > 3, "{label}: {} impacts", a.impacts());
+            }
+        }
+    }
+
+    #[test]
+    fn fractional_and_multiplicative_steps_are_the_derivative_of_the_discrete_step() {
+        // no wall: one step (V's pieces in the exact window), 20 (they have left the 8-step
+        // window into the SOE modes and lumped moments) and 200, along δU, δV, the constant,
+        // the memory of g and the fractional memories of V
+        let mut report = String::new();
+        let mut worst_all: f64 = 0.0;
+        let mut dirs = DIRECTIONS.to_vec();
+        dirs.push(FRACTIONAL);
+        for (label, problem) in extras_cases() {
+            let mut s = of(problem, ImpactMemory::Continuous, Memory::default());
+            for _ in 0..300 {
+                s.step().unwrap();
+            }
+            for steps in [1, 20, 200] {
+                let (worst, r) = assert_derivative_along(&label, &s, steps, &dirs);
+                report += &r;
+                worst_all = worst_all.max(worst);
+                assert!(worst < TOLERANCE, "{r}");
+            }
+        }
+        eprintln!("{report}worst relative error {worst_all:.1e}");
+    }
+
+    #[test]
+    fn multiplicative_noise_at_the_wall_is_the_derivative_of_the_discrete_step() {
+        // the wall at 0 with U·η_m (0 at the wall; the redone rest carries U^P·η_m), white and
+        // OU η_m, λ = 1 and 0.95, both impact memories: the first impact alone and with 3 and
+        // 19 more steps, an impact that ends stuck and the step leaving the wall
+        let mut report = String::new();
+        let mut worst_all: f64 = 0.0;
+        for lambda in [1.0, 0.95] {
+            for (noise, tau) in [("white", 0.0), ("OU", 0.5)] {
+                let wall = vec![wall(0.0, crate::model::Keep::Above, 0.5)];
+                let problem = extras_model(lambda, &[], Some((0.05, tau)), wall, 1.5);
+                for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+                    let s = of(problem.clone(), memory, Memory::default());
+                    let label = format!("{noise} η_m at the wall, λ = {lambda}, {memory:?}");
+                    let first = before(&s, 100_000, |_, q| q.events().impact.is_some());
+                    for steps in [1, 4, 20] {
+                        let (worst, r) = assert_derivative(&label, &first, steps);
+                        report += &r;
+                        worst_all = worst_all.max(worst);
+                        assert!(worst < TOLERANCE, "{r}");
+                    }
+                    let limit = 1_000_000;
+                    let stuck = before(&s, limit, |_, q| {
+                        q.events().impact.is_some() && q.events().stuck
+                    });
+                    let leaving = before(&s, limit, |p, q| p.stuck && !q.stuck);
+                    for (what, s) in [("impact, then stuck", &stuck), ("leaving", &leaving)] {
+                        let label = format!("{label}, {what}");
+                        let (worst, r) = assert_derivative(&label, s, 1);
+                        report += &r;
+                        assert!(worst < TOLERANCE, "{r}");
+                    }
+                }
+            }
+        }
+        eprintln!("{report}worst relative error {worst_all:.1e}");
+    }
+
+    #[test]
+    fn fractional_terms_with_a_wall_are_refused_by_name() {
+        // the tangent of the memories of V split at an impact is not built: the paper's wall at
+        // 0 and an offset wall refuse it, by the problem and by the step; without a wall and
+        // with multiplicative noise alone at the wall there is no refusal
+        use crate::model::Keep::Above;
+        for walls in [vec![wall(0.0, Above, 0.7)], vec![wall(-0.5, Above, 0.7)]] {
+            let problem = extras_model(1.0, &[(0.6, 0.5)], None, walls, 1.5);
+            let said = tangent_refusal(&problem).expect("refused").to_string();
+            assert!(
+                said.contains("fractional") && said.contains("wall"),
+                "{said}"
+            );
+            let mut s = of(problem, ImpactMemory::Continuous, Memory::default());
+            let mut t = Tangent::new(&s, (1.0, 0.0));
+            assert_eq!(s.step_with_tangent(&mut t).unwrap_err().to_string(), said);
+        }
+        let free = extras_model(1.0, &[(0.6, 0.5)], Some((0.05, 0.0)), vec![], 1.5);
+        assert!(tangent_refusal(&free).is_none());
+        let wall = vec![wall(0.0, Above, 0.7)];
+        let walled = extras_model(1.0, &[], Some((0.05, 0.0)), wall, 1.5);
+        assert!(tangent_refusal(&walled).is_none());
     }
 }

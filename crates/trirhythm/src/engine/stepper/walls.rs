@@ -467,14 +467,8 @@ impl Stepper {
             (u1, v1, du1, dv1) = (delta, 0.0, 0.0, 0.0);
         } else if let Some(side) = walls.beyond(u1) {
             let law = walls.law(side);
-            let (split, dsplit, dth, end) = self.impact_wall_with_tangent(
-                t,
-                law,
-                side,
-                &b,
-                (dgl, dahead),
-                [u1, v1, du1, dv1],
-            );
+            let (split, dsplit, dth, end) =
+                self.impact_wall_with_tangent(t, law, side, &b, (dgl, dahead), [u1, v1, du1, dv1]);
             [u1, v1, du1, dv1] = end;
             piece.split = Some(split);
             dpiece.split = Some(dsplit);
