@@ -143,7 +143,7 @@ use super::affine::{
     predictor_weight_slope, Affine,
 };
 use super::polynomial::Polynomial;
-use super::tangent::Tangent;
+use super::tangent::{fold_theta, Tangent};
 use super::walls::Walls;
 use crate::engine::kernel::MIN_SOE_LAMBDA;
 use crate::engine::memory::{History, Memory, Piece, Split};
@@ -372,6 +372,20 @@ struct SplitMemories {
     kappa: f64,
 }
 
+/// The tangent of [`SplitMemories`] ([`General::split_tangent`]; taken by
+/// [`General::end_tangent`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct TangentSplit {
+    /// The reference's split of V's piece and its κ_s.
+    split: Split,
+    kappa: f64,
+    /// The split's values' δ (θ held), and δ(ahead_s), δκ_s, δθ.
+    d: Split,
+    dahead: f64,
+    dkappa: f64,
+    dtheta: f64,
+}
+
 /// The Rayleigh parts at a velocity v (x = v²): Σd_k x^k, Σ(2k+1)d_k x^k (∂_V of its V-term),
 /// its derivative in v, and the linearisation's rest (h − a)v with its derivative in v.
 #[derive(Debug, Clone, Copy, Default)]
@@ -412,6 +426,12 @@ pub(super) struct GeneralFree {
 }
 
 impl GeneralFree {
+    /// The κ of its corrector.
+    #[inline]
+    pub(super) fn kappa(&self) -> f64 {
+        self.kappa
+    }
+
     /// The end (U₁, V₁).
     #[inline]
     pub(super) fn end(&self) -> (f64, f64) {
@@ -521,27 +541,132 @@ impl General {
         (t.lag + t.u * self.eta_m, ahead)
     }
 
-    /// The tangent's part of [`General::end_step`] of a step without an impact, from δV_n = `dv`
-    /// with the known part `dahead` ([`General::begin_tangent`]) to (δU₁, δV₁): δV's piece into
-    /// every tangent memory, δ(−Σ_j K_j m_{j,n+1}) = δahead − κδV₁ into `t.lag`; returns δ of
-    /// `end_step`'s value, −κδV₁ + δU₁·η_m.
+    /// The tangent's part of [`General::end_step`] (after it) of the step from V_n = `v` to
+    /// V_{n+1} = `v1`, from δV_n = `dv` with the known part `dahead`
+    /// ([`General::begin_tangent`]) to (δU₁, δV₁): δV's piece into every tangent memory (an
+    /// impact's split piece with its θ-derivative, [`fold_theta`]), δ(−Σ_j K_j m_{j,n+1}) into
+    /// `t.lag` (δahead − κδV₁ without an impact); returns δ of `end_step`'s value,
+    /// δ(−Σ_j K_j m_{j,n+1}) − δahead + δU₁·η_m.
     pub(super) fn end_tangent(
         &self,
         t: &mut Tangent,
-        dv: f64,
-        dahead: f64,
+        (v, v1): (f64, f64),
+        (dv, dahead): (f64, f64),
         (du1, dv1): (f64, f64),
     ) -> f64 {
+        let Some(s) = t.pending.take() else {
+            for h in &mut t.fractional {
+                h.push(Piece {
+                    left: dv,
+                    right: dv1,
+                    split: None,
+                });
+            }
+            let now = -self.kappa * dv1;
+            t.lag = dahead + now;
+            return now + du1 * self.eta_m;
+        };
+        // the split piece: its values' derivatives with θ held, and the θ-derivative of the
+        // reference's piece (V_n → V(t*), V₊ → V_{n+1})
+        let mut d = s.d;
+        if s.dtheta != 0.0 {
+            let piece = Piece {
+                left: v,
+                right: v1,
+                split: Some(s.split),
+            };
+            fold_theta(&piece, &mut d, s.dtheta);
+        }
         for h in &mut t.fractional {
             h.push(Piece {
                 left: dv,
                 right: dv1,
-                split: None,
+                split: Some(d),
             });
         }
-        let now = -self.kappa * dv1;
-        t.lag = dahead + now;
-        now + du1 * self.eta_m
+        // m_{j,n+1} = ahead_s − κ_s V_{n+1}, both moving with θ
+        t.lag = s.dahead - s.kappa * dv1 - s.dkappa * v1;
+        t.lag - dahead + du1 * self.eta_m
+    }
+
+    /// The tangent's memories restart with the reference's ([`General::restart_memories`]).
+    pub(super) fn restart_tangent(&self, t: &mut Tangent) {
+        for h in &mut t.fractional {
+            h.restart();
+        }
+        t.pending = None;
+        t.lag = 0.0;
+    }
+
+    /// The tangent of [`General::memories_at`] at θ of the step in progress from V_n = `v`,
+    /// from the tangent memories (before any restart at the instant) along δV_n = `dv`, θ
+    /// moving by `dtheta`: (δ of the known part −Σ_j K_j(δpast_j + ∂_θpast_j·δθ), δ of the
+    /// weight Σ_j K_j ∂_θw_j·δθ) ([`History::at_fraction_rate`]; the α = 1 terms' weight is
+    /// fixed).
+    pub(super) fn memories_at_tangent(
+        &self,
+        t: &Tangent,
+        (theta, dtheta): (f64, f64),
+        (v, dv): (f64, f64),
+    ) -> (f64, f64) {
+        let (mut known, mut weight) = (0.0, 0.0);
+        let mut held = t.fractional.iter();
+        for m in &self.memories {
+            if let Some(h) = &m.history {
+                let d = held.next().expect("a tangent memory per memory");
+                let (dpast, _) = d.at_fraction(theta, dv);
+                let (rate_past, rate_w) = if dtheta != 0.0 {
+                    h.at_fraction_rate(theta, v)
+                } else {
+                    (0.0, 0.0)
+                };
+                known -= m.k * (dpast + rate_past * dtheta);
+                weight += m.k * rate_w * dtheta;
+            }
+        }
+        (known, weight)
+    }
+
+    /// The tangent of [`General::split_memories`] (after it): the tangent memories restart
+    /// where the reference's did, and δ of (the part of −Σ_j K_j m_{j,n+1} known after the
+    /// impact, κ_s) along δV_n = `dv` and the split's values' δ `d` (δV(t*), δV₊; θ held), θ
+    /// moving by `dtheta` ([`History::current_split_rate`]); kept in `t` for
+    /// [`General::end_tangent`].
+    pub(super) fn split_tangent(
+        &self,
+        t: &mut Tangent,
+        (v, dv): (f64, f64),
+        d: Split,
+        dtheta: f64,
+    ) -> (f64, f64) {
+        let s = self.pending.expect("the memories split on this step");
+        let (mut ahead, mut kappa) = (0.0, 0.0);
+        let mut held = t.fractional.iter_mut();
+        for m in &self.memories {
+            if let Some(h) = &m.history {
+                let dh = held.next().expect("a tangent memory per memory");
+                if !s.split.keep_before {
+                    dh.restart();
+                }
+                let (dknown, _) = dh.current_split(dv, &d);
+                let (rate_known, rate_w) = if dtheta != 0.0 {
+                    h.current_split_rate(v, &s.split)
+                } else {
+                    (0.0, 0.0)
+                };
+                ahead -= m.k * (dh.value() + dknown + rate_known * dtheta);
+                kappa += m.k * rate_w * dtheta;
+            }
+        }
+        t.pending = Some(TangentSplit {
+            split: s.split,
+            kappa: s.kappa,
+            d,
+            dahead: ahead,
+            dkappa: kappa,
+            dtheta,
+        });
+        (ahead, kappa)
     }
 
     /// The start of a step from (u, v) whose additive noise level is `el` (η_a, before any
@@ -1121,24 +1246,24 @@ impl General {
         (du, dv, dg0): (f64, f64, f64),
         dpw: f64,
         dknown: (f64, f64),
-        (dlen, dw): (f64, f64),
+        (dlen, dw, dkappa): (f64, f64, f64),
     ) -> (f64, f64) {
         let dup = du + dlen * v + f.len * dv + f.pw * dg0 + f.g0 * dpw;
-        let moving = (v, dlen, dw);
+        let moving = (v, dlen, dw, dkappa);
         let start = (du, dv, dg0);
         let first = self.pass_tangent_moving(f, &f.passes[0], moving, start, (dup, dv), dknown);
         self.pass_tangent_moving(f, &f.passes[1], moving, start, first, dknown)
     }
 
-    /// [`General::pass_tangent`] with the length and the weight moving: `moving` = (v at the
-    /// start, δlen, δw). With X = F_r − k(up) + (h(up, vl) − a)vl (so that V₁(1 − wa) =
-    /// known + wX): δV₁ = inv·(δknown + δw·X + w·δX + V₁·(δw·a + w·δa)), δL = −L²(z/6)·2δ(wa),
-    /// and U₁'s terms in len differentiated as well.
+    /// [`General::pass_tangent`] with the length, the weight and κ moving: `moving` = (v at
+    /// the start, δlen, δw, δκ). With X = F_r − k(up) + (h(up, vl) − a)vl (so that V₁(1 − wa) =
+    /// known + wX): δV₁ = inv·(δknown + δw·X + w·δX + V₁·(δw·a + w·δa)) (δa with −δκ),
+    /// δL = −L²(z/6)·2δ(wa), and U₁'s terms in len differentiated as well.
     fn pass_tangent_moving(
         &self,
         f: &GeneralFree,
         p: &GeneralPass,
-        (v, dlen, dw): (f64, f64, f64),
+        (v, dlen, dw, dkappa): (f64, f64, f64, f64),
         (du, dv, dg0): (f64, f64, f64),
         (dup, dvl): (f64, f64),
         (dknown, dfr): (f64, f64),
@@ -1146,7 +1271,7 @@ impl General {
         let mp = self.mu_p(p.up);
         let mps = self.mu_p_slope(p.up);
         let r = self.rayleigh_at(p.vl);
-        let da = mps * dup + r.a_slope * dvl;
+        let da = mps * dup + r.a_slope * dvl - dkappa;
         let kp = self.restoring_slope(p.up);
         let end = self.rayleigh_at(p.v1);
         // F_r − k(up) = g_r − (h(up, V₁) − κ)V₁ (F_r with U^P·η_m)
@@ -1156,7 +1281,7 @@ impl General {
         let dwa = dw * p.a + f.w * da;
         let dv1 = p.inv * (dknown + dw * x + f.w * dx + p.v1 * dwa);
         let a_end = mp + end.a - f.kappa;
-        let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup + dfr;
+        let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup + dfr - dkappa * p.v1;
         let step = (f.len, f.w, f.g0);
         let pass = (p.a, p.lim, p.gr, p.v1);
         let du1 = pass_tangent_u1_moving(step, pass, (v, dlen, dwa), (du, dv, dg0), (dv1, dgr));

@@ -151,6 +151,7 @@
 //! `tests/lyapunov.rs`: the exponent by the tangent against the damped oscillator's −μ0/2 and
 //! against two trajectories.
 
+use super::general::TangentSplit;
 use super::walls::Walls;
 use super::{predictor_weight_len_slope, predictor_weight_slope, Begin, Piece, Split, Stepper};
 use crate::engine::History;
@@ -172,6 +173,8 @@ pub(crate) struct Tangent {
     /// The memories of δV of the fractional terms with one (α_j < 1), in the terms' order, with
     /// the reference's layouts (none without fractional terms).
     pub(super) fractional: Vec<History>,
+    /// The memories of δV split at an impact inside the step in progress (taken at its end).
+    pub(super) pending: Option<TangentSplit>,
 }
 
 impl Tangent {
@@ -192,6 +195,7 @@ impl Tangent {
             history,
             lag: 0.0,
             fractional,
+            pending: None,
         }
     }
 
@@ -329,30 +333,6 @@ pub(super) fn fold_theta(piece: &Piece, d: &mut Split, dtheta: f64) {
     d.after -= (piece.right - s.after) / (1.0 - theta) * dtheta;
 }
 
-/// The refusal of the tangent of a General path with fractional terms and a wall (the
-/// derivative of their memories split at an impact is not built yet).
-pub(crate) fn fractional_wall_tangent() -> crate::Error {
-    crate::Error::NotApplicable {
-        method: "the tangent method (lyapunov --method tangent)".into(),
-        assumption: "no fractional term K·D^αU together with a wall".into(),
-        reason: "the tangent of the fractional terms' memories split at an impact is not built \
-                 yet (without a wall it is); use the two-trajectory method"
-            .into(),
-    }
-}
-
-/// The tangent's refusal of `problem`, if any: a General path with fractional terms and a
-/// wall, the paper's or the model's ([`fractional_wall_tangent`]). Fractional terms without a
-/// wall, multiplicative noise and walls are no refusal: the tangent differentiates their
-/// memories, U·η_m and the General kernel's impact steps (`super::walls`).
-pub(crate) fn tangent_refusal(problem: &crate::engine::Problem) -> Option<crate::Error> {
-    let t = problem.oscillator().terms()?;
-    if !t.fractional.is_empty() && (problem.wall() || !t.walls.is_empty()) {
-        return Some(fractional_wall_tangent());
-    }
-    None
-}
-
 impl Stepper {
     /// δ(μP(U)V − ω²U) at the current node along (δU, δV) (of h(U, V)V − k(U) for the
     /// General kernel).
@@ -399,9 +379,6 @@ impl Stepper {
         // bit: `Walls::paper`)
         let walls = self.general.as_deref().and_then(|g| g.walls);
         if let Some(walls) = walls.or(self.wall.then(|| Walls::paper(self.rhs.restitution))) {
-            if self.general.as_deref().is_some_and(|g| g.fractional()) {
-                return Err(fractional_wall_tangent());
-            }
             return self.step_walls_with_tangent(walls, t);
         }
         let (b, free) = self.begin_general();
@@ -422,7 +399,7 @@ impl Stepper {
         let ddrift = g.drift_derivative(u1, v1, du1, dv1);
         let right = if g.extras() {
             let dv = t.v;
-            ddrift + dahead + g.end_tangent(t, dv, dahead, (du1, dv1))
+            ddrift + dahead + g.end_tangent(t, (b.v, v1), (dv, dahead), (du1, dv1))
         } else {
             ddrift
         };
@@ -1636,27 +1613,248 @@ mod tests {
         eprintln!("{report}worst relative error {worst_all:.1e}");
     }
 
-    #[test]
-    fn fractional_terms_with_a_wall_are_refused_by_name() {
-        // the tangent of the memories of V split at an impact is not built: the paper's wall at
-        // 0 and an offset wall refuse it, by the problem and by the step; without a wall and
-        // with multiplicative noise alone at the wall there is no refusal
-        use crate::model::Keep::Above;
-        for walls in [vec![wall(0.0, Above, 0.7)], vec![wall(-0.5, Above, 0.7)]] {
-            let problem = extras_model(1.0, &[(0.6, 0.5)], None, walls, 1.5);
-            let said = tangent_refusal(&problem).expect("refused").to_string();
-            assert!(
-                said.contains("fractional") && said.contains("wall"),
-                "{said}"
-            );
-            let mut s = of(problem, ImpactMemory::Continuous, Memory::default());
-            let mut t = Tangent::new(&s, (1.0, 0.0));
-            assert_eq!(s.step_with_tangent(&mut t).unwrap_err().to_string(), said);
+    /// [`walled`] with the fractional terms `terms` (K, α) and, with `multiplicative`, OU
+    /// multiplicative noise D_m = 0.05, τ = 0.5 (the wall at 0 only).
+    fn fractional_walled(
+        lambda: f64,
+        (walls, u0): (Vec<crate::model::Wall>, f64),
+        terms: &[(f64, f64)],
+        multiplicative: bool,
+    ) -> Problem {
+        let mut m = crate::model::Model::from(&params("fig13a", &[]));
+        m.leading.lambda = lambda;
+        m.damping.mu0 = 0.05;
+        m.damping.rayleigh = vec![-0.02];
+        m.restoring.cubic = 0.5;
+        m.forcing = Some(crate::model::Harmonic {
+            amplitude: 0.4,
+            frequency: 1.3,
+            phase: 0.2,
+        });
+        m.noise.additive = Some(crate::model::NoiseTerm {
+            intensity: 0.3,
+            correlation_time: 0.5,
+        });
+        m.fractional = terms
+            .iter()
+            .map(|&(coefficient, order)| crate::model::Fractional { coefficient, order })
+            .collect();
+        if multiplicative {
+            m.noise.multiplicative = Some(crate::model::NoiseTerm {
+                intensity: 0.05,
+                correlation_time: 0.5,
+            });
         }
-        let free = extras_model(1.0, &[(0.6, 0.5)], Some((0.05, 0.0)), vec![], 1.5);
-        assert!(tangent_refusal(&free).is_none());
-        let wall = vec![wall(0.0, Above, 0.7)];
-        let walled = extras_model(1.0, &[], Some((0.05, 0.0)), wall, 1.5);
-        assert!(tangent_refusal(&walled).is_none());
+        m.walls = walls;
+        m.start.u0 = u0;
+        m.start.v0 = 0.0;
+        Problem::from_model(&m).unwrap()
+    }
+
+    /// Fractional terms at the walls: α = 0.5 with an α = 1 term at the paper's wall at 0 (with
+    /// multiplicative noise), α = 0.5 and 0.8 at an offset lower wall (δ = 0.3, r = 0.8) and
+    /// between two walls (δ1 = −0.6 with r(|V₋|), δ2 = 0.7 with r = 0.9); λ = 1 and 0.95.
+    fn fractional_wall_cases() -> Vec<(String, Problem)> {
+        use crate::model::Keep::{Above, Below};
+        let (local, two) = (&[(0.5, 0.5), (0.1, 1.0)], &[(0.5, 0.5), (0.2, 0.8)]);
+        let mut cases = vec![];
+        for lambda in [1.0, 0.95] {
+            cases.push((
+                format!("α = 0.5, 1, the wall at 0 with η_m, λ = {lambda}"),
+                fractional_walled(lambda, (vec![wall(0.0, Above, 0.7)], 1.5), local, true),
+            ));
+            cases.push((
+                format!("α = 0.5, 0.8, offset lower wall δ = 0.3, λ = {lambda}"),
+                fractional_walled(lambda, (vec![wall(0.3, Above, 0.8)], 1.5), two, false),
+            ));
+            let walls = vec![speed_wall(-0.6, Above), wall(0.7, Below, 0.9)];
+            cases.push((
+                format!("α = 0.5, 0.8, two walls, λ = {lambda}"),
+                fractional_walled(lambda, (walls, 0.2), two, false),
+            ));
+        }
+        cases
+    }
+
+    #[test]
+    fn fractional_terms_at_walls_advance_the_reference_bit_for_bit() {
+        // impacts, sticking and leaving, both impact memories: the path advanced with its
+        // tangent is the path advanced by `step`; the memories of δV keep the reference's
+        // layouts (split at the same fractions)
+        for (label, problem) in fractional_wall_cases() {
+            for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+                let mut a = of(problem.clone(), memory, Memory::default());
+                let mut b = a.clone();
+                let mut t = Tangent::new(&b, (1.0, 0.0));
+                for n in 0..1500 {
+                    a.step().unwrap();
+                    b.step_with_tangent(&mut t).unwrap();
+                    assert_eq!(
+                        (a.u, a.v, a.base, a.stuck),
+                        (b.u, b.v, b.base, b.stuck),
+                        "{label}, {memory:?}, step {n}"
+                    );
+                    assert!(t.norm().is_finite(), "{label}, {memory:?}, step {n}");
+                    let g = b.general.as_deref().unwrap();
+                    assert!(g.memories_in_layout(&t), "{label}, {memory:?}, step {n}");
+                    if n % 50 == 0 {
+                        t.scale(1.0 / t.norm().max(1e-300));
+                    }
+                }
+                eprintln!(
+                    "{label}, {memory:?}: {} impacts, {} sticking steps",
+                    a.impacts(),
+                    a.sticking_steps()
+                );
+                assert!(a.impacts() > 1, "{label}: {} impacts", a.impacts());
+            }
+        }
+    }
+
+    #[test]
+    fn fractional_impact_steps_are_the_derivative_of_the_discrete_step() {
+        // the first impact of each case (on two walls: the first on each), both impact
+        // memories: the impact step alone, with 3 more steps (V's split piece and its point
+        // mass in the exact window) and with 19 more (in the SOE modes and lumped moments),
+        // along δU, δV, the constant, the memory of g and the fractional memories of V
+        let mut report = String::new();
+        let mut worst_all: f64 = 0.0;
+        let mut dirs = DIRECTIONS.to_vec();
+        dirs.push(FRACTIONAL);
+        for (label, problem) in fractional_wall_cases() {
+            for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+                let s = of(problem.clone(), memory, Memory::default());
+                let first = before(&s, 100_000, |_, q| q.events().impact.is_some());
+                let mut starts = vec![first.clone()];
+                if label.contains("two walls") {
+                    let mut probe = first.clone();
+                    probe.step().unwrap();
+                    let sign = probe.events().impact.unwrap().v_minus.signum();
+                    starts.push(before(&probe, 100_000, |_, q| {
+                        q.events()
+                            .impact
+                            .is_some_and(|i| i.v_minus.signum() == -sign)
+                    }));
+                }
+                for s in &starts {
+                    let mut probe = s.clone();
+                    probe.step().unwrap();
+                    let i = probe.events().impact.unwrap();
+                    let theta = (i.time - s.time()) / s.h;
+                    let label = format!("{label}, {memory:?}, V₋ = {:.3}", i.v_minus);
+                    report += &format!("{label}: θ = {theta:.3}\n");
+                    for steps in [1, 4, 20] {
+                        let (worst, r) = assert_derivative_along(&label, s, steps, &dirs);
+                        report += &r;
+                        worst_all = worst_all.max(worst);
+                        assert!(worst < TOLERANCE, "{r}");
+                    }
+                }
+            }
+        }
+        eprintln!("{report}worst relative error {worst_all:.1e}");
+    }
+
+    /// Steps at a wall with fractional terms that end stuck, stay stuck and leave: a mass
+    /// settling onto a lower wall at δ = 0.5 where k(δ) > 0 pushes it in (as in
+    /// `general_sticking_steps_are_the_derivative_of_the_discrete_step`, α = 0.5 and 0.8), and
+    /// a chattering path at the paper's wall at 0 (fig13a at r = 0.3, D = 0.5, from U = 7;
+    /// α = 0.5 and an α = 1 term, white multiplicative noise).
+    fn fractional_sticking_cases() -> Vec<(String, Problem)> {
+        let mut m = crate::model::Model::from(&params("fig13a", &[]));
+        m.damping.mu0 = 0.05;
+        m.restoring.cubic = 0.5;
+        m.forcing = Some(crate::model::Harmonic {
+            amplitude: 0.7,
+            frequency: 0.3,
+            phase: 0.0,
+        });
+        m.noise.additive = Some(crate::model::NoiseTerm {
+            intensity: 0.05,
+            correlation_time: 0.5,
+        });
+        m.walls = vec![wall(0.5, crate::model::Keep::Above, 0.5)];
+        m.start.u0 = 2.0;
+        m.start.v0 = 0.0;
+        let terms = |t: &[(f64, f64)]| -> Vec<crate::model::Fractional> {
+            t.iter()
+                .map(|&(coefficient, order)| crate::model::Fractional { coefficient, order })
+                .collect()
+        };
+        m.fractional = terms(&[(0.3, 0.5), (0.1, 0.8)]);
+        let settling = Problem::from_model(&m).unwrap();
+        let mut m = crate::model::Model::from(&params("fig13a", &[("r", 0.3), ("D", 0.5)]));
+        m.fractional = terms(&[(0.3, 0.5), (0.1, 1.0)]);
+        m.noise.multiplicative = Some(crate::model::NoiseTerm {
+            intensity: 0.05,
+            correlation_time: 0.0,
+        });
+        m.start.u0 = 7.0;
+        m.start.v0 = 0.0;
+        let chattering = Problem::from_model(&m).unwrap();
+        vec![
+            ("settling at δ = 0.5, α = 0.5, 0.8".into(), settling),
+            ("chattering at 0, α = 0.5, 1, η_m".into(), chattering),
+        ]
+    }
+
+    #[test]
+    fn fractional_sticking_steps_are_the_derivative_of_the_discrete_step() {
+        // the impact that ends stuck, a sticking step (with the restarting memory the
+        // derivative is 0: the memories of V restart too) and the step leaving the wall, alone
+        // and with 29 more steps, both impact memories; the reference bit for bit as by `step`
+        // over the steps before them
+        let mut report = String::new();
+        let mut dirs = DIRECTIONS.to_vec();
+        dirs.push(FRACTIONAL);
+        for (label, problem) in fractional_sticking_cases() {
+            for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+                let s = of(problem.clone(), memory, Memory::default());
+                let limit = 1_000_000;
+                let leaving = before(&s, limit, |p, q| p.stuck && !q.stuck);
+                let (mut a, mut b) = (s.clone(), s.clone());
+                let mut t = Tangent::new(&b, (1.0, 0.0));
+                while a.steps() < leaving.steps() + 50 {
+                    a.step().unwrap();
+                    b.step_with_tangent(&mut t).unwrap();
+                    assert_eq!(
+                        (a.u, a.v, a.base),
+                        (b.u, b.v, b.base),
+                        "{label}, {memory:?}"
+                    );
+                    t.scale(1.0 / t.norm().max(1e-300));
+                }
+                assert!(a.sticking_steps() > 0 && a.impacts() > 1);
+                let cases = [
+                    (
+                        "impact, then stuck",
+                        before(&s, limit, |_, q| {
+                            q.events().impact.is_some() && q.events().stuck
+                        }),
+                    ),
+                    (
+                        "sticking",
+                        before(&s, limit, |p, q| p.stuck && q.events().stuck),
+                    ),
+                    ("leaving the wall", leaving),
+                ];
+                for (what, s) in &cases {
+                    let label = format!("{label}, {what}, {memory:?}");
+                    // at rest on a wall off 0, δU moves the path off the wall (the map
+                    // switches there): from rest only the other directions
+                    let dirs = if s.stuck && s.u != 0.0 {
+                        &dirs[1..]
+                    } else {
+                        &dirs[..]
+                    };
+                    for steps in [1, 30] {
+                        let (worst, r) = assert_derivative_along(&label, s, steps, dirs);
+                        report += &r;
+                        assert!(worst < TOLERANCE, "{r}");
+                    }
+                }
+            }
+        }
+        eprintln!("{report}");
     }
 }

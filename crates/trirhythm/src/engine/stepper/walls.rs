@@ -483,12 +483,17 @@ impl Stepper {
         let pushed = self.end_wall_step(&b, (u1, v1), push.then_some(piece))?;
         let g = self.general.as_deref().expect("a General path");
         let ddrift = g.drift_derivative(u1, v1, du1, dv1);
-        // δ(U·η_m) at the end (0 at the wall at 0, where a clamped step ends)
-        let dextra = if g.extras() {
-            let dv = t.v;
-            dahead + g.end_tangent(t, dv, dahead, (du1, dv1))
-        } else {
+        // the fractional terms' δ(−Σ_j K_j m_j) and δV's piece (split at an impact), δ(U·η_m)
+        // at the end (0 at the wall at 0, where a clamped step ends); a step that sticks with
+        // the memory restarting restarts the tangent's memories of δV with the reference's
+        let dextra = if !g.extras() {
             0.0
+        } else if pushed.is_none() && g.fractional() {
+            g.restart_tangent(t);
+            0.0
+        } else {
+            let dv = t.v;
+            dahead + g.end_tangent(t, (b.v, v1), (dv, dahead), (du1, dv1))
         };
         if let Some(piece) = pushed {
             dpiece.right = ddrift + dextra;
@@ -541,16 +546,37 @@ impl Stepper {
         } else {
             (0.0, 0.0)
         };
+        // the fractional terms at the instant, −Σ_j K_j m_j(t*) = lag* − κ*V(t*) (κ* = weight
+        // + local), and δ of lag* and of the weight, before a restart clears the memories
+        let g: &General = self.general.as_deref().expect("a General path");
+        let fractional = g.fractional();
+        let ((_, weight, local), (dlag, dweight)) = if fractional {
+            let memories = g.memories_at(theta, self.v);
+            (
+                memories,
+                g.memories_at_tangent(t, (theta, dtheta), (self.v, t.v)),
+            )
+        } else {
+            ((0.0, 0.0, 0.0), (0.0, 0.0))
+        };
+        let kappa = weight + local;
         let hit = self.impact_wall(law, side, b, (u1, v1));
         debug_assert_eq!(hit.split.theta, theta);
         let g: &General = self.general.as_deref().expect("a General path");
         // δ of g's forcing at the instant: the noise interpolated over the step and F cos ψ*
         let dforcing = (self.rhs.forcing(b.er - b.el, self.side) + g.force_at_rate(theta)) * dtheta;
-        // V(t*) = N + w_s(h(δ, V)V + at_wall): (1 − w_s ∂_V(hV))δV = δN + δw_s·g(t*) + w_s δF
+        // V(t*) = N + w_s((h(δ, V) − κ*)V + at_wall + lag*):
+        // (1 − w_s(∂_V(hV) − κ*))δV = δN + δw_s·g(t*) + w_s(δF + δlag* − δκ*·V(t*))
         let g_at = hit.split.before;
         let dws = rate_ws * dtheta;
-        let dv_at = (t.base + dhs + rate_hs * dtheta + dws * g_at + hit.ws * dforcing)
-            / (1.0 - hit.ws * g.a(delta, hit.v_at));
+        let dfrac = dlag - dweight * hit.v_at;
+        let slope_at = if fractional {
+            g.a(delta, hit.v_at) - kappa
+        } else {
+            g.a(delta, hit.v_at)
+        };
+        let dv_at = (t.base + dhs + rate_hs * dtheta + dws * g_at + hit.ws * (dforcing + dfrac))
+            / (1.0 - hit.ws * slope_at);
         // V₋ = V(t*) unless the wall clipped it; V₊ = −r(|V₋|)V₋
         let dv_minus = if hit.v_minus == hit.v_at { dv_at } else { 0.0 };
         let speed = hit.v_minus.abs();
@@ -558,12 +584,33 @@ impl Stepper {
             + restitution_slope(law.restitution, speed) * speed)
             * dv_minus;
         let keep = !self.restart;
+        // the fractional terms' part of g after the instant: the terms with a memory keep
+        // their value (0 when they restart there), the α = 1 terms follow V to V₊
+        let dafter = if keep {
+            dlag - dweight * hit.v_at - weight * dv_at
+        } else {
+            0.0
+        } - local * dv_plus;
         let dsplit = Split {
             theta,
-            before: g.a(delta, hit.v_at) * dv_at + dforcing,
-            after: g.a(delta, hit.v_plus) * dv_plus + dforcing,
+            before: slope_at * dv_at + dforcing + dfrac,
+            after: g.a(delta, hit.v_plus) * dv_plus + dforcing + dafter,
             keep_before: keep,
             mass: 0.0,
+        };
+        // the memories of δV split as the reference's (restarted with them), and δ of the
+        // redone rest's known forcing and κ_s
+        let (dfr, dkappa) = if fractional {
+            let d = Split {
+                theta,
+                before: dv_at,
+                after: dv_plus,
+                keep_before: keep,
+                mass: 0.0,
+            };
+            g.split_tangent(t, (self.v, t.v), d, dtheta)
+        } else {
+            (dahead, 0.0)
         };
         // the redone rest from (δ, V₊) over (1 − θ)Δt: its known part, weight, length and
         // predictor weight follow θ and V₊
@@ -577,8 +624,11 @@ impl Stepper {
         let g: &General = self.general.as_deref().expect("a General path");
         let len = (1.0 - theta) * h;
         let dlen = -h * dtheta;
-        let a_plus = g.a(delta, hit.v_plus);
-        let da_plus = g.a_derivative(delta, hit.v_plus, 0.0, dv_plus);
+        // the predictor's weight of the rest has ∂_V g = a(δ, V₊) − κ_s
+        let (a_plus, da_plus) = (
+            g.a(delta, hit.v_plus) - hit.free.kappa(),
+            g.a_derivative(delta, hit.v_plus, 0.0, dv_plus) - dkappa,
+        );
         let dpw = predictor_weight_len_slope(len, a_plus) * dlen
             + predictor_weight_slope(len, a_plus, da_plus);
         let (du_end, dv_end) = g.advance_tangent_moving(
@@ -586,8 +636,8 @@ impl Stepper {
             (delta, hit.v_plus),
             (0.0, dv_plus, dsplit.after),
             dpw,
-            (dknown, dahead),
-            (dlen, rate_w * dtheta),
+            (dknown, dfr),
+            (dlen, rate_w * dtheta, dkappa),
         );
         let (u_end, v_end) = hit.free.end();
         (hit.split, dsplit, dtheta, [u_end, v_end, du_end, dv_end])
