@@ -1,8 +1,8 @@
 //! The General kernel: the terms of the class beyond the paper's Eq. (1) that the engine
 //! steps — an odd restoring force, Rayleigh damping, a harmonic forcing, up to two fractional
 //! terms K_j·D^{α_j}U and a multiplicative noise U·η_m — with the same predictor–corrector as
-//! the paper's kernel ([`super::Affine`]), and its tangent (not yet of the fractional terms and
-//! of U·η_m).
+//! the paper's kernel ([`super::Affine`]), and its tangent (`super::tangent`, the fractional
+//! terms' memories and U·η_m included).
 //!
 //! # Equation
 //! D^{1+λ}U + Σ_j K_j D^{α_j}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η_a(t) + U·η_m(t), no wall,
@@ -90,9 +90,8 @@
 //! With [`crate::engine::ImpactMemory::Restart`] the fractional terms' memories restart with the
 //! leading one (at the instant of an impact, and at the end of a sticking step): the whole
 //! fractional state forgets the past, m_j = 0 just after t* for α_j < 1. Sticking at δ clamps V
-//! to 0: the step's piece of V ends at 0, as g's does. The tangent of these steps is not built
-//! (`lyapunov --method tangent` refuses fractional terms by name, with or without a wall).
-//! Cost: only an impact step of a path with fractional terms does any of this (cold code); a
+//! to 0: the step's piece of V ends at 0, as g's does. The tangent differentiates these steps
+//! too (module docs of `super::tangent`, "Fractional terms and multiplicative noise"). Cost: only an impact step of a path with fractional terms does any of this (cold code); a
 //! path without them takes the branches it took before (`fractional()` false: the same bits).
 //! The lanes step such paths one by one with this scalar step (as every General path), so an
 //! ensemble gives each path's scalar bits (`tests/fractional_walls.rs`, 4 and 8 lanes).
@@ -110,8 +109,7 @@
 //! scheme adds no O(1) drift. At the wall U·η_m = 0: the impact code is unchanged, and the
 //! redone rest of the step carries U^Pη_m.
 //!
-//! Not yet: multiplicative noise with a wall other than the paper's; the tangent of the
-//! fractional terms and of U·η_m (`lyapunov --method tangent` refuses them by name).
+//! Not yet: multiplicative noise with a wall other than the paper's (refused by name).
 //!
 //! # Reference
 //! model-class.md §2, §3, §4, §5 (the design); Diethelm, Ford & Freed (2002) for the scheme;
@@ -136,7 +134,8 @@
 //! second order; α = 0.5 at its observed order with impacts; SOE against Direct through
 //! impacts and sticking, both impact memories; K = 1e-12 against no term; lanes and clones).
 //! Unit test below: the correlated η_m's law. `engine/stepper/tangent.rs`:
-//! the tangent step against finite differences of the step.
+//! the tangent step against finite differences of the step, fractional terms and U·η_m
+//! included, with and without walls.
 
 use super::affine::{
     hermite_limiter, pass_tangent_u1, pass_tangent_u1_moving, predictor_weight,

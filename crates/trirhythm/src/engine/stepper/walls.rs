@@ -40,7 +40,9 @@
 //! from the root's equation with the memory and forcing at the moving instant (the force at the
 //! wall, −k(δ) + F cos ψ*, enters with δθ: the saltation of a wall where the force is not zero),
 //! δV₊ = −(r(|V₋|) + r′(|V₋|)|V₋|)δV₋, the redone rest with its moving length and weights. A
-//! clamped step's tangent is 0 in U and V.
+//! clamped step's tangent is 0 in U and V. With fractional terms their memories of δV are split
+//! as the reference's, with the instant's θ-derivative (module docs of `super::tangent`,
+//! "Fractional terms and multiplicative noise").
 //!
 //! **Cost.** The paper's model never comes here: its problem has no General kernel
 //! (`super::Stepper::step` takes the paper kernel's branch); General paths without these walls
@@ -366,7 +368,7 @@ impl Stepper {
     /// The jump and the redone rest of [`Stepper::impact_wall`] for a path with fractional
     /// terms (module docs of `super::general`, "Fractional terms at a wall"): their memories
     /// split at the instant, g's split piece with −Σ_j K_j m_j(t*), the rest with the split
-    /// memories' known part and weight. (No tangent: refused for fractional terms.)
+    /// memories' known part and weight (its tangent: `Stepper::impact_wall_with_tangent`).
     #[cold]
     fn impact_wall_fractional(
         &mut self,
