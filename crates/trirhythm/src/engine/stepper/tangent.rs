@@ -138,9 +138,9 @@
 //!   4. The redone rest: the split memories' known part (its δ along the values, plus its
 //!      θ-rate, [`History::current_split_rate`]) in the known forcing, and their weight κ_s
 //!      moving with θ: −δκ_s in δa of both passes, in g^P and in the predictor's weight.
-//!   5. At the end δ(−Σ_j K_j m_{j,n+1}) = δ(known part) − κ_sδV_{n+1} − δκ_s·V_{n+1}.
-//!   A sticking step with the restarting memory restarts the memories of δV with the
-//!   reference's (the clamped state forgets the perturbation).
+//!   5. At the end δ(−Σ_j K_j m_{j,n+1}) = δ(known part) − κ_sδV_{n+1} − δκ_s·V_{n+1}; a
+//!      sticking step with the restarting memory restarts the memories of δV with the
+//!      reference's (the clamped state forgets the perturbation).
 //!
 //! The tangent state stays linear: [`Tangent::scale`] multiplies the memories of δV and
 //! δ(−Σ_j K_j m_j) too. The lane tangent steps General paths by this scalar code.
