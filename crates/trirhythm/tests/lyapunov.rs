@@ -516,7 +516,10 @@ fn tangent_fractional_van_der_pol_cycle_has_a_zero_exponent() {
     };
     let (two, tangent, _) = both(&problem, &method, &spec);
     let (t, v) = (tangent.lle.value, two.lle.value);
-    eprintln!("fractional van der Pol: tangent {t:+.3e}, two trajectories {v:+.3e}, bound {bound:.2e} (R = {r:.2})");
+    eprintln!(
+        "fractional van der Pol: tangent {t:+.3e}, two trajectories {v:+.3e}, bound {bound:.2e} \
+         (R = {r:.2})"
+    );
     assert!(
         t.abs() <= bound && v.abs() <= bound,
         "tangent {t}, two {v}, bound {bound}"

@@ -91,8 +91,9 @@
 //! leading one (at the instant of an impact, and at the end of a sticking step): the whole
 //! fractional state forgets the past, m_j = 0 just after t* for α_j < 1. Sticking at δ clamps V
 //! to 0: the step's piece of V ends at 0, as g's does. The tangent differentiates these steps
-//! too (module docs of `super::tangent`, "Fractional terms and multiplicative noise"). Cost: only an impact step of a path with fractional terms does any of this (cold code); a
-//! path without them takes the branches it took before (`fractional()` false: the same bits).
+//! too (module docs of `super::tangent`, "Fractional terms and multiplicative noise"). Cost:
+//! only an impact step of a path with fractional terms does any of this (cold code); a path
+//! without them takes the branches it took before (`fractional()` false: the same bits).
 //! The lanes step such paths one by one with this scalar step (as every General path), so an
 //! ensemble gives each path's scalar bits (`tests/fractional_walls.rs`, 4 and 8 lanes).
 //!

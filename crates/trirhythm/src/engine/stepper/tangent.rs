@@ -191,14 +191,16 @@
 //! λ = 1 and 0.95, 1, 20 and 200 steps without a wall (measured: worst 7.0·10⁻¹¹ relative);
 //! η_m at the wall at 0 through the first impact (1, 4, 20 steps), an impact that ends stuck
 //! and leaving the wall; fractional terms at the wall at 0 (with η_m), an offset wall and two
-//! walls through the first impacts (1, 4, 20, 200 steps: worst 1.8·10⁻⁹), and a mass settling on a
-//! wall at δ = 0.5 and a chattering path at 0 (impact ending stuck, sticking, leaving; 1 and 30
-//! steps); the reference bit for bit as by `step` with every memory of δV in its reference's
-//! layout; a copy displaced by d₀ and never renormalised follows the tangent through some 20
-//! impacts between two walls with a fractional term (5000 steps, both impact memories), its
-//! difference falling tenfold per decade of d₀ (2.6·10⁻⁵ relative at d₀ = 10⁻⁷). `tests/lyapunov.rs`: the exponent by the tangent against the damped oscillator's
-//! −μ0/2 and against two trajectories; a fractional van der Pol cycle's 0 and a damped
-//! fractional oscillator's 0⁻, both against two trajectories.
+//! walls through the first impacts (1, 4, 20, 200 steps: worst 1.8·10⁻⁹), and a mass settling
+//! on a wall at δ = 0.5 and a chattering path at 0 (impact ending stuck, sticking, leaving; 1
+//! and 30 steps); the reference bit for bit as by `step` with every memory of δV in its
+//! reference's layout; a copy displaced by d₀ and never renormalised follows the tangent
+//! through some 20 impacts between two walls with a fractional term (5000 steps, both impact
+//! memories), its difference falling tenfold per decade of d₀ (2.6·10⁻⁵ relative at
+//! d₀ = 10⁻⁷).
+//! `tests/lyapunov.rs`: the exponent by the tangent against the damped oscillator's −μ0/2 and
+//! against two trajectories; a fractional van der Pol cycle's 0 and a damped fractional
+//! oscillator's 0⁻, both against two trajectories.
 
 use super::general::TangentSplit;
 use super::walls::Walls;

@@ -440,7 +440,7 @@ impl Stepper {
         let (b, free) = self.begin_general();
         let (mut u1, mut v1) = free.end();
         let g = self.general.as_deref().expect("a General path");
-        // U·η_m (the fractional terms do not come here: refused with a wall)
+        // the fractional terms and U·η_m (module docs of `super::tangent`)
         let (dxl, dahead) = if g.extras() {
             g.begin_tangent(t)
         } else {
@@ -514,7 +514,8 @@ impl Stepper {
 
     /// [`Stepper::impact_wall`] with the derivative of the impact step: `free` is the free end
     /// (U₁, V₁, δU₁, δV₁), `dgl` δg at the step's start, `dahead` δ of the known forcing's
-    /// part from the fractional terms (0: they are refused with a wall). Returns the reference's split, the
+    /// part from the fractional terms (of the unsplit step: the redone rest's is the split
+    /// memories', `General::split_tangent`). Returns the reference's split, the
     /// tangent's (its values' derivatives with θ held; [`fold_theta`] adds the θ-derivative
     /// when the piece is complete), δθ and the end (U, V, δU, δV).
     #[cold]
