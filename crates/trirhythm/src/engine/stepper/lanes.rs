@@ -1019,13 +1019,21 @@ mod tests {
     }
 
     /// General paths with fractional terms (α = 0.5 and an α = 1 term) and white
-    /// multiplicative noise, no wall, with their tangents in lanes of 4 and 8: the scalar
-    /// `step_with_tangent`'s bits step by step (path, tangent state, the tangent's δ of the
-    /// fractional terms and its memories of δV).
+    /// multiplicative noise, without a wall and with the wall at 0 (impacts), with their
+    /// tangents in lanes of 4 and 8: the scalar `step_with_tangent`'s bits step by step (path,
+    /// tangent state, the tangent's δ of the fractional terms and its memories of δV).
     #[test]
     fn general_tangents_with_fractional_terms_in_lanes_give_the_scalar_bits() {
+        for wall in [false, true] {
+            general_tangents_in_lanes(wall);
+        }
+    }
+
+    fn general_tangents_in_lanes(wall: bool) {
         let mut m = crate::model::Model::from(&preset("fig17a").unwrap().params);
-        m.walls.clear();
+        if !wall {
+            m.walls.clear();
+        }
         m.fractional = vec![
             crate::model::Fractional {
                 coefficient: 0.4,
@@ -1054,9 +1062,12 @@ mod tests {
                 .iter()
                 .all(|&b| f64::from_bits(b) != 0.0));
         }
+        if wall {
+            assert!(scalar.iter().any(|(log, _)| log.last().unwrap()[4] > 0));
+        }
         for lanes in [4, 8] {
             let lane = run_problem(&problem, &method, 6, 1000, lanes);
-            assert!(lane == scalar, "lanes {lanes}");
+            assert!(lane == scalar, "lanes {lanes}, wall {wall}");
         }
     }
 }
