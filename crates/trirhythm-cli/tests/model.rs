@@ -674,7 +674,7 @@ fn a_two_wall_model_runs_through_simulate_and_ensemble_without_the_papers_theory
 
 /// A linear oscillator with fractional damping and multiplicative noise (correlated with the
 /// additive noise), no wall: simulate and ensemble run it end to end through the General
-/// kernel; the tangent method refuses it, naming the terms, and the two-trajectory method runs.
+/// kernel; the tangent method runs on it (and agrees with two trajectories), with the wall too.
 #[test]
 fn a_fractional_model_with_multiplicative_noise_runs_through_simulate_and_ensemble() {
     let dir = scratch_dir("model-fractional");
@@ -741,5 +741,44 @@ fn a_fractional_model_with_multiplicative_noise_runs_through_simulate_and_ensemb
     assert_eq!(u.len(), 2001);
     assert!(u.iter().all(|&u| u >= 0.0), "{csv}");
     assert!(u.iter().any(|&u| u < 0.05), "the wall is met: {csv}");
+    // the Lyapunov exponent by the tangent (fractional terms and U·η_m differentiated) and by
+    // two trajectories, the same path: no wall, so the tangent is the step's exact derivative
+    let lle = |model: &str, method: &str| {
+        vec![
+            "lyapunov".to_string(),
+            "--model".into(),
+            model.into(),
+            "--method".into(),
+            method.into(),
+            "--paths".into(),
+            "1".into(),
+            "--t-end".into(),
+            "60".into(),
+            "--transient".into(),
+            "10".into(),
+            "--format".into(),
+            "json".into(),
+        ]
+    };
+    let mut values = vec![];
+    for method in ["tangent", "two-trajectory"] {
+        let args = lle(&file, method);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let doc: serde_json::Value = serde_json::from_str(&ok_stdout(&args)).unwrap();
+        assert_eq!(doc["method"], method);
+        values.push(doc["lle"]["value"].as_f64().unwrap());
+    }
+    assert!(
+        values[0].is_finite() && (values[0] - values[1]).abs() < 1e-3,
+        "tangent {} against two trajectories {}",
+        values[0],
+        values[1]
+    );
+    // with the wall too (the memories of δV split at the impacts)
+    let args = lle(&walled, "tangent");
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let doc: serde_json::Value = serde_json::from_str(&ok_stdout(&args)).unwrap();
+    assert!(doc["lle"]["value"].as_f64().unwrap().is_finite(), "{doc}");
+    assert!(doc["per_path"][0]["impacts"].as_u64().unwrap() > 0, "{doc}");
     let _ = std::fs::remove_dir_all(&dir);
 }

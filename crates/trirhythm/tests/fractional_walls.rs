@@ -25,9 +25,8 @@
 //! - **K → 0**: K = 1e-12 against the model without the term (the paper kernel at the paper's
 //!   wall, the General kernel's walls otherwise), both impact memories: max |ΔU| ≤ 1e-10
 //!   (measured ≤ 3e-11).
-//! - **Lanes and clones** give the scalar bits (OU noise); the two-trajectory Lyapunov exponent
-//!   takes the model, the tangent refuses it by name (the tangent of the fractional memories is
-//!   not built).
+//! - **Lanes and clones** give the scalar bits (OU noise); both Lyapunov methods take the model
+//!   and agree (the tangent differentiates the fractional memories split at the impacts).
 //!
 //! Measured values are printed with `--nocapture`.
 
@@ -335,7 +334,7 @@ fn a_vanishing_fractional_term_with_walls_is_the_path_without_it() {
 }
 
 #[test]
-fn fractional_paths_with_walls_are_the_same_in_lanes_and_clones_and_take_two_trajectories() {
+fn fractional_paths_with_walls_are_the_same_in_lanes_and_clones_and_take_both_lyapunov_methods() {
     use trirhythm::analysis::lyapunov::LyapunovMethod;
     use trirhythm::analysis::{largest_lyapunov, LyapunovSpec};
     use trirhythm::model::NoiseTerm;
@@ -367,9 +366,19 @@ fn fractional_paths_with_walls_are_the_same_in_lanes_and_clones_and_take_two_tra
         )
         .unwrap();
         assert!(r.lle.value.is_finite(), "{name}: {}", r.lle.value);
-        let refused = largest_lyapunov(&problem, &method, &spec(LyapunovMethod::Tangent), &Silent)
-            .unwrap_err()
-            .to_string();
-        assert!(refused.contains("fractional"), "{name}: {refused}");
+        // the tangent: the derivative of every step taken, the fractional memories of δV split
+        // at the impacts; against two trajectories (a copy at d₀ that meets the same impacts
+        // over these 1000 steps; its renormalisation is deferred where its memories split at
+        // another θ: measured 1.9e-4 apart at the wall at 0, ≤ 1e-8 at the others). From U = 0
+        // between walls at −0.4 and 0.5 both start half the room away (0.25) along U: the
+        // tangent's start is a unit vector (before, its norm 0.25 counted ln 0.25 into the
+        // exponent when nothing was discarded, 0.14 here)
+        let t =
+            largest_lyapunov(&problem, &method, &spec(LyapunovMethod::Tangent), &Silent).unwrap();
+        println!(
+            "{name}: tangent {}, two trajectories {}",
+            t.lle.value, r.lle.value
+        );
+        assert!((t.lle.value - r.lle.value).abs() < 1e-3, "{name}");
     }
 }

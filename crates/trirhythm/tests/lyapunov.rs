@@ -12,13 +12,20 @@
 //!   a noisy case with the wall (λ = 0.998, Fig. 17(a)'s parameters, both impact memories) and a
 //!   fractional case without the wall (where, with no impact, the tangent is the exact
 //!   derivative of the step and the two agree path by path).
+//! - The tangent through the General kernel's fractional terms K·D^αU: a van der Pol cycle with
+//!   a fractional damping term has exponent 0 within the band R/W of ln‖F‖ along the orbit
+//!   (plus one e-fold), by both methods, which agree path by path; a damped linear oscillator
+//!   with a fractional term has no positive exponent (its power-law tail: → 0⁻ as the window
+//!   grows), the tangent equal to two trajectories to rounding (linear).
 
 use trirhythm::analysis::lyapunov::{
     largest_lyapunov, LyapunovMethod, LyapunovResult, LyapunovSpec,
 };
 use trirhythm::analysis::lyapunov::{merge, run_paths, PathRun};
-use trirhythm::engine::{Barrier, ImpactMemory, PredictorCorrector, Problem, System};
-use trirhythm::model::{preset, Params};
+use trirhythm::engine::{
+    simulate, Barrier, ImpactMemory, Options, PredictorCorrector, Problem, System,
+};
+use trirhythm::model::{preset, Fractional, Model, Params};
 use trirhythm::monitor::{CancelFlag, Silent};
 
 const SEED: u64 = 20240611;
@@ -448,4 +455,107 @@ fn realisations_in_any_split_and_order_merge_to_the_whole_estimate() {
     twice.push(runs[0].clone());
     assert!(merge(&spec, twice).is_err());
     assert!(run_paths(&at, &method, &spec, &[5], &Silent).is_err());
+}
+
+/// A model of the class: fig17a's leading part at λ = 1, ω0 = 1, the damping μ0·P(U) with P's
+/// coefficients in U² `p`, the fractional terms (K, α), no wall, no noise, from (u0, 0).
+fn fractional_model(mu0: f64, p: &[f64], fractional: &[(f64, f64)], u0: f64) -> Problem {
+    let mut m = Model::from(&params(&[("lambda", 1.0), ("omega0", 1.0), ("D", 0.0)]));
+    m.damping.mu0 = mu0;
+    m.damping.coefficients = p.to_vec();
+    m.walls.clear();
+    m.noise.additive = None;
+    m.fractional = fractional
+        .iter()
+        .map(|&(coefficient, order)| Fractional { coefficient, order })
+        .collect();
+    m.start.u0 = u0;
+    m.start.v0 = 0.0;
+    Problem::from_model(&m).unwrap()
+}
+
+/// R = ln(max‖F‖/min‖F‖), F = (U̇, Ü), over the noise-free path on [transient, transient + W]
+/// (Ü by central differences): the band the log-norm of a tangent along the flow stays in.
+fn flow_band(problem: &Problem, method: &PredictorCorrector, (transient, w): (f64, f64)) -> f64 {
+    let o = Options {
+        t_end: transient + w,
+        seed: SEED,
+        record_every: 1,
+        ..Default::default()
+    };
+    let tr = simulate(problem, method, &o).unwrap();
+    let (v, dt) = (&tr.v, method.dt);
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for n in ((transient / dt) as usize).max(1)..v.len() - 1 {
+        let f = v[n].hypot((v[n + 1] - v[n - 1]) / (2.0 * dt));
+        lo = lo.min(f);
+        hi = hi.max(f);
+    }
+    (hi / lo).ln()
+}
+
+#[test]
+fn tangent_fractional_van_der_pol_cycle_has_a_zero_exponent() {
+    // Ü − μ(1 − U²)U̇ + K·D^{0.5}U + U = 0, μ = 0.5, K = 0.1 (the cycle survives the weak
+    // fractional damping), no noise: the flow direction is neutral along the (asymptotically)
+    // periodic orbit, so the finite-time exponent over W is bounded by the band R/W of
+    // ln‖F‖ along the orbit, plus one e-fold for what the transient and the fractional
+    // memory's power-law tail leave (as in tests/cycle_exponent.rs); both methods, which
+    // agree path by path (no impact: the tangent is the exact derivative of the step)
+    let problem = fractional_model(0.5, &[1.0, -1.0], &[(0.1, 0.5)], 2.0);
+    let method = PredictorCorrector::default();
+    let (transient, w) = (500.0, 2000.0);
+    let r = flow_band(&problem, &method, (transient, w));
+    let bound = (r + 1.0) / w;
+    let spec = LyapunovSpec {
+        paths: 1,
+        seed: SEED,
+        transient,
+        length: w,
+        ..Default::default()
+    };
+    let (two, tangent, _) = both(&problem, &method, &spec);
+    let (t, v) = (tangent.lle.value, two.lle.value);
+    eprintln!(
+        "fractional van der Pol: tangent {t:+.3e}, two trajectories {v:+.3e}, bound {bound:.2e} \
+         (R = {r:.2})"
+    );
+    assert!(
+        t.abs() <= bound && v.abs() <= bound,
+        "tangent {t}, two {v}, bound {bound}"
+    );
+    assert!((t - v).abs() < 1e-6, "tangent {t} vs two trajectories {v}");
+}
+
+#[test]
+fn tangent_damped_fractional_linear_oscillator_has_no_positive_exponent() {
+    // Ü + 0.1U̇ + K·D^{0.5}U + U = 0 (K = 0.3), no noise: every solution decays (the
+    // fractional term's power-law tail makes the exponent tend to 0⁻ as the window grows, so
+    // only its sign is asserted: no growth beyond the band of ‖(δU, δU̇)‖ over an oscillation,
+    // ln 2 at most for ω0 = 1, per window); linear, so the two trajectories' difference is
+    // the tangent itself: the methods agree to rounding
+    let problem = fractional_model(0.1, &[-1.0], &[(0.3, 0.5)], 1.0);
+    let method = PredictorCorrector::default();
+    let mut before = f64::NEG_INFINITY;
+    for w in [200.0, 1000.0] {
+        let spec = LyapunovSpec {
+            paths: 1,
+            seed: SEED,
+            transient: 50.0,
+            length: w,
+            ..Default::default()
+        };
+        let (two, tangent, _) = both(&problem, &method, &spec);
+        let (t, v) = (tangent.lle.value, two.lle.value);
+        eprintln!("damped fractional oscillator, W = {w}: tangent {t:+.3e}, two {v:+.3e}");
+        assert!(t <= 2f64.ln() / w, "W = {w}: tangent {t}");
+        assert!(
+            (t - v).abs() < 1e-8,
+            "W = {w}: tangent {t} vs two trajectories {v}"
+        );
+        // the algebraic tail: the longer window's exponent is nearer 0 (an exponential decay
+        // would keep it)
+        assert!(t > before, "W = {w}: {t} after {before}");
+        before = t;
+    }
 }

@@ -46,4 +46,4 @@ pub use resolution::Resolution;
 pub use stepper::{
     detected_lanes, Impact, Lanes, StepEvents, Stepper, LANE_WIDTHS, MAX_DIRECT_STEPS,
 };
-pub(crate) use stepper::{fresh_history, group_lanes, tangent_refusal, Group, Tangent};
+pub(crate) use stepper::{fresh_history, group_lanes, Group, Tangent};

@@ -473,11 +473,6 @@ pub fn run_paths(
 ) -> Result<Vec<PathRun>> {
     let (transient, window) = spec.sizes(method)?;
     super::check_indices(paths, spec.paths)?;
-    if spec.method == LyapunovMethod::Tangent {
-        if let Some(refusal) = crate::engine::tangent_refusal(problem) {
-            return Err(refusal);
-        }
-    }
     monitor.check()?;
     if paths.is_empty() {
         return Ok(vec![]);
@@ -579,7 +574,7 @@ pub fn run_paths(
                         for &i in group {
                             let u0 = problem.start(i).0;
                             let a = make(i, u0)?;
-                            tangents.push(Tangent::new(&a, (shift(u0), 0.0)));
+                            tangents.push(Tangent::new(&a, (shift(u0).signum(), 0.0)));
                             refs.push(a);
                         }
                         let results =
@@ -606,7 +601,7 @@ pub fn run_paths(
                         LyapunovMethod::Tangent => {
                             let u0 = problem.start(i).0;
                             let a = make(i, u0)?;
-                            let t = Tangent::new(&a, (shift(u0), 0.0));
+                            let t = Tangent::new(&a, (shift(u0).signum(), 0.0));
                             one_path(PathAndTangent { a, t }, spec, sizes, i, &tick)
                         }
                     }?;

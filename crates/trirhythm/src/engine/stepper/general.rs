@@ -1,8 +1,8 @@
 //! The General kernel: the terms of the class beyond the paper's Eq. (1) that the engine
 //! steps — an odd restoring force, Rayleigh damping, a harmonic forcing, up to two fractional
 //! terms K_j·D^{α_j}U and a multiplicative noise U·η_m — with the same predictor–corrector as
-//! the paper's kernel ([`super::Affine`]), and its tangent (not yet of the fractional terms and
-//! of U·η_m).
+//! the paper's kernel ([`super::Affine`]), and its tangent (`super::tangent`, the fractional
+//! terms' memories and U·η_m included).
 //!
 //! # Equation
 //! D^{1+λ}U + Σ_j K_j D^{α_j}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η_a(t) + U·η_m(t), no wall,
@@ -89,10 +89,10 @@
 //! With [`crate::engine::ImpactMemory::Restart`] the fractional terms' memories restart with the
 //! leading one (at the instant of an impact, and at the end of a sticking step): the whole
 //! fractional state forgets the past, m_j = 0 just after t* for α_j < 1. Sticking at δ clamps V
-//! to 0: the step's piece of V ends at 0, as g's does. The tangent of these steps is not built
-//! (`lyapunov --method tangent` refuses fractional terms by name, with or without a wall).
-//! Cost: only an impact step of a path with fractional terms does any of this (cold code); a
-//! path without them takes the branches it took before (`fractional()` false: the same bits).
+//! to 0: the step's piece of V ends at 0, as g's does. The tangent differentiates these steps
+//! too (module docs of `super::tangent`, "Fractional terms and multiplicative noise"). Cost:
+//! only an impact step of a path with fractional terms does any of this (cold code); a path
+//! without them takes the branches it took before (`fractional()` false: the same bits).
 //! The lanes step such paths one by one with this scalar step (as every General path), so an
 //! ensemble gives each path's scalar bits (`tests/fractional_walls.rs`, 4 and 8 lanes).
 //!
@@ -113,9 +113,6 @@
 //! δ·η_m ([`General::parametric_at`]; η_m is constant over the step) is part of g at the
 //! instant: in the scheme's V(t*), the split piece of g on both sides (U is continuous) and
 //! the net force that decides sticking.
-//!
-//! Not yet: the tangent of the fractional terms and of U·η_m (`lyapunov --method tangent`
-//! refuses them by name).
 //!
 //! # Reference
 //! model-class.md §2, §3, §4, §5 (the design); Diethelm, Ford & Freed (2002) for the scheme;
@@ -142,13 +139,15 @@
 //! second order; α = 0.5 at its observed order with impacts; SOE against Direct through
 //! impacts and sticking, both impact memories; K = 1e-12 against no term; lanes and clones).
 //! Unit test below: the correlated η_m's law. `engine/stepper/tangent.rs`:
-//! the tangent step against finite differences of the step.
+//! the tangent step against finite differences of the step, fractional terms and U·η_m
+//! included, with and without walls.
 
 use super::affine::{
     hermite_limiter, pass_tangent_u1, pass_tangent_u1_moving, predictor_weight,
     predictor_weight_slope, Affine,
 };
 use super::polynomial::Polynomial;
+use super::tangent::{fold_theta, Tangent};
 use super::walls::Walls;
 use crate::engine::kernel::MIN_SOE_LAMBDA;
 use crate::engine::memory::{History, Memory, Piece, Split};
@@ -377,6 +376,20 @@ struct SplitMemories {
     kappa: f64,
 }
 
+/// The tangent of [`SplitMemories`] ([`General::split_tangent`]; taken by
+/// [`General::end_tangent`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct TangentSplit {
+    /// The reference's split of V's piece and its κ_s.
+    split: Split,
+    kappa: f64,
+    /// The split's values' δ (θ held), and δ(ahead_s), δκ_s, δθ.
+    d: Split,
+    dahead: f64,
+    dkappa: f64,
+    dtheta: f64,
+}
+
 /// The Rayleigh parts at a velocity v (x = v²): Σd_k x^k, Σ(2k+1)d_k x^k (∂_V of its V-term),
 /// its derivative in v, and the linearisation's rest (h − a)v with its derivative in v.
 #[derive(Debug, Clone, Copy, Default)]
@@ -411,10 +424,18 @@ pub(super) struct GeneralFree {
     w: f64,
     g0: f64,
     pw: f64,
+    /// The κ of its corrector (the split step's on an impact's redone rest).
+    kappa: f64,
     passes: [GeneralPass; 2],
 }
 
 impl GeneralFree {
+    /// The κ of its corrector.
+    #[inline]
+    pub(super) fn kappa(&self) -> f64 {
+        self.kappa
+    }
+
     /// The end (U₁, V₁).
     #[inline]
     pub(super) fn end(&self) -> (f64, f64) {
@@ -487,11 +508,169 @@ impl General {
         }
     }
 
-    /// Whether the kernel has fractional terms or multiplicative noise (the tangent does not
-    /// differentiate them yet).
+    /// Whether the kernel has fractional terms or multiplicative noise (the step's extra work,
+    /// [`General::begin_step`] and [`General::end_step`]).
     #[inline]
     pub(super) fn extras(&self) -> bool {
         self.extras
+    }
+
+    /// The tangent's memories of δV: one per fractional term with a memory (α < 1), in the
+    /// terms' order, with the reference's layout and every number 0.
+    pub(super) fn tangent_memories(&self) -> Vec<History> {
+        self.memories
+            .iter()
+            .filter_map(|m| m.history.clone())
+            .map(|mut h| {
+                h.scale_state(0.0);
+                h
+            })
+            .collect()
+    }
+
+    /// The tangent's part of [`General::begin_step`] (after it: η_m drawn), for the tangent
+    /// `t` at the step's start: δ of g's extras there, δ(−Σ_j K_j m_{j,n}) + δU_n·η_m, and of
+    /// the part of −Σ_j K_j m_{j,n+1} known now, −Σ_j K_j(δM_j + ϖ_l^j δV_n) (δM_j the tangent
+    /// memory's value).
+    #[inline]
+    pub(super) fn begin_tangent(&self, t: &Tangent) -> (f64, f64) {
+        let mut ahead = 0.0;
+        let mut held = t.fractional.iter();
+        for m in &self.memories {
+            if m.history.is_some() {
+                let past = held.next().expect("a tangent memory per memory").value();
+                ahead -= m.k * (past + m.wl * t.v);
+            }
+        }
+        (t.lag + t.u * self.eta_m, ahead)
+    }
+
+    /// The tangent's part of [`General::end_step`] (after it) of the step from V_n = `v` to
+    /// V_{n+1} = `v1`, from δV_n = `dv` with the known part `dahead`
+    /// ([`General::begin_tangent`]) to (δU₁, δV₁): δV's piece into every tangent memory (an
+    /// impact's split piece with its θ-derivative, [`fold_theta`]), δ(−Σ_j K_j m_{j,n+1}) into
+    /// `t.lag` (δahead − κδV₁ without an impact); returns δ of `end_step`'s value,
+    /// δ(−Σ_j K_j m_{j,n+1}) − δahead + δU₁·η_m.
+    pub(super) fn end_tangent(
+        &self,
+        t: &mut Tangent,
+        (v, v1): (f64, f64),
+        (dv, dahead): (f64, f64),
+        (du1, dv1): (f64, f64),
+    ) -> f64 {
+        let Some(s) = t.pending.take() else {
+            for h in &mut t.fractional {
+                h.push(Piece {
+                    left: dv,
+                    right: dv1,
+                    split: None,
+                });
+            }
+            let now = -self.kappa * dv1;
+            t.lag = dahead + now;
+            return now + du1 * self.eta_m;
+        };
+        // the split piece: its values' derivatives with θ held, and the θ-derivative of the
+        // reference's piece (V_n → V(t*), V₊ → V_{n+1})
+        let mut d = s.d;
+        if s.dtheta != 0.0 {
+            let piece = Piece {
+                left: v,
+                right: v1,
+                split: Some(s.split),
+            };
+            fold_theta(&piece, &mut d, s.dtheta);
+        }
+        for h in &mut t.fractional {
+            h.push(Piece {
+                left: dv,
+                right: dv1,
+                split: Some(d),
+            });
+        }
+        // m_{j,n+1} = ahead_s − κ_s V_{n+1}, both moving with θ
+        t.lag = s.dahead - s.kappa * dv1 - s.dkappa * v1;
+        t.lag - dahead + du1 * self.eta_m
+    }
+
+    /// The tangent's memories restart with the reference's ([`General::restart_memories`]).
+    pub(super) fn restart_tangent(&self, t: &mut Tangent) {
+        for h in &mut t.fractional {
+            h.restart();
+        }
+        t.pending = None;
+        t.lag = 0.0;
+    }
+
+    /// The tangent of [`General::memories_at`] at θ of the step in progress from V_n = `v`,
+    /// from the tangent memories (before any restart at the instant) along δV_n = `dv`, θ
+    /// moving by `dtheta`: (δ of the known part −Σ_j K_j(δpast_j + ∂_θpast_j·δθ), δ of the
+    /// weight Σ_j K_j ∂_θw_j·δθ) ([`History::at_fraction_rate`]; the α = 1 terms' weight is
+    /// fixed).
+    pub(super) fn memories_at_tangent(
+        &self,
+        t: &Tangent,
+        (theta, dtheta): (f64, f64),
+        (v, dv): (f64, f64),
+    ) -> (f64, f64) {
+        let (mut known, mut weight) = (0.0, 0.0);
+        let mut held = t.fractional.iter();
+        for m in &self.memories {
+            if let Some(h) = &m.history {
+                let d = held.next().expect("a tangent memory per memory");
+                let (dpast, _) = d.at_fraction(theta, dv);
+                let (rate_past, rate_w) = if dtheta != 0.0 {
+                    h.at_fraction_rate(theta, v)
+                } else {
+                    (0.0, 0.0)
+                };
+                known -= m.k * (dpast + rate_past * dtheta);
+                weight += m.k * rate_w * dtheta;
+            }
+        }
+        (known, weight)
+    }
+
+    /// The tangent of [`General::split_memories`] (after it): the tangent memories restart
+    /// where the reference's did, and δ of (the part of −Σ_j K_j m_{j,n+1} known after the
+    /// impact, κ_s) along δV_n = `dv` and the split's values' δ `d` (δV(t*), δV₊; θ held), θ
+    /// moving by `dtheta` ([`History::current_split_rate`]); kept in `t` for
+    /// [`General::end_tangent`].
+    pub(super) fn split_tangent(
+        &self,
+        t: &mut Tangent,
+        (v, dv): (f64, f64),
+        d: Split,
+        dtheta: f64,
+    ) -> (f64, f64) {
+        let s = self.pending.expect("the memories split on this step");
+        let (mut ahead, mut kappa) = (0.0, 0.0);
+        let mut held = t.fractional.iter_mut();
+        for m in &self.memories {
+            if let Some(h) = &m.history {
+                let dh = held.next().expect("a tangent memory per memory");
+                if !s.split.keep_before {
+                    dh.restart();
+                }
+                let (dknown, _) = dh.current_split(dv, &d);
+                let (rate_known, rate_w) = if dtheta != 0.0 {
+                    h.current_split_rate(v, &s.split)
+                } else {
+                    (0.0, 0.0)
+                };
+                ahead -= m.k * (dh.value() + dknown + rate_known * dtheta);
+                kappa += m.k * rate_w * dtheta;
+            }
+        }
+        t.pending = Some(TangentSplit {
+            split: s.split,
+            kappa: s.kappa,
+            d,
+            dahead: ahead,
+            dkappa: kappa,
+            dtheta,
+        });
+        (ahead, kappa)
     }
 
     /// The start of a step from (u, v) whose additive noise level is `el` (η_a, before any
@@ -656,6 +835,70 @@ impl General {
         }
         self.lag = reference.lag + c * (self.lag - reference.lag);
         true
+    }
+
+    /// Multiply the fractional terms' memories of V and −Σ_j K_j m_j at the node by `c` (a
+    /// direction of the state for the tangent's tests).
+    #[cfg(test)]
+    pub(super) fn scale_memories(&mut self, c: f64) {
+        for h in self.memories.iter_mut().filter_map(|m| m.history.as_mut()) {
+            h.scale_state(c);
+        }
+        self.lag *= c;
+    }
+
+    /// The tangent's (δ(−Σ_j K_j m_j), memories of δV) along [`General::scale_memories`]'s
+    /// direction, `s` times.
+    #[cfg(test)]
+    pub(super) fn scaled_memories(&self, s: f64) -> (f64, Vec<History>) {
+        let mut held = self.tangent_memories();
+        for (t, h) in held
+            .iter_mut()
+            .zip(self.memories.iter().filter_map(|m| m.history.as_ref()))
+        {
+            *t = h.clone();
+            t.scale_state(s);
+        }
+        (s * self.lag, held)
+    }
+
+    /// −Σ_j K_j m_j at the node and Σ_j K_j·(memory j's value) (what the tangent's tests
+    /// compare).
+    #[cfg(test)]
+    pub(super) fn memories_seen(&self) -> (f64, f64) {
+        let value = self
+            .memories
+            .iter()
+            .filter_map(|m| m.history.as_ref().map(|h| m.k * h.value()))
+            .sum();
+        (self.lag, value)
+    }
+
+    /// Σ_j K_j·(the value of the tangent's memory j of δV).
+    #[cfg(test)]
+    pub(super) fn tangent_memories_seen(&self, t: &Tangent) -> f64 {
+        self.memories
+            .iter()
+            .filter(|m| m.history.is_some())
+            .zip(&t.fractional)
+            .map(|(m, h)| m.k * h.value())
+            .sum()
+    }
+
+    /// Whether the tangent's memories of δV hold their pieces in the layouts of the reference's
+    /// memories of V.
+    #[cfg(test)]
+    pub(super) fn memories_in_layout(&self, t: &Tangent) -> bool {
+        let held: Vec<&History> = self
+            .memories
+            .iter()
+            .filter_map(|m| m.history.as_ref())
+            .collect();
+        held.len() == t.fractional.len()
+            && held
+                .iter()
+                .zip(&t.fractional)
+                .all(|(h, d)| d.same_layout_as(h))
     }
 
     /// Whether the fractional memories and the multiplicative noise's state equal `other`'s.
@@ -963,41 +1206,48 @@ impl General {
             w,
             g0,
             pw,
+            kappa,
             passes: [first, second],
         }
     }
 
-    /// The derivative of one pass along (δu, δv, δg0), δup, δvl, δknown: (δU₁, δV₁).
+    /// The derivative of one pass along (δu, δv, δg0), δup, δvl, δknown and δ of the known
+    /// forcing F_r (the fractional terms' known part; U^P·η_m with η_m frozen is added here):
+    /// (δU₁, δV₁).
     fn pass_tangent(
         &self,
         f: &GeneralFree,
         p: &GeneralPass,
         (du, dv, dg0): (f64, f64, f64),
         (dup, dvl): (f64, f64),
-        dknown: f64,
+        (dknown, dfr): (f64, f64),
     ) -> (f64, f64) {
         let mps = self.mu_p_slope(p.up);
         let r = self.rayleigh_at(p.vl);
         let da = mps * dup + r.a_slope * dvl;
         let kp = self.restoring_slope(p.up);
-        let dv1 = p.inv * (dknown + f.w * (r.rest_slope * dvl - kp * dup) + p.v1 * f.w * da);
-        let a_end = self.mu_p(p.up) + self.rayleigh_at(p.v1).a;
-        let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup;
+        let dfr = dfr + dup * self.eta_m;
+        let dv1 = p.inv * (dknown + f.w * (dfr + r.rest_slope * dvl - kp * dup) + p.v1 * f.w * da);
+        // g at the end has −κV₁ (the fractional terms)
+        let a_end = self.mu_p(p.up) + self.rayleigh_at(p.v1).a - f.kappa;
+        let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup + dfr;
         let step = (f.len, f.w, f.g0);
         let du1 = pass_tangent_u1(step, (p.a, p.lim, p.gr), (du, dv, dg0), (dv1, dgr, da));
         (du1, dv1)
     }
 
-    /// The derivative of [`General::advance`] from (u, v) along (δu, δv, δg0) and δknown (the
-    /// forcing frozen: noise and phase): (δU₁, δV₁).
+    /// The derivative of [`General::advance`] from (u, v) along (δu, δv, δg0), δknown and δ of
+    /// the known forcing F_r (the fractional terms' known part, [`General::begin_tangent`]; the
+    /// noise and the phase frozen): (δU₁, δV₁).
     pub(super) fn advance_tangent(
         &self,
         f: &GeneralFree,
         (u, v): (f64, f64),
         (du, dv, dg0): (f64, f64, f64),
-        dknown: f64,
+        dknown: (f64, f64),
     ) -> (f64, f64) {
-        let a0 = self.a(u, v);
+        // the node's predictor weight has ∂_V g = a − κ
+        let a0 = self.a(u, v) - f.kappa;
         let da0 = self.mu_p_slope(u) * du + self.rayleigh_at(v).a_slope * dv;
         let dpw = predictor_weight_slope(f.len, a0, da0);
         let dup = du + f.len * dv + f.pw * dg0 + f.g0 * dpw;
@@ -1008,7 +1258,8 @@ impl General {
     /// The derivative of [`General::advance`] from (u, v) = `start` when the step's length and
     /// its weight of g at the end move as well (the redone rest of an impact step: length
     /// (1 − θ)Δt, weights following θ): along (δu, δv, δg0), δpw, δknown and (δlen, δw), the
-    /// forcing frozen. Returns (δU₁, δV₁).
+    /// forcing frozen (`dknown`: δknown and δ of the known forcing, as in
+    /// [`General::advance_tangent`]). Returns (δU₁, δV₁).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn advance_tangent_moving(
         &self,
@@ -1016,42 +1267,43 @@ impl General {
         (_, v): (f64, f64),
         (du, dv, dg0): (f64, f64, f64),
         dpw: f64,
-        dknown: f64,
-        (dlen, dw): (f64, f64),
+        dknown: (f64, f64),
+        (dlen, dw, dkappa): (f64, f64, f64),
     ) -> (f64, f64) {
         let dup = du + dlen * v + f.len * dv + f.pw * dg0 + f.g0 * dpw;
-        let moving = (v, dlen, dw);
+        let moving = (v, dlen, dw, dkappa);
         let start = (du, dv, dg0);
         let first = self.pass_tangent_moving(f, &f.passes[0], moving, start, (dup, dv), dknown);
         self.pass_tangent_moving(f, &f.passes[1], moving, start, first, dknown)
     }
 
-    /// [`General::pass_tangent`] with the length and the weight moving: `moving` = (v at the
-    /// start, δlen, δw). With X = F_r − k(up) + (h(up, vl) − a)vl (so that V₁(1 − wa) =
-    /// known + wX): δV₁ = inv·(δknown + δw·X + w·δX + V₁·(δw·a + w·δa)), δL = −L²(z/6)·2δ(wa),
-    /// and U₁'s terms in len differentiated as well.
+    /// [`General::pass_tangent`] with the length, the weight and κ moving: `moving` = (v at
+    /// the start, δlen, δw, δκ). With X = F_r − k(up) + (h(up, vl) − a)vl (so that V₁(1 − wa) =
+    /// known + wX): δV₁ = inv·(δknown + δw·X + w·δX + V₁·(δw·a + w·δa)) (δa with −δκ),
+    /// δL = −L²(z/6)·2δ(wa), and U₁'s terms in len differentiated as well.
     fn pass_tangent_moving(
         &self,
         f: &GeneralFree,
         p: &GeneralPass,
-        (v, dlen, dw): (f64, f64, f64),
+        (v, dlen, dw, dkappa): (f64, f64, f64, f64),
         (du, dv, dg0): (f64, f64, f64),
         (dup, dvl): (f64, f64),
-        dknown: f64,
+        (dknown, dfr): (f64, f64),
     ) -> (f64, f64) {
         let mp = self.mu_p(p.up);
         let mps = self.mu_p_slope(p.up);
         let r = self.rayleigh_at(p.vl);
-        let da = mps * dup + r.a_slope * dvl;
+        let da = mps * dup + r.a_slope * dvl - dkappa;
         let kp = self.restoring_slope(p.up);
         let end = self.rayleigh_at(p.v1);
-        // F_r − k(up) = g_r − h(up, V₁)V₁
-        let x = p.gr - (mp + end.h - self.kappa) * p.v1 + r.rest;
-        let dx = r.rest_slope * dvl - kp * dup;
+        // F_r − k(up) = g_r − (h(up, V₁) − κ)V₁ (F_r with U^P·η_m)
+        let x = p.gr - (mp + end.h - f.kappa) * p.v1 + r.rest;
+        let dfr = dfr + dup * self.eta_m;
+        let dx = dfr + r.rest_slope * dvl - kp * dup;
         let dwa = dw * p.a + f.w * da;
         let dv1 = p.inv * (dknown + dw * x + f.w * dx + p.v1 * dwa);
-        let a_end = mp + end.a;
-        let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup;
+        let a_end = mp + end.a - f.kappa;
+        let dgr = mps * dup * p.v1 + a_end * dv1 - kp * dup + dfr - dkappa * p.v1;
         let step = (f.len, f.w, f.g0);
         let pass = (p.a, p.lim, p.gr, p.v1);
         let du1 = pass_tangent_u1_moving(step, pass, (v, dlen, dwa), (du, dv, dg0), (dv1, dgr));

@@ -1017,4 +1017,57 @@ mod tests {
             }
         }
     }
+
+    /// General paths with fractional terms (α = 0.5 and an α = 1 term) and white
+    /// multiplicative noise, without a wall and with the wall at 0 (impacts), with their
+    /// tangents in lanes of 4 and 8: the scalar `step_with_tangent`'s bits step by step (path,
+    /// tangent state, the tangent's δ of the fractional terms and its memories of δV).
+    #[test]
+    fn general_tangents_with_fractional_terms_in_lanes_give_the_scalar_bits() {
+        for wall in [false, true] {
+            general_tangents_in_lanes(wall);
+        }
+    }
+
+    fn general_tangents_in_lanes(wall: bool) {
+        let mut m = crate::model::Model::from(&preset("fig17a").unwrap().params);
+        if !wall {
+            m.walls.clear();
+        }
+        m.fractional = vec![
+            crate::model::Fractional {
+                coefficient: 0.4,
+                order: 0.5,
+            },
+            crate::model::Fractional {
+                coefficient: 0.1,
+                order: 1.0,
+            },
+        ];
+        m.noise.multiplicative = Some(crate::model::NoiseTerm {
+            intensity: 0.05,
+            correlation_time: 0.0,
+        });
+        let starts = [(1.0, 0.0), (0.5, -1.0), (2.0, 0.5)];
+        let problem = Problem::from_model(&m)
+            .and_then(|q| q.with_starts(&starts))
+            .unwrap();
+        let method = PredictorCorrector::default();
+        let scalar = run_problem(&problem, &method, 6, 1000, 1);
+        for (k, (log, error)) in scalar.iter().enumerate() {
+            assert!(error.is_none() && log.len() == 1000, "path {k}: {error:?}");
+            // the tangent's bits end with δ(−ΣK_j m_j) and one memory's value, not 0
+            let last = log.last().unwrap();
+            assert!(last[last.len() - 2..]
+                .iter()
+                .all(|&b| f64::from_bits(b) != 0.0));
+        }
+        if wall {
+            assert!(scalar.iter().any(|(log, _)| log.last().unwrap()[4] > 0));
+        }
+        for lanes in [4, 8] {
+            let lane = run_problem(&problem, &method, 6, 1000, lanes);
+            assert!(lane == scalar, "lanes {lanes}, wall {wall}");
+        }
+    }
 }

@@ -158,7 +158,7 @@ mod tangent;
 mod walls;
 pub use lanes::{detected_lanes, Lanes, LANE_WIDTHS};
 pub(crate) use lanes::{group_lanes, Group};
-pub(crate) use tangent::{tangent_refusal, Tangent};
+pub(crate) use tangent::Tangent;
 
 /// What a step needs from the state and the noise ([`Stepper::begin`]).
 #[derive(Debug, Clone, Copy, Default)]

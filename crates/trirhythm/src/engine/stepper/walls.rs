@@ -40,7 +40,9 @@
 //! from the root's equation with the memory and forcing at the moving instant (the force at the
 //! wall, −k(δ) + F cos ψ*, enters with δθ: the saltation of a wall where the force is not zero),
 //! δV₊ = −(r(|V₋|) + r′(|V₋|)|V₋|)δV₋, the redone rest with its moving length and weights. A
-//! clamped step's tangent is 0 in U and V.
+//! clamped step's tangent is 0 in U and V. With fractional terms their memories of δV are split
+//! as the reference's, with the instant's θ-derivative (module docs of `super::tangent`,
+//! "Fractional terms and multiplicative noise").
 //!
 //! **Cost.** The paper's model never comes here: its problem has no General kernel
 //! (`super::Stepper::step` takes the paper kernel's branch); General paths without these walls
@@ -251,15 +253,14 @@ impl Stepper {
         let g = self.general.as_deref_mut().expect("a General path");
         (self.drift, self.pw) = g.node(self.h, u1, v1);
         if g.extras() {
-            // U·η_m at the node and the fractional terms' pieces of V (split at an impact); a
-            // step that sticks with the memory restarting pushes nothing: the memories restart
-            // too
-            let extra = match piece {
-                None if g.fractional() => {
-                    g.restart_memories();
-                    0.0
-                }
-                _ => g.end_step(b.v, u1, v1),
+            // the fractional terms' pieces of V (split at an impact) and U·η_m at the end (as
+            // `Stepper::step_general` at the wall at 0); a step that sticks with the memory
+            // restarting pushes nothing: the fractional memories restart too
+            let extra = if piece.is_none() && g.fractional() {
+                g.restart_memories();
+                0.0
+            } else {
+                g.end_step(b.v, u1, v1)
             };
             let right = self.drift + b.fr + extra;
             let piece = piece.map(|mut piece| {
@@ -372,7 +373,7 @@ impl Stepper {
     /// The jump and the redone rest of [`Stepper::impact_wall`] for a path with fractional
     /// terms (module docs of `super::general`, "Fractional terms at a wall"): their memories
     /// split at the instant, g's split piece with −Σ_j K_j m_j(t*), the rest with the split
-    /// memories' known part and weight. (No tangent: refused for fractional terms.)
+    /// memories' known part and weight (its tangent: `Stepper::impact_wall_with_tangent`).
     #[cold]
     fn impact_wall_fractional(
         &mut self,
@@ -443,10 +444,17 @@ impl Stepper {
     pub(super) fn step_walls_with_tangent(&mut self, walls: Walls, t: &mut Tangent) -> Result<()> {
         let (b, free) = self.begin_general();
         let (mut u1, mut v1) = free.end();
-        let dgl = t.drift;
-        let dknown = t.base + t.history.value() + self.wl * dgl;
         let g = self.general.as_deref().expect("a General path");
-        let (mut du1, mut dv1) = g.advance_tangent(&free, (b.u, b.v), (t.u, t.v, dgl), dknown);
+        // the fractional terms and U·η_m (module docs of `super::tangent`)
+        let (dxl, dahead) = if g.extras() {
+            g.begin_tangent(t)
+        } else {
+            (0.0, 0.0)
+        };
+        let dgl = t.drift + dxl;
+        let dknown = t.base + t.history.value() + self.wl * dgl;
+        let (mut du1, mut dv1) =
+            g.advance_tangent(&free, (b.u, b.v), (t.u, t.v, dgl), (dknown, dahead));
         self.events = StepEvents::default();
         let mut piece = Piece {
             left: b.gl,
@@ -467,7 +475,7 @@ impl Stepper {
         } else if let Some(side) = walls.beyond(u1) {
             let law = walls.law(side);
             let (split, dsplit, dth, end) =
-                self.impact_wall_with_tangent(t, law, side, &b, dgl, [u1, v1, du1, dv1]);
+                self.impact_wall_with_tangent(t, law, side, &b, (dgl, dahead), [u1, v1, du1, dv1]);
             [u1, v1, du1, dv1] = end;
             piece.split = Some(split);
             dpiece.split = Some(dsplit);
@@ -482,8 +490,20 @@ impl Stepper {
         let pushed = self.end_wall_step(&b, (u1, v1), push.then_some(piece))?;
         let g = self.general.as_deref().expect("a General path");
         let ddrift = g.drift_derivative(u1, v1, du1, dv1);
+        // the fractional terms' δ(−Σ_j K_j m_j) and δV's piece (split at an impact), δ(U·η_m)
+        // at the end (0 at the wall at 0, where a clamped step ends); a step that sticks with
+        // the memory restarting restarts the tangent's memories of δV with the reference's
+        let dextra = if !g.extras() {
+            0.0
+        } else if pushed.is_none() && g.fractional() {
+            g.restart_tangent(t);
+            0.0
+        } else {
+            let dv = t.v;
+            dahead + g.end_tangent(t, (b.v, v1), (dv, dahead), (du1, dv1))
+        };
         if let Some(piece) = pushed {
-            dpiece.right = ddrift;
+            dpiece.right = ddrift + dextra;
             if dtheta != 0.0 {
                 if let Some(d) = dpiece.split.as_mut() {
                     fold_theta(&piece, d, dtheta);
@@ -498,7 +518,9 @@ impl Stepper {
     }
 
     /// [`Stepper::impact_wall`] with the derivative of the impact step: `free` is the free end
-    /// (U₁, V₁, δU₁, δV₁), `dgl` δg at the step's start. Returns the reference's split, the
+    /// (U₁, V₁, δU₁, δV₁), `dgl` δg at the step's start, `dahead` δ of the known forcing's
+    /// part from the fractional terms (of the unsplit step: the redone rest's is the split
+    /// memories', `General::split_tangent`). Returns the reference's split, the
     /// tangent's (its values' derivatives with θ held; [`fold_theta`] adds the θ-derivative
     /// when the piece is complete), δθ and the end (U, V, δU, δV).
     #[cold]
@@ -508,7 +530,7 @@ impl Stepper {
         law: Law,
         side: Side,
         b: &Begin,
-        dgl: f64,
+        (dgl, dahead): (f64, f64),
         [u1, v1, du1, dv1]: [f64; 4],
     ) -> (Split, Split, f64, [f64; 4]) {
         let h = self.h;
@@ -532,16 +554,37 @@ impl Stepper {
         } else {
             (0.0, 0.0)
         };
+        // the fractional terms at the instant, −Σ_j K_j m_j(t*) = lag* − κ*V(t*) (κ* = weight
+        // + local), and δ of lag* and of the weight, before a restart clears the memories
+        let g: &General = self.general.as_deref().expect("a General path");
+        let fractional = g.fractional();
+        let ((_, weight, local), (dlag, dweight)) = if fractional {
+            let memories = g.memories_at(theta, self.v);
+            (
+                memories,
+                g.memories_at_tangent(t, (theta, dtheta), (self.v, t.v)),
+            )
+        } else {
+            ((0.0, 0.0, 0.0), (0.0, 0.0))
+        };
+        let kappa = weight + local;
         let hit = self.impact_wall(law, side, b, (u1, v1));
         debug_assert_eq!(hit.split.theta, theta);
         let g: &General = self.general.as_deref().expect("a General path");
         // δ of g's forcing at the instant: the noise interpolated over the step and F cos ψ*
         let dforcing = (self.rhs.forcing(b.er - b.el, self.side) + g.force_at_rate(theta)) * dtheta;
-        // V(t*) = N + w_s(h(δ, V)V + at_wall): (1 − w_s ∂_V(hV))δV = δN + δw_s·g(t*) + w_s δF
+        // V(t*) = N + w_s((h(δ, V) − κ*)V + at_wall + lag*):
+        // (1 − w_s(∂_V(hV) − κ*))δV = δN + δw_s·g(t*) + w_s(δF + δlag* − δκ*·V(t*))
         let g_at = hit.split.before;
         let dws = rate_ws * dtheta;
-        let dv_at = (t.base + dhs + rate_hs * dtheta + dws * g_at + hit.ws * dforcing)
-            / (1.0 - hit.ws * g.a(delta, hit.v_at));
+        let dfrac = dlag - dweight * hit.v_at;
+        let slope_at = if fractional {
+            g.a(delta, hit.v_at) - kappa
+        } else {
+            g.a(delta, hit.v_at)
+        };
+        let dv_at = (t.base + dhs + rate_hs * dtheta + dws * g_at + hit.ws * (dforcing + dfrac))
+            / (1.0 - hit.ws * slope_at);
         // V₋ = V(t*) unless the wall clipped it; V₊ = −r(|V₋|)V₋
         let dv_minus = if hit.v_minus == hit.v_at { dv_at } else { 0.0 };
         let speed = hit.v_minus.abs();
@@ -549,12 +592,33 @@ impl Stepper {
             + restitution_slope(law.restitution, speed) * speed)
             * dv_minus;
         let keep = !self.restart;
+        // the fractional terms' part of g after the instant: the terms with a memory keep
+        // their value (0 when they restart there), the α = 1 terms follow V to V₊
+        let dafter = if keep {
+            dlag - dweight * hit.v_at - weight * dv_at
+        } else {
+            0.0
+        } - local * dv_plus;
         let dsplit = Split {
             theta,
-            before: g.a(delta, hit.v_at) * dv_at + dforcing,
-            after: g.a(delta, hit.v_plus) * dv_plus + dforcing,
+            before: slope_at * dv_at + dforcing + dfrac,
+            after: g.a(delta, hit.v_plus) * dv_plus + dforcing + dafter,
             keep_before: keep,
             mass: 0.0,
+        };
+        // the memories of δV split as the reference's (restarted with them), and δ of the
+        // redone rest's known forcing and κ_s
+        let (dfr, dkappa) = if fractional {
+            let d = Split {
+                theta,
+                before: dv_at,
+                after: dv_plus,
+                keep_before: keep,
+                mass: 0.0,
+            };
+            g.split_tangent(t, (self.v, t.v), d, dtheta)
+        } else {
+            (dahead, 0.0)
         };
         // the redone rest from (δ, V₊) over (1 − θ)Δt: its known part, weight, length and
         // predictor weight follow θ and V₊
@@ -568,8 +632,11 @@ impl Stepper {
         let g: &General = self.general.as_deref().expect("a General path");
         let len = (1.0 - theta) * h;
         let dlen = -h * dtheta;
-        let a_plus = g.a(delta, hit.v_plus);
-        let da_plus = g.a_derivative(delta, hit.v_plus, 0.0, dv_plus);
+        // the predictor's weight of the rest has ∂_V g = a(δ, V₊) − κ_s
+        let (a_plus, da_plus) = (
+            g.a(delta, hit.v_plus) - hit.free.kappa(),
+            g.a_derivative(delta, hit.v_plus, 0.0, dv_plus) - dkappa,
+        );
         let dpw = predictor_weight_len_slope(len, a_plus) * dlen
             + predictor_weight_slope(len, a_plus, da_plus);
         let (du_end, dv_end) = g.advance_tangent_moving(
@@ -577,8 +644,8 @@ impl Stepper {
             (delta, hit.v_plus),
             (0.0, dv_plus, dsplit.after),
             dpw,
-            dknown,
-            (dlen, rate_w * dtheta),
+            (dknown, dfr),
+            (dlen, rate_w * dtheta, dkappa),
         );
         let (u_end, v_end) = hit.free.end();
         (hit.split, dsplit, dtheta, [u_end, v_end, du_end, dv_end])
