@@ -1634,12 +1634,13 @@ mod tests {
         let mut report = String::new();
         let mut worst_all: f64 = 0.0;
         for lambda in [1.0, 0.95] {
-            for (noise, tau) in [("white", 0.0), ("OU", 0.5)] {
-                let wall = vec![wall(0.0, crate::model::Keep::Above, 0.5)];
+            for (noise, tau, at) in [("white", 0.0, 0.0), ("OU", 0.5, 0.0), ("OU", 0.5, 0.3)] {
+                // the wall at 0 (U·η_m = 0 there) and at 0.3 (δ·η_m at the instant)
+                let wall = vec![wall(at, crate::model::Keep::Above, 0.5)];
                 let problem = extras_model(lambda, &[], Some((0.05, tau)), wall, 1.5);
                 for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
                     let s = of(problem.clone(), memory, Memory::default());
-                    let label = format!("{noise} η_m at the wall, λ = {lambda}, {memory:?}");
+                    let label = format!("{noise} η_m at the wall at {at}, λ = {lambda}, {memory:?}");
                     let first = before(&s, 100_000, |_, q| q.events().impact.is_some());
                     for steps in [1, 4, 20] {
                         let (worst, r) = assert_derivative(&label, &first, steps);
@@ -1665,7 +1666,7 @@ mod tests {
     }
 
     /// [`walled`] with the fractional terms `terms` (K, α) and, with `multiplicative`, OU
-    /// multiplicative noise D_m = 0.05, τ = 0.5 (the wall at 0 only).
+    /// multiplicative noise D_m = 0.05, τ = 0.5.
     fn fractional_walled(
         lambda: f64,
         (walls, u0): (Vec<crate::model::Wall>, f64),
@@ -1721,7 +1722,12 @@ mod tests {
             let walls = vec![speed_wall(-0.6, Above), wall(0.7, Below, 0.9)];
             cases.push((
                 format!("α = 0.5, 0.8, two walls, λ = {lambda}"),
-                fractional_walled(lambda, (walls, 0.2), two, false),
+                fractional_walled(lambda, (walls.clone(), 0.2), two, false),
+            ));
+            // U·η_m off 0: δ·η_m at the instant
+            cases.push((
+                format!("α = 0.5, two walls with η_m, λ = {lambda}"),
+                fractional_walled(lambda, (walls, 0.2), &two[..1], true),
             ));
         }
         cases
