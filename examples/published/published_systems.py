@@ -147,15 +147,18 @@ def two_barrier(tmp: pathlib.Path):
             line += (f"; exact {ex_u:.5f} ({(vu['value'] - ex_u) / vu['stderr']:+.1f} s.e.), "
                      f"{ex_v:.5f} ({(vv['value'] - ex_v) / vv['stderr']:+.1f} s.e.)")
         print(line + f"; stationary: {doc['stationarity']['stationary']}")
-    # the paper's second excitation: parametric noise U*eta_m beside the additive one (r = 1;
-    # no reference here: the paper's energy-envelope averaging is not in trirhythm)
+    # the paper's second excitation: parametric noise U*eta_m beside the additive one (r = 1):
+    # elastic walls balance the energy exactly, <U'^2> = (D_a + D_m <U^2>)/c
     model = tmp / "vi-parametric.toml"
     model.write_text(VI.read_text() + "\n[noise.multiplicative]\nintensity = 0.005\n")
     doc = json.loads(run("ensemble", "--model", str(model), "--paths", "8", "--t-end", "20000",
                          "--burn-in", "200", "--amplitude-max", "3", "--format", "json"))
     vu, vv = doc["var_u"], doc["var_v"]
+    balance = (D + 0.005 * vu["value"]) / C
+    se = math.hypot(vv["stderr"], 0.005 / C * vu["stderr"])
     print(f"  r = 1.0, parametric D_m = 0.005: Var U = {vu['value']:.5f} ± {vu['stderr']:.5f}, "
-          f"Var U' = {vv['value']:.5f} ± {vv['stderr']:.5f}; "
+          f"Var U' = {vv['value']:.5f} ± {vv['stderr']:.5f}; energy balance (D_a + D_m Var U)/c = "
+          f"{balance:.5f} ({(vv['value'] - balance) / se:+.1f} s.e.); "
           f"stationary: {doc['stationarity']['stationary']}")
     return runs
 

@@ -1640,7 +1640,8 @@ mod tests {
                 let problem = extras_model(lambda, &[], Some((0.05, tau)), wall, 1.5);
                 for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
                     let s = of(problem.clone(), memory, Memory::default());
-                    let label = format!("{noise} η_m at the wall at {at}, λ = {lambda}, {memory:?}");
+                    let label =
+                        format!("{noise} η_m at the wall at {at}, λ = {lambda}, {memory:?}");
                     let first = before(&s, 100_000, |_, q| q.events().impact.is_some());
                     for steps in [1, 4, 20] {
                         let (worst, r) = assert_derivative(&label, &first, steps);
