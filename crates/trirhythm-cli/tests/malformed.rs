@@ -174,6 +174,42 @@ const FIGURES: [u32; 19] = [
     1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19,
 ];
 
+/// Five mutations of figure `n`'s quick data (from `computed`), each read back in a case
+/// directory under `dir`: (refused, total).
+fn mutate_and_read_back(n: u32, computed: &Path, dir: &Path) -> (usize, usize) {
+    let (mut refused, mut total) = (0, 0);
+    let text = std::fs::read_to_string(computed.join(format!("fig{n:02}.json"))).unwrap();
+    let doc: Value = serde_json::from_str(&text).unwrap();
+    let mut ps = Vec::new();
+    places(&doc, &mut Vec::new(), &mut ps);
+    let all: Vec<(String, Value)> = ps.iter().flat_map(|p| mutations(&doc, p)).collect();
+    // grid shapes first: every `counts`, `wells`, `density`, `edges`, `start`/`stop`
+    let named: Vec<_> = all
+        .iter()
+        .filter(|(w, _)| {
+            [
+                "counts", "wells", "density", "edges", "start", "stop", "count",
+            ]
+            .iter()
+            .any(|k| w.contains(&format!("\"{k}\"")))
+        })
+        .cloned()
+        .collect();
+    let mut chosen = sample(&named, 3, n as u64);
+    chosen.extend(sample(&all, 2, 1000 + n as u64));
+    let case = dir.join(format!("case-{n}"));
+    let args = ["figure", &n.to_string()];
+    // the data as written renders
+    assert_eq!(read_back(n, "intact", &doc, &case, &args), 0, "figure {n}");
+    for (what, m) in &chosen {
+        if read_back(n, what, m, &case, &args) == 2 {
+            refused += 1;
+        }
+        total += 1;
+    }
+    (refused, total)
+}
+
 /// Five mutations of every figure's quick data, each rendered or refused, never a panic:
 /// three that change a grid's shape and two of any kind (a fixed sample of the few hundred
 /// that `mutations` finds).
@@ -182,39 +218,29 @@ fn mutated_figure_data_is_rendered_or_refused_never_panics() {
     let dir = scratch_dir("malformed");
     // every figure's `--quick --data`, computed once for the CLI's tests
     let computed = quick_data();
-    let mut refused = 0;
-    let mut total = 0;
-    for n in FIGURES {
-        let text = std::fs::read_to_string(computed.join(format!("fig{n:02}.json"))).unwrap();
-        let doc: Value = serde_json::from_str(&text).unwrap();
-        let mut ps = Vec::new();
-        places(&doc, &mut Vec::new(), &mut ps);
-        let all: Vec<(String, Value)> = ps.iter().flat_map(|p| mutations(&doc, p)).collect();
-        // grid shapes first: every `counts`, `wells`, `density`, `edges`, `start`/`stop`
-        let named: Vec<_> = all
-            .iter()
-            .filter(|(w, _)| {
-                [
-                    "counts", "wells", "density", "edges", "start", "stop", "count",
-                ]
-                .iter()
-                .any(|k| w.contains(&format!("\"{k}\"")))
+    // the figures on every core (each read-back is a process of its own): (refused, total)
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let workers = std::thread::available_parallelism().map_or(2, |n| n.get().min(4));
+    let counts: Vec<(usize, usize)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers)
+            .map(|_| {
+                scope.spawn(|| {
+                    let (mut refused, mut total) = (0, 0);
+                    while let Some(&n) =
+                        FIGURES.get(next.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+                    {
+                        let (r, t) = mutate_and_read_back(n, computed, &dir);
+                        refused += r;
+                        total += t;
+                    }
+                    (refused, total)
+                })
             })
-            .cloned()
             .collect();
-        let mut chosen = sample(&named, 3, n as u64);
-        chosen.extend(sample(&all, 2, 1000 + n as u64));
-        let case = dir.join(format!("case-{n}"));
-        let args = ["figure", &n.to_string()];
-        // the data as written renders
-        assert_eq!(read_back(n, "intact", &doc, &case, &args), 0, "figure {n}");
-        for (what, m) in &chosen {
-            if read_back(n, what, m, &case, &args) == 2 {
-                refused += 1;
-            }
-            total += 1;
-        }
-    }
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    let refused: usize = counts.iter().map(|c| c.0).sum();
+    let total: usize = counts.iter().map(|c| c.1).sum();
     // most of the mutations break the data's shape or range, and are refused
     assert!(
         refused * 2 > total,
