@@ -151,6 +151,26 @@ fn exact_moment(k: i32, c_over_d: f64, k3: f64) -> f64 {
     num / den
 }
 
+/// `ensemble --model FILE` over 8 paths of T = 20000 after a burn-in of 200 (the docs' table),
+/// as JSON.
+fn stationary_ensemble(file: &str) -> serde_json::Value {
+    ok_json(&[
+        "ensemble",
+        "--model",
+        file,
+        "--paths",
+        "8",
+        "--t-end",
+        "20000",
+        "--burn-in",
+        "200",
+        "--amplitude-max",
+        "3",
+        "--format",
+        "json",
+    ])
+}
+
 #[test]
 fn the_two_barrier_vibro_impact_duffing_oscillator_has_the_exact_density_at_r_1() {
     let file = model("bilateral-vibroimpact-duffing.toml");
@@ -163,21 +183,7 @@ fn the_two_barrier_vibro_impact_duffing_oscillator_has_the_exact_density_at_r_1(
     );
     let d = m.noise.additive.as_ref().unwrap().intensity;
     assert_eq!((c, k3, d), (0.05, 0.5, 0.02));
-    let doc = ok_json(&[
-        "ensemble",
-        "--model",
-        &file,
-        "--paths",
-        "8",
-        "--t-end",
-        "20000",
-        "--burn-in",
-        "200",
-        "--amplitude-max",
-        "3",
-        "--format",
-        "json",
-    ]);
+    let doc = stationary_ensemble(&file);
     assert_eq!(doc["stationarity"]["stationary"], true);
     let exact_u = exact_moment(2, c / d, k3);
     assert!((exact_u - 0.222053).abs() < 1e-6, "{exact_u}");
@@ -201,21 +207,7 @@ fn the_two_barrier_vibro_impact_duffing_oscillator_has_the_exact_density_at_r_1(
         format!("{text}\n[noise.multiplicative]\nintensity = {dm}\n"),
     )
     .unwrap();
-    let doc = ok_json(&[
-        "ensemble",
-        "--model",
-        path.to_str().unwrap(),
-        "--paths",
-        "8",
-        "--t-end",
-        "20000",
-        "--burn-in",
-        "200",
-        "--amplitude-max",
-        "3",
-        "--format",
-        "json",
-    ]);
+    let doc = stationary_ensemble(path.to_str().unwrap());
     assert_eq!(doc["stationarity"]["stationary"], true);
     let [(u2, se_u), (v2, se_v)] = ["var_u", "var_v"].map(|key| {
         (

@@ -420,6 +420,28 @@ impl Stepper {
         Ok(())
     }
 
+    /// [`Stepper::begin_general`] with its tangent: the step's start, its free end with its
+    /// tangent [U₁, V₁, δU₁, δV₁], and (δg at the start, δ of the known part of the end's
+    /// extras) — the fractional terms and U·η_m (module docs, "Fractional terms and
+    /// multiplicative noise").
+    pub(super) fn begin_general_with_tangent(
+        &mut self,
+        t: &Tangent,
+    ) -> (Begin, [f64; 4], (f64, f64)) {
+        let (b, free) = self.begin_general();
+        let g = self.general.as_deref().expect("a General path");
+        let (dxl, dahead) = if g.extras() {
+            g.begin_tangent(t)
+        } else {
+            (0.0, 0.0)
+        };
+        let dgl = t.drift + dxl;
+        let dknown = t.base + t.history.value() + self.wl * dgl;
+        let (du1, dv1) = g.advance_tangent(&free, (b.u, b.v), (t.u, t.v, dgl), (dknown, dahead));
+        let (u1, v1) = free.end();
+        (b, [u1, v1, du1, dv1], (dgl, dahead))
+    }
+
     /// [`Stepper::step_with_tangent`] of a General path: with walls (the model's, or the
     /// paper's at 0) `step_walls_with_tangent`; without, a smooth step: the derivative of
     /// [`super::general::General::advance`], the forcing (noise and phase) frozen.
@@ -432,19 +454,7 @@ impl Stepper {
         if let Some(walls) = walls.or(self.wall.then(|| Walls::paper(self.rhs.restitution))) {
             return self.step_walls_with_tangent(walls, t);
         }
-        let (b, free) = self.begin_general();
-        let (u1, v1) = free.end();
-        let g = self.general.as_deref().expect("a General path");
-        // the fractional terms and U·η_m (module docs, "Fractional terms and multiplicative
-        // noise"): δ of g's extras at the start and of the known part of the end's
-        let (dxl, dahead) = if g.extras() {
-            g.begin_tangent(t)
-        } else {
-            (0.0, 0.0)
-        };
-        let dgl = t.drift + dxl;
-        let dknown = t.base + t.history.value() + self.wl * dgl;
-        let (du1, dv1) = g.advance_tangent(&free, (b.u, b.v), (t.u, t.v, dgl), (dknown, dahead));
+        let (b, [u1, v1, du1, dv1], (dgl, dahead)) = self.begin_general_with_tangent(t);
         self.end_general(&b, u1, v1)?;
         let g = self.general.as_deref().expect("a General path");
         let ddrift = g.drift_derivative(u1, v1, du1, dv1);
@@ -1242,15 +1252,19 @@ mod tests {
         eprintln!("{report}");
     }
 
-    /// A General model (fig13a's damping at μ0 = 0.05, Duffing k3 = 0.5, Rayleigh d1 = −0.02,
-    /// a forcing 0.4·cos(1.3t + 0.2), OU noise D = 0.3, τ = 0.5) at `lambda` with `walls`,
-    /// from (u0, 0).
-    fn walled(lambda: f64, walls: Vec<crate::model::Wall>, u0: f64) -> Problem {
-        let mut m = crate::model::Model::from(&params("fig13a", &[]));
+    /// A General model: `preset`'s damping at μ0 with Rayleigh d1 and Duffing k3
+    /// (`(mu0, d1, k3)`), a forcing 0.4·cos(1.3t + 0.2), OU noise D = 0.3, τ = 0.5, at `lambda`,
+    /// no wall.
+    fn general_model(
+        preset: &str,
+        (mu0, d1, k3): (f64, f64, f64),
+        lambda: f64,
+    ) -> crate::model::Model {
+        let mut m = crate::model::Model::from(&params(preset, &[]));
         m.leading.lambda = lambda;
-        m.damping.mu0 = 0.05;
-        m.damping.rayleigh = vec![-0.02];
-        m.restoring.cubic = 0.5;
+        m.damping.mu0 = mu0;
+        m.damping.rayleigh = vec![d1];
+        m.restoring.cubic = k3;
         m.forcing = Some(crate::model::Harmonic {
             amplitude: 0.4,
             frequency: 1.3,
@@ -1260,10 +1274,30 @@ mod tests {
             intensity: 0.3,
             correlation_time: 0.5,
         });
+        m.walls.clear();
+        m
+    }
+
+    /// The fractional terms K·D^αU of the pairs (K, α).
+    fn fractional_terms(terms: &[(f64, f64)]) -> Vec<crate::model::Fractional> {
+        terms
+            .iter()
+            .map(|&(coefficient, order)| crate::model::Fractional { coefficient, order })
+            .collect()
+    }
+
+    /// [`general_model`] of fig13a (μ0 = 0.05, d1 = −0.02, k3 = 0.5) with `walls`, from (u0, 0).
+    fn walled_model(lambda: f64, walls: Vec<crate::model::Wall>, u0: f64) -> crate::model::Model {
+        let mut m = general_model("fig13a", (0.05, -0.02, 0.5), lambda);
         m.walls = walls;
         m.start.u0 = u0;
         m.start.v0 = 0.0;
-        Problem::from_model(&m).unwrap()
+        m
+    }
+
+    /// [`walled_model`]'s problem.
+    fn walled(lambda: f64, walls: Vec<crate::model::Wall>, u0: f64) -> Problem {
+        Problem::from_model(&walled_model(lambda, walls, u0)).unwrap()
     }
 
     fn wall(position: f64, keep: crate::model::Keep, r: f64) -> crate::model::Wall {
@@ -1509,24 +1543,8 @@ mod tests {
         walls: Vec<crate::model::Wall>,
         u0: f64,
     ) -> Problem {
-        let mut m = crate::model::Model::from(&params("fig17a", &[]));
-        m.leading.lambda = lambda;
-        m.damping.mu0 = 0.2;
-        m.damping.rayleigh = vec![-0.05];
-        m.restoring.cubic = 0.3;
-        m.forcing = Some(crate::model::Harmonic {
-            amplitude: 0.4,
-            frequency: 1.3,
-            phase: 0.2,
-        });
-        m.noise.additive = Some(crate::model::NoiseTerm {
-            intensity: 0.3,
-            correlation_time: 0.5,
-        });
-        m.fractional = fractional
-            .iter()
-            .map(|&(coefficient, order)| crate::model::Fractional { coefficient, order })
-            .collect();
+        let mut m = general_model("fig17a", (0.2, -0.05, 0.3), lambda);
+        m.fractional = fractional_terms(fractional);
         if let Some((intensity, correlation_time)) = multiplicative {
             m.noise.multiplicative = Some(crate::model::NoiseTerm {
                 intensity,
@@ -1666,7 +1684,7 @@ mod tests {
         eprintln!("{report}worst relative error {worst_all:.1e}");
     }
 
-    /// [`walled`] with the fractional terms `terms` (K, α) and, with `multiplicative`, OU
+    /// [`walled_model`] with the fractional terms `terms` (K, α) and, with `multiplicative`, OU
     /// multiplicative noise D_m = 0.05, τ = 0.5.
     fn fractional_walled(
         lambda: f64,
@@ -1674,33 +1692,14 @@ mod tests {
         terms: &[(f64, f64)],
         multiplicative: bool,
     ) -> Problem {
-        let mut m = crate::model::Model::from(&params("fig13a", &[]));
-        m.leading.lambda = lambda;
-        m.damping.mu0 = 0.05;
-        m.damping.rayleigh = vec![-0.02];
-        m.restoring.cubic = 0.5;
-        m.forcing = Some(crate::model::Harmonic {
-            amplitude: 0.4,
-            frequency: 1.3,
-            phase: 0.2,
-        });
-        m.noise.additive = Some(crate::model::NoiseTerm {
-            intensity: 0.3,
-            correlation_time: 0.5,
-        });
-        m.fractional = terms
-            .iter()
-            .map(|&(coefficient, order)| crate::model::Fractional { coefficient, order })
-            .collect();
+        let mut m = walled_model(lambda, walls, u0);
+        m.fractional = fractional_terms(terms);
         if multiplicative {
             m.noise.multiplicative = Some(crate::model::NoiseTerm {
                 intensity: 0.05,
                 correlation_time: 0.5,
             });
         }
-        m.walls = walls;
-        m.start.u0 = u0;
-        m.start.v0 = 0.0;
         Problem::from_model(&m).unwrap()
     }
 

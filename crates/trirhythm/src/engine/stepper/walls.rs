@@ -442,19 +442,9 @@ impl Stepper {
     /// the General kernel"): the path advanced bit for bit as by `step_walls`, the tangent the
     /// derivative of the step taken (free, clamped, or an impact with the redone rest).
     pub(super) fn step_walls_with_tangent(&mut self, walls: Walls, t: &mut Tangent) -> Result<()> {
-        let (b, free) = self.begin_general();
-        let (mut u1, mut v1) = free.end();
-        let g = self.general.as_deref().expect("a General path");
-        // the fractional terms and U·η_m (module docs of `super::tangent`)
-        let (dxl, dahead) = if g.extras() {
-            g.begin_tangent(t)
-        } else {
-            (0.0, 0.0)
-        };
-        let dgl = t.drift + dxl;
-        let dknown = t.base + t.history.value() + self.wl * dgl;
-        let (mut du1, mut dv1) =
-            g.advance_tangent(&free, (b.u, b.v), (t.u, t.v, dgl), (dknown, dahead));
+        // with the fractional terms and U·η_m (module docs of `super::tangent`)
+        let (b, [mut u1, mut v1, mut du1, mut dv1], (dgl, dahead)) =
+            self.begin_general_with_tangent(t);
         self.events = StepEvents::default();
         let mut piece = Piece {
             left: b.gl,
