@@ -138,6 +138,11 @@ impl IntervalWeights {
         v
     }
 
+    /// The series and whole powers this evaluates with (for [`super::StepPlan`]).
+    pub(crate) fn tables(&self) -> ([f64; 12], [f64; 12], [f64; WHOLE_POWERS]) {
+        (self.even, self.odd, self.whole)
+    }
+
     /// (w_a, w_b) of the interval [u_a, u_b], as [`interval_weights`].
     pub fn of(&self, ua: f64, ub: f64) -> (f64, f64) {
         self.of_with(ua, ub, &mut Powers::default())
@@ -303,6 +308,11 @@ pub(crate) fn phi_psi_given(z: f64, e: f64) -> (f64, f64) {
     } else {
         ((1.0 - e) / z, (1.0 - e * (1.0 + z)) / (z * z))
     }
+}
+
+/// The series coefficients of φ and ψ that [`phi_psi_given`] sums (for [`super::StepPlan`]).
+pub(crate) fn phi_psi_series() -> ([f64; 17], [f64; 17]) {
+    (PHI_SERIES, PSI_SERIES)
 }
 
 /// 1/(k+1)!, k = 0..=16 (the series of φ; checked against the factorials in a unit test).

@@ -101,7 +101,7 @@ pub use bounds::{
 pub use diagnostics::Stationarity;
 pub use merging::{Density, EnsembleResult, Estimate, JointDensity, Passage};
 pub use piece::{fingerprint, Piece};
-pub use recording::{BatchSums, PassageSums, PathStats};
+pub use recording::{BatchSums, PassageSums, PathStats, RecordPlan, RECORD_PLAN_WELLS};
 pub use spec::{
     EnsembleSpec, Wells, MAX_AMPLITUDE, MAX_BATCHES, MAX_BINS, MAX_JOINT_BINS, MAX_PATHS,
     MAX_STATISTICS_BYTES, MAX_WELLS,

@@ -404,6 +404,114 @@ impl Observer for Recorder<'_> {
     }
 }
 
+/// Most wells a [`RecordPlan`] holds.
+pub const RECORD_PLAN_WELLS: usize = 8;
+
+/// What a path records, as plain data in a `#[repr(C)]` layout: the recorder's layout, the
+/// window's sizes and the wells' antimodes and cores, for a backend that records elsewhere (the
+/// CUDA kernel of `trirhythm-gpu` and its CPU emulation, whose `kernel/record.h` mirrors it).
+/// Built from the same [`Layout`] the CPU recorder uses, so its bins are the recorder's.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct RecordPlan {
+    /// Histogram bins of A, of the energy and of the turning amplitude.
+    pub bins: u32,
+    /// Bins per axis of the joint (U, U̇) histogram.
+    pub joint_bins: u32,
+    /// Batches per path.
+    pub batches: u32,
+    /// Wells (0 without).
+    pub wells: u32,
+    /// The Zhuravlev crossing (turning points of sgn(U)·U̇).
+    pub crossing: u32,
+    /// Alignment.
+    pub pad: u32,
+    /// Burn-in steps.
+    pub burn: u64,
+    /// Steps between samples.
+    pub every: u64,
+    /// Samples per path.
+    pub samples: u64,
+    /// Bins per unit of A.
+    pub a_scale: f64,
+    /// Bins per unit of energy.
+    pub h_scale: f64,
+    /// Lower end of the joint histogram's U axis.
+    pub u_lo: f64,
+    /// Its bins per unit of U.
+    pub u_scale: f64,
+    /// Lower end of its U̇ axis.
+    pub v_lo: f64,
+    /// Its bins per unit of U̇.
+    pub v_scale: f64,
+    /// 1/ω1².
+    pub inv_omega1_sq: f64,
+    /// ω1².
+    pub omega1_sq: f64,
+    /// `bins` as a double.
+    pub bins_f: f64,
+    /// `joint_bins` as a double.
+    pub joint_bins_f: f64,
+    /// The wells' antimodes (`wells − 1` of them).
+    pub antimodes: [f64; RECORD_PLAN_WELLS],
+    /// The lower ends of the wells' cores.
+    pub core_lo: [f64; RECORD_PLAN_WELLS],
+    /// Their upper ends.
+    pub core_hi: [f64; RECORD_PLAN_WELLS],
+}
+
+impl RecordPlan {
+    /// The plan of `spec`'s paths of `problem` with `method`, and the steps of a path (burn-in
+    /// and window). Refuses more than [`RECORD_PLAN_WELLS`] wells by name.
+    pub fn new(
+        problem: &Problem,
+        method: &crate::engine::PredictorCorrector,
+        spec: &EnsembleSpec,
+    ) -> crate::Result<(Self, u64)> {
+        let sizes = spec.sizes(method)?;
+        let l = Layout::new(spec, problem, sizes.samples);
+        let nw = l.wells.as_ref().map_or(0, Wells::len);
+        if nw > RECORD_PLAN_WELLS {
+            return Err(crate::Error::NotApplicable {
+                method: "the GPU kernel".into(),
+                assumption: format!("at most {RECORD_PLAN_WELLS} wells"),
+                reason: format!("the spec has {nw}"),
+            });
+        }
+        let mut plan = RecordPlan {
+            bins: l.bins as u32,
+            joint_bins: l.joint_bins as u32,
+            batches: l.batches as u32,
+            wells: nw as u32,
+            crossing: u32::from(l.crossing),
+            pad: 0,
+            burn: sizes.burn,
+            every: spec.sample_every,
+            samples: l.samples,
+            a_scale: l.a_scale,
+            h_scale: l.h_scale,
+            u_lo: l.u_lo,
+            u_scale: l.u_scale,
+            v_lo: l.v_lo,
+            v_scale: l.v_scale,
+            inv_omega1_sq: l.inv_omega1_sq,
+            omega1_sq: l.omega1_sq,
+            bins_f: l.bins_f,
+            joint_bins_f: l.joint_bins_f,
+            antimodes: [0.0; RECORD_PLAN_WELLS],
+            core_lo: [0.0; RECORD_PLAN_WELLS],
+            core_hi: [0.0; RECORD_PLAN_WELLS],
+        };
+        if let Some(w) = &l.wells {
+            plan.antimodes[..w.antimodes.len()].copy_from_slice(&w.antimodes);
+            for k in 0..nw {
+                (plan.core_lo[k], plan.core_hi[k]) = w.core(k);
+            }
+        }
+        Ok((plan, sizes.burn + sizes.window))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -445,3 +445,52 @@ impl History {
         acc
     }
 }
+
+impl History {
+    /// Copy the empty memory's constants into `plan` (module docs of [`crate::engine::StepPlan`]);
+    /// `Err((what, n, max))` when the window or the kernel exceeds the plan's sizes.
+    pub(crate) fn export(
+        &self,
+        plan: &mut crate::engine::StepPlan,
+    ) -> std::result::Result<(), (&'static str, usize, usize)> {
+        use crate::engine::{PLAN_MAX_CAP, PLAN_MAX_MODES};
+        let cap = self.local.cap;
+        if cap > PLAN_MAX_CAP {
+            return Err(("window − 1", cap, PLAN_MAX_CAP));
+        }
+        let modes = 4 * self.modes.y.len();
+        if modes > PLAN_MAX_MODES {
+            return Err(("the number of exponentials (padded to 4)", modes, PLAN_MAX_MODES));
+        }
+        plan.scale = self.scale;
+        (plan.wl0, plan.wr0) = self.current_weights();
+        plan.cap = cap as u32;
+        plan.wl[..=cap].copy_from_slice(&self.wl[..=cap]);
+        plan.wr[..=cap].copy_from_slice(&self.wr[..=cap]);
+        plan.older_len = self.older.len() as u32;
+        plan.older[..self.older.len()].copy_from_slice(&self.older);
+        plan.newest = [self.newest.0, self.newest.1];
+        plan.modes = modes as u32;
+        let flat = |v: &[[f64; 4]], out: &mut [f64]| {
+            for (o, x) in out.iter_mut().zip(v.iter().flatten()) {
+                *o = *x;
+            }
+        };
+        flat(&self.modes.decay, &mut plan.decay);
+        flat(&self.modes.start, &mut plan.start);
+        flat(&self.modes.end, &mut plan.end);
+        flat(&self.modes.out, &mut plan.out);
+        if let Some(k) = &self.soe {
+            plan.soe = 1;
+            plan.n_exp = k.rates.len() as u32;
+            plan.rates[..k.rates.len()].copy_from_slice(&k.rates);
+            plan.weights[..k.weights.len()].copy_from_slice(&k.weights);
+        }
+        plan.lumped = self.lumped;
+        plan.lumped_out = self.lumped_out;
+        plan.flat = u32::from(self.flat);
+        (plan.shift, plan.piece) = self.moment_step.coefficients();
+        (plan.iw_even, plan.iw_odd, plan.iw_whole) = self.iw.tables();
+        Ok(())
+    }
+}

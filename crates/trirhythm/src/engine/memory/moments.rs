@@ -41,6 +41,11 @@ pub(super) struct MomentStep {
 }
 
 impl MomentStep {
+    /// Its shift and piece coefficients (for [`crate::engine::StepPlan`]).
+    pub(super) fn coefficients(&self) -> ([f64; 7], [f64; 6]) {
+        (self.shift, self.piece)
+    }
+
     pub(super) fn new(h: f64) -> Self {
         let (h2, h3) = (h * h, h * h * h);
         let h4 = h2 * h2;

@@ -16,9 +16,9 @@ pub(crate) struct Affine {
     pub(super) damping: Polynomial,
     /// Its derivative in U², so that d(μP)/dU = 2U·slope(U²) (the tangent method).
     pub(super) slope: Polynomial,
-    pub(super) omega2: f64,
-    pub(super) gain: f64,
-    pub(super) restitution: f64,
+    pub(crate) omega2: f64,
+    pub(crate) gain: f64,
+    pub(crate) restitution: f64,
 }
 
 impl Affine {
@@ -50,6 +50,14 @@ impl Affine {
     }
 
     /// μP(U), the coefficient of V in g.
+    /// μ times the damping polynomial's coefficients in U² (for [`crate::engine::StepPlan`]).
+    pub(crate) fn damping_coefficients(&self) -> Vec<f64> {
+        match &self.damping {
+            Polynomial::Short(c) => c.to_vec(),
+            Polynomial::Long(c) => c.clone(),
+        }
+    }
+
     #[inline]
     pub(super) fn damping(&self, u: f64) -> f64 {
         self.damping.eval(u * u)

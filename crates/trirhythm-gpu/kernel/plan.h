@@ -1,0 +1,49 @@
+/* The step's constants: the C mirror of `trirhythm::engine::StepPlan` (#[repr(C)], field by
+ * field, same order and types; `src/layout.rs` checks the size and offsets at build time).
+ * TR_MAX_CAP and TR_MAX_MODES size the per-path arrays: the emulation takes the plan's maxima,
+ * the GPU build the plan's own values (`src/cuda.rs`), so that a path's state is small. */
+#ifndef TR_PLAN_H
+#define TR_PLAN_H
+#include "common.h"
+
+#define TR_PLAN_MAX_MODES 128
+#define TR_PLAN_MAX_CAP 63
+#define TR_PLAN_MAX_DAMPING 16
+#ifndef TR_MAX_CAP
+#define TR_MAX_CAP TR_PLAN_MAX_CAP
+#endif
+#ifndef TR_MAX_MODES
+#define TR_MAX_MODES TR_PLAN_MAX_MODES
+#endif
+/* splits live in the window at once: at most one per step of it */
+#define TR_MAX_SPLITS (TR_MAX_CAP + 1)
+
+typedef struct {
+    double damping[TR_PLAN_MAX_DAMPING];
+    tr_u32 damping_terms, damping_long;
+    double omega2, gain, restitution, lambda, h, blow_up;
+    tr_u32 wall, crossing, restart, soe;
+    double scale, wl0, wr0;
+    tr_u32 cap, n_exp, modes, flat, older_len;
+    double wl[TR_PLAN_MAX_CAP + 1];
+    double wr[TR_PLAN_MAX_CAP + 1];
+    double older[2 * TR_PLAN_MAX_CAP + 4];
+    double newest[2];
+    double rates[TR_PLAN_MAX_MODES];
+    double weights[TR_PLAN_MAX_MODES];
+    double decay[TR_PLAN_MAX_MODES];
+    double start[TR_PLAN_MAX_MODES];
+    double end[TR_PLAN_MAX_MODES];
+    double out[TR_PLAN_MAX_MODES];
+    double lumped[4];
+    double lumped_out[4];
+    double shift[7];
+    double piece[6];
+    double iw_even[12];
+    double iw_odd[12];
+    double iw_whole[16];
+    double phi_series[17];
+    double psi_series[17];
+} TrPlan;
+
+#endif

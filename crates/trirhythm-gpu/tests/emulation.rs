@@ -1,0 +1,173 @@
+//! The kernel's arithmetic against the engine: the CPU emulation (the kernel's source compiled
+//! as C) gives every path's statistics bit for bit as `run_paths`, and the merged result as
+//! `run_ensemble`, across what the kernel holds — the wall with impacts and sticking, no wall,
+//! λ < 1 and λ = 1, white and OU noise, both impact memories, Eq. 5 and Eq. 9, wells with
+//! first passages — and refuses what it does not hold by name. The layouts shared with C are
+//! checked field by field.
+
+use std::mem::{offset_of, size_of};
+use trirhythm::analysis::ensemble::{run_ensemble, run_paths, EnsembleSpec, RecordPlan, Wells};
+use trirhythm::engine::{
+    Barrier, ImpactMemory, Memory, PredictorCorrector, Problem, StepPlan, System,
+};
+use trirhythm::model::{preset, Model};
+use trirhythm::monitor::Silent;
+use trirhythm::Error;
+use trirhythm_gpu::{emulate_ensemble, emulate_paths, layout_of_c};
+
+fn spec(paths: usize, seed: u64) -> EnsembleSpec {
+    EnsembleSpec {
+        paths,
+        seed,
+        burn_in: 20.0,
+        length: 60.0,
+        batches: 4,
+        bins: 40,
+        joint_bins: 8,
+        sample_every: 3,
+        amplitude_max: 12.0,
+        ..Default::default()
+    }
+}
+
+fn method(dt: f64) -> PredictorCorrector {
+    PredictorCorrector {
+        dt,
+        ..Default::default()
+    }
+}
+
+/// Every path's statistics and the merged result, emulation against engine, bit for bit;
+/// returns the impacts and sticking steps of all paths.
+fn same(problem: &Problem, method: &PredictorCorrector, spec: &EnsembleSpec) -> (u64, u64) {
+    let all: Vec<u64> = (0..spec.paths as u64).collect();
+    let engine = run_paths(problem, method, spec, &all, &Silent).unwrap();
+    let emulated = emulate_paths(problem, method, spec, &all).unwrap();
+    for (a, b) in engine.iter().zip(&emulated) {
+        assert_eq!(a, b, "path {}", a.path);
+    }
+    assert_eq!(
+        run_ensemble(problem, method, spec, &Silent).unwrap(),
+        emulate_ensemble(problem, method, spec).unwrap()
+    );
+    let impacts = engine.iter().map(|p| p.impacts).sum();
+    let sticking = engine.iter().map(|p| p.sticking_steps).sum();
+    (impacts, sticking)
+}
+
+fn fig13a(d: f64) -> Problem {
+    let p = preset("fig13a").unwrap().params.with("D", d).unwrap();
+    Problem::from_params(&p)
+        .unwrap()
+        .with_starts(&[(1.0, 0.0), (6.5, 0.0), (0.3, -0.2)])
+        .unwrap()
+}
+
+#[test]
+fn the_structures_shared_with_c_have_the_same_layout() {
+    let plan = size_of::<StepPlan>() as u64;
+    assert_eq!(layout_of_c(0), plan);
+    assert_eq!(layout_of_c(1), offset_of!(StepPlan, older_len) as u64);
+    assert_eq!(layout_of_c(2), offset_of!(StepPlan, psi_series) as u64);
+    assert_eq!(layout_of_c(9), offset_of!(StepPlan, omega2) as u64);
+    assert_eq!(layout_of_c(3), size_of::<RecordPlan>() as u64);
+    assert_eq!(layout_of_c(4), offset_of!(RecordPlan, core_hi) as u64);
+    assert_eq!(layout_of_c(10), offset_of!(RecordPlan, burn) as u64);
+    assert_eq!(layout_of_c(5), trirhythm_gpu::noise_layout() as u64);
+}
+
+#[test]
+fn paths_with_the_wall_impacts_and_sticking_are_the_engines() {
+    // λ = 0.998, OU noise, the wall with r = 0.99: impacts on every cycle
+    let (impacts, _) = same(&fig13a(0.1), &method(0.01), &spec(6, 11));
+    assert!(impacts > 50, "impacts {impacts}");
+    // strong noise at a small r: the oscillator sticks at the wall
+    let p = preset("fig13a").unwrap().params.with("D", 2.0).unwrap().with("r", 0.3).unwrap();
+    let problem = Problem::from_params(&p).unwrap();
+    let (impacts, sticking) = same(&problem, &method(0.02), &spec(4, 5));
+    assert!(impacts > 10 && sticking > 0, "impacts {impacts}, sticking {sticking}");
+    // the memory restarting at impacts
+    let m = PredictorCorrector {
+        impact_memory: ImpactMemory::Restart,
+        ..method(0.01)
+    };
+    let (impacts, _) = same(&problem, &m, &spec(3, 8));
+    assert!(impacts > 10);
+}
+
+#[test]
+fn paths_without_the_wall_at_lambda_below_and_at_one_are_the_engines() {
+    let off = fig13a(0.1).with_barrier(Barrier::Off).unwrap();
+    let (impacts, _) = same(&off, &method(0.01), &spec(4, 3));
+    assert_eq!(impacts, 0);
+    // λ = 1: the flat lumped memory; white noise
+    let p = preset("fig13a").unwrap().params.with("lambda", 1.0).unwrap();
+    let white = p.with("tau", 0.0).unwrap();
+    same(&Problem::from_params(&p).unwrap(), &method(0.01), &spec(3, 4));
+    same(&Problem::from_params(&white).unwrap(), &method(0.01), &spec(3, 4));
+    // λ = 0.7 with a longer window and a finer SOE tolerance
+    let frac = preset("fig13a").unwrap().params.with("lambda", 0.7).unwrap();
+    let m = PredictorCorrector {
+        memory: Memory::SumOfExponentials { tolerance: 1e-9 },
+        window: 24,
+        ..method(0.02)
+    };
+    same(&Problem::from_params(&frac).unwrap(), &m, &spec(3, 9));
+}
+
+#[test]
+fn the_equivalent_and_zhuravlev_systems_are_the_engines() {
+    let p = preset("fig13a").unwrap().params.with("D", 0.2).unwrap();
+    for system in [System::Equivalent, System::Zhuravlev] {
+        let problem = Problem::from_params(&p).unwrap().with_system(system).unwrap();
+        let (impacts, _) = same(&problem, &method(0.01), &spec(3, 21));
+        assert!(impacts > 10, "{system:?}: impacts {impacts}");
+    }
+}
+
+#[test]
+fn wells_and_first_passages_are_the_engines() {
+    // Fig. 13(a)'s two cycles, strong noise so that paths pass between them
+    let problem = fig13a(0.6);
+    let s = EnsembleSpec {
+        wells: Some(Wells::new(vec![2.0, 6.5], vec![4.5]).unwrap()),
+        length: 300.0,
+        ..spec(4, 2)
+    };
+    same(&problem, &method(0.02), &s);
+    let stats = emulate_paths(&problem, &method(0.02), &s, &[0, 1, 2, 3]).unwrap();
+    let passages: u64 = stats.iter().flat_map(|p| &p.passages).map(|c| c.count).sum();
+    assert!(passages > 0, "no passage between the wells");
+}
+
+#[test]
+fn a_blow_up_is_reported_as_the_engine_reports_it() {
+    let p = preset("fig13b").unwrap().params.with("mu0", 5.0).unwrap();
+    let problem = Problem::from_params(&p).unwrap().with_starts(&[(13.0, 0.0)]).unwrap();
+    let m = method(0.05);
+    let s = spec(2, 1);
+    let engine = run_ensemble(&problem, &m, &s, &Silent).unwrap_err();
+    let emulated = emulate_ensemble(&problem, &m, &s).unwrap_err();
+    assert!(matches!(engine, Error::InPath { .. }), "{engine}");
+    assert_eq!(engine.to_string(), emulated.to_string());
+}
+
+#[test]
+fn what_the_kernel_does_not_hold_is_refused_by_name() {
+    let s = spec(2, 1);
+    let direct = PredictorCorrector {
+        memory: Memory::Direct,
+        ..method(0.01)
+    };
+    let e = emulate_ensemble(&fig13a(0.1), &direct, &s).unwrap_err();
+    assert!(e.to_string().contains("memory"), "{e}");
+    let mut model = Model::from(&preset("fig13a").unwrap().params);
+    model.restoring.cubic = 0.5;
+    let duffing = Problem::from_model(&model).unwrap();
+    let e = emulate_ensemble(&duffing, &method(0.01), &s).unwrap_err();
+    assert!(e.to_string().contains("cubic"), "{e}");
+    // bad input is the engine's error, before any work
+    let bad = EnsembleSpec { bins: 0, ..s };
+    let e = emulate_ensemble(&fig13a(0.1), &method(0.01), &bad).unwrap_err();
+    assert!(e.to_string().contains("bins"), "{e}");
+}
