@@ -1,6 +1,8 @@
 //! Ensembles on a GPU: the engine's step as a CUDA kernel, one thread per path (work in
 //! progress; see `docs/gpu.md`).
 
+pub mod emulate;
+
 use trirhythm::analysis::ensemble::{
     run_ensemble as run_cpu, EnsembleResult, EnsembleSpec, PathStats,
 };

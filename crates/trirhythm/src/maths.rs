@@ -64,7 +64,7 @@
 
 mod ziggurat;
 
-pub use ziggurat::standard_normal;
+pub use ziggurat::{standard_normal, ziggurat_tables};
 
 #[cfg(not(feature = "std-maths"))]
 mod imp {

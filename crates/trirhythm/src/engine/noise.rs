@@ -84,6 +84,48 @@ pub fn path_rng(seed: u64, path: u64) -> ChaCha8Rng {
     rng
 }
 
+/// The numbers that define [`NoiseStream::next_step`] for one (kind, D, τ, Δt), all computed on
+/// the host by [`NoiseStream::new`]; with ξ, ξ₁, ξ₂ the stream's next standard normal deviates
+/// ([`crate::maths::standard_normal`]) the step is
+/// - kind [`StepConstants::NONE`]: (0, 0), no deviate drawn;
+/// - kind [`StepConstants::WHITE`]: w = σ·ξ, the pair (w, w), and the state becomes w;
+/// - kind [`StepConstants::COLORED`]: with η_n the state, m = (mean_coef·η_n + cross·ξ₁ +
+///   rest·ξ₂)/Δt, the pair (m, m), and the state becomes ρ·η_n + σ·ξ₁; the state starts at
+///   sd·ξ (the stream's first deviate), before any step.
+///
+/// Every operation in that order, as IEEE double operations without fused multiply–add.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
+pub struct StepConstants {
+    /// The kind: [`StepConstants::NONE`] (0), [`StepConstants::WHITE`] (1) or
+    /// [`StepConstants::COLORED`] (2, Ornstein–Uhlenbeck).
+    pub kind: u32,
+    /// ρ = e^{−Δt/τ}, the OU node value's decay over a step (0 unless coloured).
+    pub rho: f64,
+    /// σ: the white level's standard deviation √(2D/Δt), or the OU innovation's
+    /// √(D/τ)·√(1 − ρ²) (0 with no noise).
+    pub sigma: f64,
+    /// τ(1 − ρ): the OU step integral's mean per unit of η_n (0 unless coloured).
+    pub mean_coef: f64,
+    /// Cov(I_n, η_{n+1} | η_n)/σ: the step integral's part along the innovation ξ₁.
+    pub cross: f64,
+    /// The step integral's remaining standard deviation, along ξ₂.
+    pub rest: f64,
+    /// The step Δt.
+    pub dt: f64,
+    /// √(D/τ), the OU stationary standard deviation of the start η_0 = sd·ξ (0 unless coloured).
+    pub sd: f64,
+}
+
+impl StepConstants {
+    /// [`StepConstants::kind`] of [`Noise::None`].
+    pub const NONE: u32 = 0;
+    /// [`StepConstants::kind`] of [`Noise::White`].
+    pub const WHITE: u32 = 1;
+    /// [`StepConstants::kind`] of [`Noise::Colored`] (Ornstein–Uhlenbeck).
+    pub const COLORED: u32 = 2;
+}
+
 /// Successive steps of η on a grid of step Δt: each call of [`NoiseStream::next_step`] gives
 /// the forcing on the next step as the values at its start and end of the function used inside
 /// it (both equal to the step mean: η is piecewise constant with exact step integrals).
@@ -99,6 +141,8 @@ pub struct NoiseStream {
     cross: f64,
     rest: f64,
     dt: f64,
+    /// √(D/τ), the stationary standard deviation of the OU node value (0 otherwise).
+    sd: f64,
     /// Standard normal deviates drawn ahead in blocks (the same sequence as drawing them one
     /// by one, several times faster: the generator and the ziggurat pipeline over a block).
     normals: Box<[f64; BLOCK]>,
@@ -115,7 +159,7 @@ impl NoiseStream {
             return Err(Error::invalid("dt", dt, "(0, ∞), finite"));
         }
         let mut rng = path_rng(seed, path);
-        let (mut mean_coef, mut cross, mut rest) = (0.0, 0.0, 0.0);
+        let (mut mean_coef, mut cross, mut rest, mut stationary_sd) = (0.0, 0.0, 0.0, 0.0);
         let (rho, sigma, state) = match kind {
             Noise::None => (0.0, 0.0, 0.0),
             Noise::White { intensity } => {
@@ -147,6 +191,7 @@ impl NoiseStream {
                 mean_coef = tau * one_minus_rho;
                 cross = if sigma > 0.0 { cov / sigma } else { 0.0 };
                 rest = (var_i - cross * cross).max(0.0).sqrt();
+                stationary_sd = sd;
                 let xi = standard_normal(&mut rng);
                 (rho, sigma, sd * xi)
             }
@@ -161,6 +206,7 @@ impl NoiseStream {
             cross,
             rest,
             dt,
+            sd: stationary_sd,
             normals: Box::new([0.0; BLOCK]),
             next: BLOCK,
         })
@@ -171,6 +217,27 @@ impl NoiseStream {
     pub fn renoise(&mut self, seed: u64, path: u64) {
         self.rng = path_rng(seed, path);
         self.next = BLOCK;
+    }
+
+    /// The constants of [`NoiseStream::next_step`] (computed by [`NoiseStream::new`]), for a
+    /// re-implementation of the step elsewhere that must give the same bits (the GPU kernel of
+    /// `trirhythm-gpu`, whose C copy of the step takes them from the host).
+    pub fn step_constants(&self) -> StepConstants {
+        let kind = match self.kind {
+            Noise::None => StepConstants::NONE,
+            Noise::White { .. } => StepConstants::WHITE,
+            Noise::Colored { .. } => StepConstants::COLORED,
+        };
+        StepConstants {
+            kind,
+            rho: self.rho,
+            sigma: self.sigma,
+            mean_coef: self.mean_coef,
+            cross: self.cross,
+            rest: self.rest,
+            dt: self.dt,
+            sd: self.sd,
+        }
     }
 
     /// The current node value η_n (coloured), the last step's level (white), or 0.
@@ -315,6 +382,39 @@ mod tests {
         let expect = 2.0 * d * dt;
         let sd = expect * (2.0 / n as f64).sqrt();
         assert!((var - expect).abs() < 4.0 * sd, "{var} vs {expect}");
+    }
+
+    #[test]
+    fn step_constants_are_the_stream_s() {
+        let none = NoiseStream::new(Noise::None, 0.01, RNG_SEED, 0).unwrap();
+        assert_eq!(none.step_constants().kind, StepConstants::NONE);
+        // white: σ = √(2D/Δt) = √50
+        let white = NoiseStream::new(Noise::White { intensity: 0.5 }, 0.02, RNG_SEED, 0).unwrap();
+        let c = white.step_constants();
+        assert_eq!(
+            (c.kind, c.dt, c.rho, c.sd),
+            (StepConstants::WHITE, 0.02, 0.0, 0.0)
+        );
+        assert_eq!(c.sigma, 50f64.sqrt());
+        // coloured: the start is sd·ξ with ξ the stream's first deviate, sd = √(D/τ) = √0.6
+        let kind = Noise::Colored {
+            intensity: 0.3,
+            correlation_time: 0.5,
+        };
+        let mut ou = NoiseStream::new(kind, 0.01, RNG_SEED, 2).unwrap();
+        let c = ou.step_constants();
+        assert_eq!(c.kind, StepConstants::COLORED);
+        assert_eq!(c.sd, 0.6f64.sqrt());
+        assert_eq!(c.rho, exp(-0.01 / 0.5));
+        let mut rng = path_rng(RNG_SEED, 2);
+        let xi = standard_normal(&mut rng);
+        assert_eq!(ou.current().to_bits(), (c.sd * xi).to_bits());
+        // one step from the constants, the next two deviates
+        let (x1, x2) = (standard_normal(&mut rng), standard_normal(&mut rng));
+        let mean = (c.mean_coef * ou.current() + c.cross * x1 + c.rest * x2) / c.dt;
+        let state = c.rho * ou.current() + c.sigma * x1;
+        assert_eq!(ou.next_step(), (mean, mean));
+        assert_eq!(ou.current().to_bits(), state.to_bits());
     }
 
     #[test]

@@ -98,6 +98,14 @@ fn tail<G: Rng + ?Sized>(rng: &mut G, u: f64) -> f64 {
     }
 }
 
+/// The ziggurat's tables: the strips' right ends x_0 … x_256 (x_1 = R = 3.654…, the start of
+/// the tail; x_256 = 0) and the density at them, f_i = e^{−x_i²/2} (f_256 = 1), as
+/// [`standard_normal`] uses them. For a re-implementation of the deviate elsewhere (the GPU
+/// kernel's C copy in `trirhythm-gpu`) that must read the very same numbers, not a transcription.
+pub fn ziggurat_tables() -> (&'static [f64; 257], &'static [f64; 257]) {
+    (&X, &F)
+}
+
 /// The strips' right ends x_i (x_0 = v/f(R), x_1 = R, …, x_256 = 0).
 #[rustfmt::skip]
 #[allow(clippy::excessive_precision)]
