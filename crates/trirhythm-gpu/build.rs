@@ -10,6 +10,7 @@ fn main() {
     }
     cc::Build::new()
         .file("kernel/emulate.c")
+        .file("kernel/emulate_paths.c")
         .include("kernel")
         .flag("-std=c99")
         .flag("-ffp-contract=off")

@@ -2,6 +2,9 @@
 //! progress; see `docs/gpu.md`).
 
 pub mod emulate;
+mod paths;
+
+pub use paths::{emulate_ensemble, emulate_paths};
 
 use trirhythm::analysis::ensemble::{
     run_ensemble as run_cpu, EnsembleResult, EnsembleSpec, PathStats,
@@ -52,4 +55,17 @@ pub fn run_ensemble(
             reason: "not built yet".into(),
         }),
     }
+}
+
+/// The C build's size or offset number `which` of the structures shared with the kernel
+/// (`kernel/emulate_paths.c`: 0 the plan's size, …), for the layout tests.
+#[doc(hidden)]
+pub fn layout_of_c(which: i32) -> u64 {
+    paths::c_layout(which)
+}
+
+/// The size of the kernel's noise structure on the Rust side, for the layout tests.
+#[doc(hidden)]
+pub fn noise_layout() -> usize {
+    std::mem::size_of::<paths::NoiseIn>()
 }

@@ -156,7 +156,12 @@ impl Raw {
 
     /// The engine's statistics of path `path`, or the error that stopped it (as the engine
     /// reports it: [`Error::InPath`] around [`Error::BlowUp`]).
-    pub(crate) fn into_stats(self, prep: &Prepared, problem: &Problem, path: u64) -> Result<PathStats> {
+    pub(crate) fn into_stats(
+        self,
+        prep: &Prepared,
+        problem: &Problem,
+        path: u64,
+    ) -> Result<PathStats> {
         let u0 = problem.start(path).0;
         let h = prep.plan.h;
         let e = self.end;

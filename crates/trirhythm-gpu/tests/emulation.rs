@@ -82,10 +82,19 @@ fn paths_with_the_wall_impacts_and_sticking_are_the_engines() {
     let (impacts, _) = same(&fig13a(0.1), &method(0.01), &spec(6, 11));
     assert!(impacts > 50, "impacts {impacts}");
     // strong noise at a small r: the oscillator sticks at the wall
-    let p = preset("fig13a").unwrap().params.with("D", 2.0).unwrap().with("r", 0.3).unwrap();
+    let p = preset("fig13a")
+        .unwrap()
+        .params
+        .with("D", 2.0)
+        .unwrap()
+        .with("r", 0.3)
+        .unwrap();
     let problem = Problem::from_params(&p).unwrap();
     let (impacts, sticking) = same(&problem, &method(0.02), &spec(4, 5));
-    assert!(impacts > 10 && sticking > 0, "impacts {impacts}, sticking {sticking}");
+    assert!(
+        impacts > 10 && sticking > 0,
+        "impacts {impacts}, sticking {sticking}"
+    );
     // the memory restarting at impacts
     let m = PredictorCorrector {
         impact_memory: ImpactMemory::Restart,
@@ -101,12 +110,28 @@ fn paths_without_the_wall_at_lambda_below_and_at_one_are_the_engines() {
     let (impacts, _) = same(&off, &method(0.01), &spec(4, 3));
     assert_eq!(impacts, 0);
     // λ = 1: the flat lumped memory; white noise
-    let p = preset("fig13a").unwrap().params.with("lambda", 1.0).unwrap();
+    let p = preset("fig13a")
+        .unwrap()
+        .params
+        .with("lambda", 1.0)
+        .unwrap();
     let white = p.with("tau", 0.0).unwrap();
-    same(&Problem::from_params(&p).unwrap(), &method(0.01), &spec(3, 4));
-    same(&Problem::from_params(&white).unwrap(), &method(0.01), &spec(3, 4));
+    same(
+        &Problem::from_params(&p).unwrap(),
+        &method(0.01),
+        &spec(3, 4),
+    );
+    same(
+        &Problem::from_params(&white).unwrap(),
+        &method(0.01),
+        &spec(3, 4),
+    );
     // λ = 0.7 with a longer window and a finer SOE tolerance
-    let frac = preset("fig13a").unwrap().params.with("lambda", 0.7).unwrap();
+    let frac = preset("fig13a")
+        .unwrap()
+        .params
+        .with("lambda", 0.7)
+        .unwrap();
     let m = PredictorCorrector {
         memory: Memory::SumOfExponentials { tolerance: 1e-9 },
         window: 24,
@@ -119,7 +144,10 @@ fn paths_without_the_wall_at_lambda_below_and_at_one_are_the_engines() {
 fn the_equivalent_and_zhuravlev_systems_are_the_engines() {
     let p = preset("fig13a").unwrap().params.with("D", 0.2).unwrap();
     for system in [System::Equivalent, System::Zhuravlev] {
-        let problem = Problem::from_params(&p).unwrap().with_system(system).unwrap();
+        let problem = Problem::from_params(&p)
+            .unwrap()
+            .with_system(system)
+            .unwrap();
         let (impacts, _) = same(&problem, &method(0.01), &spec(3, 21));
         assert!(impacts > 10, "{system:?}: impacts {impacts}");
     }
@@ -136,16 +164,24 @@ fn wells_and_first_passages_are_the_engines() {
     };
     same(&problem, &method(0.02), &s);
     let stats = emulate_paths(&problem, &method(0.02), &s, &[0, 1, 2, 3]).unwrap();
-    let passages: u64 = stats.iter().flat_map(|p| &p.passages).map(|c| c.count).sum();
+    let passages: u64 = stats
+        .iter()
+        .flat_map(|p| &p.passages)
+        .map(|c| c.count)
+        .sum();
     assert!(passages > 0, "no passage between the wells");
 }
 
 #[test]
 fn a_blow_up_is_reported_as_the_engine_reports_it() {
-    let p = preset("fig13b").unwrap().params.with("mu0", 5.0).unwrap();
-    let problem = Problem::from_params(&p).unwrap().with_starts(&[(13.0, 0.0)]).unwrap();
-    let m = method(0.05);
-    let s = spec(2, 1);
+    // strong noise and the bound at 4: the paths cross it
+    let problem = fig13a(3.0)
+        .with_starts(&[(1.0, 0.0)])
+        .unwrap()
+        .with_blow_up(4.0)
+        .unwrap();
+    let m = method(0.01);
+    let s = spec(3, 1);
     let engine = run_ensemble(&problem, &m, &s, &Silent).unwrap_err();
     let emulated = emulate_ensemble(&problem, &m, &s).unwrap_err();
     assert!(matches!(engine, Error::InPath { .. }), "{engine}");

@@ -126,7 +126,10 @@ impl StepPlan {
         if let Some(t) = problem.oscillator().terms() {
             return Err(refuse(
                 "the paper's family (no General kernel terms)",
-                format!("the model has terms the General kernel steps: {}", t.describe()),
+                format!(
+                    "the model has terms the General kernel steps: {}",
+                    t.describe()
+                ),
             ));
         }
         if method.memory == Memory::Direct {

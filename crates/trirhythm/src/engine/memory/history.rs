@@ -460,7 +460,11 @@ impl History {
         }
         let modes = 4 * self.modes.y.len();
         if modes > PLAN_MAX_MODES {
-            return Err(("the number of exponentials (padded to 4)", modes, PLAN_MAX_MODES));
+            return Err((
+                "the number of exponentials (padded to 4)",
+                modes,
+                PLAN_MAX_MODES,
+            ));
         }
         plan.scale = self.scale;
         (plan.wl0, plan.wr0) = self.current_weights();
