@@ -18,6 +18,7 @@ use cudarc::driver::{DeviceRepr, ValidAsZeroBits};
 use trirhythm::analysis::ensemble::{EnsembleSpec, PathStats};
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::monitor::Monitor;
+use std::time::Instant;
 use trirhythm::Result;
 
 // SAFETY: plain `#[repr(C)]` structures of integers and doubles (the kernel's layouts), for
@@ -45,16 +46,34 @@ fn bytes_of<T: Copy>(value: &T) -> Vec<u8> {
         .to_vec()
 }
 
-/// The paths 0..`spec.paths` of the ensemble on the GPU, in path order.
-pub(crate) fn run_paths(
+/// The statistics of every path of an ensemble stepped on the GPU, and where the time went.
+#[derive(Debug, Clone)]
+pub struct GpuPaths {
+    /// Every path's statistics, in path order (the engine's `merge` takes them).
+    pub stats: Vec<PathStats>,
+    /// The device's name.
+    pub device: String,
+    /// Seconds of NVRTC's compilation and the module's loading.
+    pub compile_seconds: f64,
+    /// Seconds in the kernel's launches (to their end).
+    pub kernel_seconds: f64,
+    /// Seconds from the call to its return.
+    pub total_seconds: f64,
+}
+
+/// The paths 0..`spec.paths` of the ensemble on the GPU (the run's checks first, then the
+/// device), with the time spent compiling, in the kernel and in all.
+pub fn gpu_paths(
     problem: &Problem,
     method: &PredictorCorrector,
     spec: &EnsembleSpec,
     monitor: &dyn Monitor<PathStats>,
-) -> Result<Vec<PathStats>> {
+) -> Result<GpuPaths> {
+    let start = Instant::now();
     let prep = Prepared::new(problem, method, spec)?;
     monitor.check()?;
     let gpu = Gpu::open()?;
+    let compiling = Instant::now();
     let defines = [
         ("TR_MAX_CAP", prep.plan.cap.max(1).to_string()),
         ("TR_MAX_MODES", prep.plan.modes.max(4).to_string()),
@@ -66,6 +85,8 @@ pub(crate) fn run_paths(
     )?;
     let module = gpu.load(&ptx)?;
     let kernel = module.kernel("tr_ensemble")?;
+    let compile_seconds = compiling.elapsed().as_secs_f64();
+    let mut kernel_seconds = 0.0;
     let (zx, zf) = trirhythm::maths::ziggurat_tables();
     let plan = gpu.upload(&bytes_of(&prep.plan))?;
     let noise = gpu.upload(&bytes_of(&prep.noise))?;
@@ -94,6 +115,7 @@ pub(crate) fn run_paths(
         let counts: CudaSlice<u64> = gpu.zeros(count * prep.counts)?;
         let ends: CudaSlice<PathEnd> = gpu.zeros(count)?;
         let (first64, count64) = (first as u64, count as u64);
+        let launched = Instant::now();
         gpu.launch(&kernel, Grid::cover(count, THREADS)?, |a| {
             a.arg(&plan)
                 .arg(&noise)
@@ -112,6 +134,7 @@ pub(crate) fn run_paths(
                 .arg(&counts)
                 .arg(&ends);
         })?;
+        kernel_seconds += launched.elapsed().as_secs_f64();
         let batches = gpu.download(&batches)?;
         let wells = gpu.download(&wells)?;
         let passages = gpu.download(&passages)?;
@@ -134,5 +157,11 @@ pub(crate) fn run_paths(
         first += count;
         monitor.progress(first as u64 * prep.steps, total);
     }
-    first_error(results)
+    Ok(GpuPaths {
+        stats: first_error(results)?,
+        device: gpu.info().name.clone(),
+        compile_seconds,
+        kernel_seconds,
+        total_seconds: start.elapsed().as_secs_f64(),
+    })
 }
