@@ -8,6 +8,9 @@ use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::monitor::Monitor;
 use trirhythm::{Error, Result};
 
+#[cfg(feature = "cuda")]
+pub mod cuda;
+
 /// Where an ensemble's paths are stepped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Backend {
@@ -44,10 +47,39 @@ pub fn run_ensemble(
 ) -> Result<EnsembleResult> {
     match backend {
         Backend::Cpu => run_cpu(problem, method, spec, monitor),
-        Backend::Gpu => Err(Error::NotApplicable {
-            method: "the GPU backend".into(),
-            assumption: "a CUDA device".into(),
-            reason: "not built yet".into(),
-        }),
+        Backend::Gpu => run_gpu(problem, method, spec, monitor),
     }
+}
+
+/// The ensemble on the GPU: the device first, so that a machine without one gets
+/// [`cuda::device`]'s refusal before any work.
+#[cfg(feature = "cuda")]
+fn run_gpu(
+    _problem: &Problem,
+    _method: &PredictorCorrector,
+    _spec: &EnsembleSpec,
+    _monitor: &dyn Monitor<PathStats>,
+) -> Result<EnsembleResult> {
+    cuda::device()?;
+    Err(Error::NotApplicable {
+        method: "the GPU backend".into(),
+        assumption: "the ensemble kernel".into(),
+        reason: "this build has the host side only; the kernel is not written yet".into(),
+    })
+}
+
+/// Without the `cuda` feature: the refusal.
+#[cfg(not(feature = "cuda"))]
+fn run_gpu(
+    _problem: &Problem,
+    _method: &PredictorCorrector,
+    _spec: &EnsembleSpec,
+    _monitor: &dyn Monitor<PathStats>,
+) -> Result<EnsembleResult> {
+    Err(Error::NotApplicable {
+        method: "the GPU backend".into(),
+        assumption: "a build with CUDA support".into(),
+        reason: "this build of trirhythm has none (the cargo feature `cuda` of trirhythm-gpu is off)"
+            .into(),
+    })
 }
