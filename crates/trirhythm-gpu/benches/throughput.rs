@@ -18,7 +18,11 @@ use trirhythm::model::preset;
 use trirhythm::monitor::Silent;
 
 fn case(lambda: f64, paths: usize, steps: u64) -> (Problem, PredictorCorrector, EnsembleSpec) {
-    let p = preset("fig13a").unwrap().params.with("lambda", lambda).unwrap();
+    let p = preset("fig13a")
+        .unwrap()
+        .params
+        .with("lambda", lambda)
+        .unwrap();
     let problem = Problem::from_params(&p)
         .and_then(|q| q.with_starts(&[(2.0, 0.0), (6.5, 0.0)]))
         .unwrap();
@@ -51,8 +55,16 @@ fn rate(paths: usize, steps: u64, seconds: f64) -> f64 {
 
 fn main() {
     let smoke = std::env::args().any(|a| a == "--test");
-    let steps: u64 = if smoke { 200 } else { env_or("TR_BENCH_STEPS", "2000").parse().unwrap() };
-    let cpu_paths: usize = if smoke { 64 } else { env_or("TR_BENCH_PATHS", "100000").parse().unwrap() };
+    let steps: u64 = if smoke {
+        200
+    } else {
+        env_or("TR_BENCH_STEPS", "2000").parse().unwrap()
+    };
+    let cpu_paths: usize = if smoke {
+        64
+    } else {
+        env_or("TR_BENCH_PATHS", "100000").parse().unwrap()
+    };
     let gpu_paths: Vec<usize> = if smoke {
         vec![64]
     } else {

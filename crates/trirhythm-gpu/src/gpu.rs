@@ -15,10 +15,10 @@
 use crate::cuda::{compile_ptx_for, CudaSlice, Gpu, Grid, PushKernelArg};
 use crate::paths::{first_error, Batch, Passage, PathEnd, Prepared, Raw};
 use cudarc::driver::{DeviceRepr, ValidAsZeroBits};
+use std::time::Instant;
 use trirhythm::analysis::ensemble::{EnsembleSpec, PathStats};
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::monitor::Monitor;
-use std::time::Instant;
 use trirhythm::Result;
 
 // SAFETY: plain `#[repr(C)]` structures of integers and doubles (the kernel's layouts), for

@@ -13,6 +13,13 @@ use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::monitor::Monitor;
 use trirhythm::{Error, Result};
 
+#[cfg(feature = "cuda")]
+pub mod cuda;
+#[cfg(feature = "cuda")]
+mod gpu;
+#[cfg(feature = "cuda")]
+pub use gpu::{gpu_paths, GpuPaths};
+
 /// Where an ensemble's paths are stepped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Backend {
@@ -49,12 +56,38 @@ pub fn run_ensemble(
 ) -> Result<EnsembleResult> {
     match backend {
         Backend::Cpu => run_cpu(problem, method, spec, monitor),
-        Backend::Gpu => Err(Error::NotApplicable {
-            method: "the GPU backend".into(),
-            assumption: "a CUDA device".into(),
-            reason: "not built yet".into(),
-        }),
+        Backend::Gpu => run_gpu(problem, method, spec, monitor),
     }
+}
+
+/// The ensemble on the GPU: every path's statistics from the kernel ([`gpu_paths`]), merged by
+/// the engine's `merge`.
+#[cfg(feature = "cuda")]
+fn run_gpu(
+    problem: &Problem,
+    method: &PredictorCorrector,
+    spec: &EnsembleSpec,
+    monitor: &dyn Monitor<PathStats>,
+) -> Result<EnsembleResult> {
+    let run = gpu_paths(problem, method, spec, monitor)?;
+    trirhythm::analysis::ensemble::merge(problem, method, spec, run.stats)
+}
+
+/// Without the `cuda` feature: the refusal.
+#[cfg(not(feature = "cuda"))]
+fn run_gpu(
+    _problem: &Problem,
+    _method: &PredictorCorrector,
+    _spec: &EnsembleSpec,
+    _monitor: &dyn Monitor<PathStats>,
+) -> Result<EnsembleResult> {
+    Err(Error::NotApplicable {
+        method: "the GPU backend".into(),
+        assumption: "a build with CUDA support".into(),
+        reason:
+            "this build of trirhythm has none (the cargo feature `cuda` of trirhythm-gpu is off)"
+                .into(),
+    })
 }
 
 /// The C build's size or offset number `which` of the structures shared with the kernel
