@@ -113,6 +113,28 @@ fn no_fused_multiply_add_is_contracted() {
     assert!(ptx.contains("mul.rn.f64") && ptx.contains("add.rn.f64"));
 }
 
+/// The ensemble kernel's own arithmetic has no contracted multiply–add either: compiled with
+/// CUDA's transcendental functions left out (`TR_ARITHMETIC_ONLY`; their implementations use
+/// `fma` by design), at Fig. 13(a)'s sizes, its PTX holds no `fma` and does hold the kernel's
+/// products and sums.
+#[test]
+fn the_ensemble_kernels_own_arithmetic_is_not_contracted() {
+    let defines = [
+        ("TR_ARITHMETIC_ONLY", "1".to_string()),
+        ("TR_MAX_CAP", "7".to_string()),
+        ("TR_MAX_MODES", "40".to_string()),
+    ];
+    let Some(ptx) = compiled(cuda::ENSEMBLE_SOURCE, &defines) else {
+        return;
+    };
+    let ptx = ptx.unwrap();
+    assert!(
+        !ptx.contains("fma."),
+        "a fused multiply-add in the kernel's arithmetic"
+    );
+    assert!(ptx.contains("mul.rn.f64") && ptx.contains("div.rn.f64"));
+}
+
 #[test]
 fn defines_reach_the_source_and_a_failure_carries_nvrtc_s_log() {
     let source = "#include \"common.h\"\n#if TR_PROBE_VALUE != 7\n#error TR_PROBE_VALUE is not 7\n\
