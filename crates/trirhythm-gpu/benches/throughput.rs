@@ -7,7 +7,8 @@
 //! histograms (so that the statistics of millions of paths fit the engine's bound).
 //!
 //! `cargo bench -p trirhythm-gpu --bench throughput` measures 10⁵ paths on the CPU and 10⁵,
-//! 10⁶ and the most the statistics' bound allows on the GPU; `TR_BENCH_PATHS` (CPU paths),
+//! 10⁶ and 4·10⁶ on the GPU (near the most whose statistics the engine's bound of 4 GB holds:
+//! 832 bytes a path here; 10⁷ exceed one ensemble's bound); `TR_BENCH_PATHS` (CPU paths),
 //! `TR_BENCH_GPU_PATHS` (a comma-separated list) and `TR_BENCH_STEPS` change the sizes.
 //! `-- --test` (CI's smoke run) takes 64 paths of 200 steps.
 
@@ -37,8 +38,8 @@ fn case(lambda: f64, paths: usize, steps: u64) -> (Problem, PredictorCorrector, 
         length: steps as f64 * method.dt,
         sample_every: 10,
         batches: 4,
-        bins: 16,
-        joint_bins: 4,
+        bins: 4,
+        joint_bins: 2,
         amplitude_max: 10.0,
         ..Default::default()
     };
@@ -68,7 +69,7 @@ fn main() {
     let gpu_paths: Vec<usize> = if smoke {
         vec![64]
     } else {
-        env_or("TR_BENCH_GPU_PATHS", "100000,1000000,5000000")
+        env_or("TR_BENCH_GPU_PATHS", "100000,1000000,4000000")
             .split(',')
             .map(|s| s.trim().parse().unwrap())
             .collect()
