@@ -154,7 +154,8 @@ fn guarded<T>(what: &str, assumption: &str, f: impl FnOnce() -> T) -> Result<T> 
 }
 
 const DRIVER: &str = "a CUDA driver and device";
-const COMPILER: &str = "NVRTC, CUDA's run-time compiler (libnvrtc, e.g. from the pip wheel nvidia-cuda-nvrtc-cu12)";
+const COMPILER: &str =
+    "NVRTC, CUDA's run-time compiler (libnvrtc, e.g. from the pip wheel nvidia-cuda-nvrtc-cu12)";
 
 /// The driver library, loaded and bound (once; later calls only check).
 fn load_driver() -> Result<()> {
@@ -248,7 +249,10 @@ pub fn device() -> Result<DeviceInfo> {
         // SAFETY: `dev` is a valid device handle
         memory_bytes: unsafe { result::device::total_mem(dev) }
             .map_err(|e| driver_error("cuDeviceTotalMem", e))? as u64,
-        driver_version: (version.max(0) as u32 / 1000, (version.max(0) as u32 % 1000) / 10),
+        driver_version: (
+            version.max(0) as u32 / 1000,
+            (version.max(0) as u32 % 1000) / 10,
+        ),
         devices: devices as u32,
     })
 }

@@ -79,7 +79,8 @@ fn run_gpu(
     Err(Error::NotApplicable {
         method: "the GPU backend".into(),
         assumption: "a build with CUDA support".into(),
-        reason: "this build of trirhythm has none (the cargo feature `cuda` of trirhythm-gpu is off)"
-            .into(),
+        reason:
+            "this build of trirhythm has none (the cargo feature `cuda` of trirhythm-gpu is off)"
+                .into(),
     })
 }

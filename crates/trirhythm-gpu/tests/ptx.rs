@@ -60,7 +60,11 @@ fn every_header_of_the_kernel_folder_is_given_to_nvrtc() {
         .collect();
     given.sort();
     let names = |v: &[(String, String)]| v.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
-    assert_eq!(names(&given), names(&on_disk), "cuda::HEADERS against kernel/*.h");
+    assert_eq!(
+        names(&given),
+        names(&on_disk),
+        "cuda::HEADERS against kernel/*.h"
+    );
     assert_eq!(given, on_disk);
 }
 
@@ -71,7 +75,10 @@ fn the_kernels_compile_to_ptx_naming_their_entries() {
         ("probe.cu", cuda::PROBE_SOURCE),
     ] {
         let names = entries(source);
-        assert!(!names.is_empty(), "{file}: no extern \"C\" __global__ entry");
+        assert!(
+            !names.is_empty(),
+            "{file}: no extern \"C\" __global__ entry"
+        );
         let Some(ptx) = compiled(source, &[]) else {
             return;
         };
