@@ -391,6 +391,23 @@ mod tests {
             ],
             &[
                 "trirhythm",
+                "ensemble",
+                "--backend",
+                "gpu",
+                "--method",
+                "wells",
+            ],
+            &[
+                "trirhythm",
+                "ensemble",
+                "--backend",
+                "gpu",
+                "--checkpoint",
+                "x",
+            ],
+            &["trirhythm", "ensemble", "--backend", "gpu", "--lanes", "4"],
+            &[
+                "trirhythm",
                 "oscillation",
                 "--x",
                 "r=0:1:2",
@@ -462,6 +479,8 @@ mod tests {
         for accepted in [
             &["trirhythm", "ensemble"][..],
             &["trirhythm", "ensemble", "--u0", "1", "--lanes", "4"],
+            &["trirhythm", "ensemble", "--backend", "cpu", "--lanes", "4"],
+            &["trirhythm", "ensemble", "--backend", "gpu", "--u0", "1"],
             &[
                 "trirhythm",
                 "ensemble",

@@ -865,9 +865,11 @@ fn ensemble_request(
 }
 
 /// Run paths `which` (all when `None`) of an ensemble; with `merge`, the document of the whole
-/// ensemble (JSON), otherwise the paths' statistics (JSON list, for `merge_paths`).
+/// ensemble (JSON), otherwise the paths' statistics (JSON list, for `merge_paths`). `backend`
+/// `"cpu"` (the CPU engine) or `"gpu"` (`trirhythm_gpu::run_ensemble` on the GPU, the whole
+/// ensemble in one piece; the document adds `"backend": "gpu"`).
 #[pyfunction]
-#[pyo3(signature = (params, paths, t_end, burn_in, seed, dt, u0, variant, system, barrier, memory, tolerance, impact_memory, bins, joint_bins, amplitude_max, sample_every, which=None, pieces=None, merge=true, model=None, threads=None, progress=None, setup_only=false))]
+#[pyo3(signature = (params, paths, t_end, burn_in, seed, dt, u0, variant, system, barrier, memory, tolerance, impact_memory, bins, joint_bins, amplitude_max, sample_every, which=None, pieces=None, merge=true, model=None, threads=None, progress=None, setup_only=false, backend="cpu"))]
 #[allow(clippy::too_many_arguments)]
 fn _ensemble(
     py: Python<'_>,
@@ -895,7 +897,15 @@ fn _ensemble(
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
     setup_only: bool,
+    backend: &str,
 ) -> PyResult<String> {
+    let backend: trirhythm_gpu::Backend = backend.parse().map_err(py_err)?;
+    if backend == trirhythm_gpu::Backend::Gpu && (which.is_some() || pieces.is_some() || !merge) {
+        return Err(PyValueError::new_err(
+            "backend='gpu' runs the whole ensemble in one piece: ensemble_paths and \
+             merge_paths run on the CPU (backend='cpu')",
+        ));
+    }
     let request = ensemble_request(
         params,
         paths,
@@ -963,6 +973,18 @@ fn _ensemble(
             .collect(),
     };
     let start = Instant::now();
+    if backend == trirhythm_gpu::Backend::Gpu {
+        let r = long_call(py, threads, progress, |w| {
+            trirhythm_gpu::run_ensemble(&s.problem, &s.method, &s.spec, w, backend)
+        })?;
+        let wall = start.elapsed().as_secs_f64();
+        let theory = s.comparisons(&r);
+        let mut doc = serde_json::to_value(s.document(&r, &theory, wall)).map_err(json_err)?;
+        if let Some(o) = doc.as_object_mut() {
+            o.insert("backend".into(), "gpu".into());
+        }
+        return serde_json::to_string(&doc).map_err(json_err);
+    }
     let fresh = long_call(py, threads, progress, |w| {
         ens::run_paths(&s.problem, &s.method, &s.spec, &todo, w)
     })?;

@@ -11,6 +11,12 @@
 //! With `--checkpoint DIR` every finished path's statistics are saved in DIR; a rerun of the
 //! same command continues from them and gives a bit-identical result. Keys, columns and flags
 //! are a contract: keep them.
+//!
+//! `--backend gpu` steps the direct method's paths on the GPU (`trirhythm_gpu::run_ensemble`,
+//! in one piece: no `--checkpoint`, no `--lanes`, no `--method wells`); the document then adds
+//! `"backend": "gpu"`. Without a driver or a device it fails before any output
+//! with the GPU backend's reason (exit status 2). `cpu`, the default, is the CPU engine, the
+//! same bits as before the option existed.
 
 use crate::args::{Given, ImpactMemoryArg, ModelArgs, ModelFileArg, ParamArgs};
 use crate::error::bad;
@@ -45,6 +51,25 @@ pub enum EstimatorArg {
     Direct,
     /// Well decomposition with rates by adaptive multilevel splitting.
     Wells,
+}
+
+/// `cpu` or `gpu`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum BackendArg {
+    /// The CPU engine on every core (the reference).
+    #[default]
+    Cpu,
+    /// The CUDA kernel on the first GPU (a CUDA driver and device needed at run time).
+    Gpu,
+}
+
+impl From<BackendArg> for trirhythm_gpu::Backend {
+    fn from(b: BackendArg) -> Self {
+        match b {
+            BackendArg::Cpu => trirhythm_gpu::Backend::Cpu,
+            BackendArg::Gpu => trirhythm_gpu::Backend::Gpu,
+        }
+    }
 }
 
 /// Arguments of `ensemble`.
@@ -133,6 +158,10 @@ pub struct EnsembleArgs {
         allow_hyphen_values = true
     )]
     pub core_quantile: f64,
+    /// Where the paths are stepped: `cpu` (the CPU engine, the reference) or `gpu` (the CUDA
+    /// kernel on the first GPU; `--method direct` only, in one piece).
+    #[arg(long, value_enum, default_value_t = BackendArg::Cpu)]
+    pub backend: BackendArg,
     /// Output format.
     #[arg(long, value_enum, default_value_t = EnsembleFormat::Json)]
     pub format: EnsembleFormat,
@@ -186,6 +215,19 @@ impl EnsembleArgs {
     /// Refuse, before any work, an option typed that the chosen method does not use: the
     /// well method's sizes without `--method wells`; starts, lanes and a checkpoint with it.
     pub fn refuse_unused(&self, given: &Given) -> Result<()> {
+        if self.backend == BackendArg::Gpu {
+            if self.method == EstimatorArg::Wells {
+                return bad(
+                    "--backend gpu applies to --method direct only (the well method's \
+                     splitting runs on the CPU); leave out one of them",
+                );
+            }
+            given.refuse(
+                &[("checkpoint", "--checkpoint"), ("lanes", "--lanes")],
+                "--backend cpu",
+                "the GPU steps the whole ensemble in one piece",
+            )?;
+        }
         match self.method {
             EstimatorArg::Direct => given.refuse(
                 &[
@@ -454,7 +496,21 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     let todo: Vec<u64> = (0..args.paths as u64)
         .filter(|i| !done.iter().any(|d| d.path == *i))
         .collect();
-    let result = run_paths(&s.problem, &s.method, &s.spec, &todo, &watch);
+    let result = match args.backend {
+        BackendArg::Cpu => run_paths(&s.problem, &s.method, &s.spec, &todo, &watch),
+        BackendArg::Gpu => {
+            // one piece, all paths (`refuse_unused` refused a checkpoint)
+            let r = trirhythm_gpu::run_ensemble(
+                &s.problem,
+                &s.method,
+                &s.spec,
+                &watch,
+                trirhythm_gpu::Backend::Gpu,
+            );
+            bar.finish_and_clear();
+            return gpu_output(args, &s, &method, r?, start);
+        }
+    };
     bar.finish_and_clear();
     if let Some(e) = watch
         .save_error
@@ -476,6 +532,30 @@ pub fn ensemble(args: &EnsembleArgs) -> Result<()> {
     let text = match args.format {
         EnsembleFormat::Json => serde_json::to_string(&s.document(&r, &theory, wall))? + "\n",
         EnsembleFormat::Csv => csv_text(&s, &method, &r, &theory, wall)?,
+    };
+    emit(args.out.as_deref(), &text)
+}
+
+/// Write the GPU's ensemble: the CPU run's document with `"backend": "gpu"` added.
+fn gpu_output(
+    args: &EnsembleArgs,
+    s: &EnsembleSetup,
+    method: &str,
+    r: EnsembleResult,
+    start: Instant,
+) -> Result<()> {
+    let wall = start.elapsed().as_secs_f64();
+    let theory = s.comparisons(&r);
+    eprint!("{}", views::ensemble(&r, &theory, wall));
+    let text = match args.format {
+        EnsembleFormat::Json => {
+            let mut doc = serde_json::to_value(s.document(&r, &theory, wall))?;
+            if let Some(o) = doc.as_object_mut() {
+                o.insert("backend".into(), "gpu".into());
+            }
+            serde_json::to_string(&doc)? + "\n"
+        }
+        EnsembleFormat::Csv => csv_text(s, &format!("{method}; backend: gpu"), &r, &theory, wall)?,
     };
     emit(args.out.as_deref(), &text)
 }

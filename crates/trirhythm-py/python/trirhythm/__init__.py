@@ -536,6 +536,7 @@ def ensemble(
     threads: int | None = None,
     progress=None,
     model: Model | None = None,
+    backend: str = "cpu",
     **options,
 ) -> Ensemble:
     """``paths`` paths (path i is noise stream i of ``seed``), each ``burn_in`` discarded then
@@ -550,7 +551,11 @@ def ensemble(
     ``separation=10``, ``core_quantile=0.1``; ``u0`` is refused, the well method starts in each
     of the theory's wells); the document adds ``estimator``, ``decomposition`` and ``bounds``.
     ``model=`` (a ``trirhythm.Model``) in place of ``params``: its parameters, wall and start
-    (paths start at rest at ``start.u0``), as ``trirhythm ensemble --model FILE``."""
+    (paths start at rest at ``start.u0``), as ``trirhythm ensemble --model FILE``.
+    ``backend="gpu"`` steps the paths on the GPU (the CUDA kernel on the first device, as
+    ``trirhythm ensemble --backend gpu``; ``method="direct"`` only; the document adds
+    ``"backend": "gpu"``); without a CUDA driver or device it raises ``ValueError`` naming the
+    GPU backend and the reason. ``backend="cpu"``, the default, is the CPU engine."""
     if model is not None:
         direct = options.get("method", "direct") == "direct"
         params, options = _model_options(model, params, options, "ensemble", start=direct)
@@ -564,6 +569,11 @@ def ensemble(
             "(method='wells' starts one path in each of the theory's wells, at its mode)"
         )
     args = _ensemble_args(params, paths, t_end, burn_in, seed, options)
+    if method == "wells" and backend != "cpu":
+        raise ValueError(
+            f"invalid parameter backend = {backend!r}: method='wells' runs on the CPU only "
+            "(backend='cpu')"
+        )
     if method == "wells":
         w = {**_WELLS_DEFAULTS, **wells}
         text = _native._ensemble_wells(
@@ -582,7 +592,9 @@ def ensemble(
         raise ValueError(f"invalid parameter method = {method!r}: expected 'direct' or 'wells'")
     if wells:
         raise ValueError(f"argument(s) {sorted(wells)} need method='wells'")
-    text = _native._ensemble(*args, model=model, threads=threads, progress=_progress(progress))
+    text = _native._ensemble(
+        *args, model=model, threads=threads, progress=_progress(progress), backend=backend
+    )
     return Ensemble(json.loads(text))._warn("ensemble")
 
 

@@ -111,6 +111,7 @@ def _ensemble(
     threads: int | None = None,
     progress: _Progress = None,
     setup_only: bool = False,
+    backend: str = "cpu",
 ) -> str: ...
 def _ensemble_wells(
     params: Params,
