@@ -82,7 +82,7 @@ pub use modes::{ModeCount, ModeRule};
 
 use crate::analysis::ensemble::{run_ensemble, Density, EnsembleResult, EnsembleSpec};
 use crate::analysis::versus::theory_layout;
-use crate::engine::{PredictorCorrector, Problem};
+use crate::engine::{ImpactMemory, PredictorCorrector, Problem};
 use crate::error::{Error, Result};
 use crate::monitor::Monitor;
 use crate::theory::averaging::Variant;
@@ -107,7 +107,8 @@ pub struct SimulatedMapSpec {
     /// is the map's (each point's own is [`point_seed`] of it); its `wells` and its
     /// `amplitude_max` are set per point (module docs).
     pub ensemble: EnsembleSpec,
-    /// The step Δt and the memory.
+    /// The step Δt and the memory (default: Δt = 0.01, the memory restarted at impacts, as
+    /// `trirhythm ensemble` runs Eq. 1).
     pub method: PredictorCorrector,
     /// The mode-counting rule.
     pub rule: ModeRule,
@@ -123,7 +124,10 @@ impl Default for SimulatedMapSpec {
                 joint_bins: 2,
                 ..Default::default()
             },
-            method: PredictorCorrector::default(),
+            method: PredictorCorrector {
+                impact_memory: ImpactMemory::Restart,
+                ..Default::default()
+            },
             rule: ModeRule::default(),
             amplitude_max: None,
         }

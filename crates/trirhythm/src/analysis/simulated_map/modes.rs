@@ -114,7 +114,10 @@ impl ModeRule {
             count: at.len(),
             low,
             high,
-            modes: at.iter().map(|&b| 0.5 * (edges[b] + edges[b + 1])).collect(),
+            modes: at
+                .iter()
+                .map(|&b| 0.5 * (edges[b] + edges[b + 1]))
+                .collect(),
         })
     }
 }
@@ -264,7 +267,9 @@ mod tests {
         let mut se = vec![0.0; 50];
         let mut x = 12345u64;
         for b in 5..45 {
-            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             let u = (x >> 11) as f64 / (1u64 << 53) as f64; // in [0, 1)
             d[b] = 1.0 + 0.02 * (2.0 * u - 1.0);
             se[b] = 0.02;
@@ -309,7 +314,11 @@ mod tests {
             z_strict: 2.5,
             ..Default::default()
         };
-        assert!(rule.validate().unwrap_err().to_string().contains("z_strict"));
+        assert!(rule
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("z_strict"));
         let e = ModeRule::default()
             .count(&[0.0, 1.0], &[1.0, 2.0], &[0.1, 0.1])
             .unwrap_err();
