@@ -39,11 +39,11 @@
 //!
 //! # Tests
 //! `tests/simulated_map.rs`: the linear oscillator (no nonlinear damping: P(A) is Rayleigh's,
-//! one mode) counts 1 at every point and agrees with the theory; a point of the λ = 1 plane
-//! where the theory has two well-separated modes and the noise hops between them counts 2
-//! (ignored, 1–2 min); the same map on one thread and on two is the same bits; the runner
-//! sees the derived seeds; bad input is refused by name. The rule's own tests are in
-//! [`modes`].
+//! one mode) counts 1/1/1 at every point of a 2 × 2 grid and agrees with the theory; around a
+//! point of Fig. 12(d)'s set at λ = 1 where the theory has two well-separated modes and the
+//! paths hop between them, 2/2/2 at every point; the same map on one thread and on two is the
+//! same bits; the runner sees the derived seeds and the monitor every point, and stops the
+//! run; bad input is refused by name before any work. The rule's own tests are in [`modes`].
 //!
 //! # Example
 //! ```
