@@ -73,6 +73,10 @@ const FLAGS: &[(&str, &str)] = &[
     ("max_excursion", "--max-excursion"),
     ("max_iterations", "--max-iterations"),
     ("core_quantile", "--core-quantile"),
+    ("batches", "--batches"),
+    ("z", "--z"),
+    ("z_lenient", "--z-lenient"),
+    ("z_strict", "--z-strict"),
 ];
 
 /// A library error told in the flag the user typed: `--t-end: invalid parameter t_end = …`.
@@ -97,6 +101,8 @@ pub fn in_flags(err: anyhow::Error) -> anyhow::Error {
 /// before that check runs, and its message ("invalid digit found in string") gives no range.
 pub const WHOLE_NUMBER_FLAGS: &[(&str, &str, &str)] = &[
     ("ensemble", "--paths", "1 to 1000000"),
+    ("map", "--paths", "1 to 1000000"),
+    ("map", "--batches", "4 to 1000"),
     ("lyapunov", "--paths", "1 to 100000"),
     ("critical-noise", "--paths", "1 to 100000"),
     ("*", "--seed", "0 to 18446744073709551615"),

@@ -237,6 +237,7 @@ impl Command {
         }
         match self {
             Command::Ensemble(a) => a.refuse_unused(given),
+            Command::Map(a) => a.refuse_unused(given),
             Command::Oscillation(a) => a.refuse_unused(given),
             // the tangent equation has no copy to pull back
             Command::Lyapunov(lyapunov::LyapunovArgs {

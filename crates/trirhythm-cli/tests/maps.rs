@@ -336,3 +336,155 @@ fn map_figures_write_data_and_pictures() {
         .iter()
         .any(|r| r.get(2).map(String::as_str) == Some("fpk")));
 }
+
+/// `map --simulate` on Fig. 12(d)'s set at λ = 1, white noise, μ0 = 0.01, around r = 0.95,
+/// D = 1: the theory has two modes there and the paths hop between them.
+const SIMULATED: &[&str] = &[
+    "map",
+    "--simulate",
+    "--preset",
+    "fig12d",
+    "--param",
+    "lambda=1",
+    "--param",
+    "tau=0",
+    "--param",
+    "mu0=0.01",
+    "--x",
+    "r=0.95:0.951:2",
+    "--y",
+    "D=1:1.01:2",
+    "--paths",
+    "8",
+    "--t-end",
+    "20000",
+    "--burn-in",
+    "200",
+    "--dt",
+    "0.05",
+    "--batches",
+    "10",
+    "--seed",
+    "3",
+];
+
+#[test]
+fn simulated_map_counts_two_modes_beside_the_theory_in_csv_and_json() {
+    let mut csv_args = SIMULATED.to_vec();
+    csv_args.extend(["--format", "csv"]);
+    let text = ok(&csv_args);
+    assert!(
+        text.contains("# rule: a mode dips more than z = 3"),
+        "{text}"
+    );
+    let r = rows(&text);
+    assert_eq!(
+        r[0],
+        [
+            "x",
+            "y",
+            "theory",
+            "simulated",
+            "low",
+            "high",
+            "agreement",
+            "stationary",
+            "beyond"
+        ]
+    );
+    assert_eq!(r.len(), 5);
+    // the theory's column is `map --what modes` at the same points
+    let theory = rows(&ok(&[
+        "map",
+        "--preset",
+        "fig12d",
+        "--param",
+        "lambda=1",
+        "--param",
+        "tau=0",
+        "--param",
+        "mu0=0.01",
+        "--x",
+        "r=0.95:0.951:2",
+        "--y",
+        "D=1:1.01:2",
+        "--what",
+        "modes",
+        "--format",
+        "csv",
+    ]));
+    let mut json_args = SIMULATED.to_vec();
+    json_args.extend(["--format", "json"]);
+    let doc: Value = serde_json::from_str(&ok(&json_args)).unwrap();
+    let points = doc["points"].as_array().unwrap();
+    assert_eq!(points.len(), 4);
+    assert!(doc["method"].as_str().unwrap().contains("dt=0.05"));
+    for ((row, th), p) in r.iter().skip(1).zip(theory.iter().skip(1)).zip(points) {
+        assert_eq!(row[..2], th[..2]);
+        assert_eq!(row[2], th[2], "theory's count");
+        assert_eq!(row[2], "2");
+        assert_eq!(row[3..6], ["2", "2", "2"], "{row:?}");
+        let expected = if row[7] == "true" {
+            "agree"
+        } else {
+            "non_stationary"
+        };
+        assert_eq!(row[6], expected);
+        // the JSON holds the same numbers (the same seeds: the same bits)
+        assert_eq!(p["simulated"]["count"].as_u64(), Some(2));
+        assert_eq!(p["agreement"].as_str(), Some(expected));
+        assert_eq!(p["stationary"].as_bool(), Some(row[7] == "true"));
+        assert_eq!(p["amplitude"]["density"].as_array().unwrap().len(), 40);
+    }
+}
+
+#[test]
+fn simulated_map_refuses_bad_input_by_name_before_any_work() {
+    let plane = ["--preset", "fig12d", "--x", "r=0.9:1:3", "--y", "D=0.1:1:3"];
+    let with = |extra: &[&'static str]| {
+        let mut a = vec!["map"];
+        a.extend(plane);
+        a.extend(extra);
+        a
+    };
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        // the simulation's options without --simulate, the folds with it
+        (
+            with(&["--paths", "4"]),
+            "--paths applies to --simulate only",
+        ),
+        (with(&["--simulate", "--folds"]), "--folds applies to"),
+        (
+            with(&["--simulate", "--what", "rhythmicity"]),
+            "--what rhythmicity",
+        ),
+        // the work sized first
+        (
+            with(&["--simulate", "--t-end", "1e6", "--paths", "1000"]),
+            "--max-path-steps = 20000000000: this map takes",
+        ),
+        (with(&["--simulate", "--z", "1"]), "--z"),
+        (with(&["--simulate", "--batches", "2"]), "--batches"),
+        (
+            vec![
+                "map",
+                "--simulate",
+                "--preset",
+                "fig12d",
+                "--param",
+                "D=0",
+                "--x",
+                "r=0.9:1:3",
+                "--y",
+                "mu0=0.01:0.02:3",
+            ],
+            "D = 0",
+        ),
+    ];
+    for (args, needle) in cases {
+        let out = run(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}

@@ -1412,6 +1412,68 @@ fn _map<'py>(
     ))
 }
 
+/// The P-bifurcation map by simulation (`trirhythm map --simulate`): at each point of the
+/// plane an ensemble of Eq. (1) on the CPU, the modes of its P(A) counted with their range,
+/// beside the theory's count (JSON of the library's `SimulatedMap`).
+#[pyfunction]
+#[pyo3(signature = (params, x, y, variant="paper", paths=8, t_end=1000.0, burn_in=100.0, dt=0.01, seed=1, bins=40, batches=20, impact_memory="restart", amplitude_max=None, z=3.0, z_lenient=2.0, z_strict=4.0, threads=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn _simulated_map(
+    py: Python<'_>,
+    params: &PyParams,
+    x: (String, f64, f64, usize),
+    y: (String, f64, f64, usize),
+    variant: &str,
+    paths: usize,
+    t_end: f64,
+    burn_in: f64,
+    dt: f64,
+    seed: u64,
+    bins: usize,
+    batches: usize,
+    impact_memory: &str,
+    amplitude_max: Option<f64>,
+    z: f64,
+    z_lenient: f64,
+    z_strict: f64,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<String> {
+    use trirhythm::analysis::simulated_map::{simulate_map_cpu, ModeRule, SimulatedMapSpec};
+    let ax = Axis::new(&x.0, x.1, x.2, x.3).map_err(py_err)?;
+    let ay = Axis::new(&y.0, y.1, y.2, y.3).map_err(py_err)?;
+    let plane = bif::Plane::new(&params.0, ax, ay, self::variant(variant)?).map_err(py_err)?;
+    let spec = SimulatedMapSpec {
+        ensemble: ens::EnsembleSpec {
+            paths,
+            seed,
+            burn_in,
+            length: t_end,
+            bins,
+            joint_bins: 2,
+            batches,
+            ..Default::default()
+        },
+        method: trirhythm::engine::PredictorCorrector {
+            dt,
+            impact_memory: impact(impact_memory)?,
+            ..Default::default()
+        },
+        rule: ModeRule {
+            z,
+            z_lenient,
+            z_strict,
+        },
+        amplitude_max,
+    };
+    // every input checked before the worker starts
+    spec.validate(&plane).map_err(py_err)?;
+    let map = long_call(py, threads, progress, |w| {
+        simulate_map_cpu(&plane, &spec, w)
+    })?;
+    serde_json::to_string(&map).map_err(json_err)
+}
+
 /// `rhythmicity` (cycles, roots of f) or `modes` (extrema of P(A), roots of m1).
 fn what_of(name: &str) -> PyResult<What> {
     match name {
@@ -1508,6 +1570,7 @@ fn _trirhythm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_phase_response, m)?)?;
     m.add_function(wrap_pyfunction!(_oscillation_boundary, m)?)?;
     m.add_function(wrap_pyfunction!(_map, m)?)?;
+    m.add_function(wrap_pyfunction!(_simulated_map, m)?)?;
     m.add_function(wrap_pyfunction!(_branches, m)?)?;
     m.add_function(wrap_pyfunction!(_figure_data, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;

@@ -1,7 +1,8 @@
 //! Commands of the bifurcation structure: `map` (two-parameter classification with exact fold
-//! curves) and `branches` (one-parameter branch diagrams by continuation).
+//! curves; with `--simulate`, the P-bifurcation map by Monte Carlo beside the theory's) and
+//! `branches` (one-parameter branch diagrams by continuation).
 
-use crate::args::{parse_axis, Format, OutputArgs, ParamArgs, TheoryModelArg};
+use crate::args::{parse_axis, Format, Given, OutputArgs, ParamArgs, TheoryModelArg};
 use crate::error::bad;
 use crate::io::files::check_destination;
 use crate::io::{emit, num, params_json, progress, Csv, Stream, Temporary};
@@ -16,6 +17,9 @@ use trirhythm::theory::bifurcation::{
     Folds, Map, Plane, What,
 };
 use trirhythm_paper::views;
+
+mod simulated;
+pub use simulated::{SimulateMapArgs, SIMULATION_FLAGS};
 
 /// What a map counts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -55,7 +59,36 @@ pub struct MapArgs {
     #[arg(long, value_name = "FILE")]
     pub folds_out: Option<PathBuf>,
     #[command(flatten)]
+    pub sim: SimulateMapArgs,
+    #[command(flatten)]
     pub output: OutputArgs,
+}
+
+impl MapArgs {
+    /// Refuse, before any work, an option typed that the chosen map does not use: the
+    /// simulation's without `--simulate`; the fold curves and `--what rhythmicity` with it.
+    pub fn refuse_unused(&self, given: &Given) -> Result<()> {
+        if self.sim.simulate {
+            given.refuse(
+                &[
+                    ("folds", "--folds"),
+                    ("printed_eq37", "--printed-eq37"),
+                    ("folds_out", "--folds-out"),
+                ],
+                "the theory's map (without --simulate)",
+                "",
+            )?;
+            if given.typed("what") && self.what != WhatArg::Modes {
+                return bad(
+                    "--simulate counts the modes of P(A): --what rhythmicity has no simulated \
+                     counterpart (leave --what out, or give --what modes)",
+                );
+            }
+            Ok(())
+        } else {
+            given.refuse(SIMULATION_FLAGS, "--simulate", "")
+        }
+    }
 }
 
 /// Where the fold curves of a CSV map go, settled before the work starts: `--folds-out`, or
@@ -81,8 +114,12 @@ fn folds_destination(args: &MapArgs) -> Result<Option<PathBuf>> {
     Ok(Some(path))
 }
 
-/// `map`: classification of a parameter plane, with fold curves on request.
+/// `map`: classification of a parameter plane, with fold curves on request; with
+/// `--simulate`, the simulated P-bifurcation map beside the theory's.
 pub fn map(args: &MapArgs) -> Result<()> {
+    if args.sim.simulate {
+        return simulated::map(args);
+    }
     let mut params = args.params.clone();
     args.file.paper_base(&mut params, "map")?;
     let base = params.resolve()?;

@@ -60,6 +60,8 @@ __all__ = [
     "oscillation_boundary",
     "rhythmicity_map",
     "modes_map",
+    "simulated_map",
+    "SimulatedMap",
     "PlaneMap",
     "PlaneMapFolds",
     "Folds",
@@ -1569,6 +1571,111 @@ modes_map = _plane_mapper(
     (``trirhythm map --what modes``; ``folds=True``: the curves where two extrema of P(A)
     meet).""",
 )
+
+
+@dataclass(repr=False)
+class SimulatedMap:
+    """The P-bifurcation map by simulation beside the theory's (``trirhythm map
+    --simulate``): the axes' values ``x`` and ``y``, and per point, as ``[iy, ix]`` arrays,
+    ``theory`` (the theory's count of the modes of P(A)), ``simulated`` with its range
+    ``low`` … ``high`` (the counts at z, z_strict and z_lenient standard errors),
+    ``stationary`` (the ensemble's verdict) and ``agreement`` (``"agree"``, ``"disagree"``,
+    ``"uncertain"``, ``"non_stationary"``, ``"outside_range"``); ``tally`` counts the
+    verdicts. ``to_dict()`` is the library's map (every point's density with its standard
+    errors, seed, R̂), the document of ``trirhythm map --simulate --format json``."""
+
+    x: np.ndarray
+    y: np.ndarray
+    theory: np.ndarray
+    simulated: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+    stationary: np.ndarray
+    agreement: np.ndarray
+    tally: dict
+    document: dict
+
+    @classmethod
+    def _of(cls, doc: dict) -> "SimulatedMap":
+        nx, ny = int(doc["x"]["count"]), int(doc["y"]["count"])
+
+        def grid(f, dtype):
+            return np.array([f(p) for p in doc["points"]], dtype=dtype).reshape(ny, nx)
+
+        xs = np.array(sorted({p["ix"]: p["x"] for p in doc["points"]}.items()))[:, 1]
+        ys = np.array(sorted({p["iy"]: p["y"] for p in doc["points"]}.items()))[:, 1]
+        return cls(
+            x=xs,
+            y=ys,
+            theory=grid(lambda p: p["theory"], np.int64),
+            simulated=grid(lambda p: p["simulated"]["count"], np.int64),
+            low=grid(lambda p: p["simulated"]["low"], np.int64),
+            high=grid(lambda p: p["simulated"]["high"], np.int64),
+            stationary=grid(lambda p: p["stationary"], bool),
+            agreement=grid(lambda p: p["agreement"], object),
+            tally=dict(doc["tally"]),
+            document=doc,
+        )
+
+    def to_dict(self) -> dict:
+        return self.document
+
+    def __repr__(self) -> str:
+        t = self.tally
+        return (
+            f"SimulatedMap({len(self.x)} × {len(self.y)} points: agree {t['agree']}, "
+            f"disagree {t['disagree']}, uncertain {t['uncertain']}, "
+            f"non_stationary {t['non_stationary']}, outside_range {t['outside_range']})"
+        )
+
+
+def simulated_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = "paper",
+    *,
+    paths: int = 8,
+    t_end: float = 1000.0,
+    burn_in: float = 100.0,
+    dt: float = 0.01,
+    seed: int = 1,
+    bins: int = 40,
+    batches: int = 20,
+    impact_memory: str = "restart",
+    amplitude_max: float | None = None,
+    z: float = 3.0,
+    z_lenient: float = 2.0,
+    z_strict: float = 4.0,
+    threads: int | None = None,
+    progress=None,
+) -> SimulatedMap:
+    """The P-bifurcation map by simulation (``trirhythm map --simulate``, the same numbers
+    for the same arguments): at each point of the plane ``x = (key, start, stop, count)`` ×
+    ``y = (…)`` an ensemble of Eq. (1) of ``paths`` paths (seed derived from ``seed`` and the
+    point's index), the modes of its P(A) counted by the rule of docs/statistics.md beside the
+    theory's count (``modes_map``). Needs D > 0 on the whole plane."""
+    r = _native._simulated_map(
+        _check_params(params),
+        _axis("x", x),
+        _axis("y", y),
+        variant,
+        _count("paths", paths, 1),
+        _finite("t_end", t_end),
+        _finite("burn_in", burn_in),
+        _finite("dt", dt),
+        _count("seed", seed, 0, 2**64 - 1),
+        _count("bins", bins, 2),
+        _count("batches", batches, 4),
+        impact_memory,
+        None if amplitude_max is None else _finite("amplitude_max", amplitude_max),
+        _finite("z", z),
+        _finite("z_lenient", z_lenient),
+        _finite("z_strict", z_strict),
+        threads=threads,
+        progress=_progress(progress),
+    )
+    return SimulatedMap._of(json.loads(r))
 
 
 class BranchCurve(NamedTuple):

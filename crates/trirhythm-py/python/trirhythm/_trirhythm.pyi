@@ -240,6 +240,26 @@ def _map(
     progress: _Progress = None,
     folds: bool = False,
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[Any], str | None]: ...
+def _simulated_map(
+    params: Params,
+    x: tuple[str, float, float, int],
+    y: tuple[str, float, float, int],
+    variant: str = "paper",
+    paths: int = 8,
+    t_end: float = 1000.0,
+    burn_in: float = 100.0,
+    dt: float = 0.01,
+    seed: int = 1,
+    bins: int = 40,
+    batches: int = 20,
+    impact_memory: str = "restart",
+    amplitude_max: float | None = None,
+    z: float = 3.0,
+    z_lenient: float = 2.0,
+    z_strict: float = 4.0,
+    threads: int | None = None,
+    progress: _Progress = None,
+) -> str: ...
 def _branches(
     params: Params,
     key: str,

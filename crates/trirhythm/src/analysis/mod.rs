@@ -2,13 +2,15 @@
 //! stationary statistics and diagnosis, the averaged theory tested against them, oscillation
 //! (Hopf) boundaries by simulation, averaging and exact linearisation, and the largest Lyapunov
 //! exponent with frozen noise, the attractors of noise-free starts and the phase reduction; the
-//! step guard at the amplitudes a run visits.
+//! step guard at the amplitudes a run visits; the P-bifurcation map by simulation beside the
+//! theory's.
 
 pub mod ensemble;
 pub mod lyapunov;
 pub mod oscillation;
 pub mod recurrence;
 pub mod resolution;
+pub mod simulated_map;
 pub mod versus;
 
 pub use ensemble::{
@@ -21,6 +23,7 @@ pub use oscillation::{
 };
 pub use recurrence::{RecurrenceMatrix, RecurrenceThreshold};
 pub use resolution::check_step;
+pub use simulated_map::{simulate_map, MapPoint, SimulatedMap, SimulatedMapSpec};
 pub use versus::{
     binned, compare, escape_time, theory_layout, wells_bounds, TheoryComparison, TheoryLayout,
 };
