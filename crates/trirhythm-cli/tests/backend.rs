@@ -1,5 +1,6 @@
-//! `trirhythm ensemble --backend`: `cpu` is the default's bits; `gpu` without a driver or a
-//! device fails with the GPU backend's reason before any output; an unknown name is refused.
+//! `trirhythm ensemble --backend` and `trirhythm map --simulate --backend`: `cpu` is the
+//! default's bits; `gpu` without a driver or a device fails with the GPU backend's reason before
+//! any output; an unknown name is refused; `map --backend` without `--simulate` is refused.
 
 mod common;
 
@@ -111,4 +112,86 @@ fn the_gpu_backend_refuses_what_it_does_not_do() {
         assert!(stderr.contains(names), "{extra:?}: {stderr}");
         assert!(out.stdout.is_empty());
     }
+}
+
+/// A 2×2 simulated map of Fig. 13(a)'s set with `extra` flags.
+fn small_map(extra: &[&str]) -> Vec<String> {
+    let mut a: Vec<String> = [
+        "map",
+        "--simulate",
+        "--preset",
+        "fig13a",
+        "--x",
+        "D=0.1:0.2:2",
+        "--y",
+        "tau=0.5:0.6:2",
+        "--paths",
+        "2",
+        "--t-end",
+        "40",
+        "--burn-in",
+        "4",
+        "--dt",
+        "0.05",
+        "--batches",
+        "4",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    a.extend(extra.iter().map(|s| s.to_string()));
+    a
+}
+
+#[test]
+fn the_simulated_map_takes_the_backend() {
+    let default = run(&refs(&small_map(&["--format", "json"])));
+    let cpu = run(&refs(&small_map(&["--format", "json", "--backend", "cpu"])));
+    assert!(
+        default.status.success(),
+        "{}",
+        String::from_utf8_lossy(&default.stderr)
+    );
+    let strip = |o: &std::process::Output| {
+        let mut v: Value = serde_json::from_slice(&o.stdout).unwrap();
+        v["wall_time_s"] = Value::Null;
+        v
+    };
+    assert_eq!(strip(&default), strip(&cpu));
+    if trirhythm_gpu::cuda::device().is_err() {
+        let dir = scratch_dir("backend-map");
+        let out_file = dir.join("map.csv");
+        let gpu = run(&refs(&small_map(&[
+            "--backend",
+            "gpu",
+            "--out",
+            out_file.to_str().unwrap(),
+        ])));
+        let stderr = String::from_utf8_lossy(&gpu.stderr);
+        assert_eq!(gpu.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains("a CUDA driver and device"), "{stderr}");
+        assert!(
+            gpu.stdout.is_empty() && !out_file.exists(),
+            "partial output"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    // the theory's map has no backend
+    let theory = run(&[
+        "map",
+        "--preset",
+        "fig13a",
+        "--x",
+        "D=0.1:0.2:2",
+        "--y",
+        "tau=0.5:0.6:2",
+        "--backend",
+        "gpu",
+    ]);
+    let stderr = String::from_utf8_lossy(&theory.stderr);
+    assert_eq!(theory.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("--backend applies to --simulate only"),
+        "{stderr}"
+    );
 }

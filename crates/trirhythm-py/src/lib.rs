@@ -1413,10 +1413,10 @@ fn _map<'py>(
 }
 
 /// The P-bifurcation map by simulation (`trirhythm map --simulate`): at each point of the
-/// plane an ensemble of Eq. (1) on the CPU, the modes of its P(A) counted with their range,
-/// beside the theory's count (JSON of the library's `SimulatedMap`).
+/// plane an ensemble of Eq. (1) on `backend` (`cpu` or `gpu`), the modes of its P(A) counted
+/// with their range, beside the theory's count (JSON of the library's `SimulatedMap`).
 #[pyfunction]
-#[pyo3(signature = (params, x, y, variant="paper", paths=8, t_end=1000.0, burn_in=100.0, dt=0.01, seed=1, bins=40, batches=20, impact_memory="restart", amplitude_max=None, z=3.0, z_lenient=2.0, z_strict=4.0, threads=None, progress=None))]
+#[pyo3(signature = (params, x, y, variant="paper", paths=8, t_end=1000.0, burn_in=100.0, dt=0.01, seed=1, bins=40, batches=20, impact_memory="restart", amplitude_max=None, z=3.0, z_lenient=2.0, z_strict=4.0, threads=None, progress=None, backend="cpu"))]
 #[allow(clippy::too_many_arguments)]
 fn _simulated_map(
     py: Python<'_>,
@@ -1438,8 +1438,10 @@ fn _simulated_map(
     z_strict: f64,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
+    backend: &str,
 ) -> PyResult<String> {
-    use trirhythm::analysis::simulated_map::{simulate_map_cpu, ModeRule, SimulatedMapSpec};
+    use trirhythm::analysis::simulated_map::{simulate_map, ModeRule, SimulatedMapSpec};
+    let backend: trirhythm_gpu::Backend = backend.parse().map_err(py_err)?;
     let ax = Axis::new(&x.0, x.1, x.2, x.3).map_err(py_err)?;
     let ay = Axis::new(&y.0, y.1, y.2, y.3).map_err(py_err)?;
     let plane = bif::Plane::new(&params.0, ax, ay, self::variant(variant)?).map_err(py_err)?;
@@ -1469,7 +1471,16 @@ fn _simulated_map(
     // every input checked before the worker starts
     spec.validate(&plane).map_err(py_err)?;
     let map = long_call(py, threads, progress, |w| {
-        simulate_map_cpu(&plane, &spec, w)
+        // every point's ensemble on the backend, silent inside a point (its cancellation
+        // heard)
+        let cancel: trirhythm::monitor::OnlyCancel<trirhythm::analysis::simulated_map::MapPoint> =
+            trirhythm::monitor::OnlyCancel(w);
+        let runner = |problem: &trirhythm::engine::Problem,
+                      method: &trirhythm::engine::PredictorCorrector,
+                      es: &ens::EnsembleSpec| {
+            trirhythm_gpu::run_ensemble(problem, method, es, &cancel, backend)
+        };
+        simulate_map(&plane, &spec, &runner, w)
     })?;
     serde_json::to_string(&map).map_err(json_err)
 }

@@ -45,3 +45,18 @@ def test_an_unknown_backend_is_refused_naming_the_choices(noisy):
 def test_the_well_method_runs_on_the_cpu_only(noisy):
     with pytest.raises(ValueError, match=r"backend = 'gpu': method='wells' runs on the CPU only"):
         tr.ensemble(noisy, method="wells", backend="gpu", **KW)
+
+
+def test_the_simulated_map_takes_the_backend():
+    p = tr.preset("fig13a")
+    kw = dict(paths=2, t_end=40.0, burn_in=4.0, dt=0.05, batches=4, seed=2)
+    x, y = ("D", 0.1, 0.2, 2), ("tau", 0.5, 0.6, 2)
+    default = tr.simulated_map(p, x, y, **kw).to_dict()
+    cpu = tr.simulated_map(p, x, y, backend="cpu", **kw).to_dict()
+    assert cpu == default
+    try:
+        tr.simulated_map(p, x, y, backend="gpu", **kw)
+    except ValueError as error:
+        assert "a CUDA driver and device" in str(error), str(error)
+    with pytest.raises(ValueError, match=r"^unknown backend `tpu`"):
+        tr.simulated_map(p, x, y, backend="tpu", **kw)

@@ -1649,12 +1649,15 @@ def simulated_map(
     z_strict: float = 4.0,
     threads: int | None = None,
     progress=None,
+    backend: str = "cpu",
 ) -> SimulatedMap:
     """The P-bifurcation map by simulation (``trirhythm map --simulate``, the same numbers
     for the same arguments): at each point of the plane ``x = (key, start, stop, count)`` ×
     ``y = (…)`` an ensemble of Eq. (1) of ``paths`` paths (seed derived from ``seed`` and the
     point's index), the modes of its P(A) counted by the rule of docs/statistics.md beside the
-    theory's count (``modes_map``). Needs D > 0 on the whole plane."""
+    theory's count (``modes_map``). Needs D > 0 on the whole plane. ``backend="gpu"`` steps
+    every point's paths on the GPU (docs/gpu.md; a ValueError naming the reason without a
+    CUDA driver and device)."""
     r = _native._simulated_map(
         _check_params(params),
         _axis("x", x),
@@ -1674,6 +1677,7 @@ def simulated_map(
         _finite("z_strict", z_strict),
         threads=threads,
         progress=_progress(progress),
+        backend=backend,
     )
     return SimulatedMap._of(json.loads(r))
 

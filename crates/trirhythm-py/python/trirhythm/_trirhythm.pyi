@@ -259,6 +259,7 @@ def _simulated_map(
     z_strict: float = 4.0,
     threads: int | None = None,
     progress: _Progress = None,
+    backend: str = "cpu",
 ) -> str: ...
 def _branches(
     params: Params,

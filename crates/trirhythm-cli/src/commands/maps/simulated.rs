@@ -11,6 +11,7 @@
 
 use super::MapArgs;
 use crate::args::{lanes, parse_axis, Format, ImpactMemoryArg, Named};
+use crate::commands::ensemble::BackendArg;
 use crate::error::{allowed, bad};
 use crate::io::progress::note;
 use crate::io::{emit, num, params_json, progress, Csv, Report};
@@ -20,11 +21,12 @@ use serde::Serialize;
 use serde_json::Value;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
-use trirhythm::analysis::ensemble::{run_ensemble, EnsembleResult, EnsembleSpec};
+use trirhythm::analysis::ensemble::{EnsembleResult, EnsembleSpec};
 use trirhythm::analysis::simulated_map::{simulate_map, ModeRule, SimulatedMap, SimulatedMapSpec};
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::monitor::Silent;
 use trirhythm::theory::bifurcation::{Axis, Plane};
+use trirhythm_gpu::run_ensemble;
 
 /// The options of `map --simulate` (their ids, for refusing them without it).
 pub const SIMULATION_FLAGS: &[(&str, &str)] = &[
@@ -42,6 +44,7 @@ pub const SIMULATION_FLAGS: &[(&str, &str)] = &[
     ("z_lenient", "--z-lenient"),
     ("z_strict", "--z-strict"),
     ("max_path_steps", "--max-path-steps"),
+    ("backend", "--backend"),
 ];
 
 /// Arguments of `map --simulate`.
@@ -99,6 +102,10 @@ pub struct SimulateMapArgs {
         allow_hyphen_values = true
     )]
     pub max_path_steps: f64,
+    /// Where every point's paths are stepped: `cpu` (the CPU engine, the reference) or `gpu`
+    /// (the CUDA kernel on the first GPU; docs/gpu.md).
+    #[arg(long, value_enum, default_value_t = BackendArg::Cpu)]
+    pub backend: BackendArg,
 }
 
 impl SimulateMapArgs {
@@ -143,7 +150,10 @@ impl SimulateMapArgs {
             self.seed,
             self.bins,
             self.batches
-        )
+        ) + match self.backend {
+            BackendArg::Cpu => "",
+            BackendArg::Gpu => " backend=gpu",
+        }
     }
 }
 
@@ -195,19 +205,25 @@ pub fn map(args: &MapArgs) -> Result<()> {
         ));
     }
     note(&format!(
-        "map --simulate: {} points × {} paths × {} steps = {} path-steps on the CPU",
+        "map --simulate: {} points × {} paths × {} steps = {} path-steps on the {}",
         plane.x.count * plane.y.count,
         sim.paths,
         num(((sim.burn_in + sim.t_end) / sim.dt).round()),
-        num(work)
+        num(work),
+        match sim.backend {
+            BackendArg::Cpu => "CPU",
+            BackendArg::Gpu => "GPU",
+        }
     ));
     let bar = progress(work as u64, "map --simulate");
     let done = AtomicU64::new(0);
-    // the CPU ensembles, the bar moved by the path-steps of every point so far
+    // every point's ensemble on the chosen backend, the bar moved by the path-steps of every
+    // point so far
+    let backend = trirhythm_gpu::Backend::from(sim.backend);
     let runner = |problem: &Problem, method: &PredictorCorrector, es: &EnsembleSpec| {
         let before = done.load(Ordering::Relaxed);
         let moved = Report(|d: u64, _| bar.set_position(before + d));
-        let r: EnsembleResult = run_ensemble(problem, method, es, &moved)?;
+        let r: EnsembleResult = run_ensemble(problem, method, es, &moved, backend)?;
         done.fetch_add(r.paths as u64 * r.steps_per_path, Ordering::Relaxed);
         bar.set_position(done.load(Ordering::Relaxed));
         Ok(r)
