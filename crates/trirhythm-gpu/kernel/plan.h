@@ -46,4 +46,25 @@ typedef struct {
     double psi_series[17];
 } TrPlan;
 
+/* The General kernel's constants: the C mirror of `trirhythm::engine::GeneralPlan` (the same
+ * fields, order and types; `active` = 0 for the paper's family). */
+#define TR_PLAN_MAX_RAYLEIGH 20
+
+/* `trirhythm::engine::noise::StepConstants` (TrNoise's first fields) */
+typedef struct {
+    tr_u32 kind;
+    double rho, sigma, mean_coef, cross, rest, dt, sd;
+} TrNoiseConstants;
+
+typedef struct {
+    tr_u32 active, rayleigh_terms;
+    double rayleigh[TR_PLAN_MAX_RAYLEIGH];
+    double cubic, quintic, kappa;
+    tr_u32 forcing, multiplicative;
+    double amplitude, angle, phase, rotation_cos, rotation_sin, start_cos, start_sin;
+    double mix, own;
+    tr_u64 salt;
+    TrNoiseConstants parametric;
+} TrGeneralPlan;
+
 #endif

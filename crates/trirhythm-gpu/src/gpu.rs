@@ -39,9 +39,9 @@ const CHUNK_BYTES: usize = 1 << 31;
 
 /// The bytes of a plain value, to upload a structure of another crate as the kernel reads it.
 fn bytes_of<T: Copy>(value: &T) -> Vec<u8> {
-    // SAFETY: `T` is a `#[repr(C)]` plain-data structure (StepPlan, RecordPlan, NoiseIn)
-    // without padding that could be uninitialised in a way the kernel reads: its padding bytes
-    // are copied but never used as values
+    // SAFETY: `T` is a `#[repr(C)]` plain-data structure (StepPlan, GeneralPlan, RecordPlan,
+    // NoiseIn) without padding that could be uninitialised in a way the kernel reads: its
+    // padding bytes are copied but never used as values
     unsafe { std::slice::from_raw_parts(value as *const T as *const u8, std::mem::size_of::<T>()) }
         .to_vec()
 }
@@ -77,6 +77,8 @@ pub fn gpu_paths(
     let defines = [
         ("TR_MAX_CAP", prep.plan.cap.max(1).to_string()),
         ("TR_MAX_MODES", prep.plan.modes.max(4).to_string()),
+        ("TR_GENERAL", prep.general.active.to_string()),
+        ("TR_MULTIPLICATIVE", prep.general.multiplicative.to_string()),
     ];
     let ptx = compile_ptx_for(
         crate::cuda::ENSEMBLE_SOURCE,
@@ -89,6 +91,7 @@ pub fn gpu_paths(
     let mut kernel_seconds = 0.0;
     let (zx, zf) = trirhythm::maths::ziggurat_tables();
     let plan = gpu.upload(&bytes_of(&prep.plan))?;
+    let general = gpu.upload(&bytes_of(&prep.general))?;
     let noise = gpu.upload(&bytes_of(&prep.noise))?;
     let record = gpu.upload(&bytes_of(&prep.record))?;
     let zx = gpu.upload(&zx[..])?;
@@ -118,6 +121,7 @@ pub fn gpu_paths(
         let launched = Instant::now();
         gpu.launch(&kernel, Grid::cover(count, THREADS)?, |a| {
             a.arg(&plan)
+                .arg(&general)
                 .arg(&noise)
                 .arg(&record)
                 .arg(&zx)

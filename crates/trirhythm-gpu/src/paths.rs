@@ -1,5 +1,5 @@
 //! What the kernel and its emulation share on the host side: a run's constants prepared once
-//! ([`Prepared`]: the step's [`StepPlan`], the recorder's [`RecordPlan`], the noise's
+//! ([`Prepared`]: the step's [`StepPlan`] and [`GeneralPlan`], the recorder's [`RecordPlan`], the noise's
 //! [`StepConstants`], the ziggurat's tables), the raw per-path outputs in the kernel's
 //! `#[repr(C)]` layouts, and their conversion into the engine's [`PathStats`], so that both
 //! backends end in `trirhythm::analysis::ensemble::merge`, as the CPU engine does.
@@ -13,7 +13,7 @@ use trirhythm::analysis::ensemble::{
     merge, BatchSums, EnsembleResult, EnsembleSpec, PassageSums, PathStats, RecordPlan,
 };
 use trirhythm::engine::noise::{NoiseStream, StepConstants};
-use trirhythm::engine::{PredictorCorrector, Problem, StepPlan, Stepper};
+use trirhythm::engine::{GeneralPlan, PredictorCorrector, Problem, StepPlan, Stepper};
 use trirhythm::{Error, Result};
 
 /// The kernel's `TrNoise`: the constants and the running node value.
@@ -67,6 +67,8 @@ const TR_BLOW_UP: u64 = 1;
 /// A run's constants, prepared and checked once before any work.
 pub(crate) struct Prepared {
     pub(crate) plan: StepPlan,
+    /// The General kernel's constants (`active` = 0 for the paper's family).
+    pub(crate) general: GeneralPlan,
     pub(crate) record: RecordPlan,
     pub(crate) noise: NoiseIn,
     /// Steps of a path (burn-in and window).
@@ -88,6 +90,7 @@ impl Prepared {
         let (record, steps) = RecordPlan::new(problem, method, spec)?;
         let horizon = steps as f64 * method.dt;
         let plan = StepPlan::new(problem, method, horizon)?;
+        let general = GeneralPlan::new(problem, method, horizon)?;
         // each start as the engine's stepper checks it, and the noise's constants (every path's)
         for k in 0..problem.starts().len().min(spec.paths) as u64 {
             Stepper::new(problem, method, (spec.seed, k), horizon)?;
@@ -97,6 +100,7 @@ impl Prepared {
         let (bins, jb) = (record.bins as usize, record.joint_bins as usize);
         Ok(Prepared {
             plan,
+            general,
             record,
             noise: NoiseIn {
                 constants,
@@ -245,12 +249,13 @@ pub(crate) fn first_error(results: Vec<Result<PathStats>>) -> Result<Vec<PathSta
 mod ffi {
     use super::{Batch, NoiseIn, Passage, PathEnd};
     use trirhythm::analysis::ensemble::RecordPlan;
-    use trirhythm::engine::StepPlan;
+    use trirhythm::engine::{GeneralPlan, StepPlan};
 
     extern "C" {
         #[allow(clippy::too_many_arguments)]
         pub(super) fn tr_emulate_path(
             plan: *const StepPlan,
+            general: *const GeneralPlan,
             noise: *const NoiseIn,
             record: *const RecordPlan,
             zx: *const f64,
@@ -286,6 +291,7 @@ fn emulate_one(prep: &Prepared, problem: &Problem, path: u64) -> Result<PathStat
     unsafe {
         ffi::tr_emulate_path(
             &prep.plan,
+            &prep.general,
             &prep.noise,
             &prep.record,
             zx.as_ptr(),

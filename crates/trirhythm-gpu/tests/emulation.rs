@@ -7,10 +7,11 @@
 
 use std::mem::{offset_of, size_of};
 use trirhythm::analysis::ensemble::{run_ensemble, run_paths, EnsembleSpec, RecordPlan, Wells};
+use trirhythm::engine::noise::StepConstants;
 use trirhythm::engine::{
-    Barrier, ImpactMemory, Memory, PredictorCorrector, Problem, StepPlan, System,
+    Barrier, GeneralPlan, ImpactMemory, Memory, PredictorCorrector, Problem, StepPlan, System,
 };
-use trirhythm::model::{preset, Model};
+use trirhythm::model::{preset, Fractional, Harmonic, Model, NoiseTerm};
 use trirhythm::monitor::Silent;
 use trirhythm::Error;
 use trirhythm_gpu::{emulate_ensemble, emulate_paths, layout_of_c};
@@ -52,6 +53,10 @@ fn same(problem: &Problem, method: &PredictorCorrector, spec: &EnsembleSpec) -> 
     );
     let impacts = engine.iter().map(|p| p.impacts).sum();
     let sticking = engine.iter().map(|p| p.sticking_steps).sum();
+    eprintln!(
+        "{} paths bit for bit: {impacts} impacts, {sticking} sticking steps",
+        spec.paths
+    );
     (impacts, sticking)
 }
 
@@ -74,6 +79,16 @@ fn the_structures_shared_with_c_have_the_same_layout() {
     assert_eq!(layout_of_c(4), offset_of!(RecordPlan, core_hi) as u64);
     assert_eq!(layout_of_c(10), offset_of!(RecordPlan, burn) as u64);
     assert_eq!(layout_of_c(5), trirhythm_gpu::noise_layout() as u64);
+    assert_eq!(layout_of_c(11), size_of::<GeneralPlan>() as u64);
+    assert_eq!(layout_of_c(12), offset_of!(GeneralPlan, cubic) as u64);
+    assert_eq!(layout_of_c(13), offset_of!(GeneralPlan, forcing) as u64);
+    assert_eq!(layout_of_c(14), offset_of!(GeneralPlan, amplitude) as u64);
+    assert_eq!(layout_of_c(15), offset_of!(GeneralPlan, salt) as u64);
+    assert_eq!(layout_of_c(16), offset_of!(GeneralPlan, parametric) as u64);
+    assert_eq!(
+        layout_of_c(17),
+        (offset_of!(GeneralPlan, parametric) + offset_of!(StepConstants, sd)) as u64
+    );
 }
 
 #[test]
@@ -188,6 +203,169 @@ fn a_blow_up_is_reported_as_the_engine_reports_it() {
     assert_eq!(engine.to_string(), emulated.to_string());
 }
 
+/// Fig. 13(a)'s oscillator (λ = 0.998, OU noise, the wall at 0 with r = 0.99) as a model, with
+/// `d` for D and `r` for r, three starts.
+fn fig13a_model(d: f64, r: f64) -> Model {
+    let p = preset("fig13a")
+        .unwrap()
+        .params
+        .with("D", d)
+        .unwrap()
+        .with("r", r)
+        .unwrap();
+    Model::from(&p)
+}
+
+fn general(m: &Model) -> Problem {
+    let problem = Problem::from_model(m)
+        .unwrap()
+        .with_starts(&[(1.0, 0.0), (4.0, 0.5), (0.3, -0.2)])
+        .unwrap();
+    assert!(problem.oscillator().terms().is_some());
+    problem
+}
+
+/// Stage 1's terms together: Duffing and quintic restoring, two Rayleigh terms, the harmonic
+/// forcing (8000 steps: 31 re-anchorings of its phase).
+fn duffing_rayleigh_forced(m: &mut Model) {
+    m.restoring.cubic = 0.3;
+    m.restoring.quintic = 0.002;
+    m.damping.rayleigh = vec![-0.02, 0.001];
+    m.forcing = Some(Harmonic {
+        amplitude: 0.4,
+        frequency: 1.3,
+        phase: 0.2,
+    });
+}
+
+#[test]
+fn general_paths_without_a_wall_are_the_engines() {
+    let mut m = fig13a_model(0.1, 0.99);
+    m.walls.clear();
+    duffing_rayleigh_forced(&mut m);
+    let problem = general(&m);
+    assert!(!problem.wall());
+    let (impacts, _) = same(&problem, &method(0.01), &spec(4, 3));
+    assert_eq!(impacts, 0);
+    // each term alone, at λ = 1 (the flat memory) and white noise
+    let p = preset("fig13a")
+        .unwrap()
+        .params
+        .with("lambda", 1.0)
+        .unwrap()
+        .with("tau", 0.0)
+        .unwrap();
+    let base = {
+        let mut m = Model::from(&p);
+        m.walls.clear();
+        m
+    };
+    let mut cubic = base.clone();
+    cubic.restoring.cubic = 0.5;
+    let mut rayleigh = base.clone();
+    rayleigh.damping.rayleigh = vec![-0.05];
+    let mut forced = base.clone();
+    forced.forcing = Some(Harmonic {
+        amplitude: 1.0,
+        frequency: 0.7,
+        phase: -1.0,
+    });
+    for m in [cubic, rayleigh, forced] {
+        same(&general(&m), &method(0.02), &spec(3, 4));
+    }
+}
+
+#[test]
+fn general_paths_with_the_wall_impacts_and_sticking_are_the_engines() {
+    let mut m = fig13a_model(0.1, 0.99);
+    duffing_rayleigh_forced(&mut m);
+    let problem = general(&m);
+    assert!(problem.wall());
+    let (impacts, _) = same(&problem, &method(0.01), &spec(4, 11));
+    assert!(impacts > 50, "impacts {impacts}");
+    // strong noise at a small r: sticking; both impact memories
+    let mut m = fig13a_model(2.0, 0.3);
+    duffing_rayleigh_forced(&mut m);
+    let problem = general(&m);
+    for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+        let method = PredictorCorrector {
+            impact_memory: memory,
+            ..method(0.02)
+        };
+        let (impacts, sticking) = same(&problem, &method, &spec(4, 5));
+        assert!(
+            impacts > 10 && sticking > 0,
+            "{memory:?}: impacts {impacts}, sticking {sticking}"
+        );
+    }
+}
+
+/// Stage 2: U·η_m from its own stream, white and OU, uncorrelated and correlated with the
+/// additive noise (c = ±0.6: η_m takes side·η_a, a path started below 0 too), with no wall and with the wall (impacts,
+/// sticking, both impact memories), alone and with stage 1's terms.
+#[test]
+fn general_paths_with_multiplicative_noise_are_the_engines() {
+    for (tau, c) in [(0.0, 0.0), (0.0, 0.6), (0.5, 0.0), (0.5, -0.6)] {
+        let p = preset("fig13a")
+            .unwrap()
+            .params
+            .with("D", 0.3)
+            .unwrap()
+            .with("tau", tau)
+            .unwrap();
+        let mut m = Model::from(&p);
+        m.noise.multiplicative = Some(NoiseTerm {
+            intensity: 0.2,
+            correlation_time: tau,
+        });
+        m.noise.correlation = c;
+        let (impacts, _) = same(&general(&m), &method(0.01), &spec(3, 7));
+        assert!(impacts > 10, "τ = {tau}, c = {c}: impacts {impacts}");
+        let mut off = m.clone();
+        off.walls.clear();
+        // a start below 0: side = −1, so η_m mixes −η_a
+        let below = general(&off)
+            .with_starts(&[(-1.0, 0.0), (2.0, 0.0)])
+            .unwrap();
+        let (impacts, _) = same(&below, &method(0.01), &spec(4, 8));
+        assert_eq!(impacts, 0);
+    }
+    // with stage 1's terms, sticking at a small r, both impact memories
+    let mut m = fig13a_model(2.0, 0.3);
+    duffing_rayleigh_forced(&mut m);
+    m.noise.multiplicative = Some(NoiseTerm {
+        intensity: 0.05,
+        correlation_time: m.noise.additive.unwrap().correlation_time,
+    });
+    m.noise.correlation = 0.4;
+    let problem = general(&m);
+    for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+        let method = PredictorCorrector {
+            impact_memory: memory,
+            ..method(0.02)
+        };
+        let (impacts, sticking) = same(&problem, &method, &spec(4, 5));
+        assert!(
+            impacts > 10 && sticking > 0,
+            "{memory:?}: impacts {impacts}, sticking {sticking}"
+        );
+    }
+}
+
+#[test]
+fn a_general_blow_up_is_reported_as_the_engine_reports_it() {
+    // negative Rayleigh damping pumps the amplitude past the bound
+    let mut m = fig13a_model(0.5, 0.99);
+    m.walls.clear();
+    m.damping.rayleigh = vec![0.5];
+    let problem = general(&m).with_blow_up(20.0).unwrap();
+    let (m, s) = (method(0.01), spec(3, 1));
+    let engine = run_ensemble(&problem, &m, &s, &Silent).unwrap_err();
+    let emulated = emulate_ensemble(&problem, &m, &s).unwrap_err();
+    assert!(matches!(engine, Error::InPath { .. }), "{engine}");
+    assert_eq!(engine.to_string(), emulated.to_string());
+}
+
 #[test]
 fn what_the_kernel_does_not_hold_is_refused_by_name() {
     let s = spec(2, 1);
@@ -197,11 +375,23 @@ fn what_the_kernel_does_not_hold_is_refused_by_name() {
     };
     let e = emulate_ensemble(&fig13a(0.1), &direct, &s).unwrap_err();
     assert!(e.to_string().contains("memory"), "{e}");
-    let mut model = Model::from(&preset("fig13a").unwrap().params);
-    model.restoring.cubic = 0.5;
-    let duffing = Problem::from_model(&model).unwrap();
-    let e = emulate_ensemble(&duffing, &method(0.01), &s).unwrap_err();
-    assert!(e.to_string().contains("cubic"), "{e}");
+    // the General kernel's terms not ported yet: the model's walls, the fractional terms
+    let mut model = fig13a_model(0.1, 0.99);
+    model.walls[0].position = 0.5;
+    let walls = Problem::from_model(&model)
+        .unwrap()
+        .with_barrier(Barrier::Off)
+        .unwrap();
+    let e = emulate_ensemble(&walls, &method(0.01), &s).unwrap_err();
+    assert!(e.to_string().contains("walls"), "{e}");
+    let mut model = fig13a_model(0.1, 0.99);
+    model.fractional = vec![Fractional {
+        coefficient: 0.2,
+        order: 0.5,
+    }];
+    let fractional = Problem::from_model(&model).unwrap();
+    let e = emulate_ensemble(&fractional, &method(0.01), &s).unwrap_err();
+    assert!(e.to_string().contains("fractional"), "{e}");
     // bad input is the engine's error, before any work
     let bad = EnsembleSpec { bins: 0, ..s };
     let e = emulate_ensemble(&fig13a(0.1), &method(0.01), &bad).unwrap_err();

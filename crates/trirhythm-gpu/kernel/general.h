@@ -1,0 +1,375 @@
+/* The General kernel's step: the engine's `Stepper::step_general` and what it calls (engine
+ * `stepper::{mod, general, impact}`), the same expressions in the same order; the tangent is
+ * not ported (the ensembles do not need it).
+ *
+ * Equation (engine `stepper::general`):
+ *   D^{1+λ}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η_a(t) + U·η_m(t),
+ *   h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k},  k(U) = ω0²U + k3U³ + k5U⁵,
+ * with no wall or the paper's wall at U = 0 (impacts U̇₊ = −rU̇₋, sticking, either impact
+ * memory); in Volterra form U′ = V, V = V₀ + J^λ g, g = h(U, V)V − k(U) + F cos ψ + η_a + Uη_m.
+ *
+ * Method: the engine's General kernel. Each corrector pass freezes U at its predictor U^P and
+ * linearises hV in V at V_l (the first pass at V_n, the second at the first pass's V):
+ *   V_{n+1} = [N + w_r(F_r − k(U^P) + (h(U^P, V_l) − a)V_l)] / (1 − w_r a),
+ *   a = ∂_V(hV)(U^P, V_l) − κ, U_{n+1} as the paper kernel's with the limiter L(2w_r a).
+ * The forcing's phase is per-path state: (cos ψ_n, sin ψ_n) rotated every step by the plan's
+ * (cos ΩΔt, sin ΩΔt) and re-anchored from ψ = φ + (ΩΔt·n mod 2π) every 256 steps. η_m is
+ * piecewise constant at its exact step mean, from a stream of its own ((seed ^ salt, path)),
+ * mixed with the additive noise as it enters g: η_m = mix·side·η_a + own·η′ (correlation c).
+ * At the wall at 0 the impact is located on the Hermite interpolant and the scheme's V(t*−)
+ * is the root of V = N + w_s(h(0, V)V + F cos ψ* + η*) (affine without Rayleigh terms, else
+ * Newton's method); the rest of the step is this kernel's step from (0, V₊).
+ *
+ * Constants: `trirhythm::engine::GeneralPlan` (TrGeneralPlan, plan.h), copied out of the
+ * engine's own `General`; the damping μ0P, ω0², the wall and the memory are the StepPlan's.
+ * Per-path state is TrGeneral (a few words; with TR_MULTIPLICATIVE the second stream too).
+ *
+ * Reference: the engine's module docs of `stepper::general` (model-class.md §2–§5;
+ * Diethelm, Ford & Freed 2002 for the scheme).
+ *
+ * Tests: tests/emulation.rs (`general_*`): Duffing, quintic, Rayleigh, forcing past several
+ * re-anchorings, multiplicative noise (white and OU, correlated), with no wall and with the
+ * wall (impacts and sticking, both impact memories): every path's statistics and the merged
+ * result bit for bit as the engine's `run_paths` and `run_ensemble`. */
+#ifndef TR_GENERAL_H
+#define TR_GENERAL_H
+#include "step.h"
+
+/* the multiplicative noise's stream in a path's state (the GPU build sets it from the plan) */
+#ifndef TR_MULTIPLICATIVE
+#define TR_MULTIPLICATIVE 1
+#endif
+
+/* steps between re-anchorings of the forcing's phase (engine `general::REANCHOR`) */
+#define TR_REANCHOR 256u
+/* std::f64::consts::TAU */
+#define TR_TAU 6.283185307179586476925286766559
+
+/* one path's General state (engine `General`'s per-path fields) */
+typedef struct {
+    /* (cos ψ_n, sin ψ_n) and n (engine `Phase`) */
+    double cos_now, sin_now;
+    tr_u64 n;
+    /* η_m on the step in progress, −Σ K_j m_j at the node, its part known at the step's start */
+    double eta_m, lag, ahead;
+#if TR_MULTIPLICATIVE
+    TrRng rng;
+    TrNoise noise;
+#endif
+} TrGeneral;
+
+/* the Rayleigh parts at v (engine `General::rayleigh_at`, the tangent's parts left out) */
+typedef struct {
+    double h, a, rest;
+} TrRayleighAt;
+
+TR_FN TrRayleighAt tr_rayleigh_at(const TrGeneralPlan* G, double v) {
+    TrRayleighAt r;
+    r.h = 0.0;
+    r.a = 0.0;
+    r.rest = 0.0;
+    if (G->rayleigh_terms == 0) {
+        return r;
+    }
+    double x = v * v;
+    double h = 0.0, a = 0.0;
+    double before = 1.0;
+    for (tr_u32 i = 0; i < G->rayleigh_terms; i++) {
+        double d = G->rayleigh[i];
+        double k = (double)(i + 1);
+        double pow = before * x;
+        h += d * pow;
+        a += (2.0 * k + 1.0) * d * pow;
+        before = pow;
+    }
+    r.h = h;
+    r.a = a;
+    r.rest = (h - a) * v;
+    return r;
+}
+
+/* k(U) = ω0²U + k3U³ + k5U⁵ */
+TR_FN double tr_restoring(const TrPlan* P, const TrGeneralPlan* G, double u) {
+    double x = u * u;
+    return u * (P->omega2 + x * (G->cubic + G->quintic * x));
+}
+
+/* ∂_V(hV) at (u, v) */
+TR_FN double tr_general_a(const TrPlan* P, const TrGeneralPlan* G, double u, double v) {
+    return tr_damping(P, u) + tr_rayleigh_at(G, v).a;
+}
+
+/* h(U, V)V − k(U): g without its forcing */
+TR_FN double tr_general_drift(const TrPlan* P, const TrGeneralPlan* G, double u, double v) {
+    return (tr_damping(P, u) + tr_rayleigh_at(G, v).h) * v - tr_restoring(P, G, u);
+}
+
+/* the drift and the predictor's weight at a node (engine `General::node`) */
+TR_FN void tr_general_node(const TrPlan* P, const TrGeneralPlan* G, double h, double u1,
+                           double v1, double* drift, double* pw) {
+    *drift = tr_general_drift(P, G, u1, v1);
+    *pw = tr_predictor_weight(h, tr_general_a(P, G, u1, v1) - G->kappa);
+}
+
+/* g at the wall U = 0 without its forcing (engine `General::wall_drift` at δ = 0) */
+TR_FN double tr_wall_drift(const TrPlan* P, const TrGeneralPlan* G, double v) {
+    return (tr_damping(P, 0.0) + tr_rayleigh_at(G, v).h) * v - tr_restoring(P, G, 0.0);
+}
+
+/* the scheme's velocity at an impact on the wall at 0 (engine `General::wall_velocity`) */
+TR_NOINLINE double tr_wall_velocity(const TrPlan* P, const TrGeneralPlan* G, double known,
+                                    double w, double forcing) {
+    double a0 = tr_damping(P, 0.0);
+    double v = (known + w * forcing) / (1.0 - w * a0);
+    if (G->rayleigh_terms == 0) {
+        return v;
+    }
+    for (int it = 0; it < 50; it++) {
+        TrRayleighAt r = tr_rayleigh_at(G, v);
+        double f = v - known - w * ((a0 + r.h) * v + forcing);
+        double df = 1.0 - w * (a0 + r.a);
+        double step = f / df;
+        v -= step;
+        /* a NaN step ends the iteration too */
+        if (step != step || tr_fabs(step) <= 1e-14 * (1.0 + tr_fabs(v))) {
+            break;
+        }
+    }
+    return v;
+}
+
+/* one pass with U frozen at up, hV linearised at vl (engine `General::pass`) */
+TR_FN void tr_general_pass(const TrPlan* P, const TrGeneralPlan* G, const TrGeneral* g,
+                           double kappa, double len, double u, double v, double g0, double up,
+                           double vl, double known, double w, double fr, double* u1,
+                           double* v1) {
+    double mp = tr_damping(P, up);
+    TrRayleighAt r = tr_rayleigh_at(G, vl);
+    double a = mp + r.a - kappa;
+    double k = tr_restoring(P, G, up);
+    if (G->multiplicative) {
+        fr = fr + up * g->eta_m;
+    }
+    double inv = 1.0 / (1.0 - w * a);
+    double z = 2.0 * w * a;
+    double lim = 1.0 / (1.0 + z * z * (1.0 / 12.0));
+    double vv = (known + w * (fr - k + r.rest)) * inv;
+    double gr = (mp + tr_rayleigh_at(G, vv).h - kappa) * vv - k + fr;
+    *u1 = u + 0.5 * len * (v + vv) + len * len * (1.0 / 12.0) * lim * (g0 - gr);
+    *v1 = vv;
+}
+
+/* the step of length len from (u, v) where g = g0 (engine `General::advance_split`) */
+TR_FN void tr_general_advance(const TrPlan* P, const TrGeneralPlan* G, const TrGeneral* g,
+                              double kappa, double len, double u, double v, double g0, double pw,
+                              double known, double w, double fr, double* u1, double* v1) {
+    double up1, vp1;
+    tr_general_pass(P, G, g, kappa, len, u, v, g0, u + len * v + pw * g0, v, known, w, fr, &up1,
+                    &vp1);
+    tr_general_pass(P, G, g, kappa, len, u, v, g0, up1, vp1, known, w, fr, u1, v1);
+}
+
+/* F cos ψ at the current node and at the next, the phase moved there (engine
+ * `General::forces`, `Phase::advance`) */
+TR_FN void tr_phase_forces(const TrGeneralPlan* G, TrGeneral* g, double* left, double* right) {
+    if (!G->forcing) {
+        *left = 0.0;
+        *right = 0.0;
+        return;
+    }
+    *left = G->amplitude * g->cos_now;
+    g->n += 1;
+    if (g->n % TR_REANCHOR == 0) {
+        /* ψ = φ + (ΩΔt·n).rem_euclid(2π) */
+        double r = tr_fmod(G->angle * (double)g->n, TR_TAU);
+        if (r < 0.0) {
+            r = r + TR_TAU;
+        }
+        double psi = G->phase + r;
+        g->cos_now = tr_cos(psi);
+        g->sin_now = tr_sin(psi);
+    } else {
+        double c = g->cos_now, s = g->sin_now;
+        g->cos_now = c * G->rotation_cos - s * G->rotation_sin;
+        g->sin_now = s * G->rotation_cos + c * G->rotation_sin;
+    }
+    *right = G->amplitude * g->cos_now;
+}
+
+/* F cos ψ at the current node (engine `General::force_now`) */
+TR_FN double tr_force_now(const TrGeneralPlan* G, const TrGeneral* g) {
+    return G->forcing ? G->amplitude * g->cos_now : 0.0;
+}
+
+/* F cos ψ at the fraction θ of the step that ends at the current node (engine
+ * `General::force_at`) */
+TR_FN double tr_force_at(const TrGeneralPlan* G, const TrGeneral* g, double theta) {
+    if (!G->forcing) {
+        return 0.0;
+    }
+    double back = (1.0 - theta) * G->angle;
+    return G->amplitude * (g->cos_now * tr_cos(back) + g->sin_now * tr_sin(back));
+}
+
+/* the path's General state at its start (engine `General::new`'s phase and stream, `start`,
+ * then the node of `Stepper::with_history`) */
+TR_FN void tr_general_new(const TrPlan* P, const TrGeneralPlan* G, TrPath* s, TrGeneral* g,
+                          tr_u64 seed, tr_u64 path, const double* zx, const double* zf) {
+    g->cos_now = G->start_cos;
+    g->sin_now = G->start_sin;
+    g->n = 0;
+    g->eta_m = 0.0;
+    g->lag = 0.0;
+    g->ahead = 0.0;
+#if TR_MULTIPLICATIVE
+    if (G->multiplicative) {
+        tr_rng_new(&g->rng, seed ^ G->salt, path);
+        g->noise.kind = G->parametric.kind;
+        g->noise.rho = G->parametric.rho;
+        g->noise.sigma = G->parametric.sigma;
+        g->noise.mean_coef = G->parametric.mean_coef;
+        g->noise.cross = G->parametric.cross;
+        g->noise.rest = G->parametric.rest;
+        g->noise.dt = G->parametric.dt;
+        g->noise.sd = G->parametric.sd;
+        tr_noise_start(&g->noise, &g->rng, zx, zf);
+    }
+#else
+    (void)seed;
+    (void)path;
+    (void)zx;
+    (void)zf;
+#endif
+    tr_general_node(P, G, P->h, s->u, s->v, &s->drift, &s->pw);
+}
+
+/* the start of a step from (u, v), η_a = el as it enters g (engine `General::begin_step`):
+ * draws η_m; returns g's extra at the step's start and the part known of its end's */
+TR_FN void tr_general_begin(const TrGeneralPlan* G, TrGeneral* g, double u, double el,
+                            const double* zx, const double* zf, double* xl, double* xr) {
+#if TR_MULTIPLICATIVE
+    if (G->multiplicative) {
+        double own, own_r;
+        tr_noise_step(&g->noise, &g->rng, zx, zf, &own, &own_r);
+        g->eta_m = G->mix * el + G->own * own;
+    }
+#else
+    (void)el;
+    (void)zx;
+    (void)zf;
+#endif
+    double ahead = 0.0;
+    g->ahead = ahead;
+    *xl = g->lag + u * g->eta_m;
+    *xr = ahead;
+}
+
+/* the end of the step at (u1, v1) (engine `General::end_step`): returns the part of g's extras
+ * there not in the step's known forcing, −κV_{n+1} + u1·η_m */
+TR_FN double tr_general_end(const TrGeneralPlan* G, TrGeneral* g, double v1, double u1) {
+    double now = -G->kappa * v1;
+    g->lag = g->ahead + now;
+    return now + u1 * g->eta_m;
+}
+
+/* an impact on the wall at 0 inside the step whose free end is (u1, v1) (engine
+ * `Stepper::locate` then `jump_general`): its split of g and the step's end */
+TR_NOINLINE void tr_general_impact(const TrPlan* P, const TrGeneralPlan* G, TrPath* s,
+                                   const TrGeneral* g, double gl, double el, double er,
+                                   double* u1, double* v1, TrSplit* split) {
+    double h = P->h;
+    double theta = tr_hermite_root(s->u, s->v, *u1, *v1, h);
+    double eta_star = el + theta * (er - el);
+    double hs, ws;
+    tr_at_fraction(P, &s->history, theta, gl, &hs, &ws);
+    double forcing = tr_forcing(P, eta_star, s->side);
+    forcing += tr_force_at(G, g, theta);
+    double v_at = tr_wall_velocity(P, G, s->base + hs, ws, forcing);
+    double v_minus = v_at < 0.0 ? v_at : 0.0;
+    double v_plus = -P->restitution * v_minus;
+    s->impacts += 1;
+    if (P->restart) {
+        tr_history_restart(P, &s->history);
+        s->base = v_plus;
+    } else {
+        s->base += v_plus - v_at;
+    }
+    split->theta = theta;
+    split->before = tr_wall_drift(P, G, v_at) + forcing;
+    split->after = tr_wall_drift(P, G, v_plus) + forcing;
+    split->keep_before = !P->restart;
+    double known_s, wr_s;
+    tr_current_split(P, gl, split, &known_s, &wr_s);
+    double known = s->base + s->history.cached + known_s;
+    double hh = (1.0 - theta) * h;
+    double fr = tr_forcing(P, er, s->side) + tr_force_now(G, g);
+    double pw = tr_predictor_weight(hh, tr_general_a(P, G, 0.0, v_plus));
+    tr_general_advance(P, G, g, G->kappa, hh, 0.0, v_plus, split->after, pw, known, wr_s, fr, u1,
+                       v1);
+}
+
+/* one step Δt of the General kernel (engine `Stepper::step_general` with `begin_general`,
+ * `end_events` and `end_general`); returns TR_OK or why the path stops */
+TR_FN int tr_step_general(const TrPlan* P, const TrGeneralPlan* G, TrPath* s, TrGeneral* g,
+                          const double* zx, const double* zf) {
+    double el, er;
+    tr_noise_step(&s->noise, &s->rng, zx, zf, &el, &er);
+    double fl, fh;
+    tr_phase_forces(G, g, &fl, &fh);
+    double u = s->u, v = s->v;
+    double gl = s->drift + tr_forcing(P, el, s->side) + fl;
+    double fr = tr_forcing(P, er, s->side) + fh;
+    int extras = G->multiplicative != 0;
+    if (extras) {
+        double xl, xr;
+        tr_general_begin(G, g, u, s->side * el, zx, zf, &xl, &xr);
+        gl += xl;
+        fr += xr;
+    }
+    double known = s->base + s->history.cached + P->wl0 * gl;
+    double u1, v1;
+    tr_general_advance(P, G, g, G->kappa, P->h, u, v, gl, s->pw, known, P->wr0, fr, &u1, &v1);
+    /* the events: the wall at 0 only (the model's walls are refused by the plan) */
+    TrSplit split;
+    int has_split = 0;
+    int push = 1;
+    if (P->wall && s->stuck) {
+        if (u1 <= 0.0) {
+            push = tr_stick(P, s, v1);
+            u1 = 0.0;
+            v1 = 0.0;
+        } else {
+            s->stuck = 0;
+        }
+    } else if (P->wall && u1 < 0.0) {
+        tr_general_impact(P, G, s, g, gl, el, er, &u1, &v1, &split);
+        has_split = 1;
+        if (u1 < 0.0) {
+            push = tr_stick(P, s, v1);
+            u1 = 0.0;
+            v1 = 0.0;
+            s->stuck = 1;
+        }
+    }
+    s->steps += 1;
+    if (!(tr_fabs(u1) <= P->blow_up && tr_fabs(v1) <= P->blow_up)) {
+        s->from_u = u;
+        s->from_v = v;
+        s->u = u1;
+        s->v = v1;
+        return TR_BLOW_UP;
+    }
+    tr_general_node(P, G, P->h, u1, v1, &s->drift, &s->pw);
+    double extra = extras ? tr_general_end(G, g, v1, u1) : 0.0;
+    if (push) {
+        if (has_split && s->history.nsplits >= TR_MAX_SPLITS) {
+            return TR_TOO_MANY_SPLITS;
+        }
+        tr_history_push(P, &s->history, gl, s->drift + fr + extra, has_split ? &split : 0);
+    }
+    s->u = u1;
+    s->v = v1;
+    return TR_OK;
+}
+
+#endif
