@@ -5,8 +5,11 @@
  * Equation (engine `stepper::general`):
  *   D^{1+λ}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η_a(t) + U·η_m(t),
  *   h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k},  k(U) = ω0²U + k3U³ + k5U⁵,
- * with no wall or the paper's wall at U = 0 (impacts U̇₊ = −rU̇₋, sticking, either impact
- * memory); in Volterra form U′ = V, V = V₀ + J^λ g, g = h(U, V)V − k(U) + F cos ψ + η_a + Uη_m.
+ * with no wall, the paper's wall at U = 0 (impacts U̇₊ = −rU̇₋, sticking, either impact memory)
+ * or the model's walls (engine `stepper::walls`: one at any δ keeping U above or below it, or
+ * two at δ1 < δ2, each with a constant r or r(v) = r_fast + (r0 − r_fast)e^{−v/v_s}; sticking
+ * at δ); in Volterra form U′ = V, V = V₀ + J^λ g,
+ * g = h(U, V)V − k(U) + F cos ψ + η_a + Uη_m.
  *
  * Method: the engine's General kernel. Each corrector pass freezes U at its predictor U^P and
  * linearises hV in V at V_l (the first pass at V_n, the second at the first pass's V):
@@ -18,7 +21,11 @@
  * mixed with the additive noise as it enters g: η_m = mix·side·η_a + own·η′ (correlation c).
  * At the wall at 0 the impact is located on the Hermite interpolant and the scheme's V(t*−)
  * is the root of V = N + w_s(h(0, V)V + F cos ψ* + η*) (affine without Rayleigh terms, else
- * Newton's method); the rest of the step is this kernel's step from (0, V₊).
+ * Newton's method); the rest of the step is this kernel's step from (0, V₊). At the model's
+ * walls the same with U − δ located, g at the wall h(δ, V)V − k(δ) + F cos ψ* + η* + δη_m,
+ * V₋ clipped to the wall's side, V₊ = −r(|V₋|)V₋; a path stuck at δ stays clamped while its
+ * free step ends beyond the wall (n(U₁ − δ) ≤ 0), and a step that meets both walls stops the
+ * path with the engine's refusal of Δt (TR_TWO_WALLS).
  *
  * Constants: `trirhythm::engine::GeneralPlan` (TrGeneralPlan, plan.h), copied out of the
  * engine's own `General`; the damping μ0P, ω0², the wall and the memory are the StepPlan's.
@@ -27,10 +34,12 @@
  * Reference: the engine's module docs of `stepper::general` (model-class.md §2–§5;
  * Diethelm, Ford & Freed 2002 for the scheme).
  *
- * Tests: tests/emulation.rs (`general_*`): Duffing, quintic, Rayleigh, forcing past several
- * re-anchorings, multiplicative noise (white and OU, correlated), with no wall and with the
- * wall (impacts and sticking, both impact memories): every path's statistics and the merged
- * result bit for bit as the engine's `run_paths` and `run_ensemble`. */
+ * Tests: tests/emulation.rs (`general_*`, `a_step_that_meets_both_walls_*`): Duffing,
+ * quintic, Rayleigh, forcing past several re-anchorings, multiplicative noise (white and OU,
+ * correlated), with no wall, with the wall at 0 and with the model's walls (two walls, offset
+ * walls above and below, speed-dependent restitution, sticking at δ, both impact memories):
+ * every path's statistics and the merged result bit for bit as the engine's `run_paths` and
+ * `run_ensemble`; a blow-up and the two-wall refusal with the engine's messages. */
 #ifndef TR_GENERAL_H
 #define TR_GENERAL_H
 #include "step.h"
@@ -111,15 +120,16 @@ TR_FN void tr_general_node(const TrPlan* P, const TrGeneralPlan* G, double h, do
     *pw = tr_predictor_weight(h, tr_general_a(P, G, u1, v1) - G->kappa);
 }
 
-/* g at the wall U = 0 without its forcing (engine `General::wall_drift` at δ = 0) */
-TR_FN double tr_wall_drift(const TrPlan* P, const TrGeneralPlan* G, double v) {
-    return (tr_damping(P, 0.0) + tr_rayleigh_at(G, v).h) * v - tr_restoring(P, G, 0.0);
+/* g at a wall U = δ without its forcing, h(δ, V)V − k(δ) (engine `General::wall_drift`) */
+TR_FN double tr_wall_drift(const TrPlan* P, const TrGeneralPlan* G, double delta, double v) {
+    return (tr_damping(P, delta) + tr_rayleigh_at(G, v).h) * v - tr_restoring(P, G, delta);
 }
 
-/* the scheme's velocity at an impact on the wall at 0 (engine `General::wall_velocity`) */
-TR_NOINLINE double tr_wall_velocity(const TrPlan* P, const TrGeneralPlan* G, double known,
-                                    double w, double forcing) {
-    double a0 = tr_damping(P, 0.0);
+/* the scheme's velocity at an impact on a wall U = δ, the root of
+ * V = N + w(h(δ, V)V + forcing) (engine `General::wall_velocity`) */
+TR_NOINLINE double tr_wall_velocity(const TrPlan* P, const TrGeneralPlan* G, double delta,
+                                    double known, double w, double forcing) {
+    double a0 = tr_damping(P, delta);
     double v = (known + w * forcing) / (1.0 - w * a0);
     if (G->rayleigh_terms == 0) {
         return v;
@@ -284,7 +294,7 @@ TR_NOINLINE void tr_general_impact(const TrPlan* P, const TrGeneralPlan* G, TrPa
     tr_at_fraction(P, &s->history, theta, gl, &hs, &ws);
     double forcing = tr_forcing(P, eta_star, s->side);
     forcing += tr_force_at(G, g, theta);
-    double v_at = tr_wall_velocity(P, G, s->base + hs, ws, forcing);
+    double v_at = tr_wall_velocity(P, G, 0.0, s->base + hs, ws, forcing);
     double v_minus = v_at < 0.0 ? v_at : 0.0;
     double v_plus = -P->restitution * v_minus;
     s->impacts += 1;
@@ -295,8 +305,8 @@ TR_NOINLINE void tr_general_impact(const TrPlan* P, const TrGeneralPlan* G, TrPa
         s->base += v_plus - v_at;
     }
     split->theta = theta;
-    split->before = tr_wall_drift(P, G, v_at) + forcing;
-    split->after = tr_wall_drift(P, G, v_plus) + forcing;
+    split->before = tr_wall_drift(P, G, 0.0, v_at) + forcing;
+    split->after = tr_wall_drift(P, G, 0.0, v_plus) + forcing;
     split->keep_before = !P->restart;
     double known_s, wr_s;
     tr_current_split(P, gl, split, &known_s, &wr_s);
@@ -308,8 +318,156 @@ TR_NOINLINE void tr_general_impact(const TrPlan* P, const TrGeneralPlan* G, TrPa
                        v1);
 }
 
+/* ---- the model's walls (engine `stepper::walls`) ---- */
+
+/* r(|V₋|) of wall i (engine `Restitution::at`) */
+TR_FN double tr_restitution_at(const TrGeneralPlan* G, int i, double speed) {
+    if (!G->wall_speed_dependent[i]) {
+        return G->wall_r[i];
+    }
+    return G->wall_r_fast[i] +
+           (G->wall_r[i] - G->wall_r_fast[i]) * tr_exp(-tr_fabs(speed) / G->wall_speed[i]);
+}
+
+/* the wall that u lies beyond: 0 the lower, 1 the upper, −1 none (engine `Walls::beyond`) */
+TR_FN int tr_beyond(const TrGeneralPlan* G, double u) {
+    if (G->wall_present[0] && u < G->wall_position[0]) {
+        return 0;
+    }
+    if (G->wall_present[1] && u > G->wall_position[1]) {
+        return 1;
+    }
+    return -1;
+}
+
+/* the wall that u sits on exactly, or −1 (engine `Walls::at`) */
+TR_FN int tr_on_wall(const TrGeneralPlan* G, double u) {
+    if (G->wall_present[0] && u == G->wall_position[0]) {
+        return 0;
+    }
+    if (G->wall_present[1] && u == G->wall_position[1]) {
+        return 1;
+    }
+    return -1;
+}
+
+/* the impact on wall `side` inside the step whose free end is (u1, v1): located, the jump by
+ * its restitution law, the rest of the step redone from the wall (engine
+ * `Stepper::impact_wall`) */
+TR_NOINLINE void tr_wall_impact(const TrPlan* P, const TrGeneralPlan* G, TrPath* s,
+                                const TrGeneral* g, int side, double gl, double el, double er,
+                                double fr, double* u1, double* v1, TrSplit* split) {
+    double h = P->h;
+    double delta = G->wall_position[side];
+    double theta = tr_hermite_root(s->u - delta, s->v, *u1 - delta, *v1, h);
+    double eta_star = el + theta * (er - el);
+    double hs, ws;
+    tr_at_fraction(P, &s->history, theta, gl, &hs, &ws);
+    /* the forcing at the instant (noise, harmonic and δ·η_m) and the wall's force −k(δ) */
+    double forcing = tr_forcing(P, eta_star, s->side) + tr_force_at(G, g, theta);
+    if (G->multiplicative) {
+        forcing = forcing + (delta != 0.0 ? delta * g->eta_m : 0.0);
+    }
+    double at_wall = forcing - tr_restoring(P, G, delta);
+    double v_at = tr_wall_velocity(P, G, delta, s->base + hs, ws, at_wall);
+    /* at a grazing impact the scheme's V(t*−) may point away from the wall: then V₋ = 0 */
+    double v_minus;
+    if (side == 0) {
+        v_minus = v_at < 0.0 ? v_at : 0.0;
+    } else {
+        v_minus = v_at > 0.0 ? v_at : 0.0;
+    }
+    double v_plus = -tr_restitution_at(G, side, tr_fabs(v_minus)) * v_minus;
+    split->theta = theta;
+    split->before = tr_wall_drift(P, G, delta, v_at) + forcing;
+    split->after = tr_wall_drift(P, G, delta, v_plus) + forcing;
+    split->keep_before = !P->restart;
+    double pw = tr_predictor_weight((1.0 - theta) * h, tr_general_a(P, G, delta, v_plus));
+    s->impacts += 1;
+    if (P->restart) {
+        tr_history_restart(P, &s->history);
+        s->base = v_plus;
+    } else {
+        s->base += v_plus - v_at;
+    }
+    double known_s, wr_s;
+    tr_current_split(P, gl, split, &known_s, &wr_s);
+    double known = s->base + s->history.cached + known_s;
+    tr_general_advance(P, G, g, G->kappa, (1.0 - theta) * h, delta, v_plus, split->after, pw,
+                       known, wr_s, fr, u1, v1);
+}
+
+/* the events of a step with the model's walls whose free end is (u1, v1), and its end
+ * (engine `Stepper::step_walls`, `pressed`, `beyond_again`, `end_wall_step`) */
+TR_NOINLINE int tr_walls_end(const TrPlan* P, const TrGeneralPlan* G, TrPath* s, TrGeneral* g,
+                             double u, double v, double gl, double el, double er, double fr,
+                             double u1, double v1) {
+    TrSplit split;
+    int has_split = 0;
+    int push = 1;
+    /* still pressed against the wall it is stuck on (n(U₁ − δ) ≤ 0)? */
+    int on = tr_on_wall(G, s->u);
+    int pressed = 0;
+    double delta = 0.0;
+    if (on >= 0 && s->stuck) {
+        delta = G->wall_position[on];
+        double normal = on == 0 ? 1.0 : -1.0;
+        pressed = normal * (u1 - delta) <= 0.0;
+    }
+    if (!pressed) {
+        s->stuck = 0;
+    }
+    if (pressed) {
+        push = tr_stick(P, s, v1);
+        u1 = delta;
+        v1 = 0.0;
+    } else {
+        int side = tr_beyond(G, u1);
+        if (side >= 0) {
+            tr_wall_impact(P, G, s, g, side, gl, el, er, fr, &u1, &v1, &split);
+            has_split = 1;
+            int again = tr_beyond(G, u1);
+            if (again == side) {
+                /* the next impact would come within this step: stick */
+                push = tr_stick(P, s, v1);
+                u1 = G->wall_position[side];
+                v1 = 0.0;
+                s->stuck = 1;
+            } else if (again >= 0) {
+                /* the step meets both walls: the engine refuses Δt */
+                return TR_TWO_WALLS;
+            }
+        }
+    }
+    s->steps += 1;
+    if (!(tr_fabs(u1) <= P->blow_up && tr_fabs(v1) <= P->blow_up)) {
+        s->from_u = u;
+        s->from_v = v;
+        s->u = u1;
+        s->v = v1;
+        return TR_BLOW_UP;
+    }
+    tr_general_node(P, G, P->h, u1, v1, &s->drift, &s->pw);
+    double right;
+    if (G->multiplicative) {
+        double extra = tr_general_end(G, g, v1, u1);
+        right = s->drift + fr + extra;
+    } else {
+        right = s->drift + fr;
+    }
+    if (push) {
+        if (has_split && s->history.nsplits >= TR_MAX_SPLITS) {
+            return TR_TOO_MANY_SPLITS;
+        }
+        tr_history_push(P, &s->history, gl, right, has_split ? &split : 0);
+    }
+    s->u = u1;
+    s->v = v1;
+    return TR_OK;
+}
+
 /* one step Δt of the General kernel (engine `Stepper::step_general` with `begin_general`,
- * `end_events` and `end_general`); returns TR_OK or why the path stops */
+ * `end_events` and `end_general`, or `step_walls`); returns TR_OK or why the path stops */
 TR_FN int tr_step_general(const TrPlan* P, const TrGeneralPlan* G, TrPath* s, TrGeneral* g,
                           const double* zx, const double* zf) {
     double el, er;
@@ -329,7 +487,10 @@ TR_FN int tr_step_general(const TrPlan* P, const TrGeneralPlan* G, TrPath* s, Tr
     double known = s->base + s->history.cached + P->wl0 * gl;
     double u1, v1;
     tr_general_advance(P, G, g, G->kappa, P->h, u, v, gl, s->pw, known, P->wr0, fr, &u1, &v1);
-    /* the events: the wall at 0 only (the model's walls are refused by the plan) */
+    if (G->walls) {
+        return tr_walls_end(P, G, s, g, u, v, gl, el, er, fr, u1, v1);
+    }
+    /* the events at the paper's wall at 0 */
     TrSplit split;
     int has_split = 0;
     int push = 1;

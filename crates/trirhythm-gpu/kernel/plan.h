@@ -65,6 +65,11 @@ typedef struct {
     double mix, own;
     tr_u64 salt;
     TrNoiseConstants parametric;
+    /* the model's walls: [0] the lower (keeping U above it), [1] the upper */
+    tr_u32 walls;
+    tr_u32 wall_present[2];
+    tr_u32 wall_speed_dependent[2];
+    double wall_position[2], wall_r[2], wall_r_fast[2], wall_speed[2];
 } TrGeneralPlan;
 
 #endif

@@ -14,6 +14,7 @@ use trirhythm::analysis::ensemble::{
 };
 use trirhythm::engine::noise::{NoiseStream, StepConstants};
 use trirhythm::engine::{GeneralPlan, PredictorCorrector, Problem, StepPlan, Stepper};
+use trirhythm::error::Exact;
 use trirhythm::{Error, Result};
 
 /// The kernel's `TrNoise`: the constants and the running node value.
@@ -63,6 +64,7 @@ pub(crate) struct PathEnd {
 /// The kernel's status codes (`kernel/step.h`).
 const TR_OK: u64 = 0;
 const TR_BLOW_UP: u64 = 1;
+const TR_TWO_WALLS: u64 = 3;
 
 /// A run's constants, prepared and checked once before any work.
 pub(crate) struct Prepared {
@@ -180,6 +182,17 @@ impl Raw {
                     stiffness: h * prep.damping(e.from_u).abs(),
                     dt: h,
                 }
+            } else if e.status == TR_TWO_WALLS {
+                // the engine's refusal (`stepper::walls`), at the time the step began
+                Error::invalid(
+                    "dt",
+                    h,
+                    format!(
+                        "a step that meets one wall at most: at t = {} the step meets both walls \
+                         (their distance is too small for this Δt)",
+                        Exact(e.steps as f64 * h)
+                    ),
+                )
             } else {
                 Error::NotApplicable {
                     method: "the GPU kernel".into(),

@@ -11,7 +11,9 @@ use trirhythm::engine::noise::StepConstants;
 use trirhythm::engine::{
     Barrier, GeneralPlan, ImpactMemory, Memory, PredictorCorrector, Problem, StepPlan, System,
 };
-use trirhythm::model::{preset, Fractional, Harmonic, Model, NoiseTerm};
+use trirhythm::model::{
+    preset, Fractional, Harmonic, Keep, Model, NoiseTerm, Restitution, SpeedRestitution, Wall,
+};
 use trirhythm::monitor::Silent;
 use trirhythm::Error;
 use trirhythm_gpu::{emulate_ensemble, emulate_paths, layout_of_c};
@@ -352,6 +354,125 @@ fn general_paths_with_multiplicative_noise_are_the_engines() {
     }
 }
 
+fn wall(position: f64, keep: Keep, r: f64) -> Wall {
+    Wall {
+        position,
+        keep,
+        restitution: Restitution::Constant(r),
+    }
+}
+
+/// r(v) = 0.4 + 0.5·e^{−v/0.8}.
+fn speed_dependent() -> Restitution {
+    Restitution::Speed(SpeedRestitution {
+        r0: 0.9,
+        r_fast: 0.4,
+        speed: 0.8,
+    })
+}
+
+/// `m` with `walls` (the model's: the paper's barrier off) and `starts`.
+fn walled(m: &Model, walls: Vec<Wall>, starts: &[(f64, f64)]) -> Problem {
+    let mut m = m.clone();
+    m.walls = walls;
+    m.start.u0 = starts[0].0;
+    m.start.v0 = starts[0].1;
+    let problem = Problem::from_model(&m)
+        .unwrap()
+        .with_starts(starts)
+        .unwrap();
+    assert!(problem.oscillator().terms().is_some() && !problem.wall());
+    problem
+}
+
+/// Stage 3: the model's walls — two walls (a constant and a speed-dependent restitution), an
+/// offset wall keeping above and one keeping below, with stage 1's and 2's terms, both impact
+/// memories; sticking at δ ≠ 0 where k(δ) pushes into the wall.
+#[test]
+fn general_paths_with_the_models_walls_are_the_engines() {
+    let mut m = fig13a_model(0.3, 0.99);
+    duffing_rayleigh_forced(&mut m);
+    m.noise.multiplicative = Some(NoiseTerm {
+        intensity: 0.05,
+        correlation_time: m.noise.additive.unwrap().correlation_time,
+    });
+    m.noise.correlation = 0.3;
+    let two = vec![
+        wall(-0.6, Keep::Above, 0.7),
+        Wall {
+            position: 0.9,
+            keep: Keep::Below,
+            restitution: speed_dependent(),
+        },
+    ];
+    let starts = [(0.2, 0.0), (-0.5, 1.0), (0.85, -0.3)];
+    for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+        let method = PredictorCorrector {
+            impact_memory: memory,
+            ..method(0.01)
+        };
+        let (impacts, _) = same(&walled(&m, two.clone(), &starts), &method, &spec(3, 2));
+        assert!(impacts > 50, "{memory:?}: impacts {impacts}");
+    }
+    // an offset wall keeping above, one keeping below (speed-dependent), without η_m
+    let mut plain = fig13a_model(0.3, 0.99);
+    duffing_rayleigh_forced(&mut plain);
+    let above = walled(
+        &plain,
+        vec![wall(0.5, Keep::Above, 0.8)],
+        &[(1.0, 0.0), (3.0, 1.0)],
+    );
+    let (impacts, _) = same(&above, &method(0.01), &spec(3, 4));
+    assert!(impacts > 10, "above: impacts {impacts}");
+    let below = Wall {
+        position: 2.0,
+        keep: Keep::Below,
+        restitution: speed_dependent(),
+    };
+    let below = walled(&plain, vec![below], &[(1.0, 0.0), (-3.0, 1.0)]);
+    let (impacts, _) = same(&below, &method(0.01), &spec(3, 5));
+    assert!(impacts > 10, "below: impacts {impacts}");
+    // sticking at δ = 0.5: k(δ) > 0 pushes into the lower wall, strong noise pulls away;
+    let mut sticky = fig13a_model(1.0, 0.3);
+    sticky.restoring.cubic = 0.5;
+    sticky.noise.multiplicative = Some(NoiseTerm {
+        intensity: 0.1,
+        correlation_time: sticky.noise.additive.unwrap().correlation_time,
+    });
+    // and its mirror at an upper wall at δ = −0.5
+    let lower = walled(&sticky, vec![wall(0.5, Keep::Above, 0.3)], &[(1.0, 0.0)]);
+    let upper = walled(&sticky, vec![wall(-0.5, Keep::Below, 0.3)], &[(-1.0, 0.0)]);
+    for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+        let method = PredictorCorrector {
+            impact_memory: memory,
+            ..method(0.02)
+        };
+        for problem in [&lower, &upper] {
+            let (impacts, sticking) = same(problem, &method, &spec(3, 6));
+            assert!(
+                impacts > 10 && sticking > 0,
+                "{memory:?}: impacts {impacts}, sticking {sticking}"
+            );
+        }
+    }
+}
+
+/// A step that meets both walls is the engine's refusal of Δt, with the same message.
+#[test]
+fn a_step_that_meets_both_walls_is_refused_as_the_engine_refuses_it() {
+    let m = fig13a_model(3.0, 0.99);
+    let problem = walled(
+        &m,
+        vec![wall(-0.02, Keep::Above, 1.0), wall(0.02, Keep::Below, 1.0)],
+        &[(0.0, 0.0)],
+    );
+    let (m, s) = (method(0.05), spec(3, 1));
+    let engine = run_ensemble(&problem, &m, &s, &Silent).unwrap_err();
+    let emulated = emulate_ensemble(&problem, &m, &s).unwrap_err();
+    assert!(engine.to_string().contains("both walls"), "{engine}");
+    assert_eq!(engine.to_string(), emulated.to_string());
+}
+
 #[test]
 fn a_general_blow_up_is_reported_as_the_engine_reports_it() {
     // negative Rayleigh damping pumps the amplitude past the bound
@@ -375,15 +496,7 @@ fn what_the_kernel_does_not_hold_is_refused_by_name() {
     };
     let e = emulate_ensemble(&fig13a(0.1), &direct, &s).unwrap_err();
     assert!(e.to_string().contains("memory"), "{e}");
-    // the General kernel's terms not ported yet: the model's walls, the fractional terms
-    let mut model = fig13a_model(0.1, 0.99);
-    model.walls[0].position = 0.5;
-    let walls = Problem::from_model(&model)
-        .unwrap()
-        .with_barrier(Barrier::Off)
-        .unwrap();
-    let e = emulate_ensemble(&walls, &method(0.01), &s).unwrap_err();
-    assert!(e.to_string().contains("walls"), "{e}");
+    // the General kernel's terms not ported yet: the fractional terms
     let mut model = fig13a_model(0.1, 0.99);
     model.fractional = vec![Fractional {
         coefficient: 0.2,

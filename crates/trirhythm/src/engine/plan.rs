@@ -10,13 +10,13 @@
 //!
 //! [`GeneralPlan`] adds the General kernel's constants (`stepper::general`: Duffing and
 //! quintic restoring, Rayleigh terms, the harmonic forcing's phase rotation, the multiplicative
-//! noise's stream and mixing), copied out of the engine's own `General` of the problem
-//! (`General::export`), so again nothing is recomputed.
+//! noise's stream and mixing, the model's walls), copied out of the engine's own `General` of
+//! the problem (`General::export`, `Walls::export`), so again nothing is recomputed.
 //!
 //! Scope: the paper's family (Eq. 1, 5, 9 with or without the wall at 0, any damping
 //! polynomial, additive white or OU noise, both impact memories) with the sum-of-exponentials
 //! memory, and the General kernel's Duffing, quintic, Rayleigh, forcing and multiplicative
-//! noise terms with no wall or the paper's wall at 0; the model's walls, the fractional terms
+//! noise terms with no wall, the paper's wall at 0 or the model's walls; the fractional terms
 //! and the direct memory are refused by name ([`Error::NotApplicable`]), as are windows and SOE
 //! kernels beyond the plan's fixed sizes.
 
@@ -37,24 +37,23 @@ pub const PLAN_MAX_DAMPING: usize = 16;
 pub const PLAN_MAX_RAYLEIGH: usize = 20;
 
 /// Refuses by name what the GPU kernel does not step: the General kernel's terms not yet
-/// ported (the model's walls, the fractional terms).
+/// ported (the fractional terms).
 fn refuse_unported(problem: &Problem) -> Result<()> {
     let Some(t) = problem.oscillator().terms() else {
         return Ok(());
     };
-    let term = if !t.walls.is_empty() {
-        "the model's walls (walls)"
-    } else if !t.fractional.is_empty() {
-        "the fractional terms (fractional)"
-    } else {
+    if t.fractional.is_empty() {
         return Ok(());
-    };
+    }
     Err(Error::NotApplicable {
         method: "the GPU kernel".into(),
         assumption: "the General kernel's terms it holds: Duffing, quintic, Rayleigh, forcing, \
-                     multiplicative noise, with no wall or the wall at 0"
+                     multiplicative noise, the model's walls"
             .into(),
-        reason: format!("the model has {term}: {}", t.describe()),
+        reason: format!(
+            "the model has the fractional terms (fractional): {}",
+            t.describe()
+        ),
     })
 }
 
@@ -247,7 +246,7 @@ impl StepPlan {
 /// The General kernel's constants (`stepper::general`), for a backend that steps it: the
 /// restoring force k(U) = ω0²U + k3U³ + k5U⁵ beyond the [`StepPlan`]'s ω0², the Rayleigh
 /// coefficients, the harmonic forcing's phase rotation, the multiplicative noise η_m (its
-/// stream's step constants and its mixing with the additive noise). All zero with `active` = 0
+/// stream's step constants and its mixing with the additive noise), the model's walls. All zero with `active` = 0
 /// for the paper's family (the paper's kernel steps it).
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
@@ -290,6 +289,20 @@ pub struct GeneralPlan {
     pub salt: u64,
     /// η′'s step constants (white or OU, of η_m's intensity and correlation time).
     pub parametric: StepConstants,
+    /// 1 with the model's walls (`stepper::walls`; the [`StepPlan`]'s `wall` is then 0).
+    pub walls: u32,
+    /// Whether each wall is there: [0] the lower wall (keeping U above it), [1] the upper.
+    pub wall_present: [u32; 2],
+    /// 1 where the wall's restitution is speed-dependent, r(v) = r_fast + (r0 − r_fast)e^{−v/v_s}.
+    pub wall_speed_dependent: [u32; 2],
+    /// δ of each wall.
+    pub wall_position: [f64; 2],
+    /// The constant r, or r0.
+    pub wall_r: [f64; 2],
+    /// r_fast (speed-dependent).
+    pub wall_r_fast: [f64; 2],
+    /// v_s (speed-dependent).
+    pub wall_speed: [f64; 2],
 }
 
 impl GeneralPlan {
@@ -333,6 +346,13 @@ impl GeneralPlan {
                 dt: 0.0,
                 sd: 0.0,
             },
+            walls: 0,
+            wall_present: [0; 2],
+            wall_speed_dependent: [0; 2],
+            wall_position: [0.0; 2],
+            wall_r: [0.0; 2],
+            wall_r_fast: [0.0; 2],
+            wall_speed: [0.0; 2],
         }
     }
 }

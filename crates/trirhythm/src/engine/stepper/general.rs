@@ -531,6 +531,9 @@ impl General {
             plan.salt = PARAMETRIC_SALT;
             plan.parametric = p.stream.step_constants();
         }
+        if let Some(w) = &self.walls {
+            w.export(plan);
+        }
         Ok(())
     }
 
