@@ -37,6 +37,11 @@ tr_u64 tr_layout(int which) {
     case 15: return offsetof(TrGeneralPlan, salt);
     case 16: return offsetof(TrGeneralPlan, parametric);
     case 17: return offsetof(TrGeneralPlan, parametric.sd);
+    case 18: return offsetof(TrGeneralPlan, walls);
+    case 19: return offsetof(TrGeneralPlan, wall_position);
+    case 20: return offsetof(TrGeneralPlan, fractional_terms);
+    case 21: return offsetof(TrGeneralPlan, fractional_k);
+    case 22: return offsetof(TrGeneralPlan, memories);
     default: return 0;
     }
 }

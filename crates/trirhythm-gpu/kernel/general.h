@@ -3,13 +3,13 @@
  * not ported (the ensembles do not need it).
  *
  * Equation (engine `stepper::general`):
- *   D^{1+λ}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η_a(t) + U·η_m(t),
+ *   D^{1+λ}U + Σ_j K_j D^{α_j}U − h(U, U̇)U̇ + k(U) = F cos(Ωt + φ) + η_a(t) + U·η_m(t),
  *   h = μ0P(U) + Σ_{k≥1} d_k U̇^{2k},  k(U) = ω0²U + k3U³ + k5U⁵,
  * with no wall, the paper's wall at U = 0 (impacts U̇₊ = −rU̇₋, sticking, either impact memory)
  * or the model's walls (engine `stepper::walls`: one at any δ keeping U above or below it, or
  * two at δ1 < δ2, each with a constant r or r(v) = r_fast + (r0 − r_fast)e^{−v/v_s}; sticking
- * at δ); in Volterra form U′ = V, V = V₀ + J^λ g,
- * g = h(U, V)V − k(U) + F cos ψ + η_a + Uη_m.
+ * at δ); in Volterra form U′ = V, V = V₀ + J^λ g, with m_j = J^{1−α_j}V (= D^{α_j}U),
+ * g = h(U, V)V − k(U) − Σ_j K_j m_j + F cos ψ + η_a + Uη_m.
  *
  * Method: the engine's General kernel. Each corrector pass freezes U at its predictor U^P and
  * linearises hV in V at V_l (the first pass at V_n, the second at the first pass's V):
@@ -26,18 +26,28 @@
  * V₋ clipped to the wall's side, V₊ = −r(|V₋|)V₋; a path stuck at δ stays clamped while its
  * free step ends beyond the wall (n(U₁ − δ) ≤ 0), and a step that meets both walls stops the
  * path with the engine's refusal of Δt (TR_TWO_WALLS).
+ * Fractional terms: m_j is a memory of V of order 1 − α_j — memory.h's TrHistory with its own
+ * TrPlan (the General plan's `memories`), into which each step pushes (V_n, V_{n+1});
+ * m_{j,n+1} = M_j + ϖ_l^j V_n + ϖ_r^j V_{n+1} is affine in V_{n+1}, so the corrector keeps its
+ * one division with a − κ (κ = Σ K_j ϖ_r^j) and −Σ K_j(M_j + ϖ_l^j V_n) in the known forcing;
+ * α_j = 1 is local (m_j = V). At an impact m_j(t*) = A_j + c_j V(t*) enters the root for V(t*)
+ * (κ* = Σ K_j c_j), g's split piece carries −Σ K_j m_j(t*) on both sides (V₊ for α = 1), each
+ * memory of V is split at the instant as the leading memory of g is (restarted with it), and
+ * the redone rest uses the split memories' κ_s and known part.
  *
  * Constants: `trirhythm::engine::GeneralPlan` (TrGeneralPlan, plan.h), copied out of the
  * engine's own `General`; the damping μ0P, ω0², the wall and the memory are the StepPlan's.
- * Per-path state is TrGeneral (a few words; with TR_MULTIPLICATIVE the second stream too).
+ * Per-path state is TrGeneral: a few words, with TR_MULTIPLICATIVE the second stream, and
+ * TR_MAX_FRACTIONAL memories of V (the GPU build sets both from the plan: 0 where unused).
  *
  * Reference: the engine's module docs of `stepper::general` (model-class.md §2–§5;
  * Diethelm, Ford & Freed 2002 for the scheme).
  *
  * Tests: tests/emulation.rs (`general_*`, `a_step_that_meets_both_walls_*`): Duffing,
  * quintic, Rayleigh, forcing past several re-anchorings, multiplicative noise (white and OU,
- * correlated), with no wall, with the wall at 0 and with the model's walls (two walls, offset
- * walls above and below, speed-dependent restitution, sticking at δ, both impact memories):
+ * correlated), fractional terms (α < 1 and α = 1, one or two, λ = 1 and a window of 24), with
+ * no wall, with the wall at 0 and with the model's walls (two walls, offset walls above and
+ * below, speed-dependent restitution, sticking at δ, both impact memories):
  * every path's statistics and the merged result bit for bit as the engine's `run_paths` and
  * `run_ensemble`; a blow-up and the two-wall refusal with the engine's messages. */
 #ifndef TR_GENERAL_H
@@ -47,6 +57,11 @@
 /* the multiplicative noise's stream in a path's state (the GPU build sets it from the plan) */
 #ifndef TR_MULTIPLICATIVE
 #define TR_MULTIPLICATIVE 1
+#endif
+
+/* the fractional terms' memories in a path's state (the GPU build sets the plan's count) */
+#ifndef TR_MAX_FRACTIONAL
+#define TR_MAX_FRACTIONAL TR_PLAN_MAX_FRACTIONAL
 #endif
 
 /* steps between re-anchorings of the forcing's phase (engine `general::REANCHOR`) */
@@ -64,6 +79,15 @@ typedef struct {
 #if TR_MULTIPLICATIVE
     TrRng rng;
     TrNoise noise;
+#endif
+#if TR_MAX_FRACTIONAL > 0
+    /* the memory of J^{1−α_j}V of each term with α_j < 1 (indexed by term) */
+    TrHistory memories[TR_MAX_FRACTIONAL];
+    /* the memories split at an impact inside the step in progress (engine `SplitMemories`):
+     * V's split, the part of −Σ K_j m_{j,n+1} known after the impact, κ_s */
+    int pending;
+    TrSplit pending_split;
+    double pending_ahead, pending_kappa;
 #endif
 } TrGeneral;
 
@@ -126,10 +150,11 @@ TR_FN double tr_wall_drift(const TrPlan* P, const TrGeneralPlan* G, double delta
 }
 
 /* the scheme's velocity at an impact on a wall U = δ, the root of
- * V = N + w(h(δ, V)V + forcing) (engine `General::wall_velocity`) */
+ * V = N + w((h(δ, V) − κ*)V + forcing) (engine `General::wall_velocity_lagged`; κ* = 0:
+ * `wall_velocity`) */
 TR_NOINLINE double tr_wall_velocity(const TrPlan* P, const TrGeneralPlan* G, double delta,
-                                    double known, double w, double forcing) {
-    double a0 = tr_damping(P, delta);
+                                    double known, double w, double forcing, double kappa) {
+    double a0 = kappa == 0.0 ? tr_damping(P, delta) : tr_damping(P, delta) - kappa;
     double v = (known + w * forcing) / (1.0 - w * a0);
     if (G->rayleigh_terms == 0) {
         return v;
@@ -231,6 +256,16 @@ TR_FN void tr_general_new(const TrPlan* P, const TrGeneralPlan* G, TrPath* s, Tr
     g->eta_m = 0.0;
     g->lag = 0.0;
     g->ahead = 0.0;
+#if TR_MAX_FRACTIONAL > 0
+    /* −Σ K_j m_j(0): an α = 1 term is V(0) itself, the others start at 0 */
+    g->pending = 0;
+    for (tr_u32 j = 0; j < G->fractional_terms; j++) {
+        tr_history_new(&g->memories[j]);
+        if (!G->fractional_memory[j]) {
+            g->lag -= G->fractional_k[j] * s->v;
+        }
+    }
+#endif
 #if TR_MULTIPLICATIVE
     if (G->multiplicative) {
         tr_rng_new(&g->rng, seed ^ G->salt, path);
@@ -255,8 +290,9 @@ TR_FN void tr_general_new(const TrPlan* P, const TrGeneralPlan* G, TrPath* s, Tr
 
 /* the start of a step from (u, v), η_a = el as it enters g (engine `General::begin_step`):
  * draws η_m; returns g's extra at the step's start and the part known of its end's */
-TR_FN void tr_general_begin(const TrGeneralPlan* G, TrGeneral* g, double u, double el,
-                            const double* zx, const double* zf, double* xl, double* xr) {
+TR_FN void tr_general_begin(const TrGeneralPlan* G, TrGeneral* g, double u, double v,
+                            double el, const double* zx, const double* zf, double* xl,
+                            double* xr) {
 #if TR_MULTIPLICATIVE
     if (G->multiplicative) {
         double own, own_r;
@@ -269,24 +305,167 @@ TR_FN void tr_general_begin(const TrGeneralPlan* G, TrGeneral* g, double u, doub
     (void)zf;
 #endif
     double ahead = 0.0;
+#if TR_MAX_FRACTIONAL > 0
+    /* −Σ_j K_j(M_j + ϖ_l^j V_n) */
+    for (tr_u32 j = 0; j < G->fractional_terms; j++) {
+        double past = G->fractional_memory[j] ? g->memories[j].cached : 0.0;
+        ahead -= G->fractional_k[j] * (past + G->fractional_wl[j] * v);
+    }
+#else
+    (void)G;
+    (void)v;
+#endif
     g->ahead = ahead;
     *xl = g->lag + u * g->eta_m;
     *xr = ahead;
 }
 
-/* the end of the step at (u1, v1) (engine `General::end_step`): returns the part of g's extras
- * there not in the step's known forcing, −κV_{n+1} + u1·η_m */
-TR_FN double tr_general_end(const TrGeneralPlan* G, TrGeneral* g, double v1, double u1) {
+/* the end of the step from V_n = v at (u1, v1) (engine `General::end_step`, `end_split_step`):
+ * V's piece into every memory (split at an impact); returns the part of g's extras there not
+ * in the step's known forcing, −κV_{n+1} + u1·η_m (relative to it after a split) */
+TR_FN double tr_general_end(const TrGeneralPlan* G, TrGeneral* g, double v, double v1, double u1,
+                            int* status) {
+#if TR_MAX_FRACTIONAL > 0
+    if (g->pending) {
+        g->pending = 0;
+        for (tr_u32 j = 0; j < G->fractional_terms; j++) {
+            if (G->fractional_memory[j]) {
+                if (g->memories[j].nsplits >= TR_MAX_SPLITS) {
+                    *status = TR_TOO_MANY_SPLITS;
+                    return 0.0;
+                }
+                tr_history_push(&G->memories[j], &g->memories[j], v, v1, &g->pending_split);
+            }
+        }
+        g->lag = g->pending_ahead - g->pending_kappa * v1;
+        return (g->lag - g->ahead) + u1 * g->eta_m;
+    }
+    for (tr_u32 j = 0; j < G->fractional_terms; j++) {
+        if (G->fractional_memory[j]) {
+            tr_history_push(&G->memories[j], &g->memories[j], v, v1, 0);
+        }
+    }
+#else
+    (void)v;
+#endif
+    (void)status;
     double now = -G->kappa * v1;
     g->lag = g->ahead + now;
     return now + u1 * g->eta_m;
 }
 
+/* ---- the fractional terms at an impact (engine `General::memories_at`, `split_memories`,
+ * `restart_memories`, `impact::split_fractional`) ---- */
+
+/* −Σ_j K_j m_j(t*−) at θ of the step from V_n = v: (known part, weight of V(t*) of the terms
+ * with a memory, Σ K_j of the α = 1 terms) */
+TR_FN void tr_memories_at(const TrGeneralPlan* G, const TrGeneral* g, double theta, double v,
+                          double* known, double* weight, double* local) {
+    double k = 0.0, w = 0.0, l = 0.0;
+#if TR_MAX_FRACTIONAL > 0
+    for (tr_u32 j = 0; j < G->fractional_terms; j++) {
+        if (!G->fractional_memory[j]) {
+            l += G->fractional_k[j];
+        } else {
+            double past, wj;
+            tr_at_fraction(&G->memories[j], &g->memories[j], theta, v, &past, &wj);
+            k -= G->fractional_k[j] * past;
+            w += G->fractional_k[j] * wj;
+        }
+    }
+#else
+    (void)G;
+    (void)g;
+    (void)theta;
+    (void)v;
+#endif
+    *known = k;
+    *weight = w;
+    *local = l;
+}
+
+/* split the memories at the impact (V jumps from V(t*) to V₊ at θ; restarted there when the
+ * split keeps nothing before): the part of −Σ_j K_j m_{j,n+1} known now and κ_s */
+TR_FN void tr_split_memories(const TrGeneralPlan* G, TrGeneral* g, double v,
+                             const TrSplit* split, double* ahead, double* kappa) {
+    double a = 0.0, kk = 0.0;
+#if TR_MAX_FRACTIONAL > 0
+    for (tr_u32 j = 0; j < G->fractional_terms; j++) {
+        if (!G->fractional_memory[j]) {
+            kk += G->fractional_k[j];
+        } else {
+            const TrPlan* M = &G->memories[j];
+            TrHistory* H = &g->memories[j];
+            if (!split->keep_before) {
+                tr_history_restart(M, H);
+            }
+            double known, w;
+            tr_current_split(M, v, split, &known, &w);
+            a -= G->fractional_k[j] * (H->cached + known);
+            kk += G->fractional_k[j] * w;
+        }
+    }
+    g->pending = 1;
+    g->pending_split = *split;
+    g->pending_ahead = a;
+    g->pending_kappa = kk;
+#else
+    (void)G;
+    (void)g;
+    (void)v;
+    (void)split;
+#endif
+    *ahead = a;
+    *kappa = kk;
+}
+
+/* the memories restart at the end of the step in progress (a sticking step with the memory
+ * restarting) */
+TR_FN void tr_restart_memories(const TrGeneralPlan* G, TrGeneral* g) {
+#if TR_MAX_FRACTIONAL > 0
+    for (tr_u32 j = 0; j < G->fractional_terms; j++) {
+        if (G->fractional_memory[j]) {
+            tr_history_restart(&G->memories[j], &g->memories[j]);
+        }
+    }
+    g->pending = 0;
+#else
+    (void)G;
+#endif
+    g->lag = 0.0;
+    g->ahead = 0.0;
+}
+
+/* g's split piece at an impact on the wall at δ of a path with fractional terms (−Σ K_j m_j(t*)
+ * on both sides: continuous for α < 1, 0 after a restart, V₊ for α = 1), the memories split,
+ * and the redone rest's κ_s, its known forcing's part, length and predictor weight */
+TR_NOINLINE void tr_split_fractional(const TrPlan* P, const TrGeneralPlan* G, TrGeneral* g,
+                                     double theta, double forcing, double lag, double weight,
+                                     double local, double delta, double v_n, int keep_before,
+                                     double v_at, double v_plus, TrSplit* split, double* ahead,
+                                     double* kappa, double* len, double* pw) {
+    double at = lag - (weight + local) * v_at;
+    double kept = keep_before ? lag - weight * v_at : 0.0;
+    double after = kept - local * v_plus;
+    TrSplit memories;
+    memories.theta = theta;
+    memories.before = v_at;
+    memories.after = v_plus;
+    memories.keep_before = keep_before;
+    tr_split_memories(G, g, v_n, &memories, ahead, kappa);
+    split->theta = theta;
+    split->before = tr_wall_drift(P, G, delta, v_at) + forcing + at;
+    split->after = tr_wall_drift(P, G, delta, v_plus) + forcing + after;
+    split->keep_before = keep_before;
+    *len = (1.0 - theta) * P->h;
+    *pw = tr_predictor_weight(*len, tr_general_a(P, G, delta, v_plus) - *kappa);
+}
+
 /* an impact on the wall at 0 inside the step whose free end is (u1, v1) (engine
  * `Stepper::locate` then `jump_general`): its split of g and the step's end */
 TR_NOINLINE void tr_general_impact(const TrPlan* P, const TrGeneralPlan* G, TrPath* s,
-                                   const TrGeneral* g, double gl, double el, double er,
-                                   double* u1, double* v1, TrSplit* split) {
+                                   TrGeneral* g, double gl, double el, double er, double* u1,
+                                   double* v1, TrSplit* split) {
     double h = P->h;
     double theta = tr_hermite_root(s->u, s->v, *u1, *v1, h);
     double eta_star = el + theta * (er - el);
@@ -294,7 +473,16 @@ TR_NOINLINE void tr_general_impact(const TrPlan* P, const TrGeneralPlan* G, TrPa
     tr_at_fraction(P, &s->history, theta, gl, &hs, &ws);
     double forcing = tr_forcing(P, eta_star, s->side);
     forcing += tr_force_at(G, g, theta);
-    double v_at = tr_wall_velocity(P, G, 0.0, s->base + hs, ws, forcing);
+    int fractional = G->fractional_terms != 0;
+    double lag = 0.0, weight = 0.0, local = 0.0;
+    double v_at;
+    if (fractional) {
+        /* and −Σ K_j m_j(t*), affine in V(t*) */
+        tr_memories_at(G, g, theta, s->v, &lag, &weight, &local);
+        v_at = tr_wall_velocity(P, G, 0.0, s->base + hs, ws, forcing + lag, weight + local);
+    } else {
+        v_at = tr_wall_velocity(P, G, 0.0, s->base + hs, ws, forcing, 0.0);
+    }
     double v_minus = v_at < 0.0 ? v_at : 0.0;
     double v_plus = -P->restitution * v_minus;
     s->impacts += 1;
@@ -303,6 +491,17 @@ TR_NOINLINE void tr_general_impact(const TrPlan* P, const TrGeneralPlan* G, TrPa
         s->base = v_plus;
     } else {
         s->base += v_plus - v_at;
+    }
+    if (fractional) {
+        double ahead, kappa, len, pw, known_s, wr_s;
+        tr_split_fractional(P, G, g, theta, forcing, lag, weight, local, 0.0, s->v, !P->restart,
+                            v_at, v_plus, split, &ahead, &kappa, &len, &pw);
+        tr_current_split(P, gl, split, &known_s, &wr_s);
+        double known = s->base + s->history.cached + known_s;
+        double fr = tr_forcing(P, er, s->side) + tr_force_now(G, g) + ahead;
+        tr_general_advance(P, G, g, kappa, len, 0.0, v_plus, split->after, pw, known, wr_s, fr,
+                           u1, v1);
+        return;
     }
     split->theta = theta;
     split->before = tr_wall_drift(P, G, 0.0, v_at) + forcing;
@@ -355,7 +554,7 @@ TR_FN int tr_on_wall(const TrGeneralPlan* G, double u) {
  * its restitution law, the rest of the step redone from the wall (engine
  * `Stepper::impact_wall`) */
 TR_NOINLINE void tr_wall_impact(const TrPlan* P, const TrGeneralPlan* G, TrPath* s,
-                                const TrGeneral* g, int side, double gl, double el, double er,
+                                TrGeneral* g, int side, double gl, double el, double er,
                                 double fr, double* u1, double* v1, TrSplit* split) {
     double h = P->h;
     double delta = G->wall_position[side];
@@ -369,7 +568,16 @@ TR_NOINLINE void tr_wall_impact(const TrPlan* P, const TrGeneralPlan* G, TrPath*
         forcing = forcing + (delta != 0.0 ? delta * g->eta_m : 0.0);
     }
     double at_wall = forcing - tr_restoring(P, G, delta);
-    double v_at = tr_wall_velocity(P, G, delta, s->base + hs, ws, at_wall);
+    int fractional = G->fractional_terms != 0;
+    double lag = 0.0, weight = 0.0, local = 0.0;
+    double v_at;
+    if (fractional) {
+        /* and the fractional terms' −Σ K_j m_j(t*), affine in V(t*) */
+        tr_memories_at(G, g, theta, s->v, &lag, &weight, &local);
+        v_at = tr_wall_velocity(P, G, delta, s->base + hs, ws, at_wall + lag, weight + local);
+    } else {
+        v_at = tr_wall_velocity(P, G, delta, s->base + hs, ws, at_wall, 0.0);
+    }
     /* at a grazing impact the scheme's V(t*−) may point away from the wall: then V₋ = 0 */
     double v_minus;
     if (side == 0) {
@@ -378,6 +586,25 @@ TR_NOINLINE void tr_wall_impact(const TrPlan* P, const TrGeneralPlan* G, TrPath*
         v_minus = v_at > 0.0 ? v_at : 0.0;
     }
     double v_plus = -tr_restitution_at(G, side, tr_fabs(v_minus)) * v_minus;
+    if (fractional) {
+        /* engine `Stepper::impact_wall_fractional` */
+        s->impacts += 1;
+        if (P->restart) {
+            tr_history_restart(P, &s->history);
+            s->base = v_plus;
+        } else {
+            s->base += v_plus - v_at;
+        }
+        double ahead, kappa, len, pw, known_s, wr_s;
+        tr_split_fractional(P, G, g, theta, forcing, lag, weight, local, delta, s->v,
+                            !P->restart, v_at, v_plus, split, &ahead, &kappa, &len, &pw);
+        tr_current_split(P, gl, split, &known_s, &wr_s);
+        double known = s->base + s->history.cached + known_s;
+        double fr_s = tr_forcing(P, er, s->side) + tr_force_now(G, g) + ahead;
+        tr_general_advance(P, G, g, kappa, len, delta, v_plus, split->after, pw, known, wr_s,
+                           fr_s, u1, v1);
+        return;
+    }
     split->theta = theta;
     split->before = tr_wall_drift(P, G, delta, v_at) + forcing;
     split->after = tr_wall_drift(P, G, delta, v_plus) + forcing;
@@ -449,8 +676,20 @@ TR_NOINLINE int tr_walls_end(const TrPlan* P, const TrGeneralPlan* G, TrPath* s,
     }
     tr_general_node(P, G, P->h, u1, v1, &s->drift, &s->pw);
     double right;
-    if (G->multiplicative) {
-        double extra = tr_general_end(G, g, v1, u1);
+    if (G->multiplicative || G->fractional_terms) {
+        /* a step that sticks with the memory restarting pushes nothing: the fractional
+         * memories restart too */
+        double extra;
+        int status = TR_OK;
+        if (!push && G->fractional_terms) {
+            tr_restart_memories(G, g);
+            extra = 0.0;
+        } else {
+            extra = tr_general_end(G, g, v, v1, u1, &status);
+        }
+        if (status != TR_OK) {
+            return status;
+        }
         right = s->drift + fr + extra;
     } else {
         right = s->drift + fr;
@@ -477,10 +716,11 @@ TR_FN int tr_step_general(const TrPlan* P, const TrGeneralPlan* G, TrPath* s, Tr
     double u = s->u, v = s->v;
     double gl = s->drift + tr_forcing(P, el, s->side) + fl;
     double fr = tr_forcing(P, er, s->side) + fh;
-    int extras = G->multiplicative != 0;
+    int extras = G->multiplicative != 0 || G->fractional_terms != 0;
     if (extras) {
+        /* −Σ K_j m_j and U·η_m; η_m takes the additive noise as it enters g, side·η_a */
         double xl, xr;
-        tr_general_begin(G, g, u, s->side * el, zx, zf, &xl, &xr);
+        tr_general_begin(G, g, u, v, s->side * el, zx, zf, &xl, &xr);
         gl += xl;
         fr += xr;
     }
@@ -521,7 +761,18 @@ TR_FN int tr_step_general(const TrPlan* P, const TrGeneralPlan* G, TrPath* s, Tr
         return TR_BLOW_UP;
     }
     tr_general_node(P, G, P->h, u1, v1, &s->drift, &s->pw);
-    double extra = extras ? tr_general_end(G, g, v1, u1) : 0.0;
+    double extra = 0.0;
+    if (extras) {
+        int status = TR_OK;
+        if (!push && G->fractional_terms) {
+            tr_restart_memories(G, g);
+        } else {
+            extra = tr_general_end(G, g, v, v1, u1, &status);
+        }
+        if (status != TR_OK) {
+            return status;
+        }
+    }
     if (push) {
         if (has_split && s->history.nsplits >= TR_MAX_SPLITS) {
             return TR_TOO_MANY_SPLITS;

@@ -49,6 +49,7 @@ typedef struct {
 /* The General kernel's constants: the C mirror of `trirhythm::engine::GeneralPlan` (the same
  * fields, order and types; `active` = 0 for the paper's family). */
 #define TR_PLAN_MAX_RAYLEIGH 20
+#define TR_PLAN_MAX_FRACTIONAL 2
 
 /* `trirhythm::engine::noise::StepConstants` (TrNoise's first fields) */
 typedef struct {
@@ -70,6 +71,14 @@ typedef struct {
     tr_u32 wall_present[2];
     tr_u32 wall_speed_dependent[2];
     double wall_position[2], wall_r[2], wall_r_fast[2], wall_speed[2];
+    /* the fractional terms K_j D^{α_j}U: K_j, ϖ_l^j, ϖ_r^j, and the memory of J^{1−α_j}V of
+     * each term with α_j < 1 (its constants in a TrPlan's memory fields) */
+    tr_u32 fractional_terms;
+    tr_u32 fractional_memory[TR_PLAN_MAX_FRACTIONAL];
+    double fractional_k[TR_PLAN_MAX_FRACTIONAL];
+    double fractional_wl[TR_PLAN_MAX_FRACTIONAL];
+    double fractional_wr[TR_PLAN_MAX_FRACTIONAL];
+    TrPlan memories[TR_PLAN_MAX_FRACTIONAL];
 } TrGeneralPlan;
 
 #endif

@@ -74,11 +74,25 @@ pub fn gpu_paths(
     monitor.check()?;
     let gpu = Gpu::open()?;
     let compiling = Instant::now();
+    // the per-path arrays sized for the leading memory and the fractional terms' memories
+    let g = &prep.general;
+    let terms = g.fractional_terms as usize;
+    let memories = g.memories[..terms]
+        .iter()
+        .zip(&g.fractional_memory)
+        .filter(|(_, &has)| has != 0)
+        .map(|(m, _)| m);
+    let cap = memories
+        .clone()
+        .map(|m| m.cap)
+        .fold(prep.plan.cap, u32::max);
+    let modes = memories.map(|m| m.modes).fold(prep.plan.modes, u32::max);
     let defines = [
-        ("TR_MAX_CAP", prep.plan.cap.max(1).to_string()),
-        ("TR_MAX_MODES", prep.plan.modes.max(4).to_string()),
-        ("TR_GENERAL", prep.general.active.to_string()),
-        ("TR_MULTIPLICATIVE", prep.general.multiplicative.to_string()),
+        ("TR_MAX_CAP", cap.max(1).to_string()),
+        ("TR_MAX_MODES", modes.max(4).to_string()),
+        ("TR_GENERAL", g.active.to_string()),
+        ("TR_MULTIPLICATIVE", g.multiplicative.to_string()),
+        ("TR_MAX_FRACTIONAL", terms.to_string()),
     ];
     let ptx = compile_ptx_for(
         crate::cuda::ENSEMBLE_SOURCE,

@@ -2,8 +2,10 @@
 //! as C) gives every path's statistics bit for bit as `run_paths`, and the merged result as
 //! `run_ensemble`, across what the kernel holds — the wall with impacts and sticking, no wall,
 //! λ < 1 and λ = 1, white and OU noise, both impact memories, Eq. 5 and Eq. 9, wells with
-//! first passages — and refuses what it does not hold by name. The layouts shared with C are
-//! checked field by field.
+//! first passages, and the General kernel's terms (Duffing, quintic, Rayleigh, forcing,
+//! multiplicative noise, fractional terms, the model's walls: `general_*`) — and refuses what it
+//! does not hold by name. The layouts shared with C are checked field by field. Each case prints
+//! its paths' impacts and sticking steps (`--nocapture`).
 
 use std::mem::{offset_of, size_of};
 use trirhythm::analysis::ensemble::{run_ensemble, run_paths, EnsembleSpec, RecordPlan, Wells};
@@ -91,6 +93,20 @@ fn the_structures_shared_with_c_have_the_same_layout() {
         layout_of_c(17),
         (offset_of!(GeneralPlan, parametric) + offset_of!(StepConstants, sd)) as u64
     );
+    assert_eq!(layout_of_c(18), offset_of!(GeneralPlan, walls) as u64);
+    assert_eq!(
+        layout_of_c(19),
+        offset_of!(GeneralPlan, wall_position) as u64
+    );
+    assert_eq!(
+        layout_of_c(20),
+        offset_of!(GeneralPlan, fractional_terms) as u64
+    );
+    assert_eq!(
+        layout_of_c(21),
+        offset_of!(GeneralPlan, fractional_k) as u64
+    );
+    assert_eq!(layout_of_c(22), offset_of!(GeneralPlan, memories) as u64);
 }
 
 #[test]
@@ -473,6 +489,102 @@ fn a_step_that_meets_both_walls_is_refused_as_the_engine_refuses_it() {
     assert_eq!(engine.to_string(), emulated.to_string());
 }
 
+fn fractional(terms: &[(f64, f64)]) -> Vec<Fractional> {
+    terms
+        .iter()
+        .map(|&(coefficient, order)| Fractional { coefficient, order })
+        .collect()
+}
+
+/// Stage 4: fractional terms K_j D^{α_j}U (a memory of V each; α = 1 local) with no wall, the
+/// wall at 0 and the model's walls, both impact memories, with sticking, with the other terms;
+/// at λ = 1 (the flat leading memory) and with a longer window and a finer SOE tolerance.
+#[test]
+fn general_paths_with_fractional_terms_are_the_engines() {
+    // no wall: two terms (α = 0.5 and α = 1), Duffing, forcing, η_m
+    let mut m = fig13a_model(0.3, 0.99);
+    m.walls.clear();
+    duffing_rayleigh_forced(&mut m);
+    m.fractional = fractional(&[(0.3, 0.5), (0.2, 1.0)]);
+    m.noise.multiplicative = Some(NoiseTerm {
+        intensity: 0.05,
+        correlation_time: m.noise.additive.unwrap().correlation_time,
+    });
+    let (impacts, _) = same(&general(&m), &method(0.01), &spec(3, 3));
+    assert_eq!(impacts, 0);
+    // the wall at 0: impacts, and sticking at a small r; both impact memories
+    let mut m = fig13a_model(0.1, 0.99);
+    m.fractional = fractional(&[(0.3, 0.6)]);
+    let (impacts, _) = same(&general(&m), &method(0.01), &spec(3, 11));
+    assert!(impacts > 50, "impacts {impacts}");
+    let mut m = fig13a_model(2.0, 0.3);
+    duffing_rayleigh_forced(&mut m);
+    m.fractional = fractional(&[(0.2, 0.4), (0.1, 1.0)]);
+    for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+        let method = PredictorCorrector {
+            impact_memory: memory,
+            ..method(0.02)
+        };
+        let (impacts, sticking) = same(&general(&m), &method, &spec(3, 5));
+        assert!(
+            impacts > 10 && sticking > 0,
+            "{memory:?}: impacts {impacts}, sticking {sticking}"
+        );
+    }
+    // the model's walls: two walls, and sticking at δ = 0.5; both impact memories
+    let mut m = fig13a_model(0.3, 0.99);
+    m.fractional = fractional(&[(0.2, 0.4), (0.1, 1.0)]);
+    m.noise.multiplicative = Some(NoiseTerm {
+        intensity: 0.05,
+        correlation_time: m.noise.additive.unwrap().correlation_time,
+    });
+    let two = vec![
+        wall(-0.6, Keep::Above, 0.7),
+        Wall {
+            position: 0.9,
+            keep: Keep::Below,
+            restitution: speed_dependent(),
+        },
+    ];
+    let two = walled(&m, two, &[(0.2, 0.0), (-0.5, 1.0), (0.85, -0.3)]);
+    let mut sticky = fig13a_model(1.0, 0.3);
+    sticky.restoring.cubic = 0.5;
+    sticky.fractional = fractional(&[(0.3, 0.7)]);
+    let sticky = walled(&sticky, vec![wall(0.5, Keep::Above, 0.3)], &[(1.0, 0.0)]);
+    for memory in [ImpactMemory::Continuous, ImpactMemory::Restart] {
+        let method = PredictorCorrector {
+            impact_memory: memory,
+            ..method(0.01)
+        };
+        let (impacts, _) = same(&two, &method, &spec(3, 2));
+        assert!(impacts > 50, "{memory:?}: impacts {impacts}");
+        let (impacts, sticking) = same(&sticky, &method, &spec(3, 6));
+        assert!(
+            impacts > 10 && sticking > 0,
+            "{memory:?}: impacts {impacts}, sticking {sticking}"
+        );
+    }
+    // λ = 1 (the leading memory flat, the fractional one not); a window of 24 at 1e-9
+    let p = preset("fig13a")
+        .unwrap()
+        .params
+        .with("lambda", 1.0)
+        .unwrap();
+    let mut m = Model::from(&p);
+    m.fractional = fractional(&[(0.4, 0.3)]);
+    let (impacts, _) = same(&general(&m), &method(0.01), &spec(3, 4));
+    assert!(impacts > 10, "λ = 1: impacts {impacts}");
+    let window = PredictorCorrector {
+        memory: Memory::SumOfExponentials { tolerance: 1e-9 },
+        window: 24,
+        ..method(0.02)
+    };
+    let mut m = fig13a_model(0.3, 0.99);
+    m.fractional = fractional(&[(0.3, 0.5)]);
+    let (impacts, _) = same(&general(&m), &window, &spec(3, 9));
+    assert!(impacts > 10, "window 24: impacts {impacts}");
+}
+
 #[test]
 fn a_general_blow_up_is_reported_as_the_engine_reports_it() {
     // negative Rayleigh damping pumps the amplitude past the bound
@@ -496,15 +608,13 @@ fn what_the_kernel_does_not_hold_is_refused_by_name() {
     };
     let e = emulate_ensemble(&fig13a(0.1), &direct, &s).unwrap_err();
     assert!(e.to_string().contains("memory"), "{e}");
-    // the General kernel's terms not ported yet: the fractional terms
-    let mut model = fig13a_model(0.1, 0.99);
-    model.fractional = vec![Fractional {
-        coefficient: 0.2,
-        order: 0.5,
-    }];
-    let fractional = Problem::from_model(&model).unwrap();
-    let e = emulate_ensemble(&fractional, &method(0.01), &s).unwrap_err();
-    assert!(e.to_string().contains("fractional"), "{e}");
+    // a window beyond the plan's size
+    let wide = PredictorCorrector {
+        window: 100,
+        ..method(0.01)
+    };
+    let e = emulate_ensemble(&fig13a(0.1), &wide, &s).unwrap_err();
+    assert!(e.to_string().contains("window"), "{e}");
     // bad input is the engine's error, before any work
     let bad = EnsembleSpec { bins: 0, ..s };
     let e = emulate_ensemble(&fig13a(0.1), &method(0.01), &bad).unwrap_err();

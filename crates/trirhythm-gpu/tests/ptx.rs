@@ -120,23 +120,30 @@ fn no_fused_multiply_add_is_contracted() {
 /// with and without the multiplicative noise's stream) and the emulation's (both steps).
 #[test]
 fn the_ensemble_kernels_own_arithmetic_is_not_contracted() {
-    for (general, multiplicative) in [
-        (None, None),
-        (Some(0), None),
-        (Some(1), Some(0)),
-        (Some(1), Some(1)),
-    ] {
+    // (TR_GENERAL, TR_MULTIPLICATIVE, TR_MAX_FRACTIONAL): the emulation's build, then the
+    // GPU's for the paper's family, a General plan without η_m or fractional terms, and one
+    // with both
+    let builds: [&[(&str, &str)]; 4] = [
+        &[],
+        &[("TR_GENERAL", "0")],
+        &[
+            ("TR_GENERAL", "1"),
+            ("TR_MULTIPLICATIVE", "0"),
+            ("TR_MAX_FRACTIONAL", "0"),
+        ],
+        &[
+            ("TR_GENERAL", "1"),
+            ("TR_MULTIPLICATIVE", "1"),
+            ("TR_MAX_FRACTIONAL", "2"),
+        ],
+    ];
+    for build in builds {
         let mut defines = vec![
             ("TR_ARITHMETIC_ONLY", "1".to_string()),
             ("TR_MAX_CAP", "7".to_string()),
             ("TR_MAX_MODES", "40".to_string()),
         ];
-        if let Some(g) = general {
-            defines.push(("TR_GENERAL", format!("{g}")));
-        }
-        if let Some(m) = multiplicative {
-            defines.push(("TR_MULTIPLICATIVE", format!("{m}")));
-        }
+        defines.extend(build.iter().map(|&(k, v)| (k, v.to_string())));
         let Some(ptx) = compiled(cuda::ENSEMBLE_SOURCE, &defines) else {
             return;
         };

@@ -40,7 +40,8 @@ pub use memory::{
     PREVIOUS_DEFAULT_TOLERANCE,
 };
 pub use plan::{
-    GeneralPlan, StepPlan, PLAN_MAX_CAP, PLAN_MAX_DAMPING, PLAN_MAX_MODES, PLAN_MAX_RAYLEIGH,
+    GeneralPlan, StepPlan, PLAN_MAX_CAP, PLAN_MAX_DAMPING, PLAN_MAX_FRACTIONAL, PLAN_MAX_MODES,
+    PLAN_MAX_RAYLEIGH,
 };
 pub use problem::{
     Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, Problem, System,

@@ -15,10 +15,11 @@
 //!
 //! Scope: the paper's family (Eq. 1, 5, 9 with or without the wall at 0, any damping
 //! polynomial, additive white or OU noise, both impact memories) with the sum-of-exponentials
-//! memory, and the General kernel's Duffing, quintic, Rayleigh, forcing and multiplicative
-//! noise terms with no wall, the paper's wall at 0 or the model's walls; the fractional terms
-//! and the direct memory are refused by name ([`Error::NotApplicable`]), as are windows and SOE
-//! kernels beyond the plan's fixed sizes.
+//! memory, and the whole General kernel: Duffing, quintic, Rayleigh, forcing, fractional
+//! terms (a memory of V each, exported as a [`StepPlan`]'s memory fields) and multiplicative
+//! noise, with no wall, the paper's wall at 0 or the model's walls. The direct memory is
+//! refused by name ([`Error::NotApplicable`]), as are windows, SOE kernels and numbers of
+//! terms beyond the plan's fixed sizes.
 
 use super::kernel::{phi_psi_series, LUMPED_TERMS};
 use super::memory::Memory;
@@ -35,27 +36,8 @@ pub const PLAN_MAX_CAP: usize = 63;
 pub const PLAN_MAX_DAMPING: usize = 16;
 /// Most Rayleigh coefficients d_k in a [`GeneralPlan`] (the model file's own bound).
 pub const PLAN_MAX_RAYLEIGH: usize = 20;
-
-/// Refuses by name what the GPU kernel does not step: the General kernel's terms not yet
-/// ported (the fractional terms).
-fn refuse_unported(problem: &Problem) -> Result<()> {
-    let Some(t) = problem.oscillator().terms() else {
-        return Ok(());
-    };
-    if t.fractional.is_empty() {
-        return Ok(());
-    }
-    Err(Error::NotApplicable {
-        method: "the GPU kernel".into(),
-        assumption: "the General kernel's terms it holds: Duffing, quintic, Rayleigh, forcing, \
-                     multiplicative noise, the model's walls"
-            .into(),
-        reason: format!(
-            "the model has the fractional terms (fractional): {}",
-            t.describe()
-        ),
-    })
-}
+/// Most fractional terms K_j·D^{α_j}U in a [`GeneralPlan`] (the model file's own bound).
+pub const PLAN_MAX_FRACTIONAL: usize = 2;
 
 /// The constants of one path's step and memory (field meanings as in the engine's
 /// `stepper::affine` and `memory::history`).
@@ -156,7 +138,6 @@ impl StepPlan {
             assumption: assumption.into(),
             reason,
         };
-        refuse_unported(problem)?;
         if method.memory == Memory::Direct {
             return Err(refuse(
                 "memory = soe or auto",
@@ -197,7 +178,7 @@ impl StepPlan {
         Ok(plan)
     }
 
-    fn zeroed() -> Self {
+    pub(crate) fn zeroed() -> Self {
         StepPlan {
             damping: [0.0; PLAN_MAX_DAMPING],
             damping_terms: 0,
@@ -246,7 +227,8 @@ impl StepPlan {
 /// The General kernel's constants (`stepper::general`), for a backend that steps it: the
 /// restoring force k(U) = ω0²U + k3U³ + k5U⁵ beyond the [`StepPlan`]'s ω0², the Rayleigh
 /// coefficients, the harmonic forcing's phase rotation, the multiplicative noise η_m (its
-/// stream's step constants and its mixing with the additive noise), the model's walls. All zero with `active` = 0
+/// stream's step constants and its mixing with the additive noise), the model's walls, the
+/// fractional terms (K_j, their weights, their memories' constants). All zero with `active` = 0
 /// for the paper's family (the paper's kernel steps it).
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
@@ -303,14 +285,27 @@ pub struct GeneralPlan {
     pub wall_r_fast: [f64; 2],
     /// v_s (speed-dependent).
     pub wall_speed: [f64; 2],
+    /// How many fractional terms K_j·D^{α_j}U (at most [`PLAN_MAX_FRACTIONAL`]).
+    pub fractional_terms: u32,
+    /// 1 where term j has a memory of V (α_j < 1); 0 where it is local (α_j = 1: m_j = V).
+    pub fractional_memory: [u32; PLAN_MAX_FRACTIONAL],
+    /// K_j.
+    pub fractional_k: [f64; PLAN_MAX_FRACTIONAL],
+    /// ϖ_l^j, the scaled weight of V_n in m_{j,n+1} (0 at α_j = 1).
+    pub fractional_wl: [f64; PLAN_MAX_FRACTIONAL],
+    /// ϖ_r^j, that of V_{n+1} (1 at α_j = 1).
+    pub fractional_wr: [f64; PLAN_MAX_FRACTIONAL],
+    /// The memory of J^{1−α_j}V of term j (α_j < 1): its empty `History`'s constants, laid out
+    /// as a [`StepPlan`]'s memory fields (with its λ = 1 − α_j, Δt and the φ, ψ series; the
+    /// step's fields unused).
+    pub memories: [StepPlan; PLAN_MAX_FRACTIONAL],
 }
 
 impl GeneralPlan {
     /// The General kernel's constants of `problem`'s paths with `method` up to `horizon`, from
     /// the engine's own `General` (as [`super::Stepper::new`] builds it); `active` = 0 for the
-    /// paper's family. Refuses by name what the GPU kernel does not step yet.
+    /// paper's family. Refuses by name what exceeds the plan's sizes.
     pub fn new(problem: &Problem, method: &PredictorCorrector, horizon: f64) -> Result<Self> {
-        refuse_unported(problem)?;
         let mut plan = GeneralPlan::zeroed();
         export_general(problem, method, horizon, &mut plan)?;
         Ok(plan)
@@ -353,6 +348,12 @@ impl GeneralPlan {
             wall_r: [0.0; 2],
             wall_r_fast: [0.0; 2],
             wall_speed: [0.0; 2],
+            fractional_terms: 0,
+            fractional_memory: [0; PLAN_MAX_FRACTIONAL],
+            fractional_k: [0.0; PLAN_MAX_FRACTIONAL],
+            fractional_wl: [0.0; PLAN_MAX_FRACTIONAL],
+            fractional_wr: [0.0; PLAN_MAX_FRACTIONAL],
+            memories: [StepPlan::zeroed(); PLAN_MAX_FRACTIONAL],
         }
     }
 }

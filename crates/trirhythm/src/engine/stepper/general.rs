@@ -534,6 +534,24 @@ impl General {
         if let Some(w) = &self.walls {
             w.export(plan);
         }
+        let n = self.memories.len();
+        if n > crate::engine::PLAN_MAX_FRACTIONAL {
+            return Err((
+                "the number of fractional terms",
+                n,
+                crate::engine::PLAN_MAX_FRACTIONAL,
+            ));
+        }
+        plan.fractional_terms = n as u32;
+        for (j, m) in self.memories.iter().enumerate() {
+            plan.fractional_k[j] = m.k;
+            plan.fractional_wl[j] = m.wl;
+            plan.fractional_wr[j] = m.wr;
+            if let Some(h) = &m.history {
+                plan.fractional_memory[j] = 1;
+                h.export_memory(&mut plan.memories[j])?;
+            }
+        }
         Ok(())
     }
 
