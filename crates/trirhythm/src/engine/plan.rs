@@ -273,7 +273,7 @@ pub struct GeneralPlan {
     pub parametric: StepConstants,
     /// 1 with the model's walls (`stepper::walls`; the [`StepPlan`]'s `wall` is then 0).
     pub walls: u32,
-    /// Whether each wall is there: [0] the lower wall (keeping U above it), [1] the upper.
+    /// Whether each wall is there: index 0 the lower wall (keeping U above it), 1 the upper.
     pub wall_present: [u32; 2],
     /// 1 where the wall's restitution is speed-dependent, r(v) = r_fast + (r0 − r_fast)e^{−v/v_s}.
     pub wall_speed_dependent: [u32; 2],
