@@ -1,7 +1,9 @@
 /* The step's constants: the C mirror of `trirhythm::engine::StepPlan` (#[repr(C)], field by
- * field, same order and types; `src/layout.rs` checks the size and offsets at build time).
- * TR_MAX_CAP and TR_MAX_MODES size the per-path arrays: the emulation takes the plan's maxima,
- * the GPU build the plan's own values (`src/cuda.rs`), so that a path's state is small. */
+ * field, same order and types; tests/emulation.rs checks the sizes and offsets), and of
+ * `trirhythm::engine::GeneralPlan` (TrGeneralPlan, below). TR_MAX_CAP and TR_MAX_MODES size the
+ * per-path arrays: the emulation takes the plan's maxima, the GPU build the plans' own values
+ * (`src/gpu.rs`: the largest over the leading memory and the fractional terms' memories), so
+ * that a path's state is small. */
 #ifndef TR_PLAN_H
 #define TR_PLAN_H
 #include "common.h"

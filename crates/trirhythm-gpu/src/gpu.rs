@@ -1,6 +1,9 @@
 //! The GPU backend of ensembles: `kernel/ensemble.cu` (one thread per path: the engine's step
 //! and recorder, `kernel/path.h`) compiled by NVRTC for the device with the plan's window and
-//! modes as compile-time sizes, launched over the paths in chunks that bound the device memory,
+//! modes as compile-time sizes (the largest of the leading memory's and the fractional terms'
+//! memories') and the General kernel's parts the problem uses (`TR_GENERAL`,
+//! `TR_MULTIPLICATIVE`, `TR_MAX_FRACTIONAL`: `kernel/general.h`), its `GeneralPlan` uploaded
+//! beside the step's plan, launched over the paths in chunks that bound the device memory,
 //! each path's statistics copied back and converted into the engine's [`PathStats`]
 //! ([`crate::paths`]), then merged by the engine's `merge`, as on the CPU.
 //!
