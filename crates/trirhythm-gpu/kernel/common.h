@@ -9,9 +9,10 @@
  *
  * Transcendental functions: the emulation calls back into the engine's own (`trirhythm::maths`,
  * the `libm` crate's), so that its paths are the engine's bit for bit; the GPU uses CUDA's
- * exp, log, expm1 and pow (at most 1–2 ulp from the correctly rounded value). Where a path
- * meets one (the ziggurat's wedges and tail, an impact's memory weights), a GPU path may differ
- * from the CPU's in the last bit from then on (docs/gpu.md). */
+ * exp, log, expm1, pow, cos and sin (at most 1–2 ulp from the correctly rounded value). Where
+ * a path meets one (the ziggurat's wedges and tail, an impact's memory weights, the forcing's
+ * re-anchored phase and its value at an impact), a GPU path may differ from the CPU's in the
+ * last bit from then on (docs/gpu.md). */
 #ifndef TR_COMMON_H
 #define TR_COMMON_H
 
@@ -29,11 +30,18 @@ typedef long long tr_i64;
 #define tr_ln(x) (x)
 #define tr_expm1(x) (x)
 #define tr_pow(x, y) ((x) * (y))
+#define tr_cos(x) (x)
+#define tr_sin(x) (x)
+#define tr_fmod(x, y) ((x) - (y))
 #else
 #define tr_exp(x) exp(x)
 #define tr_ln(x) log(x)
 #define tr_expm1(x) expm1(x)
 #define tr_pow(x, y) pow(x, y)
+#define tr_cos(x) cos(x)
+#define tr_sin(x) sin(x)
+/* exact in CUDA as in C (the remainder is representable): as Rust's `%` */
+#define tr_fmod(x, y) fmod(x, y)
 #endif
 #define tr_sqrt(x) sqrt(x)
 #define tr_fabs(x) fabs(x)
@@ -51,10 +59,16 @@ double tr_host_exp(double x);
 double tr_host_ln(double x);
 double tr_host_expm1(double x);
 double tr_host_pow(double x, double y);
+double tr_host_cos(double x);
+double tr_host_sin(double x);
 #define tr_exp(x) tr_host_exp(x)
 #define tr_ln(x) tr_host_ln(x)
 #define tr_expm1(x) tr_host_expm1(x)
 #define tr_pow(x, y) tr_host_pow(x, y)
+#define tr_cos(x) tr_host_cos(x)
+#define tr_sin(x) tr_host_sin(x)
+/* fmod is exact (C99 F.9.7.1), as Rust's `%` on f64 */
+#define tr_fmod(x, y) fmod(x, y)
 #define tr_sqrt(x) sqrt(x)
 #define tr_fabs(x) fabs(x)
 #endif

@@ -3,11 +3,14 @@
  * ziggurat tables) read-only and shared by every thread, each path's statistics written to its
  * own rows of global memory (the same units as the CPU engine's PathStats; the host merges
  * them with the engine's `merge`). Compiled at run time by NVRTC (src/cuda.rs) with
- * --fmad=false and TR_MAX_CAP / TR_MAX_MODES set to the plan's window and modes. */
+ * --fmad=false and TR_MAX_CAP / TR_MAX_MODES set to the plan's window and modes, TR_GENERAL
+ * (the paper's step or the General kernel's, general.h) and TR_MULTIPLICATIVE from the General
+ * plan. */
 #define TR_COUNT(c, i) ((c)[i] += 1)
 #include "path.h"
 
 extern "C" __global__ void tr_ensemble(const TrPlan* __restrict__ plan,
+                                       const TrGeneralPlan* __restrict__ general,
                                        const TrNoise* __restrict__ noise,
                                        const TrRecordPlan* __restrict__ record,
                                        const double* __restrict__ zx,
@@ -26,7 +29,7 @@ extern "C" __global__ void tr_ensemble(const TrPlan* __restrict__ plan,
     tr_u64 nc = 4 * (3 * ((tr_u64)record->bins + 1) +
                      (tr_u64)record->joint_bins * record->joint_bins + 1);
     TrPath s;
-    tr_run_path(plan, noise, record, zx, zf, seed, path, starts[2 * k], starts[2 * k + 1], steps,
-                &s, batches + i * nb, wells + i * nb * nw, passages + i * nw * nw,
-                counts + i * nc, ends + i);
+    tr_run_path(plan, general, noise, record, zx, zf, seed, path, starts[2 * k],
+                starts[2 * k + 1], steps, &s, batches + i * nb, wells + i * nb * nw,
+                passages + i * nw * nw, counts + i * nc, ends + i);
 }

@@ -13,6 +13,7 @@
 #define TR_OK 0
 #define TR_BLOW_UP 1
 #define TR_TOO_MANY_SPLITS 2
+#define TR_TWO_WALLS 3
 
 typedef struct {
     double u, v, drift, pw, side, base;

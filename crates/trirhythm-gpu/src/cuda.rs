@@ -50,6 +50,7 @@ pub const HEADERS: &[(&str, &str)] = &[
     ("plan.h", include_str!("../kernel/plan.h")),
     ("memory.h", include_str!("../kernel/memory.h")),
     ("step.h", include_str!("../kernel/step.h")),
+    ("general.h", include_str!("../kernel/general.h")),
     ("record.h", include_str!("../kernel/record.h")),
     ("path.h", include_str!("../kernel/path.h")),
 ];

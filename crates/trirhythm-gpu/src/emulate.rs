@@ -115,6 +115,18 @@ pub extern "C" fn tr_host_pow(x: f64, y: f64) -> f64 {
     trirhythm::maths::pow(x, y)
 }
 
+/// cos x for the C build: [`trirhythm::maths::cos`].
+#[no_mangle]
+pub extern "C" fn tr_host_cos(x: f64) -> f64 {
+    trirhythm::maths::cos(x)
+}
+
+/// sin x for the C build: [`trirhythm::maths::sin`].
+#[no_mangle]
+pub extern "C" fn tr_host_sin(x: f64) -> f64 {
+    trirhythm::maths::sin(x)
+}
+
 /// The first `n` words `next_u64()` of the kernel's generator for path `path` of `seed`
 /// (`tr_rng_new`, `tr_next_u64`), to equal `trirhythm::engine::noise::path_rng(seed, path)`'s.
 pub fn words(seed: u64, path: u64, n: usize) -> Vec<u64> {

@@ -1,6 +1,9 @@
 //! The GPU backend of ensembles: `kernel/ensemble.cu` (one thread per path: the engine's step
 //! and recorder, `kernel/path.h`) compiled by NVRTC for the device with the plan's window and
-//! modes as compile-time sizes, launched over the paths in chunks that bound the device memory,
+//! modes as compile-time sizes (the largest of the leading memory's and the fractional terms'
+//! memories') and the General kernel's parts the problem uses (`TR_GENERAL`,
+//! `TR_MULTIPLICATIVE`, `TR_MAX_FRACTIONAL`: `kernel/general.h`), its `GeneralPlan` uploaded
+//! beside the step's plan, launched over the paths in chunks that bound the device memory,
 //! each path's statistics copied back and converted into the engine's [`PathStats`]
 //! ([`crate::paths`]), then merged by the engine's `merge`, as on the CPU.
 //!
@@ -39,9 +42,9 @@ const CHUNK_BYTES: usize = 1 << 31;
 
 /// The bytes of a plain value, to upload a structure of another crate as the kernel reads it.
 fn bytes_of<T: Copy>(value: &T) -> Vec<u8> {
-    // SAFETY: `T` is a `#[repr(C)]` plain-data structure (StepPlan, RecordPlan, NoiseIn)
-    // without padding that could be uninitialised in a way the kernel reads: its padding bytes
-    // are copied but never used as values
+    // SAFETY: `T` is a `#[repr(C)]` plain-data structure (StepPlan, GeneralPlan, RecordPlan,
+    // NoiseIn) without padding that could be uninitialised in a way the kernel reads: its
+    // padding bytes are copied but never used as values
     unsafe { std::slice::from_raw_parts(value as *const T as *const u8, std::mem::size_of::<T>()) }
         .to_vec()
 }
@@ -74,9 +77,25 @@ pub fn gpu_paths(
     monitor.check()?;
     let gpu = Gpu::open()?;
     let compiling = Instant::now();
+    // the per-path arrays sized for the leading memory and the fractional terms' memories
+    let g = &prep.general;
+    let terms = g.fractional_terms as usize;
+    let memories = g.memories[..terms]
+        .iter()
+        .zip(&g.fractional_memory)
+        .filter(|(_, &has)| has != 0)
+        .map(|(m, _)| m);
+    let cap = memories
+        .clone()
+        .map(|m| m.cap)
+        .fold(prep.plan.cap, u32::max);
+    let modes = memories.map(|m| m.modes).fold(prep.plan.modes, u32::max);
     let defines = [
-        ("TR_MAX_CAP", prep.plan.cap.max(1).to_string()),
-        ("TR_MAX_MODES", prep.plan.modes.max(4).to_string()),
+        ("TR_MAX_CAP", cap.max(1).to_string()),
+        ("TR_MAX_MODES", modes.max(4).to_string()),
+        ("TR_GENERAL", g.active.to_string()),
+        ("TR_MULTIPLICATIVE", g.multiplicative.to_string()),
+        ("TR_MAX_FRACTIONAL", terms.to_string()),
     ];
     let ptx = compile_ptx_for(
         crate::cuda::ENSEMBLE_SOURCE,
@@ -89,6 +108,7 @@ pub fn gpu_paths(
     let mut kernel_seconds = 0.0;
     let (zx, zf) = trirhythm::maths::ziggurat_tables();
     let plan = gpu.upload(&bytes_of(&prep.plan))?;
+    let general = gpu.upload(&bytes_of(&prep.general))?;
     let noise = gpu.upload(&bytes_of(&prep.noise))?;
     let record = gpu.upload(&bytes_of(&prep.record))?;
     let zx = gpu.upload(&zx[..])?;
@@ -118,6 +138,7 @@ pub fn gpu_paths(
         let launched = Instant::now();
         gpu.launch(&kernel, Grid::cover(count, THREADS)?, |a| {
             a.arg(&plan)
+                .arg(&general)
                 .arg(&noise)
                 .arg(&record)
                 .arg(&zx)

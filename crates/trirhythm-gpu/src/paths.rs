@@ -1,5 +1,5 @@
 //! What the kernel and its emulation share on the host side: a run's constants prepared once
-//! ([`Prepared`]: the step's [`StepPlan`], the recorder's [`RecordPlan`], the noise's
+//! ([`Prepared`]: the step's [`StepPlan`] and [`GeneralPlan`], the recorder's [`RecordPlan`], the noise's
 //! [`StepConstants`], the ziggurat's tables), the raw per-path outputs in the kernel's
 //! `#[repr(C)]` layouts, and their conversion into the engine's [`PathStats`], so that both
 //! backends end in `trirhythm::analysis::ensemble::merge`, as the CPU engine does.
@@ -13,7 +13,8 @@ use trirhythm::analysis::ensemble::{
     merge, BatchSums, EnsembleResult, EnsembleSpec, PassageSums, PathStats, RecordPlan,
 };
 use trirhythm::engine::noise::{NoiseStream, StepConstants};
-use trirhythm::engine::{PredictorCorrector, Problem, StepPlan, Stepper};
+use trirhythm::engine::{GeneralPlan, PredictorCorrector, Problem, StepPlan, Stepper};
+use trirhythm::error::Exact;
 use trirhythm::{Error, Result};
 
 /// The kernel's `TrNoise`: the constants and the running node value.
@@ -63,10 +64,13 @@ pub(crate) struct PathEnd {
 /// The kernel's status codes (`kernel/step.h`).
 const TR_OK: u64 = 0;
 const TR_BLOW_UP: u64 = 1;
+const TR_TWO_WALLS: u64 = 3;
 
 /// A run's constants, prepared and checked once before any work.
 pub(crate) struct Prepared {
     pub(crate) plan: StepPlan,
+    /// The General kernel's constants (`active` = 0 for the paper's family).
+    pub(crate) general: GeneralPlan,
     pub(crate) record: RecordPlan,
     pub(crate) noise: NoiseIn,
     /// Steps of a path (burn-in and window).
@@ -88,6 +92,7 @@ impl Prepared {
         let (record, steps) = RecordPlan::new(problem, method, spec)?;
         let horizon = steps as f64 * method.dt;
         let plan = StepPlan::new(problem, method, horizon)?;
+        let general = GeneralPlan::new(problem, method, horizon)?;
         // each start as the engine's stepper checks it, and the noise's constants (every path's)
         for k in 0..problem.starts().len().min(spec.paths) as u64 {
             Stepper::new(problem, method, (spec.seed, k), horizon)?;
@@ -97,6 +102,7 @@ impl Prepared {
         let (bins, jb) = (record.bins as usize, record.joint_bins as usize);
         Ok(Prepared {
             plan,
+            general,
             record,
             noise: NoiseIn {
                 constants,
@@ -176,6 +182,17 @@ impl Raw {
                     stiffness: h * prep.damping(e.from_u).abs(),
                     dt: h,
                 }
+            } else if e.status == TR_TWO_WALLS {
+                // the engine's refusal (`stepper::walls`), at the time the step began
+                Error::invalid(
+                    "dt",
+                    h,
+                    format!(
+                        "a step that meets one wall at most: at t = {} the step meets both walls \
+                         (their distance is too small for this Δt)",
+                        Exact(e.steps as f64 * h)
+                    ),
+                )
             } else {
                 Error::NotApplicable {
                     method: "the GPU kernel".into(),
@@ -245,12 +262,13 @@ pub(crate) fn first_error(results: Vec<Result<PathStats>>) -> Result<Vec<PathSta
 mod ffi {
     use super::{Batch, NoiseIn, Passage, PathEnd};
     use trirhythm::analysis::ensemble::RecordPlan;
-    use trirhythm::engine::StepPlan;
+    use trirhythm::engine::{GeneralPlan, StepPlan};
 
     extern "C" {
         #[allow(clippy::too_many_arguments)]
         pub(super) fn tr_emulate_path(
             plan: *const StepPlan,
+            general: *const GeneralPlan,
             noise: *const NoiseIn,
             record: *const RecordPlan,
             zx: *const f64,
@@ -286,6 +304,7 @@ fn emulate_one(prep: &Prepared, problem: &Problem, path: u64) -> Result<PathStat
     unsafe {
         ffi::tr_emulate_path(
             &prep.plan,
+            &prep.general,
             &prep.noise,
             &prep.record,
             zx.as_ptr(),

@@ -1,15 +1,17 @@
 //! The GPU backend on a device (each test prints why it skips where there is none): the
 //! kernel's statistics against the CPU engine's — per path bit for bit where no transcendental
 //! function rounds differently (counted and printed), and every moment and density bin within
-//! three combined standard errors on Fig. 13(a) and on the linear oscillator's known variances
-//! — and its reproducibility run to run.
+//! three combined standard errors on Fig. 13(a), on a General-kernel model with every term and
+//! on the linear oscillator's known variances — and its reproducibility run to run.
 
 use trirhythm::analysis::ensemble::{
     run_ensemble, run_paths, Density, EnsembleResult, EnsembleSpec, Estimate,
 };
 use trirhythm::engine::{Barrier, PredictorCorrector, Problem};
 use trirhythm::known_answers::{linear_fractional_moments, linear_fractional_oscillator};
-use trirhythm::model::preset;
+use trirhythm::model::{
+    preset, Fractional, Harmonic, Keep, Model, NoiseTerm, Restitution, SpeedRestitution, Wall,
+};
 use trirhythm::monitor::Silent;
 use trirhythm_gpu::{run_ensemble as run_on, Backend};
 
@@ -109,6 +111,90 @@ fn fig13a_on_the_gpu_is_the_cpus() {
         "paths identical to the CPU's bit for bit: {identical} of {}",
         spec.paths
     );
+    let cpu = run_ensemble(&problem, &method, &spec, &Silent).unwrap();
+    statistically_equal(&cpu, &gpu);
+}
+
+/// The General kernel (`kernel/general.h`) on the device: Fig. 13(a)'s oscillator with a
+/// Duffing term, a Rayleigh term, a harmonic forcing, a fractional term (α = 0.5),
+/// multiplicative noise and two walls (one with a speed-dependent restitution).
+#[test]
+fn the_general_kernel_on_the_gpu_is_the_cpus() {
+    if !gpu() {
+        return;
+    }
+    let mut m = Model::from(&preset("fig13a").unwrap().params.with("D", 0.3).unwrap());
+    m.restoring.cubic = 0.3;
+    m.damping.rayleigh = vec![-0.02];
+    m.forcing = Some(Harmonic {
+        amplitude: 0.4,
+        frequency: 1.3,
+        phase: 0.2,
+    });
+    m.fractional = vec![Fractional {
+        coefficient: 0.2,
+        order: 0.5,
+    }];
+    m.noise.multiplicative = Some(NoiseTerm {
+        intensity: 0.05,
+        correlation_time: m.noise.additive.unwrap().correlation_time,
+    });
+    m.noise.correlation = 0.3;
+    m.walls = vec![
+        Wall {
+            position: -0.6,
+            keep: Keep::Above,
+            restitution: Restitution::Constant(0.7),
+        },
+        Wall {
+            position: 0.9,
+            keep: Keep::Below,
+            restitution: Restitution::Speed(SpeedRestitution {
+                r0: 0.9,
+                r_fast: 0.4,
+                speed: 0.8,
+            }),
+        },
+    ];
+    m.start.u0 = 0.2;
+    m.start.v0 = 0.0;
+    let problem = Problem::from_model(&m)
+        .unwrap()
+        .with_starts(&[(0.2, 0.0), (-0.5, 1.0)])
+        .unwrap();
+    let method = PredictorCorrector {
+        dt: 0.01,
+        ..Default::default()
+    };
+    let spec = EnsembleSpec {
+        paths: 256,
+        seed: 17,
+        burn_in: 50.0,
+        length: 300.0,
+        sample_every: 10,
+        amplitude_max: 1.0,
+        ..Default::default()
+    };
+    let all: Vec<u64> = (0..spec.paths as u64).collect();
+    let cpu_paths = run_paths(&problem, &method, &spec, &all, &Silent).unwrap();
+    let gpu = run_on(&problem, &method, &spec, &Silent, Backend::Gpu).unwrap();
+    let again = run_on(&problem, &method, &spec, &Silent, Backend::Gpu).unwrap();
+    assert_eq!(gpu, again, "the GPU's results are reproducible run to run");
+    let gpu_paths = trirhythm_gpu::gpu_paths(&problem, &method, &spec, &Silent)
+        .unwrap()
+        .stats;
+    let identical = cpu_paths
+        .iter()
+        .zip(&gpu_paths)
+        .filter(|(a, b)| a == b)
+        .count();
+    let impacts: u64 = gpu_paths.iter().map(|p| p.impacts).sum();
+    println!(
+        "General kernel: paths identical to the CPU's bit for bit: {identical} of {}; {impacts} \
+         impacts on the GPU",
+        spec.paths
+    );
+    assert!(impacts > 0);
     let cpu = run_ensemble(&problem, &method, &spec, &Silent).unwrap();
     statistically_equal(&cpu, &gpu);
 }

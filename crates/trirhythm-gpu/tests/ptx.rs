@@ -116,23 +116,44 @@ fn no_fused_multiply_add_is_contracted() {
 /// The ensemble kernel's own arithmetic has no contracted multiply–add either: compiled with
 /// CUDA's transcendental functions left out (`TR_ARITHMETIC_ONLY`; their implementations use
 /// `fma` by design), at Fig. 13(a)'s sizes, its PTX holds no `fma` and does hold the kernel's
-/// products and sums.
+/// products and sums; in each build `src/gpu.rs` makes (the paper's step, the General kernel's
+/// with and without the multiplicative noise's stream) and the emulation's (both steps).
 #[test]
 fn the_ensemble_kernels_own_arithmetic_is_not_contracted() {
-    let defines = [
-        ("TR_ARITHMETIC_ONLY", "1".to_string()),
-        ("TR_MAX_CAP", "7".to_string()),
-        ("TR_MAX_MODES", "40".to_string()),
+    // (TR_GENERAL, TR_MULTIPLICATIVE, TR_MAX_FRACTIONAL): the emulation's build, then the
+    // GPU's for the paper's family, a General plan without η_m or fractional terms, and one
+    // with both
+    let builds: [&[(&str, &str)]; 4] = [
+        &[],
+        &[("TR_GENERAL", "0")],
+        &[
+            ("TR_GENERAL", "1"),
+            ("TR_MULTIPLICATIVE", "0"),
+            ("TR_MAX_FRACTIONAL", "0"),
+        ],
+        &[
+            ("TR_GENERAL", "1"),
+            ("TR_MULTIPLICATIVE", "1"),
+            ("TR_MAX_FRACTIONAL", "2"),
+        ],
     ];
-    let Some(ptx) = compiled(cuda::ENSEMBLE_SOURCE, &defines) else {
-        return;
-    };
-    let ptx = ptx.unwrap();
-    assert!(
-        !ptx.contains("fma."),
-        "a fused multiply-add in the kernel's arithmetic"
-    );
-    assert!(ptx.contains("mul.rn.f64") && ptx.contains("div.rn.f64"));
+    for build in builds {
+        let mut defines = vec![
+            ("TR_ARITHMETIC_ONLY", "1".to_string()),
+            ("TR_MAX_CAP", "7".to_string()),
+            ("TR_MAX_MODES", "40".to_string()),
+        ];
+        defines.extend(build.iter().map(|&(k, v)| (k, v.to_string())));
+        let Some(ptx) = compiled(cuda::ENSEMBLE_SOURCE, &defines) else {
+            return;
+        };
+        let ptx = ptx.unwrap();
+        assert!(
+            !ptx.contains("fma."),
+            "a fused multiply-add in the kernel's arithmetic ({defines:?})"
+        );
+        assert!(ptx.contains("mul.rn.f64") && ptx.contains("div.rn.f64"));
+    }
 }
 
 #[test]

@@ -39,7 +39,10 @@ pub use memory::{
     AUTO_TOLERANCE_PER_DT2, DEFAULT_WINDOW, MAX_TOLERANCE, MIN_TOLERANCE,
     PREVIOUS_DEFAULT_TOLERANCE,
 };
-pub use plan::{StepPlan, PLAN_MAX_CAP, PLAN_MAX_DAMPING, PLAN_MAX_MODES};
+pub use plan::{
+    GeneralPlan, StepPlan, PLAN_MAX_CAP, PLAN_MAX_DAMPING, PLAN_MAX_FRACTIONAL, PLAN_MAX_MODES,
+    PLAN_MAX_RAYLEIGH,
+};
 pub use problem::{
     Barrier, ImpactMemory, Options, Oscillator, PredictorCorrector, Problem, System,
     MAX_AMPLITUDE_PERIODS, MAX_DT, MAX_STARTS, MAX_WINDOW,

@@ -8,15 +8,24 @@
 //! [`super::Stepper::new`] does, then copies them out; nothing is recomputed, so a step taken
 //! from the plan can equal the engine's step bit for bit (`trirhythm-gpu`'s emulation tests).
 //!
+//! [`GeneralPlan`] adds the General kernel's constants (`stepper::general`: Duffing and
+//! quintic restoring, Rayleigh terms, the harmonic forcing's phase rotation, the multiplicative
+//! noise's stream and mixing, the model's walls), copied out of the engine's own `General` of
+//! the problem (`General::export`, `Walls::export`), so again nothing is recomputed.
+//!
 //! Scope: the paper's family (Eq. 1, 5, 9 with or without the wall at 0, any damping
 //! polynomial, additive white or OU noise, both impact memories) with the sum-of-exponentials
-//! memory; the General kernel's terms and the direct memory are refused by name
-//! ([`Error::NotApplicable`]), as are windows and SOE kernels beyond the plan's fixed sizes.
+//! memory, and the whole General kernel: Duffing, quintic, Rayleigh, forcing, fractional
+//! terms (a memory of V each, exported as a [`StepPlan`]'s memory fields) and multiplicative
+//! noise, with no wall, the paper's wall at 0 or the model's walls. The direct memory is
+//! refused by name ([`Error::NotApplicable`]), as are windows, SOE kernels and numbers of
+//! terms beyond the plan's fixed sizes.
 
 use super::kernel::{phi_psi_series, LUMPED_TERMS};
 use super::memory::Memory;
+use super::noise::StepConstants;
 use super::problem::{ImpactMemory, PredictorCorrector, Problem, System};
-use super::stepper::{fresh_history, Affine};
+use super::stepper::{export_general, fresh_history, Affine};
 use crate::error::{Error, Result};
 
 /// Most exponentials of the SOE memory in a plan (a multiple of 4).
@@ -25,6 +34,10 @@ pub const PLAN_MAX_MODES: usize = 128;
 pub const PLAN_MAX_CAP: usize = 63;
 /// Most coefficients of the damping polynomial (in U²) in a plan.
 pub const PLAN_MAX_DAMPING: usize = 16;
+/// Most Rayleigh coefficients d_k in a [`GeneralPlan`] (the model file's own bound).
+pub const PLAN_MAX_RAYLEIGH: usize = 20;
+/// Most fractional terms K_j·D^{α_j}U in a [`GeneralPlan`] (the model file's own bound).
+pub const PLAN_MAX_FRACTIONAL: usize = 2;
 
 /// The constants of one path's step and memory (field meanings as in the engine's
 /// `stepper::affine` and `memory::history`).
@@ -116,22 +129,15 @@ pub struct StepPlan {
 
 impl StepPlan {
     /// The plan of `problem`'s paths with `method`, the memory certified up to `horizon` (as
-    /// [`super::Stepper::new`]). Refuses what the plan does not hold, by name.
+    /// [`super::Stepper::new`]). Refuses what the plan does not hold, by name. For a problem
+    /// with the General kernel's terms this is the leading memory, the damping μ0P and the
+    /// wall; the terms are in its [`GeneralPlan`].
     pub fn new(problem: &Problem, method: &PredictorCorrector, horizon: f64) -> Result<Self> {
         let refuse = |assumption: &str, reason: String| Error::NotApplicable {
             method: "the GPU kernel".into(),
             assumption: assumption.into(),
             reason,
         };
-        if let Some(t) = problem.oscillator().terms() {
-            return Err(refuse(
-                "the paper's family (no General kernel terms)",
-                format!(
-                    "the model has terms the General kernel steps: {}",
-                    t.describe()
-                ),
-            ));
-        }
         if method.memory == Memory::Direct {
             return Err(refuse(
                 "memory = soe or auto",
@@ -172,7 +178,7 @@ impl StepPlan {
         Ok(plan)
     }
 
-    fn zeroed() -> Self {
+    pub(crate) fn zeroed() -> Self {
         StepPlan {
             damping: [0.0; PLAN_MAX_DAMPING],
             damping_terms: 0,
@@ -214,6 +220,140 @@ impl StepPlan {
             iw_whole: [0.0; 16],
             phi_series: [0.0; 17],
             psi_series: [0.0; 17],
+        }
+    }
+}
+
+/// The General kernel's constants (`stepper::general`), for a backend that steps it: the
+/// restoring force k(U) = ω0²U + k3U³ + k5U⁵ beyond the [`StepPlan`]'s ω0², the Rayleigh
+/// coefficients, the harmonic forcing's phase rotation, the multiplicative noise η_m (its
+/// stream's step constants and its mixing with the additive noise), the model's walls, the
+/// fractional terms (K_j, their weights, their memories' constants). All zero with `active` = 0
+/// for the paper's family (the paper's kernel steps it).
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct GeneralPlan {
+    /// 1 when the problem has the General kernel's terms.
+    pub active: u32,
+    /// How many of `rayleigh` are used.
+    pub rayleigh_terms: u32,
+    /// d_k: `rayleigh[0]` multiplies U̇² in h(U, U̇).
+    pub rayleigh: [f64; PLAN_MAX_RAYLEIGH],
+    /// k3.
+    pub cubic: f64,
+    /// k5.
+    pub quintic: f64,
+    /// κ = Σ_j K_j ϖ_r^j of the fractional terms (the engine's own sum: 0 without them).
+    pub kappa: f64,
+    /// 1 with a harmonic forcing F cos(Ωt + φ).
+    pub forcing: u32,
+    /// 1 with multiplicative noise U·η_m.
+    pub multiplicative: u32,
+    /// F.
+    pub amplitude: f64,
+    /// ΩΔt.
+    pub angle: f64,
+    /// φ.
+    pub phase: f64,
+    /// cos ΩΔt (the engine's `maths::cos`).
+    pub rotation_cos: f64,
+    /// sin ΩΔt.
+    pub rotation_sin: f64,
+    /// cos φ: the phase at the start.
+    pub start_cos: f64,
+    /// sin φ.
+    pub start_sin: f64,
+    /// c·√(D_m/D_a): η_a's part in η_m (0 uncorrelated).
+    pub mix: f64,
+    /// √(1 − c²): η′'s part.
+    pub own: f64,
+    /// η_m's stream is path `path` of `seed ^ salt`.
+    pub salt: u64,
+    /// η′'s step constants (white or OU, of η_m's intensity and correlation time).
+    pub parametric: StepConstants,
+    /// 1 with the model's walls (`stepper::walls`; the [`StepPlan`]'s `wall` is then 0).
+    pub walls: u32,
+    /// Whether each wall is there: index 0 the lower wall (keeping U above it), 1 the upper.
+    pub wall_present: [u32; 2],
+    /// 1 where the wall's restitution is speed-dependent, r(v) = r_fast + (r0 − r_fast)e^{−v/v_s}.
+    pub wall_speed_dependent: [u32; 2],
+    /// δ of each wall.
+    pub wall_position: [f64; 2],
+    /// The constant r, or r0.
+    pub wall_r: [f64; 2],
+    /// r_fast (speed-dependent).
+    pub wall_r_fast: [f64; 2],
+    /// v_s (speed-dependent).
+    pub wall_speed: [f64; 2],
+    /// How many fractional terms K_j·D^{α_j}U (at most [`PLAN_MAX_FRACTIONAL`]).
+    pub fractional_terms: u32,
+    /// 1 where term j has a memory of V (α_j < 1); 0 where it is local (α_j = 1: m_j = V).
+    pub fractional_memory: [u32; PLAN_MAX_FRACTIONAL],
+    /// K_j.
+    pub fractional_k: [f64; PLAN_MAX_FRACTIONAL],
+    /// ϖ_l^j, the scaled weight of V_n in m_{j,n+1} (0 at α_j = 1).
+    pub fractional_wl: [f64; PLAN_MAX_FRACTIONAL],
+    /// ϖ_r^j, that of V_{n+1} (1 at α_j = 1).
+    pub fractional_wr: [f64; PLAN_MAX_FRACTIONAL],
+    /// The memory of J^{1−α_j}V of term j (α_j < 1): its empty `History`'s constants, laid out
+    /// as a [`StepPlan`]'s memory fields (with its λ = 1 − α_j, Δt and the φ, ψ series; the
+    /// step's fields unused).
+    pub memories: [StepPlan; PLAN_MAX_FRACTIONAL],
+}
+
+impl GeneralPlan {
+    /// The General kernel's constants of `problem`'s paths with `method` up to `horizon`, from
+    /// the engine's own `General` (as [`super::Stepper::new`] builds it); `active` = 0 for the
+    /// paper's family. Refuses by name what exceeds the plan's sizes.
+    pub fn new(problem: &Problem, method: &PredictorCorrector, horizon: f64) -> Result<Self> {
+        let mut plan = GeneralPlan::zeroed();
+        export_general(problem, method, horizon, &mut plan)?;
+        Ok(plan)
+    }
+
+    pub(crate) fn zeroed() -> Self {
+        GeneralPlan {
+            active: 0,
+            rayleigh_terms: 0,
+            rayleigh: [0.0; PLAN_MAX_RAYLEIGH],
+            cubic: 0.0,
+            quintic: 0.0,
+            kappa: 0.0,
+            forcing: 0,
+            multiplicative: 0,
+            amplitude: 0.0,
+            angle: 0.0,
+            phase: 0.0,
+            rotation_cos: 0.0,
+            rotation_sin: 0.0,
+            start_cos: 0.0,
+            start_sin: 0.0,
+            mix: 0.0,
+            own: 0.0,
+            salt: 0,
+            parametric: StepConstants {
+                kind: StepConstants::NONE,
+                rho: 0.0,
+                sigma: 0.0,
+                mean_coef: 0.0,
+                cross: 0.0,
+                rest: 0.0,
+                dt: 0.0,
+                sd: 0.0,
+            },
+            walls: 0,
+            wall_present: [0; 2],
+            wall_speed_dependent: [0; 2],
+            wall_position: [0.0; 2],
+            wall_r: [0.0; 2],
+            wall_r_fast: [0.0; 2],
+            wall_speed: [0.0; 2],
+            fractional_terms: 0,
+            fractional_memory: [0; PLAN_MAX_FRACTIONAL],
+            fractional_k: [0.0; PLAN_MAX_FRACTIONAL],
+            fractional_wl: [0.0; PLAN_MAX_FRACTIONAL],
+            fractional_wr: [0.0; PLAN_MAX_FRACTIONAL],
+            memories: [StepPlan::zeroed(); PLAN_MAX_FRACTIONAL],
         }
     }
 }

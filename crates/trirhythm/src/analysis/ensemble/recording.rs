@@ -410,7 +410,7 @@ pub const RECORD_PLAN_WELLS: usize = 8;
 /// What a path records, as plain data in a `#[repr(C)]` layout: the recorder's layout, the
 /// window's sizes and the wells' antimodes and cores, for a backend that records elsewhere (the
 /// CUDA kernel of `trirhythm-gpu` and its CPU emulation, whose `kernel/record.h` mirrors it).
-/// Built from the same [`Layout`] the CPU recorder uses, so its bins are the recorder's.
+/// Built from the same layout the CPU recorder uses, so its bins are the recorder's.
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct RecordPlan {

@@ -447,6 +447,19 @@ impl History {
 }
 
 impl History {
+    /// [`History::export`] of a memory of its own (a fractional term's): with its λ, Δt and
+    /// the φ, ψ series, which a [`crate::engine::StepPlan`] otherwise takes from the step.
+    pub(crate) fn export_memory(
+        &self,
+        plan: &mut crate::engine::StepPlan,
+    ) -> std::result::Result<(), (&'static str, usize, usize)> {
+        self.export(plan)?;
+        plan.lambda = self.iw.lambda();
+        plan.h = self.dt;
+        (plan.phi_series, plan.psi_series) = crate::engine::kernel::phi_psi_series();
+        Ok(())
+    }
+
     /// Copy the empty memory's constants into `plan` (module docs of [`crate::engine::StepPlan`]);
     /// `Err((what, n, max))` when the window or the kernel exceeds the plan's sizes.
     pub(crate) fn export(

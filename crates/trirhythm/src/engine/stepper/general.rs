@@ -497,6 +497,64 @@ impl General {
         })
     }
 
+    /// Copy the constants into `plan` (module docs of [`crate::engine::GeneralPlan`]): the
+    /// phase's rotation and start as [`Phase::new`] computed them, the multiplicative noise's
+    /// stream constants and mixing, κ as summed here. `Err((what, n, max))` when the Rayleigh
+    /// terms exceed the plan's size.
+    pub(crate) fn export(
+        &self,
+        plan: &mut crate::engine::GeneralPlan,
+    ) -> std::result::Result<(), (&'static str, usize, usize)> {
+        use crate::engine::PLAN_MAX_RAYLEIGH;
+        let n = self.rayleigh.len();
+        if n > PLAN_MAX_RAYLEIGH {
+            return Err(("the number of Rayleigh terms", n, PLAN_MAX_RAYLEIGH));
+        }
+        plan.active = 1;
+        plan.rayleigh_terms = n as u32;
+        plan.rayleigh[..n].copy_from_slice(&self.rayleigh);
+        plan.cubic = self.cubic;
+        plan.quintic = self.quintic;
+        plan.kappa = self.kappa;
+        if let Some(p) = &self.phase {
+            plan.forcing = 1;
+            plan.amplitude = p.amplitude;
+            plan.angle = p.angle;
+            plan.phase = p.phi;
+            (plan.rotation_cos, plan.rotation_sin) = p.rotation;
+            (plan.start_cos, plan.start_sin) = p.now;
+        }
+        if let Some(p) = &self.parametric {
+            plan.multiplicative = 1;
+            plan.mix = p.mix;
+            plan.own = p.own;
+            plan.salt = PARAMETRIC_SALT;
+            plan.parametric = p.stream.step_constants();
+        }
+        if let Some(w) = &self.walls {
+            w.export(plan);
+        }
+        let n = self.memories.len();
+        if n > crate::engine::PLAN_MAX_FRACTIONAL {
+            return Err((
+                "the number of fractional terms",
+                n,
+                crate::engine::PLAN_MAX_FRACTIONAL,
+            ));
+        }
+        plan.fractional_terms = n as u32;
+        for (j, m) in self.memories.iter().enumerate() {
+            plan.fractional_k[j] = m.k;
+            plan.fractional_wl[j] = m.wl;
+            plan.fractional_wr[j] = m.wr;
+            if let Some(h) = &m.history {
+                plan.fractional_memory[j] = 1;
+                h.export_memory(&mut plan.memories[j])?;
+            }
+        }
+        Ok(())
+    }
+
     /// Start the path at V(0) = `v0`: −Σ_j K_j m_j(0) = −Σ_{α_j = 1} K_j·v0 (m_j(0) =
     /// J^{1−α_j}V(0) = 0 for α_j < 1, but an α = 1 term is V itself).
     pub(super) fn start(&mut self, v0: f64) {

@@ -639,6 +639,35 @@ impl Stepper {
     }
 }
 
+/// The General kernel's constants of `problem`'s paths into `plan` ([`super::GeneralPlan`]),
+/// from the `General` that [`Stepper::new`] builds (its multiplicative noise's stream at
+/// path 0 of seed 0: the constants do not depend on them); nothing for the paper's family.
+pub(crate) fn export_general(
+    problem: &Problem,
+    method: &PredictorCorrector,
+    horizon: f64,
+    plan: &mut super::GeneralPlan,
+) -> Result<()> {
+    let oscillator = problem.oscillator();
+    let Some(t) = oscillator.terms() else {
+        return Ok(());
+    };
+    let history = fresh_history(problem, method, horizon)?;
+    let rhs = Affine::new(oscillator, problem.system());
+    let setup = general::MemorySetup {
+        memory: method.memory,
+        window: method.window,
+        horizon: history.kernel().map_or(0.0, |k| k.to),
+    };
+    let g = General::new(&rhs, t, method.dt, &setup, oscillator.noise(), (0, 0))?;
+    g.export(plan)
+        .map_err(|(what, n, max)| Error::NotApplicable {
+            method: "the GPU kernel".into(),
+            assumption: "the General kernel's terms within the kernel's fixed sizes".into(),
+            reason: format!("{what} is {n}, at most {max}"),
+        })
+}
+
 /// Most steps of a path with [`Memory::Direct`] (O(N) work and memory per step: 10⁷ steps
 /// hold about half a gigabyte of history and take hours).
 pub const MAX_DIRECT_STEPS: u64 = 10_000_000;

@@ -132,6 +132,25 @@ impl Walls {
         }
     }
 
+    /// Copy the walls into `plan` ([`crate::engine::GeneralPlan`]: [0] lower, [1] upper).
+    pub(super) fn export(&self, plan: &mut crate::engine::GeneralPlan) {
+        plan.walls = 1;
+        for (i, law) in [self.lower, self.upper].into_iter().enumerate() {
+            let Some(law) = law else { continue };
+            plan.wall_present[i] = 1;
+            plan.wall_position[i] = law.position;
+            match law.restitution {
+                Restitution::Constant(r) => plan.wall_r[i] = r,
+                Restitution::Speed(s) => {
+                    plan.wall_speed_dependent[i] = 1;
+                    plan.wall_r[i] = s.r0;
+                    plan.wall_r_fast[i] = s.r_fast;
+                    plan.wall_speed[i] = s.speed;
+                }
+            }
+        }
+    }
+
     fn law(&self, side: Side) -> Law {
         match side {
             Side::Lower => self.lower,
