@@ -62,10 +62,11 @@ pub const ENSEMBLE_SOURCE: &str = include_str!("../kernel/ensemble.cu");
 /// `bits[i] = to_bits(x[i]) + offset` for `i < n` (a launch checked without arithmetic).
 pub const PROBE_SOURCE: &str = include_str!("../kernel/probe.cu");
 
-/// The virtual architecture [`compile_ptx`] targets: compute capability 7.0 (Volta and later;
-/// double-precision `atomicAdd` needs 6.0). The driver compiles the PTX for the device's own
-/// architecture when the module is loaded.
-pub const PTX_ARCH: (u32, u32) = (7, 0);
+/// The virtual architecture [`compile_ptx`] targets: compute capability 7.5 (Turing and later:
+/// the oldest that both NVRTC 12 and NVRTC 13, which dropped Volta, compile for). The driver
+/// compiles the PTX for the device's own architecture when the module is loaded; the ensemble
+/// kernel is compiled for the device's own ([`compile_ptx_for`]).
+pub const PTX_ARCH: (u32, u32) = (7, 5);
 
 /// The CUDA version of cudarc's bindings (its `cuda-12060` feature): the version numbers in
 /// the library names it tries.

@@ -18,6 +18,8 @@
 use crate::cuda::{compile_ptx_for, CudaSlice, Gpu, Grid, PushKernelArg};
 use crate::paths::{first_error, Batch, Passage, PathEnd, Prepared, Raw};
 use cudarc::driver::{DeviceRepr, ValidAsZeroBits};
+use std::collections::HashMap;
+use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 use trirhythm::analysis::ensemble::{EnsembleSpec, PathStats};
 use trirhythm::engine::{PredictorCorrector, Problem};
@@ -39,6 +41,34 @@ const THREADS: u32 = 128;
 const MAX_CHUNK: usize = 1 << 18;
 /// Most bytes of per-path outputs on the device at once.
 const CHUNK_BYTES: usize = 1 << 31;
+
+/// The kernel's PTX for these sizes and this architecture, compiled once per process: a map
+/// --simulate runs one ensemble per grid point, and NVRTC takes about a second for the kernel,
+/// which most points would spend on the same sizes (the driver keeps its own cache of the
+/// machine code it makes of a PTX).
+fn cached_ptx(defines: &[(&str, String)], arch: (u32, u32)) -> Result<String> {
+    type Cache = Mutex<HashMap<(Vec<(String, String)>, (u32, u32)), String>>;
+    static CACHE: OnceLock<Cache> = OnceLock::new();
+    let key: Vec<(String, String)> = defines
+        .iter()
+        .map(|(n, v)| (n.to_string(), v.clone()))
+        .collect();
+    let cache = CACHE.get_or_init(Default::default);
+    let held = cache
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .get(&(key.clone(), arch))
+        .cloned();
+    if let Some(ptx) = held {
+        return Ok(ptx);
+    }
+    let ptx = compile_ptx_for(crate::cuda::ENSEMBLE_SOURCE, defines, arch)?;
+    cache
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .insert((key, arch), ptx.clone());
+    Ok(ptx)
+}
 
 /// The bytes of a plain value, to upload a structure of another crate as the kernel reads it.
 fn bytes_of<T: Copy>(value: &T) -> Vec<u8> {
@@ -97,11 +127,7 @@ pub fn gpu_paths(
         ("TR_MULTIPLICATIVE", g.multiplicative.to_string()),
         ("TR_MAX_FRACTIONAL", terms.to_string()),
     ];
-    let ptx = compile_ptx_for(
-        crate::cuda::ENSEMBLE_SOURCE,
-        &defines,
-        gpu.info().compute_capability,
-    )?;
+    let ptx = cached_ptx(&defines, gpu.info().compute_capability)?;
     let module = gpu.load(&ptx)?;
     let kernel = module.kernel("tr_ensemble")?;
     let compile_seconds = compiling.elapsed().as_secs_f64();
