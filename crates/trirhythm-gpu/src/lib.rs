@@ -1,5 +1,30 @@
-//! Ensembles on a GPU: the engine's step as a CUDA kernel, one thread per path (work in
-//! progress; see `docs/gpu.md`).
+//! Ensembles on a GPU: the engine's step and ensemble recorder as a CUDA kernel, one thread per
+//! path, over the whole model class the engine steps.
+//!
+//! # Problem
+//! The ensembles of `trirhythm::analysis::ensemble` (the direct method: N paths of one
+//! [`Problem`] from (seed, path) noise streams, their statistics merged), with the paths
+//! stepped on a GPU ([`Backend::Gpu`]) instead of the CPU ([`Backend::Cpu`], the default and
+//! the reference).
+//!
+//! # Method
+//! The kernel's source (`kernel/`) is the engine's step written out in a C99 subset, the same
+//! expressions in the same order, with the constants the engine itself builds
+//! (`trirhythm::engine::{StepPlan, GeneralPlan}`, `RecordPlan`, the noise's step constants). It
+//! is compiled twice: by NVRTC for the GPU ([`cuda`], `gpu`: [`gpu_paths`]), and by the host's C
+//! compiler for the CPU emulation ([`emulate_paths`], [`emulate_ensemble`]). Each path's
+//! statistics come back as the engine's `PathStats` and are merged by the engine's `merge`.
+//! Method, scope and which equality holds: `docs/gpu.md`.
+//!
+//! # Reference
+//! The engine's predictor–corrector (module docs of `trirhythm::engine`); the CUDA driver API
+//! and NVRTC (NVIDIA, CUDA 12).
+//!
+//! # Tests
+//! `tests/emulation.rs` (the emulation against the engine, bit for bit, every kind of path),
+//! `tests/noise.rs` (the noise's words, deviates and steps, bit for bit), `tests/ptx.rs` (the
+//! kernel compiled to PTX without contraction), `tests/gpu.rs` (on a device: statistical
+//! equality with the CPU, reproducibility; skipped with the reason elsewhere).
 
 pub mod emulate;
 mod paths;
