@@ -545,6 +545,19 @@ pub fn save(
     verdicts: Vec<VerdictLine>,
     stem: &Path,
 ) -> Result<Vec<PathBuf>> {
+    let svg = stem.with_extension("svg");
+    let text = draw_svg(picture, verdicts).with_context(|| format!("drawing {}", svg.display()))?;
+    // the PNG is the SVG rasterised: the same picture, at print resolution
+    let png = stem.with_extension("png");
+    let bytes = rasterise(&text).with_context(|| format!("drawing {}", png.display()))?;
+    write_atomic(&png, &bytes)?;
+    write_atomic(&svg, svg_file(&text).as_bytes())?;
+    Ok(vec![png, svg])
+}
+
+/// `picture` with its heading and `verdicts` drawn as SVG text, the fonts not yet embedded:
+/// what [`save`] rasterises ([`rasterise`]) and writes ([`svg_file`]).
+pub fn draw_svg(picture: &impl Picture, verdicts: Vec<VerdictLine>) -> Result<String> {
     init_fonts();
     // the scale is set by the canvas width (which does not depend on it); the height does
     let _scale = ScaleGuard::for_width(picture.size().0);
@@ -567,25 +580,49 @@ pub fn save(
         heading.draw_badges(&bottom)?;
         root.present().map_err(pe)
     }
-    let svg = stem.with_extension("svg");
     let mut text = String::new();
     render(
         SVGBackend::with_string(&mut text, size).into_drawing_area(),
         &heading,
         (hh, h),
         picture,
-    )
-    .with_context(|| format!("drawing {}", svg.display()))?;
+    )?;
     // rectangles (map cells, heat-map cells, swatches) edge to edge: without anti-aliased
     // edges, or every shared edge shows as a faint seam
     let text = text.replace("<rect ", "<rect shape-rendering=\"crispEdges\" ");
-    let text = true_font_sizes(&text);
-    // the PNG is the SVG rasterised: the same picture, at print resolution
-    let png = stem.with_extension("png");
-    let bytes = rasterise(&text).with_context(|| format!("drawing {}", png.display()))?;
-    write_atomic(&png, &bytes)?;
-    write_atomic(&svg, embed_font(&text).as_bytes())?;
-    Ok(vec![png, svg])
+    Ok(true_font_sizes(&text))
+}
+
+/// The signature every picture file carries: a PNG's `Software` text chunk, a comment after
+/// an SVG's opening tag. A destination holding a picture without it was not written here.
+pub const SIGNATURE: &str = "trirhythm";
+
+/// The SVG file of a picture drawn by [`draw_svg`]: its fonts embedded ([`embed_font`]) and
+/// the [`SIGNATURE`] in a comment after the opening tag.
+pub fn svg_file(svg: &str) -> String {
+    let text = embed_font(svg);
+    match text
+        .find("<svg")
+        .and_then(|i| text[i..].find('>').map(|j| i + j + 1))
+    {
+        Some(end) => format!("{}<!-- {SIGNATURE} -->{}", &text[..end], &text[end..]),
+        None => text,
+    }
+}
+
+/// Whether `bytes` are a picture written here ([`rasterise`]'s PNG or [`svg_file`]'s SVG,
+/// told by the [`SIGNATURE`]): the only files a picture's destination may replace.
+pub fn signed(bytes: &[u8]) -> bool {
+    const PNG: &[u8] = b"\x89PNG\r\n\x1a\n";
+    let contains = |hay: &[u8], needle: &[u8]| hay.windows(needle.len()).any(|w| w == needle);
+    if bytes.starts_with(PNG) {
+        // (the text chunk follows the header, before the image data)
+        let chunk = format!("tEXtSoftware\0{SIGNATURE}");
+        contains(&bytes[..bytes.len().min(256)], chunk.as_bytes())
+    } else {
+        let head = &bytes[..bytes.len().min(4096)];
+        contains(head, b"<svg") && contains(head, format!("<!-- {SIGNATURE} -->").as_bytes())
+    }
 }
 
 /// DejaVu Sans' height (ascender − descender, 1901 + 483 font units) per em (2048 units).
@@ -658,6 +695,9 @@ pub fn rasterise(svg: &str) -> Result<Vec<u8>> {
         unit: png::Unit::Meter,
     }));
     let encoding = |e: png::EncodingError| anyhow!("encoding the PNG: {e}");
+    encoder
+        .add_text_chunk("Software".into(), SIGNATURE.into())
+        .map_err(encoding)?;
     let mut writer = encoder.write_header().map_err(encoding)?;
     writer.write_image_data(&rgb).map_err(encoding)?;
     writer.finish().map_err(encoding)?;
