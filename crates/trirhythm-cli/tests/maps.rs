@@ -489,38 +489,24 @@ fn simulated_map_refuses_bad_input_by_name_before_any_work() {
     }
 }
 
-/// A tiny simulated map for its picture: 2 × 2 points of Fig. 12(d)'s set at λ = 1 around
-/// r = 0.95, D = 1, two short paths each.
-const TINY: &[&str] = &[
-    "map",
-    "--simulate",
-    "--preset",
-    "fig12d",
-    "--param",
-    "lambda=1",
-    "--param",
-    "tau=0",
-    "--param",
-    "mu0=0.01",
-    "--x",
-    "r=0.95:0.96:2",
-    "--y",
-    "D=1:1.1:2",
-    "--paths",
-    "2",
-    "--t-end",
-    "200",
-    "--burn-in",
-    "20",
-    "--dt",
-    "0.05",
-    "--batches",
-    "4",
-    "--seed",
-    "3",
-    "--format",
-    "csv",
-];
+/// A tiny simulated map for its picture: [`SIMULATED`] on 2 × 2 points around r = 0.95,
+/// D = 1, two short paths each, as CSV.
+fn tiny() -> Vec<&'static str> {
+    let mut a = SIMULATED.to_vec();
+    for (flag, value) in [
+        ("--x", "r=0.95:0.96:2"),
+        ("--y", "D=1:1.1:2"),
+        ("--paths", "2"),
+        ("--t-end", "200"),
+        ("--burn-in", "20"),
+        ("--batches", "4"),
+    ] {
+        let i = a.iter().position(|&f| f == flag).unwrap();
+        a[i + 1] = value;
+    }
+    a.extend(["--format", "csv"]);
+    a
+}
 
 /// The width and height a PNG's header gives.
 fn png_size(bytes: &[u8]) -> (u32, u32) {
@@ -544,7 +530,7 @@ fn svg_attribute(svg: &str, name: &str) -> f64 {
 fn simulated_map_draws_its_picture_as_png_and_svg() {
     let dir = scratch_dir("simulated-map-picture");
     let (png, svg) = (dir.join("map.png"), dir.join("map.svg"));
-    let mut args: Vec<&str> = TINY.to_vec();
+    let mut args = tiny();
     let (p, s) = (png.to_str().unwrap(), svg.to_str().unwrap());
     args.extend(["--png", p, "--svg", s]);
     // twice: the second run replaces the pictures the first one drew
@@ -610,7 +596,7 @@ fn simulated_map_picture_destinations_are_refused_before_any_work() {
         ),
     ];
     for (flag, dest, needle) in &cases {
-        let mut args: Vec<&str> = TINY.to_vec();
+        let mut args = tiny();
         args.extend([*flag, dest.as_str()]);
         let out = run(&args);
         let err = String::from_utf8_lossy(&out.stderr);

@@ -20,6 +20,10 @@
 //! ([`draw_line`], [`draw_markers`]). Tests: unit tests below; the CLI's `pictures` test parses
 //! every SVG's font sizes and layout.
 //!
+//! Files: every PNG carries a `Software` text chunk and every SVG a comment with the
+//! [`SIGNATURE`], so that a destination holding a picture this tool drew can be told from a
+//! file it must not replace ([`signed`]).
+//!
 //! Text: every font size is even (the layout's pixel arithmetic stays whole). SVG: the same
 //! DejaVu Sans the PNG is rasterised with is embedded in each SVG as a web font
 //! ([`embed_font`]), so the two render alike on any machine.
@@ -205,20 +209,33 @@ impl Heading {
 
     fn draw_badges<DB: Backend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
         let width = area.dim_in_pixel().0;
-        let h = Self::line_height();
-        for (i, (line, colour)) in self.badges(width).into_iter().enumerate() {
-            rich_text(
-                area,
-                &line,
-                (px(12) as i32, (px(6) + h * i as u32 + h / 2) as i32),
-                Pos::new(HPos::Left, VPos::Center),
-                HEADING_LINE,
-                colour,
-                false,
-            )?;
-        }
-        Ok(())
+        draw_lines(area, self.badges(width), HEADING_LINE, Self::line_height())
     }
+}
+
+/// `lines` of rich text ([`rich_text`]) at font size `base`, each in its colour, left-aligned
+/// from the top of `area` ([`px`]`(12)` in, [`px`]`(6)` down), `height` pixels apart.
+pub fn draw_lines<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
+    lines: impl IntoIterator<Item = (String, RGBColor)>,
+    base: u32,
+    height: u32,
+) -> Result<()> {
+    for (i, (line, colour)) in lines.into_iter().enumerate() {
+        rich_text(
+            area,
+            &line,
+            (
+                px(12) as i32,
+                (px(6) + height * i as u32 + height / 2) as i32,
+            ),
+            Pos::new(HPos::Left, VPos::Center),
+            base,
+            colour,
+            false,
+        )?;
+    }
+    Ok(())
 }
 
 /// `text` without its parenthesised asides inside parentheses ("a (b (c) d)" → "a (b d)"),

@@ -1,35 +1,43 @@
-//! The picture of `map --simulate`: the theory's count of the modes of P(A) (Eq. 27) on the
-//! left, the simulated count on the right, over the same grid and axes, both coloured as the
-//! paper's maps are ([`count_colour`](super::mapfig::count_colour): unimodal blue, bimodal green, trimodal black).
+//! The picture of `map --simulate`: the theory's count of the modes of P(A) on the left, the
+//! simulated count on the right, over the same grid and axes.
 //!
-//! # What is drawn
+//! # Equation
+//! Left, the number of maxima of the averaged stationary P(A) (Eq. 27: the stable roots of
+//! h = A·m1, Eq. 26); right, the number of modes of the amplitude density of an ensemble of
+//! Eq. (1) at the same point, counted at z = 3 ([`trirhythm::analysis::simulated_map`]).
+//!
+//! # Method
 //! Each panel is a [`MapPanel`] of the simulated map's grid ([`SimulatedMapPicture::new`]),
-//! drawn by the map figures' own [`draw_panel`] (no inset: the marks would fall on it). On the
-//! simulated panel every point whose verdict is not `agree` carries a mark, black on a white
-//! halo so that it reads on every colour and in greyscale: × `disagree` (the theory's count
-//! outside the simulated range), ○ `uncertain` (inside a range of several counts), ● not
-//! stationary, □ more than 1 % of the samples beyond the histogram (the last two not
+//! drawn by the map figures' own [`draw_panel`] and coloured as the paper's maps are
+//! ([`count_colour`](super::mapfig::count_colour): unimodal blue, bimodal green, trimodal
+//! black), with no inset (the marks would fall on it). On the simulated panel every point
+//! whose verdict is not `agree` carries a mark at the centre of its cell as drawn, black on a
+//! white halo so that it reads on every colour and in greyscale: × `disagree` (the theory's
+//! count outside the simulated range), ○ `uncertain` (inside a range of several counts),
+//! ● not stationary, □ more than 1 % of the samples beyond the histogram (the last two not
 //! compared). The legend strip below the panels names the counts met and the marks drawn;
 //! under it the caption states the rule (z = 3, the range at z = 4 … 2), the sizes (points,
 //! paths, t_end, burn-in, Δt, seed), the parameters and the tally of verdicts.
 //!
 //! # Reference
 //! The rule and the verdicts: [`trirhythm::analysis::simulated_map`] and docs/statistics.md;
-//! the maps' drawing: [`super::mapfig`].
+//! the maps' drawing: [`super::mapfig`]; the print rules: [`crate::render::plot`].
 //!
 //! # Tests
 //! `tests/maps.rs`: `map --simulate --png/--svg` on a 2 × 2 grid writes a PNG 2100 pixels
-//! wide (7 in at 300 dpi) of the picture's height and an SVG holding both panels' titles and
-//! the caption's tally; bad destinations are refused before any work, and a file this tool
-//! did not write is never replaced.
+//! wide (7 in at 300 dpi) of the SVG's height at that scale, signed, with both panels' titles,
+//! the rule's range and the CSV's tally in the SVG, and a mark's legend entry exactly where a
+//! point has that verdict; a second run replaces the pictures the first drew. Five bad
+//! destinations (a directory, a missing directory, the wrong extension twice, a file this
+//! tool did not write) are refused before the work starts, the file left as it was. Unit
+//! tests below: the caption's wrapping, one mark per verdict.
 
 use super::mapfig::{clear_ends, draw_panel, legend, Insets, MapChart, PANEL};
 use crate::render::plot::{
-    font_px, pe, px, pxi, rich_text, rich_width, stroke, Backend, Marker, Symbol, LABEL,
+    draw_lines, font_px, pe, px, pxi, rich_width, stroke, Backend, Marker, Symbol, LABEL,
 };
 use anyhow::Result;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 use trirhythm::analysis::simulated_map::{Agreement, SimulatedMap};
 use trirhythm::model::Params;
 use trirhythm::theory::bifurcation::{Axis, Folds, What};
@@ -92,12 +100,7 @@ impl SimulatedMapPicture {
             x: axis(&map.x),
             y: axis(&map.y),
             counts,
-            folds: Folds {
-                curves: Vec::new(),
-                cusps: Vec::new(),
-                seeds: 0,
-                unlocated: 0,
-            },
+            folds: Folds::default(),
             printed: None,
             mark: None,
             fold_names: Vec::new(),
@@ -275,19 +278,8 @@ picture!(SimulatedMapPicture, |self, root| caption self.fig.caption, size {
     let mut c = draw_panel(&areas[1], &self.fig.panels[1], ends[1], Insets::Off)?;
     draw_marks(&mut c, &self.fig.panels[1], &self.marks)?;
     self.legend().draw(&strip)?;
-    let h = caption_line();
-    for (i, line) in self.caption(w).iter().enumerate() {
-        rich_text(
-            &caption,
-            line,
-            (px(12) as i32, (px(6) + h * i as u32 + h / 2) as i32),
-            Pos::new(HPos::Left, VPos::Center),
-            LABEL,
-            BLACK,
-            false,
-        )?;
-    }
-    Ok(())
+    let lines = self.caption(w).into_iter().map(|l| (l, BLACK));
+    draw_lines(&caption, lines, LABEL, caption_line())
 });
 
 #[cfg(test)]
