@@ -1259,6 +1259,23 @@ mod tests {
     use super::*;
 
     #[test]
+    fn pictures_written_here_are_signed_and_others_are_not() {
+        let svg = "<svg width=\"20\" height=\"10\" xmlns=\"http://www.w3.org/2000/svg\">\
+                   <rect x=\"0\" y=\"0\" width=\"5\" height=\"5\" fill=\"black\"/></svg>";
+        let png = rasterise(svg).unwrap();
+        assert!(signed(&png));
+        assert!(signed(svg_file(svg).as_bytes()));
+        // the same picture without the signature: a PNG of another program, a plain SVG
+        let mut foreign = png.clone();
+        let at = foreign.windows(4).position(|w| w == b"tEXt").unwrap();
+        foreign[at + 4] = b's';
+        assert!(!signed(&foreign));
+        assert!(!signed(svg.as_bytes()));
+        assert!(!signed(b"x,y\n1,2\n"));
+        assert!(!signed(b""));
+    }
+
+    #[test]
     fn subscripts_parse_from_markup_and_symbols_only() {
         let r = |s: &str| rich_runs(s);
         let run = |t: &str, sub: bool| (t.to_string(), sub);
