@@ -488,3 +488,140 @@ fn simulated_map_refuses_bad_input_by_name_before_any_work() {
         assert!(err.contains(needle), "{args:?}: {err}");
     }
 }
+
+/// A tiny simulated map for its picture: [`SIMULATED`] on 2 × 2 points around r = 0.95,
+/// D = 1, two short paths each, as CSV.
+fn tiny() -> Vec<&'static str> {
+    let mut a = SIMULATED.to_vec();
+    for (flag, value) in [
+        ("--x", "r=0.95:0.96:2"),
+        ("--y", "D=1:1.1:2"),
+        ("--paths", "2"),
+        ("--t-end", "200"),
+        ("--burn-in", "20"),
+        ("--batches", "4"),
+    ] {
+        let i = a.iter().position(|&f| f == flag).unwrap();
+        a[i + 1] = value;
+    }
+    a.extend(["--format", "csv"]);
+    a
+}
+
+/// The width and height a PNG's header gives.
+fn png_size(bytes: &[u8]) -> (u32, u32) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "not a PNG");
+    assert_eq!(&bytes[12..16], b"IHDR");
+    let be = |i: usize| u32::from_be_bytes(bytes[i..i + 4].try_into().unwrap());
+    (be(16), be(20))
+}
+
+/// The number after `name=\"` in an SVG's opening tag.
+fn svg_attribute(svg: &str, name: &str) -> f64 {
+    let open = &svg[svg.find("<svg").unwrap()..];
+    let open = &open[..open.find('>').unwrap()];
+    let at = open.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+    open[at..at + open[at..].find('"').unwrap()]
+        .parse()
+        .unwrap()
+}
+
+#[test]
+fn simulated_map_draws_its_picture_as_png_and_svg() {
+    let dir = scratch_dir("simulated-map-picture");
+    let (png, svg) = (dir.join("map.png"), dir.join("map.svg"));
+    let mut args = tiny();
+    let (p, s) = (png.to_str().unwrap(), svg.to_str().unwrap());
+    args.extend(["--png", p, "--svg", s]);
+    // twice: the second run replaces the pictures the first one drew
+    for _ in 0..2 {
+        let text = ok(&args);
+        let tally = text
+            .lines()
+            .find_map(|l| l.strip_prefix("# tally: "))
+            .expect("a tally line");
+        let svg_text = std::fs::read_to_string(&svg).unwrap();
+        let bytes = std::fs::read(&png).unwrap();
+        // 7 in at 300 dpi wide, the SVG's height at that scale
+        let (w, h) = png_size(&bytes);
+        assert_eq!(w, 2100);
+        let (sw, sh) = (
+            svg_attribute(&svg_text, "width"),
+            svg_attribute(&svg_text, "height"),
+        );
+        assert_eq!(sw, 1120.0);
+        assert_eq!(h, (sh * 2100.0 / sw).round() as u32);
+        assert!(h > 1000 && h < 2100, "{h}");
+        assert_eq!(&bytes[bytes.len() - 8..bytes.len() - 4], b"IEND");
+        // both panels, and the caption's tally as the CSV's
+        assert!(svg_text.contains("(a) theory (Eq. 27)"), "panel a");
+        assert!(svg_text.contains("(b) simulated (Eq. 1), z = 3"), "panel b");
+        let drawn = tally
+            .replace("non_stationary", "non-stationary")
+            .replace("outside_range", "outside the range");
+        assert!(
+            svg_text.contains(&format!("Tally: {drawn}.")),
+            "{drawn} not in the SVG"
+        );
+        assert!(svg_text.contains("z = 4 … z = 2"), "the range's rule");
+        // a mark's legend entry exactly where a point has that verdict
+        let rows = rows(&text);
+        for (verdict, entry) in [
+            ("disagree", "disagree (theory outside the range)"),
+            ("uncertain", "uncertain (range of several counts)"),
+            ("non_stationary", "not stationary (not compared)"),
+        ] {
+            let any = rows.iter().skip(1).any(|r| r[6] == verdict);
+            assert_eq!(svg_text.contains(entry), any, "{verdict}");
+        }
+    }
+}
+
+#[test]
+fn simulated_map_picture_destinations_are_refused_before_any_work() {
+    let dir = scratch_dir("simulated-map-picture-refused");
+    std::fs::create_dir_all(dir.join("folder.png")).unwrap();
+    let foreign = dir.join("theirs.svg");
+    std::fs::write(&foreign, "<svg>someone else's</svg>").unwrap();
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let cases: Vec<(&str, String, &str)> = vec![
+        ("--png", path("folder.png"), "is a directory"),
+        ("--png", path("missing/map.png"), "does not exist"),
+        ("--png", path("map.svg"), "give a file name ending in .png"),
+        ("--svg", path("map"), "give a file name ending in .svg"),
+        (
+            "--svg",
+            path("theirs.svg"),
+            "is not a picture trirhythm drew",
+        ),
+    ];
+    for (flag, dest, needle) in &cases {
+        let mut args = tiny();
+        args.extend([*flag, dest.as_str()]);
+        let out = run(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{flag} {dest}: {err}");
+        assert!(err.contains(needle), "{flag} {dest}: {err}");
+        // refused before the work: the sizing note that opens it never came, nor any data
+        assert!(!err.contains("path-steps on the"), "{err}");
+        assert!(out.stdout.is_empty());
+    }
+    assert_eq!(
+        std::fs::read_to_string(&foreign).unwrap(),
+        "<svg>someone else's</svg>"
+    );
+    // the picture's options belong to --simulate
+    let out = run(&[
+        "map",
+        "--preset",
+        "fig12d",
+        "--x",
+        "r=0.9:1:3",
+        "--y",
+        "D=0.1:1:3",
+        "--png",
+        "m.png",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--png applies to --simulate only"));
+}

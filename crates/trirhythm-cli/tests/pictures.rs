@@ -370,8 +370,9 @@ fn is_tick(text: &str) -> bool {
 
 /// What is wrong with the layout of one picture (`name`): text boxes over text boxes or over
 /// data points, axes with fewer than four labelled ticks, panel titles over one line, panels
-/// narrower than 2.2 in printed 7 in wide.
-fn layout_defects(name: &str, svg: &str) -> Vec<String> {
+/// narrower than 2.2 in printed 7 in wide, a title (the text opening with `opening`) of more
+/// than one line.
+fn layout_defects(name: &str, svg: &str, opening: &str) -> Vec<String> {
     let mut bad = Vec::new();
     let width = svg_width(svg);
     let labels = labels(svg);
@@ -457,7 +458,7 @@ fn layout_defects(name: &str, svg: &str) -> Vec<String> {
         }
     }
     // the figure's title row (its runs, subscripts included)
-    let title = labels.iter().find(|l| l.text.starts_with("Fig. "));
+    let title = labels.iter().find(|l| l.text.starts_with(opening));
     let in_title = |l: &Label| title.is_some_and(|t| (l.y - t.y).abs() < t.size);
     for p in &panels {
         let tol = 3.0;
@@ -558,7 +559,7 @@ fn layout_defects(name: &str, svg: &str) -> Vec<String> {
     // the figure's title: one line
     let title_size = labels
         .iter()
-        .find(|l| l.text.starts_with("Fig. "))
+        .find(|l| l.text.starts_with(opening))
         .map_or(0.0, |l| l.size);
     // (its rows: the texts of its size above every plotting area and its panel titles)
     let top = panels.iter().map(|p| p.t).fold(f64::INFINITY, f64::min);
@@ -600,7 +601,7 @@ fn every_picture_is_laid_out_for_print() {
     for n in 1..=19u32 {
         let name = format!("fig{n:02}");
         let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).unwrap();
-        let defects = layout_defects(&name, &svg);
+        let defects = layout_defects(&name, &svg, "Fig. ");
         if PENDING.contains(&n) && given.is_none() {
             // reported, not failed, until the figure is redrawn; a pending figure found
             // clean must leave the list
@@ -621,5 +622,48 @@ fn every_picture_is_laid_out_for_print() {
         "{} layout defects:\n{}",
         all.len(),
         all.join("\n")
+    );
+}
+
+/// `map --simulate --svg`'s picture (two map panels, marks on the simulated one, the legend
+/// strip and the caption below) passes the figures' layout checks: a 6 × 6 map of short paths,
+/// where points of every kind of mark but "outside the range" occur.
+#[test]
+fn the_simulated_map_is_laid_out_for_print() {
+    let dir = scratch_dir("simulated-map-layout");
+    let svg = dir.join("map.svg");
+    common::ok_stdout(&[
+        "map",
+        "--simulate",
+        "--preset",
+        "fig12d",
+        "--x",
+        "lambda=0.95:1:6",
+        "--y",
+        "r=0.8:1:6",
+        "--paths",
+        "2",
+        "--t-end",
+        "500",
+        "--burn-in",
+        "20",
+        "--dt",
+        "0.05",
+        "--batches",
+        "4",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        text.contains("not stationary (not compared)"),
+        "no mark drawn"
+    );
+    let defects = layout_defects("the simulated map", &text, "Modes of P(A)");
+    assert!(
+        defects.is_empty(),
+        "{} layout defects:\n{}",
+        defects.len(),
+        defects.join("\n")
     );
 }

@@ -20,6 +20,10 @@
 //! ([`draw_line`], [`draw_markers`]). Tests: unit tests below; the CLI's `pictures` test parses
 //! every SVG's font sizes and layout.
 //!
+//! Files: every PNG carries a `Software` text chunk and every SVG a comment with the
+//! [`SIGNATURE`], so that a destination holding a picture this tool drew can be told from a
+//! file it must not replace ([`signed`]).
+//!
 //! Text: every font size is even (the layout's pixel arithmetic stays whole). SVG: the same
 //! DejaVu Sans the PNG is rasterised with is embedded in each SVG as a web font
 //! ([`embed_font`]), so the two render alike on any machine.
@@ -205,20 +209,33 @@ impl Heading {
 
     fn draw_badges<DB: Backend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
         let width = area.dim_in_pixel().0;
-        let h = Self::line_height();
-        for (i, (line, colour)) in self.badges(width).into_iter().enumerate() {
-            rich_text(
-                area,
-                &line,
-                (px(12) as i32, (px(6) + h * i as u32 + h / 2) as i32),
-                Pos::new(HPos::Left, VPos::Center),
-                HEADING_LINE,
-                colour,
-                false,
-            )?;
-        }
-        Ok(())
+        draw_lines(area, self.badges(width), HEADING_LINE, Self::line_height())
     }
+}
+
+/// `lines` of rich text ([`rich_text`]) at font size `base`, each in its colour, left-aligned
+/// from the top of `area` ([`px`]`(12)` in, [`px`]`(6)` down), `height` pixels apart.
+pub fn draw_lines<DB: Backend>(
+    area: &DrawingArea<DB, Shift>,
+    lines: impl IntoIterator<Item = (String, RGBColor)>,
+    base: u32,
+    height: u32,
+) -> Result<()> {
+    for (i, (line, colour)) in lines.into_iter().enumerate() {
+        rich_text(
+            area,
+            &line,
+            (
+                px(12) as i32,
+                (px(6) + height * i as u32 + height / 2) as i32,
+            ),
+            Pos::new(HPos::Left, VPos::Center),
+            base,
+            colour,
+            false,
+        )?;
+    }
+    Ok(())
 }
 
 /// `text` without its parenthesised asides inside parentheses ("a (b (c) d)" → "a (b d)"),
@@ -545,6 +562,19 @@ pub fn save(
     verdicts: Vec<VerdictLine>,
     stem: &Path,
 ) -> Result<Vec<PathBuf>> {
+    let svg = stem.with_extension("svg");
+    let text = draw_svg(picture, verdicts).with_context(|| format!("drawing {}", svg.display()))?;
+    // the PNG is the SVG rasterised: the same picture, at print resolution
+    let png = stem.with_extension("png");
+    let bytes = rasterise(&text).with_context(|| format!("drawing {}", png.display()))?;
+    write_atomic(&png, &bytes)?;
+    write_atomic(&svg, svg_file(&text).as_bytes())?;
+    Ok(vec![png, svg])
+}
+
+/// `picture` with its heading and `verdicts` drawn as SVG text, the fonts not yet embedded:
+/// what [`save`] rasterises ([`rasterise`]) and writes ([`svg_file`]).
+pub fn draw_svg(picture: &impl Picture, verdicts: Vec<VerdictLine>) -> Result<String> {
     init_fonts();
     // the scale is set by the canvas width (which does not depend on it); the height does
     let _scale = ScaleGuard::for_width(picture.size().0);
@@ -567,25 +597,49 @@ pub fn save(
         heading.draw_badges(&bottom)?;
         root.present().map_err(pe)
     }
-    let svg = stem.with_extension("svg");
     let mut text = String::new();
     render(
         SVGBackend::with_string(&mut text, size).into_drawing_area(),
         &heading,
         (hh, h),
         picture,
-    )
-    .with_context(|| format!("drawing {}", svg.display()))?;
+    )?;
     // rectangles (map cells, heat-map cells, swatches) edge to edge: without anti-aliased
     // edges, or every shared edge shows as a faint seam
     let text = text.replace("<rect ", "<rect shape-rendering=\"crispEdges\" ");
-    let text = true_font_sizes(&text);
-    // the PNG is the SVG rasterised: the same picture, at print resolution
-    let png = stem.with_extension("png");
-    let bytes = rasterise(&text).with_context(|| format!("drawing {}", png.display()))?;
-    write_atomic(&png, &bytes)?;
-    write_atomic(&svg, embed_font(&text).as_bytes())?;
-    Ok(vec![png, svg])
+    Ok(true_font_sizes(&text))
+}
+
+/// The signature every picture file carries: a PNG's `Software` text chunk, a comment after
+/// an SVG's opening tag. A destination holding a picture without it was not written here.
+pub const SIGNATURE: &str = "trirhythm";
+
+/// The SVG file of a picture drawn by [`draw_svg`]: its fonts embedded ([`embed_font`]) and
+/// the [`SIGNATURE`] in a comment after the opening tag.
+pub fn svg_file(svg: &str) -> String {
+    let text = embed_font(svg);
+    match text
+        .find("<svg")
+        .and_then(|i| text[i..].find('>').map(|j| i + j + 1))
+    {
+        Some(end) => format!("{}<!-- {SIGNATURE} -->{}", &text[..end], &text[end..]),
+        None => text,
+    }
+}
+
+/// Whether `bytes` are a picture written here ([`rasterise`]'s PNG or [`svg_file`]'s SVG,
+/// told by the [`SIGNATURE`]): the only files a picture's destination may replace.
+pub fn signed(bytes: &[u8]) -> bool {
+    const PNG: &[u8] = b"\x89PNG\r\n\x1a\n";
+    let contains = |hay: &[u8], needle: &[u8]| hay.windows(needle.len()).any(|w| w == needle);
+    if bytes.starts_with(PNG) {
+        // (the text chunk follows the header, before the image data)
+        let chunk = format!("tEXtSoftware\0{SIGNATURE}");
+        contains(&bytes[..bytes.len().min(256)], chunk.as_bytes())
+    } else {
+        let head = &bytes[..bytes.len().min(4096)];
+        contains(head, b"<svg") && contains(head, format!("<!-- {SIGNATURE} -->").as_bytes())
+    }
 }
 
 /// DejaVu Sans' height (ascender − descender, 1901 + 483 font units) per em (2048 units).
@@ -658,6 +712,9 @@ pub fn rasterise(svg: &str) -> Result<Vec<u8>> {
         unit: png::Unit::Meter,
     }));
     let encoding = |e: png::EncodingError| anyhow!("encoding the PNG: {e}");
+    encoder
+        .add_text_chunk("Software".into(), SIGNATURE.into())
+        .map_err(encoding)?;
     let mut writer = encoder.write_header().map_err(encoding)?;
     writer.write_image_data(&rgb).map_err(encoding)?;
     writer.finish().map_err(encoding)?;
@@ -1200,6 +1257,23 @@ pub fn colour_bar_vertical<DB: Backend>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn pictures_written_here_are_signed_and_others_are_not() {
+        let svg = "<svg width=\"20\" height=\"10\" xmlns=\"http://www.w3.org/2000/svg\">\
+                   <rect x=\"0\" y=\"0\" width=\"5\" height=\"5\" fill=\"black\"/></svg>";
+        let png = rasterise(svg).unwrap();
+        assert!(signed(&png));
+        assert!(signed(svg_file(svg).as_bytes()));
+        // the same picture without the signature: a PNG of another program, a plain SVG
+        let mut foreign = png.clone();
+        let at = foreign.windows(4).position(|w| w == b"tEXt").unwrap();
+        foreign[at + 4] = b's';
+        assert!(!signed(&foreign));
+        assert!(!signed(svg.as_bytes()));
+        assert!(!signed(b"x,y\n1,2\n"));
+        assert!(!signed(b""));
+    }
 
     #[test]
     fn subscripts_parse_from_markup_and_symbols_only() {

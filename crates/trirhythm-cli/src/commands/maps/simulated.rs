@@ -8,17 +8,29 @@
 //! library's `SimulatedMap` (every point's density with its standard errors) with the
 //! parameters and the method. The work (points × paths × steps) is sized before it starts and
 //! refused beyond `--max-path-steps`; a bar shows the path-steps done.
+//!
+//! Picture: `--png FILE` and/or `--svg FILE`, the theory's count beside the simulated one
+//! with the points that do not agree marked ([`crate::render::figures::simmap`]). Each
+//! destination is checked before any work: named `.png` / `.svg`, writable, and where a file
+//! is there, a picture this tool drew ([`crate::render::plot::signed`]): a file it did not
+//! write is never replaced. Written atomically, after the data.
 
 use super::MapArgs;
 use crate::args::{lanes, parse_axis, Format, ImpactMemoryArg, Named};
 use crate::commands::ensemble::BackendArg;
 use crate::error::{allowed, bad};
+use crate::io::files::check_writable;
 use crate::io::progress::note;
+use crate::io::write_atomic;
 use crate::io::{emit, num, params_json, progress, Csv, Report};
-use anyhow::Result;
+use crate::render::figures::simmap::{SimulatedMapPicture, Sizes};
+use crate::render::plot::{draw_svg, rasterise, signed, svg_file};
+use anyhow::{Context, Result};
 use clap::Args;
 use serde::Serialize;
 use serde_json::Value;
+use std::io::Read;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 use trirhythm::analysis::ensemble::{EnsembleResult, EnsembleSpec};
@@ -45,6 +57,8 @@ pub const SIMULATION_FLAGS: &[(&str, &str)] = &[
     ("z_strict", "--z-strict"),
     ("max_path_steps", "--max-path-steps"),
     ("backend", "--backend"),
+    ("png", "--png"),
+    ("svg", "--svg"),
 ];
 
 /// Arguments of `map --simulate`.
@@ -106,6 +120,46 @@ pub struct SimulateMapArgs {
     /// (the CUDA kernel on the first GPU; docs/gpu.md).
     #[arg(long, value_enum, default_value_t = BackendArg::Cpu)]
     pub backend: BackendArg,
+    /// --simulate: draw the theory's count beside the simulated one, the points that do not
+    /// agree marked, as a PNG 7 in wide at 300 dpi (a file named .png; an existing one only
+    /// if this tool drew it).
+    #[arg(long, value_name = "FILE")]
+    pub png: Option<PathBuf>,
+    /// --simulate: the same picture as SVG (a file named .svg; an existing one only if this
+    /// tool drew it).
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
+}
+
+/// Refuse, before any work, a picture's destination that cannot take it: a name without the
+/// `.ext` of `flag`'s format, a path [`check_writable`] refuses, or an existing file that is
+/// not a picture this tool drew ([`signed`]), which is never replaced.
+fn check_picture(path: &Path, flag: &str, ext: &str) -> Result<()> {
+    if !path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
+    {
+        return bad(format!(
+            "{flag} {}: give a file name ending in .{ext}",
+            path.display()
+        ));
+    }
+    check_writable(path, flag)?;
+    if path.exists() {
+        let mut head = Vec::new();
+        let read = std::fs::File::open(path).and_then(|f| f.take(4096).read_to_end(&mut head));
+        if let Err(e) = read {
+            return bad(format!("{flag} {}: cannot read it ({e})", path.display()));
+        }
+        if !signed(&head) {
+            return bad(format!(
+                "{flag} {}: exists and is not a picture trirhythm drew; it is never \
+                 replaced (remove it, or give another name)",
+                path.display()
+            ));
+        }
+    }
+    Ok(())
 }
 
 impl SimulateMapArgs {
@@ -203,6 +257,12 @@ pub fn map(args: &MapArgs) -> Result<()> {
             sim.paths,
             num(((sim.burn_in + sim.t_end) / sim.dt).round())
         ));
+    }
+    if let Some(p) = &sim.png {
+        check_picture(p, "--png", "png")?;
+    }
+    if let Some(p) = &sim.svg {
+        check_picture(p, "--svg", "svg")?;
     }
     note(&format!(
         "map --simulate: {} points × {} paths × {} steps = {} path-steps on the {}",
@@ -302,5 +362,25 @@ pub fn map(args: &MapArgs) -> Result<()> {
             csv.finish()?
         }
     };
-    emit(args.output.out.as_deref(), &text)
+    emit(args.output.out.as_deref(), &text)?;
+    if sim.png.is_none() && sim.svg.is_none() {
+        return Ok(());
+    }
+    let sizes = Sizes {
+        paths: sim.paths,
+        t_end: sim.t_end,
+        burn_in: sim.burn_in,
+        dt: sim.dt,
+        seed: sim.seed,
+    };
+    let picture = SimulatedMapPicture::new(&map, &base, &sizes);
+    let svg = draw_svg(&picture, Vec::new()).context("drawing the simulated map")?;
+    if let Some(p) = &sim.png {
+        let bytes = rasterise(&svg).with_context(|| format!("drawing {}", p.display()))?;
+        write_atomic(p, &bytes)?;
+    }
+    if let Some(p) = &sim.svg {
+        write_atomic(p, svg_file(&svg).as_bytes())?;
+    }
+    Ok(())
 }

@@ -42,8 +42,18 @@ pub const PRINTED: RGBColor = RGBColor(255, 170, 0);
 /// The strip beyond the computed grid (no data).
 const BEYOND: RGBColor = RGBColor(228, 228, 228);
 
+/// Whether a map's panels zoom on a small region in an inset: the paper's figures do; the
+/// simulated map's panels do not (its marks would fall on the inset).
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Insets {
+    /// Where [`inset_ranges`] finds a region to enlarge.
+    Drawn,
+    /// Never.
+    Off,
+}
+
 /// One legend for every panel: the counts met in any panel, the curves and markers drawn.
-fn legend(fig: &MapFigure) -> LegendStrip {
+pub(super) fn legend(fig: &MapFigure, insets: Insets) -> LegendStrip {
     let mut counts = [0usize; 5];
     for p in &fig.panels {
         for (c, h) in counts.iter_mut().zip(p.histogram()) {
@@ -52,7 +62,7 @@ fn legend(fig: &MapFigure) -> LegendStrip {
     }
     let modes = fig.panels.iter().any(|p| p.what == What::Modes);
     let names = if modes {
-        ["-", "unimodal", "bimodal", "trimodal", "4+ modes"]
+        ["no mode", "unimodal", "bimodal", "trimodal", "4+ modes"]
     } else {
         [
             "no stable cycle",
@@ -86,7 +96,7 @@ fn legend(fig: &MapFigure) -> LegendStrip {
         };
         entries.push((Symbol::Line(FOLD), name));
     }
-    if fig.panels.iter().any(|p| inset_ranges(p).is_some()) {
+    if insets == Insets::Drawn && fig.panels.iter().any(|p| inset_ranges(p).is_some()) {
         entries.push((
             Symbol::Framed(count_colour(2), WHITE),
             "enlarged in the inset".into(),
@@ -116,7 +126,7 @@ fn legend(fig: &MapFigure) -> LegendStrip {
 }
 
 /// Panel size in pixels.
-const PANEL: (u32, u32) = (560, 470);
+pub(super) const PANEL: (u32, u32) = (560, 470);
 
 /// Panels per (row, column): two side by side, four in a square.
 fn layout(fig: &MapFigure) -> (usize, usize) {
@@ -130,21 +140,21 @@ fn layout(fig: &MapFigure) -> (usize, usize) {
 picture!(MapFigure, |self, root| key map_key(self), size {
     let (r, c) = layout(self);
     let w = PANEL.0 * c as u32;
-    (w, PANEL.1 * r as u32 + legend(self).height(w))
+    (w, PANEL.1 * r as u32 + legend(self, Insets::Drawn).height(w))
 }, draw {
     let (panels, strip) = root.split_vertically(PANEL.1 * layout(self).0 as u32);
-    let ends = clear_ends(self);
+    let ends = clear_ends(self, Insets::Drawn);
     for ((area, p), ends) in panels.split_evenly(layout(self)).iter().zip(&self.panels).zip(ends) {
-        draw_panel(area, p, ends)?;
+        draw_panel(area, p, ends, Insets::Drawn)?;
     }
-    legend(self).draw(&strip)
+    legend(self, Insets::Drawn).draw(&strip)
 });
 
 /// Which ends of its axes (x start, x end, y start, y end) a panel leaves a strip beyond the
 /// map at ([`END_GAP`] of the axis): those along which a printed curve runs (its points
 /// within [`ON_END`] of the axis from the end spanning [`ALONG`] of the other axis or more:
 /// drawn on the spine) or an inset's zoom box lies, so that neither sits on a spine.
-fn panel_ends(p: &MapPanel) -> [bool; 4] {
+fn panel_ends(p: &MapPanel, insets: Insets) -> [bool; 4] {
     let mut ends = [false; 4];
     let (gx, gy) = (&p.x.grid, &p.y.grid);
     let (sx, sy) = (p.x.scale, p.y.scale);
@@ -165,7 +175,7 @@ fn panel_ends(p: &MapPanel) -> [bool; 4] {
             ends[k] |= hi - lo >= ALONG * other.abs();
         }
     }
-    if let Some((zx, zy)) = inset_ranges(p) {
+    if let Some((zx, zy)) = inset_ranges(p).filter(|_| insets == Insets::Drawn) {
         for (k, v) in [zx.start, zx.end, zy.start, zy.end].into_iter().enumerate() {
             ends[k] |= (v - bounds[k]).abs() <= 1e-9 * (1.0 + v.abs());
         }
@@ -181,8 +191,8 @@ const ALONG: f64 = 0.05;
 
 /// [`panel_ends`] of each panel, shared by the panels with the same axis (a row or column
 /// of a figure keeps one range).
-fn clear_ends(fig: &MapFigure) -> Vec<[bool; 4]> {
-    let own: Vec<[bool; 4]> = fig.panels.iter().map(panel_ends).collect();
+pub(super) fn clear_ends(fig: &MapFigure, insets: Insets) -> Vec<[bool; 4]> {
+    let own: Vec<[bool; 4]> = fig.panels.iter().map(|p| panel_ends(p, insets)).collect();
     let same = |a: &MapPanel, b: &MapPanel, k: usize| {
         let (u, v) = if k < 2 { (&a.x, &b.x) } else { (&a.y, &b.y) };
         u.grid.start == v.grid.start && u.grid.stop == v.grid.stop && u.scale == v.scale
@@ -207,12 +217,14 @@ const END_GAP: f64 = 0.03;
 const MARK: RGBColor = RGBColor(255, 0, 255);
 
 /// Draw one map panel: merged row runs of equal count, fold curves (named where known),
-/// cusps, the marked point. The legend is the figure's, outside the panels.
-fn draw_panel<DB: Backend>(
-    area: &DrawingArea<DB, Shift>,
+/// cusps, the marked point, the inset where `insets` allows one. The legend is the figure's,
+/// outside the panels. Returns the panel's chart, for marks drawn on top.
+pub(super) fn draw_panel<'a, DB: Backend>(
+    area: &'a DrawingArea<DB, Shift>,
     p: &MapPanel,
     ends: [bool; 4],
-) -> Result<()> {
+    insets: Insets,
+) -> Result<MapChart<'a, DB>> {
     let (gx, gy) = (&p.x.grid, &p.y.grid);
     let (sx, sy) = (p.x.scale, p.y.scale);
     let xr = (gx.start / sx)..(gx.stop / sx);
@@ -293,7 +305,11 @@ fn draw_panel<DB: Backend>(
     // the inset (and the outline of the box it zooms on) first: the names go beside them
     let mut taken: Vec<PixelBox> = Vec::new();
     {
-        if let Some((inset, zoom)) = draw_inset(area, &mut c, p)? {
+        let drawn = match insets {
+            Insets::Drawn => draw_inset(area, &mut c, p)?,
+            Insets::Off => None,
+        };
+        if let Some((inset, zoom)) = drawn {
             taken.push(inset);
             // the zoom box's four edges (a name may sit inside the box, not on its outline)
             let t = pxi(3);
@@ -394,7 +410,7 @@ fn draw_panel<DB: Backend>(
         ))
         .map_err(pe)?;
     }
-    Ok(())
+    Ok(c)
 }
 
 /// A box in backend pixels: left, top, right, bottom.
@@ -462,7 +478,10 @@ fn map_key(fig: &MapFigure) -> Vec<String> {
                 .to_string(),
         );
     }
-    if clear_ends(fig).iter().any(|e| e.iter().any(|&b| b)) {
+    if clear_ends(fig, Insets::Drawn)
+        .iter()
+        .any(|e| e.iter().any(|&b| b))
+    {
         key.push(
             "light grey: the narrow strip between the computed grid and the axis, no data \
              (kept so that no curve lies on a spine)"
@@ -645,7 +664,8 @@ const SAMPLE: f64 = 0.6;
 /// The largest extent (fraction of an axis) of a region an inset enlarges on a map of modes.
 const SLIVER: f64 = 0.02;
 
-type MapChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+pub(super) type MapChart<'a, DB> =
+    ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// Draw the inset zooming on the trirhythmic region (where [`inset_ranges`] gives one): the
 /// zoomed box outlined on the panel, the inset where in the plotting area its cover hides the

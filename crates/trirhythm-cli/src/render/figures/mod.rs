@@ -98,6 +98,7 @@ mod fig19_critical_noise;
 mod lle;
 mod mapfig;
 mod montecarlo;
+pub mod simmap;
 
 use crate::render::plot::Heading;
 use trirhythm_paper::notes::Caption;

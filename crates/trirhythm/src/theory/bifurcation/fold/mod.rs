@@ -124,8 +124,8 @@ pub struct FoldCurve {
     pub end: CurveEnd,
 }
 
-/// All curves traced on a map.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+/// All curves traced on a map (none by default: a map drawn without its folds).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct Folds {
     /// The curves.
     pub curves: Vec<FoldCurve>,
