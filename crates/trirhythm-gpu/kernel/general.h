@@ -624,6 +624,50 @@ TR_NOINLINE void tr_wall_impact(const TrPlan* P, const TrGeneralPlan* G, TrPath*
                        known, wr_s, fr, u1, v1);
 }
 
+/* the end of a General step from (u, v) at (u1, v1) after its events (engine `end_general`,
+ * the tail of `step_general` at the wall at 0 and `end_wall_step`): the blow-up check, the node,
+ * the fractional terms' pieces and U·η_m at the end, g's piece pushed (`push`; `split` at an
+ * impact), the state. Without those terms the engine's step at the wall at 0 adds their absent
+ * part as 0.0 and its walls' step leaves it out (`zero_extra` 1 or 0): the two forms differ only
+ * in the sign of a zero, kept so that the bits are the engine's. */
+TR_FN int tr_general_finish(const TrPlan* P, const TrGeneralPlan* G, TrPath* s, TrGeneral* g,
+                            double u, double v, double gl, double fr, double u1, double v1,
+                            int push, const TrSplit* split, int zero_extra) {
+    if (tr_count_step(P, s, u, v, u1, v1) != TR_OK) {
+        return TR_BLOW_UP;
+    }
+    tr_general_node(P, G, P->h, u1, v1, &s->drift, &s->pw);
+    double right;
+    if (G->multiplicative || G->fractional_terms) {
+        /* a step that sticks with the memory restarting pushes nothing: the fractional
+         * memories restart too */
+        double extra = 0.0;
+        int status = TR_OK;
+        if (!push && G->fractional_terms) {
+            tr_restart_memories(G, g);
+        } else {
+            extra = tr_general_end(G, g, v, v1, u1, &status);
+        }
+        if (status != TR_OK) {
+            return status;
+        }
+        right = s->drift + fr + extra;
+    } else if (zero_extra) {
+        right = s->drift + fr + 0.0;
+    } else {
+        right = s->drift + fr;
+    }
+    if (push) {
+        if (split && s->history.nsplits >= TR_MAX_SPLITS) {
+            return TR_TOO_MANY_SPLITS;
+        }
+        tr_history_push(P, &s->history, gl, right, split);
+    }
+    s->u = u1;
+    s->v = v1;
+    return TR_OK;
+}
+
 /* the events of a step with the model's walls whose free end is (u1, v1), and its end
  * (engine `Stepper::step_walls`, `pressed`, `beyond_again`, `end_wall_step`) */
 TR_NOINLINE int tr_walls_end(const TrPlan* P, const TrGeneralPlan* G, TrPath* s, TrGeneral* g,
@@ -666,43 +710,7 @@ TR_NOINLINE int tr_walls_end(const TrPlan* P, const TrGeneralPlan* G, TrPath* s,
             }
         }
     }
-    s->steps += 1;
-    if (!(tr_fabs(u1) <= P->blow_up && tr_fabs(v1) <= P->blow_up)) {
-        s->from_u = u;
-        s->from_v = v;
-        s->u = u1;
-        s->v = v1;
-        return TR_BLOW_UP;
-    }
-    tr_general_node(P, G, P->h, u1, v1, &s->drift, &s->pw);
-    double right;
-    if (G->multiplicative || G->fractional_terms) {
-        /* a step that sticks with the memory restarting pushes nothing: the fractional
-         * memories restart too */
-        double extra;
-        int status = TR_OK;
-        if (!push && G->fractional_terms) {
-            tr_restart_memories(G, g);
-            extra = 0.0;
-        } else {
-            extra = tr_general_end(G, g, v, v1, u1, &status);
-        }
-        if (status != TR_OK) {
-            return status;
-        }
-        right = s->drift + fr + extra;
-    } else {
-        right = s->drift + fr;
-    }
-    if (push) {
-        if (has_split && s->history.nsplits >= TR_MAX_SPLITS) {
-            return TR_TOO_MANY_SPLITS;
-        }
-        tr_history_push(P, &s->history, gl, right, has_split ? &split : 0);
-    }
-    s->u = u1;
-    s->v = v1;
-    return TR_OK;
+    return tr_general_finish(P, G, s, g, u, v, gl, fr, u1, v1, push, has_split ? &split : 0, 0);
 }
 
 /* one step Δt of the General kernel (engine `Stepper::step_general` with `begin_general`,
@@ -752,36 +760,7 @@ TR_FN int tr_step_general(const TrPlan* P, const TrGeneralPlan* G, TrPath* s, Tr
             s->stuck = 1;
         }
     }
-    s->steps += 1;
-    if (!(tr_fabs(u1) <= P->blow_up && tr_fabs(v1) <= P->blow_up)) {
-        s->from_u = u;
-        s->from_v = v;
-        s->u = u1;
-        s->v = v1;
-        return TR_BLOW_UP;
-    }
-    tr_general_node(P, G, P->h, u1, v1, &s->drift, &s->pw);
-    double extra = 0.0;
-    if (extras) {
-        int status = TR_OK;
-        if (!push && G->fractional_terms) {
-            tr_restart_memories(G, g);
-        } else {
-            extra = tr_general_end(G, g, v, v1, u1, &status);
-        }
-        if (status != TR_OK) {
-            return status;
-        }
-    }
-    if (push) {
-        if (has_split && s->history.nsplits >= TR_MAX_SPLITS) {
-            return TR_TOO_MANY_SPLITS;
-        }
-        tr_history_push(P, &s->history, gl, s->drift + fr + extra, has_split ? &split : 0);
-    }
-    s->u = u1;
-    s->v = v1;
-    return TR_OK;
+    return tr_general_finish(P, G, s, g, u, v, gl, fr, u1, v1, push, has_split ? &split : 0, 1);
 }
 
 #endif

@@ -184,6 +184,20 @@ TR_NOINLINE void tr_impact(const TrPlan* P, TrPath* s, double gl, double el, dou
                tr_forcing(P, er, new_side), u1, v1);
 }
 
+/* the end of a step from (u, v) at (u1, v1), counted (engine `check_blow_up`): beyond the
+ * blow-up bound, or not finite, the path stops with the step's start kept for the report */
+TR_FN int tr_count_step(const TrPlan* P, TrPath* s, double u, double v, double u1, double v1) {
+    s->steps += 1;
+    if (tr_fabs(u1) <= P->blow_up && tr_fabs(v1) <= P->blow_up) {
+        return TR_OK;
+    }
+    s->from_u = u;
+    s->from_v = v;
+    s->u = u1;
+    s->v = v1;
+    return TR_BLOW_UP;
+}
+
 /* one step Δt (engine `Stepper::step`); returns TR_OK or why the path stops */
 TR_FN int tr_step(const TrPlan* P, TrPath* s, const double* zx, const double* zf) {
     double el, er;
@@ -216,12 +230,7 @@ TR_FN int tr_step(const TrPlan* P, TrPath* s, const double* zx, const double* zf
             s->stuck = 1;
         }
     }
-    s->steps += 1;
-    if (!(tr_fabs(u1) <= P->blow_up && tr_fabs(v1) <= P->blow_up)) {
-        s->from_u = u;
-        s->from_v = v;
-        s->u = u1;
-        s->v = v1;
+    if (tr_count_step(P, s, u, v, u1, v1) != TR_OK) {
         return TR_BLOW_UP;
     }
     if (P->crossing && u1 != 0.0) {

@@ -73,7 +73,7 @@ fn cached_ptx(defines: &[(&str, String)], arch: (u32, u32)) -> Result<String> {
 /// The bytes of a plain value, to upload a structure of another crate as the kernel reads it.
 fn bytes_of<T: Copy>(value: &T) -> Vec<u8> {
     // SAFETY: `T` is a `#[repr(C)]` plain-data structure (StepPlan, GeneralPlan, RecordPlan,
-    // NoiseIn) without padding that could be uninitialised in a way the kernel reads: its
+    // TrNoise) without padding that could be uninitialised in a way the kernel reads: its
     // padding bytes are copied but never used as values
     unsafe { std::slice::from_raw_parts(value as *const T as *const u8, std::mem::size_of::<T>()) }
         .to_vec()

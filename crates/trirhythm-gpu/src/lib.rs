@@ -125,5 +125,5 @@ pub fn layout_of_c(which: i32) -> u64 {
 /// The size of the kernel's noise structure on the Rust side, for the layout tests.
 #[doc(hidden)]
 pub fn noise_layout() -> usize {
-    std::mem::size_of::<paths::NoiseIn>()
+    std::mem::size_of::<emulate::TrNoise>()
 }

@@ -1,6 +1,6 @@
 //! What the kernel and its emulation share on the host side: a run's constants prepared once
 //! ([`Prepared`]: the step's [`StepPlan`] and [`GeneralPlan`], the recorder's [`RecordPlan`], the noise's
-//! [`StepConstants`], the ziggurat's tables), the raw per-path outputs in the kernel's
+//! `StepConstants`, the ziggurat's tables), the raw per-path outputs in the kernel's
 //! `#[repr(C)]` layouts, and their conversion into the engine's [`PathStats`], so that both
 //! backends end in `trirhythm::analysis::ensemble::merge`, as the CPU engine does.
 //!
@@ -8,22 +8,15 @@
 //! (`kernel/path.h`, compiled as C by `build.rs`) one path per call on every core; its tests
 //! (`tests/emulation.rs`) compare it with the engine bit for bit.
 
+use crate::emulate::TrNoise;
 use rayon::prelude::*;
 use trirhythm::analysis::ensemble::{
     merge, BatchSums, EnsembleResult, EnsembleSpec, PassageSums, PathStats, RecordPlan,
 };
-use trirhythm::engine::noise::{NoiseStream, StepConstants};
+use trirhythm::engine::noise::NoiseStream;
 use trirhythm::engine::{GeneralPlan, PredictorCorrector, Problem, StepPlan, Stepper};
 use trirhythm::error::Exact;
 use trirhythm::{Error, Result};
-
-/// The kernel's `TrNoise`: the constants and the running node value.
-#[repr(C)]
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct NoiseIn {
-    pub(crate) constants: StepConstants,
-    pub(crate) state: f64,
-}
 
 /// The kernel's `TrBatch`.
 #[repr(C)]
@@ -72,7 +65,7 @@ pub(crate) struct Prepared {
     /// The General kernel's constants (`active` = 0 for the paper's family).
     pub(crate) general: GeneralPlan,
     pub(crate) record: RecordPlan,
-    pub(crate) noise: NoiseIn,
+    pub(crate) noise: TrNoise,
     /// Steps of a path (burn-in and window).
     pub(crate) steps: u64,
     pub(crate) seed: u64,
@@ -93,9 +86,11 @@ impl Prepared {
         let horizon = steps as f64 * method.dt;
         let plan = StepPlan::new(problem, method, horizon)?;
         let general = GeneralPlan::new(problem, method, horizon)?;
-        // each start as the engine's stepper checks it, and the noise's constants (every path's)
+        // each start as the engine's stepper checks it (the checks do not depend on the
+        // horizon: a zero one keeps the memories it builds and throws away small), and the
+        // noise's constants (every path's)
         for k in 0..problem.starts().len().min(spec.paths) as u64 {
-            Stepper::new(problem, method, (spec.seed, k), horizon)?;
+            Stepper::new(problem, method, (spec.seed, k), 0.0)?;
         }
         let constants =
             NoiseStream::new(problem.oscillator().noise(), method.dt, 0, 0)?.step_constants();
@@ -104,10 +99,7 @@ impl Prepared {
             plan,
             general,
             record,
-            noise: NoiseIn {
-                constants,
-                state: 0.0,
-            },
+            noise: TrNoise::new(&constants),
             steps,
             seed: spec.seed,
             counts: 4 * (3 * (bins + 1) + jb * jb + 1),
@@ -260,7 +252,8 @@ pub(crate) fn first_error(results: Vec<Result<PathStats>>) -> Result<Vec<PathSta
 }
 
 mod ffi {
-    use super::{Batch, NoiseIn, Passage, PathEnd};
+    use super::{Batch, Passage, PathEnd};
+    use crate::emulate::TrNoise;
     use trirhythm::analysis::ensemble::RecordPlan;
     use trirhythm::engine::{GeneralPlan, StepPlan};
 
@@ -269,7 +262,7 @@ mod ffi {
         pub(super) fn tr_emulate_path(
             plan: *const StepPlan,
             general: *const GeneralPlan,
-            noise: *const NoiseIn,
+            noise: *const TrNoise,
             record: *const RecordPlan,
             zx: *const f64,
             zf: *const f64,

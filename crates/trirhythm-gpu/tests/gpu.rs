@@ -5,7 +5,7 @@
 //! on the linear oscillator's known variances — and its reproducibility run to run.
 
 use trirhythm::analysis::ensemble::{
-    run_ensemble, run_paths, Density, EnsembleResult, EnsembleSpec, Estimate,
+    merge, run_paths, Density, EnsembleResult, EnsembleSpec, Estimate, PathStats,
 };
 use trirhythm::engine::{Barrier, PredictorCorrector, Problem};
 use trirhythm::known_answers::{linear_fractional_moments, linear_fractional_oscillator};
@@ -71,6 +71,40 @@ fn statistically_equal(cpu: &EnsembleResult, gpu: &EnsembleResult) {
     densities("turning", &cpu.turning, &gpu.turning);
 }
 
+/// The ensemble on the GPU against the CPU engine's: reproducible run to run, statistically
+/// equal (every moment and density bin within three combined standard errors), and the paths
+/// identical bit for bit counted and printed; returns the GPU's paths.
+fn against_the_cpu(
+    what: &str,
+    problem: &Problem,
+    method: &PredictorCorrector,
+    spec: &EnsembleSpec,
+) -> Vec<PathStats> {
+    let all: Vec<u64> = (0..spec.paths as u64).collect();
+    let cpu_paths = run_paths(problem, method, spec, &all, &Silent).unwrap();
+    let gpu_paths = trirhythm_gpu::gpu_paths(problem, method, spec, &Silent)
+        .unwrap()
+        .stats;
+    let identical = cpu_paths
+        .iter()
+        .zip(&gpu_paths)
+        .filter(|(a, b)| a == b)
+        .count();
+    println!(
+        "{what}: paths identical to the CPU's bit for bit: {identical} of {}",
+        spec.paths
+    );
+    let gpu = merge(problem, method, spec, gpu_paths.clone()).unwrap();
+    let again = run_on(problem, method, spec, &Silent, Backend::Gpu).unwrap();
+    assert_eq!(
+        gpu, again,
+        "{what}: the GPU's results are reproducible run to run"
+    );
+    let cpu = merge(problem, method, spec, cpu_paths).unwrap();
+    statistically_equal(&cpu, &gpu);
+    gpu_paths
+}
+
 #[test]
 fn fig13a_on_the_gpu_is_the_cpus() {
     if !gpu() {
@@ -94,25 +128,7 @@ fn fig13a_on_the_gpu_is_the_cpus() {
         amplitude_max: 10.0,
         ..Default::default()
     };
-    let all: Vec<u64> = (0..spec.paths as u64).collect();
-    let cpu_paths = run_paths(&problem, &method, &spec, &all, &Silent).unwrap();
-    let gpu = run_on(&problem, &method, &spec, &Silent, Backend::Gpu).unwrap();
-    let again = run_on(&problem, &method, &spec, &Silent, Backend::Gpu).unwrap();
-    assert_eq!(gpu, again, "the GPU's results are reproducible run to run");
-    let gpu_paths = trirhythm_gpu::gpu_paths(&problem, &method, &spec, &Silent)
-        .unwrap()
-        .stats;
-    let identical = cpu_paths
-        .iter()
-        .zip(&gpu_paths)
-        .filter(|(a, b)| a == b)
-        .count();
-    println!(
-        "paths identical to the CPU's bit for bit: {identical} of {}",
-        spec.paths
-    );
-    let cpu = run_ensemble(&problem, &method, &spec, &Silent).unwrap();
-    statistically_equal(&cpu, &gpu);
+    against_the_cpu("Fig. 13(a)", &problem, &method, &spec);
 }
 
 /// The General kernel (`kernel/general.h`) on the device: Fig. 13(a)'s oscillator with a
@@ -175,28 +191,10 @@ fn the_general_kernel_on_the_gpu_is_the_cpus() {
         amplitude_max: 1.0,
         ..Default::default()
     };
-    let all: Vec<u64> = (0..spec.paths as u64).collect();
-    let cpu_paths = run_paths(&problem, &method, &spec, &all, &Silent).unwrap();
-    let gpu = run_on(&problem, &method, &spec, &Silent, Backend::Gpu).unwrap();
-    let again = run_on(&problem, &method, &spec, &Silent, Backend::Gpu).unwrap();
-    assert_eq!(gpu, again, "the GPU's results are reproducible run to run");
-    let gpu_paths = trirhythm_gpu::gpu_paths(&problem, &method, &spec, &Silent)
-        .unwrap()
-        .stats;
-    let identical = cpu_paths
-        .iter()
-        .zip(&gpu_paths)
-        .filter(|(a, b)| a == b)
-        .count();
+    let gpu_paths = against_the_cpu("General kernel", &problem, &method, &spec);
     let impacts: u64 = gpu_paths.iter().map(|p| p.impacts).sum();
-    println!(
-        "General kernel: paths identical to the CPU's bit for bit: {identical} of {}; {impacts} \
-         impacts on the GPU",
-        spec.paths
-    );
+    println!("General kernel: {impacts} impacts on the GPU");
     assert!(impacts > 0);
-    let cpu = run_ensemble(&problem, &method, &spec, &Silent).unwrap();
-    statistically_equal(&cpu, &gpu);
 }
 
 #[test]

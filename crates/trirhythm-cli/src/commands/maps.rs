@@ -114,24 +114,31 @@ fn folds_destination(args: &MapArgs) -> Result<Option<PathBuf>> {
     Ok(Some(path))
 }
 
-/// `map`: classification of a parameter plane, with fold curves on request; with
-/// `--simulate`, the simulated P-bifurcation map beside the theory's.
-pub fn map(args: &MapArgs) -> Result<()> {
-    if args.sim.simulate {
-        return simulated::map(args);
-    }
+/// The plane of `map`'s `--x` and `--y` over the resolved parameters (the theory's map and the
+/// simulated one alike): the parameters, the plane and the axes' keys.
+fn plane_of(args: &MapArgs) -> Result<(trirhythm::Params, Plane, String, String)> {
     let mut params = args.params.clone();
     args.file.paper_base(&mut params, "map")?;
     let base = params.resolve()?;
-    let variant = args.params.variant();
     let (kx, gx) = parse_axis(&args.x, "--x", true)?;
     let (ky, gy) = parse_axis(&args.y, "--y", true)?;
     let plane = Plane::new(
         &base,
         Axis::new(&kx, gx.start, gx.stop, gx.count)?,
         Axis::new(&ky, gy.start, gy.stop, gy.count)?,
-        variant,
+        args.params.variant(),
     )?;
+    Ok((base, plane, kx, ky))
+}
+
+/// `map`: classification of a parameter plane, with fold curves on request; with
+/// `--simulate`, the simulated P-bifurcation map beside the theory's.
+pub fn map(args: &MapArgs) -> Result<()> {
+    if args.sim.simulate {
+        return simulated::map(args);
+    }
+    let (base, plane, kx, ky) = plane_of(args)?;
+    let variant = args.params.variant();
     let what: What = args.what.into();
     // D may be an axis; only a constant D = 0 is an error
     if what == What::Modes && base.noise_intensity <= 0.0 && kx != "D" && ky != "D" {

@@ -16,7 +16,7 @@
 //! write is never replaced. Written atomically, after the data.
 
 use super::MapArgs;
-use crate::args::{lanes, parse_axis, Format, ImpactMemoryArg, Named};
+use crate::args::{lanes, Format, ImpactMemoryArg, Named};
 use crate::commands::ensemble::BackendArg;
 use crate::error::{allowed, bad};
 use crate::io::files::check_writable;
@@ -37,7 +37,6 @@ use trirhythm::analysis::ensemble::{EnsembleResult, EnsembleSpec};
 use trirhythm::analysis::simulated_map::{simulate_map, ModeRule, SimulatedMap, SimulatedMapSpec};
 use trirhythm::engine::{PredictorCorrector, Problem};
 use trirhythm::monitor::Silent;
-use trirhythm::theory::bifurcation::{Axis, Plane};
 use trirhythm_gpu::run_ensemble;
 
 /// The options of `map --simulate` (their ids, for refusing them without it).
@@ -224,18 +223,8 @@ struct Document<'a> {
 pub fn map(args: &MapArgs) -> Result<()> {
     debug_assert!(args.sim.simulate);
     let sim = &args.sim;
-    let mut params = args.params.clone();
-    args.file.paper_base(&mut params, "map")?;
-    let base = params.resolve()?;
+    let (base, plane, kx, ky) = super::plane_of(args)?;
     let variant = args.params.variant();
-    let (kx, gx) = parse_axis(&args.x, "--x", true)?;
-    let (ky, gy) = parse_axis(&args.y, "--y", true)?;
-    let plane = Plane::new(
-        &base,
-        Axis::new(&kx, gx.start, gx.stop, gx.count)?,
-        Axis::new(&ky, gy.start, gy.stop, gy.count)?,
-        variant,
-    )?;
     let spec = sim.spec()?;
     spec.validate(&plane)?;
     // the work, sized before it starts
